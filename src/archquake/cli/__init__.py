@@ -1,0 +1,1 @@
+"""The ``archquake`` command line: a thin shell over the library (see :mod:`archquake.cli.main`)."""

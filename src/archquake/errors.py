@@ -1,0 +1,49 @@
+"""The exceptions archquake raises for bad input and for physics it cannot honour.
+
+Every user-facing error message is one line that says what is wrong and how to fix it.
+The CLI prints ``str(error)`` and exits with status 2 for any :class:`ArchquakeError`;
+any other exception is a bug and keeps its traceback.
+"""
+
+from __future__ import annotations
+
+
+class ArchquakeError(Exception):
+    """Base class of all errors archquake raises on purpose."""
+
+
+class InvalidParameterError(ArchquakeError, ValueError):
+    """A parameter is outside its valid range (message names it and the range)."""
+
+
+class UnstableArchError(ArchquakeError, ValueError):
+    """The arch cannot stand under its own weight (message names the minimum thickness)."""
+
+    def __init__(self, message: str, min_thickness_ratio: float | None = None):
+        super().__init__(message)
+        self.min_thickness_ratio = min_thickness_ratio
+
+    def __reduce__(self):  # keep picklable with the extra attribute (Dask, process pools)
+        return (type(self), (str(self), self.min_thickness_ratio))
+
+
+class GroundMotionFormatError(ArchquakeError, ValueError):
+    """An accelerogram file is malformed (message names the file, line and the fix)."""
+
+
+class StudyFileError(ArchquakeError, ValueError):
+    """A sweep study file is malformed (message names the key and what is expected)."""
+
+
+class SolverError(ArchquakeError, RuntimeError):
+    """An integrator could not proceed (step size underflow, toggle reached unexpectedly)."""
+
+
+__all__ = [
+    "ArchquakeError",
+    "InvalidParameterError",
+    "UnstableArchError",
+    "GroundMotionFormatError",
+    "StudyFileError",
+    "SolverError",
+]

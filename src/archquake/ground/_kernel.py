@@ -1,0 +1,56 @@
+"""Compiled evaluation of any ground motion from its ``(kind, params)`` description."""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+from archquake.ground.base import KIND_SAMPLED, KIND_SINE, KIND_STEP
+
+
+@nb.njit(cache=True, nogil=True)
+def ground_acceleration(kind: int, params: np.ndarray, t: float) -> float:
+    """x_g''(t), m/s^2, for the motion described by ``(kind, params)``."""
+    if kind == KIND_STEP:
+        a, tp, direction = params[0], params[1], params[2]
+        if t < 0.0:
+            return 0.0
+        if t < tp:
+            return direction * a
+        if t < 3.0 * tp:
+            return -0.5 * direction * a
+        return 0.0
+    if kind == KIND_SINE:
+        a, period, direction = params[0], params[1], params[2]
+        if t < 0.0 or t >= period:
+            return 0.0
+        return direction * a * math.sin(2.0 * math.pi * t / period)
+    # sampled, linear between samples
+    t0, dt = params[0], params[1]
+    n = params.shape[0] - 2
+    s = (t - t0) / dt
+    if s < 0.0 or s > n - 1:
+        return 0.0
+    i = int(math.floor(s))
+    if i >= n - 1:
+        return params[2 + n - 1]
+    f = s - i
+    return (1.0 - f) * params[2 + i] + f * params[3 + i]
+
+
+@nb.njit(cache=True, nogil=True)
+def ground_duration(kind: int, params: np.ndarray) -> float:
+    """Time after which x_g'' is identically zero, s."""
+    if kind == KIND_STEP:
+        return 3.0 * params[1]
+    if kind == KIND_SINE:
+        return params[1]
+    return params[0] + params[1] * (params.shape[0] - 3)
+
+
+def evaluate(kind: int, params: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Vectorised convenience wrapper of :func:`ground_acceleration` (for tests and plots)."""
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    return np.array([ground_acceleration(kind, params, float(x)) for x in t])

@@ -1,0 +1,156 @@
+"""Analytical pulses: Oppenheim's step impulse and the one-cycle sine pulse.
+
+Magnitudes are in m/s^2 (SI inside); ``from_g`` builds from multiples of g.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from archquake._validate import require_finite, require_positive
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.ground.base import KIND_SINE, KIND_STEP
+
+
+def _direction(value: object) -> int:
+    if value not in (-1, 1):
+        raise InvalidParameterError(f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}")
+    return int(value)  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class StepImpulse:
+    """Oppenheim's step impulse: ``direction*a`` for ``t_p``, then ``-direction*a/2`` for
+    ``2 t_p``, then rest (zero final ground velocity).
+
+    Parameters
+    ----------
+    magnitude : float
+        a, m/s^2 (>= 0).
+    duration : float
+        t_p, s (> 0).
+    direction : {-1, +1}
+        Side of the first lobe; -1 (default) drives the paper's first mechanism.
+
+    Examples
+    --------
+    >>> p = StepImpulse.from_g(1.0, 0.27)
+    >>> [round(float(x) / 9.80665, 3) for x in p.acceleration([0.1, 0.3, 0.9])]
+    [-1.0, 0.5, 0.0]
+    """
+
+    magnitude: float
+    pulse_duration: float
+    direction: int = -1
+    name: str = "step impulse"
+
+    def __post_init__(self) -> None:
+        a = require_finite("magnitude", self.magnitude, "m/s^2")
+        if a < 0:
+            raise InvalidParameterError(f"magnitude must be >= 0 m/s^2, got {a:g}")
+        object.__setattr__(self, "magnitude", a)
+        object.__setattr__(self, "pulse_duration", require_positive("pulse duration t_p", self.pulse_duration, "s"))
+        object.__setattr__(self, "direction", _direction(self.direction))
+
+    @classmethod
+    def from_g(cls, magnitude_g: float, duration: float, direction: int = -1, *,
+               g: float = STANDARD_GRAVITY) -> StepImpulse:
+        """Build from a magnitude in multiples of g."""
+        return cls(require_finite("magnitude", magnitude_g, "g") * g, duration, direction)
+
+    @property
+    def duration(self) -> float:
+        return 3.0 * self.pulse_duration
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        a = self.direction * self.magnitude
+        return np.where(
+            (t >= 0) & (t < self.pulse_duration), a,
+            np.where((t >= self.pulse_duration) & (t < 3 * self.pulse_duration), -0.5 * a, 0.0),
+        )
+
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, self.pulse_duration, 3.0 * self.pulse_duration])
+
+    def kernel_spec(self) -> tuple[int, np.ndarray]:
+        return KIND_STEP, np.array([self.magnitude, self.pulse_duration, float(self.direction)])
+
+    def mirrored(self) -> StepImpulse:
+        return StepImpulse(self.magnitude, self.pulse_duration, -self.direction, self.name)
+
+    def scaled(self, factor: float) -> StepImpulse:
+        f = require_finite("scale factor", factor)
+        d = self.direction if f >= 0 else -self.direction
+        return StepImpulse(abs(f) * self.magnitude, self.pulse_duration, d, self.name)
+
+    def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
+        return {"type": "step", "magnitude_m_s2": self.magnitude, "magnitude_g": self.magnitude / g,
+                "duration_s": self.pulse_duration, "direction": self.direction}
+
+
+@dataclass(frozen=True)
+class SinePulse:
+    """One full cycle of ``direction * a * sin(2 pi t / T)`` on [0, T), then rest.
+
+    Parameters
+    ----------
+    magnitude : float
+        a, m/s^2 (>= 0).
+    period : float
+        T, s (> 0).
+    direction : {-1, +1}
+        Side of the first half cycle; -1 (default) drives the paper's first mechanism.
+    """
+
+    magnitude: float
+    period: float
+    direction: int = -1
+    name: str = "sine pulse"
+
+    def __post_init__(self) -> None:
+        a = require_finite("magnitude", self.magnitude, "m/s^2")
+        if a < 0:
+            raise InvalidParameterError(f"magnitude must be >= 0 m/s^2, got {a:g}")
+        object.__setattr__(self, "magnitude", a)
+        object.__setattr__(self, "period", require_positive("period", self.period, "s"))
+        object.__setattr__(self, "direction", _direction(self.direction))
+
+    @classmethod
+    def from_g(cls, magnitude_g: float, period: float, direction: int = -1, *,
+               g: float = STANDARD_GRAVITY) -> SinePulse:
+        return cls(require_finite("magnitude", magnitude_g, "g") * g, period, direction)
+
+    @property
+    def duration(self) -> float:
+        return self.period
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        inside = (t >= 0) & (t < self.period)
+        return np.where(inside, self.direction * self.magnitude * np.sin(2 * math.pi * t / self.period), 0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, self.period])
+
+    def kernel_spec(self) -> tuple[int, np.ndarray]:
+        return KIND_SINE, np.array([self.magnitude, self.period, float(self.direction)])
+
+    def mirrored(self) -> SinePulse:
+        return SinePulse(self.magnitude, self.period, -self.direction, self.name)
+
+    def scaled(self, factor: float) -> SinePulse:
+        f = require_finite("scale factor", factor)
+        d = self.direction if f >= 0 else -self.direction
+        return SinePulse(abs(f) * self.magnitude, self.period, d, self.name)
+
+    def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
+        return {"type": "sine", "magnitude_m_s2": self.magnitude, "magnitude_g": self.magnitude / g,
+                "period_s": self.period, "direction": self.direction}
+
+
+__all__ = ["StepImpulse", "SinePulse"]
