@@ -12,8 +12,10 @@ from typing import Any
 
 import numpy as np
 
+from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import MAX_EMBRACE, MAX_VOUSSOIRS, Arch
+from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
 
 MAX_EMBRACE_DEG = math.degrees(MAX_EMBRACE)
 
@@ -116,12 +118,117 @@ def print_json(obj: Any) -> None:
     sys.stdout.write("\n")
 
 
+
+#: Units the CLI accepts for a CSV record's acceleration column (the default is g).
+RECORD_UNITS = ("g", "m/s2")
+
+
+def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
+    """--pulse, --magnitude (g), --duration, --period, --record, --units, --scale, --mirror."""
+    grp = parser.add_argument_group(
+        "excitation (a pulse or a record; accelerations in g; a pulse's first lobe is a ground "
+        "acceleration towards -x, which drives the paper's first mechanism)"
+    )
+    grp.add_argument("--pulse", choices=("step", "sine"),
+                     help="analytical pulse: 'step' = Oppenheim's step impulse (a for t_p, then "
+                          "-a/2 for 2 t_p), 'sine' = one cycle of a sin(2 pi t/T); the first lobe "
+                          "is a ground acceleration towards -x (see --mirror)")
+    grp.add_argument("--magnitude", type=number, metavar="A",
+                     help="pulse magnitude a, in g (>= 0)")
+    grp.add_argument("--duration", type=number, metavar="TP",
+                     help="step impulse: duration t_p of the first lobe, s (> 0)")
+    grp.add_argument("--period", type=number, metavar="T",
+                     help="sine pulse: period T, s (> 0)")
+    grp.add_argument("--record", type=Path, metavar="FILE",
+                     help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
+                          "time (s), acceleration (units from --units); positive = towards +x")
+    grp.add_argument("--units", choices=RECORD_UNITS, default=None,
+                     help="units of a CSV record's acceleration column (default g; .AT2 files "
+                          "are always in g)")
+    grp.add_argument("--scale", type=number, metavar="S",
+                     help="factor applied to every value of the record (> 0; default 1)")
+    grp.add_argument("--mirror", action="store_true",
+                     help="reverse the excitation: pulses start towards +x instead of -x; a "
+                          "record is multiplied by -1")
+
+
+def record_from_args(path: Path, units: str | None, scale: float | None, *,
+                     g: float = STANDARD_GRAVITY) -> Record:
+    """Read a record given on the command line: CSV units default to g here (and only here,
+    where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record)."""
+    scale = 1.0 if scale is None else scale
+    if scale <= 0:
+        raise InvalidParameterError(
+            f"--scale must be > 0, got {scale:g}; use --mirror to reverse the record"
+        )
+    if units is None and path.suffix.lower() in (".csv", ".txt"):
+        units = "g"
+    return read_record(path, units=units, scale=scale, g=g)
+
+
+def ground_motion_from_args(args: argparse.Namespace, *,
+                            g: float = STANDARD_GRAVITY) -> GroundMotion:
+    """Build the excitation chosen by :func:`add_ground_motion_arguments` (g -> m/s^2 here).
+
+    Every option that does not apply to the chosen excitation is an error rather than being
+    silently ignored.
+    """
+    pulse, record = args.pulse, args.record
+    if pulse is not None and record is not None:
+        raise InvalidParameterError("--record excludes --pulse: choose a pulse or a record")
+    if pulse is None and record is None:
+        raise InvalidParameterError(
+            "no excitation: give --pulse step|sine with --magnitude, or --record FILE"
+        )
+    if record is not None:
+        for option in ("magnitude", "duration", "period"):
+            if getattr(args, option) is not None:
+                raise InvalidParameterError(
+                    f"--{option} applies to --pulse, not to --record; scale a record with --scale"
+                )
+        motion = record_from_args(record, args.units, args.scale, g=g)
+        return motion.mirrored() if args.mirror else motion
+    for option in ("units", "scale"):
+        if getattr(args, option) is not None:
+            raise InvalidParameterError(
+                f"--{option} applies to --record, not to --pulse; set the pulse with --magnitude"
+            )
+    if args.magnitude is None:
+        raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")
+    if args.magnitude < 0:
+        raise InvalidParameterError(
+            f"--magnitude must be >= 0 g, got {args.magnitude:g}; use --mirror to reverse the pulse"
+        )
+    direction = 1 if args.mirror else -1
+    if pulse == "step":
+        if args.period is not None:
+            raise InvalidParameterError("--period applies to --pulse sine; the step impulse "
+                                        "takes --duration TP (s)")
+        if args.duration is None:
+            raise InvalidParameterError("--pulse step needs --duration TP (s, > 0): the length "
+                                        "t_p of its first lobe")
+        if args.duration <= 0:
+            raise InvalidParameterError(f"--duration must be > 0 s, got {args.duration:g}")
+        return StepImpulse.from_g(args.magnitude, args.duration, direction, g=g)
+    if args.duration is not None:
+        raise InvalidParameterError("--duration applies to --pulse step; the sine pulse takes "
+                                    "--period T (s)")
+    if args.period is None:
+        raise InvalidParameterError("--pulse sine needs --period T (s, > 0)")
+    if args.period <= 0:
+        raise InvalidParameterError(f"--period must be > 0 s, got {args.period:g}")
+    return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
+
+
 __all__ = [
     "add_arch_arguments",
+    "add_ground_motion_arguments",
     "add_output_arguments",
     "arch_from_args",
+    "ground_motion_from_args",
     "number",
     "print_json",
+    "record_from_args",
     "to_jsonable",
     "whole",
 ]

@@ -22,6 +22,7 @@ from archquake.errors import ArchquakeError
 COMMANDS: tuple[str, ...] = (
     "static",
     "min_thickness",
+    "record",
     "demo",
 )
 

@@ -27,6 +27,8 @@ def ground_acceleration(kind: int, params: np.ndarray, t: float) -> float:
         if t < 0.0 or t >= period:
             return 0.0
         return direction * a * math.sin(2.0 * math.pi * t / period)
+    if kind != KIND_SAMPLED:
+        raise ValueError("unknown ground-motion kind")
     # sampled, linear between samples
     t0, dt = params[0], params[1]
     n = params.shape[0] - 2
@@ -47,6 +49,8 @@ def ground_duration(kind: int, params: np.ndarray) -> float:
         return 3.0 * params[1]
     if kind == KIND_SINE:
         return params[1]
+    if kind != KIND_SAMPLED:
+        raise ValueError("unknown ground-motion kind")
     return params[0] + params[1] * (params.shape[0] - 3)
 
 

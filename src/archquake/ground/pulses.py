@@ -17,9 +17,21 @@ from archquake.ground.base import KIND_SINE, KIND_STEP
 
 
 def _direction(value: object) -> int:
-    if value not in (-1, 1):
-        raise InvalidParameterError(f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}")
+    if isinstance(value, bool) or value not in (-1, 1):
+        raise InvalidParameterError(
+            f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}"
+        )
     return int(value)  # type: ignore[arg-type]
+
+
+def _magnitude(value: object, unit: str) -> float:
+    """A finite magnitude >= 0 in ``unit`` (the direction carries the sign)."""
+    a = require_finite("magnitude", value, unit)
+    if a < 0:
+        raise InvalidParameterError(
+            f"magnitude must be >= 0 {unit}, got {a:g}; use direction=+1/-1 for the sign"
+        )
+    return a
 
 
 @dataclass(frozen=True)
@@ -31,8 +43,8 @@ class StepImpulse:
     ----------
     magnitude : float
         a, m/s^2 (>= 0).
-    duration : float
-        t_p, s (> 0).
+    pulse_duration : float
+        t_p, s (> 0): length of the first lobe; the whole impulse lasts 3 t_p.
     direction : {-1, +1}
         Side of the first lobe; -1 (default) drives the paper's first mechanism.
 
@@ -49,18 +61,17 @@ class StepImpulse:
     name: str = "step impulse"
 
     def __post_init__(self) -> None:
-        a = require_finite("magnitude", self.magnitude, "m/s^2")
-        if a < 0:
-            raise InvalidParameterError(f"magnitude must be >= 0 m/s^2, got {a:g}")
-        object.__setattr__(self, "magnitude", a)
-        object.__setattr__(self, "pulse_duration", require_positive("pulse duration t_p", self.pulse_duration, "s"))
+        object.__setattr__(self, "magnitude", _magnitude(self.magnitude, "m/s^2"))
+        t_p = require_positive("pulse duration t_p", self.pulse_duration, "s")
+        object.__setattr__(self, "pulse_duration", t_p)
         object.__setattr__(self, "direction", _direction(self.direction))
 
     @classmethod
     def from_g(cls, magnitude_g: float, duration: float, direction: int = -1, *,
                g: float = STANDARD_GRAVITY) -> StepImpulse:
-        """Build from a magnitude in multiples of g."""
-        return cls(require_finite("magnitude", magnitude_g, "g") * g, duration, direction)
+        """Build from a magnitude in multiples of g (``duration`` is t_p, s)."""
+        return cls(_magnitude(magnitude_g, "g") * require_positive("g", g, "m/s^2"),
+                   duration, direction)
 
     @property
     def duration(self) -> float:
@@ -113,17 +124,16 @@ class SinePulse:
     name: str = "sine pulse"
 
     def __post_init__(self) -> None:
-        a = require_finite("magnitude", self.magnitude, "m/s^2")
-        if a < 0:
-            raise InvalidParameterError(f"magnitude must be >= 0 m/s^2, got {a:g}")
-        object.__setattr__(self, "magnitude", a)
+        object.__setattr__(self, "magnitude", _magnitude(self.magnitude, "m/s^2"))
         object.__setattr__(self, "period", require_positive("period", self.period, "s"))
         object.__setattr__(self, "direction", _direction(self.direction))
 
     @classmethod
     def from_g(cls, magnitude_g: float, period: float, direction: int = -1, *,
                g: float = STANDARD_GRAVITY) -> SinePulse:
-        return cls(require_finite("magnitude", magnitude_g, "g") * g, period, direction)
+        """Build from a magnitude in multiples of g."""
+        return cls(_magnitude(magnitude_g, "g") * require_positive("g", g, "m/s^2"),
+                   period, direction)
 
     @property
     def duration(self) -> float:
@@ -132,7 +142,8 @@ class SinePulse:
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         inside = (t >= 0) & (t < self.period)
-        return np.where(inside, self.direction * self.magnitude * np.sin(2 * math.pi * t / self.period), 0.0)
+        a = self.direction * self.magnitude
+        return np.where(inside, a * np.sin(2 * math.pi * t / self.period), 0.0)
 
     def breakpoints(self) -> np.ndarray:
         return np.array([0.0, self.period])
