@@ -1,1 +1,26 @@
-"""archquake.mechanism"""
+"""The arch in motion: four-link mechanism kinematics, equation of motion, impact, time histories."""
+
+from archquake.mechanism.impact import ImpactSolution, solve_impact
+from archquake.mechanism.simulate import (
+    FinalState,
+    History,
+    Outcome,
+    PreparedMechanism,
+    SimulationResult,
+    SolverOptions,
+    default_mechanism,
+    simulate,
+)
+
+__all__ = [
+    "FinalState",
+    "History",
+    "ImpactSolution",
+    "Outcome",
+    "PreparedMechanism",
+    "SimulationResult",
+    "SolverOptions",
+    "default_mechanism",
+    "simulate",
+    "solve_impact",
+]

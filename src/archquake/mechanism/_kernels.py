@@ -1,0 +1,472 @@
+"""Compiled time history of the rocking arch: Dormand-Prince 5(4) with events.
+
+State machine (one mechanism packed by :func:`archquake.mechanism.kinematics.pack_mechanism`):
+
+* ``side = 0``: locked. The arch moves rigidly with the ground until the ground acceleration
+  opens a mechanism: side +1 (the packed mechanism) when ``-g G0 - a(t) H0 > 0``, side -1 (its
+  mirror image, the paper's Eq. 3, same coefficients with the ground term negated) when
+  ``-g G0 + a(t) H0 > 0``. These are exactly ``|a| > lambda g`` in the right direction.
+* ``side = +-1``: open, integrating ``m_eff phi'' = -1/2 m_eff' phi'^2 - g G - side a(t) H``.
+  Steps never straddle a breakpoint of the excitation (where it jumps or kinks).
+* Closure (phi returns to 0 while closing): located on the step's cubic Hermite interpolant,
+  then refined by re-integrating to the event (Newton on phi). The impact turns the rate into
+  ``cv |phi'|`` on the other side. If the next half cycle's peak would be below
+  ``rest_rotation`` the arch locks (rest).
+* Collapse: once the excitation is over, phi >= phi_crit (the crest of the potential, where
+  gravity can no longer bring it back) while opening; or, at any time, phi reaching the toggle
+  of the linkage.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+
+from archquake.ground.base import KIND_SAMPLED, KIND_SINE, KIND_STEP
+from archquake.mechanism.kinematics import (
+    G0,
+    H0,
+    LENGTH,
+    PHI_CRIT,
+    PHI_TOGGLE,
+    acceleration,
+    eom_terms,
+)
+
+OUTCOME_NO_HINGING = 0
+OUTCOME_SURVIVES = 1
+OUTCOME_COLLAPSE = 2
+FINAL_REST = 0
+FINAL_MOVING = 1
+FINAL_COLLAPSED = 2
+FINAL_STALLED = 3
+
+# Dormand-Prince 5(4) tableau
+C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
+A21 = 1.0 / 5.0
+A31, A32 = 3.0 / 40.0, 9.0 / 40.0
+A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+A61, A62, A63, A64, A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
+B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
+                          22.0 / 525.0, -1.0 / 40.0)
+
+
+@nb.njit(cache=True, nogil=True)
+def ground_in_piece(kind, params, t, t_left):
+    """x_g''(t) continued over the whole piece that contains ``t_left`` (so that the last stage
+    of a step ending on a breakpoint sees the left limit, not the next piece's value)."""
+    if kind == KIND_STEP:
+        a, tp, direction = params[0], params[1], params[2]
+        if t_left < 0.0:
+            return 0.0
+        if t_left < tp:
+            return direction * a
+        if t_left < 3.0 * tp:
+            return -0.5 * direction * a
+        return 0.0
+    if kind == KIND_SINE:
+        a, period, direction = params[0], params[1], params[2]
+        if t_left < 0.0 or t_left >= period:
+            return 0.0
+        return direction * a * math.sin(2.0 * math.pi * t / period)
+    t0, dt = params[0], params[1]
+    n = params.shape[0] - 2
+    s = (t_left - t0) / dt
+    if s < -1e-9 or s >= n - 1 - 1e-9:
+        return 0.0
+    i = int(math.floor(s + 1e-9))
+    if i < 0:
+        i = 0
+    f = (t - (t0 + i * dt)) / dt
+    return (1.0 - f) * params[2 + i] + f * params[3 + i]
+
+
+@nb.njit(cache=True, nogil=True)
+def next_breakpoint(kind, params, t):
+    """Smallest breakpoint of the excitation strictly after ``t`` (inf if none)."""
+    eps = 1e-12 * (1.0 + abs(t))
+    if kind == KIND_STEP:
+        tp = params[1]
+        for b in (0.0, tp, 3.0 * tp):
+            if b > t + eps:
+                return b
+        return math.inf
+    if kind == KIND_SINE:
+        period = params[1]
+        for q in range(5):
+            b = 0.25 * q * period
+            if b > t + eps:
+                return b
+        return math.inf
+    t0, dt = params[0], params[1]
+    n = params.shape[0] - 2
+    end = t0 + dt * (n - 1)
+    if t + eps < t0:
+        return t0
+    if t + eps >= end:
+        return math.inf
+    i = int(math.floor((t - t0) / dt + 1e-9))
+    b = t0 + (i + 1) * dt
+    if b <= t + eps:
+        b += dt
+    return min(b, end)
+
+
+@nb.njit(cache=True, nogil=True)
+def excitation_end(kind, params):
+    if kind == KIND_STEP:
+        return 3.0 * params[1]
+    if kind == KIND_SINE:
+        return params[1]
+    return params[0] + params[1] * (params.shape[0] - 3)
+
+
+@nb.njit(cache=True, nogil=True)
+def _rhs(mech, kind, params, side, g, t, t_left, phi, v):
+    return acceleration(mech, phi, v, side * ground_in_piece(kind, params, t, t_left), g)
+
+
+@nb.njit(cache=True, nogil=True)
+def dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, h):
+    """One Dormand-Prince step. Returns (phi1, v1, k7 = phi''(t+h), err_phi, err_v); nan if
+    a stage left the linkage's range (beyond the toggle)."""
+    p1, q1 = v, k1
+    p2 = v + h * A21 * q1
+    q2 = _rhs(mech, kind, params, side, g, t + C2 * h, t_left, phi + h * A21 * p1, p2)
+    ph3 = phi + h * (A31 * p1 + A32 * p2)
+    p3 = v + h * (A31 * q1 + A32 * q2)
+    q3 = _rhs(mech, kind, params, side, g, t + C3 * h, t_left, ph3, p3)
+    ph4 = phi + h * (A41 * p1 + A42 * p2 + A43 * p3)
+    p4 = v + h * (A41 * q1 + A42 * q2 + A43 * q3)
+    q4 = _rhs(mech, kind, params, side, g, t + C4 * h, t_left, ph4, p4)
+    ph5 = phi + h * (A51 * p1 + A52 * p2 + A53 * p3 + A54 * p4)
+    p5 = v + h * (A51 * q1 + A52 * q2 + A53 * q3 + A54 * q4)
+    q5 = _rhs(mech, kind, params, side, g, t + C5 * h, t_left, ph5, p5)
+    ph6 = phi + h * (A61 * p1 + A62 * p2 + A63 * p3 + A64 * p4 + A65 * p5)
+    p6 = v + h * (A61 * q1 + A62 * q2 + A63 * q3 + A64 * q4 + A65 * q5)
+    q6 = _rhs(mech, kind, params, side, g, t + h, t_left, ph6, p6)
+    phi1 = phi + h * (B1 * p1 + B3 * p3 + B4 * p4 + B5 * p5 + B6 * p6)
+    v1 = v + h * (B1 * q1 + B3 * q3 + B4 * q4 + B5 * q5 + B6 * q6)
+    q7 = _rhs(mech, kind, params, side, g, t + h, t_left, phi1, v1)
+    err_phi = h * (E1 * p1 + E3 * p3 + E4 * p4 + E5 * p5 + E6 * p6 + E7 * v1)
+    err_v = h * (E1 * q1 + E3 * q3 + E4 * q4 + E5 * q5 + E6 * q6 + E7 * q7)
+    return phi1, v1, q7, err_phi, err_v
+
+
+@nb.njit(cache=True, nogil=True)
+def hermite(s, h, y0, d0, y1, d1):
+    """Cubic Hermite interpolant on [0, h] at s (value), from values and derivatives."""
+    x = s / h
+    h00 = (1.0 + 2.0 * x) * (1.0 - x) * (1.0 - x)
+    h10 = x * (1.0 - x) * (1.0 - x)
+    h01 = x * x * (3.0 - 2.0 * x)
+    h11 = x * x * (x - 1.0)
+    return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1
+
+
+@nb.njit(cache=True, nogil=True)
+def _hermite_root(h, y0, d0, y1, d1, target):
+    """Root in (0, h] of hermite(s) - target given a sign change (bisection, 100 steps)."""
+    lo, hi = 0.0, h
+    flo = y0 - target
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        fm = hermite(mid, h, y0, d0, y1, d1) - target
+        if (fm > 0.0) == (flo > 0.0):
+            lo, flo = mid, fm
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+@nb.njit(cache=True, nogil=True)
+def _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_guess, target):
+    """Re-integrate from (t, phi, v) to the event phi = target with Newton on the step size.
+    Returns (s, phi_s, v_s, a_s)."""
+    s = s_guess
+    ph, vv = phi, v
+    for _ in range(6):
+        ph, vv, aa, e1, e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, s)
+        if vv == 0.0 or not math.isfinite(ph):
+            break
+        ds = (ph - target) / vv
+        s_new = s - ds
+        if s_new <= 0.0:
+            s_new = 0.5 * s
+        if abs(s_new - s) <= 1e-15 * (1.0 + t):
+            s = s_new
+            break
+        s = s_new
+    ph, vv, aa, e1, e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, s)
+    return s, ph, vv, aa
+
+
+@nb.njit(cache=True, nogil=True)
+def _opening_force(mech, side, a, g):
+    return -g * mech[G0] - side * a * mech[H0]
+
+
+@nb.njit(cache=True, nogil=True)
+def find_onset(mech, kind, params, t, t_limit, g):
+    """Earliest time >= t at which the ground acceleration opens a mechanism, and its side.
+
+    Returns (time, side) with side 0 if none before ``t_limit``.
+    """
+    t_cur = t
+    while t_cur < t_limit:
+        t_next = min(next_breakpoint(kind, params, t_cur), t_limit)
+        nsub = 1 if kind == KIND_STEP else (2 if kind == KIND_SAMPLED else 64)
+        prev_t = t_cur
+        prev_f = -math.inf
+        for j in range(nsub + 1):
+            tj = t_cur + (t_next - t_cur) * j / nsub
+            if j == nsub and kind == KIND_STEP:
+                break
+            a = ground_in_piece(kind, params, tj, t_cur)
+            for side in (1, -1):
+                f = _opening_force(mech, side, a, g)
+                if f > 0.0:
+                    if j == 0:
+                        return tj, side
+                    # bisection on the crossing inside the piece (continuous there)
+                    lo, hi = prev_t, tj
+                    for _ in range(80):
+                        mid = 0.5 * (lo + hi)
+                        if _opening_force(mech, side, ground_in_piece(kind, params, mid, t_cur), g) > 0.0:
+                            hi = mid
+                        else:
+                            lo = mid
+                    return hi, side
+            prev_t = tj
+            prev_f = a
+        if not math.isfinite(t_next):
+            break
+        t_cur = t_next
+    return t_limit, 0
+
+
+@nb.njit(cache=True, nogil=True)
+def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
+                    max_impacts, dt_out, hist, impacts, peaks, counters):
+    """Integrate one time history. See the module docstring for the logic.
+
+    Parameters
+    ----------
+    mech : (30,) packed mechanism;  kind, params : ground motion;  g : gravity, m/s^2
+    cv : coefficient of restitution on the rate;  t_end : s;  rtol, atol_phi : tolerances
+        (the rate's absolute tolerance is atol_phi * sqrt(g / R), so that similar arches take
+        similar steps);  rest_rotation : rad;  max_impacts : int
+    dt_out : output interval, s (<= 0: no history)
+    hist : (cap, 5) out: t, phi, phi', side, x_g''
+    impacts : (max_impacts, 3) out: time, rate before, rate after
+    peaks : (max_impacts + 1,) out: peak phi of each half cycle
+    counters : (8,) out: n_hist, n_impacts, n_half_cycles, n_steps, n_rejected, n_rhs,
+        onset_time, collapse_time
+
+    Returns
+    -------
+    (outcome, final_state, collapse_half_cycle)
+    """
+    t_exc = excitation_end(kind, params)
+    atol_v = atol_phi * math.sqrt(g / mech[LENGTH])
+    phi_crit = mech[PHI_CRIT]
+    phi_toggle = mech[PHI_TOGGLE]
+    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
+    n_hist = 0
+    cap = hist.shape[0]
+    n_imp = 0
+    half = 0
+    n_steps = 0
+    n_rej = 0
+    n_rhs = 0
+    onset_time = math.nan
+    collapse_time = math.nan
+    outcome = OUTCOME_NO_HINGING
+    final = FINAL_REST
+    collapse_half = 0
+    t = 0.0
+    side = 0
+    phi = 0.0
+    v = 0.0
+    t_out = 0.0
+    tau = math.sqrt(mech[LENGTH] / g)
+    h = 1e-3 * tau
+    h_min = 1e-14 * tau
+    while t < t_end:
+        if side == 0:
+            t_on, s_on = find_onset(mech, kind, params, t, max(t, min(t_exc, t_end)), g)
+            # history while locked
+            if dt_out > 0.0:
+                while t_out <= t_on and n_hist < cap:
+                    hist[n_hist, 0] = t_out
+                    hist[n_hist, 1] = 0.0
+                    hist[n_hist, 2] = 0.0
+                    hist[n_hist, 3] = 0.0
+                    hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_out)
+                    n_hist += 1
+                    t_out += dt_out
+            if s_on == 0:
+                t = t_on
+                final = FINAL_REST
+                break
+            t = t_on
+            side = s_on
+            phi = 0.0
+            v = 0.0
+            half += 1
+            peaks[half - 1] = 0.0
+            if outcome == OUTCOME_NO_HINGING:
+                outcome = OUTCOME_SURVIVES
+                onset_time = t
+            continue
+        # ---------------------------------------------------------------- open
+        t_left = t
+        t_stop = min(next_breakpoint(kind, params, t), t_end)
+        k1 = _rhs(mech, kind, params, side, g, t, t_left, phi, v)
+        n_rhs += 1
+        excitation_over = t >= t_exc - 1e-12 * (1.0 + t_exc)
+        if excitation_over and phi >= phi_crit and v >= 0.0:
+            outcome = OUTCOME_COLLAPSE
+            final = FINAL_COLLAPSED
+            collapse_time = t
+            collapse_half = half
+            break
+        event_done = False
+        while t < t_stop and not event_done:
+            hh = min(h, t_stop - t)
+            if hh < h_min:
+                t = t_stop
+                break
+            phi1, v1, k7, ep, ev = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, hh)
+            n_rhs += 6
+            if not (math.isfinite(phi1) and math.isfinite(v1) and math.isfinite(k7)):
+                n_rej += 1
+                h = 0.25 * hh
+                if h < h_min:
+                    # the linkage cannot go further: it has reached its toggle
+                    outcome = OUTCOME_COLLAPSE
+                    final = FINAL_COLLAPSED
+                    collapse_time = t
+                    collapse_half = half
+                    event_done = True
+                    t_end = t
+                continue
+            sc_p = atol_phi + rtol * max(abs(phi), abs(phi1))
+            sc_v = atol_v + rtol * max(abs(v), abs(v1))
+            err = math.sqrt(0.5 * ((ep / sc_p) ** 2 + (ev / sc_v) ** 2))
+            if err > 1.0:
+                n_rej += 1
+                h = hh * max(0.2, 0.9 * err ** -0.2)
+                continue
+            n_steps += 1
+            h_next = hh * min(5.0, 0.9 * err ** -0.2) if err > 0.0 else 5.0 * hh
+            # ---- events inside [t, t + hh]
+            ev_kind = 0  # 1 closure, 2 collapse (crest), 3 toggle
+            s_ev = hh
+            if phi1 < 0.0 and phi >= 0.0:
+                ev_kind = 1
+                s_ev = _hermite_root(hh, phi, v, phi1, v1, 0.0)
+            if excitation_over and phi1 >= phi_crit and v1 >= 0.0:
+                s_c = hh if phi >= phi_crit else _hermite_root(hh, phi, v, phi1, v1, phi_crit)
+                if ev_kind == 0 or s_c < s_ev:
+                    ev_kind = 2
+                    s_ev = s_c
+            if phi1 >= phi_toggle * (1.0 - 1e-9) and (ev_kind == 0):
+                ev_kind = 3
+                s_ev = hh
+            # ---- dense output up to the event (or the step end)
+            if dt_out > 0.0:
+                while t_out <= t + s_ev and n_hist < cap:
+                    s = t_out - t
+                    hist[n_hist, 0] = t_out
+                    hist[n_hist, 1] = hermite(s, hh, phi, v, phi1, v1)
+                    hist[n_hist, 2] = hermite(s, hh, v, k1, v1, k7)
+                    hist[n_hist, 3] = side
+                    hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_left)
+                    n_hist += 1
+                    t_out += dt_out
+            # ---- peak of the half cycle (extremum of the Hermite interpolant)
+            pk = max(phi, phi1)
+            if v > 0.0 and v1 <= 0.0:
+                lo, hi = 0.0, hh
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    if hermite(mid, hh, v, k1, v1, k7) > 0.0:
+                        lo = mid
+                    else:
+                        hi = mid
+                pk = max(pk, hermite(0.5 * (lo + hi), hh, phi, v, phi1, v1))
+            if pk > peaks[half - 1]:
+                peaks[half - 1] = pk
+            if ev_kind == 0:
+                t = t + hh if t + hh < t_stop else t_stop
+                phi, v, k1 = phi1, v1, k7
+                h = h_next
+                continue
+            if ev_kind == 1:
+                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_ev, 0.0)
+                t_imp = t + s
+                v_after = cv * abs(v_e)
+                if n_imp < impacts.shape[0]:
+                    impacts[n_imp, 0] = t_imp
+                    impacts[n_imp, 1] = v_e
+                    impacts[n_imp, 2] = v_after
+                n_imp += 1
+                t = t_imp
+                event_done = True
+                # peak rotation of the coming half cycle on a linear potential g G0 phi
+                peak_next = 0.5 * meff0 * v_after * v_after / (g * mech[G0])
+                if peak_next < rest_rotation or n_imp >= max_impacts:
+                    side = 0
+                    phi = 0.0
+                    v = 0.0
+                    if n_imp >= max_impacts and t >= t_exc:
+                        final = FINAL_STALLED
+                else:
+                    side = -side
+                    phi = 0.0
+                    v = v_after
+                    half += 1
+                    if half - 1 < peaks.shape[0]:
+                        peaks[half - 1] = 0.0
+                    else:
+                        half -= 1
+                h = max(h_next, 1e-6 * tau)
+                if dt_out > 0.0 and n_hist < cap:
+                    hist[n_hist, 0] = t
+                    hist[n_hist, 1] = 0.0
+                    hist[n_hist, 2] = v
+                    hist[n_hist, 3] = side
+                    hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                    n_hist += 1
+                continue
+            # collapse
+            s = s_ev
+            if ev_kind == 2 and s_ev < hh:
+                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
+                                            s_ev, phi_crit)
+            outcome = OUTCOME_COLLAPSE
+            final = FINAL_COLLAPSED
+            collapse_time = t + s
+            collapse_half = half
+            t = t + s
+            event_done = True
+            t_end = t
+        if final == FINAL_COLLAPSED:
+            break
+    else:
+        final = FINAL_MOVING if side != 0 else FINAL_REST
+    if side != 0 and final == FINAL_REST and t >= t_end:
+        final = FINAL_MOVING
+    counters[0] = n_hist
+    counters[1] = n_imp
+    counters[2] = half
+    counters[3] = n_steps
+    counters[4] = n_rej
+    counters[5] = n_rhs
+    counters[6] = onset_time
+    counters[7] = collapse_time
+    return outcome, final, collapse_half

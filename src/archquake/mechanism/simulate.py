@@ -1,0 +1,342 @@
+"""Time histories of the rocking arch (paper Eqs. 2-7): driver and result.
+
+:func:`simulate` takes an arch (or a hinge mechanism) and any ground motion and returns a
+:class:`SimulationResult`. The hinges default to those of the equivalent static analysis
+(the paper's assumption); after each impact the arch continues as the mirror-image mechanism
+(hinges symmetric to the previous ones) with the rate given by the impact model (Eq. 4) or a
+prescribed coefficient of restitution.
+
+Outcomes
+--------
+``no_hinging``
+    The ground acceleration never exceeded the static collapse acceleration in the direction of
+    either mechanism: the arch moved rigidly with the ground.
+``collapse``
+    After the excitation had ended, the mechanism was opening at or beyond the crest of its
+    potential energy (``phi >= phi_crit``, where gravity alone can no longer bring it back;
+    past the crest the potential decreases up to the toggle, so energy conservation forbids a
+    return), or, at any time, the linkage reached its toggle position. The collapse time is the
+    first such instant; the half cycle counts the mechanisms opened so far (1 = before any impact).
+``survives``
+    Anything else: the arch came to rest (the next half cycle's peak rotation would be below
+    ``rest_rotation``), or was still rocking below the crest at ``t_end`` (``final_state``
+    says which).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import Enum
+
+import numpy as np
+
+from archquake._validate import require_finite, require_positive
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import Arch
+from archquake.geometry.hinges import HingeMechanism
+from archquake.ground.base import GroundMotion
+from archquake.mechanism import _kernels as K
+from archquake.mechanism.impact import ImpactSolution, solve_impact
+from archquake.mechanism.kinematics import G0, H0, PHI_CRIT, PHI_TOGGLE, pack_mechanism
+
+
+class Outcome(str, Enum):
+    """What happened to the arch."""
+
+    NO_HINGING = "no_hinging"
+    SURVIVES = "survives"
+    COLLAPSE = "collapse"
+
+
+class FinalState(str, Enum):
+    """How the integration ended."""
+
+    REST = "rest"
+    MOVING = "moving"  # still rocking below the crest at t_end
+    COLLAPSED = "collapsed"
+    STALLED = "stalled"  # max_impacts reached after the excitation (impacts accumulating)
+
+
+_OUTCOMES = {K.OUTCOME_NO_HINGING: Outcome.NO_HINGING, K.OUTCOME_SURVIVES: Outcome.SURVIVES,
+             K.OUTCOME_COLLAPSE: Outcome.COLLAPSE}
+_FINALS = {K.FINAL_REST: FinalState.REST, K.FINAL_MOVING: FinalState.MOVING,
+           K.FINAL_COLLAPSED: FinalState.COLLAPSED, K.FINAL_STALLED: FinalState.STALLED}
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Integrator settings.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance of the Dormand-Prince 5(4) error estimate.
+    atol : float
+        Absolute tolerance on phi, rad (on the rate: atol * sqrt(g/R), rad/s).
+    rest_rotation : float
+        The arch is taken to be at rest when an impact leaves it a rate whose next half cycle
+        would peak below this rotation, rad.
+    max_impacts : int
+        Impacts recorded at most; beyond it the arch is locked (reported as ``stalled`` if the
+        excitation is over).
+    output_interval : float or None
+        History sampling interval, s; None picks sqrt(R/g)/200; 0 records no history.
+    """
+
+    rtol: float = 1e-9
+    atol: float = 1e-12
+    rest_rotation: float = 1e-9
+    max_impacts: int = 2000
+    output_interval: float | None = None
+
+    def __post_init__(self) -> None:
+        require_positive("rtol", self.rtol)
+        require_positive("atol", self.atol, "rad")
+        require_positive("rest_rotation", self.rest_rotation, "rad")
+        if int(self.max_impacts) < 1:
+            raise InvalidParameterError(f"max_impacts must be >= 1, got {self.max_impacts}")
+        if self.output_interval is not None and self.output_interval < 0:
+            raise InvalidParameterError(f"output_interval must be >= 0 s, got {self.output_interval}")
+
+
+@dataclass(frozen=True)
+class History:
+    """Sampled time history (shape (N,) each): t (s), phi (rad), phi_dot (rad/s), side
+    (0 locked, +1 the first mechanism, -1 its mirror image), ground acceleration (m/s^2).
+
+    ``phi`` is the rotation of the open mechanism's first link (the paper's theta0 - theta,
+    or theta'0 - theta' after an odd number of impacts); ``signed_rotation`` = side * phi
+    tells the two mechanisms apart on a plot.
+    """
+
+    t: np.ndarray
+    phi: np.ndarray
+    phi_dot: np.ndarray
+    side: np.ndarray
+    ground_acceleration: np.ndarray
+
+    @property
+    def signed_rotation(self) -> np.ndarray:
+        return self.side * self.phi
+
+    def to_dict(self) -> dict:
+        return {"t": self.t, "phi": self.phi, "phi_dot": self.phi_dot, "side": self.side,
+                "ground_acceleration": self.ground_acceleration}
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """A time history of the arch and what became of it.
+
+    Attributes
+    ----------
+    outcome : Outcome
+    final_state : FinalState
+    collapse_half_cycle : int or None
+        1 = collapse before any impact, 2 = after the first impact, ...
+    collapse_time : float or None, s
+    onset_time : float or None
+        When hinging started, s.
+    impact_times : ndarray, (k,), s
+    impact_rates : ndarray, (k, 2)
+        phi-dot just before (negative, closing) and just after (opening) each impact, rad/s.
+    peak_rotation : ndarray, (half cycles,), rad
+        Largest phi in each half cycle.
+    restitution_cv : float
+        c_v used at the impacts (from Eq. 4, or prescribed).
+    restitution_ct : float
+        c_T = c_v^2.
+    energy_gain : bool
+        True if the impact model gives c_T > 1 for this geometry (see :mod:`.impact`).
+    mechanism : HingeMechanism
+        The first mechanism (opened by a ground acceleration towards -x).
+    static_acceleration : float
+        lambda * g, m/s^2: the onset threshold.
+    critical_rotation, toggle_rotation : float, rad
+        Crest of the potential and the linkage's toggle.
+    history : History or None
+    stats : dict
+        Integrator counters (steps, rejected steps, right-hand-side evaluations).
+    """
+
+    outcome: Outcome
+    final_state: FinalState
+    collapse_half_cycle: int | None
+    collapse_time: float | None
+    onset_time: float | None
+    impact_times: np.ndarray
+    impact_rates: np.ndarray
+    peak_rotation: np.ndarray
+    restitution_cv: float
+    restitution_ct: float
+    energy_gain: bool
+    mechanism: HingeMechanism
+    static_acceleration: float
+    critical_rotation: float
+    toggle_rotation: float
+    g: float
+    history: History | None = field(repr=False, default=None)
+    stats: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def half_cycles(self) -> int:
+        return int(self.peak_rotation.shape[0])
+
+    def to_dict(self, include_history: bool = False) -> dict:
+        """Plain dict for JSON (the CLI's ``--json``)."""
+        out = {
+            "outcome": self.outcome.value,
+            "final_state": self.final_state.value,
+            "collapse_half_cycle": self.collapse_half_cycle,
+            "collapse_time": self.collapse_time,
+            "onset_time": self.onset_time,
+            "impact_times": self.impact_times.tolist(),
+            "peak_rotation_rad": self.peak_rotation.tolist(),
+            "restitution_cv": self.restitution_cv,
+            "restitution_ct": self.restitution_ct,
+            "energy_gain": self.energy_gain,
+            "static_acceleration_g": self.static_acceleration / self.g,
+            "critical_rotation_rad": self.critical_rotation,
+            "toggle_rotation_rad": self.toggle_rotation,
+            "hinges": [h.to_dict() for h in self.mechanism.hinges],
+            "solver": dict(self.stats),
+        }
+        if include_history and self.history is not None:
+            out["history"] = self.history.to_dict()
+        return out
+
+
+def default_mechanism(arch: Arch) -> HingeMechanism:
+    """The hinges of the equivalent static analysis, oriented so that a ground acceleration
+    towards -x opens them (the paper's Figure 1)."""
+    from archquake.limit.kinematic import kinematic_collapse
+
+    _, mech = kinematic_collapse(arch)
+    return mech if mech.load_direction > 0 else mech.mirrored()
+
+
+@dataclass(frozen=True)
+class PreparedMechanism:
+    """A mechanism packed for the kernels, with its impact solution (reusable across runs)."""
+
+    mechanism: HingeMechanism
+    packed: np.ndarray
+    impact: ImpactSolution
+
+    @classmethod
+    def build(cls, arch_or_mechanism: Arch | HingeMechanism) -> PreparedMechanism:
+        if isinstance(arch_or_mechanism, HingeMechanism):
+            mech = arch_or_mechanism
+            if mech.load_direction < 0:
+                mech = mech.mirrored()
+        elif isinstance(arch_or_mechanism, Arch):
+            mech = default_mechanism(arch_or_mechanism)
+        else:
+            raise InvalidParameterError(
+                f"expected an Arch or a HingeMechanism, got {type(arch_or_mechanism).__name__}"
+            )
+        return cls(mech, pack_mechanism(mech), solve_impact(mech))
+
+
+def simulate(
+    arch: Arch | HingeMechanism | PreparedMechanism,
+    motion: GroundMotion,
+    *,
+    restitution: float | None = None,
+    t_end: float | None = None,
+    options: SolverOptions = SolverOptions(),
+    g: float = STANDARD_GRAVITY,
+) -> SimulationResult:
+    """Time history of the arch under a ground motion (paper Eqs. 2-7).
+
+    Parameters
+    ----------
+    arch : Arch, HingeMechanism or PreparedMechanism
+        The arch (hinges from the equivalent static analysis) or a given mechanism.
+    motion : GroundMotion
+        Any archquake ground motion (step impulse, sine pulse, record).
+    restitution : float, optional
+        Prescribed c_v instead of the impact model's (the paper allows either).
+    t_end : float, optional
+        End of the analysis, s. Default: the end of the excitation plus 60 sqrt(R/g).
+    options : SolverOptions
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    SimulationResult
+
+    Examples
+    --------
+    Oppenheim's arch under the paper's step impulse a = 1.0 g, t_p = 0.27 s (Figure 4c):
+
+    >>> import math
+    >>> from archquake import Arch
+    >>> from archquake.ground import StepImpulse
+    >>> arch = Arch(10.0, 1.5, math.radians(157.5), 7)
+    >>> r = simulate(arch, StepImpulse.from_g(1.0, 0.27))
+    >>> r.outcome.value, r.collapse_half_cycle, round(float(r.impact_times[0]), 2)
+    ('collapse', 2, 0.86)
+    """
+    prepared = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+    require_positive("g", g, "m/s^2")
+    cv = prepared.impact.restitution_cv
+    if restitution is not None:
+        cv = require_finite("restitution", restitution)
+        if cv < 0:
+            raise InvalidParameterError(f"restitution (c_v) must be >= 0, got {cv:g}")
+    kind, params = motion.kernel_spec()
+    params = np.ascontiguousarray(params, dtype=np.float64)
+    mech = prepared.mechanism
+    tau = math.sqrt(mech.arch.radius / g)
+    excitation = float(K.excitation_end(kind, params))
+    if t_end is None:
+        t_end = excitation + 60.0 * tau
+    require_positive("t_end", t_end, "s")
+    dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
+    n_imp_cap = int(options.max_impacts)
+    cap = int(t_end / dt_out) + 2 * n_imp_cap + 16 if dt_out > 0 else 1
+    hist = np.zeros((cap, 5))
+    impacts = np.zeros((n_imp_cap, 3))
+    peaks = np.zeros(n_imp_cap + 1)
+    counters = np.zeros(8)
+    outcome, final, collapse_half = K.simulate_kernel(
+        prepared.packed, kind, params, g, cv, float(t_end), options.rtol, options.atol,
+        options.rest_rotation, n_imp_cap, float(dt_out), hist, impacts, peaks, counters,
+    )
+    n_hist, n_imp, n_half = int(counters[0]), int(counters[1]), int(counters[2])
+    n_imp = min(n_imp, n_imp_cap)
+    history = None
+    if dt_out > 0:
+        h = hist[:n_hist]
+        history = History(h[:, 0].copy(), h[:, 1].copy(), h[:, 2].copy(), h[:, 3].copy(), h[:, 4].copy())
+    onset = counters[6]
+    ctime = counters[7]
+    return SimulationResult(
+        outcome=_OUTCOMES[int(outcome)],
+        final_state=_FINALS[int(final)],
+        collapse_half_cycle=int(collapse_half) if outcome == K.OUTCOME_COLLAPSE else None,
+        collapse_time=float(ctime) if math.isfinite(ctime) else None,
+        onset_time=float(onset) if math.isfinite(onset) else None,
+        impact_times=impacts[:n_imp, 0].copy(),
+        impact_rates=impacts[:n_imp, 1:3].copy(),
+        peak_rotation=peaks[:n_half].copy(),
+        restitution_cv=float(cv),
+        restitution_ct=float(cv) ** 2,
+        energy_gain=bool(cv > 1.0),
+        mechanism=mech,
+        static_acceleration=g * prepared.packed[G0] / abs(prepared.packed[H0]),
+        critical_rotation=float(prepared.packed[PHI_CRIT]),
+        toggle_rotation=float(prepared.packed[PHI_TOGGLE]),
+        g=g,
+        history=history,
+        stats={"steps": int(counters[3]), "rejected": int(counters[4]), "rhs_evaluations": int(counters[5]),
+               "t_end": float(t_end)},
+    )
+
+
+__all__ = ["FinalState", "History", "Outcome", "PreparedMechanism", "SimulationResult",
+           "SolverOptions", "default_mechanism", "simulate"]
