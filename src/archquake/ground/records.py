@@ -464,7 +464,8 @@ def _check_at2_units(path: Path, line: str) -> None:
     m = _UNITS_OF.search(line)
     if m and m.group("unit").upper().rstrip(".,") != "G":
         raise _err(path, 3, f"the header says the units are {m.group('unit')!r}, but .AT2 values "
-                   "must be in g; convert them, or save as CSV and read with units='m/s2'")
+                   "must be in g; convert the values to g (or to m/s^2 in a two-column CSV read "
+                   "with units='m/s2')")
 
 
 def _parse_npts_dt(path: Path, line: str) -> tuple[int, float]:
