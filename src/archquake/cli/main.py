@@ -23,6 +23,7 @@ COMMANDS: tuple[str, ...] = (
     "static",
     "min_thickness",
     "record",
+    "sweep",
     "demo",
 )
 

@@ -1,1 +1,49 @@
-"""archquake.sweeps"""
+"""Parameter sweeps: frozen cases with stable ids, mapped through any executor, stored
+resumably in SQLite.
+
+>>> from archquake.sweeps import ArchSpec, Case, ExcitationSpec
+>>> case = Case(ArchSpec(10, 0.15, 157.5, 7), ExcitationSpec("sine", magnitude_g=0.4, period_s=1))
+>>> case.canonical()["excitation"]
+{'type': 'sine', 'direction': -1, 'magnitude_g': 0.4, 'period_s': 1.0}
+"""
+
+from archquake.sweeps.cases import (
+    ArchSpec,
+    Case,
+    CaseOptions,
+    ExcitationKind,
+    ExcitationSpec,
+    Model,
+)
+from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
+from archquake.sweeps.runner import (
+    SerialExecutor,
+    SweepReport,
+    evaluate_chunk,
+    open_executor,
+    run_sweep,
+)
+from archquake.sweeps.store import CaseRecord, ResultStore
+from archquake.sweeps.study import Study, load_study, parse_study
+
+__all__ = [
+    "ArchSpec",
+    "Case",
+    "CaseOptions",
+    "CaseRecord",
+    "ExcitationKind",
+    "ExcitationSpec",
+    "Model",
+    "ModelUnavailableError",
+    "ResultStore",
+    "SerialExecutor",
+    "Study",
+    "SweepReport",
+    "evaluate_case",
+    "evaluate_chunk",
+    "load_study",
+    "model_function",
+    "open_executor",
+    "parse_study",
+    "run_sweep",
+]

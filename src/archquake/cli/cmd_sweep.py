@@ -1,0 +1,122 @@
+"""``archquake sweep STUDY.toml``: run a study's grid of cases, resumably, locally or on Dask.
+
+The library does the work (:mod:`archquake.sweeps`); this shell reads the study, opens the
+store and the executor, draws a tqdm bar on stderr, exports, and prints a summary.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from archquake.cli.common import print_json, whole
+from archquake.errors import InvalidParameterError
+from archquake.sweeps import ResultStore, load_study, model_function, open_executor, run_sweep
+from archquake.sweeps.evaluate import evaluate_case
+from archquake.sweeps.runner import CaseFunction
+
+
+def case_function(model) -> CaseFunction:
+    """The case function for ``model``; fails with one line now if this build lacks the model
+    (rather than once per case). Tests replace this to inject a cheap function."""
+    model_function(model)
+    return evaluate_case
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="run a study file's grid of cases into a resumable SQLite store",
+        description=(
+            "Run every case of STUDY.toml (arches x excitations x options; magnitudes in g, "
+            "angles in degrees, lengths in m) that the store does not hold yet, storing each "
+            "batch as it completes. Interrupt at any time; rerunning resumes. "
+            "See docs/sweeps.md for the study schema."
+        ),
+    )
+    p.add_argument("study", type=Path, metavar="STUDY.toml", help="the study file")
+    p.add_argument("--store", type=Path, metavar="FILE",
+                   help="SQLite store (default: <study name>.sqlite beside the study file)")
+    p.add_argument("--workers", type=whole, metavar="N",
+                   help="local worker processes (default: all cores; 1 runs serially)")
+    p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                   help="run on the Dask cluster whose scheduler listens at this address")
+    p.add_argument("--chunk-size", type=whole, metavar="N",
+                   help="cases per task (default: chosen from the number of cases and workers)")
+    p.add_argument("--export", type=Path, metavar="FILE",
+                   help="afterwards, write the store's rows to FILE (.csv or .parquet)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    p.add_argument("--json", action="store_true",
+                   help="print a JSON summary (cases total, computed now, already stored, "
+                        "outcomes, store path)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.workers is not None and args.workers < 1:
+        raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
+    if args.chunk_size is not None and args.chunk_size < 1:
+        raise InvalidParameterError(
+            f"--chunk-size must be a whole number >= 1, got {args.chunk_size}")
+    if args.scheduler is not None and "://" not in args.scheduler:
+        raise InvalidParameterError(
+            f"--scheduler must be an address like tcp://HOST:PORT, got {args.scheduler!r}")
+    if args.export is not None and args.export.suffix.lower() not in (".csv", ".parquet"):
+        raise InvalidParameterError(
+            f"--export file must end in .csv or .parquet, got {args.export.name!r}")
+    study = load_study(args.study)
+    evaluate = case_function(study.model)
+    store_path = args.store or study.default_store
+    with ResultStore(store_path) as store:
+        bar = None
+        try:
+            with open_executor(workers=args.workers, scheduler=args.scheduler) as (executor, n):
+                bar = _Bar(disable=args.no_progress)
+                report = run_sweep(study.cases, store, evaluate=evaluate, executor=executor,
+                                   workers=n, chunk_size=args.chunk_size, progress=bar)
+        except KeyboardInterrupt:
+            if bar is not None:
+                bar.close()
+            wanted = {c.case_id for c in study.cases}
+            stored = len(store.stored_ids() & wanted)
+            print(f"archquake: interrupted: {stored} of {len(wanted)} cases are stored in "
+                  f"{store.path}; run the same command again to resume", file=sys.stderr)
+            return 130
+        bar.close()
+        if args.export is not None:
+            store.export(args.export)
+    summary = report.to_dict()
+    summary["study"] = study.name
+    if args.export is not None:
+        summary["export"] = str(args.export)
+    if args.json:
+        print_json(summary)
+    else:
+        outcomes = ", ".join(f"{k} {v}" for k, v in report.outcomes.items()) or "none"
+        print(f"{study.name}: {report.total} cases, {report.computed} computed now, "
+              f"{report.already_stored} already stored; outcomes: {outcomes}")
+        print(f"store: {report.store}" + (f"; exported to {args.export}" if args.export else ""))
+    return 0
+
+
+class _Bar:
+    """A tqdm bar fed by the library's ``progress(stored, total)`` callback."""
+
+    def __init__(self, *, disable: bool):
+        self._disable = disable
+        self._bar = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self._bar is None:
+            from tqdm import tqdm
+
+            self._bar = tqdm(total=total, initial=done, unit="case", file=sys.stderr,
+                             disable=True if self._disable else None, dynamic_ncols=True,
+                             desc="sweep")
+            return
+        self._bar.update(done - self._bar.n)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()

@@ -1,0 +1,366 @@
+"""Sweep cases: one arch x one excitation x one model, frozen, validated, with a stable id.
+
+A case describes its inputs in the units a study file uses (lengths in m, angles in degrees,
+accelerations in g) because those are the numbers a user reads back from the store; the
+conversion to SI happens once, in :meth:`ArchSpec.build` and :meth:`ExcitationSpec.build`.
+
+The case id is the first 20 hex digits of the SHA-256 of the case's *canonical JSON*: its
+inputs as a JSON object with sorted keys, every real number written as a float
+(``1`` and ``1.0`` hash alike), and a schema version. Reordering a study file, rerunning it, or
+listing the same case in two studies gives the same id. A record excitation enters the id
+through its file name and the SHA-256 of its bytes, not its directory, so moving the records
+folder keeps the ids and editing a record changes them.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from enum import StrEnum
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+from archquake._validate import require_finite, require_int, require_positive, require_range
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import MAX_EMBRACE, MAX_VOUSSOIRS, Arch
+
+#: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
+CASE_SCHEMA = 1
+#: Hex digits of SHA-256 kept in a case id (80 bits: collisions are negligible for any sweep).
+CASE_ID_LENGTH = 20
+MAX_EMBRACE_DEG = math.degrees(MAX_EMBRACE)
+
+
+class ExcitationKind(StrEnum):
+    """The excitations a sweep can apply."""
+
+    STEP = "step"
+    SINE = "sine"
+    RECORD = "record"
+
+
+class Model(StrEnum):
+    """The model a case is evaluated with."""
+
+    ANALYTICAL = "analytical"
+    DEM = "dem"
+
+
+#: Units a record file's accelerations may be given in (PEER .AT2 files are always in g).
+RECORD_UNITS: tuple[str, ...] = ("g", "m/s2")
+
+
+@dataclass(frozen=True)
+class ArchSpec:
+    """The arch of a case, in study units.
+
+    Parameters
+    ----------
+    radius : float
+        Centreline radius R, m (> 0).
+    thickness_ratio : float
+        t/R, dimensionless (0 < t/R < 2).
+    embrace_deg : float
+        Angle of embrace, degrees (0 < embrace <= 240).
+    voussoirs : int
+        Number of voussoirs (3 to 2000).
+    depth : float
+        Out-of-plane depth, m (> 0; default 1).
+    density : float
+        Density, kg/m^3 (> 0; default 2000).
+
+    Examples
+    --------
+    >>> spec = ArchSpec(10, 0.15, 157.5, 7)
+    >>> round(spec.build().thickness, 3)
+    1.5
+    """
+
+    radius: float
+    thickness_ratio: float
+    embrace_deg: float
+    voussoirs: int
+    depth: float = 1.0
+    density: float = 2000.0
+
+    def __post_init__(self) -> None:
+        _set(self, "radius", require_positive("radius", self.radius, "m"))
+        _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio, 0, 2))
+        _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0, MAX_EMBRACE_DEG,
+                                                 "degrees", high_open=False))
+        _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
+        _set(self, "depth", require_positive("depth", self.depth, "m"))
+        _set(self, "density", require_positive("density", self.density, "kg/m^3"))
+
+    def build(self) -> Arch:
+        """The :class:`~archquake.geometry.Arch` (SI, embrace in rad)."""
+        return Arch.from_ratio(self.thickness_ratio, math.radians(self.embrace_deg),
+                               self.voussoirs, radius=self.radius, depth=self.depth,
+                               density=self.density)
+
+    def canonical(self) -> dict[str, Any]:
+        return {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
+                "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
+                "depth_m": self.depth, "density_kg_m3": self.density}
+
+    def columns(self) -> dict[str, Any]:
+        """Flat columns for the store: the canonical inputs plus the thickness in m."""
+        cols = self.canonical()
+        cols["thickness_m"] = self.thickness_ratio * self.radius
+        return cols
+
+
+@dataclass(frozen=True)
+class ExcitationSpec:
+    """The excitation of a case, in study units.
+
+    Parameters
+    ----------
+    kind : ExcitationKind or str
+        ``"step"`` (Oppenheim's impulse), ``"sine"`` (one-cycle sine pulse) or ``"record"``.
+    magnitude_g : float, optional
+        Pulse magnitude, multiples of g (>= 0), for ``step`` and ``sine``.
+    duration_s : float, optional
+        Step impulse duration t_p, s (> 0), for ``step``.
+    period_s : float, optional
+        Sine period T, s (> 0), for ``sine``.
+    direction : {-1, +1}
+        Side of the pulse's first lobe (-1, towards -x, drives the paper's first mechanism);
+        for a record, -1 reverses its sign. Default -1 for pulses, +1 for records.
+    file : str, optional
+        Path of the record file (``record`` only); read when the case runs.
+    units : {"g", "m/s2"}
+        Units of the record's accelerations (``record`` only; default "g", the only units of a
+        PEER ``.AT2`` file; CSV records must say).
+    scale : float
+        Factor applied to the record's accelerations (> 0; ``record`` only, default 1).
+    file_sha256 : str, optional
+        SHA-256 of the record file's bytes; computed from ``file`` when omitted.
+    """
+
+    kind: ExcitationKind
+    magnitude_g: float | None = None
+    duration_s: float | None = None
+    period_s: float | None = None
+    direction: int | None = None
+    file: str | None = None
+    units: str | None = None
+    scale: float | None = None
+    file_sha256: str | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        try:
+            kind = ExcitationKind(getattr(self.kind, "value", self.kind))
+        except ValueError:
+            raise InvalidParameterError(
+                f"excitation type must be one of {[k.value for k in ExcitationKind]}, "
+                f"got {self.kind!r}"
+            ) from None
+        _set(self, "kind", kind)
+        allowed = {ExcitationKind.STEP: {"magnitude_g", "duration_s", "direction"},
+                   ExcitationKind.SINE: {"magnitude_g", "period_s", "direction"},
+                   ExcitationKind.RECORD: {"file", "units", "scale", "direction"}}[kind]
+        for name in ("magnitude_g", "duration_s", "period_s", "file", "units", "scale"):
+            if getattr(self, name) is not None and name not in allowed:
+                raise InvalidParameterError(f"{name} does not apply to a {kind.value} excitation")
+        direction = -1 if self.direction is None and kind is not ExcitationKind.RECORD else (
+            1 if self.direction is None else self.direction)
+        if direction not in (-1, 1) or isinstance(direction, bool):
+            raise InvalidParameterError(f"direction must be -1 or +1, got {direction!r}")
+        _set(self, "direction", int(direction))
+        if kind is ExcitationKind.RECORD:
+            if not isinstance(self.file, str) or not self.file:
+                raise InvalidParameterError("a record excitation needs file = path of the record")
+            units = "g" if self.units is None else self.units
+            if units not in RECORD_UNITS:
+                raise InvalidParameterError(
+                    f"units must be one of {list(RECORD_UNITS)}, got {units!r}")
+            _set(self, "units", units)
+            scale = 1.0 if self.scale is None else self.scale
+            _set(self, "scale", require_positive("scale", scale))
+            if self.file_sha256 is None:
+                _set(self, "file_sha256", file_digest(self.file))
+            return
+        magnitude = require_finite("magnitude_g", self.magnitude_g, "g")
+        if magnitude < 0:
+            raise InvalidParameterError(f"magnitude_g must be >= 0 g, got {magnitude:g}")
+        _set(self, "magnitude_g", magnitude)
+        time_name = "duration_s" if kind is ExcitationKind.STEP else "period_s"
+        _set(self, time_name, require_positive(time_name, getattr(self, time_name), "s"))
+
+    def build(self, *, g: float = STANDARD_GRAVITY):
+        """The :class:`~archquake.ground.GroundMotion` (SI)."""
+        from archquake.ground.pulses import SinePulse, StepImpulse
+
+        if self.kind is ExcitationKind.STEP:
+            return StepImpulse.from_g(self.magnitude_g, self.duration_s, self.direction, g=g)
+        if self.kind is ExcitationKind.SINE:
+            return SinePulse.from_g(self.magnitude_g, self.period_s, self.direction, g=g)
+        return _load_record(self, g=g)
+
+    def canonical(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"type": self.kind.value, "direction": self.direction}
+        if self.kind is ExcitationKind.RECORD:
+            out.update(record=Path(self.file).name, record_sha256=self.file_sha256,
+                       units=self.units, scale=self.scale)
+        elif self.kind is ExcitationKind.STEP:
+            out.update(magnitude_g=self.magnitude_g, duration_s=self.duration_s)
+        else:
+            out.update(magnitude_g=self.magnitude_g, period_s=self.period_s)
+        return out
+
+
+@dataclass(frozen=True)
+class CaseOptions:
+    """Model options of a case.
+
+    Parameters
+    ----------
+    restitution : float, optional
+        Coefficient of restitution on angular velocity, in (0, 1]; None: the model's own
+        (the paper's theoretical value for the analytical model).
+    t_end_s : float, optional
+        End of the simulation, s (> 0); None: the model's default.
+    g : float
+        Gravity, m/s^2 (> 0), also the factor from study magnitudes in g to m/s^2.
+    """
+
+    restitution: float | None = None
+    t_end_s: float | None = None
+    g: float = STANDARD_GRAVITY
+
+    def __post_init__(self) -> None:
+        if self.restitution is not None:
+            _set(self, "restitution", require_range("restitution", self.restitution, 0, 1,
+                                                     high_open=False))
+        if self.t_end_s is not None:
+            _set(self, "t_end_s", require_positive("t_end_s", self.t_end_s, "s"))
+        _set(self, "g", require_positive("g", self.g, "m/s^2"))
+
+    def canonical(self) -> dict[str, Any]:
+        return {"restitution": self.restitution, "t_end_s": self.t_end_s, "g_m_s2": self.g}
+
+
+@dataclass(frozen=True)
+class Case:
+    """One arch under one excitation, evaluated with one model.
+
+    Examples
+    --------
+    >>> case = Case(ArchSpec(10, 0.15, 157.5, 7), ExcitationSpec("step", magnitude_g=0.5,
+    ...             duration_s=0.25))
+    >>> same = Case(ArchSpec(10.0, 0.15, 157.5, 7.0), ExcitationSpec("step", magnitude_g=0.5,
+    ...             duration_s=0.25, direction=-1))
+    >>> case.case_id == same.case_id, len(case.case_id)
+    (True, 20)
+    """
+
+    arch: ArchSpec
+    excitation: ExcitationSpec
+    model: Model = Model.ANALYTICAL
+    options: CaseOptions = field(default_factory=CaseOptions)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.arch, ArchSpec):
+            raise InvalidParameterError(f"arch must be an ArchSpec, got {type(self.arch).__name__}")
+        if not isinstance(self.excitation, ExcitationSpec):
+            raise InvalidParameterError(
+                f"excitation must be an ExcitationSpec, got {type(self.excitation).__name__}")
+        if not isinstance(self.options, CaseOptions):
+            raise InvalidParameterError(
+                f"options must be a CaseOptions, got {type(self.options).__name__}")
+        try:
+            _set(self, "model", Model(getattr(self.model, "value", self.model)))
+        except ValueError:
+            raise InvalidParameterError(
+                f"model must be one of {[m.value for m in Model]}, got {self.model!r}") from None
+
+    def canonical(self) -> dict[str, Any]:
+        """The inputs that define the case (what its id hashes), as plain JSON values."""
+        return {"schema": CASE_SCHEMA, "model": self.model.value, "arch": self.arch.canonical(),
+                "excitation": self.excitation.canonical(), "options": self.options.canonical()}
+
+    @cached_property
+    def canonical_json(self) -> str:
+        return canonical_json(self.canonical())
+
+    @cached_property
+    def case_id(self) -> str:
+        """Stable id: the first 20 hex digits of SHA-256 of :attr:`canonical_json`."""
+        return hashlib.sha256(self.canonical_json.encode()).hexdigest()[:CASE_ID_LENGTH]
+
+    def columns(self) -> dict[str, Any]:
+        """Flat input columns (see :data:`INPUT_COLUMNS`), None where not applicable."""
+        exc = self.excitation
+        cols = {"model": self.model.value, **self.arch.columns(),
+                "excitation": exc.kind.value, "magnitude_g": exc.magnitude_g,
+                "duration_s": exc.duration_s, "period_s": exc.period_s,
+                "direction": exc.direction,
+                "record": Path(exc.file).name if exc.file else None,
+                "record_sha256": exc.file_sha256, "record_units": exc.units, "scale": exc.scale,
+                "restitution": self.options.restitution, "t_end_s": self.options.t_end_s,
+                "g_m_s2": self.options.g}
+        return {name: cols[name] for name in INPUT_COLUMNS}
+
+
+#: Flat input columns of the store, in order, with their SQLite types.
+INPUT_COLUMNS: dict[str, str] = {
+    "model": "TEXT", "radius_m": "REAL", "thickness_ratio": "REAL", "thickness_m": "REAL",
+    "embrace_deg": "REAL", "voussoirs": "INTEGER", "depth_m": "REAL", "density_kg_m3": "REAL",
+    "excitation": "TEXT", "magnitude_g": "REAL", "duration_s": "REAL", "period_s": "REAL",
+    "direction": "INTEGER", "record": "TEXT", "record_sha256": "TEXT", "record_units": "TEXT",
+    "scale": "REAL", "restitution": "REAL", "t_end_s": "REAL", "g_m_s2": "REAL",
+}
+
+
+def canonical_json(obj: Any) -> str:
+    """Sorted keys, no whitespace, reals as floats (so 1 and 1.0 agree), NaN rejected."""
+    return json.dumps(_floats(obj), sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+def file_digest(path: str | Path) -> str:
+    """SHA-256 (hex) of a file's bytes; a missing file is a one-line error naming it."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError as exc:
+        raise InvalidParameterError(
+            f"cannot read record file {str(path)!r}: {exc.strerror}") from None
+
+
+def _floats(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {k: _floats(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_floats(v) for v in obj]
+    if isinstance(obj, float) and obj == 0.0:
+        return 0.0  # -0.0 and 0.0 are the same input
+    return obj
+
+
+def _load_record(spec: ExcitationSpec, *, g: float):
+    """Read a record file into a GroundMotion in m/s^2, scaled and signed as the spec says."""
+    from archquake.ground.records import read_record
+
+    return read_record(spec.file, units=spec.units, scale=spec.scale * spec.direction, g=g)
+
+
+def _set(obj: object, name: str, value: object) -> None:
+    object.__setattr__(obj, name, value)
+
+
+__all__ = [
+    "ArchSpec",
+    "Case",
+    "CaseOptions",
+    "ExcitationKind",
+    "ExcitationSpec",
+    "INPUT_COLUMNS",
+    "Model",
+    "RECORD_UNITS",
+    "canonical_json",
+    "file_digest",
+]

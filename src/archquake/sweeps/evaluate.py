@@ -1,0 +1,79 @@
+"""The default case function: build the arch and the motion, run the case's model, summarise.
+
+``evaluate_case`` is what :func:`archquake.sweeps.run_sweep` maps when no other function is
+injected. It is pure (the same case always gives the same summary) and importable by worker
+processes and Dask workers (a plain module-level function).
+
+Models:
+
+- ``analytical``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
+  impacts), summarised by ``result.to_dict(include_history=False)``;
+- ``dem``: :func:`archquake.dem.simulate_dem`, reserved; it is used once it exists.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import Any
+
+from archquake.errors import ArchquakeError
+from archquake.sweeps.cases import Case, Model
+
+#: Where each model's simulate function lives, as (module, function).
+MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
+    Model.ANALYTICAL: ("archquake.mechanism", "simulate"),
+    Model.DEM: ("archquake.dem", "simulate_dem"),
+}
+
+
+class ModelUnavailableError(ArchquakeError):
+    """The study asks for a model this build of archquake does not provide (a fault of the
+    installation, not of a case: the runner lets it stop the sweep instead of storing it)."""
+
+
+def model_function(model: Model | str) -> Callable[..., Any]:
+    """The simulate function of ``model``, or a one-line error if this build lacks it."""
+    model = Model(getattr(model, "value", model))
+    module_name, name = MODEL_FUNCTIONS[model]
+    try:
+        return getattr(importlib.import_module(module_name), name)
+    except (ImportError, AttributeError):
+        raise ModelUnavailableError(
+            f"model {model.value!r} needs {module_name}.{name}, which this build of archquake "
+            "does not provide yet; use model = \"analytical\"" if model is Model.DEM else
+            f"model {model.value!r} needs {module_name}.{name}, which this build of archquake "
+            "does not provide"
+        ) from None
+
+
+def evaluate_case(case: Case) -> dict[str, Any]:
+    """Run ``case`` with its model and return the result's JSON-able summary.
+
+    Parameters
+    ----------
+    case : Case
+
+    Returns
+    -------
+    dict
+        ``result.to_dict(include_history=False)``: outcome, collapse half cycle, impact times
+        (s), peak rotation per half cycle (rad), restitution statistics, ...
+
+    Raises
+    ------
+    ArchquakeError
+        When the model refuses the case (the sweep stores it as an ``error`` row).
+    """
+    simulate = model_function(case.model)
+    arch = case.arch.build()
+    motion = case.excitation.build(g=case.options.g)
+    if case.model is Model.ANALYTICAL:
+        result = simulate(arch, motion, restitution=case.options.restitution,
+                          t_end=case.options.t_end_s, g=case.options.g)
+    else:  # the DEM has its own contact laws: no coefficient of restitution to pass
+        result = simulate(arch, motion, t_end=case.options.t_end_s, g=case.options.g)
+    return result.to_dict(include_history=False)
+
+
+__all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function"]

@@ -1,0 +1,304 @@
+"""Map a pure case function over cases through any ``concurrent.futures.Executor``, storing
+each batch as it completes and skipping what the store already holds.
+
+Design (the style notes' habit 11): the case function is pure (``Case -> dict``), the executor
+is injected (:class:`SerialExecutor`, a ``ProcessPoolExecutor``, or Dask's
+``Client(address).get_executor()``), and only the driving process writes the store. Cases
+travel in chunks (one task evaluates several cases) so that millisecond cases are not swamped
+by scheduling overhead; at most a few chunks per worker are in flight, so an interruption
+wastes little and memory stays bounded for any study size.
+
+If a Dask worker dies, the scheduler reruns its tasks elsewhere and each future still
+completes once; the store's ``INSERT OR IGNORE`` on the case id makes a duplicate delivery
+harmless in any case.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from functools import partial
+from typing import Any
+
+from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.sweeps.cases import Case
+from archquake.sweeps.evaluate import ModelUnavailableError
+from archquake.sweeps.store import STATUS_ERROR, STATUS_OK, CaseRecord, ResultStore, jsonable
+
+#: A pure case function: one case in, a JSON-able summary out (``outcome`` read if present).
+CaseFunction = Callable[[Case], Mapping[str, Any]]
+#: Progress callback: ``progress(stored, total)`` after every stored batch (and once at start).
+Progress = Callable[[int, int], None]
+
+#: Largest chunk chosen automatically (cases per task).
+MAX_AUTO_CHUNK = 64
+#: Chunks per worker chosen automatically, so the last few tasks balance across workers.
+CHUNKS_PER_WORKER = 8
+
+
+@dataclass(frozen=True)
+class SweepReport:
+    """What a sweep did.
+
+    Attributes
+    ----------
+    total : int
+        Distinct cases asked for.
+    already_stored : int
+        Of those, found in the store before this run (not recomputed).
+    computed : int
+        Evaluated and stored by this run.
+    outcomes : dict
+        Count of every requested case in the store by outcome (``"error"``: refused by the model).
+    store : str
+        Path of the store.
+    """
+
+    total: int
+    already_stored: int
+    computed: int
+    outcomes: dict[str, int] = field(default_factory=dict)
+    store: str = ""
+
+    def to_dict(self) -> dict:
+        return {"cases_total": self.total, "computed_now": self.computed,
+                "already_stored": self.already_stored, "outcomes": dict(self.outcomes),
+                "store": self.store}
+
+
+class SerialExecutor(Executor):
+    """Runs each task in the calling thread at submission (the executor for debugging, tests
+    and one-core machines). ``KeyboardInterrupt`` and other non-``Exception`` errors propagate
+    at once instead of being kept in the future."""
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:  # type: ignore[override]
+        future: Future = Future()
+        try:
+            result = fn(*args, **kwargs)
+        except Exception as exc:
+            future.set_exception(exc)
+        else:
+            future.set_result(result)
+        return future
+
+
+def evaluate_chunk(evaluate: CaseFunction, cases: Sequence[Case]) -> list[CaseRecord]:
+    """Evaluate cases one after another (this is the task a worker runs).
+
+    A case the model refuses with an :class:`~archquake.errors.ArchquakeError` (bad geometry,
+    an arch that cannot stand, a solver that cannot proceed) becomes an ``"error"`` record with
+    its one-line message; a missing model (:class:`ModelUnavailableError`) and any other
+    exception propagate (the first is a fault of the installation, the others are bugs).
+    """
+    records = []
+    for case in cases:
+        t0 = time.perf_counter()
+        try:
+            outputs = jsonable(dict(evaluate(case)))
+        except ModelUnavailableError:
+            raise
+        except ArchquakeError as exc:
+            records.append(CaseRecord(case.case_id, STATUS_ERROR, {}, None, str(exc),
+                                      time.perf_counter() - t0))
+            continue
+        outcome = outputs.get("outcome")
+        records.append(CaseRecord(case.case_id, STATUS_OK, outputs,
+                                  None if outcome is None else str(outcome), None,
+                                  time.perf_counter() - t0))
+    return records
+
+
+def run_sweep(
+    cases: Iterable[Case],
+    store: ResultStore,
+    *,
+    evaluate: CaseFunction | None = None,
+    executor: Executor | None = None,
+    workers: int | None = None,
+    chunk_size: int | None = None,
+    progress: Progress | None = None,
+) -> SweepReport:
+    """Evaluate every case the store does not hold yet and store each batch as it completes.
+
+    Parameters
+    ----------
+    cases : iterable of Case
+        Duplicates (same id) are evaluated once.
+    store : ResultStore
+    evaluate : callable, optional
+        Pure ``Case -> dict`` (picklable for process pools and Dask). Default:
+        :func:`archquake.sweeps.evaluate.evaluate_case` (the real models).
+    executor : concurrent.futures.Executor, optional
+        Where chunks run. Default: a ``ProcessPoolExecutor`` with ``workers`` processes, created
+        and shut down here; an injected executor is left open.
+    workers : int, optional
+        Parallel workers, used to size chunks and the number in flight (default: the executor's
+        own count when known, else the usable cores).
+    chunk_size : int, optional
+        Cases per task (default: pending / (8 x workers), between 1 and 64).
+    progress : callable, optional
+        ``progress(stored, total)``: cases of this sweep in the store, after every batch.
+
+    Returns
+    -------
+    SweepReport
+
+    Raises
+    ------
+    KeyboardInterrupt
+        Propagated after storing every batch that had completed; the rest is cancelled and a
+        rerun computes it.
+    """
+    if evaluate is None:
+        from archquake.sweeps.evaluate import evaluate_case as evaluate
+    by_id: dict[str, Case] = {}
+    for case in cases:
+        by_id.setdefault(case.case_id, case)
+    stored = store.stored_ids() & by_id.keys()
+    pending = [c for cid, c in by_id.items() if cid not in stored]
+    total, done = len(by_id), len(stored)
+    if progress is not None:
+        progress(done, total)
+
+    own = executor is None
+    if workers is None:
+        workers = _executor_workers(executor) or usable_cores()
+    workers = max(1, int(workers))
+    if chunk_size is None:
+        per_task = math.ceil(len(pending) / (CHUNKS_PER_WORKER * workers))
+        chunk_size = min(MAX_AUTO_CHUNK, max(1, per_task))
+    elif isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
+        raise InvalidParameterError(f"chunk_size must be a whole number >= 1, got {chunk_size!r}")
+    computed = 0
+    if pending:
+        if own:
+            executor = ProcessPoolExecutor(max_workers=workers)
+        try:
+            task = partial(evaluate_chunk, evaluate)
+            for records in _map_window(executor, task, _chunks(pending, chunk_size), 2 * workers):
+                computed += store.write(by_id, records)
+                done += len(records)
+                if progress is not None:
+                    progress(done, total)
+        finally:
+            if own:
+                executor.shutdown(wait=True, cancel_futures=True)
+    return SweepReport(total=total, already_stored=len(stored), computed=computed,
+                       outcomes=store.outcome_counts(by_id), store=str(store.path))
+
+
+def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int) -> Iterator:
+    """Yield ``fn(item)`` results in completion order with at most ``window`` tasks in flight.
+
+    On KeyboardInterrupt (while waiting, at submission, or raised by a task) the tasks that had
+    already completed are still yielded, so the consumer can store them, before the interrupt
+    propagates; tasks still in flight are cancelled.
+    """
+    in_flight: set[Future] = set()
+    exhausted = False
+    try:
+        while True:
+            while not exhausted and len(in_flight) < window:
+                item = next(items, None)
+                if item is None:
+                    exhausted = True
+                    break
+                in_flight.add(executor.submit(fn, item))
+            if not in_flight:
+                return
+            finished, in_flight = wait(in_flight, return_when=FIRST_COMPLETED)
+            for future in finished:
+                yield future.result()
+    except KeyboardInterrupt:
+        # keep what already finished: hand the completed results to the consumer, then stop
+        for future in [f for f in in_flight if f.done() and not f.cancelled()]:
+            in_flight.discard(future)
+            if future.exception() is None:
+                yield future.result()
+        raise
+    finally:
+        for future in in_flight:
+            future.cancel()
+
+
+def _chunks(cases: Sequence[Case], size: int) -> Iterator[list[Case]]:
+    for start in range(0, len(cases), size):
+        yield list(cases[start:start + size])
+
+
+def _executor_workers(executor: Executor | None) -> int | None:
+    if executor is None:
+        return None
+    if isinstance(executor, SerialExecutor):
+        return 1
+    if isinstance(executor, ProcessPoolExecutor):
+        return executor._max_workers  # type: ignore[attr-defined]
+    client = getattr(executor, "_client", None)  # distributed.ClientExecutor
+    if client is not None:
+        try:
+            return max(1, sum(client.nthreads().values()))
+        except Exception:  # a scheduler that does not answer: fall back to the default
+            return None
+    return getattr(executor, "_max_workers", None)
+
+
+def usable_cores() -> int:
+    """Cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+@contextmanager
+def open_executor(*, workers: int | None = None, scheduler: str | None = None,
+                  connect_timeout: float = 10.0) -> Iterator[tuple[Executor, int]]:
+    """The executor a command line asks for, and its worker count; closed on exit.
+
+    ``scheduler`` (``tcp://HOST:PORT``) connects to a running Dask scheduler; otherwise
+    ``workers == 1`` runs serially and anything else uses a local process pool (default: all
+    usable cores).
+    """
+    if scheduler is not None:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise ArchquakeError("--scheduler needs Dask: pip install 'archquake[dask]'") from None
+        try:
+            client = Client(scheduler, timeout=connect_timeout)
+        except (OSError, TimeoutError) as exc:
+            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} ({exc}); start "
+                                 "one with 'dask scheduler' or check the address") from None
+        try:
+            n = workers or max(1, sum(client.nthreads().values()))
+            yield client.get_executor(pure=False), n
+        finally:
+            client.close()
+        return
+    n = workers or usable_cores()
+    if n < 1:
+        raise InvalidParameterError(f"workers must be >= 1, got {n}")
+    if n == 1:
+        yield SerialExecutor(), 1
+        return
+    pool = ProcessPoolExecutor(max_workers=n)
+    try:
+        yield pool, n
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+__all__ = [
+    "CaseFunction",
+    "SerialExecutor",
+    "SweepReport",
+    "evaluate_chunk",
+    "open_executor",
+    "run_sweep",
+    "usable_cores",
+]

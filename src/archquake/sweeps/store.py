@@ -1,0 +1,230 @@
+"""The sweep store: one SQLite row per case, written as results arrive, never twice.
+
+Table ``results`` (primary key ``case_id``):
+
+- ``case_id`` (TEXT): the case's stable id (:attr:`archquake.sweeps.Case.case_id`);
+- the flat input columns of :data:`archquake.sweeps.cases.INPUT_COLUMNS` (model, radius_m,
+  thickness_ratio, thickness_m, embrace_deg, voussoirs, depth_m, density_kg_m3, excitation,
+  magnitude_g, duration_s, period_s, direction, record, record_sha256, record_units, scale,
+  restitution, t_end_s, g_m_s2), NULL where they do not apply;
+- ``status`` (TEXT): ``"ok"``, or ``"error"`` when the model refused the case with an
+  :class:`~archquake.errors.ArchquakeError` (e.g. an arch too thin to stand), whose one-line
+  message is in ``error``;
+- ``outcome`` (TEXT): the model's outcome (``no_hinging``, ``survives``, ``collapse``) or NULL;
+- ``elapsed_s`` (REAL): wall time of the evaluation, s (the only column that differs between
+  two runs of the same case);
+- ``inputs_json`` (TEXT): the case's canonical JSON (what its id hashes);
+- ``outputs_json`` (TEXT): the model's summary (``result.to_dict(include_history=False)``).
+
+The database runs in WAL mode with ``synchronous=FULL`` and each batch is one transaction
+(``INSERT OR IGNORE``), so an interruption at any moment leaves whole batches behind and a
+rerun skips them.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import sqlite3
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from archquake.errors import ArchquakeError
+from archquake.sweeps.cases import INPUT_COLUMNS, Case
+
+STORE_SCHEMA = "1"
+STATUS_OK = "ok"
+STATUS_ERROR = "error"
+#: Columns written for every case besides its inputs, in order.
+RESULT_COLUMNS: dict[str, str] = {
+    "status": "TEXT NOT NULL", "outcome": "TEXT", "error": "TEXT", "elapsed_s": "REAL",
+    "inputs_json": "TEXT NOT NULL", "outputs_json": "TEXT NOT NULL",
+}
+#: Columns whose values legitimately differ between two evaluations of the same case.
+TIMING_COLUMNS = ("elapsed_s",)
+
+
+@dataclass(frozen=True)
+class CaseRecord:
+    """What evaluating one case produced (built in the worker, stored by the driver).
+
+    Attributes
+    ----------
+    case_id : str
+    status : str
+        ``"ok"`` or ``"error"``.
+    outputs : dict
+        JSON-able summary of the result (empty on error).
+    outcome : str or None
+    error : str or None
+        The one-line message of the ArchquakeError that refused the case.
+    elapsed_s : float
+        Wall time of the evaluation, s.
+    """
+
+    case_id: str
+    status: str
+    outputs: dict = field(default_factory=dict)
+    outcome: str | None = None
+    error: str | None = None
+    elapsed_s: float = 0.0
+
+
+class ResultStore:
+    """A sweep's SQLite store. Use as a context manager; only the driving process writes.
+
+    Parameters
+    ----------
+    path : str or Path
+        Database file (created, with its folder, if missing).
+    """
+
+    def __init__(self, path: str | Path):
+        self.path = Path(path)
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._db = sqlite3.connect(self.path)
+            self._db.execute("PRAGMA journal_mode=WAL")
+            self._db.execute("PRAGMA synchronous=FULL")
+            cols = ", ".join(f"{name} {kind}" for name, kind in
+                             {**INPUT_COLUMNS, **RESULT_COLUMNS}.items())
+            with self._db:
+                self._db.execute(f"CREATE TABLE IF NOT EXISTS results "
+                                 f"(case_id TEXT PRIMARY KEY, {cols})")
+                self._db.execute("CREATE TABLE IF NOT EXISTS meta "
+                                 "(key TEXT PRIMARY KEY, value TEXT)")
+                self._db.execute("INSERT OR IGNORE INTO meta VALUES ('schema', ?)", (STORE_SCHEMA,))
+            (schema,) = self._db.execute("SELECT value FROM meta WHERE key='schema'").fetchone()
+        except sqlite3.DatabaseError as exc:
+            raise ArchquakeError(f"cannot open sweep store {str(self.path)!r}: {exc}") from None
+        if schema != STORE_SCHEMA:
+            raise ArchquakeError(f"sweep store {str(self.path)!r} has schema {schema}, this "
+                                 f"archquake writes schema {STORE_SCHEMA}; use a new --store file")
+
+    # ------------------------------------------------------------------ context
+    def __enter__(self) -> ResultStore:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        self._db.close()
+
+    # ------------------------------------------------------------------ reading
+    def stored_ids(self) -> set[str]:
+        """Ids of every stored case."""
+        return {row[0] for row in self._db.execute("SELECT case_id FROM results")}
+
+    def count(self) -> int:
+        return int(self._db.execute("SELECT COUNT(*) FROM results").fetchone()[0])
+
+    def outcome_counts(self, case_ids: Iterable[str] | None = None) -> dict[str, int]:
+        """Number of stored cases by outcome (``error`` for refused cases), optionally restricted
+        to ``case_ids``."""
+        wanted = None if case_ids is None else set(case_ids)
+        counts: dict[str, int] = {}
+        for cid, status, outcome in self._db.execute(
+                "SELECT case_id, status, outcome FROM results"):
+            if wanted is not None and cid not in wanted:
+                continue
+            key = STATUS_ERROR if status == STATUS_ERROR else (outcome or "none")
+            counts[key] = counts.get(key, 0) + 1
+        return dict(sorted(counts.items()))
+
+    def rows(self, *, flatten_outputs: bool = True) -> list[dict[str, Any]]:
+        """Every stored case as a flat dict (ordered by case id): id, inputs, status columns and,
+        with ``flatten_outputs``, one column per output (nested keys joined by '.', lists as
+        JSON text) instead of ``outputs_json``."""
+        return list(self._iter_rows(flatten_outputs))
+
+    def _iter_rows(self, flatten_outputs: bool) -> Iterator[dict[str, Any]]:
+        cur = self._db.execute("SELECT * FROM results ORDER BY case_id")
+        names = [d[0] for d in cur.description]
+        for values in cur:
+            row = dict(zip(names, values, strict=True))
+            if flatten_outputs:
+                outputs = json.loads(row.pop("outputs_json"))
+                row.update(_flatten(outputs, "out."))
+            yield row
+
+    # ------------------------------------------------------------------ writing
+    def write(self, cases: Mapping[str, Case], records: Iterable[CaseRecord]) -> int:
+        """Store ``records`` (inputs from ``cases`` by id) in one transaction; a case already
+        stored is left as it is. Returns the number of rows inserted."""
+        names = ["case_id", *INPUT_COLUMNS, *RESULT_COLUMNS]
+        sql = (f"INSERT OR IGNORE INTO results ({', '.join(names)}) "
+               f"VALUES ({', '.join('?' * len(names))})")
+        rows = []
+        for rec in records:
+            case = cases[rec.case_id]
+            inputs = case.columns()
+            rows.append((rec.case_id, *(inputs[c] for c in INPUT_COLUMNS), rec.status,
+                         rec.outcome, rec.error, rec.elapsed_s, case.canonical_json,
+                         json.dumps(rec.outputs, sort_keys=True, allow_nan=False)))
+        with self._db:
+            before = self._db.total_changes
+            self._db.executemany(sql, rows)
+            return self._db.total_changes - before
+
+    # ------------------------------------------------------------------ export
+    def export(self, path: str | Path) -> Path:
+        """Write every row (inputs and outputs as columns) to ``.csv`` or ``.parquet``."""
+        path = Path(path)
+        rows = self.rows()
+        columns = ["case_id", *INPUT_COLUMNS, *(c for c in RESULT_COLUMNS if c != "outputs_json")]
+        extra = sorted({k for r in rows for k in r} - set(columns))
+        columns += extra
+        suffix = path.suffix.lower()
+        if suffix == ".csv":
+            with path.open("w", newline="") as fh:
+                writer = csv.DictWriter(fh, fieldnames=columns, restval="")
+                writer.writeheader()
+                writer.writerows(rows)
+        elif suffix == ".parquet":
+            try:
+                import pyarrow as pa
+                import pyarrow.parquet as pq
+            except ImportError:
+                raise ArchquakeError("exporting .parquet needs pyarrow: "
+                                     "pip install 'archquake[parquet]'") from None
+            table = pa.table({c: [r.get(c) for r in rows] for c in columns})
+            pq.write_table(table, path)
+        else:
+            raise ArchquakeError(f"export file must end in .csv or .parquet, got {path.name!r}")
+        return path
+
+
+def _flatten(obj: Mapping[str, Any], prefix: str) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in obj.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            out.update(_flatten(value, name + "."))
+        elif isinstance(value, list):
+            out[name] = json.dumps(value)
+        else:
+            out[name] = value
+    return out
+
+
+def jsonable(obj: Any) -> Any:
+    """Numpy arrays and scalars to lists and Python numbers, non-finite floats to None, Enums to
+    their values: what the store's ``outputs_json`` can hold."""
+    if isinstance(obj, Mapping):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if hasattr(obj, "tolist"):  # numpy arrays and scalars
+        return jsonable(obj.tolist())
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if hasattr(obj, "value") and hasattr(obj, "name"):  # Enum
+        return jsonable(obj.value)
+    return obj
+
+
+__all__ = ["CaseRecord", "ResultStore", "RESULT_COLUMNS", "TIMING_COLUMNS", "jsonable"]

@@ -1,0 +1,276 @@
+"""Study files: a TOML grid of arches x excitations x options, expanded into :class:`Case` s.
+
+The schema (documented with a full example in ``docs/sweeps.md``)::
+
+    [study]
+    name = "scale"                      # required; default store is <name>.sqlite beside the file
+    model = "analytical"                # optional: "analytical" (default) or "dem"
+
+    [arches]                            # each axis: a number, a list, or {start, stop, num}
+    radius = [1, 5, 10, 20]             # m (required)
+    thickness_ratio = 0.15              # t/R (required)
+    embrace_deg = 157.5                 # degrees (required)
+    voussoirs = 7                       # (required)
+    depth = 1.0                         # m (optional, default 1)
+    density = 2000.0                    # kg/m^3 (optional, default 2000)
+
+    [excitation]                        # or several [[excitation]] blocks, concatenated
+    type = "step"                       # "step", "sine" or "record"
+    magnitude_g = {start = 0.3, stop = 1.5, num = 25}   # g (step, sine)
+    duration_s = [0.1, 0.25]            # s (step: t_p)
+    # period_s = [0.5, 1.0]             # s (sine: T)
+    # files = ["a.AT2"]; units = "g"; scale = [0.5, 1, 2]   (record; paths relative to the study)
+    direction = -1                      # optional: -1 (default for pulses) or +1, or [-1, 1]
+
+    [options]                           # optional; axes like the others
+    restitution = 0.9                   # in (0, 1]; omitted: the model's own
+    t_end_s = 10.0                      # s; omitted: the model's default
+
+Every error is one line naming the file, the key and what is expected
+(:class:`~archquake.errors.StudyFileError`).
+"""
+
+from __future__ import annotations
+
+import itertools
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, NoReturn
+
+import numpy as np
+
+from archquake.errors import ArchquakeError, InvalidParameterError, StudyFileError
+from archquake.sweeps.cases import (
+    RECORD_UNITS,
+    ArchSpec,
+    Case,
+    CaseOptions,
+    ExcitationKind,
+    ExcitationSpec,
+    Model,
+)
+
+_AXIS = "a number, a list of numbers, or {start, stop, num}"
+_TABLES = ("study", "arches", "excitation", "options")
+_STUDY_KEYS = {"name": True, "model": False}
+_ARCH_KEYS = {"radius": True, "thickness_ratio": True, "embrace_deg": True, "voussoirs": True,
+              "depth": False, "density": False}
+_EXCITATION_KEYS = {
+    ExcitationKind.STEP: {"magnitude_g": True, "duration_s": True, "direction": False},
+    ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False},
+    ExcitationKind.RECORD: {"files": True, "units": False, "scale": False, "direction": False},
+}
+_OPTION_KEYS = {"restitution": False, "t_end_s": False}
+
+
+@dataclass(frozen=True)
+class Study:
+    """A parsed study: its name, model, the file it came from and its cases in grid order.
+
+    Attributes
+    ----------
+    name : str
+    model : Model
+    path : Path or None
+        The study file (None for a study built from a dict without a file).
+    cases : tuple of Case
+        Arches (outermost) x excitations x options (innermost), duplicates removed.
+    """
+
+    name: str
+    model: Model
+    path: Path | None
+    cases: tuple[Case, ...]
+
+    @property
+    def default_store(self) -> Path:
+        """``<name>.sqlite`` beside the study file (or in the working directory)."""
+        folder = self.path.parent if self.path is not None else Path.cwd()
+        return folder / f"{self.name}.sqlite"
+
+
+def load_study(path: str | Path) -> Study:
+    """Read and validate a ``STUDY.toml`` file.
+
+    Raises
+    ------
+    StudyFileError
+        One line naming the file, the key and what is expected.
+    """
+    path = Path(path)
+    try:
+        with path.open("rb") as fh:
+            data = tomllib.load(fh)
+    except FileNotFoundError:
+        raise StudyFileError(f"study file {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise StudyFileError(f"cannot read study file {str(path)!r}: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyFileError(f"{path.name}: not valid TOML: {exc}") from None
+    return parse_study(data, source=path.name, base_dir=path.parent, path=path)
+
+
+def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path | None = None,
+                path: Path | None = None) -> Study:
+    """Validate a study's TOML tables and expand the grid (see the module docstring)."""
+    p = _Parser(source, base_dir or Path.cwd())
+    unknown = sorted(set(data) - set(_TABLES))
+    if unknown:
+        p.fail(unknown[0], f"is not a study table; expected tables {list(_TABLES)}")
+    study = p.table(data, "study", required=True)
+    p.keys(study, "study", _STUDY_KEYS)
+    name = study["name"]
+    if not isinstance(name, str) or not name.strip() or any(c in name for c in "/\\"):
+        p.fail("study.name", f"must be a non-empty string without slashes, got {name!r}")
+    model_text = study.get("model", Model.ANALYTICAL.value)
+    try:
+        model = Model(model_text)
+    except ValueError:
+        p.fail("study.model", f"must be one of {[m.value for m in Model]}, got {model_text!r}")
+
+    arches_table = p.table(data, "arches", required=True)
+    p.keys(arches_table, "arches", _ARCH_KEYS)
+    arches = p.grid("arches", arches_table, ArchSpec, integer={"voussoirs"})
+
+    blocks = data.get("excitation")
+    if blocks is None:
+        p.fail("excitation", "is missing; expected an [excitation] table")
+    if isinstance(blocks, dict):
+        blocks = [blocks]
+    if not isinstance(blocks, list) or not blocks or not all(isinstance(b, dict) for b in blocks):
+        p.fail("excitation", "must be an [excitation] table or [[excitation]] tables")
+    excitations: list[ExcitationSpec] = []
+    for i, block in enumerate(blocks):
+        excitations.extend(p.excitations(block, "excitation" if len(blocks) == 1
+                                         else f"excitation[{i}]"))
+
+    options_table = p.table(data, "options", required=False)
+    p.keys(options_table, "options", _OPTION_KEYS)
+    options = p.grid("options", options_table, CaseOptions)
+
+    cases: dict[str, Case] = {}
+    for arch, excitation, opts in itertools.product(arches, excitations, options):
+        case = Case(arch, excitation, model, opts)
+        cases.setdefault(case.case_id, case)
+    return Study(name=name.strip(), model=model, path=path, cases=tuple(cases.values()))
+
+
+class _Parser:
+    def __init__(self, source: str, base_dir: Path):
+        self.source = source
+        self.base_dir = base_dir
+
+    def fail(self, key: str, what: str) -> NoReturn:
+        raise StudyFileError(f"{self.source}: {key} {what}")
+
+    def table(self, data: dict, name: str, *, required: bool) -> dict:
+        value = data.get(name)
+        if value is None:
+            if required:
+                self.fail(name, f"is missing; expected a [{name}] table")
+            return {}
+        if not isinstance(value, dict):
+            self.fail(name, f"must be a [{name}] table, got {type(value).__name__}")
+        return value
+
+    def keys(self, table: dict, where: str, spec: dict[str, bool]) -> None:
+        for key in table:
+            if key not in spec:
+                self.fail(f"{where}.{key}", f"is not a known key; expected one of {list(spec)}")
+        for key, required in spec.items():
+            if required and key not in table:
+                self.fail(f"{where}.{key}", "is missing (required)")
+
+    def axis(self, key: str, value: Any, *, integer: bool = False) -> list:
+        """A number, a list of numbers, or {start, stop, num} (inclusive linspace)."""
+        if isinstance(value, dict):
+            if set(value) != {"start", "stop", "num"}:
+                self.fail(key, f"must be {_AXIS}; a range needs exactly start, stop and num, "
+                               f"got keys {sorted(value)}")
+            start, stop, num = value["start"], value["stop"], value["num"]
+            if not (_is_number(start) and _is_number(stop)):
+                self.fail(key, f"range start and stop must be numbers, got {start!r}, {stop!r}")
+            if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+                self.fail(key, f"range num must be a whole number >= 1, got {num!r}")
+            values = [float(v) for v in np.linspace(start, stop, num)]
+        elif isinstance(value, list):
+            if not value:
+                self.fail(key, f"must be {_AXIS}, got an empty list")
+            values = value
+        else:
+            values = [value]
+        for v in values:
+            if not _is_number(v):
+                self.fail(key, f"must be {_AXIS}, got {v!r}")
+            if integer and float(v) != round(float(v)):
+                self.fail(key, f"must be whole numbers, got {v!r}")
+        return [int(round(v)) if integer else v for v in values]
+
+    def grid(self, where: str, table: dict, build, *, integer: frozenset | set = frozenset(),
+             fixed: dict | None = None, listed: dict[str, list] | None = None) -> list:
+        names = list(table)
+        axes = [self.axis(f"{where}.{k}", table[k], integer=k in integer) for k in names]
+        for k, values in (listed or {}).items():
+            names.append(k)
+            axes.append(values)
+        out = []
+        for combo in itertools.product(*axes):
+            kwargs = dict(zip(names, combo, strict=True), **(fixed or {}))
+            try:
+                out.append(build(**kwargs))
+            except InvalidParameterError as exc:
+                bad = next((k for k in names if str(exc).startswith(k)), None)
+                self.fail(f"{where}.{bad}" if bad else where, f"is invalid: {exc}")
+        return out
+
+    def excitations(self, block: dict, where: str) -> list[ExcitationSpec]:
+        kind_text = block.get("type")
+        if kind_text is None:
+            self.fail(f"{where}.type",
+                      f"is missing; expected one of {[k.value for k in ExcitationKind]}")
+        try:
+            kind = ExcitationKind(kind_text)
+        except ValueError:
+            self.fail(f"{where}.type", f"must be one of {[k.value for k in ExcitationKind]}, "
+                                       f"got {kind_text!r}")
+        body = {k: v for k, v in block.items() if k != "type"}
+        self.keys(body, where, _EXCITATION_KEYS[kind])
+        if "direction" in body:
+            dirs = body["direction"] if isinstance(body["direction"], list) else [body["direction"]]
+            if not dirs or any(d not in (-1, 1) or isinstance(d, bool) for d in dirs):
+                self.fail(f"{where}.direction", f"must be -1, +1 or a list of them, got "
+                                                f"{body['direction']!r}")
+        if kind is not ExcitationKind.RECORD:
+            return self.grid(where, body, ExcitationSpec, integer={"direction"},
+                             fixed={"kind": kind})
+        files = body.pop("files")
+        if isinstance(files, str):
+            files = [files]
+        if not isinstance(files, list) or not files or not all(isinstance(f, str) for f in files):
+            self.fail(f"{where}.files", f"must be a list of record file paths, got {files!r}")
+        units = body.pop("units", "g")
+        if units not in RECORD_UNITS:
+            self.fail(f"{where}.units", f"must be one of {list(RECORD_UNITS)}, got {units!r}")
+        resolved = []
+        for f in files:
+            full = (self.base_dir / f).resolve()
+            if not full.is_file():
+                self.fail(f"{where}.files", f"names {f!r}, which does not exist (paths are "
+                                            f"relative to the study file)")
+            try:  # read each record once now, so a bad file stops the study before it runs
+                from archquake.ground.records import read_record
+
+                read_record(full, units=units)
+            except ArchquakeError as exc:
+                self.fail(f"{where}.files", f"names {f!r}, which cannot be used: {exc}")
+            resolved.append(str(full))
+        return self.grid(where, body, ExcitationSpec, integer={"direction"},
+                         fixed={"kind": kind, "units": units}, listed={"file": resolved})
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+__all__ = ["Study", "load_study", "parse_study"]
