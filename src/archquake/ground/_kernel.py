@@ -32,9 +32,9 @@ def ground_acceleration(kind: int, params: np.ndarray, t: float) -> float:
     # sampled, linear between samples
     t0, dt = params[0], params[1]
     n = params.shape[0] - 2
-    s = (t - t0) / dt
-    if s < 0.0 or s > n - 1:
+    if t < t0 or t > t0 + dt * (n - 1):  # outside [t0, ground_duration]: at rest
         return 0.0
+    s = (t - t0) / dt
     i = int(math.floor(s))
     if i >= n - 1:
         return params[2 + n - 1]

@@ -164,9 +164,10 @@ class Record:
         t = np.asarray(t, dtype=float)
         x = self.accelerations
         n = x.size
-        s = (t - self.t0) / self.dt
-        inside = (s >= 0.0) & (s <= n - 1)
-        s_in = np.where(inside, s, 0.0)
+        # zero outside [t0, t0 + (n-1) dt], decided on t (not on s, whose rounding could
+        # drop the last sample at t = duration)
+        inside = (t >= self.t0) & (t <= self.t0 + self.dt * (n - 1))
+        s_in = np.where(inside, (t - self.t0) / self.dt, 0.0)
         i = np.minimum(np.floor(s_in).astype(np.intp), n - 2)
         f = s_in - i
         value = (1.0 - f) * x[i] + f * x[i + 1]
@@ -358,7 +359,7 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
         raise _err(path, line_of[k], f"time {times[k]:.10g} s does not increase from "
                    f"{times[k - 1]:.10g} s on the row before (dt must be > 0); sort the rows by "
                    "time and remove duplicates")
-    typical = float(np.median(steps))
+    typical = float(np.sort(steps)[(steps.size - 1) // 2])  # lower median: an actual step
     tol = SPACING_TOLERANCE * typical
     off = np.flatnonzero(np.abs(steps - typical) > tol)  # a local jump names the culprit row
     if off.size:
