@@ -37,6 +37,8 @@ Progress = Callable[[int, int], None]
 
 #: Largest chunk chosen automatically (cases per task).
 MAX_AUTO_CHUNK = 64
+#: Seconds to wait for a Dask scheduler to answer.
+CONNECT_TIMEOUT = 10.0
 #: Chunks per worker chosen automatically, so the last few tasks balance across workers.
 CHUNKS_PER_WORKER = 8
 
@@ -257,7 +259,7 @@ def usable_cores() -> int:
 
 @contextmanager
 def open_executor(*, workers: int | None = None, scheduler: str | None = None,
-                  connect_timeout: float = 10.0) -> Iterator[tuple[Executor, int]]:
+                  connect_timeout: float | None = None) -> Iterator[tuple[Executor, int]]:
     """The executor a command line asks for, and its worker count; closed on exit.
 
     ``scheduler`` (``tcp://HOST:PORT``) connects to a running Dask scheduler; otherwise
@@ -270,7 +272,7 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
         except ImportError:
             raise ArchquakeError("--scheduler needs Dask: pip install 'archquake[dask]'") from None
         try:
-            client = Client(scheduler, timeout=connect_timeout)
+            client = Client(scheduler, timeout=connect_timeout or CONNECT_TIMEOUT)
         except (OSError, TimeoutError) as exc:
             raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} ({exc}); start "
                                  "one with 'dask scheduler' or check the address") from None
