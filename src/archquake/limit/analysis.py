@@ -1,0 +1,257 @@
+"""Equivalent static analysis: the horizontal acceleration that turns the arch into a mechanism.
+
+Self-weight plus a uniform horizontal acceleration ``lambda g`` on every voussoir, towards +x
+(the mirror case follows by symmetry: :meth:`HingeMechanism.mirrored`); rigid voussoirs, no
+tension, infinite compressive strength, no sliding (Heyman's assumptions, paper p. 2120).
+``lambda`` is the minimum constant ground acceleration, in g, that starts the motion: the
+paper's 0.37 g for Oppenheim's arch (p. 2126; the paper writes -0.37 g because its ground
+acceleration points the other way, towards -x, which loads the arch towards +x).
+
+Two independent methods that must agree:
+
+- kinematic (upper bound, :mod:`archquake.limit.kinematic`): least virtual-work multiplier
+  over every admissible four-hinge mechanism at the joints (up to 60 voussoirs);
+- static (lower bound, :mod:`archquake.limit.static`): largest lambda for which a line of
+  thrust fits in the section, a linear program (any number of voussoirs).
+
+Scope: the four-hinge mechanism is the collapse mode of arches of moderate to large embrace
+(the paper's range). Thick arches of small embrace (seen below about 135 degrees of
+embrace, t/R > 0.15) can instead fail by lifting off a springing (a rigid rotation, shear without
+normal force at the joint), or carry any horizontal acceleration as a strut; both are
+reported as :class:`~archquake.errors.ArchquakeError` rather than forced into four hinges.
+
+Figure 7 of the paper (R = 10 m, 7 voussoirs, the number of Oppenheim's arch; the paper does
+not state another), computed here with :func:`limit_analysis`:
+
+=====  =====  ==========  ====================  ==========  ===============
+t/R    beta   lambda (g)  hinges A, B, C, D     locations   friction demand
+=====  =====  ==========  ====================  ==========  ===============
+0.11   157.5  0.2327      0i, 3e, 5i, 7e        asymmetric  0.413 (joint 7)
+0.15   157.5  0.3700      0i, 3e, 5i, 7e        asymmetric  0.495 (joint 7)
+0.17   157.5  0.4367      0i, 2e, 5i, 7e        symmetric   0.535 (joint 7)
+0.19   157.5  0.4938      0i, 2e, 5i, 7e        symmetric   0.573 (joint 7)
+0.15   142.5  0.5237      0i, 2e, 5i, 7e        symmetric   0.491 (joint 7)
+0.15   150.0  0.4442      0i, 2e, 5i, 7e        symmetric   0.493 (joint 7)
+0.15   165.0  0.2962      0i, 3e, 5i, 7e        asymmetric  0.497 (joint 7)
+=====  =====  ==========  ====================  ==========  ===============
+
+(joint index, i = intrados, e = extrados; checked by tests/limit/test_paper.py). All these arches
+stand under self-weight: with 7 voussoirs a 157.5 degree arch needs only t/R >= 0.0592.
+"Symmetric" is the paper's sense: the hinge *locations* are mirror images about the vertical
+axis (joints 2 and 5 of 7). The faces of a mechanism driven by a horizontal load are never
+mirror symmetric (the mirror faces give the mirror mechanism, driven by the opposite load),
+so :attr:`HingeMechanism.symmetric`, which also compares faces, is False for all of them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError, SolverError
+from archquake.geometry.arch import Arch
+from archquake.geometry.hinges import HingeMechanism
+from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS, kinematic_collapse
+from archquake.limit.static import (
+    collapse_state,
+    min_thickness_ratio,
+    stands,
+    static_collapse,
+    unstable_error,
+)
+from archquake.limit.thrust import (
+    JointForces,
+    arch_joint_points,
+    joint_forces,
+    moments_about_origin,
+)
+
+
+class Method(StrEnum):
+    """How the collapse multiplier was found."""
+
+    STATIC = "static"
+    KINEMATIC = "kinematic"
+    BOTH = "both"
+
+
+@dataclass(frozen=True)
+class LimitAnalysis:
+    """Result of the equivalent static analysis of an arch (load towards +x).
+
+    Attributes
+    ----------
+    arch : Arch
+    collapse_acceleration_g : float
+        Collapse multiplier lambda: the horizontal acceleration, in g, at which the arch
+        becomes a mechanism (from the line of thrust through the four hinges).
+    mechanism : HingeMechanism
+        Hinges A, B, C, D at collapse (``mechanism.load_direction == +1``).
+    joint_forces : JointForces
+        Resultants at every joint at collapse, N and N m (forces of the left part on the
+        right part); ``joint_forces.thrust_points`` is the line of thrust, shape (n+1, 2).
+    static_multiplier : float
+        The linear program's optimum, g.
+    kinematic_multiplier : float or None
+        The least virtual-work multiplier, g (None if not computed).
+    method : Method
+    g : float
+        Gravity used for the forces, m/s^2.
+    """
+
+    arch: Arch
+    collapse_acceleration_g: float
+    mechanism: HingeMechanism
+    joint_forces: JointForces
+    static_multiplier: float | None
+    kinematic_multiplier: float | None
+    method: Method
+    g: float
+
+    @property
+    def symmetric(self) -> bool:
+        """True if the hinge locations (joints) are mirror images about the vertical axis,
+        the paper's "symmetric mechanism" (Figure 7); see the module docstring for why the
+        faces are not compared."""
+        return self.mechanism.mirrored().joints == self.mechanism.joints
+
+    @property
+    def thrust_line(self) -> np.ndarray:
+        """Where the line of thrust at collapse crosses each joint, m, shape (n+1, 2)."""
+        return self.joint_forces.thrust_points
+
+    @property
+    def friction_ratios(self) -> np.ndarray:
+        """|V| / N at every joint at collapse, shape (n+1,)."""
+        return self.joint_forces.friction_ratio
+
+    @property
+    def min_friction(self) -> float:
+        """Static friction demand: the largest |V| / N over the joints at the onset of motion
+        (the friction coefficient needed to exclude sliding; paper p. 2131: 0.50)."""
+        return float(np.max(self.friction_ratios))
+
+    @property
+    def min_friction_joint(self) -> int:
+        """The joint where the friction demand is largest."""
+        return int(np.argmax(self.friction_ratios))
+
+    def to_dict(self) -> dict:
+        jf = self.joint_forces
+        return {
+            "arch": self.arch.describe(),
+            "collapse_acceleration_g": self.collapse_acceleration_g,
+            "hinges": [h.to_dict() for h in self.mechanism.hinges],
+            "symmetric": self.symmetric,
+            "load_direction": "+x",
+            "min_friction": self.min_friction,
+            "min_friction_joint": self.min_friction_joint,
+            "static_multiplier": self.static_multiplier,
+            "kinematic_multiplier": self.kinematic_multiplier,
+            "method": self.method.value,
+            "g": self.g,
+            "joints": {
+                "thrust_x": jf.thrust_points[:, 0],
+                "thrust_y": jf.thrust_points[:, 1],
+                "normal_N": jf.normal,
+                "shear_N": jf.shear,
+                "eccentricity_m": jf.eccentricity,
+                "friction_ratio": self.friction_ratios,
+            },
+        }
+
+
+def collapse_joint_forces(
+    mechanism: HingeMechanism, *, g: float = STANDARD_GRAVITY
+) -> tuple[float, JointForces]:
+    """Multiplier and joint resultants (N, N m) of the equilibrium through the four hinges."""
+    arch = mechanism.arch
+    lam, (h, v, m0) = collapse_state(mechanism)
+    weight = arch.voussoir_masses * g
+    total = float(weight.sum())
+    loads = np.column_stack([lam * weight, -weight])
+    jf = joint_forces(
+        arch_joint_points(arch),
+        loads,
+        moments_about_origin(loads, arch.voussoir_centroids),
+        np.array([h, v]) * total,
+        m0 * total * arch.radius,
+    )
+    return lam, jf
+
+
+def limit_analysis(
+    arch: Arch, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY
+) -> LimitAnalysis:
+    """Equivalent static analysis of ``arch`` under a horizontal acceleration towards +x.
+
+    Parameters
+    ----------
+    arch : Arch
+    method : {"static", "kinematic", "both"}
+        "static" (any n), "kinematic" (n <= 60), or "both" (checks that they agree).
+    g : float, optional
+        Gravity, m/s^2 (only scales the joint forces; lambda is in g).
+
+    Returns
+    -------
+    LimitAnalysis
+
+    Raises
+    ------
+    UnstableArchError
+        The arch cannot stand under its own weight (message names the minimum t/R).
+
+    Examples
+    --------
+    Oppenheim's arch (paper p. 2126: 0.37 g):
+
+    >>> import math
+    >>> res = limit_analysis(Arch(10.0, 1.5, math.radians(157.5), 7), method="both")
+    >>> round(res.collapse_acceleration_g, 3), res.mechanism.joints, res.symmetric
+    (0.37, (0, 3, 5, 7), False)
+    """
+    method = Method(method)
+    if method is not Method.STATIC and arch.voussoirs > MAX_KINEMATIC_VOUSSOIRS:
+        raise InvalidParameterError(
+            f"the kinematic method enumerates mechanisms and needs voussoirs <= "
+            f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use method='static'"
+        )
+    lam_static = lam_kin = None
+    if method is not Method.KINEMATIC:
+        lam_static, mech = static_collapse(arch)  # raises UnstableArchError
+    if method is not Method.STATIC:
+        if method is Method.KINEMATIC:
+            if not stands(arch):
+                raise unstable_error(arch)
+        lam_kin, mech_kin = kinematic_collapse(arch)
+        if method is Method.KINEMATIC:
+            mech = mech_kin
+        elif abs(lam_kin - lam_static) > 1e-6 * max(1.0, abs(lam_kin)):
+            raise SolverError(
+                f"static ({lam_static:.9g} g) and kinematic ({lam_kin:.9g} g) collapse "
+                "multipliers disagree"
+            )
+    lam, jf = collapse_joint_forces(mech, g=g)
+    return LimitAnalysis(
+        arch=arch,
+        collapse_acceleration_g=lam,
+        mechanism=mech,
+        joint_forces=jf,
+        static_multiplier=lam_static,
+        kinematic_multiplier=lam_kin,
+        method=method,
+        g=float(g),
+    )
+
+
+__all__ = [
+    "LimitAnalysis",
+    "Method",
+    "collapse_joint_forces",
+    "limit_analysis",
+    "min_thickness_ratio",
+]

@@ -1,0 +1,261 @@
+"""Static (lower-bound) limit analysis: the largest load for which a line of thrust fits.
+
+Unknowns (dimensionless: forces over the arch's weight W, lengths over R): the left support
+reaction (H, V), its moment M0 about the origin O, and the load factor lambda (horizontal body
+force lambda g on every voussoir, towards +x). Every joint's normal force N_j and moment M_j
+about the joint's centre are affine in those four unknowns (:func:`archquake.limit.thrust.
+joint_forces` evaluated for each unit unknown and superposed), and the line of thrust lies
+inside the section at joint j when
+
+    -N_j t/2 <= M_j <= N_j t/2        (which implies N_j >= 0).
+
+Maximising lambda under these 2(n+1) constraints is a linear program (HiGHS). By the
+lower-bound theorem its optimum is the collapse multiplier; the constraints with non-zero
+duals are the hinges of the collapse mechanism (the duals are the hinge rotations of the
+virtual-work equation), and where the line of thrust touches the intrados or the extrados.
+
+By the mirror symmetry of the arch, the set of admissible lambda is an interval [-l, l]:
+it contains 0 whenever it is not empty, so the arch stands under its own weight exactly when
+the program is feasible. :func:`min_thickness_ratio` bisects on that feasibility.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import linprog
+
+from archquake.errors import ArchquakeError, SolverError, UnstableArchError
+from archquake.geometry.arch import MAX_VOUSSOIRS, Arch
+from archquake.geometry.hinges import Face, HingeMechanism
+from archquake.limit.thrust import arch_joint_points, joint_forces, moments_about_origin
+
+#: Below this t/R an arch that still stands is reported as standing at any thickness.
+_THINNEST = 1e-9
+
+#: Largest load factor the program searches (g); beyond it the arch is treated as not
+#: collapsing under any horizontal acceleration (thick, shallow arches can carry any).
+MAX_MULTIPLIER = 100.0
+
+
+def _unit_joint_actions(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """N and M (moment about the joint centre) at every joint for each unit unknown.
+
+    Returns
+    -------
+    normal : ndarray, shape (5, n+1)
+        Rows: the constant part (self-weight), then per unit H, V, M0, lambda.
+    moment : ndarray, shape (5, n+1)
+        Same rows, moments about the joint centres (lengths over R, forces over W).
+    half_widths : ndarray, shape (n+1,)
+        t / (2R) at every joint.
+    """
+    scale = arch.radius
+    pts = arch_joint_points(arch) / scale
+    centroids = arch.voussoir_centroids / scale
+    w = arch.voussoir_masses / arch.voussoir_masses.sum()
+    n = arch.voussoirs
+    zero_f, zero_m = np.zeros((n, 2)), np.zeros(n)
+    weight = np.column_stack([np.zeros(n), -w])
+    push = np.column_stack([w, np.zeros(n)])
+    cases = [
+        (weight, moments_about_origin(weight, centroids), (0.0, 0.0), 0.0),
+        (zero_f, zero_m, (1.0, 0.0), 0.0),
+        (zero_f, zero_m, (0.0, 1.0), 0.0),
+        (zero_f, zero_m, (0.0, 0.0), 1.0),
+        (push, moments_about_origin(push, centroids), (0.0, 0.0), 0.0),
+    ]
+    results = [joint_forces(pts, f, m, np.array(r), r_m) for f, m, r, r_m in cases]
+    return (
+        np.array([r.normal for r in results]),
+        np.array([r.moment for r in results]),
+        results[0].half_widths,
+    )
+
+
+def _constraints(arch: Arch) -> tuple[np.ndarray, np.ndarray]:
+    """A_ub x <= b_ub over x = (H, V, M0, lambda): rows 2j (intrados: M_j - h N_j <= 0) and
+    2j+1 (extrados: -M_j - h N_j <= 0)."""
+    normal, moment, half = _unit_joint_actions(arch)
+    intrados = moment - half * normal  # (5, n+1)
+    extrados = -moment - half * normal
+    rows = np.empty((5, 2 * normal.shape[1]))
+    rows[:, 0::2], rows[:, 1::2] = intrados, extrados
+    return rows[1:].T.copy(), -rows[0]
+
+
+def _solve(c, a_ub, b_ub, bounds):
+    res = linprog(c, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs")
+    if res.status not in (0, 2, 3):
+        raise SolverError(f"the limit-analysis linear program failed: {res.message}")
+    return res
+
+
+def stands(arch: Arch) -> bool:
+    """True if a line of thrust fits inside the arch under self-weight alone.
+
+    Examples
+    --------
+    >>> stands(Arch.from_ratio(0.12, math.pi, 200)), stands(Arch.from_ratio(0.10, math.pi, 200))
+    (True, False)
+    """
+    a_ub, b_ub = _constraints(arch)
+    res = _solve(np.zeros(3), a_ub[:, :3], b_ub, [(None, None)] * 3)
+    return res.status == 0
+
+
+def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -> float:
+    """Least t/R for which a part-circular arch stands under its own weight.
+
+    Bisection on the feasibility of the static program with lambda = 0 (each step is one
+    small linear program; about 25 steps).
+
+    Parameters
+    ----------
+    embrace : float
+        Angle of embrace, rad (0, 240 degrees].
+    voussoirs : int
+        Number of voussoirs (3 .. MAX_VOUSSOIRS).
+    rtol : float
+        Relative width of the final bracket.
+
+    Returns
+    -------
+    float
+        Minimum t/R; 0.0 when the arch stands at any thickness (three voussoirs: a line of
+        thrust can pass through all four joint centres). Tends to Milankovitch's 0.1075 for
+        a semicircle as n grows (Heyman's 0.106 comes from an approximate statics).
+
+    Examples
+    --------
+    >>> round(min_thickness_ratio(math.pi, 200), 3)
+    0.107
+    """
+    low, high = 0.0, 0.5
+    while not stands(Arch.from_ratio(high, embrace, voussoirs)):
+        low, high = high, min(2.0 * high, 1.999)
+        if low >= 1.999:
+            raise ArchquakeError(
+                f"no thickness below 2R lets this arch stand (embrace {math.degrees(embrace):g} "
+                f"degrees, {voussoirs} voussoirs)"
+            )
+    while high - low > rtol * high:
+        if high < _THINNEST:
+            return 0.0
+        mid = 0.5 * (low + high)
+        if stands(Arch.from_ratio(mid, embrace, voussoirs)):
+            high = mid
+        else:
+            low = mid
+    return high
+
+
+def unstable_error(arch: Arch) -> UnstableArchError:
+    """The one-line error for an arch too thin to stand, naming its minimum thickness."""
+    ratio = min_thickness_ratio(arch.embrace, arch.voussoirs)
+    return UnstableArchError(
+        f"the arch is too thin to stand under its own weight: t/R = {arch.thickness_ratio:.4g} "
+        f"but an arch of {math.degrees(arch.embrace):g} degrees embrace and {arch.voussoirs} "
+        f"voussoirs needs t/R >= {ratio:.4f} (t >= {ratio * arch.radius:.4g} m for R = "
+        f"{arch.radius:g} m); increase the thickness",
+        min_thickness_ratio=ratio,
+    )
+
+
+def static_collapse(arch: Arch, *, rtol: float = 1e-7) -> tuple[float, HingeMechanism]:
+    """Largest horizontal load factor (towards +x) for which a line of thrust fits.
+
+    Parameters
+    ----------
+    arch : Arch
+    rtol : float
+        Relative threshold on the duals (against the largest) that marks a hinge.
+
+    Returns
+    -------
+    multiplier : float
+        Collapse acceleration in g, as the program's optimum.
+    mechanism : HingeMechanism
+        Hinges where the optimum's duals are non-zero.
+
+    Raises
+    ------
+    UnstableArchError
+        No line of thrust fits even without horizontal load.
+    ArchquakeError
+        The arch carries any horizontal acceleration up to :data:`MAX_MULTIPLIER` g.
+
+    Examples
+    --------
+    >>> lam, mech = static_collapse(Arch(10.0, 1.5, math.radians(157.5), 7))
+    >>> round(lam, 4), mech.joints, [f.value[0] for f in mech.faces]
+    (0.37, (0, 3, 5, 7), ['i', 'e', 'i', 'e'])
+    """
+    if arch.voussoirs > MAX_VOUSSOIRS:  # pragma: no cover - Arch already forbids it
+        raise ArchquakeError(f"at most {MAX_VOUSSOIRS} voussoirs")
+    a_ub, b_ub = _constraints(arch)
+    bounds = [(None, None)] * 3 + [(None, MAX_MULTIPLIER)]
+    res = _solve(np.array([0.0, 0.0, 0.0, -1.0]), a_ub, b_ub, bounds)
+    if res.status == 2:
+        raise unstable_error(arch)
+    lam = float(res.x[3])
+    if res.status == 3 or lam >= MAX_MULTIPLIER * (1 - 1e-9):
+        raise ArchquakeError(
+            f"no collapse mechanism: a line of thrust fits for any horizontal acceleration up to "
+            f"{MAX_MULTIPLIER:g} g (the arch is thick and shallow enough to act as a strut)"
+        )
+    duals = np.abs(res.ineqlin.marginals)
+    order = np.argsort(duals)[::-1]
+    active = [int(i) for i in order if duals[i] > rtol * duals[order[0]]]
+    if len(active) != 4:
+        raise SolverError(
+            f"the collapse state has {len(active)} active hinges instead of 4 (a degenerate "
+            "tie between mechanisms); use the kinematic method"
+        )
+    active.sort()
+    joints = tuple(i // 2 for i in active)
+    if len(set(joints)) < 4:
+        j = next(x for x in joints if joints.count(x) == 2)
+        raise ArchquakeError(
+            f"at collapse ({lam:.4g} g) joint {j} opens on both faces (the arch lifts off there "
+            "and turns as a rigid body): not a four-hinge mechanism, which is the only collapse "
+            "mode archquake models (typical of thick arches of small embrace)"
+        )
+    faces = tuple(Face.INTRADOS if i % 2 == 0 else Face.EXTRADOS for i in active)
+    return lam, HingeMechanism(arch, joints, faces)  # type: ignore[arg-type]
+
+
+def collapse_state(mechanism: HingeMechanism) -> tuple[float, np.ndarray]:
+    """The unique equilibrium with the line of thrust through the four hinges.
+
+    Solves the 4 x 4 linear system M_j = -e_j N_j at the hinges (e_j = -t/2 on the intrados,
+    +t/2 on the extrados) for (H, V, M0, lambda).
+
+    Returns
+    -------
+    multiplier : float
+        Load factor in g (equal, by virtual work, to ``mechanism.static_multiplier()``).
+    unknowns : ndarray, shape (3,)
+        (H, V, M0) of the left reaction over the weight W (M0 about O, over W R).
+    """
+    arch = mechanism.arch
+    normal, moment, half = _unit_joint_actions(arch)
+    rows, rhs = [], []
+    for j, face in zip(mechanism.joints, mechanism.faces, strict=True):
+        e = half[j] if face is Face.EXTRADOS else -half[j]
+        coeff = moment[:, j] + e * normal[:, j]  # (5,): constant, H, V, M0, lambda
+        rows.append(coeff[1:])
+        rhs.append(-coeff[0])
+    x = np.linalg.solve(np.array(rows), np.array(rhs))
+    return float(x[3]), x[:3]
+
+
+__all__ = [
+    "MAX_MULTIPLIER",
+    "collapse_state",
+    "min_thickness_ratio",
+    "stands",
+    "static_collapse",
+    "unstable_error",
+]
