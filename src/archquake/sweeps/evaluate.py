@@ -15,10 +15,11 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable
+from functools import lru_cache
 from typing import Any
 
 from archquake.errors import ArchquakeError
-from archquake.sweeps.cases import Case, Model
+from archquake.sweeps.cases import ArchSpec, Case, Model
 
 #: Where each model's simulate function lives, as (module, function).
 MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
@@ -66,14 +67,28 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         When the model refuses the case (the sweep stores it as an ``error`` row).
     """
     simulate = model_function(case.model)
-    arch = case.arch.build()
     motion = case.excitation.build(g=case.options.g)
     if case.model is Model.ANALYTICAL:
-        result = simulate(arch, motion, restitution=case.options.restitution,
-                          t_end=case.options.t_end_s, g=case.options.g)
+        from archquake.mechanism import SolverOptions
+
+        # no time history is kept (the store holds summaries), which also saves its memory
+        result = simulate(_prepared(case.arch), motion, restitution=case.options.restitution,
+                          t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
+                          g=case.options.g)
     else:  # the DEM has its own contact laws: no coefficient of restitution to pass
-        result = simulate(arch, motion, t_end=case.options.t_end_s, g=case.options.g)
+        result = simulate(case.arch.build(), motion, t_end=case.options.t_end_s,
+                          g=case.options.g)
     return result.to_dict(include_history=False)
+
+
+@lru_cache(maxsize=256)
+def _prepared(arch: ArchSpec):
+    """The arch's mechanism from the equivalent static analysis, packed for the kernels with
+    its impact solution. A pure function of the arch, memoised per process: a sweep usually
+    runs many excitations on each arch, and this limit analysis costs more than a case."""
+    from archquake.mechanism import PreparedMechanism
+
+    return PreparedMechanism.build(arch.build())
 
 
 __all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function"]

@@ -193,7 +193,8 @@ class _Parser:
                 self.fail(key, f"range start and stop must be numbers, got {start!r}, {stop!r}")
             if isinstance(num, bool) or not isinstance(num, int) or num < 1:
                 self.fail(key, f"range num must be a whole number >= 1, got {num!r}")
-            values = [float(v) for v in np.linspace(start, stop, num)]
+            # 12 significant digits: 1.05, not linspace's 1.0499999999999998, in ids and tables
+            values = [float(f"{v:.12g}") for v in np.linspace(start, stop, num)]
         elif isinstance(value, list):
             if not value:
                 self.fail(key, f"must be {_AXIS}, got an empty list")
