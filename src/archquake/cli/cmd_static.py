@@ -1,0 +1,81 @@
+"""``archquake static``: equivalent static analysis (collapse acceleration, hinges, friction)."""
+
+from __future__ import annotations
+
+import argparse
+
+from archquake.cli.common import add_arch_arguments, add_output_arguments, arch_from_args, print_json
+from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "static",
+        help="equivalent static analysis: collapse acceleration (g), hinges, friction demand",
+        description=(
+            "Largest uniform horizontal ground acceleration (in g) the arch resists before it "
+            "becomes a four-hinge mechanism (rigid voussoirs, no tension, no sliding), the hinges "
+            "A, B, C, D and the friction coefficient needed against sliding at that instant. The "
+            "load acts towards +x; a load towards -x gives the mirror image. Angles in degrees."
+        ),
+    )
+    add_arch_arguments(p)
+    p.add_argument(
+        "--method", choices=("auto", "static", "kinematic", "both"), default="auto",
+        help="static: line-of-thrust linear program (any number of voussoirs); kinematic: "
+             f"virtual work over every mechanism (up to {MAX_KINEMATIC_VOUSSOIRS} voussoirs); "
+             "both: check they agree; auto (default): both when the mechanisms can be "
+             "enumerated, else static",
+    )
+    add_output_arguments(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    arch = arch_from_args(args)
+    method = args.method
+    if method == "auto":
+        method = "both" if arch.voussoirs <= MAX_KINEMATIC_VOUSSOIRS else "static"
+    result = limit_analysis(arch, method=method)
+    if args.plot is not None:
+        from archquake.plotting.arch import save_limit_analysis
+
+        save_limit_analysis(result, args.plot)
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    print(format_result(result))
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def format_result(result) -> str:
+    """Human-readable summary of a :class:`~archquake.limit.LimitAnalysis`."""
+    arch = result.arch
+    d = arch.describe()
+    n = arch.voussoirs
+    lines = [
+        f"arch: R = {d['radius_m']:g} m, t = {d['thickness_m']:g} m (t/R = "
+        f"{d['thickness_ratio']:.4g}), embrace {d['embrace_deg']:g} deg, {n} voussoirs",
+        f"collapse acceleration: {result.collapse_acceleration_g:.4f} g "
+        "(horizontal, load towards +x; the mirror mechanism for -x)",
+    ]
+    if result.static_multiplier is not None and result.kinematic_multiplier is not None:
+        lines.append(
+            f"  static (line of thrust) {result.static_multiplier:.6f} g, kinematic (virtual "
+            f"work) {result.kinematic_multiplier:.6f} g"
+        )
+    where = "symmetric" if result.symmetric else "asymmetric"
+    lines.append(f"hinges ({where} locations; joint 0 = left springing, {n} = right springing):")
+    for label, h in zip("ABCD", result.mechanism.hinges, strict=True):
+        lines.append(
+            f"  {label}  joint {h.joint:>3d}  {h.face.value:<8s}  x = {h.x:9.4f} m  y = {h.y:9.4f} m"
+        )
+    j = result.min_friction_joint
+    place = {0: ", the left springing", n: ", the right springing"}.get(j, "")
+    lines.append(
+        f"friction demand at the onset of motion: {result.min_friction:.3f} "
+        f"(largest |V|/N, at joint {j}{place})"
+    )
+    return "\n".join(lines)
