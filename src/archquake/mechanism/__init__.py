@@ -1,4 +1,4 @@
-"""The arch in motion: four-link mechanism kinematics, equation of motion, impact, time histories."""
+"""The arch in motion: four-link kinematics, equation of motion, impact and time histories."""
 
 from archquake.mechanism.impact import ImpactSolution, solve_impact
 from archquake.mechanism.simulate import (

@@ -32,7 +32,11 @@ from archquake.mechanism.kinematics import (
     PHI_TOGGLE,
     acceleration,
     eom_terms,
+    linkage_limits,
 )
+
+#: The crest/toggle search of :func:`archquake.mechanism.kinematics.linkage_limits`, compiled.
+linkage_limits_compiled = nb.njit(cache=True)(linkage_limits)
 
 OUTCOME_NO_HINGING = 0
 OUTCOME_SURVIVES = 1
@@ -48,7 +52,8 @@ A21 = 1.0 / 5.0
 A31, A32 = 3.0 / 40.0, 9.0 / 40.0
 A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
 A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-A61, A62, A63, A64, A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
+A61, A62, A63, A64, A65 = (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
+                           -5103.0 / 18656.0)
 B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
 E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
                           22.0 / 525.0, -1.0 / 40.0)
@@ -168,10 +173,10 @@ def hermite(s, h, y0, d0, y1, d1):
 
 
 @nb.njit(cache=True, nogil=True)
-def _hermite_root(h, y0, d0, y1, d1, target):
-    """Root in (0, h] of hermite(s) - target given a sign change (bisection, 100 steps)."""
-    lo, hi = 0.0, h
-    flo = y0 - target
+def _hermite_root(h, y0, d0, y1, d1, target, lo=0.0):
+    """Root in (lo, h] of hermite(s) - target given a sign change there (bisection)."""
+    hi = h
+    flo = hermite(lo, h, y0, d0, y1, d1) - target
     for _ in range(100):
         mid = 0.5 * (lo + hi)
         fm = hermite(mid, h, y0, d0, y1, d1) - target
@@ -183,20 +188,28 @@ def _hermite_root(h, y0, d0, y1, d1, target):
 
 
 @nb.njit(cache=True, nogil=True)
-def _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_guess, target):
-    """Re-integrate from (t, phi, v) to the event phi = target with Newton on the step size.
-    Returns (s, phi_s, v_s, a_s)."""
-    s = s_guess
-    ph, vv = phi, v
-    for _ in range(6):
+def _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_guess, target, lo, hi):
+    """Re-integrate from (t, phi, v) to the event phi = target, with Newton on the step size
+    safeguarded by the bracket [lo, hi] (phi - target changes sign across it; bisection when
+    Newton leaves it). Returns (s, phi_s, v_s, a_s)."""
+    s = min(max(s_guess, lo), hi)
+    f_lo_positive = True
+    if lo > 0.0:
+        ph_lo = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, lo)[0]
+        f_lo_positive = ph_lo - target > 0.0
+    else:
+        f_lo_positive = phi - target > 0.0
+    for _ in range(60):
         ph, vv, aa, e1, e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, s)
-        if vv == 0.0 or not math.isfinite(ph):
-            break
-        ds = (ph - target) / vv
-        s_new = s - ds
-        if s_new <= 0.0:
-            s_new = 0.5 * s
-        if abs(s_new - s) <= 1e-15 * (1.0 + t):
+        f = ph - target
+        if (f > 0.0) == f_lo_positive:
+            lo = s
+        else:
+            hi = s
+        s_new = s - f / vv if vv != 0.0 else 0.5 * (lo + hi)
+        if not (lo < s_new < hi):
+            s_new = 0.5 * (lo + hi)
+        if abs(s_new - s) <= 1e-15 * (1.0 + abs(t)) or hi - lo <= 1e-15 * (1.0 + abs(t)):
             s = s_new
             break
         s = s_new
@@ -220,7 +233,6 @@ def find_onset(mech, kind, params, t, t_limit, g):
         t_next = min(next_breakpoint(kind, params, t_cur), t_limit)
         nsub = 1 if kind == KIND_STEP else (2 if kind == KIND_SAMPLED else 64)
         prev_t = t_cur
-        prev_f = -math.inf
         for j in range(nsub + 1):
             tj = t_cur + (t_next - t_cur) * j / nsub
             if j == nsub and kind == KIND_STEP:
@@ -235,13 +247,13 @@ def find_onset(mech, kind, params, t, t_limit, g):
                     lo, hi = prev_t, tj
                     for _ in range(80):
                         mid = 0.5 * (lo + hi)
-                        if _opening_force(mech, side, ground_in_piece(kind, params, mid, t_cur), g) > 0.0:
+                        a_mid = ground_in_piece(kind, params, mid, t_cur)
+                        if _opening_force(mech, side, a_mid, g) > 0.0:
                             hi = mid
                         else:
                             lo = mid
                     return hi, side
             prev_t = tj
-            prev_f = a
         if not math.isfinite(t_next):
             break
         t_cur = t_next
@@ -250,7 +262,7 @@ def find_onset(mech, kind, params, t, t_limit, g):
 
 @nb.njit(cache=True, nogil=True)
 def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
-                    max_impacts, dt_out, hist, impacts, peaks, counters):
+                    max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate=0.0):
     """Integrate one time history. See the module docstring for the logic.
 
     Parameters
@@ -259,12 +271,14 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     cv : coefficient of restitution on the rate;  t_end : s;  rtol, atol_phi : tolerances
         (the rate's absolute tolerance is atol_phi * sqrt(g / R), so that similar arches take
         similar steps);  rest_rotation : rad;  max_impacts : int
-    dt_out : output interval, s (<= 0: no history)
+    dt_out : output interval, s (0: no history; < 0: every accepted step and event)
     hist : (cap, 5) out: t, phi, phi', side, x_g''
     impacts : (max_impacts, 3) out: time, rate before, rate after
     peaks : (max_impacts + 1,) out: peak phi of each half cycle
     counters : (8,) out: n_hist, n_impacts, n_half_cycles, n_steps, n_rejected, n_rhs,
         onset_time, collapse_time
+    initial_rate : rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this
+        opening rate (free rocking), instead of from rest.
 
     Returns
     -------
@@ -295,6 +309,13 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     tau = math.sqrt(mech[LENGTH] / g)
     h = 1e-3 * tau
     h_min = 1e-14 * tau
+    if initial_rate > 0.0:
+        side = 1
+        v = initial_rate
+        half = 1
+        peaks[0] = 0.0
+        outcome = OUTCOME_SURVIVES
+        onset_time = 0.0
     while t < t_end:
         if side == 0:
             t_on, s_on = find_onset(mech, kind, params, t, max(t, min(t_exc, t_end)), g)
@@ -340,7 +361,8 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
             if hh < h_min:
                 t = t_stop
                 break
-            phi1, v1, k7, ep, ev = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, hh)
+            phi1, v1, k7, ep, ev = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1,
+                                              hh)
             n_rhs += 6
             if not (math.isfinite(phi1) and math.isfinite(v1) and math.isfinite(k7)):
                 n_rej += 1
@@ -366,11 +388,19 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
             # ---- events inside [t, t + hh]
             ev_kind = 0  # 1 closure, 2 collapse (crest), 3 toggle
             s_ev = hh
+            s_lo = 0.0
             if phi1 < 0.0 and phi >= 0.0:
                 ev_kind = 1
-                s_ev = _hermite_root(hh, phi, v, phi1, v1, 0.0)
+                if v > 0.0:  # opening at the start: the closure comes after the top
+                    s_lo = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                s_ev = _hermite_root(hh, phi, v, phi1, v1, 0.0, s_lo)
             if excitation_over and phi1 >= phi_crit and v1 >= 0.0:
-                s_c = hh if phi >= phi_crit else _hermite_root(hh, phi, v, phi1, v1, phi_crit)
+                if phi < phi_crit:
+                    s_c = _hermite_root(hh, phi, v, phi1, v1, phi_crit)
+                elif v < 0.0:  # beyond the crest, closing, and turning back open: collapse
+                    s_c = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                else:
+                    s_c = 0.0
                 if ev_kind == 0 or s_c < s_ev:
                     ev_kind = 2
                     s_ev = s_c
@@ -388,26 +418,29 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
                     hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_left)
                     n_hist += 1
                     t_out += dt_out
-            # ---- peak of the half cycle (extremum of the Hermite interpolant)
-            pk = max(phi, phi1)
+            # ---- peak of the half cycle over [t, t + s_ev] (extremum of the interpolant)
+            pk = max(phi, hermite(s_ev, hh, phi, v, phi1, v1))
             if v > 0.0 and v1 <= 0.0:
-                lo, hi = 0.0, hh
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    if hermite(mid, hh, v, k1, v1, k7) > 0.0:
-                        lo = mid
-                    else:
-                        hi = mid
-                pk = max(pk, hermite(0.5 * (lo + hi), hh, phi, v, phi1, v1))
+                s_top = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                if s_top <= s_ev:
+                    pk = max(pk, hermite(s_top, hh, phi, v, phi1, v1))
             if pk > peaks[half - 1]:
                 peaks[half - 1] = pk
             if ev_kind == 0:
                 t = t + hh if t + hh < t_stop else t_stop
                 phi, v, k1 = phi1, v1, k7
                 h = h_next
+                if dt_out < 0.0 and n_hist < cap:  # the integrator's own states
+                    hist[n_hist, 0] = t
+                    hist[n_hist, 1] = phi
+                    hist[n_hist, 2] = v
+                    hist[n_hist, 3] = side
+                    hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                    n_hist += 1
                 continue
             if ev_kind == 1:
-                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_ev, 0.0)
+                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
+                                            s_ev, 0.0, s_lo, hh)
                 t_imp = t + s
                 v_after = cv * abs(v_e)
                 if n_imp < impacts.shape[0]:
@@ -434,8 +467,10 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
                         peaks[half - 1] = 0.0
                     else:
                         half -= 1
-                h = max(h_next, 1e-6 * tau)
-                if dt_out > 0.0 and n_hist < cap:
+                # first step of the new half cycle: at most a quarter of its free duration
+                # 2 m_eff v / (g G0), so that tiny half cycles are resolved
+                h = max(min(h_next, 0.5 * meff0 * v_after / (g * mech[G0])), 1e-9 * tau)
+                if dt_out != 0.0 and n_hist < cap:
                     hist[n_hist, 0] = t
                     hist[n_hist, 1] = 0.0
                     hist[n_hist, 2] = v
@@ -445,9 +480,9 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
                 continue
             # collapse
             s = s_ev
-            if ev_kind == 2 and s_ev < hh:
+            if ev_kind == 2 and 0.0 < s_ev < hh and phi < phi_crit:
                 s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                            s_ev, phi_crit)
+                                            s_ev, phi_crit, 0.0, hh)
             outcome = OUTCOME_COLLAPSE
             final = FINAL_COLLAPSED
             collapse_time = t + s

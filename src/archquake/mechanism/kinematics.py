@@ -64,7 +64,9 @@ def pack_mechanism(mech: HingeMechanism) -> np.ndarray:
     out[LENGTH] = arch.radius
     _, _, _, gg, hh = eom_terms(out, 0.0)
     out[G0], out[H0] = gg, hh
-    crit, toggle = linkage_limits(out)
+    from archquake.mechanism._kernels import linkage_limits_compiled
+
+    crit, toggle = linkage_limits_compiled(out, 4000)
     out[PHI_CRIT], out[PHI_TOGGLE] = crit, toggle
     return out
 
@@ -207,7 +209,8 @@ def eom_terms(mech, phi):
 
 @register_jitable
 def potential(mech, phi):
-    """Gravity potential of the moving links relative to phi = 0, divided by g: sum m_k (y_k - y_k0), kg m."""
+    """Gravity potential of the moving links relative to phi = 0, divided by g:
+    sum m_k (y_k - y_k0), kg m."""
     (ok, psi_ab, w_ab, a_ab, psi_bc, w_bc, a_bc, psi_cd, w_cd, a_cd,
      bx, by, cx, cy) = link_states(mech, phi)
     total = 0.0
@@ -216,11 +219,11 @@ def potential(mech, phi):
         mass = mech[base]
         rho0x, rho0y = mech[base + 1], mech[base + 2]
         if k == 0:
-            px, py, p0y, psi = mech[AX], mech[AY], mech[AY], psi_ab
+            py, p0y, psi = mech[AY], mech[AY], psi_ab
         elif k == 1:
-            px, py, p0y, psi = bx, by, mech[B0Y], psi_bc
+            py, p0y, psi = by, mech[B0Y], psi_bc
         else:
-            px, py, p0y, psi = mech[DX], mech[DY], mech[DY], psi_cd
+            py, p0y, psi = mech[DY], mech[DY], psi_cd
         y = py + math.sin(psi) * rho0x + math.cos(psi) * rho0y
         total += mass * (y - (p0y + rho0y))
     return total
@@ -235,31 +238,38 @@ def acceleration(mech, phi, phidot, ground, g):
     return (-0.5 * dmeff * phidot * phidot - g * gg - ground * hh) / meff
 
 
-def linkage_limits(mech: np.ndarray, samples: int = 4000) -> tuple[float, float]:
+@register_jitable
+def _bisect_valid(mech, lo, hi):
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if fourbar(mech, mid)[0]:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@register_jitable
+def linkage_limits(mech, samples=4000):
     """Rotation at which gravity can no longer bring the mechanism back (the crest of the
     potential, G(phi) = 0) and the toggle rotation where the linkage locks, both rad.
 
     The toggle is searched over (0, pi]; if the linkage never toggles there, pi is returned.
     If G has no zero before the toggle, the crest is the toggle.
     """
-    grid = np.linspace(0.0, math.pi, samples + 1)
     toggle = math.pi
     last_ok = 0.0
-    for p in grid[1:]:
+    for i in range(1, samples + 1):
+        p = math.pi * i / samples
         if not fourbar(mech, p)[0]:
-            lo, hi = last_ok, p
-            for _ in range(200):
-                mid = 0.5 * (lo + hi)
-                if fourbar(mech, mid)[0]:
-                    lo = mid
-                else:
-                    hi = mid
-            toggle = lo
+            toggle = _bisect_valid(mech, last_ok, p)
             break
         last_ok = p
     crit = toggle
-    prev_p, prev_g = 0.0, eom_terms(mech, 0.0)[3]
-    for p in np.linspace(0.0, toggle, samples + 1)[1:-1]:
+    prev_p = 0.0
+    prev_g = eom_terms(mech, 0.0)[3]
+    for i in range(1, samples):
+        p = toggle * i / samples
         gval = eom_terms(mech, p)[3]
         if prev_g > 0.0 >= gval:
             lo, hi = prev_p, p
