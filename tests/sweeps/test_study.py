@@ -3,6 +3,8 @@ through the command line with one line naming the bad key (exit 2)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from sweep_fake_model import SMALL_STUDY
 
@@ -138,3 +140,18 @@ def test_library_raises_study_file_error(tmp_path):
     with pytest.raises(StudyFileError, match=r"arches\.voussoirs.*>= 3"):
         load_study(path)
 
+
+
+def test_the_documented_example_parses(tmp_path):
+    # docs/sweeps.md promises 4 arches x (25 + 4 + 8) excitations x 2 restitutions = 296 cases
+    import re
+
+    from test_cases import AT2
+
+    doc = (Path(__file__).parents[2] / "docs" / "sweeps.md").read_text()
+    (tmp_path / "records").mkdir()
+    (tmp_path / "records" / "RSN953_NORTHR_MUL009.AT2").write_text(AT2)
+    (tmp_path / "s.toml").write_text(re.search(r"```toml\n(.*?)```", doc, re.S).group(1))
+    assert len(load_study(tmp_path / "s.toml").cases) == 296
+    example = Path(__file__).parents[2] / "examples" / "sweep_scale.toml"
+    assert len(load_study(example).cases) == 400
