@@ -120,3 +120,36 @@ def test_installed_script_reports_bad_input():
     assert proc.stdout == ""
     assert len(proc.stderr.strip().splitlines()) == 1
     assert "--thickness" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_demo_step_quick(tmp_path):
+    from archquake.cli.demo_static import demo_step
+
+    files = demo_step(tmp_path, quick=True)
+    assert [f.name for f in files] == ["static_collapse.png", "static_report.md"]
+    report = (tmp_path / "static_report.md").read_text()
+    assert "| collapse acceleration (static LP) | 0.3700 g | 0.37 g |" in report
+    assert "0.495 at joint 7 (right springing)" in report
+
+
+def test_plot_arch_moved_voussoirs():
+    """plot_arch draws rigidly moved voussoirs: a zero displacement leaves the outline where it
+    is, and a rotation about the centroid keeps every distance to it."""
+    import numpy as np
+
+    from archquake.geometry import Arch
+    from archquake.plotting.arch import moved_outline, plot_arch
+
+    arch = Arch(10.0, 1.5, 2.75, 7)
+    outline, centroid = arch.voussoir_outline(2), arch.voussoir_centroids[2]
+    assert np.allclose(moved_outline(outline, centroid, [0, 0, 0]), outline)
+    moved = moved_outline(outline, centroid, [0.3, -0.2, 0.4])
+    assert np.allclose(np.linalg.norm(moved - (centroid + [0.3, -0.2]), axis=1),
+                       np.linalg.norm(outline - centroid, axis=1))
+    positions = np.zeros((7, 3))
+    positions[:, 2] = 0.05
+    ax = plot_arch(arch, voussoir_positions=positions, show_ghost=True,
+                   hinges=np.array([[0.0, 10.75]]), hinge_labels=["H"])
+    assert len(ax.patches) == 7 * 2 + 2  # ghosts, moved voussoirs, two supports
+    with pytest.raises(ValueError, match=r"shape \(7, 3\)"):
+        plot_arch(arch, ax, voussoir_positions=np.zeros((6, 3)))

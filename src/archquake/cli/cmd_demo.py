@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 STEPS: list[tuple[str, str]] = [
+    ("Equivalent static analysis of Oppenheim's arch", "archquake.cli.demo_static:demo_step"),
 ]
 
 
