@@ -181,9 +181,13 @@ class HingeMechanism:
 
     @property
     def symmetric(self) -> bool:
-        """True if the hinge set is its own mirror image."""
-        m = self.mirrored()
-        return m.joints == self.joints and m.faces == self.faces
+        """True if the hinges sit at mirror-image joints (the paper's "symmetric mechanism").
+
+        Only the joints are compared: the faces of a mechanism opened by a horizontal load are
+        never their own mirror image (the mirror-image faces form the mirror mechanism, which
+        the opposite load opens).
+        """
+        return self.mirrored().joints == self.joints
 
     def to_dict(self) -> dict:
         return {

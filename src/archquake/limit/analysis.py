@@ -40,7 +40,7 @@ stand under self-weight: with 7 voussoirs a 157.5 degree arch needs only t/R >= 
 "Symmetric" is the paper's sense: the hinge *locations* are mirror images about the vertical
 axis (joints 2 and 5 of 7). The faces of a mechanism driven by a horizontal load are never
 mirror symmetric (the mirror faces give the mirror mechanism, driven by the opposite load),
-so :attr:`HingeMechanism.symmetric`, which also compares faces, is False for all of them.
+so :attr:`HingeMechanism.symmetric` compares the joints only.
 """
 
 from __future__ import annotations
@@ -116,7 +116,7 @@ class LimitAnalysis:
         """True if the hinge locations (joints) are mirror images about the vertical axis,
         the paper's "symmetric mechanism" (Figure 7); see the module docstring for why the
         faces are not compared."""
-        return self.mechanism.mirrored().joints == self.mechanism.joints
+        return self.mechanism.symmetric
 
     @property
     def thrust_line(self) -> np.ndarray:
