@@ -24,6 +24,8 @@ COMMANDS: tuple[str, ...] = (
     "min_thickness",
     "record",
     "sweep",
+    "thrust",
+    "friction",
     "demo",
 )
 

@@ -1,0 +1,58 @@
+"""``archquake friction``: the friction coefficient the joints need during the motion
+(paper p. 2131)."""
+
+from __future__ import annotations
+
+import argparse
+
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_ground_motion_arguments,
+    add_output_arguments,
+    arch_from_args,
+    ground_motion_from_args,
+    print_json,
+)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "friction",
+        help="least friction coefficient that prevents sliding during the motion (paper p. 2131)",
+        description=(
+            "Simulate the arch and find the largest |shear| / normal force over every joint and "
+            "instant of the motion (from the line of thrust of the moving arch), with the joint "
+            "and time where it occurs, beside the demand of the equivalent static analysis."
+        ),
+    )
+    add_arch_arguments(p)
+    add_ground_motion_arguments(p)
+    add_output_arguments(p, plot=False)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from archquake.thrust.friction import friction_demand
+
+    arch = arch_from_args(args)
+    motion = ground_motion_from_args(args)
+    result = friction_demand(arch, motion)
+    if args.json:
+        out = result.to_dict()
+        out["arch"] = arch.describe()
+        out["motion"] = motion.to_dict()
+        print_json(out)
+        return 0
+    n = arch.voussoirs
+    place = {0: " (left springing)", n: " (right springing)"}
+    print(f"{motion.name}: {result.simulation.outcome.value}")
+    print(f"friction needed during the motion  {result.max_friction_demand:.3f} at joint "
+          f"{result.joint}{place.get(result.joint, '')}, t = {result.time:.3f} s")
+    if result.onset_demand is not None:
+        print(f"at the onset of hinging            {result.onset_demand:.3f} at joint {result.onset_joint}")
+    print(f"equivalent static analysis         {result.static_friction_demand:.3f} at joint "
+          f"{result.static_joint}")
+    if result.tension_time is not None:
+        print(f"note: from t = {result.tension_time:.3f} s joint {result.tension_joint} would need "
+              "tension (the mechanism loses contact); later instants are left out")
+    return 0
