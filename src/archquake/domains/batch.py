@@ -1,0 +1,218 @@
+"""Outcomes of many pulses of one family on one arch: the fast path of the domain search.
+
+:func:`evaluate_pulses` runs every (magnitude, duration) pair through one call of the compiled
+batch kernel (:mod:`archquake.domains._batch`), which runs the same compiled time history as
+:func:`archquake.mechanism.simulate` for each case; :func:`evaluate_pulses_scalar` is its plain
+twin, a Python loop over :func:`~archquake.mechanism.simulate`, which the tests hold it to.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+import numpy as np
+
+from archquake._validate import require_positive
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import Arch
+from archquake.ground.base import GroundMotion
+from archquake.ground.pulses import SinePulse, StepImpulse
+from archquake.mechanism import _kernels as K
+from archquake.mechanism.simulate import (
+    Outcome,
+    PreparedMechanism,
+    SolverOptions,
+    simulate,
+)
+
+
+class PulseFamily(str, Enum):
+    """A one-parameter family of pulses: magnitude a and a duration.
+
+    ``step``: Oppenheim's step impulse, duration = t_p (the first lobe; the impulse lasts 3 t_p).
+    ``sine``: one cycle of a sine, duration = its period T.
+    """
+
+    STEP = "step"
+    SINE = "sine"
+
+    @classmethod
+    def parse(cls, value: PulseFamily | str) -> PulseFamily:
+        try:
+            return cls(value)
+        except ValueError:
+            raise InvalidParameterError(
+                f"pulse family must be 'step' or 'sine', got {value!r}") from None
+
+    def motion(self, magnitude_g: float, duration: float, *, g: float = STANDARD_GRAVITY) -> GroundMotion:
+        """The pulse of magnitude ``magnitude_g`` (g) and duration (s), first lobe towards -x."""
+        if self is PulseFamily.STEP:
+            return StepImpulse.from_g(magnitude_g, duration, g=g)
+        return SinePulse.from_g(magnitude_g, duration, g=g)
+
+    @property
+    def kind(self) -> int:
+        return int(self.motion(1.0, 1.0).kernel_spec()[0])
+
+    @property
+    def duration_symbol(self) -> str:
+        """How the paper names the duration: ``t_p`` or ``T``."""
+        return "t_p" if self is PulseFamily.STEP else "T"
+
+    @property
+    def duration_label(self) -> str:
+        return ("impulse duration t_p [s]" if self is PulseFamily.STEP else "impulse period T [s]")
+
+
+#: Integrator settings of :func:`~archquake.mechanism.simulate`'s default.
+DEFAULT_OPTIONS = SolverOptions()
+
+_OUTCOMES = {K.OUTCOME_NO_HINGING: Outcome.NO_HINGING, K.OUTCOME_SURVIVES: Outcome.SURVIVES,
+             K.OUTCOME_COLLAPSE: Outcome.COLLAPSE}
+
+
+@dataclass(frozen=True)
+class PulseOutcomes:
+    """Outcomes of a set of pulses, shape (n,) each.
+
+    Attributes
+    ----------
+    magnitude_g : ndarray, g
+    duration : ndarray, s
+    outcome : ndarray of int
+        Kernel codes: 0 no hinging, 1 survives, 2 collapse.
+    collapse_half_cycle : ndarray of int
+        Half cycle of the collapse (1 = before any impact), 0 where none.
+    runs : ndarray of int
+        Kernel runs each case needed (early decision, see :mod:`._batch`).
+    """
+
+    magnitude_g: np.ndarray
+    duration: np.ndarray
+    outcome: np.ndarray
+    collapse_half_cycle: np.ndarray
+    runs: np.ndarray
+
+    @property
+    def collapses(self) -> np.ndarray:
+        return self.outcome == K.OUTCOME_COLLAPSE
+
+    @property
+    def collapses_first(self) -> np.ndarray:
+        return self.collapses & (self.collapse_half_cycle == 1)
+
+    def outcomes(self) -> list[Outcome]:
+        """The outcomes as :class:`~archquake.mechanism.Outcome` values."""
+        return [_OUTCOMES[int(o)] for o in self.outcome]
+
+
+def prepare(arch: Arch | PreparedMechanism) -> PreparedMechanism:
+    """The packed mechanism of an arch (the equivalent static analysis's hinges)."""
+    return arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+
+
+def _pairs(magnitudes_g, durations) -> tuple[np.ndarray, np.ndarray]:
+    a = np.atleast_1d(np.asarray(magnitudes_g, dtype=float))
+    d = np.atleast_1d(np.asarray(durations, dtype=float))
+    a, d = np.broadcast_arrays(a, d)
+    if a.ndim != 1:
+        raise InvalidParameterError("magnitudes and durations must be 1-D (or scalars)")
+    if np.any(~np.isfinite(a)) or np.any(a < 0):
+        raise InvalidParameterError("magnitudes must be finite and >= 0 g")
+    if np.any(~np.isfinite(d)) or np.any(d <= 0):
+        raise InvalidParameterError("durations must be finite and > 0 s")
+    return a.copy(), d.copy()
+
+
+def evaluate_pulses(
+    arch: Arch | PreparedMechanism,
+    family: PulseFamily | str,
+    magnitudes_g,
+    durations,
+    *,
+    options: SolverOptions = DEFAULT_OPTIONS,
+    early: bool = True,
+    g: float = STANDARD_GRAVITY,
+) -> PulseOutcomes:
+    """Outcome of each pulse ``(magnitudes_g[i], durations[i])`` (broadcast), in one compiled call.
+
+    Parameters
+    ----------
+    arch : Arch or PreparedMechanism
+    family : PulseFamily or {'step', 'sine'}
+    magnitudes_g : array_like, (n,), g
+    durations : array_like, (n,), s (t_p for the step impulse, T for the sine pulse)
+    options : SolverOptions
+        Tolerances, rest rotation and impact cap, as for :func:`~archquake.mechanism.simulate`.
+    early : bool
+        Stop a surviving case as soon as energy proves it can no longer collapse (see
+        :mod:`archquake.domains._batch`); False runs every case to rest as ``simulate`` does.
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    PulseOutcomes
+
+    Examples
+    --------
+    The three pulses of the paper's Figure 4 (a = 1.0 g):
+
+    >>> import math
+    >>> from archquake import Arch
+    >>> r = evaluate_pulses(Arch(10, 1.5, math.radians(157.5), 7), "step", 1.0, [0.44, 0.27, 0.20])
+    >>> [int(h) for h in r.collapse_half_cycle], [o.value for o in r.outcomes()]
+    ([1, 2, 0], ['collapse', 'collapse', 'survives'])
+    """
+    from archquake.domains._batch import batch_kernel, default_t_end
+
+    prepared = prepare(arch)
+    fam = PulseFamily.parse(family)
+    require_positive("g", g, "m/s^2")
+    a, d = _pairs(magnitudes_g, durations)
+    n = a.shape[0]
+    params = np.empty((n, 3))
+    params[:, 0] = a * g
+    params[:, 1] = d
+    params[:, 2] = -1.0
+    t_exc = 3.0 * d if fam is PulseFamily.STEP else d
+    t_end = default_t_end(t_exc, prepared.mechanism.arch.radius, g)
+    outcome = np.zeros(n, dtype=np.int64)
+    half = np.zeros(n, dtype=np.int64)
+    n_imp = np.zeros(n, dtype=np.int64)
+    runs = np.zeros(n, dtype=np.int64)
+    if n:
+        batch_kernel(prepared.packed, fam.kind, params, float(g),
+                     float(prepared.impact.restitution_cv), t_end, options.rtol, options.atol,
+                     options.rest_rotation, int(options.max_impacts), bool(early),
+                     outcome, half, n_imp, runs)
+    return PulseOutcomes(a, d, outcome, half, runs)
+
+
+def evaluate_pulses_scalar(
+    arch: Arch | PreparedMechanism,
+    family: PulseFamily | str,
+    magnitudes_g,
+    durations,
+    *,
+    options: SolverOptions = DEFAULT_OPTIONS,
+    g: float = STANDARD_GRAVITY,
+) -> PulseOutcomes:
+    """The plain twin of :func:`evaluate_pulses`: a loop over :func:`~archquake.mechanism.simulate`."""
+    prepared = prepare(arch)
+    fam = PulseFamily.parse(family)
+    a, d = _pairs(magnitudes_g, durations)
+    codes = {v: k for k, v in _OUTCOMES.items()}
+    outcome = np.zeros(a.shape[0], dtype=np.int64)
+    half = np.zeros(a.shape[0], dtype=np.int64)
+    opts = SolverOptions(options.rtol, options.atol, options.rest_rotation, options.max_impacts, 0.0)
+    for i, (ai, di) in enumerate(zip(a, d)):
+        r = simulate(prepared, fam.motion(float(ai), float(di), g=g), options=opts, g=g)
+        outcome[i] = codes[r.outcome]
+        half[i] = r.collapse_half_cycle or 0
+    return PulseOutcomes(a, d, outcome, half, np.ones(a.shape[0], dtype=np.int64))
+
+
+__all__ = ["PulseFamily", "PulseOutcomes", "evaluate_pulses", "evaluate_pulses_scalar", "prepare"]

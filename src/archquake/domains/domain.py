@@ -1,0 +1,420 @@
+"""Failure domains: which pulse magnitudes and durations collapse the arch (paper Figures 5-7, 11).
+
+For each duration (t_p of the step impulse, period T of the sine pulse) the search finds
+
+* the no-hinging limit: the static collapse multiplier lambda (in g) of the mechanism. Both
+  pulses reach their magnitude a in the direction that opens the first mechanism (the step's
+  first lobe, the sine's first peak) and never exceed it, so the arch hinges exactly when
+  a > lambda g, whatever the duration (a test checks this with single runs);
+* ``first_half_cycle_g``: the smallest magnitude that collapses the arch in the first half cycle
+  (Oppenheim's boundary);
+* ``collapse_g``: the smallest magnitude that collapses it at all (the governing boundary; the
+  paper finds it in the second half cycle for the step impulse).
+
+Search
+------
+Collapse need not be monotonic in the magnitude, so nothing assumes it:
+
+1. a coarse scan of ``coarse_points`` magnitudes, geometric from lambda to ``max_magnitude_g``,
+   for every duration;
+2. a fine scan of ``fine_points`` magnitudes, uniform between the coarse brackets of the two
+   boundaries (the second-half-cycle region, where the arch's response is least regular);
+3. on the merged scan, each boundary is bracketed by its first collapsing magnitude and the
+   magnitude below it, and every run of non-collapsing magnitudes above a collapsing one is a
+   non-monotonic band; all brackets (boundaries and band edges, all durations) are then bisected
+   together, one compiled batch call per round, to ``precision_g``.
+
+Bands narrower than the scan's spacing can be missed, and a bracket hides any transition inside
+it: the result states the scan it used.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from archquake._validate import require_int, require_positive
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import Arch
+from archquake.mechanism.kinematics import G0, H0
+from archquake.mechanism.simulate import PreparedMechanism, SolverOptions
+
+from .batch import PulseFamily, evaluate_pulses, prepare
+
+#: Figure 5's durations t_p, s.
+FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())
+
+#: What a band or boundary refers to.
+COLLAPSE = "collapse"
+FIRST_HALF_CYCLE = "first_half_cycle"
+
+
+@dataclass(frozen=True)
+class DomainSettings:
+    """How the domain is searched.
+
+    Parameters
+    ----------
+    max_magnitude_g : float
+        Ceiling of the scan, g; a boundary above it is reported as NaN.
+    coarse_points : int
+        Magnitudes of the coarse scan (geometric from lambda to the ceiling).
+    fine_points : int
+        Magnitudes of the fine scan between the two boundaries' coarse brackets.
+    precision_g : float
+        Width of the final brackets, g.
+    early : bool
+        Let the batch stop surviving runs once energy proves they cannot collapse (see
+        :mod:`archquake.domains._batch`).
+    options : SolverOptions
+        Integrator settings of every run (history is never recorded).
+    """
+
+    max_magnitude_g: float = 5.0
+    coarse_points: int = 60
+    fine_points: int = 40
+    precision_g: float = 1e-3
+    early: bool = True
+    options: SolverOptions = SolverOptions()
+
+    def __post_init__(self) -> None:
+        require_positive("max_magnitude_g", self.max_magnitude_g, "g")
+        require_int("coarse_points", self.coarse_points, 2)
+        require_int("fine_points", self.fine_points, 0)
+        require_positive("precision_g", self.precision_g, "g")
+
+    def to_dict(self) -> dict:
+        o = self.options
+        return {"max_magnitude_g": self.max_magnitude_g, "coarse_points": self.coarse_points,
+                "fine_points": self.fine_points, "precision_g": self.precision_g,
+                "early": self.early, "rtol": o.rtol, "atol": o.atol,
+                "rest_rotation": o.rest_rotation, "max_impacts": o.max_impacts}
+
+
+@dataclass(frozen=True)
+class NonMonotonicBand:
+    """Magnitudes in [lower_g, upper_g] at which the arch does NOT do what it does just below
+    ``lower_g`` (``criterion``: ``collapse`` = collapse at all, ``first_half_cycle`` = collapse
+    in the first half cycle), although a smaller magnitude does.
+
+    ``lower_g`` and ``upper_g`` are the extreme magnitudes found without it (within the
+    precision of the search); ``upper_open`` is True when the band reaches the scan's ceiling.
+    """
+
+    duration: float
+    criterion: str
+    lower_g: float
+    upper_g: float
+    upper_open: bool = False
+
+    def to_dict(self) -> dict:
+        return {"duration": self.duration, "criterion": self.criterion, "lower_g": self.lower_g,
+                "upper_g": self.upper_g, "upper_open": self.upper_open}
+
+
+@dataclass(frozen=True)
+class FailureDomain:
+    """The failure domain of an arch for a pulse family, shape (n,) arrays over ``durations``.
+
+    Attributes
+    ----------
+    arch : Arch
+    family : PulseFamily
+    durations : ndarray, s
+        t_p (step impulse) or T (sine pulse).
+    no_hinging_g : ndarray, g
+        Below it the arch moves rigidly with the ground.
+    first_half_cycle_g : ndarray, g
+        Smallest magnitude found to collapse the arch in the first half cycle (NaN if none up
+        to the ceiling).
+    collapse_g : ndarray, g
+        Smallest magnitude found to collapse it at all (NaN if none): the governing boundary.
+    first_half_cycle_below_g, collapse_below_g : ndarray, g
+        The magnitude just below each boundary (within ``precision_g``) that was run and does
+        not do so (lambda if the boundary's bracket starts there; NaN if no boundary).
+    collapse_half_cycle : ndarray of int
+        Half cycle in which ``collapse_g`` collapses the arch (0 where none).
+    non_monotonic_bands : tuple of NonMonotonicBand
+    restitution_cv : float
+        c_v of the impact model (> 1 means the model creates energy: see ``energy_gain``).
+    energy_gain : bool
+    mechanism : dict
+        The hinges (joints, faces, symmetric).
+    settings : DomainSettings
+    evaluations : int
+        Time histories run by the search.
+    g : float
+        Gravity, m/s^2.
+    """
+
+    arch: Arch
+    family: PulseFamily
+    durations: np.ndarray
+    no_hinging_g: np.ndarray
+    first_half_cycle_g: np.ndarray
+    collapse_g: np.ndarray
+    first_half_cycle_below_g: np.ndarray
+    collapse_below_g: np.ndarray
+    collapse_half_cycle: np.ndarray
+    non_monotonic_bands: tuple[NonMonotonicBand, ...]
+    restitution_cv: float
+    energy_gain: bool
+    mechanism: dict = field(repr=False)
+    settings: DomainSettings = field(repr=False, default=DomainSettings())
+    evaluations: int = 0
+    g: float = STANDARD_GRAVITY
+
+    def bands_at(self, duration: float) -> list[NonMonotonicBand]:
+        return [b for b in self.non_monotonic_bands if b.duration == duration]
+
+    def to_dict(self) -> list[dict]:
+        """One object per duration: ``duration`` (s), ``no_hinging_g``, ``first_half_cycle_g``,
+        ``collapse_g`` (g, None where none) and ``non_monotonic_bands`` there."""
+        out = []
+        for i, d in enumerate(self.durations):
+            out.append({
+                "duration": float(d),
+                "no_hinging_g": _num(self.no_hinging_g[i]),
+                "first_half_cycle_g": _num(self.first_half_cycle_g[i]),
+                "collapse_g": _num(self.collapse_g[i]),
+                "collapse_half_cycle": int(self.collapse_half_cycle[i]) or None,
+                "non_monotonic_bands": [
+                    {k: v for k, v in b.to_dict().items() if k != "duration"}
+                    for b in self.bands_at(float(d))
+                ],
+            })
+        return out
+
+    def summary(self) -> dict:
+        """What was analysed and how: arch, pulse family, mechanism, c_v, settings."""
+        return {"arch": self.arch.to_dict(), "pulse": self.family.value,
+                "duration": self.family.duration_symbol, "restitution_cv": self.restitution_cv,
+                "energy_gain": self.energy_gain, "mechanism": self.mechanism,
+                "settings": self.settings.to_dict(), "evaluations": self.evaluations, "g": self.g}
+
+    def write_csv(self, path: str | Path) -> Path:
+        """Write one row per duration; bands as ``criterion:lower-upper`` separated by ``;``."""
+        path = Path(path)
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["duration_s", "no_hinging_g", "first_half_cycle_g", "collapse_g",
+                        "collapse_half_cycle", "non_monotonic_bands"])
+            for row in self.to_dict():
+                bands = ";".join(f"{b['criterion']}:{b['lower_g']:.4f}-{b['upper_g']:.4f}"
+                                 for b in row["non_monotonic_bands"])
+                w.writerow([f"{row['duration']:.6g}"] + [
+                    "" if row[k] is None else f"{row[k]:.4f}"
+                    for k in ("no_hinging_g", "first_half_cycle_g", "collapse_g")
+                ] + [row["collapse_half_cycle"] or "", bands])
+        return path
+
+
+def _num(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def static_multiplier_g(prepared: PreparedMechanism) -> float:
+    """lambda of the packed mechanism, g: the onset threshold the kernels use (G0 / |H0|)."""
+    return float(prepared.packed[G0] / abs(prepared.packed[H0]))
+
+
+# ----------------------------------------------------------------------------- the search
+@dataclass
+class _Bracket:
+    """A transition of ``criterion`` at ``duration`` between lo (value v_lo) and hi."""
+
+    index: int  # duration index
+    criterion: str
+    lo: float
+    hi: float
+    v_lo: bool
+    role: str  # "boundary", "band_lower", "band_upper"
+
+
+def _predicate(res, criterion: str) -> np.ndarray:
+    return res.collapses_first if criterion == FIRST_HALF_CYCLE else res.collapses
+
+
+def failure_domain(
+    arch: Arch | PreparedMechanism,
+    family: PulseFamily | str = PulseFamily.STEP,
+    durations=None,
+    *,
+    settings: DomainSettings | None = None,
+    g: float = STANDARD_GRAVITY,
+) -> FailureDomain:
+    """Failure domain of an arch for a pulse family (paper Figures 5, 6, 7, 11).
+
+    Parameters
+    ----------
+    arch : Arch or PreparedMechanism
+        The arch (hinges from the equivalent static analysis, as in the paper).
+    family : PulseFamily or {'step', 'sine'}
+    durations : array_like, (n,), s
+        t_p for the step impulse, T for the sine pulse (default: 40 from 0.05 to 1.5 s, Figure 5).
+    settings : DomainSettings
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    FailureDomain
+
+    Examples
+    --------
+    Oppenheim's arch, step impulse of t_p = 0.44 s (paper Figure 4b: 1.0 g collapses it in the
+    first half cycle):
+
+    >>> import math
+    >>> from archquake import Arch
+    >>> d = failure_domain(Arch(10, 1.5, math.radians(157.5), 7), "step", [0.44],
+    ...                    settings=DomainSettings(coarse_points=30, fine_points=10))
+    >>> lam, first, governing = d.no_hinging_g[0], d.first_half_cycle_g[0], d.collapse_g[0]
+    >>> bool(lam < governing < first < 1.0), int(d.collapse_half_cycle[0])
+    (True, 2)
+    """
+    settings = DomainSettings() if settings is None else settings
+    prepared = prepare(arch)
+    fam = PulseFamily.parse(family)
+    require_positive("g", g, "m/s^2")
+    if durations is None:
+        durations = FIGURE5_DURATIONS
+    dur = np.atleast_1d(np.asarray(durations, dtype=float))
+    if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
+        raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
+    lam = static_multiplier_g(prepared)
+    ceiling = settings.max_magnitude_g
+    if ceiling <= lam:
+        raise InvalidParameterError(
+            f"max_magnitude_g must exceed the no-hinging limit lambda = {lam:.4f} g, got {ceiling:g}")
+    nd = dur.size
+    evaluations = 0
+
+    def run(mags: np.ndarray, idx: np.ndarray):
+        nonlocal evaluations
+        evaluations += mags.size
+        return evaluate_pulses(prepared, fam, mags, dur[idx], options=settings.options,
+                               early=settings.early, g=g)
+
+    # 1. coarse scan ------------------------------------------------------------------------
+    k = np.arange(1, settings.coarse_points + 1)
+    coarse = lam * (ceiling / lam) ** (k / settings.coarse_points)
+    grid = [coarse.copy() for _ in range(nd)]
+    idx = np.repeat(np.arange(nd), coarse.size)
+    res = run(np.tile(coarse, nd), idx)
+    col = res.collapses.reshape(nd, -1)
+    first = res.collapses_first.reshape(nd, -1)
+    values = {COLLAPSE: [col[i].copy() for i in range(nd)],
+              FIRST_HALF_CYCLE: [first[i].copy() for i in range(nd)]}
+
+    # 2. fine scan between the boundaries' coarse brackets -----------------------------------
+    if settings.fine_points > 0:
+        fine_m, fine_i = [], []
+        for i in range(nd):
+            jc = np.flatnonzero(col[i])
+            if jc.size == 0:
+                continue
+            lo = coarse[jc[0] - 1] if jc[0] > 0 else lam
+            jf = np.flatnonzero(first[i])
+            hi = coarse[jf[0]] if jf.size else ceiling
+            pts = np.linspace(lo, hi, settings.fine_points + 2)[1:-1]
+            fine_m.append(pts)
+            fine_i.append(np.full(pts.size, i))
+        if fine_m:
+            fm, fi = np.concatenate(fine_m), np.concatenate(fine_i)
+            fres = run(fm, fi)
+            for i in np.unique(fi):
+                sel = fi == i
+                mags = np.concatenate([grid[i], fm[sel]])
+                order = np.argsort(mags, kind="stable")
+                grid[i] = mags[order]
+                for crit in (COLLAPSE, FIRST_HALF_CYCLE):
+                    v = np.concatenate([values[crit][i], _predicate(fres, crit)[sel]])
+                    values[crit][i] = v[order]
+
+    # 3. brackets on the merged scans, bisected together --------------------------------------
+    brackets: list[_Bracket] = []
+    for i in range(nd):
+        mags = grid[i]
+        for crit in (COLLAPSE, FIRST_HALF_CYCLE):
+            v = values[crit][i]
+            hits = np.flatnonzero(v)
+            if hits.size == 0:
+                continue
+            j0 = hits[0]
+            brackets.append(_Bracket(i, crit, mags[j0 - 1] if j0 > 0 else lam, mags[j0], False,
+                                     "boundary"))
+            for j in range(j0 + 1, mags.size):
+                if v[j - 1] and not v[j]:
+                    brackets.append(_Bracket(i, crit, mags[j - 1], mags[j], True, "band_lower"))
+                if not v[j - 1] and v[j]:
+                    brackets.append(_Bracket(i, crit, mags[j - 1], mags[j], False, "band_upper"))
+            if not v[-1]:
+                # the band reaches the ceiling: a degenerate bracket marks its open top
+                brackets.append(_Bracket(i, crit, mags[-1], math.inf, False, "band_upper"))
+    while True:
+        live = [b for b in brackets if math.isfinite(b.hi) and b.hi - b.lo > settings.precision_g]
+        if not live:
+            break
+        mids = np.array([0.5 * (b.lo + b.hi) for b in live])
+        r = run(mids, np.array([b.index for b in live]))
+        for n, b in enumerate(live):
+            v = bool(_predicate(r, b.criterion)[n])
+            if v == b.v_lo:
+                b.lo = mids[n]
+            else:
+                b.hi = mids[n]
+
+    # 4. pack the result ---------------------------------------------------------------------
+    nan = np.full(nd, np.nan)
+    out = {COLLAPSE: (nan.copy(), nan.copy()), FIRST_HALF_CYCLE: (nan.copy(), nan.copy())}
+    bands: list[NonMonotonicBand] = []
+    for crit in (COLLAPSE, FIRST_HALF_CYCLE):
+        for i in range(nd):
+            mine = [b for b in brackets if b.index == i and b.criterion == crit]
+            for b in mine:
+                if b.role == "boundary":
+                    out[crit][0][i] = b.hi
+                    out[crit][1][i] = b.lo
+            lowers = [b for b in mine if b.role == "band_lower"]
+            uppers = [b for b in mine if b.role == "band_upper"]
+            for lower, upper in zip(lowers, uppers):
+                open_top = not math.isfinite(upper.hi)
+                bands.append(NonMonotonicBand(float(dur[i]), crit, float(lower.hi),
+                                              float(upper.lo), open_top))
+    collapse_g, collapse_below = out[COLLAPSE]
+    first_g, first_below = out[FIRST_HALF_CYCLE]
+    half = np.zeros(nd, dtype=int)
+    ok = np.isfinite(collapse_g)
+    if ok.any():
+        half[ok] = run(collapse_g[ok], np.flatnonzero(ok)).collapse_half_cycle
+    bands.sort(key=lambda b: (b.criterion, b.duration, b.lower_g))
+    mech = prepared.mechanism
+    return FailureDomain(
+        arch=mech.arch,
+        family=fam,
+        durations=dur.copy(),
+        no_hinging_g=np.full(nd, lam),
+        first_half_cycle_g=first_g,
+        collapse_g=collapse_g,
+        first_half_cycle_below_g=first_below,
+        collapse_below_g=collapse_below,
+        collapse_half_cycle=half,
+        non_monotonic_bands=tuple(bands),
+        restitution_cv=float(prepared.impact.restitution_cv),
+        energy_gain=bool(prepared.impact.energy_gain),
+        mechanism={"joints": list(mech.joints), "faces": [f.value for f in mech.faces],
+                   "symmetric": bool(mech.symmetric)},
+        settings=settings,
+        evaluations=evaluations,
+        g=g,
+    )
+
+
+__all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "FailureDomain", "NonMonotonicBand",
+           "failure_domain", "static_multiplier_g"]

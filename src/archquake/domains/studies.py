@@ -1,0 +1,94 @@
+"""The paper's parametric studies: scale (Figure 6), geometry (Figure 7), impulse shape (Figure 11).
+
+Each study computes plain :class:`~archquake.domains.FailureDomain` objects; a geometry the
+model cannot handle is reported in the case, never silently dropped: an arch that cannot stand
+(:class:`~archquake.errors.UnstableArchError`) has no domain and says why, and an arch whose
+impact model gives c_v > 1 (the five momentum balances create energy; see
+:mod:`archquake.mechanism.impact`) keeps its domain but is flagged, since with c_v > 1 free
+rocking grows at every impact and any hinging ends in collapse given time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import ArchquakeError
+from archquake.geometry.arch import Arch
+
+from .batch import PulseFamily
+from .domain import FIGURE5_DURATIONS, DomainSettings, FailureDomain, failure_domain
+
+#: Figure 6: radii, m (t/R = 0.15, 157.5 degrees, 7 voussoirs).
+SCALE_RADII = (1.0, 5.0, 10.0, 20.0)
+#: Figure 7: thickness ratios at 157.5 degrees, and embraces (degrees) at t/R = 0.15.
+GEOMETRY_RATIOS = (0.11, 0.15, 0.17, 0.19)
+GEOMETRY_EMBRACES_DEG = (142.5, 150.0, 157.5, 165.0)
+#: Figure 7's durations t_p, s.
+FIGURE7_DURATIONS = tuple(np.linspace(0.05, 1.0, 30).tolist())
+
+
+def oppenheim_arch(radius: float = 10.0, thickness_ratio: float = 0.15, embrace_deg: float = 157.5,
+                   voussoirs: int = 7) -> Arch:
+    """Oppenheim's arch (t/R = 0.15, 157.5 degrees, R = 10 m, 7 voussoirs) or a variant."""
+    return Arch(radius, thickness_ratio * radius, math.radians(embrace_deg), voussoirs)
+
+
+@dataclass(frozen=True)
+class StudyCase:
+    """One arch of a study: its label, the arch, its domain (None if there is none) and what
+    was noticed (``problem``: why there is no domain, or a warning such as energy gain)."""
+
+    label: str
+    arch: Arch
+    domain: FailureDomain | None
+    problem: str | None = None
+
+    def to_dict(self) -> dict:
+        return {"label": self.label, "arch": self.arch.to_dict(), "problem": self.problem,
+                "domain": None if self.domain is None else self.domain.to_dict(),
+                "restitution_cv": None if self.domain is None else self.domain.restitution_cv}
+
+
+def study_case(label: str, arch: Arch, family: PulseFamily | str, durations,
+               settings: DomainSettings | None,
+               *, g: float = STANDARD_GRAVITY) -> StudyCase:
+    """The domain of one arch, with any problem stated."""
+    try:
+        dom = failure_domain(arch, family, durations, settings=settings, g=g)
+    except ArchquakeError as exc:  # e.g. UnstableArchError: the arch cannot stand
+        return StudyCase(label, arch, None, str(exc))
+    problem = None
+    if dom.energy_gain:
+        problem = (f"impact model gives c_v = {dom.restitution_cv:.4f} > 1 (energy gain at impact): "
+                   "free rocking grows, so the collapse boundary is not meaningful")
+    return StudyCase(label, arch, dom, problem)
+
+
+def scale_study(radii=SCALE_RADII, durations=FIGURE5_DURATIONS, *,
+                family: PulseFamily | str = PulseFamily.STEP,
+                settings: DomainSettings | None = None,
+                g: float = STANDARD_GRAVITY) -> tuple[StudyCase, ...]:
+    """Figure 6: Oppenheim's proportions at several radii (m)."""
+    return tuple(study_case(f"R = {r:g} m", oppenheim_arch(radius=r), family, durations, settings,
+                            g=g) for r in radii)
+
+
+def geometry_study(ratios=GEOMETRY_RATIOS, embraces_deg=GEOMETRY_EMBRACES_DEG,
+                   durations=FIGURE7_DURATIONS, *,
+                   family: PulseFamily | str = PulseFamily.STEP,
+                   settings: DomainSettings | None = None,
+                   g: float = STANDARD_GRAVITY) -> tuple[tuple[StudyCase, ...], tuple[StudyCase, ...]]:
+    """Figure 7: (t/R series at 157.5 degrees, embrace series at t/R = 0.15), R = 10 m, 7 voussoirs."""
+    by_ratio = tuple(study_case(f"t/R = {r:g}", oppenheim_arch(thickness_ratio=r), family, durations,
+                                settings, g=g) for r in ratios)
+    by_embrace = tuple(study_case(f"embrace = {b:g} deg", oppenheim_arch(embrace_deg=b), family,
+                                  durations, settings, g=g) for b in embraces_deg)
+    return by_ratio, by_embrace
+
+
+__all__ = ["GEOMETRY_EMBRACES_DEG", "GEOMETRY_RATIOS", "SCALE_RADII", "StudyCase", "geometry_study",
+           "oppenheim_arch", "scale_study", "study_case"]
