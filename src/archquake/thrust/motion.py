@@ -575,9 +575,10 @@ def states(
                 f"time {t:g} s is after the collapse at {result.collapse_time:.4g} s; choose "
                 "earlier times"
             )
-        if t > h.t[-1] + 1e-12 and result.final_state.value == "moving":
+        t_end = float(result.stats.get("t_end", h.t[-1]))
+        if t > t_end and result.final_state.value == "moving":
             raise InvalidParameterError(f"time {t:g} s is beyond the simulated history "
-                                        f"(ends at {h.t[-1]:.4g} s)")
+                                        f"(ends at {t_end:.4g} s)")
         xg = _ground_before(motion, t, tau)
         i = int(np.searchsorted(h.t, t, side="right")) - 1
         i = max(i, 0)
