@@ -192,7 +192,7 @@ class FailureDomain:
 
     def summary(self) -> dict:
         """What was analysed and how: arch, pulse family, mechanism, c_v, settings."""
-        return {"arch": self.arch.to_dict(), "pulse": self.family.value,
+        return {"arch": self.arch.describe(), "pulse": self.family.value,
                 "duration": self.family.duration_symbol, "restitution_cv": self.restitution_cv,
                 "energy_gain": self.energy_gain, "mechanism": self.mechanism,
                 "settings": self.settings.to_dict(), "evaluations": self.evaluations, "g": self.g}

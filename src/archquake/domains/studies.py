@@ -48,7 +48,7 @@ class StudyCase:
     problem: str | None = None
 
     def to_dict(self) -> dict:
-        return {"label": self.label, "arch": self.arch.to_dict(), "problem": self.problem,
+        return {"label": self.label, "arch": self.arch.describe(), "problem": self.problem,
                 "domain": None if self.domain is None else self.domain.to_dict(),
                 "restitution_cv": None if self.domain is None else self.domain.restitution_cv}
 
