@@ -10,8 +10,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
+from archquake._json import to_jsonable
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import MAX_EMBRACE, MAX_VOUSSOIRS, Arch
@@ -91,26 +90,6 @@ def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) 
     if plot:
         parser.add_argument("--plot", metavar="FILE", type=Path,
                             help="draw the result to FILE (.png, .pdf or .svg)")
-
-
-def to_jsonable(obj: Any) -> Any:
-    """Numpy arrays and scalars to lists and floats; NaN and inf to None (valid JSON)."""
-    if isinstance(obj, dict):
-        return {str(k): to_jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [to_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return to_jsonable(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        v = float(obj)
-        return v if math.isfinite(v) else None
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if hasattr(obj, "value") and hasattr(obj, "name"):  # Enum
-        return obj.value
-    return obj
 
 
 def print_json(obj: Any) -> None:

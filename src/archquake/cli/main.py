@@ -22,6 +22,7 @@ from archquake.errors import ArchquakeError
 COMMANDS: tuple[str, ...] = (
     "static",
     "min_thickness",
+    "run",
     "record",
     "sweep",
     "thrust",
@@ -70,6 +71,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("archquake: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # the reader went away (e.g. piped into `head`): stop quietly, as Unix tools do
+        import os
+
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
 
 
 def entry_point() -> None:

@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import csv
 import json
-import math
 import sqlite3
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from archquake._json import to_jsonable
 from archquake.errors import ArchquakeError
 from archquake.sweeps.cases import INPUT_COLUMNS, Case
 
@@ -211,20 +211,8 @@ def _flatten(obj: Mapping[str, Any], prefix: str) -> dict[str, Any]:
     return out
 
 
-def jsonable(obj: Any) -> Any:
-    """Numpy arrays and scalars to lists and Python numbers, non-finite floats to None, Enums to
-    their values: what the store's ``outputs_json`` can hold."""
-    if isinstance(obj, Mapping):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if hasattr(obj, "tolist"):  # numpy arrays and scalars
-        return jsonable(obj.tolist())
-    if isinstance(obj, float):
-        return obj if math.isfinite(obj) else None
-    if hasattr(obj, "value") and hasattr(obj, "name"):  # Enum
-        return jsonable(obj.value)
-    return obj
+#: The shared converter (kept under its old name for the runner).
+jsonable = to_jsonable
 
 
 __all__ = ["CaseRecord", "ResultStore", "RESULT_COLUMNS", "TIMING_COLUMNS", "jsonable"]

@@ -1,0 +1,139 @@
+"""``archquake run``: one time history of an arch under a pulse or a record."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+from pathlib import Path
+
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_ground_motion_arguments,
+    add_output_arguments,
+    arch_from_args,
+    ground_motion_from_args,
+    number,
+    print_json,
+)
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "run",
+        help="time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
+        description=(
+            "Rocking of the arch as the paper's four-link mechanism, with impacts, until collapse "
+            "or rest. Lengths in m, times in s, angles in degrees, accelerations in g. "
+            "Example: archquake run --pulse step --magnitude 1.0 --duration 0.27"
+        ),
+    )
+    add_arch_arguments(p)
+    add_ground_motion_arguments(p)
+    p.add_argument("--restitution", type=number, metavar="CV",
+                   help="prescribe the coefficient of restitution c_v (on the angular velocity) "
+                        "instead of the impact model's (paper Eq. 4)")
+    p.add_argument("--t-end", type=number, metavar="S",
+                   help="end of the analysis, s (default: end of the excitation + 60 sqrt(R/g))")
+    p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
+                   help="analytical four-link model (default) or the distinct-element model")
+    add_output_arguments(p)
+    p.add_argument("--animate", metavar="FILE.gif", type=Path,
+                   help="write an animated GIF of the rocking arch")
+    p.add_argument("--history", metavar="FILE.csv", type=Path,
+                   help="write the time history as CSV (t s, phi rad, phi_dot rad/s, side, "
+                        "ground acceleration m/s^2)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    arch = arch_from_args(args)
+    motion = ground_motion_from_args(args)
+    if args.t_end is not None and args.t_end <= 0:
+        raise InvalidParameterError(f"--t-end must be > 0 s, got {args.t_end:g}")
+    if args.restitution is not None and args.restitution < 0:
+        raise InvalidParameterError(f"--restitution must be >= 0, got {args.restitution:g}")
+    if args.model == "dem":
+        return _run_dem(args, arch, motion)
+    from archquake.mechanism import PreparedMechanism, simulate
+
+    prepared = PreparedMechanism.build(arch)
+    result = simulate(prepared, motion, restitution=args.restitution, t_end=args.t_end)
+    g = STANDARD_GRAVITY
+    if args.plot:
+        from archquake.plotting.history import figure4
+
+        t_show = result.collapse_time if result.collapse_time is not None else None
+        t_show = max(1.2 * (t_show or 0.0), min(float(result.history.t[-1]), 1.5 * motion.duration + 3.0))
+        figure4([result], [motion], [_label(motion, g)], args.plot, t_end=t_show, title="(a) excitation")
+    if args.animate:
+        from archquake.plotting.history import animate_history
+
+        t_show = float(result.history.t[-1])
+        if result.collapse_time is None:
+            t_show = min(t_show, motion.duration + 10.0)
+        animate_history(prepared, result, args.animate, fps=15, t_end=t_show)
+    if args.history:
+        _write_history(result, args.history)
+    out = result.to_dict()
+    out["arch"] = arch.describe()
+    out["excitation"] = motion.to_dict()
+    out["model"] = "analytical"
+    if args.json:
+        print_json(out)
+        return 0
+    _print_text(result, motion, g)
+    for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
+        if path:
+            print(f"{what}: {path}")
+    return 0
+
+
+def _label(motion, g: float) -> str:
+    d = motion.to_dict()
+    if d.get("type") == "step":
+        return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s"
+    if d.get("type") == "sine":
+        return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s"
+    return str(getattr(motion, "name", "record"))
+
+
+def _print_text(result, motion, g: float) -> None:
+    print(f"excitation          {_label(motion, g)}")
+    hinges = ", ".join(f"joint {h.joint} {h.face.value}" for h in result.mechanism.hinges)
+    print(f"hinges (A, B, C, D) {hinges}")
+    print(f"onset of hinging    {result.static_acceleration / g:.4f} g (equivalent static analysis)")
+    print(f"restitution         c_v = {result.restitution_cv:.4f}, c_T = {result.restitution_ct:.4f}"
+          + ("  (c_T > 1: the impact model gains energy for this geometry)" if result.energy_gain else ""))
+    print(f"outcome             {result.outcome.value}" + (
+        f" in half cycle {result.collapse_half_cycle} at t = {result.collapse_time:.3f} s"
+        if result.collapse_half_cycle else f" ({result.final_state.value})"))
+    if result.impact_times.size:
+        shown = ", ".join(f"{t:.3f}" for t in result.impact_times[:6])
+        more = f" ... ({result.impact_times.size} in all)" if result.impact_times.size > 6 else ""
+        print(f"impacts [s]         {shown}{more}")
+    if result.peak_rotation.size:
+        shown = ", ".join(f"{p:.4f}" for p in result.peak_rotation[:6])
+        print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
+
+
+def _write_history(result, path: Path) -> None:
+    h = result.history
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["t_s", "phi_rad", "phi_dot_rad_s", "side", "ground_acceleration_m_s2"])
+        for row in zip(h.t, h.phi, h.phi_dot, h.side, h.ground_acceleration):
+            w.writerow([f"{row[0]:.6f}", f"{row[1]:.9e}", f"{row[2]:.9e}", int(row[3]), f"{row[4]:.6e}"])
+
+
+def _run_dem(args, arch, motion) -> int:
+    try:
+        from archquake.dem import simulate_dem  # noqa: F401
+    except ImportError:
+        raise InvalidParameterError(
+            "--model dem is not available in this build; use --model analytical"
+        ) from None
+    from archquake.cli import dem_run
+
+    return dem_run.run(args, arch, motion)
