@@ -14,6 +14,7 @@ from pathlib import Path
 
 STEPS: list[tuple[str, str]] = [
     ("Equivalent static analysis of Oppenheim's arch", "archquake.cli.demo_static:demo_step"),
+    ("The arch in motion (Figure 4) and an animation", "archquake.cli.demo_dynamics:demo_step"),
     ("Line of thrust during motion (Figure 8) and friction demand", "archquake.cli.demo_thrust:demo_step"),
 ]
 
