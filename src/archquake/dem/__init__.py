@@ -1,1 +1,27 @@
-"""archquake.dem"""
+"""Distinct-element model: rigid polygonal blocks on deformable, frictional, no-tension
+contacts, explicit central-difference time stepping with Rayleigh damping (in the spirit of
+UDEC as used by De Lorenzis, DeJong & Ochsendorf 2007).
+
+Template -> model -> contacts -> analysis: :func:`build_arch_assembly` /
+:func:`block_on_base` build an :class:`Assembly`; :func:`simulate_dem` runs it under any
+ground motion and returns a frozen :class:`DemResult`.
+"""
+
+from archquake.dem.assembly import Assembly, Joint, RotationLink, block_on_base, build_arch_assembly
+from archquake.dem.run import DemOutcome, DemResult, simulate_dem, stable_time_step
+from archquake.dem.settings import NO_SLIDING, ContactLaw, DemSettings
+
+__all__ = [
+    "Assembly",
+    "ContactLaw",
+    "DemOutcome",
+    "DemResult",
+    "DemSettings",
+    "Joint",
+    "NO_SLIDING",
+    "RotationLink",
+    "block_on_base",
+    "build_arch_assembly",
+    "simulate_dem",
+    "stable_time_step",
+]

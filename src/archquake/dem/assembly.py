@@ -1,0 +1,372 @@
+"""Block assemblies for the distinct-element model: an arch on its abutments, a block on a base.
+
+An :class:`Assembly` is the frozen description the solver packs into arrays: convex contact
+polygons, exact mass properties, which blocks belong to the (prescribed) base, the joints
+whose opening is recorded, the crown point and the rotation measure.
+
+Contact stiffness. Joint stiffnesses k_n, k_s are given per unit area (Pa/m). Each
+corner-to-edge contact is a spring of K = k * depth * L_trib (N/m), with the tributary length
+L_trib fixed when the contact forms as half the shorter of the touched edge and the facing
+edge of the touching block. Two faces in full contact (edge-to-edge, as at a closed arch
+joint) are therefore represented, as in UDEC, by two corner contacts, one at each end, each
+carrying half the joint length: together k_n * depth * t, the axial stiffness of the joint;
+their rotational stiffness k_n * depth * t^3 / 4 is that of the two end springs (a continuous
+joint would give t^3/12).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from archquake._validate import require_positive
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import Arch
+from archquake.geometry.hinges import Face, HingeMechanism
+from archquake.limit import kinematic_collapse
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint between two blocks whose opening is recorded.
+
+    ``points`` (2, 2): the joint's two end points in the undisplaced assembly, m (for an
+    arch: intrados end, extrados end); ``faces``: their names. ``left``/``right``: block
+    indices; the recorded opening at each end is the gap between the end point carried by
+    ``right`` and the one carried by ``left``, along the joint normal (positive = open).
+    """
+
+    index: int
+    left: int
+    right: int
+    points: np.ndarray
+    faces: tuple[str, str] = ("intrados", "extrados")
+
+
+@dataclass(frozen=True)
+class RotationLink:
+    """The rotation measure: rotation of the chord from point A (carried by block ``block_a``)
+    to point B (carried by ``block_b``), times ``sign``, rad."""
+
+    block_a: int
+    point_a: np.ndarray
+    block_b: int
+    point_b: np.ndarray
+    sign: int = 1
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """Rigid convex polygonal blocks, some of which form the moving base.
+
+    Parameters
+    ----------
+    polygons : tuple of ndarray (k_i, 2)
+        Convex contact polygons, counter-clockwise, undisplaced, m.
+    masses, inertias : ndarray (nb,)
+        kg and kg m^2 (about the centroid); ignored for base blocks.
+    centroids : ndarray (nb, 2)
+        m.
+    base : ndarray (nb,) bool
+        True for blocks moving with the ground (prescribed motion).
+    depth : float
+        Out-of-plane depth, m (turns stiffness per area into per length).
+    joints : tuple of Joint
+    reference_length : float
+        Length for the relative thresholds (the arch thickness, the block width), m.
+    base_level : float
+        y below which a block's centroid means collapse, m.
+    crown_block : int
+        Block carrying the crown point (-1: none); ``crown_point`` its position, m.
+    rotation_link : RotationLink
+    outlines : tuple of ndarray, optional
+        Drawing outlines (default: the polygons).
+    """
+
+    polygons: tuple
+    masses: np.ndarray
+    inertias: np.ndarray
+    centroids: np.ndarray
+    base: np.ndarray
+    depth: float
+    joints: tuple
+    reference_length: float
+    base_level: float
+    crown_block: int
+    crown_point: np.ndarray
+    rotation_link: RotationLink
+    outlines: tuple = ()
+    name: str = "assembly"
+    meta: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        nb = len(self.polygons)
+        if nb < 2:
+            raise InvalidParameterError(f"an assembly needs a base and at least one block, got {nb}")
+        polys = tuple(np.array(p, dtype=float) for p in self.polygons)
+        for i, p in enumerate(polys):
+            if p.ndim != 2 or p.shape[1] != 2 or p.shape[0] < 3:
+                raise InvalidParameterError(f"polygon {i} must have shape (k >= 3, 2), got {p.shape}")
+            if _signed_area(p) <= 0:
+                raise InvalidParameterError(f"polygon {i} must be counter-clockwise with area > 0")
+        object.__setattr__(self, "polygons", polys)
+        if not self.outlines:
+            object.__setattr__(self, "outlines", polys)
+        for name in ("masses", "inertias", "centroids", "base", "crown_point"):
+            arr = np.array(getattr(self, name))
+            arr.flags.writeable = False
+            object.__setattr__(self, name, arr)
+        if not np.any(self.base) or np.all(self.base):
+            raise InvalidParameterError("an assembly needs at least one base block and one free block")
+        free = ~self.base
+        if np.any(self.masses[free] <= 0) or np.any(self.inertias[free] <= 0):
+            raise InvalidParameterError("every free block needs a mass > 0 kg and an inertia > 0 kg m^2")
+        require_positive("depth", self.depth, "m")
+        require_positive("reference_length", self.reference_length, "m")
+
+    @property
+    def n_blocks(self) -> int:
+        return len(self.polygons)
+
+    @property
+    def free_blocks(self) -> np.ndarray:
+        return np.flatnonzero(~self.base)
+
+    @property
+    def min_edge(self) -> float:
+        """Shortest polygon edge, m."""
+        return float(min(np.min(np.hypot(*(np.roll(p, -1, 0) - p).T)) for p in self.polygons))
+
+    def to_dict(self) -> dict:
+        return {
+            "name": self.name,
+            "blocks": int(np.sum(~self.base)),
+            "base_blocks": int(np.sum(self.base)),
+            "joints": len(self.joints),
+            "reference_length_m": self.reference_length,
+            **self.meta,
+        }
+
+
+def _signed_area(p: np.ndarray) -> float:
+    x, y = p[:, 0], p[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _polygon_mass_properties(p: np.ndarray, density: float, depth: float):
+    """Mass, centroid and centroidal inertia of a uniform polygon (shoelace formulas)."""
+    x, y = p[:, 0], p[:, 1]
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    cr = x * y1 - x1 * y
+    area = 0.5 * cr.sum()
+    cx = ((x + x1) * cr).sum() / (6 * area)
+    cy = ((y + y1) * cr).sum() / (6 * area)
+    jo = ((x * x + x * x1 + x1 * x1 + y * y + y * y1 + y1 * y1) * cr).sum() / 12.0
+    m = density * depth * area
+    return m, np.array([cx, cy]), density * depth * (jo - area * (cx * cx + cy * cy))
+
+
+def _sorted_ccw(points: np.ndarray) -> np.ndarray:
+    c = points.mean(axis=0)
+    ang = np.arctan2(points[:, 1] - c[1], points[:, 0] - c[0])
+    return points[np.argsort(ang)]
+
+
+def build_arch_assembly(
+    arch: Arch,
+    *,
+    cut_joints: tuple[int, ...] | None = None,
+    mechanism: HingeMechanism | None = None,
+) -> Assembly:
+    """The arch's voussoirs (or groups of them) on two abutments moving with the ground.
+
+    Parameters
+    ----------
+    arch : Arch
+    cut_joints : tuple of int, optional
+        Build a coarser arch cut only at these joints (must include 0 and n), e.g. the
+        paper's three-voussoir arch at the analytical hinges, ``(0, 3, 5, 7)`` for
+        Oppenheim's arch. Merged blocks get the exact merged mass properties of their
+        voussoirs (Arch's annular-sector masses, centroids and inertias, combined with the
+        parallel-axis theorem); their contact polygon is the convex hull of their joint end
+        points (the intermediate intrados corners are dropped: contacts only occur at the cut
+        joints, and the hull adds no mass).
+    mechanism : HingeMechanism, optional
+        The analytical mechanism whose first link defines the rotation measure; default the
+        least-multiplier mechanism
+        (:func:`archquake.limit.kinematic_collapse`), or, for a four-joint cut, the
+        mechanism at the cut joints.
+
+    Notes
+    -----
+    Blocks 0 and 1 are the left and right abutments (base blocks). Each abutment is the
+    trapezoid under its springing joint face down to one thickness below the lower springing
+    point, with vertical sides through the joint's two ends, so that the springing joint face
+    (inclined when the embrace is not 180 deg) is fully supported. Blocks 2.. are the
+    voussoirs (groups) from left to right. Masses and inertias are Arch's exact
+    annular-sector values, not the quadrilaterals' (the straight chords cut off a sliver).
+
+    The rotation measure (``DemResult.rotation``) is the rotation, in the opening sense of the
+    first mechanism, of the chord from hinge A (carried by the block just right of joint A) to
+    hinge B (carried by the block just left of joint B): for an arch cut at the hinges this is
+    the rotation of link AB itself, the analytical phi; for the seven-voussoir arch it is the
+    rotation of voussoirs A..B as a whole, which equals phi while they move as one link.
+    """
+    n = arch.voussoirs
+    cuts = tuple(range(n + 1)) if cut_joints is None else tuple(int(j) for j in cut_joints)
+    if len(cuts) < 2 or cuts[0] != 0 or cuts[-1] != n or any(b <= a for a, b in zip(cuts, cuts[1:])):
+        raise InvalidParameterError(
+            f"cut_joints must be strictly increasing joint indices from 0 to {n}, got {cut_joints!r}"
+        )
+    if mechanism is None:
+        if len(cuts) == 4 and cut_joints is not None:
+            mechanism = _mechanism_at(arch, cuts)
+        else:
+            mechanism = kinematic_collapse(arch)[1]
+    ja, jb = mechanism.joints[0], mechanism.joints[1]
+    if ja not in cuts or jb not in cuts:
+        raise InvalidParameterError(
+            f"hinges A, B at joints {ja}, {jb} must be cut joints {cuts} to measure the rotation"
+        )
+    ip, ep = arch.intrados_points, arch.extrados_points
+    t = arch.thickness
+    y_low = float(min(ip[0, 1], ep[0, 1]))
+    y_bot = y_low - t
+    polys, outlines, masses, inertias, cents, base = [], [], [], [], [], []
+    for j in (0, n):
+        pts = np.array([ip[j], ep[j], [ep[j, 0], y_bot], [ip[j, 0], y_bot]])
+        poly = _sorted_ccw(pts)
+        m, c, inertia = _polygon_mass_properties(poly, arch.density, arch.depth)
+        polys.append(poly)
+        outlines.append(poly)
+        masses.append(m)
+        inertias.append(inertia)
+        cents.append(c)
+        base.append(True)
+    vm, vc, vi = arch.voussoir_masses, arch.voussoir_centroids, arch.voussoir_inertias
+    block_of_voussoir = np.zeros(n, dtype=int)
+    for g, (j0, j1) in enumerate(zip(cuts, cuts[1:])):
+        ks = np.arange(j0, j1)
+        block_of_voussoir[ks] = g + 2
+        m = float(vm[ks].sum())
+        c = (vm[ks, None] * vc[ks]).sum(axis=0) / m
+        inertia = float(np.sum(vi[ks] + vm[ks] * np.sum((vc[ks] - c) ** 2, axis=1)))
+        poly = np.vstack([ip[j1], ep[j1 : j0 - 1 if j0 > 0 else None : -1], ip[j0]])
+        polys.append(poly)
+        outlines.append(_merged_outline(arch, j0, j1))
+        masses.append(m)
+        inertias.append(inertia)
+        cents.append(c)
+        base.append(False)
+    joints = []
+    for idx, j in enumerate(cuts):
+        left = 0 if j == 0 else block_of_voussoir[j - 1]
+        right = 1 if j == n else block_of_voussoir[j]
+        joints.append(Joint(idx, int(left), int(right), np.array([ip[j], ep[j]])))
+    crown_v = min(n // 2, n - 1)
+    sign = mechanism.opening_sign
+    link = RotationLink(
+        int(block_of_voussoir[ja]),
+        arch.joint_point(ja, mechanism.faces[0].value),
+        int(block_of_voussoir[jb - 1]),
+        arch.joint_point(jb, mechanism.faces[1].value),
+        int(sign),
+    )
+    return Assembly(
+        polygons=tuple(polys),
+        masses=np.array(masses),
+        inertias=np.array(inertias),
+        centroids=np.array(cents),
+        base=np.array(base),
+        depth=arch.depth,
+        joints=tuple(joints),
+        reference_length=t,
+        base_level=y_low,
+        crown_block=int(block_of_voussoir[crown_v]),
+        crown_point=np.array([0.0, arch.extrados_radius]),
+        rotation_link=link,
+        outlines=tuple(outlines),
+        name=f"arch ({len(cuts) - 1} blocks)",
+        meta={
+            "arch": arch.describe(),
+            "cut_joints": list(cuts),
+            "mechanism_joints": list(mechanism.joints),
+            "mechanism_faces": [f.value for f in mechanism.faces],
+        },
+    )
+
+
+def _merged_outline(arch: Arch, j0: int, j1: int, per: int = 8) -> np.ndarray:
+    a0, a1 = arch.joint_angles[j0], arch.joint_angles[j1]
+    ang = np.linspace(a1, a0, per * (j1 - j0))
+    inner = arch.intrados_radius * np.column_stack([np.cos(ang), np.sin(ang)])
+    outer = arch.extrados_radius * np.column_stack([np.cos(ang[::-1]), np.sin(ang[::-1])])
+    return np.vstack([inner, outer])
+
+
+def _mechanism_at(arch: Arch, joints: tuple[int, ...]) -> HingeMechanism:
+    for faces in (
+        (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS),
+        (Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS),
+    ):
+        try:
+            mech = HingeMechanism(arch, joints, faces)
+        except InvalidParameterError:
+            continue
+        if mech.load_direction == 1:
+            return mech
+    raise InvalidParameterError(f"no admissible mechanism with hinges at the cut joints {joints}")
+
+
+def block_on_base(
+    width: float,
+    height: float,
+    *,
+    density: float = 2000.0,
+    depth: float = 1.0,
+) -> Assembly:
+    """A rectangular block (``width`` b x ``height`` h, m) standing on a wide rigid base.
+
+    Block 0 is the base (10 b wide, top face at y = 0), block 1 the block, centred on x = 0.
+    The rotation measure is the block's counter-clockwise rotation; the crown point is the
+    middle of its top face; the reference length is b; the single recorded joint is the
+    block's bottom face (faces 'left', 'right' corners).
+
+    Examples
+    --------
+    >>> asm = block_on_base(0.4, 2.0)
+    >>> round(float(asm.masses[1]), 1), round(float(asm.inertias[1]), 2)
+    (1600.0, 555.47)
+    """
+    b = require_positive("block width", width, "m")
+    h = require_positive("block height", height, "m")
+    base = np.array([[-5 * b, -b], [5 * b, -b], [5 * b, 0.0], [-5 * b, 0.0]])
+    block = np.array([[-0.5 * b, 0.0], [0.5 * b, 0.0], [0.5 * b, h], [-0.5 * b, h]])
+    m, c, inertia = _polygon_mass_properties(block, density, depth)
+    mb, cb, ib = _polygon_mass_properties(base, density, depth)
+    return Assembly(
+        polygons=(base, block),
+        masses=np.array([mb, m]),
+        inertias=np.array([ib, inertia]),
+        centroids=np.array([cb, c]),
+        base=np.array([True, False]),
+        depth=depth,
+        joints=(Joint(0, 0, 1, np.array([[-0.5 * b, 0.0], [0.5 * b, 0.0]]), ("left", "right")),),
+        reference_length=b,
+        base_level=0.0,
+        crown_block=1,
+        crown_point=np.array([0.0, h]),
+        rotation_link=RotationLink(1, np.array([-0.5 * b, 0.0]), 1, np.array([-0.5 * b, h]), 1),
+        name=f"block {b:g} m x {h:g} m",
+        meta={"width_m": b, "height_m": h, "density_kg_m3": density, "depth_m": depth},
+    )
+
+
+__all__ = [
+    "Assembly",
+    "Joint",
+    "RotationLink",
+    "block_on_base",
+    "build_arch_assembly",
+]
