@@ -38,7 +38,8 @@ def test_no_hinging_below_the_static_acceleration(capsys):
 
 
 def test_prescribed_restitution_is_used(capsys):
-    out = _run_json(capsys, "--pulse", "step", "--magnitude", "1.0", "--duration", "0.2", "--restitution", "0.5")
+    out = _run_json(capsys, "--pulse", "step", "--magnitude", "1.0", "--duration", "0.2",
+                    "--restitution", "0.5")
     assert out["restitution_cv"] == 0.5 and out["restitution_ct"] == 0.25
 
 
@@ -60,7 +61,8 @@ def test_files_written(tmp_path, capsys):
         (["--embrace", "300", "--pulse", "step", "--magnitude", "1", "--duration", "0.2"], "--embrace"),
         (["--pulse", "step", "--magnitude", "1"], "--duration"),
         (["--pulse", "step", "--magnitude", "abc", "--duration", "0.2"], "--magnitude"),
-        (["--pulse", "step", "--magnitude", "1", "--duration", "0.2", "--restitution", "-0.1"], "--restitution"),
+        (["--pulse", "step", "--magnitude", "1", "--duration", "0.2", "--restitution", "-0.1"],
+         "--restitution"),
         (["--pulse", "step", "--magnitude", "1", "--duration", "0.2", "--t-end", "0"], "--t-end"),
         (["--record", "no/such/file.AT2"], "file.AT2"),
     ],
