@@ -56,7 +56,7 @@ class Arch:
     >>> round(arch.thickness_ratio, 3), round(arch.span, 3)
     (0.15, 19.616)
     >>> round(float(arch.voussoir_masses.sum()), 1)  # kg: rho * depth * beta * R * t
-    41233.4
+    82466.8
     """
 
     radius: float
