@@ -86,3 +86,18 @@ def test_phi_ddot_matches_constrained_lagrangian(model, phi, rate, ground):
     expected = sigma * sol[0]
     got = acceleration(packed, phi, rate, ground, G)
     assert got == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.03, 0.2, 0.6])
+def test_paper_form_of_eq2_reproduces_the_acceleration(model, phi):
+    """M R theta'' + L R theta'^2 + F g = P x_g'' with theta'' = -phi'' (paper Eq. 2), and the
+    coefficients do not depend on the size of the arch."""
+    from archquake.mechanism.kinematics import LENGTH, paper_coefficients
+
+    packed, _ = model
+    big = PreparedMechanism.build(Arch(37.0, 5.55, math.radians(157.5), 7, density=1234.0)).packed
+    rate, ground = 0.4, -6.0
+    mm, ll, ff, pp = paper_coefficients(packed, phi)
+    theta_ddot = (pp * ground - ff * G - ll * packed[LENGTH] * rate**2) / (mm * packed[LENGTH])
+    assert -theta_ddot == pytest.approx(acceleration(packed, phi, rate, ground, G), rel=1e-12)
+    np.testing.assert_allclose(paper_coefficients(big, phi), (mm, ll, ff, pp), rtol=1e-10)

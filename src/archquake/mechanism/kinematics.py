@@ -293,5 +293,35 @@ __all__ = [
     "link_states",
     "linkage_limits",
     "pack_mechanism",
+    "paper_coefficients",
     "potential",
 ]
+
+
+def paper_coefficients(mech, phi: float) -> tuple[float, float, float, float]:
+    """The paper's dimensionless coefficient functions M, L, F, P of Eq. 2 at ``phi``.
+
+    With theta = theta0 - phi (so d/dtheta = -d/dphi) and m the arch's total mass, Eq. 2
+    ``M R theta'' + L R theta'^2 + F g = P x_g''`` is this module's equation of motion divided
+    by -m R::
+
+        M = m_eff / (m R^2),  L = -(d m_eff / d phi) / (2 m R^2),  F = -G / (m R),  P = H / (m R).
+
+    They depend on the geometry's proportions only (not on R, density or depth).
+
+    Parameters
+    ----------
+    mech : ndarray, shape (30,)
+        Packed mechanism (:func:`pack_mechanism`).
+    phi : float
+        Rotation theta0 - theta, rad.
+
+    Returns
+    -------
+    (M, L, F, P) : tuple of float
+    """
+    ok, meff, dmeff, gg, hh = eom_terms(mech, phi)
+    if not ok:
+        raise ValueError(f"the mechanism cannot be assembled at phi = {phi:g} rad (beyond its toggle)")
+    m, r = mech[MASS], mech[LENGTH]
+    return meff / (m * r * r), -dmeff / (2.0 * m * r * r), -gg / (m * r), hh / (m * r)
