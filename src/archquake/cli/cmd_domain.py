@@ -1,0 +1,135 @@
+"""``archquake domain``: the failure domain of an arch for a pulse family (paper Figures 5, 11)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_output_arguments,
+    arch_from_args,
+    number,
+    print_json,
+    whole,
+)
+from archquake.errors import InvalidParameterError
+
+
+def parse_durations(text: str) -> np.ndarray:
+    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration."""
+    try:
+        return _durations(text)
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _durations(text: str) -> np.ndarray:
+    parts = text.split(":")
+    if len(parts) == 1:
+        try:
+            single = float(parts[0])
+        except ValueError:
+            single = math.nan
+        return _positive(np.array([single]), text)
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise InvalidParameterError(
+            f"expected START:STOP:COUNT in s (e.g. 0.05:1.5:40) or one duration, got {text!r}"
+        ) from None
+    if count < 1:
+        raise InvalidParameterError(f"COUNT must be >= 1 in START:STOP:COUNT, got {text!r}")
+    if count > 1 and not stop > start:
+        raise InvalidParameterError(f"STOP must exceed START in START:STOP:COUNT, got {text!r}")
+    return _positive(np.linspace(start, stop, count), text)
+
+
+def _positive(values: np.ndarray, text: str) -> np.ndarray:
+    if not np.all(np.isfinite(values)) or np.any(values <= 0):
+        raise InvalidParameterError(f"durations must be finite and > 0 s, got {text!r}")
+    return values
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "domain",
+        help="failure domain: pulse magnitudes (g) and durations (s) that collapse the arch",
+        description=(
+            "Failure domain of the arch for a pulse family (paper Figures 5 and 11): for each "
+            "duration (t_p of the step impulse, period T of the sine pulse, in s) the no-hinging "
+            "limit, the smallest magnitude that collapses the arch in the 1st half cycle and the "
+            "smallest that collapses it at all, in g, to --precision; magnitude bands where a "
+            "larger pulse survives although a smaller one collapses are reported."
+        ),
+    )
+    add_arch_arguments(p)
+    p.add_argument("--pulse", choices=("step", "sine"), default="step",
+                   help="pulse family: 'step' (Oppenheim's step impulse, duration t_p) or 'sine' "
+                        "(one sine cycle, duration = period T); default step")
+    p.add_argument("--durations", type=parse_durations, default=parse_durations("0.05:1.5:40"),
+                   metavar="START:STOP:COUNT",
+                   help="durations in s, evenly spaced (default 0.05:1.5:40), or one duration")
+    p.add_argument("--max-magnitude", type=number, default=5.0, metavar="G",
+                   help="ceiling of the magnitude scan, g (default 5); boundaries above it are null")
+    p.add_argument("--precision", type=number, default=1e-3, metavar="G",
+                   help="width of the final brackets, g (default 0.001)")
+    p.add_argument("--scan", type=whole, default=60, metavar="N",
+                   help="magnitudes in the coarse scan (default 60; the fine scan uses 2/3 of it)")
+    add_output_arguments(p)
+    p.add_argument("--csv", type=Path, metavar="FILE", help="write the domain as CSV to FILE")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from archquake.domains import DomainSettings, failure_domain
+
+    arch = arch_from_args(args)
+    if args.scan < 2:
+        raise InvalidParameterError(f"--scan must be >= 2, got {args.scan}")
+    if args.precision <= 0:
+        raise InvalidParameterError(f"--precision must be > 0 g, got {args.precision:g}")
+    if args.max_magnitude <= 0:
+        raise InvalidParameterError(f"--max-magnitude must be > 0 g, got {args.max_magnitude:g}")
+    settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
+                              fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
+    dom = failure_domain(arch, args.pulse, args.durations, settings=settings)
+    if args.csv:
+        dom.write_csv(args.csv)
+    if args.plot:
+        from archquake.plotting.domains import save_domain
+
+        save_domain(dom, args.plot)
+    if args.json:
+        print_json(dom.to_dict())
+        return 0
+    sym = dom.family.duration_symbol
+    print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "
+          f"t/R = {arch.thickness_ratio:.3f}, embrace {math.degrees(arch.embrace):g} deg, "
+          f"{arch.voussoirs} voussoirs; c_v = {dom.restitution_cv:.4f}"
+          + ("  (> 1: impact model gains energy)" if dom.energy_gain else ""))
+    print(f"{sym + ' [s]':>9} {'no hinging':>11} {'1st half':>9} {'collapse':>9} {'in half':>7}  (g)")
+
+    def fmt(x: float) -> str:
+        return f"{x:9.3f}" if math.isfinite(x) else f"{'-':>9}"
+
+    for i, d in enumerate(dom.durations):
+        h = int(dom.collapse_half_cycle[i])
+        print(f"{d:9.4g} {dom.no_hinging_g[i]:11.3f} {fmt(dom.first_half_cycle_g[i])} "
+              f"{fmt(dom.collapse_g[i])} {h if h else '-':>7}")
+    if dom.non_monotonic_bands:
+        print("non-monotonic bands (survives although a smaller magnitude collapses):")
+        for b in dom.non_monotonic_bands:
+            print(f"  {sym} = {b.duration:.4g} s: {b.criterion} absent for "
+                  f"{b.lower_g:.3f} to {b.upper_g:.3f} g" + (" (to the ceiling)" if b.upper_open else ""))
+    else:
+        print("non-monotonic bands: none found at this scan resolution")
+    for f in (args.csv, args.plot):
+        if f:
+            print(f"wrote {f}")
+    return 0

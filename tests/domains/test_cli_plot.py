@@ -1,0 +1,55 @@
+"""``archquake domain`` and the domain figures: JSON is the domain's to_dict list, bad input is one
+line with exit status 2, and the plots and the demo step write their files."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from archquake.cli.main import main
+
+
+def test_domain_json(capsys):
+    code = main(["domain", "--durations", "0.27:0.44:2", "--scan", "20", "--json"])
+    assert code == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [round(r["duration"], 2) for r in rows] == [0.27, 0.44]
+    # paper Figure 4: at 1.0 g, t_p = 0.27 s lies between the boundaries, 0.44 s above both
+    assert rows[0]["collapse_g"] < 1.0 < rows[0]["first_half_cycle_g"]
+    assert rows[1]["first_half_cycle_g"] < 1.0
+    assert rows[0]["no_hinging_g"] == pytest.approx(0.370, abs=5e-4)
+
+
+def test_domain_csv_and_plot(tmp_path, capsys):
+    csv, png = tmp_path / "d.csv", tmp_path / "d.png"
+    code = main(["domain", "--pulse", "sine", "--durations", "1.0:2.0:2", "--scan", "16",
+                 "--csv", str(csv), "--plot", str(png)])
+    assert code == 0
+    assert "failure domain, sine pulse" in capsys.readouterr().out
+    assert csv.read_text().count("\n") == 3 and png.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--durations", "0.2:x:3"], "expected START:STOP:COUNT"),
+    (["--durations", "0.5:0.1:3"], "STOP must exceed START"),
+    (["--durations", "0:1:3"], "durations must be finite and > 0 s"),
+    (["--max-magnitude", "0.2", "--durations", "0.3"], "max_magnitude_g must exceed"),
+    (["--pulse", "ramp"], "invalid choice"),
+])
+def test_domain_bad_input_exit_2(capsys, argv, message):
+    assert main(["domain", *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
+
+
+def test_demo_step_quick(tmp_path):
+    from archquake.cli.demo_domains import demo_step
+
+    files = demo_step(tmp_path, True)
+    names = {f.name for f in files}
+    assert {"figure5_domain_step.png", "figure6_scaling_laws.png", "figure7a_thickness.png",
+            "figure11_domain_sine.png"} <= names
+    assert all(f.stat().st_size > 0 for f in files)
+    notes = json.loads((tmp_path / "figure7_geometry_notes.json").read_text())
+    assert "c_v" in notes["t/R = 0.11"]  # the energy-gaining geometry is reported, not hidden
