@@ -16,6 +16,7 @@ STEPS: list[tuple[str, str]] = [
     ("Equivalent static analysis of Oppenheim's arch", "archquake.cli.demo_static:demo_step"),
     ("The arch in motion (Figure 4) and an animation", "archquake.cli.demo_dynamics:demo_step"),
     ("Line of thrust during motion (Figure 8) and friction demand", "archquake.cli.demo_thrust:demo_step"),
+    ("Failure domains (Figures 5, 6, 7, 11) and the scale effect", "archquake.cli.demo_domains:demo_step"),
 ]
 
 

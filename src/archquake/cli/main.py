@@ -27,6 +27,7 @@ COMMANDS: tuple[str, ...] = (
     "sweep",
     "thrust",
     "friction",
+    "domain",
     "demo",
 )
 
