@@ -18,17 +18,6 @@ SINE_PERIODS = (0.8, 1.6, 3.5)
 QUICK = DomainSettings(coarse_points=40, fine_points=24)
 
 
-def pytest_collection_modifyitems(config, items):
-    """Full-resolution studies here run only when asked for (``-m slow``)."""
-    if "slow" in (config.getoption("markexpr") or ""):
-        return
-    skip = pytest.mark.skip(reason="full-resolution study: run with -m slow")
-    here = str(__file__).rsplit("/", 1)[0]
-    for item in items:
-        if "slow" in item.keywords and str(item.fspath).startswith(here):
-            item.add_marker(skip)
-
-
 @pytest.fixture(scope="session")
 def quick() -> DomainSettings:
     return QUICK

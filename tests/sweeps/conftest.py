@@ -2,10 +2,17 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
-from sweep_fake_model import SMALL_STUDY
+
+# the fake case functions live beside the tests; worker processes (forked, or Dask workers given
+# PYTHONPATH) import them by module name, so the folder must be on sys.path with
+# --import-mode=importlib too
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from sweep_fake_model import SMALL_STUDY  # noqa: E402
 
 from archquake.sweeps import load_study
 
