@@ -336,8 +336,8 @@ def block_on_base(
     Examples
     --------
     >>> asm = block_on_base(0.4, 2.0)
-    >>> round(float(asm.masses[1]), 1), round(float(asm.inertias[1]), 2)
-    (1600.0, 555.47)
+    >>> round(float(asm.masses[1]), 1), round(float(asm.inertias[1]), 2)  # m (b^2 + h^2) / 12
+    (1600.0, 554.67)
     """
     b = require_positive("block width", width, "m")
     h = require_positive("block height", height, "m")
