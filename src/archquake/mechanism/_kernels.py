@@ -23,7 +23,8 @@ import math
 
 import numba as nb
 
-from archquake.ground.base import KIND_SAMPLED, KIND_SINE, KIND_STEP
+from archquake.ground._kernel import ground_duration, ground_in_piece, next_breakpoint
+from archquake.ground.base import KIND_SAMPLED, KIND_STEP
 from archquake.mechanism.kinematics import (
     G0,
     H0,
@@ -59,74 +60,8 @@ E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253
                           22.0 / 525.0, -1.0 / 40.0)
 
 
-@nb.njit(cache=True, nogil=True)
-def ground_in_piece(kind, params, t, t_left):
-    """x_g''(t) continued over the whole piece that contains ``t_left`` (so that the last stage
-    of a step ending on a breakpoint sees the left limit, not the next piece's value)."""
-    if kind == KIND_STEP:
-        a, tp, direction = params[0], params[1], params[2]
-        if t_left < 0.0:
-            return 0.0
-        if t_left < tp:
-            return direction * a
-        if t_left < 3.0 * tp:
-            return -0.5 * direction * a
-        return 0.0
-    if kind == KIND_SINE:
-        a, period, direction = params[0], params[1], params[2]
-        if t_left < 0.0 or t_left >= period:
-            return 0.0
-        return direction * a * math.sin(2.0 * math.pi * t / period)
-    t0, dt = params[0], params[1]
-    n = params.shape[0] - 2
-    s = (t_left - t0) / dt
-    if s < -1e-9 or s >= n - 1 - 1e-9:
-        return 0.0
-    i = int(math.floor(s + 1e-9))
-    if i < 0:
-        i = 0
-    f = (t - (t0 + i * dt)) / dt
-    return (1.0 - f) * params[2 + i] + f * params[3 + i]
-
-
-@nb.njit(cache=True, nogil=True)
-def next_breakpoint(kind, params, t):
-    """Smallest breakpoint of the excitation strictly after ``t`` (inf if none)."""
-    eps = 1e-12 * (1.0 + abs(t))
-    if kind == KIND_STEP:
-        tp = params[1]
-        for b in (0.0, tp, 3.0 * tp):
-            if b > t + eps:
-                return b
-        return math.inf
-    if kind == KIND_SINE:
-        period = params[1]
-        for q in range(5):
-            b = 0.25 * q * period
-            if b > t + eps:
-                return b
-        return math.inf
-    t0, dt = params[0], params[1]
-    n = params.shape[0] - 2
-    end = t0 + dt * (n - 1)
-    if t + eps < t0:
-        return t0
-    if t + eps >= end:
-        return math.inf
-    i = int(math.floor((t - t0) / dt + 1e-9))
-    b = t0 + (i + 1) * dt
-    if b <= t + eps:
-        b += dt
-    return min(b, end)
-
-
-@nb.njit(cache=True, nogil=True)
-def excitation_end(kind, params):
-    if kind == KIND_STEP:
-        return 3.0 * params[1]
-    if kind == KIND_SINE:
-        return params[1]
-    return params[0] + params[1] * (params.shape[0] - 3)
+#: End of the excitation, s (kept under this name for the kernels that use it).
+excitation_end = ground_duration
 
 
 @nb.njit(cache=True, nogil=True)
