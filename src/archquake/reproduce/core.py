@@ -1,0 +1,224 @@
+"""The pieces of a reproduction: a checked row, a study's result, the registry entry.
+
+A study is a pure function ``study(arch, quick, figures) -> StudyResult``: it computes one part
+of the paper for ``arch`` (Oppenheim's arch by default), writes its figures into the folder
+``figures`` and returns the rows that set each number the paper states beside archquake's.
+The report (:mod:`archquake.reproduce.report`) is assembled from the results alone, so a
+cached result (:mod:`archquake.reproduce.runner`) reproduces the same report.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from archquake._json import to_jsonable
+from archquake.geometry.arch import Arch
+
+#: Text used in the report for a row that could not be computed because the distinct-element
+#: model is missing from this build.
+NOT_AVAILABLE = "not available in this build"
+
+
+@dataclass(frozen=True)
+class Row:
+    """One number (or statement) of the paper beside archquake's.
+
+    Parameters
+    ----------
+    quantity : str
+        What is compared.
+    source : str
+        Where the paper states it (page, figure).
+    paper : str
+        The paper's value, as the paper states it.
+    archquake : str
+        archquake's value, formatted.
+    tolerance : str
+        The accepted difference (or the criterion).
+    justification : str
+        Why that tolerance: how many digits the paper gives, what it reads off a figure, what
+        the criterion means.
+    passed : bool or None
+        True/False; None when the comparison does not apply (``note`` says why).
+    note : str
+        Why a row is not applicable, or where archquake departs from the paper and why.
+    departure : bool
+        A not-applicable row (``passed`` None) that states a deliberate departure from the
+        paper (e.g. a claim the exact analysis contradicts), explained in ``note``.
+    """
+
+    quantity: str
+    source: str
+    paper: str
+    archquake: str
+    tolerance: str
+    justification: str
+    passed: bool | None
+    note: str = ""
+    departure: bool = False
+
+    def __post_init__(self) -> None:
+        if self.passed is None and not self.note:
+            raise ValueError(f"row {self.quantity!r}: a not-applicable row must say why (note)")
+        if self.passed is not None:
+            object.__setattr__(self, "passed", bool(self.passed))
+            if self.departure:
+                raise ValueError(f"row {self.quantity!r}: a departure is not a pass or a fail")
+
+    @property
+    def status(self) -> str:
+        """'pass', 'fail', 'departure' or 'n/a'."""
+        if self.passed is None:
+            return "departure" if self.departure else "n/a"
+        return "pass" if self.passed else "fail"
+
+    @property
+    def mark(self) -> str:
+        """What the report shows: 'pass', 'FAIL', 'departs' or 'n/a'."""
+        return {"pass": "pass", "fail": "FAIL", "departure": "departs", "n/a": "n/a"}[self.status]
+
+    def to_dict(self) -> dict:
+        return {
+            "quantity": self.quantity,
+            "source": self.source,
+            "paper": self.paper,
+            "archquake": self.archquake,
+            "tolerance": self.tolerance,
+            "justification": self.justification,
+            "pass": self.passed,
+            "note": self.note,
+            "departure": self.departure,
+            "status": self.status,
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Row:
+        return cls(
+            d["quantity"],
+            d["source"],
+            d["paper"],
+            d["archquake"],
+            d["tolerance"],
+            d["justification"],
+            d["pass"],
+            d.get("note", ""),
+            d.get("departure", False),
+        )
+
+
+def within(value: float, target: float, tolerance: float) -> bool:
+    """|value - target| <= tolerance (False for NaN)."""
+    return bool(math.isfinite(value) and abs(value - target) <= tolerance)
+
+
+def not_available(quantity: str, source: str, paper: str, why: str = NOT_AVAILABLE) -> Row:
+    """A row the build cannot compute (shown, never counted as a pass)."""
+    return Row(quantity, source, paper, "-", "-", "-", None, why)
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A figure written by a study: file name (inside the figures folder) and caption."""
+
+    file: str
+    caption: str
+
+    def to_dict(self) -> dict:
+        return {"file": self.file, "caption": self.caption}
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """What one study found.
+
+    Attributes
+    ----------
+    name : str
+        Registry key (also the cache key's first part).
+    title : str
+    rows : tuple of Row
+    figures : tuple of Figure
+        Files inside the figures folder.
+    departures : tuple of str
+        Where archquake departs from the paper, and why (plain sentences).
+    data : dict
+        Numbers behind the rows (JSON-able), for ``--json`` and the cache.
+    seconds : float
+        Wall time of the computation, s.
+    """
+
+    name: str
+    title: str
+    rows: tuple[Row, ...]
+    figures: tuple[Figure, ...] = ()
+    departures: tuple[str, ...] = ()
+    data: dict = field(default_factory=dict)
+    seconds: float = 0.0
+
+    @property
+    def counts(self) -> dict[str, int]:
+        """Rows passed, failed, departing from the paper, and not applicable."""
+        out = {"pass": 0, "fail": 0, "departure": 0, "n/a": 0}
+        for r in self.rows:
+            out[r.status] += 1
+        return out
+
+    def to_dict(self) -> dict:
+        return to_jsonable(
+            {
+                "name": self.name,
+                "title": self.title,
+                "rows": [r.to_dict() for r in self.rows],
+                "figures": [f.to_dict() for f in self.figures],
+                "departures": list(self.departures),
+                "data": self.data,
+                "seconds": self.seconds,
+            }
+        )
+
+    @classmethod
+    def from_dict(cls, d: dict) -> StudyResult:
+        return cls(
+            d["name"],
+            d["title"],
+            tuple(Row.from_dict(r) for r in d["rows"]),
+            tuple(Figure(f["file"], f["caption"]) for f in d["figures"]),
+            tuple(d["departures"]),
+            d.get("data", {}),
+            float(d.get("seconds", 0.0)),
+        )
+
+
+StudyFunction = Callable[[Arch, bool, Path], StudyResult]
+
+
+@dataclass(frozen=True)
+class Study:
+    """A registry entry: the study's key, its title, what of the paper it covers, and the
+    function (imported lazily from ``target`` = ``"module:function"``)."""
+
+    name: str
+    title: str
+    covers: str
+    target: str
+
+    def function(self) -> StudyFunction:
+        import importlib
+
+        module, func = self.target.split(":")
+        return getattr(importlib.import_module(module), func)
+
+
+__all__ = [
+    "NOT_AVAILABLE",
+    "Figure",
+    "Row",
+    "Study",
+    "StudyFunction",
+    "StudyResult",
+    "not_available",
+    "within",
+]
