@@ -28,6 +28,7 @@ COMMANDS: tuple[str, ...] = (
     "thrust",
     "friction",
     "domain",
+    "reproduce",
     "demo",
 )
 
