@@ -215,10 +215,15 @@ class SimulationResult:
 
 def default_mechanism(arch: Arch) -> HingeMechanism:
     """The hinges of the equivalent static analysis, oriented so that a ground acceleration
-    towards -x opens them (the paper's Figure 1)."""
-    from archquake.limit.kinematic import kinematic_collapse
+    towards -x opens them (the paper's Figure 1).
 
-    _, mech = kinematic_collapse(arch)
+    Goes through :func:`archquake.limit.limit_analysis` (the line-of-thrust method), so an arch
+    too thin to stand raises :class:`~archquake.errors.UnstableArchError` naming its minimum
+    thickness, and arches of many voussoirs are handled.
+    """
+    from archquake.limit import limit_analysis
+
+    mech = limit_analysis(arch).mechanism
     return mech if mech.load_direction > 0 else mech.mirrored()
 
 
