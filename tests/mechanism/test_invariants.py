@@ -140,3 +140,21 @@ def test_compiled_path_equals_solve_ivp_reference(case):
     np.testing.assert_allclose(fast.impact_times[:n], ref.impact_times[:n], atol=1e-6)
     if fast.outcome is Outcome.COLLAPSE:
         assert fast.collapse_time == pytest.approx(ref.collapse_time, abs=1e-6)
+
+
+def test_inadmissible_impact_is_reported_and_treated_as_plastic():
+    """A thick, shallow arch for which Eqs. 4a-4e give c_v < 0 (the mirror mechanism would start
+    closing): flagged, and the compiled and reference drivers both stop the arch at the impact."""
+    arch = Arch(10.0, 3.17, math.radians(106.8), 20)
+    prep = PreparedMechanism.build(arch)
+    assert prep.impact.restitution_cv < 0 and not prep.impact.admissible
+    assert prep.restitution == 0.0
+    lam = prep.mechanism.static_multiplier()
+    motion = StepImpulse.from_g(1.5 * lam, 0.3)
+    r = simulate(prep, motion)
+    assert not r.impact_admissible and r.impact_model_cv == prep.impact.restitution_cv
+    assert r.restitution_cv == 0.0 and r.to_dict()["impact_admissible"] is False
+    if r.outcome is not Outcome.COLLAPSE:
+        assert r.impact_times.size == 1 and r.final_state.value == "rest"
+    ref = simulate_reference(prep, motion)
+    assert ref.outcome is r.outcome and ref.impact_times.size == r.impact_times.size

@@ -106,6 +106,9 @@ def _print_text(result, motion, g: float) -> None:
     print(f"onset of hinging    {result.static_acceleration / g:.4f} g (equivalent static analysis)")
     print(f"restitution         c_v = {result.restitution_cv:.4f}, c_T = {result.restitution_ct:.4f}"
           + ("  (c_T > 1: the impact model gains energy for this geometry)" if result.energy_gain else ""))
+    if not result.impact_admissible:
+        print(f"                    the impact model gives c_v = {result.impact_model_cv:.4f} < 0 for this "
+              "geometry (inadmissible): impacts computed as perfectly plastic; see --restitution")
     print(f"outcome             {result.outcome.value}" + (
         f" in half cycle {result.collapse_half_cycle} at t = {result.collapse_time:.3f} s"
         if result.collapse_half_cycle else f" ({result.final_state.value})"))

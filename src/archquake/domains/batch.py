@@ -185,7 +185,7 @@ def evaluate_pulses(
     runs = np.zeros(n, dtype=np.int64)
     if n:
         batch_kernel(prepared.packed, fam.kind, params, float(g),
-                     float(prepared.impact.restitution_cv), t_end, options.rtol, options.atol,
+                     float(prepared.restitution), t_end, options.rtol, options.atol,
                      options.rest_rotation, int(options.max_impacts), bool(early),
                      outcome, half, n_imp, runs)
     return PulseOutcomes(a, d, outcome, half, runs)

@@ -41,6 +41,10 @@ class ImpactSolution:
     energy_gain : bool
         True if c_T > 1: the five balances then create kinetic energy, which a real impact
         cannot; archquake reports it rather than hiding it.
+    admissible : bool
+        False if c_v < 0: the balances then start the mirror mechanism in its closing sense,
+        which is not an admissible motion (seen for some thick, shallow arches);
+        :func:`archquake.mechanism.simulate` then treats the impact as perfectly plastic.
     residual : float
         Max |A x - b| of the 5x5 solve, relative to |b| (a check that the solve is sound).
     """
@@ -52,11 +56,16 @@ class ImpactSolution:
     energy_gain: bool
     residual: float
 
+    @property
+    def admissible(self) -> bool:
+        return self.restitution_cv >= 0.0
+
     def to_dict(self) -> dict:
         return {
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,
+            "admissible": self.admissible,
         }
 
 

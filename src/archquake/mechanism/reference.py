@@ -57,7 +57,7 @@ def simulate_reference(
     """Time history with solve_ivp; see :func:`archquake.mechanism.simulate` for the arguments."""
     prep = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
     mech = prep.packed
-    cv = prep.impact.restitution_cv if restitution is None else float(restitution)
+    cv = prep.restitution if restitution is None else float(restitution)
     tau = math.sqrt(mech[LENGTH] / g)
     t_exc = float(motion.duration)
     t_end = t_exc + 60.0 * tau if t_end is None else float(t_end)

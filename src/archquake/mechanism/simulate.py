@@ -154,7 +154,13 @@ class SimulationResult:
     restitution_ct : float
         c_T = c_v^2.
     energy_gain : bool
-        True if the impact model gives c_T > 1 for this geometry (see :mod:`.impact`).
+        True if the c_v used gives c_T > 1 (see :mod:`.impact`).
+    impact_model_cv : float
+        c_v from the impact model (Eq. 4) for this geometry, whether or not it was used.
+    impact_admissible : bool
+        False if the impact model's c_v is negative (inadmissible: it would start the mirror
+        mechanism closing); the impacts are then computed as perfectly plastic (c_v = 0) unless
+        a restitution is prescribed.
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
     static_acceleration : float
@@ -177,6 +183,8 @@ class SimulationResult:
     restitution_cv: float
     restitution_ct: float
     energy_gain: bool
+    impact_model_cv: float
+    impact_admissible: bool
     mechanism: HingeMechanism
     static_acceleration: float
     critical_rotation: float
@@ -202,6 +210,8 @@ class SimulationResult:
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,
+            "impact_model_cv": self.impact_model_cv,
+            "impact_admissible": self.impact_admissible,
             "static_acceleration_g": self.static_acceleration / self.g,
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
@@ -234,6 +244,12 @@ class PreparedMechanism:
     mechanism: HingeMechanism
     packed: np.ndarray
     impact: ImpactSolution
+
+    @property
+    def restitution(self) -> float:
+        """The c_v the time histories use: the impact model's, or 0 (perfectly plastic) where
+        the model's is negative (inadmissible; see :class:`~archquake.mechanism.ImpactSolution`)."""
+        return max(self.impact.restitution_cv, 0.0)
 
     @classmethod
     def build(cls, arch_or_mechanism: Arch | HingeMechanism) -> PreparedMechanism:
@@ -297,7 +313,8 @@ def simulate(
     """
     prepared = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
     require_positive("g", g, "m/s^2")
-    cv = prepared.impact.restitution_cv
+    model_cv = prepared.impact.restitution_cv
+    cv = prepared.restitution
     if restitution is not None:
         cv = require_finite("restitution", restitution)
         if cv < 0:
@@ -349,7 +366,9 @@ def simulate(
         peak_rotation=peaks[:n_half].copy(),
         restitution_cv=float(cv),
         restitution_ct=float(cv) ** 2,
-        energy_gain=bool(cv > 1.0),
+        energy_gain=bool(float(cv) ** 2 > 1.0),
+        impact_model_cv=float(model_cv),
+        impact_admissible=bool(model_cv >= 0.0),
         mechanism=mech,
         static_acceleration=g * prepared.packed[G0] / abs(prepared.packed[H0]),
         critical_rotation=float(prepared.packed[PHI_CRIT]),
