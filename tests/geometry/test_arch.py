@@ -94,7 +94,8 @@ def test_bad_input_names_the_parameter(kwargs, needle):
 
 def test_oppenheim_mechanism_virtual_work(oppenheim):
     # The hinge set found by the limit analysis for Oppenheim's arch (A..D at joints 0,3,5,7).
-    mech = HingeMechanism(oppenheim, (0, 3, 5, 7), (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS))
+    faces = (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS)
+    mech = HingeMechanism(oppenheim, (0, 3, 5, 7), faces)
     assert mech.load_direction == +1
     assert mech.static_multiplier() == pytest.approx(0.370, abs=0.005)
     mirror = mech.mirrored()
