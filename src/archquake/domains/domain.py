@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -44,7 +45,7 @@ from archquake.geometry.arch import Arch
 from archquake.mechanism.kinematics import G0, H0
 from archquake.mechanism.simulate import PreparedMechanism, SolverOptions
 
-from .batch import PulseFamily, evaluate_pulses, prepare
+from .batch import PulseFamily, PulseOutcomes, evaluate_pulses, prepare
 
 #: Figure 5's durations t_p, s.
 FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())
@@ -247,6 +248,7 @@ def failure_domain(
     *,
     settings: DomainSettings | None = None,
     g: float = STANDARD_GRAVITY,
+    evaluate: Callable[[np.ndarray, np.ndarray], PulseOutcomes] | None = None,
 ) -> FailureDomain:
     """Failure domain of an arch for a pulse family (paper Figures 5, 6, 7, 11).
 
@@ -260,6 +262,12 @@ def failure_domain(
     settings : DomainSettings
     g : float
         Gravity, m/s^2.
+    evaluate : callable, optional
+        ``evaluate(magnitudes_g, durations) -> PulseOutcomes`` for 1-D arrays of equal length:
+        another model's outcomes plugged into the same search (e.g. the distinct-element model,
+        :func:`archquake.compare.dem_failure_domain`). Default: the compiled analytical batch
+        :func:`~archquake.domains.evaluate_pulses` (``settings.options``, ``settings.early``).
+        lambda (the scan's start) is always the analytical mechanism's.
 
     Returns
     -------
@@ -298,6 +306,8 @@ def failure_domain(
     def run(mags: np.ndarray, idx: np.ndarray):
         nonlocal evaluations
         evaluations += mags.size
+        if evaluate is not None:
+            return evaluate(mags, dur[idx])
         return evaluate_pulses(prepared, fam, mags, dur[idx], options=settings.options,
                                early=settings.early, g=g)
 

@@ -1,0 +1,327 @@
+"""Failure domains of the distinct-element model, found by the analytical domain search
+(:func:`archquake.domains.failure_domain`) with a DEM evaluation plugged in (paper Figures 6, 11).
+
+As in the paper, the DEM's first-half-cycle boundary comes from the arch cut at the analytical
+hinges (``assembly='hinges'``, the three-voussoir arch: no impacts, the same mechanism), and its
+governing boundary from the voussoir arch (``assembly='voussoirs'``, hinges free to move).
+
+Each evaluation is one DEM time history, so the search runs at a coarser resolution than the
+analytical one (:data:`DEM_DOMAIN_SETTINGS`: 8 coarse magnitudes, 4 fine, 0.01 g brackets) and the
+runs of each search round are spread over a process pool (the round's (magnitude, duration)
+pairs, i.e. parallel over durations and brackets).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from concurrent.futures import Executor, ProcessPoolExecutor
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from archquake.compare.histories import (
+    HINGES,
+    VOUSSOIRS,
+    dem_assembly,
+    dem_collapse_half_cycle,
+)
+from archquake.constants import STANDARD_GRAVITY
+from archquake.domains import DomainSettings, FailureDomain, PulseFamily, PulseOutcomes, failure_domain
+from archquake.errors import InvalidParameterError
+from archquake.geometry.arch import Arch
+from archquake.mechanism import _kernels as K
+
+#: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
+#: magnitudes (geometric from lambda), 4 fine ones between the boundaries, brackets of 0.01 g.
+DEM_DOMAIN_SETTINGS = DomainSettings(max_magnitude_g=2.0, coarse_points=8, fine_points=4,
+                                     precision_g=0.01, early=False)
+
+#: Seconds simulated after the end of the pulse, in sqrt(R/g), in a domain run. The DEM declares
+#: collapse when the crown has fallen by t, which comes ~1 s (Oppenheim's arch) after the
+#: analytical crest; near a boundary the arch lingers at the crest, so the tail is generous.
+DOMAIN_TAIL = 6.0
+
+
+def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
+             first_only: bool, g: float) -> tuple[int, int]:
+    """One DEM run: (kernel outcome code, collapse half cycle or 0). Module-level: picklable."""
+    from archquake.dem import simulate_dem
+
+    motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
+    res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s), g=g)
+    half = dem_collapse_half_cycle(res) or 0
+    if res.outcome.value == "collapse":
+        if first_only and half != 1:
+            return K.OUTCOME_SURVIVES, 0
+        return K.OUTCOME_COLLAPSE, half
+    if res.outcome.value == "no_hinging":
+        return K.OUTCOME_NO_HINGING, 0
+    return K.OUTCOME_SURVIVES, 0
+
+
+@dataclass
+class DemPulseEvaluator:
+    """``evaluate(magnitudes_g, durations) -> PulseOutcomes`` of a DEM assembly, for
+    :func:`~archquake.domains.failure_domain`'s ``evaluate``.
+
+    Parameters
+    ----------
+    assembly : Assembly
+    family : PulseFamily
+    settings : DemSettings
+        Its duration is replaced per run (the pulse, then ``tail_s``).
+    tail_s : float
+        Simulated time after the pulse, s.
+    first_only : bool
+        Count only collapses in the first half cycle (before the first DEM impact) as collapses:
+        the three-voussoir arch's boundary.
+    executor : Executor, optional
+        Where the runs of one call go (``map``); None runs them here.
+    g : float
+
+    Notes
+    -----
+    Results are memoised per (magnitude, duration): the search's two criteria often bisect the
+    same bracket.
+    """
+
+    assembly: object
+    family: PulseFamily
+    settings: object
+    tail_s: float
+    first_only: bool = False
+    executor: Executor | None = None
+    g: float = STANDARD_GRAVITY
+    runs: int = 0
+    seconds: float = 0.0
+    _memo: dict = field(default_factory=dict, repr=False)
+
+    def __call__(self, magnitudes_g, durations) -> PulseOutcomes:
+        mags = np.atleast_1d(np.asarray(magnitudes_g, float))
+        durs = np.broadcast_to(np.asarray(durations, float), mags.shape)
+        keys = [(round(float(a), 12), round(float(d), 12)) for a, d in zip(mags, durs)]
+        todo = sorted({k for k in keys if k not in self._memo})
+        t0 = time.perf_counter()
+        if todo:
+            args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
+                     self.first_only, self.g) for a, d in todo]
+            if self.executor is None:
+                results = [_outcome(*a) for a in args]
+            else:
+                results = list(self.executor.map(_outcome, *zip(*args)))
+            self._memo.update(zip(todo, results))
+            self.runs += len(todo)
+        self.seconds += time.perf_counter() - t0
+        out = np.array([self._memo[k][0] for k in keys], dtype=np.int64)
+        half = np.array([self._memo[k][1] for k in keys], dtype=np.int64)
+        return PulseOutcomes(mags.copy(), np.array(durs, float), out, half, np.ones(mags.size, np.int64))
+
+
+@dataclass(frozen=True)
+class DemDomain:
+    """A DEM failure domain and how it was found.
+
+    Attributes
+    ----------
+    domain : FailureDomain
+        The search's result (its ``evaluations`` count lookups; ``runs`` the DEM runs).
+    assembly : str
+        ``'hinges'`` or ``'voussoirs'``.
+    first_only : bool
+        Only first-half-cycle collapses counted (then ``collapse_g`` = ``first_half_cycle_g``).
+    runs : int
+        DEM time histories run.
+    seconds : float
+        Wall time, s.
+    workers : int
+    """
+
+    domain: FailureDomain = field(repr=False)
+    assembly: str
+    first_only: bool
+    runs: int
+    seconds: float
+    workers: int
+    dem_settings: dict = field(repr=False, default_factory=dict)
+
+    @property
+    def boundary_g(self) -> np.ndarray:
+        """The boundary this domain is for: first half cycle (hinges) or governing."""
+        return self.domain.first_half_cycle_g if self.first_only else self.domain.collapse_g
+
+    def to_dict(self) -> dict:
+        return {"assembly": self.assembly, "first_half_cycle_only": self.first_only,
+                "runs": self.runs, "seconds": self.seconds, "workers": self.workers,
+                "search": self.domain.settings.to_dict(), "dem_settings": self.dem_settings,
+                "points": self.domain.to_dict()}
+
+
+def dem_failure_domain(
+    arch: Arch,
+    family: PulseFamily | str = PulseFamily.STEP,
+    durations=(0.1, 0.2, 0.3, 0.5, 0.8),
+    *,
+    assembly: str = VOUSSOIRS,
+    first_only: bool | None = None,
+    settings: DomainSettings = DEM_DOMAIN_SETTINGS,
+    dem_settings=None,
+    tail: float = DOMAIN_TAIL,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    g: float = STANDARD_GRAVITY,
+) -> DemDomain:
+    """The failure domain of the DEM arch through the analytical domain search.
+
+    Parameters
+    ----------
+    arch : Arch
+    family : {'step', 'sine'}
+    durations : array_like, s
+        t_p or T.
+    assembly : {'voussoirs', 'hinges'}
+    first_only : bool, optional
+        Default True for ``'hinges'`` (the three-voussoir arch gives the first-half-cycle
+        boundary), False for ``'voussoirs'``.
+    settings : DomainSettings
+        The search (default :data:`DEM_DOMAIN_SETTINGS`, 0.01 g).
+    dem_settings : DemSettings, optional
+        Default: the paper's stiffness and damping.
+    tail : float
+        Simulated time after each pulse, in sqrt(R/g).
+    workers : int, optional
+        Process-pool size (default: the usable cores, at most the number of durations x 2);
+        1 runs serially. Ignored if ``executor`` is given.
+    executor : Executor, optional
+        An executor to use instead of a new process pool.
+    g : float
+
+    Returns
+    -------
+    DemDomain
+    """
+    from archquake.dem import DemSettings
+
+    if not isinstance(arch, Arch):
+        raise InvalidParameterError(f"dem_failure_domain needs an Arch, got {type(arch).__name__}")
+    fam = PulseFamily.parse(family)
+    first_only = (assembly == HINGES) if first_only is None else bool(first_only)
+    asm = dem_assembly(arch, assembly)
+    dst = DemSettings() if dem_settings is None else dem_settings
+    n_dur = int(np.atleast_1d(durations).size)
+    t0 = time.perf_counter()
+    own = None
+    if executor is None:
+        n = workers if workers is not None else min(_cores(), max(1, 2 * n_dur))
+        if n < 1:
+            raise InvalidParameterError(f"workers must be >= 1, got {n}")
+        if n > 1:
+            own = executor = ProcessPoolExecutor(max_workers=n)
+    else:
+        n = getattr(executor, "_max_workers", 0) or 0
+    try:
+        tail_s = tail * math.sqrt(arch.radius / g)
+        ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g)
+        dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
+    finally:
+        if own is not None:
+            own.shutdown()
+    return DemDomain(dom, assembly, first_only, ev.runs, time.perf_counter() - t0, max(n, 1),
+                     dst.to_dict())
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+@dataclass(frozen=True)
+class DomainComparison:
+    """Analytical and DEM failure domains of one arch and pulse family (Figure 6, 11).
+
+    ``first`` (the three-voussoir arch) and ``governing`` (the voussoir arch) may be None when
+    not computed.
+    """
+
+    analytical: FailureDomain = field(repr=False)
+    first: DemDomain | None = field(repr=False, default=None)
+    governing: DemDomain | None = field(repr=False, default=None)
+    label: str = ""
+
+    def rows(self) -> list[dict]:
+        """One row per DEM duration: durations (s) and boundaries (g; None where none)."""
+        an = self.analytical
+        rows = []
+        for which, dd in (("first_half_cycle", self.first), ("collapse", self.governing)):
+            if dd is None:
+                continue
+            for d, m in zip(dd.domain.durations, dd.boundary_g):
+                i = int(np.argmin(np.abs(an.durations - d)))
+                a = float(an.first_half_cycle_g[i] if which == "first_half_cycle" else an.collapse_g[i])
+                if abs(an.durations[i] - d) > 1e-9:
+                    a = math.nan
+                rows.append({"boundary": which, "assembly": dd.assembly, "duration_s": float(d),
+                             "analytical_g": _num(a), "dem_g": _num(float(m)),
+                             "relative": _num((m - a) / a) if math.isfinite(a) and math.isfinite(m)
+                             else None})
+        return rows
+
+    def to_dict(self) -> dict:
+        return {"label": self.label, "arch": self.analytical.arch.describe(),
+                "pulse": self.analytical.family.value, "rows": self.rows(),
+                "analytical": self.analytical.to_dict(),
+                "dem_first_half_cycle": self.first.to_dict() if self.first else None,
+                "dem_governing": self.governing.to_dict() if self.governing else None}
+
+
+def _num(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def compare_domains(
+    arch: Arch,
+    family: PulseFamily | str = PulseFamily.STEP,
+    durations=(0.1, 0.2, 0.3, 0.5, 0.8),
+    *,
+    first: bool = True,
+    governing: bool = True,
+    dem_settings=None,
+    settings: DomainSettings = DEM_DOMAIN_SETTINGS,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    label: str = "",
+    g: float = STANDARD_GRAVITY,
+) -> DomainComparison:
+    """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
+    first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
+    of the voussoir arch (``governing``), both at ``settings`` (0.01 g)."""
+    an = failure_domain(arch, family, durations, g=g)
+    pool = executor
+    own = None
+    if pool is None and (workers is None or workers > 1):
+        n = workers if workers is not None else min(_cores(), max(1, 2 * len(np.atleast_1d(durations))))
+        if n > 1:
+            own = pool = ProcessPoolExecutor(max_workers=n)
+    try:
+        kw = dict(settings=settings, dem_settings=dem_settings, g=g, executor=pool,
+                  workers=1 if pool is None else None)
+        f = dem_failure_domain(arch, family, durations, assembly=HINGES, **kw) if first else None
+        gov = dem_failure_domain(arch, family, durations, assembly=VOUSSOIRS, **kw) if governing else None
+    finally:
+        if own is not None:
+            own.shutdown()
+    return DomainComparison(an, f, gov, label)
+
+
+__all__ = [
+    "DEM_DOMAIN_SETTINGS",
+    "DOMAIN_TAIL",
+    "DemDomain",
+    "DemPulseEvaluator",
+    "DomainComparison",
+    "compare_domains",
+    "dem_failure_domain",
+]
