@@ -25,6 +25,9 @@ demo: $(STAMP_RUN)
 	$(BIN)/archquake demo --out out
 
 test: $(STAMP_TEST)
+	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq >/dev/null && \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null) || \
+		echo "note: chromium could not be installed; the report's browser test will skip"
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP_RUN)

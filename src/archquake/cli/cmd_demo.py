@@ -18,6 +18,7 @@ STEPS: list[tuple[str, str]] = [
     ("The arch in motion (Figure 4) and an animation", "archquake.cli.demo_dynamics:demo_step"),
     ("Line of thrust during motion (Figure 8) and friction demand", "archquake.cli.demo_thrust:demo_step"),
     ("Failure domains (Figures 5, 6, 7, 11) and the scale effect", "archquake.cli.demo_domains:demo_step"),
+    ("The paper regenerated side by side (archquake reproduce)", "archquake.cli.cmd_reproduce:demo_step"),
 ]
 
 
@@ -50,6 +51,8 @@ def run(args: argparse.Namespace) -> int:
         report.append(f"- {title} ({dt:.1f} s): " + ", ".join(f.name for f in files))
     (out / "index.md").write_text("\n".join(report) + "\n")
     print(f"[demo] wrote {len(written)} files to {out}/ (index: {out / 'index.md'})", file=progress)
+    if (out / "report.html").is_file():
+        print(f"[demo] the paper side by side: {out / 'report.html'}", file=progress)
     if getattr(args, "json", False):
         from archquake.cli.common import print_json
 

@@ -53,3 +53,15 @@ def run(args: argparse.Namespace) -> int:
         )
         print(f"[reproduce] report: {rep.report_html} (and {rep.report_md})")
     return 1 if c["fail"] else 0
+
+
+def demo_step(out: Path, quick: bool) -> list[Path]:
+    """``archquake demo`` step: the reproduction (quick unless ``--full``) into ``out``; progress
+    on stderr (the demo's stdout may be JSON). Returns the two reports."""
+    from archquake.reproduce import run_studies
+
+    rep = run_studies(out, quick=quick, progress=lambda line: print(f"[demo]   {line}", file=sys.stderr))
+    c = rep.counts
+    print(f"[demo]   paper regenerated: {c['pass']} pass, {c['fail']} fail, {c['departure']} departures, "
+          f"{c['n/a']} n/a", file=sys.stderr)
+    return [rep.report_html, rep.report_md]
