@@ -72,15 +72,25 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--pulse", choices=("step", "sine"), default="step",
                    help="pulse family: 'step' (Oppenheim's step impulse, duration t_p) or 'sine' "
                         "(one sine cycle, duration = period T); default step")
-    p.add_argument("--durations", type=parse_durations, default=parse_durations("0.05:1.5:40"),
+    p.add_argument("--durations", type=parse_durations, default=None,
                    metavar="START:STOP:COUNT",
-                   help="durations in s, evenly spaced (default 0.05:1.5:40), or one duration")
-    p.add_argument("--max-magnitude", type=number, default=5.0, metavar="G",
-                   help="ceiling of the magnitude scan, g (default 5); boundaries above it are null")
-    p.add_argument("--precision", type=number, default=1e-3, metavar="G",
-                   help="width of the final brackets, g (default 0.001)")
-    p.add_argument("--scan", type=whole, default=60, metavar="N",
-                   help="magnitudes in the coarse scan (default 60; the fine scan uses 2/3 of it)")
+                   help="durations in s, evenly spaced (default 0.05:1.5:40; with --model dem "
+                        "0.1:0.8:4), or one duration")
+    p.add_argument("--max-magnitude", type=number, default=None, metavar="G",
+                   help="ceiling of the magnitude scan, g (default 5; with --model dem 2); "
+                        "boundaries above it are null")
+    p.add_argument("--precision", type=number, default=None, metavar="G",
+                   help="width of the final brackets, g (default 0.001; with --model dem 0.01)")
+    p.add_argument("--scan", type=whole, default=None, metavar="N",
+                   help="magnitudes in the coarse scan (default 60, with --model dem 8; the fine "
+                        "scan uses 2/3 of it, with --model dem 1/2)")
+    p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
+                   help="analytical (default), or the distinct-element model beside it: its "
+                        "1st-half-cycle boundary on the arch cut at the analytical hinges, its "
+                        "governing boundary with every voussoir a block (paper Figures 6, 11); "
+                        "one DEM time history per point, ~1-2 min per duration on 2 cores")
+    p.add_argument("--workers", type=whole, default=None, metavar="N",
+                   help="with --model dem: worker processes for the DEM runs (default: all cores)")
     add_output_arguments(p)
     p.add_argument("--csv", type=Path, metavar="FILE", help="write the domain as CSV to FILE")
     p.set_defaults(func=run)
@@ -90,6 +100,13 @@ def run(args: argparse.Namespace) -> int:
     from archquake.domains import DomainSettings, failure_domain
 
     arch = arch_from_args(args)
+    if args.model == "dem":
+        return _run_dem(args, arch)
+    if args.durations is None:
+        args.durations = parse_durations("0.05:1.5:40")
+    args.scan = 60 if args.scan is None else args.scan
+    args.precision = 1e-3 if args.precision is None else args.precision
+    args.max_magnitude = 5.0 if args.max_magnitude is None else args.max_magnitude
     if args.scan < 2:
         raise InvalidParameterError(f"--scan must be >= 2, got {args.scan}")
     if args.precision <= 0:
@@ -133,3 +150,9 @@ def run(args: argparse.Namespace) -> int:
         if f:
             print(f"wrote {f}")
     return 0
+
+
+def _run_dem(args: argparse.Namespace, arch) -> int:
+    from archquake.cli.dem_domain import run_dem_domain
+
+    return run_dem_domain(args, arch)

@@ -38,6 +38,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="end of the analysis, s (default: end of the excitation + 60 sqrt(R/g))")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical four-link model (default) or the distinct-element model")
+    from archquake.cli.dem_run import add_dem_arguments
+
+    add_dem_arguments(p)
     add_output_arguments(p)
     p.add_argument("--animate", metavar="FILE.gif", type=Path,
                    help="write an animated GIF of the rocking arch")

@@ -1,6 +1,14 @@
 """The analytical model beside the distinct-element model (paper pp. 2131-2135, Figures 4(b)-(d),
 6, 9, 10, 11): time histories, failure domains, snapshots."""
 
+from archquake.compare.domains import (
+    DEM_DOMAIN_SETTINGS,
+    DemDomain,
+    DemPulseEvaluator,
+    DomainComparison,
+    compare_domains,
+    dem_failure_domain,
+)
 from archquake.compare.histories import (
     ASSEMBLIES,
     FIGURE4_DURATIONS,
@@ -18,8 +26,36 @@ from archquake.compare.histories import (
     first_half_cycle_difference,
     three_voussoir_assembly,
 )
+from archquake.compare.snapshots import (
+    FIGURE9_TIMES,
+    FIGURE10_DAMPING,
+    FIGURE10_PULSE,
+    FIGURE10_TIME,
+    HingeComparison,
+    ReducedDampingSnapshot,
+    compare_hinges,
+    dem_hinges,
+    joint_displacements,
+    reduced_damping_snapshot,
+)
 
 __all__ = [
+    "DEM_DOMAIN_SETTINGS",
+    "DemDomain",
+    "DemPulseEvaluator",
+    "DomainComparison",
+    "FIGURE10_DAMPING",
+    "FIGURE10_PULSE",
+    "FIGURE10_TIME",
+    "FIGURE9_TIMES",
+    "HingeComparison",
+    "ReducedDampingSnapshot",
+    "compare_domains",
+    "compare_hinges",
+    "dem_failure_domain",
+    "dem_hinges",
+    "joint_displacements",
+    "reduced_damping_snapshot",
     "ASSEMBLIES",
     "FIGURE4_DURATIONS",
     "HINGES",

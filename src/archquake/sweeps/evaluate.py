@@ -8,7 +8,12 @@ Models:
 
 - ``analytical``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
   impacts), summarised by ``result.to_dict(include_history=False)``;
-- ``dem``: :func:`archquake.dem.simulate_dem`, reserved; it is used once it exists.
+- ``dem``: :func:`archquake.dem.simulate_dem` on the arch with every voussoir a block, the
+  paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: the end
+  of the excitation + 5 sqrt(R/g), :func:`archquake.compare.default_dem_duration`), summarised
+  by :func:`archquake.compare.dem_summary` (the analytical keys where they apply: outcome,
+  collapse_half_cycle, impact_times, peak_rotation_rad, ...; the DEM's own under ``dem``).
+  ``restitution`` does not apply to it (a case giving one is refused).
 """
 
 from __future__ import annotations
@@ -18,7 +23,7 @@ from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
-from archquake.errors import ArchquakeError
+from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.sweeps.cases import ArchSpec, Case, Model
 
 #: Where each model's simulate function lives, as (module, function).
@@ -41,8 +46,6 @@ def model_function(model: Model | str) -> Callable[..., Any]:
         return getattr(importlib.import_module(module_name), name)
     except (ImportError, AttributeError):
         raise ModelUnavailableError(
-            f"model {model.value!r} needs {module_name}.{name}, which this build of archquake "
-            "does not provide yet; use model = \"analytical\"" if model is Model.DEM else
             f"model {model.value!r} needs {module_name}.{name}, which this build of archquake "
             "does not provide"
         ) from None
@@ -75,10 +78,18 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         result = simulate(_prepared(case.arch), motion, restitution=case.options.restitution,
                           t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
                           g=case.options.g)
-    else:  # the DEM has its own contact laws: no coefficient of restitution to pass
-        result = simulate(case.arch.build(), motion, t_end=case.options.t_end_s,
-                          g=case.options.g)
-    return result.to_dict(include_history=False)
+        return result.to_dict(include_history=False)
+    # the DEM's impacts follow from its contacts and damping: no coefficient of restitution
+    from archquake.compare import default_dem_duration, dem_summary
+    from archquake.dem import DemSettings
+
+    if case.options.restitution is not None:
+        raise InvalidParameterError("restitution applies to the analytical model only; the DEM's "
+                                    "impacts follow from its contacts and damping")
+    arch = case.arch.build()
+    duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
+    result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
+    return dem_summary(result)
 
 
 @lru_cache(maxsize=256)
