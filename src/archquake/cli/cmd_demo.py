@@ -18,6 +18,8 @@ STEPS: list[tuple[str, str]] = [
     ("The arch in motion (Figure 4) and an animation", "archquake.cli.demo_dynamics:demo_step"),
     ("Line of thrust during motion (Figure 8) and friction demand", "archquake.cli.demo_thrust:demo_step"),
     ("Failure domains (Figures 5, 6, 7, 11) and the scale effect", "archquake.cli.demo_domains:demo_step"),
+    ("Analytical vs distinct-element model (Figures 4b-d, 9, 10; 6, 11 with --full)",
+     "archquake.cli.demo_compare:demo_step"),
     ("The paper regenerated side by side (archquake reproduce)", "archquake.cli.cmd_reproduce:demo_step"),
 ]
 
