@@ -1,0 +1,97 @@
+"""The DEM through the command line and the sweep machinery: ``run --model dem`` (JSON keys shared
+with the analytical run, GIF), ``domain --model dem``, and a DEM sweep over a process pool."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from archquake.cli.main import main
+
+#: The analytical run's JSON keys that apply to the DEM (archquake.cli.cmd_run).
+SHARED_KEYS = ("outcome", "collapse_half_cycle", "collapse_time", "onset_time", "impact_times",
+               "peak_rotation_rad", "final_state", "arch", "excitation", "model")
+
+
+def test_run_dem_json_keys_match_the_analytical_run(capsys):
+    """Figure 4(d) (t_p = 0.20 s) on the arch cut at the hinges: the same keys as the analytical
+    run where they apply, and the same first impact (the 3-voussoir arch is the analytical
+    mechanism: within 1 ms)."""
+    args = ["--pulse", "step", "--magnitude", "1.0", "--duration", "0.20", "--t-end", "1.0", "--json"]
+    assert main(["run", *args]) == 0
+    an = json.loads(capsys.readouterr().out)
+    assert main(["run", "--model", "dem", "--dem-assembly", "hinges", *args]) == 0
+    dm = json.loads(capsys.readouterr().out)
+    for key in SHARED_KEYS:
+        assert key in dm and key in an
+    assert dm["model"] == "dem" and an["model"] == "analytical"
+    for key in ("first_impact_time", "max_rotation_rad", "dem", "collapse_half_cycle_basis"):
+        assert key in dm
+    assert dm["outcome"] == an["outcome"] == "survives"
+    assert dm["impact_times"][0] == pytest.approx(an["impact_times"][0], abs=1e-3)
+    assert dm["first_impact_time"] == pytest.approx(dm["impact_times"][0])
+    assert dm["dem"]["settings"]["rayleigh_alpha_1_s"] == pytest.approx(6.28e-5)
+
+
+def test_run_dem_options_and_errors(capsys, tmp_path):
+    """--damping F_MIN,XI_MIN(%) gives UDEC's alpha = xi w, beta = xi / w (Figure 10's values);
+    --restitution is refused with one line and exit 2; --animate writes a GIF."""
+    gif = tmp_path / "a.gif"
+    assert main(["run", "--model", "dem", "--dem-assembly", "hinges", "--pulse", "step",
+                 "--magnitude", "1.0", "--duration", "0.2", "--t-end", "0.4", "--damping", "0.05,0.001",
+                 "--animate", str(gif), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["dem"]["settings"]["rayleigh_alpha_1_s"] == pytest.approx(3.1416e-6, rel=1e-4)
+    assert out["dem"]["settings"]["rayleigh_beta_s"] == pytest.approx(3.1831e-5, rel=1e-4)
+    assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+    assert main(["run", "--model", "dem", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.2",
+                 "--restitution", "0.9"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "restitution" in err and len(err.splitlines()) == 1
+
+
+def test_domain_dem_quick(capsys):
+    """A very coarse DEM domain at one duration (2 magnitudes + bisection to 0.3 g, ceiling 1.2 g):
+    the JSON has both DEM boundaries beside the analytical ones. The DEM boundary reported is the
+    collapsing end of a bracket <= 0.3 g wide, and the two models agree to 0.5 % (1st half cycle)
+    and 10 % (governing, DEM higher: 0.672 vs 0.610 g at 0.01 g resolution), so it lies between
+    the analytical boundary and that plus 0.3 g + 10 %."""
+    assert main(["domain", "--model", "dem", "--durations", "0.3", "--scan", "2", "--precision", "0.3",
+                 "--max-magnitude", "1.2", "--workers", "2", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rows = {r["boundary"]: r for r in out["rows"]}
+    assert set(rows) == {"first_half_cycle", "collapse"}
+    assert rows["first_half_cycle"]["assembly"] == "hinges"
+    assert rows["collapse"]["assembly"] == "voussoirs"
+    for r in rows.values():
+        if r["dem_g"] is not None:
+            a = r["analytical_g"]
+            assert 0.995 * a <= r["dem_g"] <= 1.1 * a + 0.3
+    assert out["dem_governing"]["runs"] >= 2
+
+
+def test_dem_sweep_through_a_process_pool(tmp_path):
+    """Three DEM cases through run_sweep with two worker processes: stored once each (a second
+    run computes nothing), with the DEM summary (outcome, impacts, the DEM's own block)."""
+    from archquake.sweeps import ResultStore, run_sweep
+    from archquake.sweeps.study import parse_study
+
+    study = parse_study({
+        "study": {"name": "dem", "model": "dem"},
+        "arches": {"radius": 10, "thickness_ratio": 0.15, "embrace_deg": 157.5, "voussoirs": 7},
+        "excitation": {"type": "step", "magnitude_g": [0.3, 0.8, 1.0], "duration_s": 0.2},
+        "options": {"t_end_s": 0.8},
+    })
+    with ResultStore(tmp_path / "d.sqlite") as store:
+        report = run_sweep(study.cases, store, workers=2)
+        again = run_sweep(study.cases, store, workers=2)
+        rows = store.rows(flatten_outputs=False)
+    assert report.computed == 3 and again.computed == 0 and again.already_stored == 3
+    assert len(rows) == 3
+    out = {r["magnitude_g"]: json.loads(r["outputs_json"]) for r in rows}
+    # 0.3 g < lambda = 0.37 g: no hinging (the equivalent static analysis); 1.0 g: the first
+    # impact near 0.64 s of Figure 4(d)
+    assert out[0.3]["outcome"] == "no_hinging"
+    assert out[1.0]["first_impact_time"] == pytest.approx(0.635, abs=0.01)
+    assert "dem" in out[1.0] and out[1.0]["dem"]["settings"]["duration_s"] == pytest.approx(0.8)
