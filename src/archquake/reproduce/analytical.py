@@ -419,19 +419,32 @@ def _dem_domain_rows(
         )
     ]
     slack = gov.widths_g + 2 * dom.settings.precision_g
-    ok_g = np.isfinite(gov.magnitudes_g) | ~np.isfinite(an_g)
+    fin = np.isfinite(gov.magnitudes_g) & np.isfinite(an_g)
+    below = fin & (gov.magnitudes_g < an_g - slack)
+    rel_g = np.abs(gov.magnitudes_g[fin] - an_g[fin]) / an_g[fin]
+    # 'generally conservative' (p. 2133): the DEM boundary at or above the analytical one at most
+    # durations; 'quite good' agreement (Figure 6b): within 15 % wherever both exist
+    ok = (bool(fin.any()) and 2 * int(below.sum()) <= int(fin.sum())
+          and bool(np.all(rel_g <= 0.15)))
+    note = ""
+    if below.any():
+        note = ("DEM below the analytical boundary (beyond the bracket) at t = "
+                + ", ".join(f"{d:.2f} s ({100 * (m - a) / a:+.1f} %)"
+                            for d, m, a in zip(dg[below], gov.magnitudes_g[below], an_g[below]))
+                + ": there the analytical model is not conservative")
     rows.append(
         Row(
             f"{label}: governing boundary, DEM (7 voussoirs) vs analytical",
             src,
-            "analytical generally conservative (DEM higher)",
+            "quite good agreement; analytical generally conservative (DEM higher)",
             ", ".join(
                 f"t = {d:.2f} s: {_fmt(m)} vs {_fmt(a)} g" for d, m, a in zip(dg, gov.magnitudes_g, an_g)
             ),
-            "DEM >= analytical - bracket",
-            "the paper's 'predictions of the analytical model are generally conservative' (p. 2133)",
-            bool(np.all(ok_g))
-            and bool(np.all((gov.magnitudes_g >= an_g - slack) | ~np.isfinite(gov.magnitudes_g))),
+            "within 15 %; DEM >= analytical - bracket at most durations",
+            "the paper's 'quite good ... generally conservative' (p. 2133); 15 % is the spread of "
+            "Figure 6(b)'s curves read by eye",
+            ok,
+            note,
         )
     )
     series = [
