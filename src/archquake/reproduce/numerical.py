@@ -146,8 +146,8 @@ def damping_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         asm, DemSettings().with_(contact=DemSettings().contact.__class__(normal_stiffness=1e21))
     )
     motion = StepImpulse.from_g(1.0, 0.22)
-    std = simulate_dem(arch, motion, DemSettings(duration=1.6))
-    red = simulate_dem(arch, motion, DemSettings(duration=1.6, damping=(a2, b2)))
+    std = simulate_dem(arch, motion, DemSettings(duration=6.0))
+    red = simulate_dem(arch, motion, DemSettings(duration=6.0, damping=(a2, b2)))
     slip_std, slip_red = (float(np.max(np.abs(r.joint_slip))) for r in (std, red))
     rows = [
         Row(
