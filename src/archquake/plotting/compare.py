@@ -128,9 +128,13 @@ def domain_comparison_figure(comparisons: Sequence, path: str | Path) -> Path:
     """One panel per :class:`~archquake.compare.DomainComparison` (several radii, or step and
     sine), saved to ``path``."""
     n = len(comparisons)
-    fig, axes = plt.subplots(1, n, figsize=(6.0 * n, 4.6), squeeze=False)
+    cols = min(3, n)
+    rows = -(-n // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(6.0 * cols, 4.6 * rows), squeeze=False)
     for ax, c in zip(axes.flat, comparisons):
         plot_domain_comparison(c, ax, title=c.label or None)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
     fig.tight_layout()
     return _finish(fig, path)
 
