@@ -45,8 +45,11 @@ DOMAIN_TAIL = 6.0
 
 
 def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
-             first_only: bool, g: float) -> tuple[int, int]:
-    """One DEM run: (kernel outcome code, collapse half cycle or 0). Module-level: picklable."""
+             first_only: bool, g: float, governing_only: bool = False) -> tuple[int, int]:
+    """One DEM run: (kernel outcome code, collapse half cycle or 0). Module-level: picklable.
+
+    With ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the
+    search brackets no first-half-cycle boundary."""
     from archquake.dem import simulate_dem
 
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
@@ -55,7 +58,7 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
     if res.outcome.value == "collapse":
         if first_only and half != 1:
             return K.OUTCOME_SURVIVES, 0
-        return K.OUTCOME_COLLAPSE, half
+        return K.OUTCOME_COLLAPSE, 0 if governing_only else half
     if res.outcome.value == "no_hinging":
         return K.OUTCOME_NO_HINGING, 0
     return K.OUTCOME_SURVIVES, 0
@@ -80,6 +83,9 @@ class DemPulseEvaluator:
     executor : Executor, optional
         Where the runs of one call go (``map``); None runs them here.
     g : float
+    governing_only : bool
+        Report collapses without their half cycle (0), so that the domain search brackets
+        only the governing boundary (see :func:`dem_failure_domain`).
 
     Notes
     -----
@@ -94,6 +100,7 @@ class DemPulseEvaluator:
     first_only: bool = False
     executor: Executor | None = None
     g: float = STANDARD_GRAVITY
+    governing_only: bool = False
     runs: int = 0
     seconds: float = 0.0
     _memo: dict = field(default_factory=dict, repr=False)
@@ -106,7 +113,7 @@ class DemPulseEvaluator:
         t0 = time.perf_counter()
         if todo:
             args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
-                     self.first_only, self.g) for a, d in todo]
+                     self.first_only, self.g, self.governing_only) for a, d in todo]
             if self.executor is None:
                 results = [_outcome(*a) for a in args]
             else:
@@ -145,6 +152,7 @@ class DemDomain:
     seconds: float
     workers: int
     dem_settings: dict = field(repr=False, default_factory=dict)
+    governing_only: bool = False
 
     @property
     def boundary_g(self) -> np.ndarray:
@@ -153,7 +161,8 @@ class DemDomain:
 
     def to_dict(self) -> dict:
         return {"assembly": self.assembly, "first_half_cycle_only": self.first_only,
-                "runs": self.runs, "seconds": self.seconds, "workers": self.workers,
+                "governing_only": self.governing_only, "runs": self.runs, "seconds": self.seconds,
+                "workers": self.workers,
                 "search": self.domain.settings.to_dict(), "dem_settings": self.dem_settings,
                 "points": self.domain.to_dict()}
 
@@ -171,6 +180,7 @@ def dem_failure_domain(
     workers: int | None = None,
     executor: Executor | None = None,
     g: float = STANDARD_GRAVITY,
+    governing_only: bool = False,
 ) -> DemDomain:
     """The failure domain of the DEM arch through the analytical domain search.
 
@@ -196,6 +206,11 @@ def dem_failure_domain(
     executor : Executor, optional
         An executor to use instead of a new process pool.
     g : float
+    governing_only : bool
+        Search only the governing boundary (``collapse_g``): collapses are not told apart by
+        half cycle, so the runs that would bracket this assembly's own first-half-cycle boundary
+        are saved (the paper takes that boundary from the three-voussoir arch). The domain's
+        ``first_half_cycle_g`` is then NaN and ``collapse_half_cycle`` 0: not searched.
 
     Returns
     -------
@@ -222,13 +237,14 @@ def dem_failure_domain(
         n = getattr(executor, "_max_workers", 0) or 0
     try:
         tail_s = tail * math.sqrt(arch.radius / g)
-        ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g)
+        ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
+                               governing_only and not first_only)
         dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
     finally:
         if own is not None:
             own.shutdown()
     return DemDomain(dom, assembly, first_only, ev.runs, time.perf_counter() - t0, max(n, 1),
-                     dst.to_dict())
+                     dst.to_dict(), ev.governing_only)
 
 
 def _cores() -> int:

@@ -17,10 +17,6 @@ from pathlib import Path
 from archquake._json import to_jsonable
 from archquake.geometry.arch import Arch
 
-#: Text used in the report for a row that could not be computed because the distinct-element
-#: model is missing from this build.
-NOT_AVAILABLE = "not available in this build"
-
 
 @dataclass(frozen=True)
 class Row:
@@ -112,11 +108,6 @@ class Row:
 def within(value: float, target: float, tolerance: float) -> bool:
     """|value - target| <= tolerance (False for NaN)."""
     return bool(math.isfinite(value) and abs(value - target) <= tolerance)
-
-
-def not_available(quantity: str, source: str, paper: str, why: str = NOT_AVAILABLE) -> Row:
-    """A row the build cannot compute (shown, never counted as a pass)."""
-    return Row(quantity, source, paper, "-", "-", "-", None, why)
 
 
 @dataclass(frozen=True)
@@ -213,12 +204,10 @@ class Study:
 
 
 __all__ = [
-    "NOT_AVAILABLE",
     "Figure",
     "Row",
     "Study",
     "StudyFunction",
     "StudyResult",
-    "not_available",
     "within",
 ]

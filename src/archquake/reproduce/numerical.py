@@ -1,6 +1,5 @@
 """Studies of the distinct-element comparison alone: hinge locations during motion (Figure 9)
-and the damping of the model (p. 2131, Figure 10). Without the DEM in the build they return
-rows marked not available."""
+and the damping of the model (p. 2131, Figure 10), run through :mod:`archquake.compare`."""
 
 from __future__ import annotations
 
@@ -9,54 +8,35 @@ from pathlib import Path
 
 import numpy as np
 
+from archquake.compare import FIGURE9_TIMES, FIGURE10_DAMPING, FIGURE10_PULSE, FIGURE10_TIME
 from archquake.geometry.arch import Arch
-from archquake.ground import StepImpulse
-from archquake.reproduce import _dem
-from archquake.reproduce.core import Figure, Row, StudyResult, not_available, within
+from archquake.reproduce.core import Figure, Row, StudyResult, within
 
-#: Figure 9's snapshot times, s (a = 1.0 g, t_p = 0.20 s).
-FIGURE9_TIMES = (0.20, 0.50, 0.80, 1.10, 1.30, 1.80)
+#: DEM simulated time of the damping study, s: long enough to see the outcome of Figure 10's pulse.
+DAMPING_RUN = 6.0
 
 
-def dem_hinges(result, time: float, fraction: float = 0.1) -> tuple[int, ...]:
-    """Joints open at ``time`` by at least ``fraction`` of the largest opening then (the hinges
-    one sees on a snapshot such as the paper's Figure 9)."""
-    k = int(np.clip(np.searchsorted(result.times, time), 0, len(result.times) - 1))
-    gap = result.joint_opening[k].max(axis=1)
-    top = float(gap.max())
-    if top <= result.settings.hinge_opening * result.assembly.reference_length:
-        return ()
-    return tuple(int(j) for j in np.flatnonzero(gap >= fraction * top))
+def _joints(hinges) -> tuple[int, ...]:
+    """The joints of :func:`archquake.compare.dem_hinges`' (joint, face) pairs, ascending."""
+    return tuple(sorted({j for j, _ in hinges}))
 
 
 def figure9_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
-    """Figure 9: the DEM's hinges against the analytical ones and the line of thrust."""
-    src = "p. 2131, Figure 9"
-    if not _dem.available():
-        rows = [
-            not_available(f"DEM hinges at {t:.2f} s", src, "see p. 2131-2132") for t in FIGURE9_TIMES[:4]
-        ]
-        return StudyResult("figure9", "Hinges in the distinct-element model (Figure 9)", tuple(rows))
-    import matplotlib  # noqa: F401  (plotting.dem sets the Agg backend)
-
-    from archquake.dem import DemSettings, simulate_dem
+    """Figure 9: the DEM's hinges (:func:`archquake.compare.compare_hinges`) against the
+    analytical ones and the line of thrust."""
+    from archquake.compare import compare_hinges, dem_hinges
     from archquake.mechanism import default_mechanism
-    from archquake.plotting.dem import plot_dem_snapshots
+    from archquake.plotting.compare import figure9_comparison
 
-    res = simulate_dem(arch, StepImpulse.from_g(1.0, 0.20), DemSettings(duration=2.0))
-    fig = plot_dem_snapshots(res, FIGURE9_TIMES)
-    fig.suptitle("Figure 9: DEM, step impulse 1.0 g, 0.20 s (hinges red, velocities blue)")
-    path = figures / "figure9_dem_snapshots.png"
-    fig.savefig(path, dpi=90)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
+    hc = compare_hinges(arch, FIGURE9_TIMES)
+    res = hc.dem_result
+    path = figure9_comparison(arch, hc.states, res, figures / "figure9_dem_snapshots.png")
     mech = default_mechanism(arch)
     first = tuple(mech.joints)
     mirrored = tuple(mech.mirrored().joints)
-    hinges = {t: dem_hinges(res, t) for t in FIGURE9_TIMES}
+    hinges = {t: _joints(h) for t, h in zip(hc.times, hc.dem)}
     impact = res.first_impact_time or FIGURE9_TIMES[2]
-    window = [t for t in np.arange(0.20, impact, 0.01) if dem_hinges(res, t) == first]
+    window = [t for t in np.arange(0.20, impact, 0.01) if _joints(dem_hinges(res, t)) == first]
     rows = [
         Row(
             "0.20 s (first pulse): the DEM's second hinge",
@@ -110,6 +90,7 @@ def figure9_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         )
     data = {
         "hinges": {f"{t:.2f}": list(h) for t, h in hinges.items()},
+        "comparison": hc.to_dict(),
         "dem": res.to_dict(),
         "analytical_first": list(first),
         "analytical_mirrored": list(mirrored),
@@ -118,7 +99,13 @@ def figure9_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         "figure9",
         "Hinges in the distinct-element model (Figure 9)",
         tuple(rows),
-        (Figure(path.name, "Figure 9: DEM snapshots with hinges and block velocities"),),
+        (
+            Figure(
+                path.name,
+                "Figure 8 (analytical hinges and line of thrust, left) beside Figure 9 (DEM blocks, "
+                "hinges and velocities, right)",
+            ),
+        ),
         tuple(departures),
         data,
     )
@@ -127,28 +114,23 @@ def figure9_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
 def damping_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     """The DEM's stiffness and Rayleigh damping as the paper reads (p. 2131, 2133) and the reduced
     damping run of Figure 10."""
-    src = "p. 2131"
-    if not _dem.available():
-        rows = [
-            not_available("Rayleigh damping (alpha, beta)", src, "6.28e-5, 1.59e-4"),
-            not_available("reduced damping: inter-stone displacements", "p. 2133, Figure 10", "appear"),
-        ]
-        return StudyResult("damping", "DEM stiffness and damping (p. 2131, Figure 10)", tuple(rows))
-    from archquake.dem import DemSettings, build_arch_assembly, simulate_dem, stable_time_step
-    from archquake.plotting.dem import plot_dem_snapshot
+    from archquake.compare import dem_assembly, reduced_damping_snapshot
+    from archquake.dem import DemSettings, stable_time_step
+    from archquake.plotting.compare import figure10
 
+    src = "p. 2131"
     a1, b1 = DemSettings.rayleigh_from_minimum(0.1, 1e-4)
-    a2, b2 = DemSettings.rayleigh_from_minimum(0.05, 1e-5)
+    a2, b2 = DemSettings.rayleigh_from_minimum(*FIGURE10_DAMPING)
     f_crit1, f_crit2 = 1 / (math.pi * b1), 1 / (math.pi * b2)  # xi = 1 where beta omega / 2 = 1
-    asm = build_arch_assembly(arch)
+    asm = dem_assembly(arch)
     dt_pa, _ = stable_time_step(asm, DemSettings())
     dt_gpa, _ = stable_time_step(
         asm, DemSettings().with_(contact=DemSettings().contact.__class__(normal_stiffness=1e21))
     )
-    motion = StepImpulse.from_g(1.0, 0.22)
-    std = simulate_dem(arch, motion, DemSettings(duration=6.0))
-    red = simulate_dem(arch, motion, DemSettings(duration=6.0, damping=(a2, b2)))
+    snap = reduced_damping_snapshot(arch, end_time=DAMPING_RUN)
+    std, red = snap.paper, snap.reduced
     slip_std, slip_red = (float(np.max(np.abs(r.joint_slip))) for r in (std, red))
+    a_g, t_p = FIGURE10_PULSE
     rows = [
         Row(
             "Rayleigh damping from xi_min = 0.01 % at 0.1 Hz",
@@ -188,7 +170,7 @@ def damping_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             1.6 / dt_gpa > 1e9,
         ),
         Row(
-            "reduced damping: inter-stone displacements appear (a = 1.0 g, t_p = 0.22 s)",
+            f"reduced damping: inter-stone displacements appear (a = {a_g:g} g, t_p = {t_p:g} s)",
             "p. 2133, Figure 10",
             "relative displacements similar to sliding",
             f"largest joint slip {1000 * slip_red:.1f} mm vs {1000 * slip_std:.1f} mm "
@@ -207,26 +189,29 @@ def damping_study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             red.outcome == std.outcome,
         ),
     ]
-    ax = plot_dem_snapshot(red, 1.29)
-    ax.set_title("Figure 10: reduced damping, a = 1.0 g, t_p = 0.22 s, t = 1.29 s")
-    from archquake.plotting.domains import save
-
-    path = save(ax, figures / "figure10_reduced_damping.png")
+    path = figure10(red, FIGURE10_TIME, figures / "figure10_reduced_damping.png", reference=std)
     data = {
         "rayleigh_paper": [a1, b1],
         "rayleigh_reduced": [a2, b2],
         "critical_hz": [f_crit1, f_crit2],
         "max_slip_m": {"paper_damping": slip_std, "reduced": slip_red},
         "outcomes": {"paper_damping": std.outcome.value, "reduced": red.outcome.value},
+        "snapshot": snap.to_dict(),
     }
     return StudyResult(
         "damping",
         "DEM stiffness and damping (p. 2131, Figure 10)",
         tuple(rows),
-        (Figure(path.name, "Figure 10: the arch at 1.29 s with reduced Rayleigh damping"),),
+        (
+            Figure(
+                path.name,
+                f"Figure 10: the arch at {FIGURE10_TIME:g} s with reduced Rayleigh damping, and the "
+                "inter-stone displacements at every joint beside those with the paper's damping",
+            ),
+        ),
         (),
         data,
     )
 
 
-__all__ = ["FIGURE9_TIMES", "damping_study", "dem_hinges", "figure9_study"]
+__all__ = ["damping_study", "figure9_study"]
