@@ -59,6 +59,18 @@ def test_evaluator_memoises_and_reports_first_half_cycle_only(oppenheim):
     assert out.collapses[0] and not out.collapses_first[0] and out.collapse_half_cycle[0] == 2
 
 
+def test_governing_only_counts_every_collapse_but_no_half_cycle(oppenheim):
+    """'governing_only' (the voussoir arch's governing boundary alone): the same run (1.0 g,
+    t_p = 0.27 s, 2nd-half-cycle collapse) is still a collapse, but with no half cycle, so the
+    domain search brackets no first-half-cycle boundary for it."""
+    from archquake.dem import build_arch_assembly
+
+    ev = DemPulseEvaluator(build_arch_assembly(oppenheim), PulseFamily.STEP, DemSettings(),
+                           tail_s=3.5, governing_only=True)
+    out = ev([1.0], [0.27])
+    assert out.collapses[0] and not out.collapses_first[0] and out.collapse_half_cycle[0] == 0
+
+
 @pytest.mark.slow
 def test_dem_domains_figure6_oppenheim(oppenheim):
     """Figure 6 for Oppenheim's arch at the DEM resolution (0.01 g): first-half-cycle boundaries
