@@ -4,6 +4,7 @@ points laid over them (Figures 4, 9, 10 and 11 come from :mod:`archquake.plottin
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -20,8 +21,14 @@ DemSeries = tuple[str, np.ndarray, np.ndarray, str]
 
 
 def _overlay(ax, series: Sequence[DemSeries]) -> None:
+    """Markers in the colour of the analytical curve of the same arch (matched on the label's
+    "R = ... m" part before " DEM"), so that each radius reads as one colour."""
+    curves = {line.get_label(): line.get_color() for line in ax.get_lines()}
     for label, x, y, style in series:
-        ax.plot(np.asarray(x), np.asarray(y), style, ms=6, lw=1.2, label=label)
+        arch_label = label.split(" DEM")[0]
+        colour = next((c for name, c in curves.items()
+                       if name == arch_label or name.startswith(arch_label + ",")), None)
+        ax.plot(np.asarray(x), np.asarray(y), style, ms=6, lw=1.2, label=label, color=colour)
     ax.legend(fontsize=7, loc="upper right")
 
 
@@ -35,6 +42,8 @@ def domains_with_dem(
 ) -> Path:
     """Several arches' boundaries (Figures 6, 7) with distinct-element points laid over them."""
     ax = plot_domains(cases, boundary=boundary, title=title)
+    if title:
+        ax.set_title("\n".join(textwrap.wrap(title, 60)), fontsize=9)
     _overlay(ax, series)
     return save(ax, path)
 
