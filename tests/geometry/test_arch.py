@@ -108,3 +108,10 @@ def test_oppenheim_mechanism_virtual_work(oppenheim):
 def test_inadmissible_faces_are_rejected(oppenheim):
     with pytest.raises(InvalidParameterError, match="admissible"):
         HingeMechanism(oppenheim, (0, 3, 5, 7), (Face.INTRADOS,) * 4)
+
+
+def test_centroid_of_a_vanishingly_thin_arch_is_the_circular_arc_centroid():
+    """t -> 0: the voussoir is an arc of radius R, centroid at R sin(h)/h (closed form)."""
+    arch = Arch(10.0, 1e-12, math.radians(157.5), 7)
+    h = 0.5 * arch.voussoir_angle
+    assert arch.centroid_radius == pytest.approx(10.0 * math.sin(h) / h, rel=1e-12)

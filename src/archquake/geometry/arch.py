@@ -203,7 +203,8 @@ class Arch:
         """Distance from O to each voussoir's centroid, m (annular sector, exact)."""
         ri, ro = self.intrados_radius, self.extrados_radius
         h = 0.5 * self.voussoir_angle
-        return 2.0 * math.sin(h) * (ro**3 - ri**3) / (3.0 * h * (ro**2 - ri**2))
+        # (ro^3 - ri^3) / (ro^2 - ri^2) without the cancellation that ruins very thin arches
+        return 2.0 * math.sin(h) * (ro * ro + ro * ri + ri * ri) / (3.0 * h * (ro + ri))
 
     @cached_property
     def voussoir_masses(self) -> np.ndarray:
