@@ -13,20 +13,8 @@ from archquake.ground.base import KIND_SAMPLED, KIND_SINE, KIND_STEP
 @nb.njit(cache=True, nogil=True)
 def ground_acceleration(kind: int, params: np.ndarray, t: float) -> float:
     """x_g''(t), m/s^2, for the motion described by ``(kind, params)``."""
-    if kind == KIND_STEP:
-        a, tp, direction = params[0], params[1], params[2]
-        if t < 0.0:
-            return 0.0
-        if t < tp:
-            return direction * a
-        if t < 3.0 * tp:
-            return -0.5 * direction * a
-        return 0.0
-    if kind == KIND_SINE:
-        a, period, direction = params[0], params[1], params[2]
-        if t < 0.0 or t >= period:
-            return 0.0
-        return direction * a * math.sin(2.0 * math.pi * t / period)
+    if kind == KIND_STEP or kind == KIND_SINE:
+        return ground_in_piece(kind, params, t, t)  # the pulses' one definition
     if kind != KIND_SAMPLED:
         raise ValueError("unknown ground-motion kind")
     # sampled, linear between samples
