@@ -19,7 +19,6 @@ import time
 import numpy as np
 
 from archquake.domains import DomainSettings, evaluate_pulses, failure_domain, oppenheim_arch
-from archquake.domains.domain import static_multiplier_g
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism
 from archquake.mechanism.reference import simulate_reference
@@ -44,7 +43,7 @@ def main() -> None:
           f"{best / n * 1e6:.0f} us each, numba threads: {os.environ.get('NUMBA_NUM_THREADS', 'all')}")
 
     # the coarse scan's cases, to sample the plain loop and the no-early-stop batch on
-    lam = static_multiplier_g(prepared)
+    lam = prepared.collapse_acceleration_g
     k = np.arange(1, settings.coarse_points + 1)
     coarse = lam * (settings.max_magnitude_g / lam) ** (k / settings.coarse_points)
     a_all, d_all = (x.ravel() for x in np.meshgrid(coarse, durations))

@@ -18,7 +18,7 @@ from archquake import Arch
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.ground import StepImpulse
 from archquake.limit import limit_analysis
-from archquake.mechanism.simulate import PreparedMechanism, simulate
+from archquake.mechanism import PreparedMechanism, simulate
 from archquake.thrust import state_at, states
 from archquake.thrust.friction import friction_demand
 

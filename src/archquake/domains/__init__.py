@@ -14,7 +14,6 @@ from archquake.domains.domain import (
     FailureDomain,
     NonMonotonicBand,
     failure_domain,
-    static_multiplier_g,
 )
 from archquake.domains.scaling import (
     ScalingComparison,
@@ -49,6 +48,5 @@ __all__ = [
     "paper_boundary",
     "scale_study",
     "similar_boundary",
-    "static_multiplier_g",
     "study_case",
 ]

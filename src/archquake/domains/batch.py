@@ -20,9 +20,9 @@ from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.mechanism import _kernels as K
+from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import (
     Outcome,
-    PreparedMechanism,
     SolverOptions,
     simulate,
 )
@@ -108,11 +108,6 @@ class PulseOutcomes:
         return [_OUTCOMES[int(o)] for o in self.outcome]
 
 
-def prepare(arch: Arch | PreparedMechanism) -> PreparedMechanism:
-    """The packed mechanism of an arch (the equivalent static analysis's hinges)."""
-    return arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
-
-
 def _pairs(magnitudes_g, durations) -> tuple[np.ndarray, np.ndarray]:
     a = np.atleast_1d(np.asarray(magnitudes_g, dtype=float))
     d = np.atleast_1d(np.asarray(durations, dtype=float))
@@ -168,7 +163,7 @@ def evaluate_pulses(
     """
     from archquake.domains._batch import batch_kernel, default_t_end
 
-    prepared = prepare(arch)
+    prepared = PreparedMechanism.build(arch)
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     a, d = _pairs(magnitudes_g, durations)
@@ -201,7 +196,7 @@ def evaluate_pulses_scalar(
     g: float = STANDARD_GRAVITY,
 ) -> PulseOutcomes:
     """The plain twin of :func:`evaluate_pulses`: a loop over :func:`~archquake.mechanism.simulate`."""
-    prepared = prepare(arch)
+    prepared = PreparedMechanism.build(arch)
     fam = PulseFamily.parse(family)
     a, d = _pairs(magnitudes_g, durations)
     codes = {v: k for k, v in _OUTCOMES.items()}
@@ -215,4 +210,4 @@ def evaluate_pulses_scalar(
     return PulseOutcomes(a, d, outcome, half, np.ones(a.shape[0], dtype=np.int64))
 
 
-__all__ = ["PulseFamily", "PulseOutcomes", "evaluate_pulses", "evaluate_pulses_scalar", "prepare"]
+__all__ = ["PulseFamily", "PulseOutcomes", "evaluate_pulses", "evaluate_pulses_scalar"]

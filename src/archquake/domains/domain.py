@@ -42,10 +42,10 @@ from archquake._validate import require_int, require_positive
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.mechanism.kinematics import G0, H0
-from archquake.mechanism.simulate import PreparedMechanism, SolverOptions
+from archquake.mechanism.prepared import PreparedMechanism
+from archquake.mechanism.simulate import SolverOptions
 
-from .batch import PulseFamily, PulseOutcomes, evaluate_pulses, prepare
+from .batch import PulseFamily, PulseOutcomes, evaluate_pulses
 
 #: Figure 5's durations t_p, s.
 FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())
@@ -219,11 +219,6 @@ def _num(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def static_multiplier_g(prepared: PreparedMechanism) -> float:
-    """lambda of the packed mechanism, g: the onset threshold the kernels use (G0 / |H0|)."""
-    return float(prepared.packed[G0] / abs(prepared.packed[H0]))
-
-
 # ----------------------------------------------------------------------------- the search
 @dataclass
 class _Bracket:
@@ -287,7 +282,7 @@ def failure_domain(
     (True, 2)
     """
     settings = DomainSettings() if settings is None else settings
-    prepared = prepare(arch)
+    prepared = PreparedMechanism.build(arch)
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     if durations is None:
@@ -295,7 +290,7 @@ def failure_domain(
     dur = np.atleast_1d(np.asarray(durations, dtype=float))
     if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
         raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
-    lam = static_multiplier_g(prepared)
+    lam = prepared.collapse_acceleration_g
     ceiling = settings.max_magnitude_g
     if ceiling <= lam:
         raise InvalidParameterError(
@@ -427,4 +422,4 @@ def failure_domain(
 
 
 __all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "FailureDomain", "NonMonotonicBand",
-           "failure_domain", "static_multiplier_g"]
+           "failure_domain"]

@@ -1,6 +1,6 @@
 """Compiled time history of the rocking arch: Dormand-Prince 5(4) with events.
 
-State machine (one mechanism packed by :func:`archquake.mechanism.kinematics.pack_mechanism`):
+State machine (one mechanism packed by :func:`archquake.mechanism.prepared.pack_mechanism`):
 
 * ``side = 0``: locked. The arch moves rigidly with the ground until the ground acceleration
   opens a mechanism: side +1 (the packed mechanism) when ``-g G0 - a(t) H0 > 0``, side -1 (its

@@ -8,7 +8,7 @@ import numpy as np
 
 from archquake.errors import SolverError
 from archquake.mechanism.kinematics import link_states
-from archquake.mechanism.simulate import PreparedMechanism
+from archquake.mechanism.prepared import PreparedMechanism
 
 
 def voussoir_positions(prepared: PreparedMechanism, phi: float, side: int = 1) -> np.ndarray:

@@ -1,9 +1,11 @@
 """Position, velocity and acceleration analysis of the arch's four-link mechanism (paper Eq. 1).
 
-The mechanism is packed once into a float64 array (:func:`pack_mechanism`) and every function
-here is plain scalar Python decorated with :func:`numba.extending.register_jitable`: called from
-Python it runs as ordinary Python (the readable reference, used by the ``solve_ivp`` driver),
-called from compiled code it is compiled inline (the fast kernels). One source, two uses.
+The mechanism is packed once into a float64 array (the layout below, filled by
+:func:`archquake.mechanism.prepared.pack_mechanism`) and every function here is plain scalar
+Python decorated with :func:`numba.extending.register_jitable`: called from Python it runs as
+ordinary Python (the readable reference, used by the ``solve_ivp`` driver), called from compiled
+code it is compiled inline (the fast kernels). One source, two uses. This module imports no other
+module of the package's mechanism layer (the compiled kernels import it, never the reverse).
 
 Generalised coordinate: ``phi`` = rotation of link AB about A in its opening sense
 (the paper's theta0 - theta); ``phi > 0`` while the mechanism is open. Primes are d/dphi.
@@ -20,10 +22,7 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba.extending import register_jitable
-
-from archquake.geometry.hinges import HingeMechanism
 
 # packed layout ---------------------------------------------------------------------------
 AX, AY, B0X, B0Y, C0X, C0Y, DX, DY = 0, 1, 2, 3, 4, 5, 6, 7
@@ -31,44 +30,6 @@ SIGMA, BRANCH, LBC, LCD = 8, 9, 10, 11
 LINK0 = 12  # per link: mass, rho0_x, rho0_y, inertia (rho0 = centroid - pivot, undisplaced)
 PHI_CRIT, PHI_TOGGLE, MASS, LENGTH, G0, H0 = 24, 25, 26, 27, 28, 29
 PACKED_SIZE = 30
-
-
-def pack_mechanism(mech: HingeMechanism) -> np.ndarray:
-    """Pack a :class:`HingeMechanism` into the float64 array the kernels read, shape (30,).
-
-    Link masses and inertias are sums over the links' voussoirs (parallel-axis theorem);
-    the critical and toggle rotations are filled in by :func:`linkage_limits`.
-    """
-    arch = mech.arch
-    a, b, c, d = mech.points
-    out = np.zeros(PACKED_SIZE)
-    out[AX:AY + 1], out[B0X:B0Y + 1], out[C0X:C0Y + 1], out[DX:DY + 1] = a, b, c, d
-    out[SIGMA] = float(mech.opening_sign)
-    u0, dv0 = c - b, d - b
-    out[BRANCH] = 1.0 if (dv0[0] * u0[1] - dv0[1] * u0[0]) >= 0.0 else -1.0
-    out[LBC] = math.hypot(*(c - b))
-    out[LCD] = math.hypot(*(c - d))
-    pivots = (a, b, d)
-    for k, (rng, pivot) in enumerate(zip(mech.link_voussoirs, pivots)):
-        idx = np.fromiter(rng, dtype=int)
-        m = arch.voussoir_masses[idx]
-        r = arch.voussoir_centroids[idx]
-        mass = float(m.sum())
-        centroid = (m[:, None] * r).sum(axis=0) / mass
-        inertia = float(arch.voussoir_inertias[idx].sum() + (m * ((r - centroid) ** 2).sum(axis=1)).sum())
-        base = LINK0 + 4 * k
-        out[base] = mass
-        out[base + 1:base + 3] = centroid - pivot
-        out[base + 3] = inertia
-    out[MASS] = arch.mass
-    out[LENGTH] = arch.radius
-    _, _, _, gg, hh = eom_terms(out, 0.0)
-    out[G0], out[H0] = gg, hh
-    from archquake.mechanism._kernels import linkage_limits_compiled
-
-    crit, toggle = linkage_limits_compiled(out, 4000)
-    out[PHI_CRIT], out[PHI_TOGGLE] = crit, toggle
-    return out
 
 
 @register_jitable
@@ -292,7 +253,6 @@ __all__ = [
     "fourbar",
     "link_states",
     "linkage_limits",
-    "pack_mechanism",
     "paper_coefficients",
     "potential",
 ]
@@ -312,7 +272,7 @@ def paper_coefficients(mech, phi: float) -> tuple[float, float, float, float]:
     Parameters
     ----------
     mech : ndarray, shape (30,)
-        Packed mechanism (:func:`pack_mechanism`).
+        Packed mechanism (:func:`archquake.mechanism.prepared.pack_mechanism`).
     phi : float
         Rotation theta0 - theta, rad.
 

@@ -19,8 +19,9 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion
-from archquake.mechanism.kinematics import G0, H0, LENGTH, PHI_CRIT, PHI_TOGGLE, acceleration, eom_terms
-from archquake.mechanism.simulate import Outcome, PreparedMechanism
+from archquake.mechanism.kinematics import G0, H0, LENGTH, acceleration, eom_terms
+from archquake.mechanism.prepared import PreparedMechanism
+from archquake.mechanism.simulate import Outcome
 
 
 @dataclass(frozen=True)
@@ -55,13 +56,13 @@ def simulate_reference(
     g: float = STANDARD_GRAVITY,
 ) -> ReferenceResult:
     """Time history with solve_ivp; see :func:`archquake.mechanism.simulate` for the arguments."""
-    prep = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+    prep = PreparedMechanism.build(arch)
     mech = prep.packed
     cv = prep.restitution if restitution is None else float(restitution)
     tau = math.sqrt(mech[LENGTH] / g)
     t_exc = float(motion.duration)
     t_end = t_exc + 60.0 * tau if t_end is None else float(t_end)
-    phi_crit, phi_toggle = mech[PHI_CRIT], mech[PHI_TOGGLE]
+    phi_crit, phi_toggle = prep.critical_rotation, prep.toggle_rotation
     meff0 = eom_terms(mech, 0.0)[1]
     bounds = _pieces(motion, t_end)
     nfev = 0

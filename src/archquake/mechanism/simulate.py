@@ -38,8 +38,7 @@ from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion
 from archquake.mechanism import _kernels as K
-from archquake.mechanism.impact import ImpactSolution, solve_impact
-from archquake.mechanism.kinematics import G0, H0, PHI_CRIT, PHI_TOGGLE, pack_mechanism
+from archquake.mechanism.prepared import PreparedMechanism
 
 
 class Outcome(str, Enum):
@@ -223,49 +222,6 @@ class SimulationResult:
         return out
 
 
-def default_mechanism(arch: Arch) -> HingeMechanism:
-    """The hinges of the equivalent static analysis, oriented so that a ground acceleration
-    towards -x opens them (the paper's Figure 1).
-
-    Goes through :func:`archquake.limit.limit_analysis` (the line-of-thrust method), so an arch
-    too thin to stand raises :class:`~archquake.errors.UnstableArchError` naming its minimum
-    thickness, and arches of many voussoirs are handled.
-    """
-    from archquake.limit import limit_analysis
-
-    mech = limit_analysis(arch).mechanism
-    return mech if mech.load_direction > 0 else mech.mirrored()
-
-
-@dataclass(frozen=True)
-class PreparedMechanism:
-    """A mechanism packed for the kernels, with its impact solution (reusable across runs)."""
-
-    mechanism: HingeMechanism
-    packed: np.ndarray
-    impact: ImpactSolution
-
-    @property
-    def restitution(self) -> float:
-        """The c_v the time histories use: the impact model's, or 0 (perfectly plastic) where
-        the model's is negative (inadmissible; see :class:`~archquake.mechanism.ImpactSolution`)."""
-        return max(self.impact.restitution_cv, 0.0)
-
-    @classmethod
-    def build(cls, arch_or_mechanism: Arch | HingeMechanism) -> PreparedMechanism:
-        if isinstance(arch_or_mechanism, HingeMechanism):
-            mech = arch_or_mechanism
-            if mech.load_direction < 0:
-                mech = mech.mirrored()
-        elif isinstance(arch_or_mechanism, Arch):
-            mech = default_mechanism(arch_or_mechanism)
-        else:
-            raise InvalidParameterError(
-                f"expected an Arch or a HingeMechanism, got {type(arch_or_mechanism).__name__}"
-            )
-        return cls(mech, pack_mechanism(mech), solve_impact(mech))
-
-
 def simulate(
     arch: Arch | HingeMechanism | PreparedMechanism,
     motion: GroundMotion,
@@ -311,7 +267,7 @@ def simulate(
     >>> r.outcome.value, r.collapse_half_cycle, round(float(r.impact_times[0]), 2)
     ('collapse', 2, 0.86)
     """
-    prepared = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch)
     require_positive("g", g, "m/s^2")
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution
@@ -370,9 +326,9 @@ def simulate(
         impact_model_cv=float(model_cv),
         impact_admissible=bool(model_cv >= 0.0),
         mechanism=mech,
-        static_acceleration=g * prepared.packed[G0] / abs(prepared.packed[H0]),
-        critical_rotation=float(prepared.packed[PHI_CRIT]),
-        toggle_rotation=float(prepared.packed[PHI_TOGGLE]),
+        static_acceleration=g * prepared.collapse_acceleration_g,
+        critical_rotation=prepared.critical_rotation,
+        toggle_rotation=prepared.toggle_rotation,
         g=g,
         history=history,
         stats={"steps": int(counters[3]), "rejected": int(counters[4]),
@@ -380,5 +336,4 @@ def simulate(
     )
 
 
-__all__ = ["FinalState", "History", "Outcome", "PreparedMechanism", "SimulationResult",
-           "SolverOptions", "default_mechanism", "simulate"]
+__all__ = ["FinalState", "History", "Outcome", "SimulationResult", "SolverOptions", "simulate"]

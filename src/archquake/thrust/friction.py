@@ -26,7 +26,8 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.limit.analysis import limit_analysis
-from archquake.mechanism.simulate import PreparedMechanism, SimulationResult, simulate
+from archquake.mechanism.prepared import PreparedMechanism
+from archquake.mechanism.simulate import SimulationResult, simulate
 from archquake.thrust.motion import MotionState, state_at
 
 
@@ -159,7 +160,7 @@ def friction_demand(
     >>> round(fd.max_friction_demand, 3), fd.joint, fd.time, round(fd.static_friction_demand, 3)
     (0.509, 7, 0.0, 0.495)
     """
-    prepared = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch)
     if result is None:
         result = simulate(prepared, motion, g=g)
     geometry = prepared.mechanism.arch

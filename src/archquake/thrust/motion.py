@@ -56,7 +56,8 @@ from archquake.geometry.hinges import Face
 from archquake.ground.base import GroundMotion
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces, moments_about_origin
 from archquake.mechanism.kinematics import acceleration, fourbar, link_states
-from archquake.mechanism.simulate import PreparedMechanism, SimulationResult, simulate
+from archquake.mechanism.prepared import PreparedMechanism
+from archquake.mechanism.simulate import SimulationResult, simulate
 
 #: Relative tolerance (on the thickness) below which two faces of a joint count as closed.
 _CLOSED = 1e-12
@@ -558,7 +559,7 @@ def states(
     -------
     list of MotionState
     """
-    prepared = arch if isinstance(arch, PreparedMechanism) else PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch)
     times = [require_finite("time", float(t)) for t in np.atleast_1d(times)]
     if any(t < 0 for t in times):
         raise InvalidParameterError(f"times must be >= 0 s, got {min(times):g}")
