@@ -19,50 +19,21 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
+from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.compare)
+    ASSEMBLIES,
+    HINGES,
+    VOUSSOIRS,
+    dem_assembly,
+    three_voussoir_assembly,
+)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
-
-#: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
-#: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
-VOUSSOIRS = "voussoirs"
-HINGES = "hinges"
-ASSEMBLIES = (VOUSSOIRS, HINGES)
 
 #: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
 #: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.5 s after the impulse ends
 #: (3.29 s), so 5 sqrt(R/g) (5.05 s there) covers the second half cycle.
 DEFAULT_TAIL = 5.0
-
-
-def three_voussoir_assembly(arch: Arch):
-    """The arch cut only at the hinges of the equivalent static analysis (the paper's
-    three-voussoir arch; joints (0, 3, 5, 7) for Oppenheim's arch).
-
-    Examples
-    --------
-    >>> import math
-    >>> a = three_voussoir_assembly(Arch(10.0, 1.5, math.radians(157.5), 7))
-    >>> a.meta["cut_joints"], int((~a.base).sum())
-    ([0, 3, 5, 7], 3)
-    """
-    from archquake.dem import build_arch_assembly
-    from archquake.mechanism import default_mechanism
-
-    mech = default_mechanism(arch)
-    return build_arch_assembly(arch, cut_joints=tuple(sorted(mech.joints)), mechanism=mech)
-
-
-def dem_assembly(arch: Arch, assembly: str = VOUSSOIRS):
-    """The DEM assembly of ``arch``: ``'voussoirs'`` (every voussoir a block) or ``'hinges'``
-    (:func:`three_voussoir_assembly`)."""
-    from archquake.dem import build_arch_assembly
-
-    if assembly == VOUSSOIRS:
-        return build_arch_assembly(arch)
-    if assembly == HINGES:
-        return three_voussoir_assembly(arch)
-    raise InvalidParameterError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
 
 
 def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFAULT_TAIL,

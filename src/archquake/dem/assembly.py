@@ -1,5 +1,9 @@
 """Block assemblies for the distinct-element model: an arch on its abutments, a block on a base.
 
+The arch's hinges come from the one place that answers "which hinges does this arch have",
+:func:`archquake.mechanism.prepared.hinges_of` (the equivalent static analysis), so the DEM
+accepts every arch the analytical model accepts: any number of voussoirs, hinges anywhere.
+
 An :class:`Assembly` is the frozen description the solver packs into arrays: convex contact
 polygons, exact mass properties, which blocks belong to the (prescribed) base, the joints
 whose opening is recorded, the crown point and the rotation measure.
@@ -23,8 +27,14 @@ import numpy as np
 from archquake._validate import require_positive
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.geometry.hinges import Face, HingeMechanism
-from archquake.limit import kinematic_collapse
+from archquake.geometry.hinges import HingeMechanism
+from archquake.mechanism.prepared import hinges_of
+
+#: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
+#: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
+VOUSSOIRS = "voussoirs"
+HINGES = "hinges"
+ASSEMBLIES = (VOUSSOIRS, HINGES)
 
 
 @dataclass(frozen=True)
@@ -178,6 +188,7 @@ def build_arch_assembly(
     *,
     cut_joints: tuple[int, ...] | None = None,
     mechanism: HingeMechanism | None = None,
+    hold_outside_hinges: bool = False,
 ) -> Assembly:
     """The arch's voussoirs (or groups of them) on two abutments moving with the ground.
 
@@ -187,16 +198,20 @@ def build_arch_assembly(
     cut_joints : tuple of int, optional
         Build a coarser arch cut only at these joints (must include 0 and n), e.g. the
         paper's three-voussoir arch at the analytical hinges, ``(0, 3, 5, 7)`` for
-        Oppenheim's arch. Merged blocks get the exact merged mass properties of their
-        voussoirs (Arch's annular-sector masses, centroids and inertias, combined with the
-        parallel-axis theorem); their contact polygon is the convex hull of their joint end
-        points (the intermediate intrados corners are dropped: contacts only occur at the cut
-        joints, and the hull adds no mass).
+        Oppenheim's arch (:func:`three_voussoir_assembly`). Merged blocks get the exact merged
+        mass properties of their voussoirs (Arch's annular-sector masses, centroids and
+        inertias, combined with the parallel-axis theorem); their contact polygon is the convex
+        hull of their joint end points (the intermediate intrados corners are dropped: contacts
+        only occur at the cut joints, and the hull adds no mass).
     mechanism : HingeMechanism, optional
         The analytical mechanism whose first link defines the rotation measure; default the
-        least-multiplier mechanism
-        (:func:`archquake.limit.kinematic_collapse`), or, for a four-joint cut, the
-        mechanism at the cut joints.
+        arch's hinges, :func:`archquake.mechanism.prepared.hinges_of` (the equivalent static
+        analysis, any number of voussoirs). Its hinges A and B must be cut joints.
+    hold_outside_hinges : bool
+        If True, the voussoirs outside the mechanism's outer hinges (between a springing and a
+        hinge A or D that is not at it) belong to the support: they are base blocks moving with
+        the ground, as the analytical model assumes (they stay on the ground). The mechanism's
+        hinges A and D must then be cut joints.
 
     Notes
     -----
@@ -210,7 +225,7 @@ def build_arch_assembly(
     The rotation measure (``DemResult.rotation``) is the rotation, in the opening sense of the
     first mechanism, of the chord from hinge A (carried by the block just right of joint A) to
     hinge B (carried by the block just left of joint B): for an arch cut at the hinges this is
-    the rotation of link AB itself, the analytical phi; for the seven-voussoir arch it is the
+    the rotation of link AB itself, the analytical phi; for the voussoir arch it is the
     rotation of voussoirs A..B as a whole, which equals phi while they move as one link.
     """
     n = arch.voussoirs
@@ -220,14 +235,17 @@ def build_arch_assembly(
             f"cut_joints must be strictly increasing joint indices from 0 to {n}, got {cut_joints!r}"
         )
     if mechanism is None:
-        if len(cuts) == 4 and cut_joints is not None:
-            mechanism = _mechanism_at(arch, cuts)
-        else:
-            mechanism = kinematic_collapse(arch)[1]
+        mechanism = hinges_of(arch)
     ja, jb = mechanism.joints[0], mechanism.joints[1]
     if ja not in cuts or jb not in cuts:
         raise InvalidParameterError(
             f"hinges A, B at joints {ja}, {jb} must be cut joints {cuts} to measure the rotation"
+        )
+    held_below, held_above = (mechanism.joints[0], mechanism.joints[3]) if hold_outside_hinges else (0, n)
+    if held_below not in cuts or held_above not in cuts:
+        raise InvalidParameterError(
+            f"hinges A, D at joints {held_below}, {held_above} must be cut joints {cuts} to hold "
+            "the voussoirs outside them as part of the support"
         )
     ip, ep = arch.intrados_points, arch.extrados_points
     t = arch.thickness
@@ -258,7 +276,7 @@ def build_arch_assembly(
         masses.append(m)
         inertias.append(inertia)
         cents.append(c)
-        base.append(False)
+        base.append(j1 <= held_below or j0 >= held_above)
     joints = []
     for idx, j in enumerate(cuts):
         left = 0 if j == 0 else block_of_voussoir[j - 1]
@@ -273,6 +291,7 @@ def build_arch_assembly(
         arch.joint_point(jb, mechanism.faces[1].value),
         int(sign),
     )
+    n_free = int(len(base) - np.count_nonzero(base))
     return Assembly(
         polygons=tuple(polys),
         masses=np.array(masses),
@@ -287,14 +306,49 @@ def build_arch_assembly(
         crown_point=np.array([0.0, arch.extrados_radius]),
         rotation_link=link,
         outlines=tuple(outlines),
-        name=f"arch ({len(cuts) - 1} blocks)",
+        name=f"arch ({n_free} blocks)",
         meta={
             "arch": arch.describe(),
             "cut_joints": list(cuts),
+            "held_voussoirs": [int(k) for k in range(n) if k < held_below or k >= held_above],
             "mechanism_joints": list(mechanism.joints),
             "mechanism_faces": [f.value for f in mechanism.faces],
         },
     )
+
+
+def three_voussoir_assembly(arch: Arch) -> Assembly:
+    """The arch cut only at its hinges (:func:`archquake.mechanism.prepared.hinges_of`): the
+    paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
+
+    The three moving blocks are the mechanism's links AB, BC and CD. Where a hinge A or D is
+    not at its springing, the voussoirs between the springing and the hinge are one more block
+    held as part of the support (moving with the ground), as in the analytical model.
+
+    Examples
+    --------
+    >>> import math
+    >>> a = three_voussoir_assembly(Arch(10.0, 1.5, math.radians(157.5), 7))
+    >>> a.meta["cut_joints"], int((~a.base).sum())
+    ([0, 3, 5, 7], 3)
+    >>> b = three_voussoir_assembly(Arch(5.0, 0.6, math.pi, 15))
+    >>> b.meta["cut_joints"], int((~b.base).sum()), b.meta["held_voussoirs"]
+    ([0, 3, 7, 12, 15], 3, [0, 1, 2])
+    """
+    mech = hinges_of(arch)
+    cuts = tuple(sorted({0, *mech.joints, arch.voussoirs}))
+    return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech, hold_outside_hinges=True)
+
+
+def dem_assembly(arch: Arch, assembly: str = VOUSSOIRS) -> Assembly:
+    """The DEM assembly of ``arch``: ``'voussoirs'`` (every voussoir a block,
+    :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
+    :func:`three_voussoir_assembly`)."""
+    if assembly == VOUSSOIRS:
+        return build_arch_assembly(arch)
+    if assembly == HINGES:
+        return three_voussoir_assembly(arch)
+    raise InvalidParameterError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
 
 
 def _merged_outline(arch: Arch, j0: int, j1: int, per: int = 8) -> np.ndarray:
@@ -303,20 +357,6 @@ def _merged_outline(arch: Arch, j0: int, j1: int, per: int = 8) -> np.ndarray:
     inner = arch.intrados_radius * np.column_stack([np.cos(ang), np.sin(ang)])
     outer = arch.extrados_radius * np.column_stack([np.cos(ang[::-1]), np.sin(ang[::-1])])
     return np.vstack([inner, outer])
-
-
-def _mechanism_at(arch: Arch, joints: tuple[int, ...]) -> HingeMechanism:
-    for faces in (
-        (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS),
-        (Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS),
-    ):
-        try:
-            mech = HingeMechanism(arch, joints, faces)
-        except InvalidParameterError:
-            continue
-        if mech.load_direction == 1:
-            return mech
-    raise InvalidParameterError(f"no admissible mechanism with hinges at the cut joints {joints}")
 
 
 def block_on_base(
@@ -364,9 +404,14 @@ def block_on_base(
 
 
 __all__ = [
+    "ASSEMBLIES",
+    "HINGES",
+    "VOUSSOIRS",
     "Assembly",
     "Joint",
     "RotationLink",
     "block_on_base",
     "build_arch_assembly",
+    "dem_assembly",
+    "three_voussoir_assembly",
 ]
