@@ -71,6 +71,45 @@ def test_domain_dem_quick(capsys):
     assert out["dem_governing"]["runs"] >= 2
 
 
+#: R = 5 m, t = 0.6 m, a semicircle of 15 voussoirs: hinges at joints (3, 7, 12, 15), hinge A three
+#: joints above the left springing (the DEM refused it before the hinges had one home).
+SEMICIRCLE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--voussoirs", "15"]
+
+
+def test_run_dem_hinges_on_a_semicircle(capsys):
+    """a = 0.2 g, t_p = 0.3 s: the analytical mechanism collapses in its first half cycle; so does
+    the DEM arch cut at its hinges (voussoirs 0-2 held with the support), with no impact (its
+    collapse criterion, a crown drop of t, is met later than the analytical crest: 1.21 s)."""
+    args = [*SEMICIRCLE, "--pulse", "step", "--magnitude", "0.2", "--duration", "0.3", "--json"]
+    assert main(["run", *args]) == 0
+    an = json.loads(capsys.readouterr().out)
+    assert main(["run", "--model", "dem", "--dem-assembly", "hinges", "--t-end", "1.4", *args]) == 0
+    dm = json.loads(capsys.readouterr().out)
+    assert an["outcome"] == dm["outcome"] == "collapse"
+    assert an["collapse_half_cycle"] == dm["collapse_half_cycle"] == 1
+    assert dm["impact_times"] == []
+    asm = dm["dem"]["assembly"]
+    assert asm["cut_joints"] == [0, 3, 7, 12, 15] and asm["held_voussoirs"] == [0, 1, 2]
+
+
+def test_domain_dem_on_a_semicircle(capsys):
+    """One duration, 2 coarse magnitudes, brackets of 0.2 g under a 0.3 g ceiling, one process:
+    both DEM boundaries are found. The 1st-half-cycle boundary (arch cut at the hinges) is the
+    collapsing end of a bracket <= 0.2 g wide on a model that follows the analytical first half
+    cycle within 2 % (tests/dem/test_any_arch.py), so it lies in [0.98 a, 1.02 a + 0.2 g]
+    (measured 0.121 g against 0.113 g)."""
+    assert main(["domain", "--model", "dem", *SEMICIRCLE, "--durations", "0.3", "--scan", "2",
+                 "--precision", "0.2", "--max-magnitude", "0.3", "--workers", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rows = {r["boundary"]: r for r in out["rows"]}
+    assert set(rows) == {"first_half_cycle", "collapse"}
+    first = rows["first_half_cycle"]
+    assert first["assembly"] == "hinges"
+    assert 0.98 * first["analytical_g"] <= first["dem_g"] <= 1.02 * first["analytical_g"] + 0.2
+    assert rows["collapse"]["assembly"] == "voussoirs" and rows["collapse"]["dem_g"] is not None
+    assert out["dem_governing"]["runs"] >= 2
+
+
 def test_dem_sweep_through_a_process_pool(tmp_path):
     """Three DEM cases through run_sweep with two worker processes: stored once each (a second
     run computes nothing), with the DEM summary (outcome, impacts, the DEM's own block)."""
