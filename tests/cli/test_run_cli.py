@@ -32,7 +32,7 @@ def test_survival_has_null_collapse_half_cycle(capsys):
     assert out["outcome"] == "survives" and out["collapse_half_cycle"] is None
 
 
-def test_no_hinging_below_the_static_acceleration(capsys):
+def test_no_hinging_below_the_collapse_acceleration(capsys):
     out = _run_json(capsys, "--pulse", "sine", "--magnitude", "0.35", "--period", "1.0")
     assert out["outcome"] == "no_hinging" and out["impact_times"] == []
 

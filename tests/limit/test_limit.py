@@ -38,7 +38,7 @@ def _brute_force(arch: Arch) -> dict:
                 continue
             if mech.load_direction == 1:
                 out[(joints, tuple(int(f is Face.EXTRADOS) for f in faces))] = (
-                    mech.static_multiplier()
+                    mech.collapse_acceleration_g
                 )
     return out
 
@@ -61,7 +61,7 @@ def test_oppenheim_both_methods(oppenheim):
     """Paper p. 2126: 0.37 g; the two bounds meet (1e-6: the LP's optimality tolerance)."""
     res = limit_analysis(oppenheim, method="both")
     assert res.collapse_acceleration_g == pytest.approx(0.37, abs=0.005)
-    assert res.static_multiplier == pytest.approx(res.kinematic_multiplier, abs=1e-6)
+    assert res.static_collapse_acceleration_g == pytest.approx(res.kinematic_collapse_acceleration_g, abs=1e-6)
     assert res.mechanism.joints == (0, 3, 5, 7)
     assert res.mechanism.faces == (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS)
     assert res.mechanism.load_direction == 1
@@ -83,7 +83,7 @@ def test_collapse_thrust_line_touches_the_four_hinges(oppenheim):
     for hinge in res.mechanism.hinges:
         assert np.allclose(res.thrust_line[hinge.joint], [hinge.x, hinge.y], atol=1e-9)
     assert collapse_state(res.mechanism)[0] == pytest.approx(
-        res.mechanism.static_multiplier(), abs=1e-12)
+        res.mechanism.collapse_acceleration_g, abs=1e-12)
     # global equilibrium: the two support reactions balance the loads
     total = oppenheim.mass * res.g
     assert np.allclose(jf.force[-1] - jf.force[0],
@@ -94,7 +94,7 @@ def test_mirror_load_gives_mirror_mechanism(oppenheim):
     """A load towards -x is resisted by the mirrored mechanism at the same multiplier."""
     mech = limit_analysis(oppenheim).mechanism.mirrored()
     assert mech.load_direction == -1
-    assert mech.static_multiplier() == pytest.approx(0.3700097, abs=1e-6)
+    assert mech.collapse_acceleration_g == pytest.approx(0.3700097, abs=1e-6)
 
 
 @st.composite

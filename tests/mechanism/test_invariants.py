@@ -149,7 +149,7 @@ def test_inadmissible_impact_is_reported_and_treated_as_plastic():
     prep = PreparedMechanism.build(arch)
     assert prep.impact.restitution_cv < 0 and not prep.impact.admissible
     assert prep.restitution == 0.0
-    lam = prep.mechanism.static_multiplier()
+    lam = prep.mechanism.collapse_acceleration_g
     motion = StepImpulse.from_g(1.5 * lam, 0.3)
     r = simulate(prep, motion)
     assert not r.impact_admissible and r.impact_model_cv == prep.impact.restitution_cv

@@ -55,14 +55,14 @@ def test_tp_020_impacts_near_06_and_survives_with_shrinking_half_cycles(prepared
     assert np.all(np.diff(durations) < 0)
 
 
-def test_below_static_acceleration_no_hinging(prepared):
+def test_below_collapse_acceleration_no_hinging(prepared):
     r = simulate(prepared, StepImpulse.from_g(0.35, 0.5))
     assert r.outcome is Outcome.NO_HINGING
     assert r.onset_time is None
 
 
 def test_onset_threshold_is_the_static_collapse_acceleration(prepared):
-    lam_g = prepared.mechanism.static_multiplier()
+    lam_g = prepared.mechanism.collapse_acceleration_g
     assert lam_g == pytest.approx(0.370, abs=0.005)
     below = simulate(prepared, StepImpulse.from_g(lam_g * (1 - 1e-9), 0.5))
     above = simulate(prepared, StepImpulse.from_g(lam_g * (1 + 1e-6), 0.5))

@@ -1,7 +1,7 @@
 """A cheap, deterministic stand-in case function for testing the sweep machinery.
 
 It is NOT a dynamic model: it evaluates real geometry (the arch's mass and the virtual-work
-static multiplier of the paper's hinge pattern, scaled to the arch's voussoir count) and
+collapse acceleration of the paper's hinge pattern, scaled to the arch's voussoir count) and
 derives a pseudo-outcome from the excitation by a fixed rule, so that every output depends on
 every input and two evaluations of the same case agree bit for bit. The machinery tests
 compare stores produced through different executors, interruptions and clusters against one
@@ -42,7 +42,7 @@ def fake_evaluate(case) -> dict:
     arch = case.arch.build()
     n = arch.voussoirs
     joints = (0, round(3 * n / 7), round(5 * n / 7), n)  # (0, 3, 5, 7): the paper's hinges
-    lam = HingeMechanism(arch, joints, FACES).static_multiplier()
+    lam = HingeMechanism(arch, joints, FACES).collapse_acceleration_g
     exc = case.excitation
     a = exc.magnitude_g
     t_p = exc.duration_s if exc.duration_s is not None else exc.period_s
@@ -51,7 +51,7 @@ def fake_evaluate(case) -> dict:
         outcome = "no_hinging"
     else:
         outcome = "collapse" if demand > 0.5 else "survives"
-    return {"outcome": outcome, "static_multiplier_g": lam, "mass_kg": arch.mass,
+    return {"outcome": outcome, "collapse_acceleration_g": lam, "mass_kg": arch.mass,
             "demand": demand, "impact_times": [t_p * k for k in range(1, 4)],
             "summary": {"span_m": arch.span, "hinges": list(joints)}}
 

@@ -169,11 +169,11 @@ def test_export_csv_and_parquet(tmp_path, reference, small_cases):
         rows = list(csv.DictReader(fh))
     assert len(rows) == 24
     for col in ("case_id", "radius_m", "magnitude_g", "duration_s", "outcome", "elapsed_s",
-                "out.static_multiplier_g", "out.summary.span_m", "out.impact_times"):
+                "out.collapse_acceleration_g", "out.summary.span_m", "out.impact_times"):
         assert col in rows[0], col
     case = next(c for c in small_cases if c.case_id == rows[0]["case_id"])
     expected = fake_evaluate(case)
-    assert float(rows[0]["out.static_multiplier_g"]) == expected["static_multiplier_g"]
+    assert float(rows[0]["out.collapse_acceleration_g"]) == expected["collapse_acceleration_g"]
     assert json.loads(rows[0]["out.impact_times"]) == expected["impact_times"]
 
     import pyarrow.parquet as pq

@@ -106,7 +106,7 @@ def _print_text(result, motion, g: float) -> None:
     print(f"excitation          {_label(motion, g)}")
     hinges = ", ".join(f"joint {h.joint} {h.face.value}" for h in result.mechanism.hinges)
     print(f"hinges (A, B, C, D) {hinges}")
-    print(f"onset of hinging    {result.static_acceleration / g:.4f} g (equivalent static analysis)")
+    print(f"onset of hinging    {result.collapse_acceleration_g:.4f} g (equivalent static analysis)")
     print(f"restitution         c_v = {result.restitution_cv:.4f}, c_T = {result.restitution_ct:.4f}"
           + ("  (c_T > 1: the impact model gains energy for this geometry)" if result.energy_gain else ""))
     if not result.impact_admissible:

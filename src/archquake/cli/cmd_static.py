@@ -61,10 +61,10 @@ def format_result(result) -> str:
         f"collapse acceleration: {result.collapse_acceleration_g:.4f} g "
         "(horizontal, load towards +x; the mirror mechanism for -x)",
     ]
-    if result.static_multiplier is not None and result.kinematic_multiplier is not None:
+    lam_static, lam_kin = result.static_collapse_acceleration_g, result.kinematic_collapse_acceleration_g
+    if lam_static is not None and lam_kin is not None:
         lines.append(
-            f"  static (line of thrust) {result.static_multiplier:.6f} g, kinematic (virtual "
-            f"work) {result.kinematic_multiplier:.6f} g"
+            f"  static (line of thrust) {lam_static:.6f} g, kinematic (virtual work) {lam_kin:.6f} g"
         )
     where = "symmetric" if result.symmetric else "asymmetric"
     lines.append(f"hinges ({where} locations; joint 0 = left springing, {n} = right springing):")

@@ -31,7 +31,7 @@ def demo_step(out: Path, quick: bool) -> list[Path]:
         "# The arch in motion: Oppenheim's arch, step impulse a = 1.0 g (paper Figure 4)",
         "",
         f"Hinges A, B, C, D at joints {prepared.mechanism.joints}; onset at "
-        f"{prepared.mechanism.static_multiplier():.4f} g; impact model c_v = "
+        f"{prepared.collapse_acceleration_g:.4f} g; impact model c_v = "
         f"{prepared.impact.restitution_cv:.4f}, c_T = {prepared.impact.restitution_ct:.4f}.",
         "",
         "| t_p [s] | paper | archquake | first impact [s] | peak phi per half cycle [rad] |",

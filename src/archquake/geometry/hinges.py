@@ -158,9 +158,10 @@ class HingeMechanism:
         work = float(self.arch.voussoir_masses @ v[:, 0])
         return 1 if work > 0 else -1
 
-    def static_multiplier(self) -> float:
-        """Horizontal load factor lambda (in g) at which this mechanism is in limit equilibrium,
-        by virtual work at phi = 0.
+    @property
+    def collapse_acceleration_g(self) -> float:
+        """lambda of this mechanism: the horizontal acceleration, in g, at which it is in limit
+        equilibrium, by virtual work at phi = 0.
 
         Gravity does work -g sum(m v_y) and the load lambda g (towards ``load_direction``)
         does lambda g |sum(m v_x)|, so lambda = sum(m v_y) / |sum(m v_x)|.

@@ -86,17 +86,21 @@ class LimitAnalysis:
     ----------
     arch : Arch
     collapse_acceleration_g : float
-        Collapse multiplier lambda: the horizontal acceleration, in g, at which the arch
-        becomes a mechanism (from the line of thrust through the four hinges).
+        lambda, the equivalent static collapse acceleration: the horizontal acceleration, in g,
+        at which the arch becomes a mechanism (from the line of thrust through the four
+        hinges). The one name of lambda in the package (``PreparedMechanism``,
+        ``HingeMechanism`` and ``SimulationResult`` use it too).
     mechanism : HingeMechanism
         Hinges A, B, C, D at collapse (``mechanism.load_direction == +1``).
     joint_forces : JointForces
         Resultants at every joint at collapse, N and N m (forces of the left part on the
         right part); ``joint_forces.thrust_points`` is the line of thrust, shape (n+1, 2).
-    static_multiplier : float
-        The linear program's optimum, g.
-    kinematic_multiplier : float or None
-        The least virtual-work multiplier, g (None if not computed).
+    static_collapse_acceleration_g : float or None
+        lambda by the static method (lower bound): the linear program's optimum, g (None if
+        not computed).
+    kinematic_collapse_acceleration_g : float or None
+        lambda by the kinematic method (upper bound): the least virtual-work value over the
+        four-hinge mechanisms, g (None if not computed).
     method : Method
     g : float
         Gravity used for the forces, m/s^2.
@@ -106,8 +110,8 @@ class LimitAnalysis:
     collapse_acceleration_g: float
     mechanism: HingeMechanism
     joint_forces: JointForces
-    static_multiplier: float | None
-    kinematic_multiplier: float | None
+    static_collapse_acceleration_g: float | None
+    kinematic_collapse_acceleration_g: float | None
     method: Method
     g: float
 
@@ -149,8 +153,8 @@ class LimitAnalysis:
             "load_direction": "+x",
             "min_friction": self.min_friction,
             "min_friction_joint": self.min_friction_joint,
-            "static_multiplier": self.static_multiplier,
-            "kinematic_multiplier": self.kinematic_multiplier,
+            "static_collapse_acceleration_g": self.static_collapse_acceleration_g,
+            "kinematic_collapse_acceleration_g": self.kinematic_collapse_acceleration_g,
             "method": self.method.value,
             "g": self.g,
             "joints": {
@@ -241,8 +245,8 @@ def limit_analysis(
         collapse_acceleration_g=lam,
         mechanism=mech,
         joint_forces=jf,
-        static_multiplier=lam_static,
-        kinematic_multiplier=lam_kin,
+        static_collapse_acceleration_g=lam_static,
+        kinematic_collapse_acceleration_g=lam_kin,
         method=method,
         g=float(g),
     )

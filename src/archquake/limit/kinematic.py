@@ -10,7 +10,7 @@ it is in limit equilibrium follows from virtual work at the undisplaced configur
 v_k being the centroid velocities of the opening motion (gravity does ``-g sum m v_y``, the
 load ``lambda g`` towards +x does ``lambda g sum m v_x``). By the upper-bound theorem the
 collapse multiplier is the least such lambda over mechanisms that the load drives
-(``sum m v_x > 0``). :meth:`HingeMechanism.static_multiplier` is the scalar reference; here
+(``sum m v_x > 0``). :attr:`HingeMechanism.collapse_acceleration_g` is the scalar reference; here
 the enumeration is vectorised with prefix sums of the voussoirs' masses and first moments, so
 each mechanism costs O(1).
 

@@ -235,7 +235,7 @@ def collapse_state(mechanism: HingeMechanism) -> tuple[float, np.ndarray]:
     Returns
     -------
     multiplier : float
-        Load factor in g (equal, by virtual work, to ``mechanism.static_multiplier()``).
+        Load factor in g (equal, by virtual work, to ``mechanism.collapse_acceleration_g``).
     unknowns : ndarray, shape (3,)
         (H, V, M0) of the left reaction over the weight W (M0 about O, over W R).
     """

@@ -162,8 +162,9 @@ class SimulationResult:
         a restitution is prescribed.
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
-    static_acceleration : float
-        lambda * g, m/s^2: the onset threshold.
+    collapse_acceleration_g : float
+        lambda, g: the equivalent static collapse acceleration of the mechanism, the onset
+        threshold.
     critical_rotation, toggle_rotation : float, rad
         Crest of the potential and the linkage's toggle.
     history : History or None
@@ -185,7 +186,7 @@ class SimulationResult:
     impact_model_cv: float
     impact_admissible: bool
     mechanism: HingeMechanism
-    static_acceleration: float
+    collapse_acceleration_g: float
     critical_rotation: float
     toggle_rotation: float
     g: float
@@ -211,7 +212,7 @@ class SimulationResult:
             "energy_gain": self.energy_gain,
             "impact_model_cv": self.impact_model_cv,
             "impact_admissible": self.impact_admissible,
-            "static_acceleration_g": self.static_acceleration / self.g,
+            "collapse_acceleration_g": self.collapse_acceleration_g,
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
             "hinges": [h.to_dict() for h in self.mechanism.hinges],
@@ -326,7 +327,7 @@ def simulate(
         impact_model_cv=float(model_cv),
         impact_admissible=bool(model_cv >= 0.0),
         mechanism=mech,
-        static_acceleration=g * prepared.collapse_acceleration_g,
+        collapse_acceleration_g=prepared.collapse_acceleration_g,
         critical_rotation=prepared.critical_rotation,
         toggle_rotation=prepared.toggle_rotation,
         g=g,
