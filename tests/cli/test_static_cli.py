@@ -46,7 +46,8 @@ def test_static_json(capsys):
     assert all({"x", "y"} <= h.keys() for h in data["hinges"])
     assert data["symmetric"] is False
     assert data["min_friction"] == pytest.approx(0.50, abs=0.01)
-    assert data["static_collapse_acceleration_g"] == pytest.approx(data["kinematic_collapse_acceleration_g"], abs=1e-6)
+    assert data["static_collapse_acceleration_g"] == pytest.approx(
+        data["kinematic_collapse_acceleration_g"], abs=1e-6)
 
 
 def test_static_plot(tmp_path, capsys):

@@ -61,7 +61,8 @@ def test_oppenheim_both_methods(oppenheim):
     """Paper p. 2126: 0.37 g; the two bounds meet (1e-6: the LP's optimality tolerance)."""
     res = limit_analysis(oppenheim, method="both")
     assert res.collapse_acceleration_g == pytest.approx(0.37, abs=0.005)
-    assert res.static_collapse_acceleration_g == pytest.approx(res.kinematic_collapse_acceleration_g, abs=1e-6)
+    assert res.static_collapse_acceleration_g == pytest.approx(
+        res.kinematic_collapse_acceleration_g, abs=1e-6)
     assert res.mechanism.joints == (0, 3, 5, 7)
     assert res.mechanism.faces == (Face.INTRADOS, Face.EXTRADOS, Face.INTRADOS, Face.EXTRADOS)
     assert res.mechanism.load_direction == 1

@@ -55,7 +55,8 @@ def demo_step(out: Path, quick: bool) -> list[Path]:
         "| quantity | archquake | paper |",
         "| --- | --- | --- |",
         f"| collapse acceleration (static LP) | {result.static_collapse_acceleration_g:.4f} g | 0.37 g |",
-        f"| collapse acceleration (virtual work) | {result.kinematic_collapse_acceleration_g:.4f} g | 0.37 g |",
+        f"| collapse acceleration (virtual work) | {result.kinematic_collapse_acceleration_g:.4f} g "
+        "| 0.37 g |",
         f"| hinges | {_hinges(result)} | (Figure 1) |",
         f"| hinge locations | {'symmetric' if result.symmetric else 'asymmetric'} | "
         "asymmetric (Figure 7) |",
