@@ -79,7 +79,7 @@ def test_min_thickness_json(capsys):
         (["--voussoirs", "2.5"], ("--voussoirs", "whole number")),
         (["--thickness", "abc"], ("--thickness", "expected a number")),
         (["--radius", "nan"], ("--radius", "finite number")),
-        (["--radius", "0"], ("--radius", "> 0")),
+        (["--radius", "0"], ("--radius", "[0.001, 10000] m")),
     ],
 )
 def test_bad_input_is_one_line_exit_2(args, names, capsys):

@@ -76,7 +76,7 @@ def test_scaled_arch_is_similar(oppenheim):
     [
         (dict(radius=10, thickness=-1, embrace=1, voussoirs=7), "thickness must be > 0"),
         (dict(radius=10, thickness=20, embrace=1, voussoirs=7), "thickness must be less than 2 x radius"),
-        (dict(radius=0, thickness=1, embrace=1, voussoirs=7), "radius must be > 0"),
+        (dict(radius=0, thickness=1, embrace=1, voussoirs=7), "radius must be in [0.001, 10000]"),
         (dict(radius=10, thickness=1, embrace=0, voussoirs=7), "embrace must be in (0, 240]"),
         (dict(radius=10, thickness=1, embrace=5, voussoirs=7), "embrace must be in (0, 240]"),
         (dict(radius=10, thickness=1, embrace=1, voussoirs=2), "voussoirs must be >= 3"),

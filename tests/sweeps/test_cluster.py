@@ -17,6 +17,7 @@ import sys
 import threading
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 import sweep_fake_model
@@ -46,9 +47,16 @@ def wait_for_port(port: int, timeout: float) -> None:
     raise TimeoutError(f"no Dask scheduler on 127.0.0.1:{port} after {timeout} s")
 
 
+class Cluster(NamedTuple):
+    address: str
+    workers: list
+    scheduler: subprocess.Popen
+
+
 @pytest.fixture
 def cluster(tmp_path):
-    """(address, [worker processes]) of a fresh loopback cluster with two 1-thread workers.
+    """A fresh loopback cluster (address, worker processes, scheduler process) with two
+    1-thread workers.
 
     Workers run without a nanny, so SIGKILL on a worker's pid removes it for good; they find
     the test's case functions on PYTHONPATH.
@@ -74,7 +82,7 @@ def cluster(tmp_path):
 
         with Client(address, timeout=20) as client:
             client.wait_for_workers(2, timeout=30)
-        yield address, procs[1:]
+        yield Cluster(address, procs[1:], procs[0])
     finally:
         for p in reversed(procs):
             if p.poll() is None:
@@ -90,7 +98,7 @@ def cluster(tmp_path):
 
 def test_cluster_equals_local_and_survives_a_killed_worker(cluster, tmp_path, small_study_file,
                                                            small_cases, monkeypatch, capsys):
-    address, workers = cluster
+    address, workers = cluster.address, cluster.workers
     from archquake.cli import main as cli_main
 
     # Local reference: serial, the same (fast) function.
@@ -145,3 +153,58 @@ def test_cluster_equals_local_and_survives_a_killed_worker(cluster, tmp_path, sm
     assert len(ids) == len(set(ids)) == 24  # every case, exactly once
     assert stored(killed) == stored(local)
     assert elapsed < 30
+
+
+def _kill_when_stored(store: Path, victims) -> threading.Thread:
+    """SIGKILL ``victims`` as soon as the store holds a row (tasks are then in flight)."""
+    def killer():
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:
+            if store.exists():
+                try:
+                    with sqlite3.connect(store, timeout=1) as db:
+                        n = db.execute("SELECT COUNT(*) FROM results").fetchone()[0]
+                except sqlite3.OperationalError:
+                    n = 0
+                if n > 0:
+                    for v in victims:
+                        os.kill(v.pid, signal.SIGKILL)
+                    return
+            time.sleep(0.01)
+
+    thread = threading.Thread(target=killer, daemon=True)
+    thread.start()
+    return thread
+
+
+@pytest.mark.parametrize("lose", ["scheduler", "workers"])
+def test_a_lost_cluster_ends_the_sweep_in_one_line_and_keeps_the_rows(
+        lose, cluster, tmp_path, small_study_file, monkeypatch, capsys):
+    """The scheduler killed mid-sweep, or every worker killed: one line, exit 2, every case
+    completed before is in the store exactly once (issue 15: 'a dead scheduler gives a
+    traceback', 'with every worker gone, the sweep waits forever in silence')."""
+    from archquake.cli import main as cli_main
+
+    monkeypatch.setattr(cli_main, "COMMANDS", ("sweep",))
+    monkeypatch.setattr(cmd_sweep, "case_function",
+                        lambda model: sweep_fake_model.slow_fake_evaluate)
+    study = tmp_path / "many.toml"
+    study.write_text(small_study_file.read_text().replace("num = 4", "num = 40"))  # 240 cases
+    store = tmp_path / "lost.sqlite"
+    victims = [cluster.scheduler] if lose == "scheduler" else cluster.workers
+    thread = _kill_when_stored(store, victims)
+    t0 = time.monotonic()
+    code = cli_main.main(["sweep", str(study), "--scheduler", cluster.address, "--store",
+                          str(store), "--chunk-size", "2", "--worker-wait", "2"])
+    elapsed = time.monotonic() - t0
+    thread.join(timeout=5)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2
+    assert len(err) == 1 and err[0].startswith("archquake: error: ")
+    assert "run the same command again to resume" in err[0]
+    assert ("scheduler went away" in err[0]) if lose == "scheduler" else ("no worker for 2 s" in err[0])
+    with sqlite3.connect(store) as db:
+        ids = [r[0] for r in db.execute("SELECT case_id FROM results")]
+    assert 0 < len(ids) == len(set(ids)) < 240
+    assert f"{len(ids)} of 240 cases are stored" in err[0]
+    assert elapsed < 40

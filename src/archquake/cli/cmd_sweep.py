@@ -10,11 +10,16 @@ import argparse
 import sys
 from pathlib import Path
 
-from archquake.cli.common import print_json, whole
+from archquake.cli.common import number, print_json, quiet_dask, whole
 from archquake.errors import InvalidParameterError
 from archquake.sweeps import ResultStore, load_study, model_function, open_executor, run_sweep
 from archquake.sweeps.evaluate import evaluate_case
-from archquake.sweeps.runner import CaseFunction
+from archquake.sweeps.runner import (
+    NO_WORKER_TIMEOUT,
+    CaseFunction,
+    ClusterLostError,
+    cap_workers,
+)
 
 
 def case_function(model) -> CaseFunction:
@@ -42,6 +47,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="local worker processes (default: all cores; 1 runs serially)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="run on the Dask cluster whose scheduler listens at this address")
+    p.add_argument("--worker-wait", type=number, metavar="S", default=NO_WORKER_TIMEOUT,
+                   help="with --scheduler: seconds to wait while the cluster has no worker before "
+                        f"stopping (what is done is kept; default {NO_WORKER_TIMEOUT:g})")
     p.add_argument("--chunk-size", type=whole, metavar="N",
                    help="cases per task (default: chosen from the number of cases and workers)")
     p.add_argument("--export", type=Path, metavar="FILE",
@@ -59,6 +67,9 @@ def run(args: argparse.Namespace) -> int:
     if args.chunk_size is not None and args.chunk_size < 1:
         raise InvalidParameterError(
             f"--chunk-size must be a whole number >= 1, got {args.chunk_size}")
+    if not 0 < args.worker_wait <= 86400:
+        raise InvalidParameterError(
+            f"--worker-wait must be in (0, 86400] s, got {args.worker_wait:g}")
     if args.scheduler is not None and "://" not in args.scheduler:
         raise InvalidParameterError(
             f"--scheduler must be an address like tcp://HOST:PORT, got {args.scheduler!r}")
@@ -69,20 +80,34 @@ def run(args: argparse.Namespace) -> int:
     evaluate = case_function(study.model)
     store_path = args.store or study.default_store
     with ResultStore(store_path) as store:
+        wanted = {c.case_id for c in study.cases}
+        workers = args.workers
+        if args.scheduler is None:
+            workers, note = cap_workers(args.workers, len(wanted - store.stored_ids()))
+            if note is not None:
+                print(f"archquake: --workers: {note}", file=sys.stderr)
+        else:
+            quiet_dask()
         bar = None
         try:
-            with open_executor(workers=args.workers, scheduler=args.scheduler) as (executor, n):
+            with open_executor(workers=workers, scheduler=args.scheduler) as (executor, n):
                 bar = _Bar(disable=args.no_progress)
                 report = run_sweep(study.cases, store, evaluate=evaluate, executor=executor,
-                                   workers=n, chunk_size=args.chunk_size, progress=bar)
+                                   workers=n, chunk_size=args.chunk_size, progress=bar,
+                                   no_worker_timeout=args.worker_wait)
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()
-            wanted = {c.case_id for c in study.cases}
             stored = len(store.stored_ids() & wanted)
             print(f"archquake: interrupted: {stored} of {len(wanted)} cases are stored in "
                   f"{store.path}; run the same command again to resume", file=sys.stderr)
             return 130
+        except ClusterLostError as exc:
+            if bar is not None:
+                bar.close()
+            stored = len(store.stored_ids() & wanted)
+            raise ClusterLostError(f"{exc}; {stored} of {len(wanted)} cases are stored in "
+                                   f"{store.path}; run the same command again to resume") from None
         bar.close()
         if args.export is not None:
             store.export(args.export)

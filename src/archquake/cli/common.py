@@ -13,10 +13,15 @@ from typing import Any
 from archquake._json import to_jsonable
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import MAX_EMBRACE, MAX_VOUSSOIRS, Arch
+from archquake.geometry.arch import (
+    MAX_DENSITY,
+    MAX_DEPTH,
+    MAX_EMBRACE_DEG,
+    MAX_VOUSSOIRS,
+    RADIUS_RANGE,
+    Arch,
+)
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
-
-MAX_EMBRACE_DEG = math.degrees(MAX_EMBRACE)
 
 
 def number(text: str) -> float:
@@ -45,7 +50,7 @@ def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True
     """
     g = parser.add_argument_group("arch (defaults: Oppenheim's arch)")
     g.add_argument("--radius", type=number, default=10.0 if defaults else None,
-                   help="centreline radius R, m (> 0; default 10)")
+                   help=f"centreline radius R, m ({RADIUS_RANGE[0]:g} to {RADIUS_RANGE[1]:g}; default 10)")
     g.add_argument("--thickness", type=number, default=1.5 if defaults else None,
                    help="thickness t, m (0 < t < 2R; default 1.5)")
     g.add_argument("--embrace", type=number, default=157.5 if defaults else None,
@@ -68,13 +73,19 @@ def arch_from_args(args: argparse.Namespace) -> Arch:
         raise InvalidParameterError(
             f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {args.voussoirs}"
         )
-    if args.radius <= 0:
-        raise InvalidParameterError(f"--radius must be > 0 m, got {args.radius:g}")
+    low, high = RADIUS_RANGE
+    if not low <= args.radius <= high:
+        raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {args.radius:g}")
     if args.thickness <= 0 or args.thickness >= 2 * args.radius:
         raise InvalidParameterError(
             f"--thickness must be in (0, 2 x radius) = (0, {2 * args.radius:g}) m, "
             f"got {args.thickness:g}"
         )
+    if not 0 < args.depth <= MAX_DEPTH:
+        raise InvalidParameterError(f"--depth must be in (0, {MAX_DEPTH:g}] m, got {args.depth:g}")
+    if not 0 < args.density <= MAX_DENSITY:
+        raise InvalidParameterError(
+            f"--density must be in (0, {MAX_DENSITY:g}] kg/m^3, got {args.density:g}")
     return Arch(
         radius=args.radius,
         thickness=args.thickness,
@@ -90,6 +101,21 @@ def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) 
     if plot:
         parser.add_argument("--plot", metavar="FILE", type=Path,
                             help="draw the result to FILE (.png, .pdf or .svg)")
+
+
+def quiet_dask() -> None:
+    """Keep Dask's own log lines (tracebacks from its client thread when a scheduler or worker
+    goes away) off the user's terminal: archquake reports a lost cluster in one line."""
+    import logging
+
+    try:
+        import distributed  # noqa: F401  (configures its loggers on import: quiet them after)
+    except ImportError:
+        return
+    prefixes = ("distributed", "tornado", "asyncio")
+    names = [n for n in logging.root.manager.loggerDict if n.split(".")[0] in prefixes]
+    for name in (*prefixes, *names):
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
 
 
 def print_json(obj: Any) -> None:

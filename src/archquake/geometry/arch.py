@@ -19,13 +19,24 @@ from functools import cached_property
 import numpy as np
 
 from archquake._validate import require_int, require_positive, require_range
+from archquake.errors import InvalidParameterError
 
 #: Largest supported angle of embrace, rad (240 deg): deeper arches than this are horseshoe
 #: shapes whose springings overhang the centre far enough that a two-support, four-hinge
 #: description stops being a sensible model.
-MAX_EMBRACE = math.radians(240.0)
+MAX_EMBRACE_DEG = 240.0
+#: The same in rad. Compare degrees with :data:`MAX_EMBRACE_DEG` (degrees(radians(240)) is
+#: 239.99999999999997, so converting the bound back would refuse the documented maximum).
+MAX_EMBRACE = math.radians(MAX_EMBRACE_DEG)
 #: Most voussoirs accepted (limit analysis enumerates joint quadruples).
 MAX_VOUSSOIRS = 2000
+#: Radii accepted, m: from a 1 mm laboratory model to a 10 km arch. Beyond them nothing is
+#: gained physically, and masses (rho d beta R t) and inertias (~ m R^2) would leave the range
+#: where the limit analysis's linear programme and the time steps are well conditioned.
+RADIUS_RANGE = (1e-3, 1e4)
+#: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
+MAX_DENSITY = 1e5
+MAX_DEPTH = 1e4
 
 
 @dataclass(frozen=True)
@@ -67,7 +78,8 @@ class Arch:
     density: float = 2000.0
 
     def __post_init__(self) -> None:
-        r = require_positive("radius", self.radius, "m")
+        r = require_range("radius", self.radius, *RADIUS_RANGE, "m", low_open=False,
+                          high_open=False)
         t = require_positive("thickness", self.thickness, "m")
         if t >= 2.0 * r:
             raise_thick(t, r)
@@ -81,8 +93,8 @@ class Arch:
             shown="(0, 240] degrees = (0, 4.18879] rad",
         )
         require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS)
-        require_positive("depth", self.depth, "m")
-        require_positive("density", self.density, "kg/m^3")
+        require_range("depth", self.depth, 0.0, MAX_DEPTH, "m", high_open=False)
+        require_range("density", self.density, 0.0, MAX_DENSITY, "kg/m^3", high_open=False)
         # store plain Python numbers so that the dataclass hashes and pickles predictably
         for name in ("radius", "thickness", "embrace", "depth", "density"):
             object.__setattr__(self, name, float(getattr(self, name)))
@@ -264,12 +276,11 @@ class Arch:
 
 
 def raise_thick(t: float, r: float) -> None:
-    from archquake.errors import InvalidParameterError
-
     raise InvalidParameterError(
         f"thickness must be less than 2 x radius = {2 * r:g} m (the intrados radius R - t/2 "
         f"must stay positive), got {t:g} m"
     )
 
 
-__all__ = ["Arch", "MAX_EMBRACE", "MAX_VOUSSOIRS"]
+__all__ = ["Arch", "MAX_DENSITY", "MAX_DEPTH", "MAX_EMBRACE", "MAX_EMBRACE_DEG", "MAX_VOUSSOIRS",
+           "RADIUS_RANGE"]

@@ -26,13 +26,19 @@ from typing import Any
 from archquake._validate import require_finite, require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import MAX_EMBRACE, MAX_VOUSSOIRS, Arch
+from archquake.geometry.arch import (
+    MAX_DENSITY,
+    MAX_DEPTH,
+    MAX_EMBRACE_DEG,
+    MAX_VOUSSOIRS,
+    RADIUS_RANGE,
+    Arch,
+)
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
 CASE_SCHEMA = 1
 #: Hex digits of SHA-256 kept in a case id (80 bits: collisions are negligible for any sweep).
 CASE_ID_LENGTH = 20
-MAX_EMBRACE_DEG = math.degrees(MAX_EMBRACE)
 
 
 class ExcitationKind(StrEnum):
@@ -61,7 +67,7 @@ class ArchSpec:
     Parameters
     ----------
     radius : float
-        Centreline radius R, m (> 0).
+        Centreline radius R, m (1e-3 to 1e4).
     thickness_ratio : float
         t/R, dimensionless (0 < t/R < 2).
     embrace_deg : float
@@ -69,9 +75,9 @@ class ArchSpec:
     voussoirs : int
         Number of voussoirs (3 to 2000).
     depth : float
-        Out-of-plane depth, m (> 0; default 1).
+        Out-of-plane depth, m (0 < depth <= 1e4; default 1).
     density : float
-        Density, kg/m^3 (> 0; default 2000).
+        Density, kg/m^3 (0 < density <= 1e5; default 2000).
 
     Examples
     --------
@@ -88,13 +94,16 @@ class ArchSpec:
     density: float = 2000.0
 
     def __post_init__(self) -> None:
-        _set(self, "radius", require_positive("radius", self.radius, "m"))
-        _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio, 0, 2))
+        _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
+                                           low_open=False, high_open=False))
+        _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
+                                                    0, 2))
         _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0, MAX_EMBRACE_DEG,
                                                  "degrees", high_open=False))
         _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
-        _set(self, "depth", require_positive("depth", self.depth, "m"))
-        _set(self, "density", require_positive("density", self.density, "kg/m^3"))
+        _set(self, "depth", require_range("depth", self.depth, 0, MAX_DEPTH, "m", high_open=False))
+        _set(self, "density", require_range("density", self.density, 0, MAX_DENSITY, "kg/m^3",
+                                            high_open=False))
 
     def build(self) -> Arch:
         """The :class:`~archquake.geometry.Arch` (SI, embrace in rad)."""
@@ -106,6 +115,12 @@ class ArchSpec:
         return {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
                 "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
                 "depth_m": self.depth, "density_kg_m3": self.density}
+
+    @cached_property
+    def canonical_json(self) -> str:
+        """:func:`canonical_json` of :meth:`canonical` (computed once per spec: a grid shares
+        its specs across many cases)."""
+        return canonical_json(self.canonical())
 
     def columns(self) -> dict[str, Any]:
         """Flat columns for the store: the canonical inputs plus the thickness in m."""
@@ -213,6 +228,11 @@ class ExcitationSpec:
             out.update(magnitude_g=self.magnitude_g, period_s=self.period_s)
         return out
 
+    @cached_property
+    def canonical_json(self) -> str:
+        """:func:`canonical_json` of :meth:`canonical`, computed once per spec."""
+        return canonical_json(self.canonical())
+
 
 @dataclass(frozen=True)
 class CaseOptions:
@@ -243,6 +263,11 @@ class CaseOptions:
 
     def canonical(self) -> dict[str, Any]:
         return {"restitution": self.restitution, "t_end_s": self.t_end_s, "g_m_s2": self.g}
+
+    @cached_property
+    def canonical_json(self) -> str:
+        """:func:`canonical_json` of :meth:`canonical`, computed once per spec."""
+        return canonical_json(self.canonical())
 
 
 @dataclass(frozen=True)
@@ -284,9 +309,16 @@ class Case:
         return {"schema": CASE_SCHEMA, "model": self.model.value, "arch": self.arch.canonical(),
                 "excitation": self.excitation.canonical(), "options": self.options.canonical()}
 
-    @cached_property
+    @property
     def canonical_json(self) -> str:
-        return canonical_json(self.canonical())
+        """:func:`canonical_json` of :meth:`canonical`, assembled from the specs' own (cached)
+        canonical JSON: the same string, byte for byte, since the top-level keys are written
+        in sorted order with the same separators (a test holds the two equal). A grid of a
+        million cases then costs one concatenation and one hash per case."""
+        return (f'{{"arch":{self.arch.canonical_json},'
+                f'"excitation":{self.excitation.canonical_json},'
+                f'"model":{json.dumps(self.model.value)},'
+                f'"options":{self.options.canonical_json},"schema":{json.dumps(CASE_SCHEMA)}}}')
 
     @cached_property
     def case_id(self) -> str:

@@ -41,6 +41,15 @@ MAX_AUTO_CHUNK = 64
 CONNECT_TIMEOUT = 10.0
 #: Chunks per worker chosen automatically, so the last few tasks balance across workers.
 CHUNKS_PER_WORKER = 8
+#: Seconds a Dask sweep waits with no worker in the cluster before it gives up (rows kept).
+NO_WORKER_TIMEOUT = 60.0
+#: Seconds between checks of the cluster's health while no task completes.
+HEARTBEAT = 1.0
+
+
+class ClusterLostError(ArchquakeError):
+    """The Dask scheduler went away, or the cluster had no worker for too long. Every case
+    that had completed is in the store; rerunning the same sweep resumes."""
 
 
 @dataclass(frozen=True)
@@ -124,6 +133,7 @@ def run_sweep(
     workers: int | None = None,
     chunk_size: int | None = None,
     progress: Progress | None = None,
+    no_worker_timeout: float = NO_WORKER_TIMEOUT,
 ) -> SweepReport:
     """Evaluate every case the store does not hold yet and store each batch as it completes.
 
@@ -145,6 +155,9 @@ def run_sweep(
         Cases per task (default: pending / (8 x workers), between 1 and 64).
     progress : callable, optional
         ``progress(stored, total)``: cases of this sweep in the store, after every batch.
+    no_worker_timeout : float
+        On a Dask cluster: seconds with no worker before the sweep stops with
+        :class:`ClusterLostError` (default :data:`NO_WORKER_TIMEOUT`).
 
     Returns
     -------
@@ -155,6 +168,9 @@ def run_sweep(
     KeyboardInterrupt
         Propagated after storing every batch that had completed; the rest is cancelled and a
         rerun computes it.
+    ClusterLostError
+        The Dask scheduler was lost, or no worker was connected for ``no_worker_timeout``
+        seconds; every completed batch is stored first.
     """
     if evaluate is None:
         from archquake.sweeps.evaluate import evaluate_case as evaluate
@@ -171,6 +187,8 @@ def run_sweep(
     if workers is None:
         workers = _executor_workers(executor) or usable_cores()
     workers = max(1, int(workers))
+    if own:
+        workers = cap_workers(workers, len(pending))[0]
     if chunk_size is None:
         per_task = math.ceil(len(pending) / (CHUNKS_PER_WORKER * workers))
         chunk_size = min(MAX_AUTO_CHUNK, max(1, per_task))
@@ -179,10 +197,12 @@ def run_sweep(
     computed = 0
     if pending:
         if own:
-            executor = ProcessPoolExecutor(max_workers=workers)
+            executor = process_pool(workers)
         try:
             task = partial(evaluate_chunk, evaluate)
-            for records in _map_window(executor, task, _chunks(pending, chunk_size), 2 * workers):
+            check = _cluster_check(executor, no_worker_timeout)
+            for records in _map_window(executor, task, _chunks(pending, chunk_size), 2 * workers,
+                                       check=check):
                 computed += store.write(by_id, records)
                 done += len(records)
                 if progress is not None:
@@ -194,12 +214,15 @@ def run_sweep(
                        outcomes=store.outcome_counts(by_id), store=str(store.path))
 
 
-def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int) -> Iterator:
+def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, *,
+                check: Callable[[], None] | None = None) -> Iterator:
     """Yield ``fn(item)`` results in completion order with at most ``window`` tasks in flight.
 
-    On KeyboardInterrupt (while waiting, at submission, or raised by a task) the tasks that had
-    already completed are still yielded, so the consumer can store them, before the interrupt
-    propagates; tasks still in flight are cancelled.
+    While nothing completes, ``check()`` runs every :data:`HEARTBEAT` seconds and may raise
+    (a lost cluster). A task cancelled by its executor (Dask cancels every task when the
+    scheduler goes away) raises :class:`ClusterLostError`. On KeyboardInterrupt or
+    ClusterLostError the tasks that had already completed are still yielded, so the consumer
+    can store them, before the error propagates; tasks still in flight are cancelled.
     """
     in_flight: set[Future] = set()
     exhausted = False
@@ -213,10 +236,17 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int) 
                 in_flight.add(executor.submit(fn, item))
             if not in_flight:
                 return
-            finished, in_flight = wait(in_flight, return_when=FIRST_COMPLETED)
+            finished, in_flight = wait(in_flight, timeout=HEARTBEAT,
+                                       return_when=FIRST_COMPLETED)
+            if not finished and check is not None:
+                check()
             for future in finished:
+                if future.cancelled():
+                    in_flight |= finished - {future}
+                    raise ClusterLostError(
+                        "a task was cancelled by the executor: the Dask scheduler went away")
                 yield future.result()
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ClusterLostError):
         # keep what already finished: hand the completed results to the consumer, then stop
         for future in [f for f in in_flight if f.done() and not f.cancelled()]:
             in_flight.discard(future)
@@ -226,6 +256,72 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int) 
     finally:
         for future in in_flight:
             future.cancel()
+
+
+def _cluster_check(executor: Executor | None, no_worker_timeout: float
+                   ) -> Callable[[], None] | None:
+    """For a Dask executor, a check that raises :class:`ClusterLostError` once the scheduler
+    is gone or no worker has been connected for ``no_worker_timeout`` s; None otherwise."""
+    client = getattr(executor, "_client", None)
+    if client is None:
+        return None
+    since: list[float] = []
+
+    def check() -> None:
+        if client.status in ("closed", "closing", "failed"):
+            raise ClusterLostError(f"lost the Dask scheduler at {client.scheduler.address}")
+        try:
+            n = len(client.nthreads())
+        except Exception:  # the scheduler does not answer: the next check will see it closed
+            n = 0
+        if n:
+            since.clear()
+            return
+        if not since:
+            since.append(time.monotonic())
+        if time.monotonic() - since[0] >= no_worker_timeout:
+            raise ClusterLostError(
+                f"the Dask cluster at {client.scheduler.address} has had no worker for "
+                f"{no_worker_timeout:g} s")
+
+    return check
+
+
+def cap_workers(requested: int | None, pending: int) -> tuple[int, str | None]:
+    """Local worker processes for ``pending`` cases: at most the usable cores, and at most the
+    number of cases; with a note saying so when ``requested`` was more.
+
+    >>> cap_workers(3, 1)
+    (1, 'using 1 worker process (there is 1 case to compute), not 3')
+    """
+    cores = usable_cores()
+    n = cores if requested is None else int(requested)
+    capped = max(1, min(n, cores, pending if pending > 0 else 1))
+    if requested is None or capped >= requested:
+        return capped, None
+    why = (f"this machine has {cores} usable core{'s' * (cores != 1)}" if capped == cores
+           else f"there {'is' if pending == 1 else 'are'} {pending} case"
+                f"{'s' * (pending != 1)} to compute")
+    return capped, f"using {capped} worker process{'es' * (capped != 1)} ({why}), not {requested}"
+
+
+def process_pool(workers: int) -> ProcessPoolExecutor:
+    """A process pool whose workers end when this process ends, however it ends (even by
+    SIGKILL): each worker watches its parent and exits once it is gone, so that no orphan keeps
+    running or holds the terminal's pipes (``archquake sweep ... | tee`` then ends)."""
+    return ProcessPoolExecutor(max_workers=workers, initializer=_watch_parent,
+                               initargs=(os.getpid(),))
+
+
+def _watch_parent(parent: int) -> None:
+    import threading
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="archquake-parent-watch", daemon=True).start()
 
 
 def _chunks(cases: Sequence[Case], size: int) -> Iterator[list[Case]]:
@@ -285,10 +381,11 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
     n = workers or usable_cores()
     if n < 1:
         raise InvalidParameterError(f"workers must be >= 1, got {n}")
+    n = min(n, usable_cores())
     if n == 1:
         yield SerialExecutor(), 1
         return
-    pool = ProcessPoolExecutor(max_workers=n)
+    pool = process_pool(n)
     try:
         yield pool, n
     finally:
@@ -297,10 +394,13 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
 
 __all__ = [
     "CaseFunction",
+    "ClusterLostError",
     "SerialExecutor",
     "SweepReport",
+    "cap_workers",
     "evaluate_chunk",
     "open_executor",
+    "process_pool",
     "run_sweep",
     "usable_cores",
 ]

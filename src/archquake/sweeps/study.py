@@ -33,6 +33,7 @@ Every error is one line naming the file, the key and what is expected
 from __future__ import annotations
 
 import itertools
+import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -62,6 +63,10 @@ _EXCITATION_KEYS = {
     ExcitationKind.RECORD: {"files": True, "units": False, "scale": False, "direction": False},
 }
 _OPTION_KEYS = {"restitution": False, "t_end_s": False}
+
+#: Most cases one study may hold. A case costs about 1 kB in memory and a row in the store;
+#: two million build in seconds. Larger grids are refused before they are expanded.
+MAX_CASES = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -108,6 +113,10 @@ def load_study(path: str | Path) -> Study:
         raise StudyFileError(f"cannot read study file {str(path)!r}: {exc.strerror}") from None
     except tomllib.TOMLDecodeError as exc:
         raise StudyFileError(f"{path.name}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        line = data_line(path, exc.start)
+        raise StudyFileError(f"{path.name}: line {line}: byte 0x{exc.object[exc.start]:02x} is "
+                             "not UTF-8 (TOML files are UTF-8; re-save the file as UTF-8)") from None
     return parse_study(data, source=path.name, base_dir=path.parent, path=path)
 
 
@@ -149,6 +158,12 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
     p.keys(options_table, "options", _OPTION_KEYS)
     options = p.grid("options", options_table, CaseOptions)
 
+    total = len(arches) * len(excitations) * len(options)
+    if total > MAX_CASES:
+        p.fail("grid", f"has {total:,} cases (arches {len(arches):,} x excitations "
+                       f"{len(excitations):,} x options {len(options):,}), more than the "
+                       f"{MAX_CASES:,} one study may hold; split it into several studies "
+                       "(they may share one store with --store)")
     cases: dict[str, Case] = {}
     for arch, excitation, opts in itertools.product(arches, excitations, options):
         case = Case(arch, excitation, model, opts)
@@ -191,8 +206,9 @@ class _Parser:
             start, stop, num = value["start"], value["stop"], value["num"]
             if not (_is_number(start) and _is_number(stop)):
                 self.fail(key, f"range start and stop must be numbers, got {start!r}, {stop!r}")
-            if isinstance(num, bool) or not isinstance(num, int) or num < 1:
-                self.fail(key, f"range num must be a whole number >= 1, got {num!r}")
+            if isinstance(num, bool) or not isinstance(num, int) or not 1 <= num <= MAX_CASES:
+                self.fail(key, f"range num must be a whole number from 1 to {MAX_CASES:,}, "
+                               f"got {num!r}")
             # 12 significant digits: 1.05, not linspace's 1.0499999999999998, in ids and tables
             values = [float(f"{v:.12g}") for v in np.linspace(start, stop, num)]
         elif isinstance(value, list):
@@ -202,8 +218,8 @@ class _Parser:
         else:
             values = [value]
         for v in values:
-            if not _is_number(v):
-                self.fail(key, f"must be {_AXIS}, got {v!r}")
+            if not _is_number(v) or not math.isfinite(v):
+                self.fail(key, f"must be {_AXIS} (finite), got {v!r}")
             if integer and float(v) != round(float(v)):
                 self.fail(key, f"must be whole numbers, got {v!r}")
         return [int(round(v)) if integer else v for v in values]
@@ -215,6 +231,10 @@ class _Parser:
         for k, values in (listed or {}).items():
             names.append(k)
             axes.append(values)
+        size = math.prod(len(a) for a in axes)
+        if size > MAX_CASES:
+            self.fail(where, f"has {size:,} combinations, more than the {MAX_CASES:,} cases one "
+                             "study may hold; split it into several studies")
         out = []
         for combo in itertools.product(*axes):
             kwargs = dict(zip(names, combo, strict=True), **(fixed or {}))
@@ -268,6 +288,14 @@ class _Parser:
             resolved.append(str(full))
         return self.grid(where, body, ExcitationSpec, integer={"direction"},
                          fixed={"kind": kind, "units": units}, listed={"file": resolved})
+
+
+def data_line(path: Path, offset: int) -> int:
+    """The 1-based line of byte ``offset`` in the file at ``path``."""
+    try:
+        return path.read_bytes()[:offset].count(b"\n") + 1
+    except OSError:
+        return 0
 
 
 def _is_number(v: Any) -> bool:

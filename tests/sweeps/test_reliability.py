@@ -1,0 +1,179 @@
+"""Sweeps under careless input and failing machinery (issue 15): every bad study file is one
+line, grids too large are refused before they are expanded, workers are bounded, worker
+processes never outlive a killed sweep, and a Dask cluster that goes away ends the sweep in one
+line with every completed case kept.
+
+Oracles: the canonical case JSON (ids must not change: they key every existing store), the
+process table (/proc), and the store's rows.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from sweep_fake_model import SMALL_STUDY
+
+from archquake.errors import StudyFileError
+from archquake.sweeps import load_study
+from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationSpec, canonical_json
+from archquake.sweeps.runner import cap_workers, usable_cores
+from archquake.sweeps.study import MAX_CASES
+
+HERE = Path(__file__).parent
+
+finite = st.floats(min_value=0.01, max_value=100, allow_nan=False)
+
+
+@settings(max_examples=200, deadline=None)
+@given(radius=st.floats(1e-3, 1e4), ratio=st.floats(0.01, 1.9), embrace=st.floats(1, 240),
+       n=st.integers(3, 200), mag=st.floats(0, 50), dur=finite, sine=st.booleans(),
+       direction=st.sampled_from([-1, 1]),
+       restitution=st.one_of(st.none(), st.floats(0.01, 1)), t_end=st.one_of(st.none(), finite))
+def test_assembled_case_json_is_the_canonical_json(radius, ratio, embrace, n, mag, dur, sine,
+                                                    direction, restitution, t_end):
+    """The fast id (specs' cached JSON joined) hashes the very string json.dumps writes for the
+    whole case, so ids of existing stores do not move."""
+    exc = (ExcitationSpec("sine", magnitude_g=mag, period_s=dur, direction=direction) if sine
+           else ExcitationSpec("step", magnitude_g=mag, duration_s=dur, direction=direction))
+    case = Case(ArchSpec(radius, ratio, embrace, n), exc,
+                options=CaseOptions(restitution=restitution, t_end_s=t_end))
+    assert case.canonical_json == canonical_json(case.canonical())
+
+
+def _study(tmp_path: Path, text: str | bytes, name: str = "s.toml") -> Path:
+    path = tmp_path / name
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return path
+
+
+def test_a_grid_over_the_bound_is_refused_before_expansion(tmp_path):
+    big = SMALL_STUDY.replace("radius = [1, 5, 10]",
+                              "radius = {start = 1, stop = 20, num = 10000}").replace(
+        "num = 4", "num = 10000")
+    t0 = time.perf_counter()
+    with pytest.raises(StudyFileError) as err:
+        load_study(_study(tmp_path, big))
+    assert f"{MAX_CASES:,}" in str(err.value) and "split it" in str(err.value)
+    assert "\n" not in str(err.value)
+    assert time.perf_counter() - t0 < 30  # refused, not built (a 2e8 grid would take hours)
+
+
+def test_a_range_num_beyond_the_bound_is_refused(tmp_path):
+    with pytest.raises(StudyFileError, match=r"range num must be a whole number from 1 to"):
+        load_study(_study(tmp_path, SMALL_STUDY.replace("num = 4", "num = 1000000000")))
+
+
+@pytest.mark.parametrize("text, expected", [
+    (SMALL_STUDY.replace('name = "small"', 'name = "small" # caf\xe9').encode("latin-1"),
+     r"s.toml: line 2: byte 0xe9 is not UTF-8"),
+    (SMALL_STUDY.replace("voussoirs = 7", "voussoirs = nan"),
+     r"arches.voussoirs must be .* \(finite\), got nan"),
+    (SMALL_STUDY.replace("thickness_ratio = 0.15", "thickness_ratio = inf"),
+     r"arches.thickness_ratio must be .* \(finite\), got inf"),
+    (SMALL_STUDY.replace("radius = [1, 5, 10]", "radius = 1e200"),
+     r"arches.radius is invalid: radius must be in \[0.001, 10000\] \(m\), got 1e\+200"),
+    (SMALL_STUDY.replace("radius = [1, 5, 10]", "radius = 1e-300"),
+     r"arches.radius is invalid: radius must be in \[0.001, 10000\]"),
+])
+def test_bad_study_files_are_one_line(tmp_path, text, expected):
+    with pytest.raises(StudyFileError, match=expected) as err:
+        load_study(_study(tmp_path, text))
+    assert "\n" not in str(err.value)
+
+
+def test_the_documented_maximum_embrace_is_accepted(tmp_path):
+    """degrees(radians(240)) = 239.99999999999997 once made 240 itself out of range."""
+    study = load_study(_study(tmp_path, SMALL_STUDY.replace("embrace_deg = 157.5",
+                                                            "embrace_deg = 240")))
+    assert study.cases[0].arch.build().embrace == pytest.approx(math.radians(240), abs=0)
+
+
+def test_cap_workers_at_cores_and_cases():
+    cores = usable_cores()
+    assert cap_workers(None, 1000) == (cores, None)
+    n, note = cap_workers(1_000_000, 1000)
+    assert n == cores and "not 1000000" in note and "usable core" in note
+    n, note = cap_workers(max(2, cores), 1)
+    assert n == 1 and "1 case to compute" in note
+    assert cap_workers(1, 0) == (1, None)
+
+
+def test_sweep_workers_beyond_the_cores_is_capped_with_a_line(small_study_file, capsys, sweep_cli):
+    assert sweep_cli(["sweep", str(small_study_file), "--workers", "1000000", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["computed_now"] == 24
+    lines = [ln for ln in captured.err.splitlines() if "--workers" in ln]
+    assert len(lines) == 1 and "not 1000000" in lines[0]
+
+
+DRIVER = """
+import sys
+sys.path.insert(0, {here!r})
+import sweep_fake_model
+from archquake.cli import cmd_sweep, main as cli_main
+cmd_sweep.case_function = lambda model: sweep_fake_model.slow_fake_evaluate
+sys.exit(cli_main.main(["sweep", {study!r}, "--store", {store!r}, "--workers", "2",
+                        "--chunk-size", "1", "--no-progress"]))
+"""
+
+
+def _children(pid: int) -> set[int]:
+    out = set()
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == pid:
+                out.add(int(entry.name))
+    return out
+
+
+def _alive(pid: int) -> bool:
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != "Z"
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir() or usable_cores() < 2, reason="needs /proc and 2 cores")
+def test_worker_processes_end_with_a_killed_sweep(tmp_path):
+    """SIGKILL on `archquake sweep` (which cannot clean up) still ends its worker processes
+    within seconds, so none keeps computing or holds the terminal's pipes."""
+    study = tmp_path / "s.toml"
+    study.write_text(SMALL_STUDY.replace("num = 4", "num = 40"))  # 240 cases of 50 ms
+    store = tmp_path / "s.sqlite"
+    proc = subprocess.Popen([sys.executable, "-c", DRIVER.format(here=str(HERE), study=str(study),
+                                                                 store=str(store))],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 60
+        workers: set[int] = set()
+        while time.monotonic() < deadline and len(workers) < 2:
+            workers = _children(proc.pid)
+            time.sleep(0.05)
+        assert len(workers) >= 2, "the sweep did not start its worker processes"
+        time.sleep(0.3)
+        proc.kill()
+        proc.wait(timeout=10)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and any(_alive(w) for w in workers):
+            time.sleep(0.1)
+        assert not any(_alive(w) for w in workers), "worker processes outlived the sweep"
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        for w in _children(proc.pid):
+            os.kill(w, signal.SIGKILL)
