@@ -26,6 +26,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from archquake import errors
+from archquake._kernel_cache import ensure_cache_dir
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import (
     ArchquakeError,
@@ -37,6 +38,8 @@ from archquake.errors import (
 )
 
 __version__ = "0.1.0"
+
+ensure_cache_dir()  # before any kernel module imports numba (see archquake._kernel_cache)
 
 #: Standard gravity, m/s^2 (the value every function takes as its default ``g=``).
 g: float = STANDARD_GRAVITY
