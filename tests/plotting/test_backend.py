@@ -48,13 +48,17 @@ def test_no_module_of_the_library_selects_a_backend():
     assert offenders == []
 
 
-@pytest.mark.parametrize("give", ["figure", "axes"])
+@pytest.mark.parametrize("give", ["figure", "axes", "axes of a subfigure"])
 def test_save_writes_and_closes(tmp_path, give):
     import matplotlib.pyplot as plt
 
     from archquake.plotting.figures import save
 
-    fig, ax = plt.subplots()
+    if give == "axes of a subfigure":
+        fig = plt.figure()
+        ax = fig.subfigures(1, 2)[1].subplots()
+    else:
+        fig, ax = plt.subplots()
     ax.plot([0, 1], [0, 1])
     out = save(fig if give == "figure" else ax, tmp_path / "f.png", dpi=50)
     assert out == tmp_path / "f.png"

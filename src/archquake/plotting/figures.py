@@ -12,7 +12,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
+from matplotlib.figure import Figure, SubFigure
 
 
 def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool = True) -> Path:
@@ -35,7 +35,9 @@ def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool
         ``path``.
     """
     path = Path(path)
-    fig = target if isinstance(target, Figure) else target.figure
+    fig: Figure | SubFigure | Axes = target
+    while not isinstance(fig, Figure):  # axes -> (sub)figure -> the figure that is saved
+        fig = fig.figure
     if tight:
         fig.tight_layout()
     fig.savefig(path, dpi=dpi)
