@@ -43,8 +43,8 @@ def test_backend_chosen_in_the_session_is_kept():
 
 def test_no_module_of_the_library_selects_a_backend():
     src = Path(__file__).parents[2] / "src" / "archquake"
-    offenders = [str(p.relative_to(src)) for p in src.rglob("*.py")
-                 if "matplotlib.use(" in p.read_text() and p.parent.name != "cli"]
+    # the command line selects Agg through MPLBACKEND in its entry point, not matplotlib.use
+    offenders = [str(p.relative_to(src)) for p in src.rglob("*.py") if "matplotlib.use(" in p.read_text()]
     assert offenders == []
 
 
