@@ -73,3 +73,16 @@ def test_full_parser_registers_every_command():
     # every entry is the command's full parser (each takes --json, as every command must)
     for name, p in sub.choices.items():
         assert any("--json" in a.option_strings for a in p._actions), name
+
+
+def test_the_program_selects_agg_and_main_leaves_the_backend_alone():
+    """The console script writes figures only: Agg, whatever the environment says; ``main()``
+    called from a session keeps the session's backend (oracle: ``matplotlib.get_backend()``)."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), MPLBACKEND="svg")
+    program = ("from archquake.cli import main as m\nm.main = lambda: 0\ntry:\n    m.entry_point()\n"
+               "except SystemExit:\n    pass\nimport matplotlib\nprint(matplotlib.get_backend())")
+    session = ("from archquake.cli.main import main\nmain(['min-thickness', '--json'])\n"
+               "import matplotlib\nprint(matplotlib.get_backend())")
+    outs = [subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                           check=True).stdout.strip().splitlines()[-1].lower() for code in (program, session)]
+    assert outs == ["agg", "svg"]
