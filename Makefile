@@ -35,6 +35,7 @@ bench: $(STAMP_RUN)
 
 lint: $(STAMP_TEST)
 	$(BIN)/ruff check src tests benchmarks examples
+	$(BIN)/mypy src/archquake
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

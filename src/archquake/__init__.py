@@ -5,8 +5,31 @@ thrust during motion, and a distinct-element model, after De Lorenzis, DeJong & 
 (2007), *Failure of masonry arches under impulse base motion*, EESD 36:2119-2136.
 
 SI units throughout (m, s, kg, rad); accelerations in m/s^2 unless a name ends in ``_g``.
+
+The verbs and nouns of the package are one import away, and loaded only when first used
+(PEP 562), so ``import archquake`` costs little more than importing numpy:
+
+>>> import math
+>>> from archquake import Arch, StepImpulse, limit_analysis, simulate
+>>> arch = Arch(radius=10.0, thickness=1.5, embrace=math.radians(157.5), voussoirs=7)
+>>> round(limit_analysis(arch).collapse_acceleration_g, 2)  # Oppenheim's arch, paper p. 2126
+0.37
+>>> simulate(arch, StepImpulse.from_g(1.0, 0.27)).outcome.value  # paper Figure 4(c)
+'collapse'
+
+``Arch``, ``limit_analysis``, ``simulate``, ``simulate_dem``, ``failure_domain``,
+``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, the error classes,
+the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
+in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
 """
 
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+from archquake import errors
+from archquake._kernel_cache import ensure_cache_dir
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import (
     ArchquakeError,
@@ -16,12 +39,57 @@ from archquake.errors import (
     StudyFileError,
     UnstableArchError,
 )
-from archquake.geometry import Arch, Face, Hinge, HingeMechanism
 
 __version__ = "0.1.0"
 
+ensure_cache_dir()  # before any kernel module imports numba (see archquake._kernel_cache)
+
+#: Standard gravity, m/s^2 (the value every function takes as its default ``g=``).
+g: float = STANDARD_GRAVITY
+
+#: Lazily loaded public names -> the module that defines (or re-exports) them. Each is imported
+#: on first access only; a type checker reads the same names from the block below.
+_LAZY: dict[str, str] = {
+    "Arch": "archquake.geometry",
+    "Face": "archquake.geometry",
+    "Hinge": "archquake.geometry",
+    "HingeMechanism": "archquake.geometry",
+    "limit_analysis": "archquake.limit",
+    "simulate": "archquake.mechanism",
+    # moving to archquake.outcome (issue 11); archquake.mechanism keeps re-exporting it
+    "Outcome": "archquake.mechanism",
+    "simulate_dem": "archquake.dem",
+    "failure_domain": "archquake.domains",
+    "StepImpulse": "archquake.ground",
+    "SinePulse": "archquake.ground",
+    "Record": "archquake.ground",
+    "read_record": "archquake.ground",
+}
+
+if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type checkers
+    from archquake.dem import simulate_dem
+    from archquake.domains import failure_domain
+    from archquake.geometry import Arch, Face, Hinge, HingeMechanism
+    from archquake.ground import Record, SinePulse, StepImpulse, read_record
+    from archquake.limit import limit_analysis
+    from archquake.mechanism import Outcome, simulate
+
+
+def __getattr__(name: str) -> Any:
+    """Import a lazy public name on first access and keep it in the module's namespace."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'archquake' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later accesses skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
-    "STANDARD_GRAVITY",
     "Arch",
     "ArchquakeError",
     "Face",
@@ -29,8 +97,20 @@ __all__ = [
     "Hinge",
     "HingeMechanism",
     "InvalidParameterError",
+    "Outcome",
+    "Record",
+    "STANDARD_GRAVITY",
+    "SinePulse",
     "SolverError",
+    "StepImpulse",
     "StudyFileError",
     "UnstableArchError",
     "__version__",
+    "errors",
+    "failure_domain",
+    "g",
+    "limit_analysis",
+    "read_record",
+    "simulate",
+    "simulate_dem",
 ]

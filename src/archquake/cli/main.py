@@ -2,7 +2,12 @@
 
 Each sub-command lives in its own module ``archquake.cli.cmd_<name>`` exposing
 ``register(subparsers) -> None``; the parser it adds sets ``func=run`` where
-``run(args) -> int``. Add a new command by adding its module name to ``COMMANDS``.
+``run(args) -> int``. Add a new command by adding its module name to ``COMMANDS`` and its
+one-line summary to ``SUMMARIES``.
+
+The command line starts at once: only the module of the command being run is imported (with
+the numerics it needs). The top-level ``--help`` lists the commands from ``SUMMARIES`` and
+``--version`` needs nothing, so neither imports numba, scipy or matplotlib.
 
 User errors (any :class:`~archquake.errors.ArchquakeError`, and malformed arguments) print
 one line on stderr and exit with status 2; anything else is a bug and keeps its traceback.
@@ -12,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 
@@ -32,6 +38,39 @@ COMMANDS: tuple[str, ...] = (
     "demo",
 )
 
+#: The line each command shows in ``archquake --help``, by module name (the command's name is
+#: the module's with ``-`` for ``_``). It is the help its module registers; a test holds the two
+#: equal, so that listing the commands imports none of them.
+SUMMARIES: dict[str, str] = {
+    "static": "equivalent static analysis: collapse acceleration (g), hinges, friction demand",
+    "min_thickness": "minimum thickness ratio t/R of an arch under its own weight",
+    "run": "time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
+    "record": "check an accelerogram file (.AT2 or CSV): points, dt, duration, PGA",
+    "sweep": "run a study file's grid of cases into a resumable SQLite store",
+    "thrust": "line of thrust of the moving arch at chosen times (paper Figure 8)",
+    "friction": "least friction coefficient that prevents sliding during the motion (paper p. 2131)",
+    "domain": "failure domain: pulse magnitudes (g) and durations (s) that collapse the arch",
+    "reproduce": "regenerate the paper: every study, its figures and a side-by-side report",
+    "demo": "reproduce Oppenheim's arch: figures and a short report",
+}
+
+
+def command_name(module: str) -> str:
+    """The command a module of ``COMMANDS`` registers (``min_thickness`` -> ``min-thickness``)."""
+    return module.replace("_", "-")
+
+
+def _requested(argv: Sequence[str]) -> str | None:
+    """The module of the command on the command line (its first word that is not an option),
+    or None (no command, ``--help``, ``--version`` or an unknown word argparse will reject)."""
+    by_name = {command_name(module): module for module in COMMANDS}
+    for word in argv:
+        if word == "--":
+            return None
+        if not word.startswith("-"):
+            return by_name.get(word)
+    return None
+
 
 class UsageError(ArchquakeError):
     """A malformed command line."""
@@ -44,7 +83,17 @@ class OneLineParser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
+    """The parser for ``argv``: the full parser of the command it names (its module imported),
+    a one-line entry for every other command.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The command line without the program name; None registers every command in full
+        (imports all their modules, as documentation tools need).
+    """
+    wanted = _requested(argv) if argv is not None else None
     parser = OneLineParser(
         prog="archquake",
         description=(
@@ -56,16 +105,19 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
     sub.required = True
     for name in COMMANDS:
-        module = importlib.import_module(f"archquake.cli.cmd_{name}")
-        module.register(sub)
+        if argv is None or name == wanted:
+            importlib.import_module(f"archquake.cli.cmd_{name}").register(sub)
+        else:
+            sub.add_parser(command_name(name), help=SUMMARIES.get(name), add_help=False)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 user error)."""
+    argv = list(argv) if argv is not None else sys.argv[1:]
     try:
-        parser = build_parser()
-        args = parser.parse_args(list(argv) if argv is not None else None)
+        parser = build_parser(argv)
+        args = parser.parse_args(argv)
         return int(args.func(args) or 0)
     except ArchquakeError as exc:
         print(f"archquake: error: {exc}", file=sys.stderr)
@@ -83,7 +135,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def entry_point() -> None:
-    """Console-script entry point."""
+    """Console-script entry point.
+
+    The program only writes figures to files, so it selects matplotlib's Agg backend (through
+    the environment: free if no figure is drawn, inherited by worker processes). ``main()``
+    called from a session leaves the session's backend alone.
+    """
+    os.environ["MPLBACKEND"] = "Agg"
     sys.exit(main())
 
 

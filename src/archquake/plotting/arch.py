@@ -2,8 +2,8 @@
 
 :func:`plot_arch` is the general drawing that the other figures build on (the collapse state
 of the equivalent static analysis here; the line of thrust during motion and distinct-element
-snapshots later). Matplotlib is imported only inside :mod:`archquake.plotting`, with the Agg
-backend; functions take an optional ``ax``, return it and never call ``show()``.
+snapshots later). Matplotlib is imported only inside :mod:`archquake.plotting`, which never
+chooses a backend; functions take an optional ``ax``, return it and never call ``show()``.
 """
 
 from __future__ import annotations
@@ -11,16 +11,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Polygon
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.patches import Polygon  # noqa: E402
-
-from archquake.geometry.arch import Arch  # noqa: E402
-from archquake.geometry.hinges import Hinge  # noqa: E402
+from archquake.geometry.arch import Arch
+from archquake.geometry.hinges import Hinge
+from archquake.plotting.figures import save
 
 
 def moved_outline(outline: np.ndarray, centroid: np.ndarray, position: np.ndarray) -> np.ndarray:
@@ -175,13 +172,9 @@ def plot_limit_analysis(result, ax=None):
 
 def save_limit_analysis(result, path: str | Path) -> Path:
     """Draw :func:`plot_limit_analysis` into a new figure and save it to ``path``."""
-    path = Path(path)
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     plot_limit_analysis(result, ax)
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
+    return save(fig, path, dpi=150)
 
 
 __all__ = ["moved_outline", "plot_arch", "plot_limit_analysis", "save_limit_analysis"]

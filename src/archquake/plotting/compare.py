@@ -7,35 +7,24 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from archquake.plotting.dem import plot_dem_rotation, plot_dem_snapshot  # noqa: E402
-from archquake.plotting.domains import plot_domain  # noqa: E402
-from archquake.plotting.history import plot_ground_motion, plot_history  # noqa: E402
-from archquake.plotting.thrust import plot_motion_state  # noqa: E402
+from archquake.plotting.dem import plot_dem_rotation, plot_dem_snapshot
+from archquake.plotting.domains import plot_domain
+from archquake.plotting.figures import save
+from archquake.plotting.history import plot_ground_motion, plot_history
+from archquake.plotting.thrust import plot_motion_state
 
 _DEM_STYLE = {"hinges": ("--", "tab:blue", "DEM, arch cut at the hinges"),
               "voussoirs": ("-.", "tab:red", "DEM, every voussoir a block")}
-
-
-def _finish(fig, path: str | Path, dpi: int = 120) -> Path:
-    path = Path(path)
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
 
 
 def save_dem_rotation(result, path: str | Path) -> Path:
     """The DEM rotation history alone (``archquake run --model dem --plot``)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     plot_dem_rotation(result, ax, label=f"DEM ({result.assembly.name})")
-    fig.tight_layout()
-    return _finish(fig, path)
+    return save(fig, path, dpi=120)
 
 
 def plot_history_comparison(comparisons: Sequence, ax=None, *, t_end: float | None = None):
@@ -99,8 +88,7 @@ def figure4_comparison(comparisons: dict, path: str | Path, *, t_end: float = 4.
         if k < len(tps) - 1:
             ax.set_xlabel("")
     axes[0].set_xlabel("")
-    fig.tight_layout()
-    return _finish(fig, path)
+    return save(fig, path, dpi=120)
 
 
 def _what(outcome: str, half: int | None) -> str:
@@ -135,8 +123,7 @@ def domain_comparison_figure(comparisons: Sequence, path: str | Path) -> Path:
         plot_domain_comparison(c, ax, title=c.label or None)
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
-    fig.tight_layout()
-    return _finish(fig, path)
+    return save(fig, path, dpi=120)
 
 
 def figure9_comparison(arch, states: Sequence, dem_result, path: str | Path) -> Path:
@@ -156,8 +143,7 @@ def figure9_comparison(arch, states: Sequence, dem_result, path: str | Path) -> 
             leg = ax.get_legend()
             if leg is not None:
                 leg.remove()
-    fig.tight_layout()
-    return _finish(fig, path, dpi=100)
+    return save(fig, path, dpi=100)
 
 
 def figure10(result, time: float, path: str | Path, *, reference=None) -> Path:
@@ -183,8 +169,7 @@ def figure10(result, time: float, path: str | Path, *, reference=None) -> Path:
     ax1.set_title(f"inter-stone displacements at t = {time:.2f} s", fontsize=9)
     ax1.axhline(0, color="0.6", lw=0.6)
     ax1.legend(fontsize=7)
-    fig.tight_layout()
-    return _finish(fig, path)
+    return save(fig, path, dpi=120)
 
 
 __all__ = [

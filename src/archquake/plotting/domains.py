@@ -9,14 +9,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from archquake.domains import FailureDomain, StudyCase, paper_boundary, similar_boundary  # noqa: E402
+from archquake.domains import FailureDomain, StudyCase, paper_boundary, similar_boundary
+from archquake.plotting.figures import save
 
 _REGION_COLOURS = {"no hinging": "#e8e8e8", "recovery": "#cfe8cf",
                    "collapse in 2nd half cycle": "#f6d7a7", "collapse in 1st half cycle": "#f0a8a8"}
@@ -143,17 +140,8 @@ def plot_scaling(reference: FailureDomain, others: Sequence[FailureDomain], ax=N
     return ax
 
 
-def save(ax, path: str | Path) -> Path:
-    """Write the axes' figure to ``path`` and close it."""
-    path = Path(path)
-    fig = ax.figure
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
-
-
 def save_domain(domain: FailureDomain, path: str | Path) -> Path:
+    """Figure 5 for ``domain``, written to ``path``."""
     return save(plot_domain(domain), path)
 
 

@@ -5,16 +5,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FuncAnimation, PillowWriter
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
-
-from archquake.constants import STANDARD_GRAVITY  # noqa: E402
-from archquake.plotting.arch import plot_arch  # noqa: E402
+from archquake.constants import STANDARD_GRAVITY
+from archquake.plotting.arch import plot_arch
+from archquake.plotting.figures import save
 
 
 def plot_history(result, ax=None, *, label: str | None = None, color: str | None = None,
@@ -108,11 +105,7 @@ def figure4(results: Sequence, motions: Sequence, labels: Sequence[str], path: s
         ax.set_xlim(0.0, t_end)
     for ax in axes[:-1]:
         ax.set_xlabel("")
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return save(fig, path, dpi=130)
 
 
 def animate_history(prepared, result, path: str | Path, *, fps: int = 20, t_end: float | None = None,

@@ -8,13 +8,10 @@ import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-
-import numpy as np  # noqa: E402
-
-from archquake.plotting.domains import plot_domains, save  # noqa: E402
+from archquake.plotting.domains import plot_domains
+from archquake.plotting.figures import save
 
 #: A distinct-element boundary to lay over a domain: (label, durations s, magnitudes g, style).
 DemSeries = tuple[str, np.ndarray, np.ndarray, str]

@@ -7,15 +7,12 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from archquake.geometry.arch import Arch  # noqa: E402
-from archquake.plotting.arch import plot_arch  # noqa: E402
+from archquake.geometry.arch import Arch
+from archquake.plotting.arch import plot_arch
+from archquake.plotting.figures import save
 
 
 def plot_motion_state(arch: Arch, state, ax=None, *, title: str | None = None):
@@ -57,7 +54,6 @@ def plot_motion_state(arch: Arch, state, ax=None, *, title: str | None = None):
 def save_thrust_snapshots(arch: Arch, states: Sequence, path: str | Path, *,
                           suptitle: str | None = None) -> Path:
     """Figure 8: one panel per state (three per row), saved to ``path``."""
-    path = Path(path)
     n = len(states)
     cols = min(3, n)
     rows = math.ceil(n / cols)
@@ -80,9 +76,7 @@ def save_thrust_snapshots(arch: Arch, states: Sequence, path: str | Path, *,
     if suptitle:
         fig.suptitle(suptitle, fontsize=11)
     fig.tight_layout(rect=(0, 0.05, 1, 0.97 if suptitle else 1))
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return save(fig, path, dpi=130, tight=False)
 
 
 __all__ = ["plot_motion_state", "save_thrust_snapshots"]

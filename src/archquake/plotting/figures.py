@@ -1,0 +1,48 @@
+"""Writing a figure to a file: the one save helper of :mod:`archquake.plotting`.
+
+Plot functions draw into an ``ax`` (a new figure if None), return it and never call ``show()``
+nor choose a backend: importing :mod:`archquake.plotting` leaves matplotlib's backend as the
+user set it (a notebook keeps its inline backend). Saving works with any backend; the command
+line selects Agg for itself before matplotlib is first imported.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure, SubFigure
+
+
+def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool = True) -> Path:
+    """Write ``target``'s figure to ``path`` and close it.
+
+    Parameters
+    ----------
+    target : matplotlib Figure or Axes
+        The figure, or any axes of it.
+    path : str or Path
+        Output file; the format follows the suffix (.png, .pdf, .svg).
+    dpi : int
+        Resolution of raster formats, dots per inch.
+    tight : bool
+        Apply ``tight_layout()`` first (False when the caller has laid the figure out itself).
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    path = Path(path)
+    fig: Figure | SubFigure | Axes = target
+    while not isinstance(fig, Figure):  # axes -> (sub)figure -> the figure that is saved
+        fig = fig.figure
+    if tight:
+        fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
+__all__ = ["save"]
