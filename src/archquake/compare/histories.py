@@ -22,6 +22,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
+from archquake.validation.paper import FIGURE4_DURATIONS
 
 #: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
 #: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
@@ -320,8 +321,6 @@ def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
     return window, diff, diff / peak if peak > 0 else math.nan
 
 
-#: The paper's Figure 4: a = 1.0 g and these t_p, s.
-FIGURE4_DURATIONS = (0.44, 0.27, 0.20)
 
 
 def figure4_comparisons(
