@@ -233,9 +233,11 @@ DEM_FRICTION_1G = PaperValue(0.55, 0.01, "", "p. 2134", _DEM_FRICTION_WHY, state
 #: p. 2134: the DEM (UDEC) friction threshold at a = 0.5 g.
 DEM_FRICTION_05G = PaperValue(0.51, 0.01, "", "p. 2134", _DEM_FRICTION_WHY, stated="0.51 (UDEC)")
 #: p. 2131: Rayleigh coefficients of xi_min = 0.01 % at 0.1 Hz: alpha, 1/s ...
-RAYLEIGH_ALPHA = PaperValue(6.28e-5, 5e-8, "1/s", "p. 2131", "the paper prints 3 digits")
+RAYLEIGH_ALPHA = PaperValue(6.28e-5, 5e-8, "1/s", "p. 2131", "the paper prints 3 digits",
+                            stated="6.28e-5")
 #: ... and beta, s.
-RAYLEIGH_BETA = PaperValue(1.59e-4, 5e-7, "s", "p. 2131", "the paper prints 3 digits")
+RAYLEIGH_BETA = PaperValue(1.59e-4, 5e-7, "s", "p. 2131", "the paper prints 3 digits",
+                           stated="1.59e-4")
 #: p. 2133: vibrations above this frequency are critically damped.
 CRITICAL_FREQUENCY = PaperValue(2000.0, 100.0, "Hz", "p. 2133",
                                 "'>2000 Hz' (one significant digit): 5 %", stated="~2000 Hz")
@@ -243,10 +245,12 @@ CRITICAL_FREQUENCY = PaperValue(2000.0, 100.0, "Hz", "p. 2133",
 #: are computed from xi_min = 0.001 % at 0.05 Hz and read by the stated critical frequency):
 #: alpha, 1/s ...
 REDUCED_RAYLEIGH_ALPHA = PaperValue(3.14e-6, 5e-9, "1/s", "p. 2133",
-                                    "3 digits; the text's '>10 000 Hz' fixes the reading")
+                                    "3 digits; the text's '>10 000 Hz' fixes the reading",
+                                    stated="~3.14e-6")
 #: ... beta, s ...
 REDUCED_RAYLEIGH_BETA = PaperValue(3.18e-5, 5e-8, "s", "p. 2133",
-                                   "3 digits; the text's '>10 000 Hz' fixes the reading")
+                                   "3 digits; the text's '>10 000 Hz' fixes the reading",
+                                   stated="~3.18e-5")
 #: ... and the critical frequency, Hz.
 REDUCED_CRITICAL_FREQUENCY = PaperValue(1e4, 500.0, "Hz", "p. 2133",
                                         "'>10 000 Hz' (one significant digit): 5 %",
