@@ -122,16 +122,6 @@ def test_installed_script_reports_bad_input():
     assert "--thickness" in proc.stderr and "Traceback" not in proc.stderr
 
 
-def test_demo_step_quick(tmp_path):
-    from archquake.cli.demo_static import demo_step
-
-    files = demo_step(tmp_path, quick=True)
-    assert [f.name for f in files] == ["static_collapse.png", "static_report.md"]
-    report = (tmp_path / "static_report.md").read_text()
-    assert "| collapse acceleration (static LP) | 0.3700 g | 0.37 g |" in report
-    assert "0.495 at joint 7 (right springing)" in report
-
-
 def test_plot_arch_moved_voussoirs():
     """plot_arch draws rigidly moved voussoirs: a zero displacement leaves the outline where it
     is, and a rotation about the centroid keeps every distance to it."""

@@ -1,5 +1,5 @@
 """``archquake domain`` and the domain figures: JSON is the domain's to_dict list, bad input is one
-line with exit status 2, and the plots and the demo step write their files."""
+line with exit status 2, and the plots write their files."""
 
 from __future__ import annotations
 
@@ -41,15 +41,3 @@ def test_domain_bad_input_exit_2(capsys, argv, message):
     assert main(["domain", *argv]) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
-
-
-def test_demo_step_quick(tmp_path):
-    from archquake.cli.demo_domains import demo_step
-
-    files = demo_step(tmp_path, True)
-    names = {f.name for f in files}
-    assert {"figure5_domain_step.png", "figure6_scaling_laws.png", "figure7a_thickness.png",
-            "figure11_domain_sine.png"} <= names
-    assert all(f.stat().st_size > 0 for f in files)
-    notes = json.loads((tmp_path / "figure7_geometry_notes.json").read_text())
-    assert "c_v" in notes["t/R = 0.11"]  # the energy-gaining geometry is reported, not hidden

@@ -28,8 +28,7 @@ COMMANDS: tuple[str, ...] = (
     "thrust",
     "friction",
     "domain",
-    "reproduce",
-    "demo",
+    "reproduce",  # also registers "demo" (= reproduce --quick plus the animation)
 )
 
 
