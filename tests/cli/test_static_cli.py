@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from archquake.cli import main as cli_main
+from archquake.validation import paper
 
 
 @pytest.fixture(autouse=True)
@@ -40,12 +41,12 @@ def test_static_text(capsys):
 def test_static_json(capsys):
     assert cli_main.main(["static", *OPPENHEIM, "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["collapse_acceleration_g"] == pytest.approx(0.37, abs=0.005)
+    assert paper.ONSET_ACCELERATION.within(data["collapse_acceleration_g"])
     assert [(h["joint"], h["face"]) for h in data["hinges"]] == [
         (0, "intrados"), (3, "extrados"), (5, "intrados"), (7, "extrados")]
     assert all({"x", "y"} <= h.keys() for h in data["hinges"])
     assert data["symmetric"] is False
-    assert data["min_friction"] == pytest.approx(0.50, abs=0.01)
+    assert paper.STATIC_FRICTION.within(data["min_friction"])
     assert data["static_multiplier"] == pytest.approx(data["kinematic_multiplier"], abs=1e-6)
 
 
@@ -57,11 +58,11 @@ def test_static_plot(tmp_path, capsys):
 
 
 def test_min_thickness_json(capsys):
-    """Milankovitch / Heyman: 0.1075 for the semicircle (+-0.001 for 200 joints)."""
+    """Milankovitch / Heyman: the semicircle's minimum thickness (tests/paper/test_static.py)."""
     assert cli_main.main(["min-thickness", "--embrace", "180", "--voussoirs", "200",
                           "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["min_thickness_ratio"] == pytest.approx(0.1075, abs=0.001)
+    assert paper.SEMICIRCLE_MIN_THICKNESS.within(data["min_thickness_ratio"])
 
 
 @pytest.mark.parametrize(

@@ -26,10 +26,10 @@ from archquake.dem.studies import (
     rectangular_pulse,
 )
 from archquake.errors import InvalidParameterError
-from archquake.validation import housner
 from archquake.geometry import Arch
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.ground.records import Record
+from archquake.validation import housner
 
 REST = Record([0.0, 0.0], 1.0)
 
