@@ -53,7 +53,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             src,
             f"alpha {RAYLEIGH_ALPHA.stated}, beta {RAYLEIGH_BETA.stated}",
             f"alpha {a1:.3g}, beta {b1:.3g}",
-            "3 digits",
+            f"alpha {RAYLEIGH_ALPHA.tolerance_text}, beta {RAYLEIGH_BETA.tolerance_text} (3 digits)",
             RAYLEIGH_ALPHA.why,
             RAYLEIGH_ALPHA.within(a1) and RAYLEIGH_BETA.within(b1),
         ),
@@ -63,7 +63,8 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             "p. 2133 (text repeats the first alpha, beta)",
             f"alpha {REDUCED_RAYLEIGH_ALPHA.stated}, beta {REDUCED_RAYLEIGH_BETA.stated} (notes)",
             f"alpha {a2:.3g}, beta {b2:.3g}; critical above {f_crit2:.0f} Hz",
-            f"3 digits; critical frequency {REDUCED_CRITICAL_FREQUENCY.stated} "
+            f"alpha {REDUCED_RAYLEIGH_ALPHA.tolerance_text}, beta {REDUCED_RAYLEIGH_BETA.tolerance_text}"
+            f" (3 digits); critical frequency {REDUCED_CRITICAL_FREQUENCY.stated} "
             f"{REDUCED_CRITICAL_FREQUENCY.tolerance_text}",
             REDUCED_RAYLEIGH_ALPHA.why,
             REDUCED_RAYLEIGH_ALPHA.within(a2)

@@ -105,8 +105,8 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             f"max |phi_DEM - phi| = {1000 * c44.max_difference:.2f} mrad up to {c44.window:.2f} s "
             f"({100 * c44.relative_difference:.1f} % of the peak); DEM {d44.outcome.value} in half "
             f"cycle {c44.dem_collapse_half_cycle}",
-            f"<= {1000 * THREE_VOUSSOIR_AGREEMENT.bound:g} mrad (5 % of 0.1 rad) over the first half "
-            "cycle, and the same outcome",
+            f"{THREE_VOUSSOIR_AGREEMENT.tolerance_text} (5 % of 0.1 rad) over the first half cycle, "
+            "and the same outcome",
             THREE_VOUSSOIR_AGREEMENT.why,
             THREE_VOUSSOIR_AGREEMENT.within(c44.max_difference, 0.0) and c44.same_outcome,
         )
