@@ -21,6 +21,7 @@ from archquake.compare import (
     three_voussoir_assembly,
 )
 from archquake.ground import StepImpulse
+from archquake.validation import paper
 
 
 def test_three_voussoir_dem_follows_the_analytical_first_half_cycle(oppenheim):
@@ -49,14 +50,15 @@ def test_three_voussoir_dem_hits_when_the_analytical_model_does(oppenheim):
     ("t_p", "duration", "outcome", "half", "impact"),
     [
         (0.44, 3.0, "collapse", 1, None),
-        (0.27, 5.0, "collapse", 2, 0.86),  # the DEM collapses slowly: 3.29 s
-        (0.20, 5.0, "survives", None, 0.6),
+        (0.27, 5.0, "collapse", 2, paper.FIGURE4C_FIRST_IMPACT),  # the DEM collapses slowly: 3.29 s
+        (0.20, 5.0, "survives", None, paper.FIGURE4D_FIRST_IMPACT),
     ],
 )
 def test_seven_voussoir_dem_gives_figure4_outcomes(oppenheim, t_p, duration, outcome, half, impact):
-    """Outcome and half cycle equal the analytical model's (and the paper's); the first impact
-    within 0.06 s of the paper's 'about 0.86 s' / 'about 0.6 s': the DEM's hinges wander (p. 2132:
-    'reasonably good agreement'), which delays its impact by 0.03-0.06 s (measured 0.916, 0.635)."""
+    """Outcome and half cycle equal the analytical model's (and the paper's); the DEM's first
+    impact within the paper's 'reasonably good agreement' (p. 2132, 10 %) of the analytical one:
+    the DEM's hinges wander, which delays its impact by 0.03-0.06 s (measured 0.916, 0.635); the
+    analytical one at the paper's 'about 0.86 s' / 'about 0.6 s'."""
     c = compare_history(oppenheim, StepImpulse.from_g(1.0, t_p), duration=duration)
     assert c.analytical.outcome.value == outcome and c.analytical.collapse_half_cycle == half
     assert c.dem.outcome.value == outcome
@@ -65,8 +67,10 @@ def test_seven_voussoir_dem_gives_figure4_outcomes(oppenheim, t_p, duration, out
     if impact is None:
         assert c.dem.first_impact_time is None and c.analytical.impact_times.size == 0
     else:
-        assert c.dem.first_impact_time == pytest.approx(impact, abs=0.06)
-        assert c.analytical_first_impact == pytest.approx(impact, abs=0.01)
+        agreement = paper.DEM_FIRST_IMPACT_AGREEMENT
+        msg = agreement.check(c.dem.first_impact_time, c.analytical_first_impact, "DEM first impact")
+        assert msg is None, msg
+        assert impact.within(c.analytical_first_impact), impact.check(c.analytical_first_impact)
 
 
 def test_dem_impacts_continue_the_dem_first_impact(oppenheim):

@@ -33,7 +33,7 @@ def small_report(tmp_path):
     """A report of two real rows and one real figure (the quick report itself is checked in
     test_reproduce; this keeps the browser test to a few seconds)."""
     from archquake.domains import oppenheim_arch
-    from archquake.reproduce.analytical import static_study
+    from archquake.reproduce.static import study as static_study
 
     figures = tmp_path / "figures"
     figures.mkdir()

@@ -4,7 +4,7 @@ friction demand (paper p. 2131).
 Oracles: the statics of each link (nine equations, one more than the unknowns: it holds only
 if phi'' obeys the equation of motion), zero moment at the hinges, finite differences of the
 displaced positions, the mirror symmetry of the two mechanisms, the equivalent static analysis
-at the onset threshold, and the paper's friction numbers.
+at the onset threshold (the paper's friction numbers: tests/paper/test_friction.py).
 """
 
 from __future__ import annotations
@@ -20,7 +20,6 @@ from archquake.ground import StepImpulse
 from archquake.limit import limit_analysis
 from archquake.mechanism import PreparedMechanism, simulate
 from archquake.thrust import state_at, states
-from archquake.thrust.friction import friction_demand
 
 ARCH = Arch(10.0, 1.5, math.radians(157.5), 7)
 R = ARCH.radius
@@ -151,18 +150,3 @@ def test_figure_8a_line_of_thrust_leaves_between_the_second_and_third_voussoirs(
     (s,) = [s for s in snaps if abs(s.t - 0.2) < 1e-9]
     assert s.exit_joint == 2
     assert s.outside[2] > 0.5
-
-
-# ------------------------------------------------------------------------- friction, p. 2131
-@pytest.mark.parametrize("a, expected, tol", [(0.5, 0.509, 0.005), (1.0, 0.56, 0.015)])
-def test_friction_demand_at_onset_is_largest_at_the_right_springing(prepared, a, expected, tol):
-    """Paper p. 2131 and p. 2135: 0.509 at 0.5 g, about 0.56 at 1.0 g (UDEC 0.55), at hinge D
-    at t = 0+, independent of the impulse duration. We find 0.509 and 0.550 (see
-    docs/thrust-and-friction.md)."""
-    for tp in (0.2, 0.27):
-        fd = friction_demand(prepared, StepImpulse.from_g(a, tp))
-        assert fd.joint == ARCH.voussoirs
-        assert fd.time == 0.0
-        assert fd.max_friction_demand == pytest.approx(expected, abs=tol)
-        assert fd.onset_demand == fd.max_friction_demand
-        assert fd.static_friction_demand == pytest.approx(0.50, abs=0.01)

@@ -10,6 +10,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from archquake._json import to_jsonable
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
@@ -225,6 +227,44 @@ def ground_motion_from_args(args: argparse.Namespace, *,
     return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
 
 
+def parse_durations(text: str) -> np.ndarray:
+    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration."""
+    try:
+        return _durations(text)
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _durations(text: str) -> np.ndarray:
+    parts = text.split(":")
+    if len(parts) == 1:
+        try:
+            single = float(parts[0])
+        except ValueError:
+            single = math.nan
+        return _positive(np.array([single]), text)
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise InvalidParameterError(
+            f"expected START:STOP:COUNT in s (e.g. 0.05:1.5:40) or one duration, got {text!r}"
+        ) from None
+    if count < 1:
+        raise InvalidParameterError(f"COUNT must be >= 1 in START:STOP:COUNT, got {text!r}")
+    if count > 1 and not stop > start:
+        raise InvalidParameterError(f"STOP must exceed START in START:STOP:COUNT, got {text!r}")
+    return _positive(np.linspace(start, stop, count), text)
+
+
+def _positive(values: np.ndarray, text: str) -> np.ndarray:
+    if not np.all(np.isfinite(values)) or np.any(values <= 0):
+        raise InvalidParameterError(f"durations must be finite and > 0 s, got {text!r}")
+    return values
+
+
+
 __all__ = [
     "add_arch_arguments",
     "add_ground_motion_arguments",
@@ -232,6 +272,7 @@ __all__ = [
     "arch_from_args",
     "ground_motion_from_args",
     "number",
+    "parse_durations",
     "print_json",
     "record_from_args",
     "to_jsonable",

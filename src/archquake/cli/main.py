@@ -34,8 +34,7 @@ COMMANDS: tuple[str, ...] = (
     "thrust",
     "friction",
     "domain",
-    "reproduce",
-    "demo",
+    "reproduce",  # also registers "demo" (= reproduce --quick plus the animation)
 )
 
 #: The line each command shows in ``archquake --help``, by module name (the command's name is

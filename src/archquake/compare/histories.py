@@ -29,6 +29,7 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
+from archquake.validation.paper import FIGURE4_DURATIONS
 
 #: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
 #: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.5 s after the impulse ends
@@ -291,8 +292,6 @@ def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
     return window, diff, diff / peak if peak > 0 else math.nan
 
 
-#: The paper's Figure 4: a = 1.0 g and these t_p, s.
-FIGURE4_DURATIONS = (0.44, 0.27, 0.20)
 
 
 def figure4_comparisons(

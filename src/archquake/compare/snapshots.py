@@ -16,16 +16,7 @@ import numpy as np
 from archquake.compare.histories import VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.geometry.arch import Arch
-
-#: The paper's Figure 9 (and our Figure 8 comparison): a = 1.0 g, t_p = 0.20 s, these times (s).
-FIGURE9_TIMES = (0.20, 0.50, 0.80, 1.10, 1.30, 1.80)
-
-#: Figure 10: reduced Rayleigh damping f_min = 0.05 Hz, xi_min = 0.001 % (alpha ~ 3.14e-6 1/s,
-#: beta ~ 3.18e-5 s; the paper's text repeats the first alpha, beta by mistake), a = 1.0 g,
-#: t_p = 0.22 s, snapshot at t = 1.29 s.
-FIGURE10_DAMPING = (0.05, 1e-5)
-FIGURE10_PULSE = (1.0, 0.22)
-FIGURE10_TIME = 1.29
+from archquake.validation.paper import FIGURE9_TIMES, FIGURE10_DAMPING, FIGURE10_PULSE, FIGURE10_TIME
 
 
 def dem_hinges(result, time: float, *, relative: float = 0.1) -> list[tuple[int, str]]:

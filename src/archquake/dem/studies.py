@@ -15,11 +15,7 @@ from archquake.dem.assembly import Assembly, block_on_base
 from archquake.dem.run import simulate_dem
 from archquake.dem.settings import DemSettings
 from archquake.ground.records import Record
-
-
-def housner_restitution(width: float, height: float) -> float:
-    """Housner's coefficient of restitution on angular velocity, 1 - 1.5 sin^2(alpha)."""
-    return 1.0 - 1.5 * math.sin(math.atan2(width, height)) ** 2
+from archquake.validation.housner import restitution
 
 
 def tilted_block(width: float, height: float, tilt: float, **kwargs) -> Assembly:
@@ -94,7 +90,7 @@ def restitution_table(
                 "rayleigh_alpha": st.damping[0],
                 "rayleigh_beta": st.damping[1],
                 "measured": free_rocking_restitution(b, h, st, g=g),
-                "housner": housner_restitution(b, h),
+                "housner": restitution(b, h),
             }
         )
     return rows
@@ -134,7 +130,6 @@ __all__ = [
     "friction_threshold",
     "slides",
     "free_rocking_restitution",
-    "housner_restitution",
     "ramp_and_hold",
     "rectangular_pulse",
     "restitution_table",

@@ -10,7 +10,6 @@ rocking grows at every impact and any hinging ends in collapse given time.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,23 +17,23 @@ import numpy as np
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError
 from archquake.geometry.arch import Arch
+from archquake.validation.paper import (
+    FIGURE6_RADII,
+    FIGURE7_EMBRACES_DEG,
+    FIGURE7_RATIOS,
+    oppenheim_arch,
+)
 
 from .batch import PulseFamily
 from .domain import FIGURE5_DURATIONS, DomainSettings, FailureDomain, failure_domain
 
-#: Figure 6: radii, m (t/R = 0.15, 157.5 degrees, 7 voussoirs).
-SCALE_RADII = (1.0, 5.0, 10.0, 20.0)
-#: Figure 7: thickness ratios at 157.5 degrees, and embraces (degrees) at t/R = 0.15.
-GEOMETRY_RATIOS = (0.11, 0.15, 0.17, 0.19)
-GEOMETRY_EMBRACES_DEG = (142.5, 150.0, 157.5, 165.0)
+#: Figure 6: radii, m; Figure 7: thickness ratios at 157.5 degrees, and embraces (degrees) at
+#: t/R = 0.15 (the paper's parameters live in :mod:`archquake.validation.paper`).
+SCALE_RADII = FIGURE6_RADII
+GEOMETRY_RATIOS = FIGURE7_RATIOS
+GEOMETRY_EMBRACES_DEG = FIGURE7_EMBRACES_DEG
 #: Figure 7's durations t_p, s.
 FIGURE7_DURATIONS = tuple(np.linspace(0.05, 1.0, 30).tolist())
-
-
-def oppenheim_arch(radius: float = 10.0, thickness_ratio: float = 0.15, embrace_deg: float = 157.5,
-                   voussoirs: int = 7) -> Arch:
-    """Oppenheim's arch (t/R = 0.15, 157.5 degrees, R = 10 m, 7 voussoirs) or a variant."""
-    return Arch(radius, thickness_ratio * radius, math.radians(embrace_deg), voussoirs)
 
 
 @dataclass(frozen=True)

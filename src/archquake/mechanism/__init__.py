@@ -11,10 +11,6 @@ from archquake.mechanism.simulate import (
     simulate,
 )
 
-#: Former name of :func:`hinges_of`, kept only for ``reproduce/numerical.py`` (another branch
-#: moves that module); not part of ``__all__``, to be removed once no caller uses it.
-default_mechanism = hinges_of
-
 __all__ = [
     "FinalState",
     "History",

@@ -14,8 +14,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from archquake._json import to_jsonable
 from archquake.geometry.arch import Arch
+from archquake.validation.paper import PaperValue
 
 
 @dataclass(frozen=True)
@@ -108,6 +111,59 @@ class Row:
 def within(value: float, target: float, tolerance: float) -> bool:
     """|value - target| <= tolerance (False for NaN)."""
     return bool(math.isfinite(value) and abs(value - target) <= tolerance)
+
+
+def paper_row(
+    quantity: str,
+    value: PaperValue,
+    archquake: str,
+    x: float | None,
+    *,
+    source: str | None = None,
+    paper: str | None = None,
+    justification: str | None = None,
+) -> Row:
+    """The row of a number the paper states (:class:`~archquake.validation.paper.PaperValue`):
+    its page, value, tolerance and why come from :mod:`archquake.validation.paper`; ``x`` is
+    archquake's value (None when not computed), ``archquake`` its formatted text. ``source``,
+    ``paper`` and ``justification`` only add context (a figure panel, "(same arch)")."""
+    return Row(
+        quantity,
+        value.where if source is None else source,
+        value.stated if paper is None else paper,
+        archquake,
+        value.tolerance_text,
+        value.why if justification is None else justification,
+        value.within(x),
+    )
+
+
+def domain_settings(quick: bool):
+    """The analytical domain search of the reproduction: coarse in quick mode."""
+    from archquake.domains import DomainSettings
+
+    return (
+        DomainSettings(coarse_points=20, fine_points=8, precision_g=5e-3) if quick else DomainSettings()
+    )
+
+
+def fmt(x: float | None, digits: int = 3) -> str:
+    """``x`` to ``digits`` decimals, "none" for None or NaN."""
+    return "none" if x is None or not math.isfinite(x) else f"{x:.{digits}f}"
+
+
+def at_least(upper: np.ndarray, lower: np.ndarray, slack: float) -> bool:
+    """``upper`` >= ``lower`` - slack at every duration; NaN (no collapse up to the scan's
+    ceiling) counts as above everything."""
+    u = np.where(np.isfinite(upper), upper, np.inf)
+    lo = np.where(np.isfinite(lower), lower, np.inf)
+    return bool(np.all(u >= lo - slack))
+
+
+def nondecreasing(a: np.ndarray, slack: float) -> bool:
+    """The finite entries of ``a`` never fall by more than ``slack``."""
+    a = a[np.isfinite(a)]
+    return bool(np.all(np.diff(a) >= -slack))
 
 
 @dataclass(frozen=True)
@@ -209,5 +265,10 @@ __all__ = [
     "Study",
     "StudyFunction",
     "StudyResult",
+    "at_least",
+    "domain_settings",
+    "fmt",
+    "nondecreasing",
+    "paper_row",
     "within",
 ]

@@ -8,11 +8,7 @@ import html
 from pathlib import Path
 
 from archquake import __version__
-
-_PAPER = (
-    "De Lorenzis L, DeJong M, Ochsendorf J (2007). Failure of masonry arches under impulse base "
-    "motion. Earthquake Engng Struct. Dyn. 36:2119-2136."
-)
+from archquake.validation.paper import CITATION as _PAPER
 
 _INTRO = (
     "Every study of the paper was run again on Oppenheim's arch (t/R = 0.15, embrace 157.5 deg, R = 10 m, "

@@ -26,6 +26,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.reproduce.core import Study, StudyResult
 from archquake.reproduce.registry import STUDIES
+from archquake.validation.paper import oppenheim_arch
 
 
 @dataclass(frozen=True)
@@ -143,8 +144,6 @@ def run_studies(
     report : bool
         Write report.md and report.html.
     """
-    from archquake.domains import oppenheim_arch
-
     out = Path(out)
     figures = out / "figures"
     figures.mkdir(parents=True, exist_ok=True)

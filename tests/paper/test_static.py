@@ -1,5 +1,6 @@
 """The paper's equivalent-static numbers (De Lorenzis, DeJong & Ochsendorf 2007) and the
-classic minimum thickness of the semicircular arch."""
+classic minimum thickness of the semicircular arch. Values and tolerances:
+:mod:`archquake.validation.paper`."""
 
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ import pytest
 
 from archquake.geometry import Arch
 from archquake.limit import limit_analysis, min_thickness_ratio, stands
+from archquake.validation import paper
+from archquake.validation.paper import FIGURE7_EMBRACES_DEG, FIGURE7_RATIOS
 
 #: Figure 7 (R = 10 m; 7 voussoirs as Oppenheim's arch, the paper gives no other number):
 #: (t/R, embrace deg) -> (lambda in g to 1e-4, hinge joints, symmetric hinge locations).
@@ -36,26 +39,32 @@ def figure7():
     return {key: _analyse(*key) for key in FIGURE_7}
 
 
-def test_oppenheim_onset_and_friction(oppenheim):
-    """Paper p. 2126: motion starts at 0.37 g (+-0.005: the paper's two digits). Paper p. 2131:
-    the equivalent static analysis needs a friction coefficient of 0.50 (+-0.01, two digits),
-    at the right springing (hinge D), where the thrust is most inclined to the joint."""
-    res = limit_analysis(oppenheim, method="both")
-    assert res.collapse_acceleration_g == pytest.approx(0.37, abs=0.005)
-    assert res.min_friction == pytest.approx(0.50, abs=0.01)
-    assert res.min_friction_joint == oppenheim.voussoirs == res.mechanism.joints[3]
+def test_oppenheim_onset_and_friction(arch):
+    """Paper p. 2126: motion starts at 0.37 g. Paper p. 2131: the equivalent static analysis
+    needs a friction coefficient of 0.50, at the right springing (hinge D), where the thrust is
+    most inclined to the joint. The two bounds of limit analysis meet (1e-6 g: the LP's
+    optimality tolerance)."""
+    res = limit_analysis(arch, method="both")
+    msg = paper.ONSET_ACCELERATION.check(res.collapse_acceleration_g, "lambda")
+    assert msg is None, msg
+    assert res.static_collapse_acceleration_g == pytest.approx(
+        res.kinematic_collapse_acceleration_g, abs=1e-6)
+    msg = paper.STATIC_FRICTION.check(res.min_friction, "static friction demand")
+    assert msg is None, msg
+    assert res.min_friction_joint == arch.voussoirs == res.mechanism.joints[3]
 
 
 def test_figure7_trends(figure7):
     """Paper p. 2129: increasing t/R and decreasing the embrace raise the onset acceleration
     and move the hinges from asymmetric to symmetric locations."""
     lam = {k: r.collapse_acceleration_g for k, r in figure7.items()}
-    by_ratio = [lam[(r, 157.5)] for r in (0.11, 0.15, 0.17, 0.19)]
-    by_embrace = [lam[(0.15, b)] for b in (142.5, 150.0, 157.5, 165.0)]
+    embrace, ratio = paper.OPPENHEIM_EMBRACE_DEG, paper.OPPENHEIM_THICKNESS_RATIO
+    by_ratio = [lam[(r, embrace)] for r in FIGURE7_RATIOS]
+    by_embrace = [lam[(ratio, b)] for b in FIGURE7_EMBRACES_DEG]
     assert by_ratio == sorted(by_ratio)
     assert by_embrace == sorted(by_embrace, reverse=True)
-    sym_ratio = [figure7[(r, 157.5)].symmetric for r in (0.11, 0.15, 0.17, 0.19)]
-    sym_embrace = [figure7[(0.15, b)].symmetric for b in (165.0, 157.5, 150.0, 142.5)]
+    sym_ratio = [figure7[(r, embrace)].symmetric for r in FIGURE7_RATIOS]
+    sym_embrace = [figure7[(ratio, b)].symmetric for b in reversed(FIGURE7_EMBRACES_DEG)]
     assert sym_ratio == [False, False, True, True]
     assert sym_embrace == [False, False, True, True]
 
@@ -79,9 +88,9 @@ def test_thinnest_figure7_arch_stands():
 
 @pytest.mark.parametrize("n", [100, 200])
 def test_semicircle_minimum_thickness(n):
-    """Milankovitch (1907), Heyman (1969): t/R = 0.1075 for the semicircular arch under its
-    own weight (a continuous arch: +-0.001 allows for the finite number of joints)."""
-    assert min_thickness_ratio(math.pi, n) == pytest.approx(0.1075, abs=0.001)
+    """Milankovitch (1907), Heyman (1969): the semicircular arch under its own weight."""
+    msg = paper.SEMICIRCLE_MIN_THICKNESS.check(min_thickness_ratio(math.pi, n), f"t/R, {n} joints")
+    assert msg is None, msg
 
 
 def test_minimum_thickness_grows_with_joints():
@@ -89,4 +98,5 @@ def test_minimum_thickness_grows_with_joints():
     when the joints of the coarse arch are a subset of the fine one's (n -> 3n)."""
     coarse = min_thickness_ratio(math.pi, 10)
     fine = min_thickness_ratio(math.pi, 30)
-    assert coarse <= fine + 1e-6 <= 0.1075 + 0.001
+    continuous = paper.SEMICIRCLE_MIN_THICKNESS
+    assert coarse <= fine + 1e-6 <= continuous.value + continuous.tolerance
