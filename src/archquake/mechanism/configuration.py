@@ -272,9 +272,10 @@ def voussoir_positions(prepared: PreparedMechanism, phi: float, side: int = 1) -
 def hinge_points(prepared: PreparedMechanism, phi: float, side: int = 1) -> np.ndarray:
     """The four hinge points A, B, C, D of the open mechanism (side +1 or -1) in the displaced
     arch, m, (4, 2): :attr:`DisplacedArch.hinge_points`."""
-    if int(side) == 0:
+    points = displaced_arch(prepared, phi, side).hinge_points
+    if points is None:
         raise InvalidParameterError("the locked arch (side 0) has no hinges")
-    return displaced_arch(prepared, phi, side).hinge_points
+    return points
 
 
 __all__ = ["DisplacedArch", "displaced_arch", "hinge_points", "voussoir_positions"]

@@ -18,11 +18,13 @@ those states are cached by ground acceleration.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.limit.analysis import limit_analysis
@@ -84,7 +86,7 @@ class FrictionDemand:
     simulation: SimulationResult = field(repr=False)
 
     def to_dict(self, include_history: bool = False) -> dict:
-        out = {
+        out: dict[str, object] = {
             "max_friction_demand": self.max_friction_demand,
             "joint": self.joint,
             "time": self.time,
@@ -107,6 +109,8 @@ class FrictionDemand:
 def _instants(result: SimulationResult, motion: GroundMotion, tau: float):
     """(t, phi, phi_dot, side, ground) of every instant to examine."""
     h = result.history
+    if h is None or h.t.size == 0:
+        raise InvalidParameterError("the simulation result has no history (output_interval = 0)")
     rows = [(t, p, v, int(s), a) for t, p, v, s, a in
             zip(h.t, h.phi, h.phi_dot, h.side, h.ground_acceleration)
             if not (s == 0 and t == result.onset_time)]  # replaced by the onset+ state below
@@ -131,6 +135,7 @@ def friction_demand(
     *,
     result: SimulationResult | None = None,
     g: float = STANDARD_GRAVITY,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FrictionDemand:
     """Largest friction demand |V| / N over the joints and the whole response to a motion.
 
@@ -142,6 +147,10 @@ def friction_demand(
         The time history, if already computed (must hold its history).
     g : float
         Gravity, m/s^2.
+    progress : callable, optional
+        Called as ``progress(done, total)`` before each instant is examined (the CLI draws a
+        progress bar with it; a long record has thousands of instants, and every locked one
+        needs a few linear programs).
 
     Returns
     -------
@@ -165,14 +174,21 @@ def friction_demand(
     geometry = prepared.mechanism.arch
     tau = float(np.sqrt(geometry.radius / g))
     locked_cache: dict[float, MotionState] = {}
+    last_locked: MotionState | None = None
     times, demand, where, sides = [], [], [], []
     onset = None
     tension = None
-    for t, phi, v, side, xg in _instants(result, motion, tau):
+    instants = _instants(result, motion, tau)
+    for count, (t, phi, v, side, xg) in enumerate(instants):
+        if progress is not None:
+            progress(count, len(instants))
         if side == 0:
             key = float(xg)
             if key not in locked_cache:
-                locked_cache[key] = state_at(prepared, t, 0.0, 0.0, 0, xg, g=g)
+                # warm start from the previous locked instant (nearby loads)
+                locked_cache[key] = last_locked = state_at(
+                    prepared, t, 0.0, 0.0, 0, xg, g=g,
+                    locked_start=None if last_locked is None else last_locked.forces)
             ratios = locked_cache[key].friction_demand
         else:
             ratios = state_at(prepared, t, max(phi, 0.0), v, side, xg, g=g).friction_demand

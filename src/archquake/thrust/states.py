@@ -59,27 +59,16 @@ class MotionState:
     ----------
     t : float
         Time, s.
-    phi, phi_dot, phi_ddot : float
-        Rotation of the open mechanism (rad), its rate (rad/s) and acceleration (rad/s^2).
-    side : int
-        +1 the first mechanism, -1 its mirror image, 0 locked (moving rigidly with the ground).
+    configuration : DisplacedArch
+        The displaced arch (:func:`archquake.mechanism.configuration.displaced_arch`): phi,
+        phi_dot, phi_ddot (Eq. 2), side, joint lines, centroids, rigid motions and hinges, each
+        also readable here under its own name (``state.phi``, ``state.joint_points``, ...).
     ground_acceleration : float
         x_g'' used for the forces, m/s^2 (towards +x positive).
-    joint_points : ndarray, (n+1, 2, 2)
-        Intrados and extrados ends of every joint in the displaced arch, m.
-    centroids : ndarray, (n, 2)
-        Displaced voussoir centroids, m.
-    rotations : ndarray, (n,)
-        Rotation of each voussoir, rad (counter-clockwise); ``translations`` (n, 2), m, complete
-        the rigid motion x -> Rot(rotation) x + translation of its undisplaced points.
     loads : ndarray, (n, 2)
         Resultant external force on each voussoir (weight, ground inertia, own inertia), N.
     load_moments : ndarray, (n,)
         Their moment about the origin O, N m.
-    hinge_joints : tuple of 4 int, or None
-        Joints of the open mechanism's hinges (None while locked).
-    hinge_points : ndarray, (4, 2), or None
-        Hinge points in the displaced arch, m.
     hinge_forces : ndarray, (4, 2), or None
         Force transmitted at A, B, C, D from the part on the left to the part on the right, N.
     forces : JointForces
@@ -92,23 +81,27 @@ class MotionState:
     """
 
     t: float
-    phi: float
-    phi_dot: float
-    phi_ddot: float
-    side: int
+    configuration: DisplacedArch
     ground_acceleration: float
-    joint_points: np.ndarray = field(repr=False)
-    centroids: np.ndarray = field(repr=False)
-    rotations: np.ndarray = field(repr=False)
-    translations: np.ndarray = field(repr=False)
     loads: np.ndarray = field(repr=False)
     load_moments: np.ndarray = field(repr=False)
-    hinge_joints: tuple[int, int, int, int] | None
-    hinge_points: np.ndarray | None = field(repr=False)
     hinge_forces: np.ndarray | None = field(repr=False)
     forces: JointForces = field(repr=False)
     equilibrium_residual: float
     g: float
+
+    # the displaced arch, read from its one home
+    phi = property(lambda self: self.configuration.phi, doc="rad")
+    phi_dot = property(lambda self: self.configuration.phi_dot, doc="rad/s")
+    phi_ddot = property(lambda self: self.configuration.phi_ddot, doc="rad/s^2 (Eq. 2)")
+    side = property(lambda self: self.configuration.side, doc="+1, -1; 0 locked")
+    joint_points = property(lambda self: self.configuration.joint_points, doc="m, (n+1, 2, 2)")
+    centroids = property(lambda self: self.configuration.centroids, doc="m, (n, 2)")
+    rotations = property(lambda self: self.configuration.rotations, doc="rad, (n,)")
+    translations = property(lambda self: self.configuration.translations, doc="m, (n, 2)")
+    positions = property(lambda self: self.configuration.positions, doc="dx, dy (m), rotation (rad), (n, 3)")
+    hinge_joints = property(lambda self: self.configuration.hinge_joints, doc="A, B, C, D or None")
+    hinge_points = property(lambda self: self.configuration.hinge_points, doc="m, (4, 2) or None")
 
     @property
     def locked(self) -> bool:
@@ -232,6 +225,7 @@ def state_at(
     ground_acceleration: float,
     *,
     g: float = STANDARD_GRAVITY,
+    locked_start: JointForces | None = None,
 ) -> MotionState:
     """Displaced arch and joint forces for a given mechanism state.
 
@@ -249,6 +243,9 @@ def state_at(
         x_g'', m/s^2, towards +x positive.
     g : float
         Gravity, m/s^2.
+    locked_start : JointForces, optional
+        For a locked state: a line of thrust to start the least-friction search from (the
+        ``forces`` of a nearby locked state; see :func:`archquake.limit.locked_joint_forces`).
 
     Returns
     -------
@@ -272,7 +269,7 @@ def state_at(
     if side not in (-1, 0, 1):
         raise InvalidParameterError(f"side must be -1, 0 or +1, got {side}")
     if side == 0:
-        return _locked_state(prepared, t, xg, g)
+        return _locked_state(prepared, t, xg, g, locked_start)
     if phi < 0:
         raise InvalidParameterError(f"phi must be >= 0 rad while a mechanism is open, got {phi:g}")
     # Eq. 2 for side +1; the mirror mechanism is the packed one under -x_g'' (Eq. 3)
@@ -287,29 +284,22 @@ def state_at(
     reaction = hinge_f[0] - loads[:a_joint].sum(axis=0)
     reaction_moment = float(_cross(config.hinge_points[0]) @ hinge_f[0] - moments[:a_joint].sum())
     jf = joint_forces(config.joint_points, loads, moments, reaction, reaction_moment)
-    return MotionState(
-        t=float(t), phi=float(phi), phi_dot=float(phi_dot), phi_ddot=phi_ddot, side=side,
-        ground_acceleration=xg, joint_points=config.joint_points, centroids=config.centroids,
-        rotations=config.rotations, translations=config.translations, loads=loads,
-        load_moments=moments, hinge_joints=config.hinge_joints, hinge_points=config.hinge_points,
-        hinge_forces=hinge_f, forces=jf, equilibrium_residual=residual, g=float(g),
-    )
+    return MotionState(t=float(t), configuration=config, ground_acceleration=xg, loads=loads,
+                       load_moments=moments, hinge_forces=hinge_f, forces=jf,
+                       equilibrium_residual=residual, g=float(g))
 
 
-def _locked_state(prepared: PreparedMechanism, t: float, xg: float, g: float) -> MotionState:
+def _locked_state(prepared: PreparedMechanism, t: float, xg: float, g: float,
+                  start: JointForces | None = None) -> MotionState:
     config = displaced_arch(prepared, 0.0, 0)
     arch = config.arch
     loads, moments = _voussoir_loads(arch, config.centroids, config.accelerations,
                                      config.angular_accelerations, xg, g)
-    jf = locked_joint_forces(arch, loads, moments)
+    jf = locked_joint_forces(arch, loads, moments, start=start)
     residual_f = np.abs(jf.force[0] + loads.sum(axis=0) - jf.force[-1]).max() / (arch.mass * g)
-    return MotionState(
-        t=float(t), phi=0.0, phi_dot=0.0, phi_ddot=0.0, side=0, ground_acceleration=xg,
-        joint_points=config.joint_points, centroids=config.centroids,
-        rotations=config.rotations, translations=config.translations, loads=loads,
-        load_moments=moments, hinge_joints=None, hinge_points=None, hinge_forces=None, forces=jf,
-        equilibrium_residual=float(residual_f), g=float(g),
-    )
+    return MotionState(t=float(t), configuration=config, ground_acceleration=xg, loads=loads,
+                       load_moments=moments, hinge_forces=None, forces=jf,
+                       equilibrium_residual=float(residual_f), g=float(g))
 
 
 # --------------------------------------------------------------------------- time histories
