@@ -4,6 +4,8 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import sys
 
 from archquake.cli.common import (
     add_arch_arguments,
@@ -31,12 +33,32 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+@contextlib.contextmanager
+def _progress_bar():
+    """A progress bar on stderr over the instants examined (shown only on a terminal: a long
+    record has thousands of instants, the locked ones a few linear programs each)."""
+    from tqdm import tqdm
+
+    bar = tqdm(total=0, desc="instants", unit="", file=sys.stderr, disable=None, leave=False)
+
+    def update(done: int, total: int) -> None:
+        if bar.total != total:
+            bar.total = total
+        bar.update(done - bar.n)
+
+    try:
+        yield update
+    finally:
+        bar.close()
+
+
 def run(args: argparse.Namespace) -> int:
     from archquake.thrust.friction import friction_demand
 
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    result = friction_demand(arch, motion)
+    with _progress_bar() as progress:
+        result = friction_demand(arch, motion, progress=progress)
     if args.json:
         out = result.to_dict()
         out["arch"] = arch.describe()

@@ -2,7 +2,8 @@
 demand and minimum thickness (Heyman's rigid no-tension voussoirs; paper p. 2120, 2126, 2131).
 
 The statics of a voussoir chain in any configuration (:func:`joint_forces`) lives here too, so
-the line of thrust during motion reuses it.
+the line of thrust during motion reuses it, and so does the least-friction admissible line of
+thrust of the locked arch (:func:`locked_joint_forces`).
 """
 
 from archquake.limit.analysis import LimitAnalysis, Method, collapse_joint_forces, limit_analysis
@@ -11,6 +12,7 @@ from archquake.limit.kinematic import (
     kinematic_collapse,
     mechanism_multipliers,
 )
+from archquake.limit.locked import locked_joint_forces
 from archquake.limit.static import (
     collapse_state,
     min_thickness_ratio,
@@ -37,6 +39,7 @@ __all__ = [
     "joint_frames",
     "kinematic_collapse",
     "limit_analysis",
+    "locked_joint_forces",
     "mechanism_multipliers",
     "min_thickness_ratio",
     "moments_about_origin",

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 import numba as nb
+import numpy as np
 
 from archquake.ground._kernel import ground_duration, ground_in_piece, next_breakpoint
 from archquake.ground.base import KIND_SAMPLED, KIND_STEP
@@ -196,9 +197,52 @@ def find_onset(mech, kind, params, t, t_limit, g):
 
 
 @nb.njit(cache=True, nogil=True)
+def _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t_last, s_max,
+                   t_eval, eval_out, i_ev):
+    """States at the requested times in (t, t_last] of the step that starts at (t, phi, v):
+    each is one Dormand-Prince step from the step's start landing on the time (never an
+    interpolant), capped at ``s_max``. Returns (next index into t_eval, rhs evaluations)."""
+    n_rhs = 0
+    while i_ev < t_eval.shape[0] and t_eval[i_ev] <= t_last:
+        sub = min(t_eval[i_ev] - t, s_max)
+        if sub > 0.0:
+            ph, vv, aa, _e1, _e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v,
+                                               k1, sub)
+            n_rhs += 6
+        else:
+            ph, vv, aa = phi, v, k1
+        eval_out[i_ev, 0] = ph
+        eval_out[i_ev, 1] = vv
+        eval_out[i_ev, 2] = aa
+        eval_out[i_ev, 3] = side
+        eval_out[i_ev, 4] = ground_in_piece(kind, params, t + sub, t_left)
+        i_ev += 1
+    return i_ev, n_rhs
+
+
+@nb.njit(cache=True, nogil=True)
 def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
                     max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate=0.0):
-    """Integrate one time history. See the module docstring for the logic.
+    """Integrate one time history (:func:`simulate_kernel_eval` without requested times).
+
+    Returns
+    -------
+    (outcome, final_state, collapse_half_cycle)
+    """
+    t_eval = np.empty(0)
+    eval_out = np.empty((0, 5))
+    outcome, final, collapse_half, _n = simulate_kernel_eval(
+        mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation, max_impacts, dt_out,
+        hist, impacts, peaks, counters, initial_rate, t_eval, eval_out)
+    return outcome, final, collapse_half
+
+
+@nb.njit(cache=True, nogil=True)
+def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
+                         max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate,
+                         t_eval, eval_out):
+    """Integrate one time history, with the states at requested times. See the module
+    docstring for the logic.
 
     Parameters
     ----------
@@ -214,10 +258,18 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
         onset_time, collapse_time
     initial_rate : rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this
         opening rate (free rocking), instead of from rest.
+    t_eval : (m,) requested times, s, sorted (non-decreasing). A time inside an accepted step
+        gets one extra Dormand-Prince step from the step's start landing on it (the step
+        sequence, and so the history and events, are those of a run without ``t_eval``). A
+        time at an impact gets the closing state; at the onset of hinging, the opening one
+        (phi = 0, the ground just after the onset). Times after the arch has come to rest for
+        good are locked states; times after a collapse or beyond ``t_end`` are not reached.
+    eval_out : (m, 5) out: phi, phi', phi'', side, x_g'' at each time reached (in order);
+        x_g'' is the value the step used there (at a breakpoint ending a step, the left limit).
 
     Returns
     -------
-    (outcome, final_state, collapse_half_cycle)
+    (outcome, final_state, collapse_half_cycle, number of requested times reached)
     """
     t_exc = excitation_end(kind, params)
     atol_v = atol_phi * math.sqrt(g / mech[LENGTH])
@@ -241,6 +293,8 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     phi = 0.0
     v = 0.0
     t_out = 0.0
+    i_ev = 0
+    n_eval = t_eval.shape[0]
     tau = math.sqrt(mech[LENGTH] / g)
     h = 1e-3 * tau
     h_min = 1e-14 * tau
@@ -264,6 +318,15 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
                     hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_out)
                     n_hist += 1
                     t_out += dt_out
+            # requested times while locked (all of them once at rest after the excitation)
+            while i_ev < n_eval and (t_eval[i_ev] < t_on or (
+                    s_on == 0 and (t_on >= t_exc or t_eval[i_ev] <= t_end))):
+                eval_out[i_ev, 0] = 0.0
+                eval_out[i_ev, 1] = 0.0
+                eval_out[i_ev, 2] = 0.0
+                eval_out[i_ev, 3] = 0.0
+                eval_out[i_ev, 4] = ground_in_piece(kind, params, t_eval[i_ev], t_eval[i_ev])
+                i_ev += 1
             if s_on == 0:
                 t = t_on
                 final = FINAL_REST
@@ -283,6 +346,9 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
         t_stop = min(next_breakpoint(kind, params, t), t_end)
         k1 = _rhs(mech, kind, params, side, g, t, t_left, phi, v)
         n_rhs += 1
+        if i_ev < n_eval and t_eval[i_ev] <= t:  # at the onset (or t = 0 of free rocking)
+            i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t,
+                                         0.0, t_eval, eval_out, i_ev)
         excitation_over = t >= t_exc - 1e-12 * (1.0 + t_exc)
         if excitation_over and phi >= phi_crit and v >= 0.0:
             outcome = OUTCOME_COLLAPSE
@@ -294,6 +360,10 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
         while t < t_stop and not event_done:
             hh = min(h, t_stop - t)
             if hh < h_min:
+                if i_ev < n_eval:
+                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
+                                                 k1, t_stop, hh, t_eval, eval_out, i_ev)
+                    n_rhs += extra
                 t = t_stop
                 break
             phi1, v1, k7, ep, ev = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1,
@@ -362,7 +432,12 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
             if pk > peaks[half - 1]:
                 peaks[half - 1] = pk
             if ev_kind == 0:
-                t = t + hh if t + hh < t_stop else t_stop
+                t_new = t + hh if t + hh < t_stop else t_stop
+                if i_ev < n_eval:
+                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
+                                                 k1, t_new, hh, t_eval, eval_out, i_ev)
+                    n_rhs += extra
+                t = t_new
                 phi, v, k1 = phi1, v1, k7
                 h = h_next
                 if dt_out < 0.0 and n_hist < cap:  # the integrator's own states
@@ -377,6 +452,10 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
                 s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
                                             s_ev, 0.0, s_lo, hh)
                 t_imp = t + s
+                if i_ev < n_eval:  # up to the impact: the closing mechanism
+                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
+                                                 k1, t_imp, s, t_eval, eval_out, i_ev)
+                    n_rhs += extra
                 v_after = cv * abs(v_e)
                 if n_imp < impacts.shape[0]:
                     impacts[n_imp, 0] = t_imp
@@ -418,6 +497,10 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
             if ev_kind == 2 and 0.0 < s_ev < hh and phi < phi_crit:
                 s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
                                             s_ev, phi_crit, 0.0, hh)
+            if i_ev < n_eval:
+                i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1,
+                                             t + s, s, t_eval, eval_out, i_ev)
+                n_rhs += extra
             outcome = OUTCOME_COLLAPSE
             final = FINAL_COLLAPSED
             collapse_time = t + s
@@ -439,4 +522,4 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     counters[5] = n_rhs
     counters[6] = onset_time
     counters[7] = collapse_time
-    return outcome, final, collapse_half
+    return outcome, final, collapse_half, i_ev

@@ -30,8 +30,7 @@ def plot_motion_state(arch: Arch, state, ax=None, *, title: str | None = None):
     -------
     matplotlib Axes
     """
-    positions = np.column_stack([state.centroids - arch.voussoir_centroids, state.rotations])
-    ax = plot_arch(arch, ax, voussoir_positions=positions,
+    ax = plot_arch(arch, ax, voussoir_positions=state.positions,
                    hinges=state.hinge_points if state.hinge_points is not None else None,
                    thrust_line=state.thrust_points, show_ghost=True)
     out = state.outside

@@ -2,7 +2,7 @@
 (paper, "Minimum coefficient of friction to avoid sliding", p. 2131).
 
 At every instant the demand at a joint is |V| / N from the line of thrust of the moving arch
-(:mod:`archquake.thrust.motion`); the arch needs a friction coefficient at least equal to the
+(:mod:`archquake.thrust.states`); the arch needs a friction coefficient at least equal to the
 largest demand over joints and time. The paper finds, for Oppenheim's arch under the step
 impulse, that this maximum is at the right springing (hinge D) at the onset t = 0+, so that it
 depends on the magnitude only: 0.509 at 0.5 g and about 0.56 at 1.0 g (0.51 and 0.55 with
@@ -12,23 +12,25 @@ Instants examined: every sample of the recorded history, the onset of hinging (t
 rest, with the ground acceleration just after the onset), and both sides of every impact (the
 closing mechanism at phi = 0 with the rate before impact, the opening one with the rate
 after). While the arch is locked its forces are statically indeterminate and the least
-friction an admissible line of thrust needs is used (:func:`~archquake.thrust.motion.
-locked_joint_forces`); those states are cached by ground acceleration.
+friction an admissible line of thrust needs is used (:func:`archquake.limit.locked_joint_forces`);
+those states are cached by ground acceleration.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.limit.analysis import limit_analysis
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SimulationResult, simulate
-from archquake.thrust.motion import MotionState, state_at
+from archquake.thrust.states import MotionState, state_at
 
 
 @dataclass(frozen=True)
@@ -85,7 +87,7 @@ class FrictionDemand:
     simulation: SimulationResult = field(repr=False)
 
     def to_dict(self, include_history: bool = False) -> dict:
-        out = {
+        out: dict[str, object] = {
             "max_friction_demand": self.max_friction_demand,
             "joint": self.joint,
             "time": self.time,
@@ -108,6 +110,8 @@ class FrictionDemand:
 def _instants(result: SimulationResult, motion: GroundMotion, tau: float):
     """(t, phi, phi_dot, side, ground) of every instant to examine."""
     h = result.history
+    if h is None or h.t.size == 0:
+        raise InvalidParameterError("the simulation result has no history (output_interval = 0)")
     rows = [(t, p, v, int(s), a) for t, p, v, s, a in
             zip(h.t, h.phi, h.phi_dot, h.side, h.ground_acceleration)
             if not (s == 0 and t == result.onset_time)]  # replaced by the onset+ state below
@@ -132,6 +136,7 @@ def friction_demand(
     *,
     result: SimulationResult | None = None,
     g: float = STANDARD_GRAVITY,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FrictionDemand:
     """Largest friction demand |V| / N over the joints and the whole response to a motion.
 
@@ -143,6 +148,10 @@ def friction_demand(
         The time history, if already computed (must hold its history).
     g : float
         Gravity, m/s^2.
+    progress : callable, optional
+        Called as ``progress(done, total)`` before each instant is examined (the CLI draws a
+        progress bar with it; a long record has thousands of instants, and every locked one
+        needs a few linear programs).
 
     Returns
     -------
@@ -166,14 +175,21 @@ def friction_demand(
     geometry = prepared.mechanism.arch
     tau = float(np.sqrt(geometry.radius / g))
     locked_cache: dict[float, MotionState] = {}
+    last_locked: MotionState | None = None
     times, demand, where, sides = [], [], [], []
     onset = None
     tension = None
-    for t, phi, v, side, xg in _instants(result, motion, tau):
+    instants = _instants(result, motion, tau)
+    for count, (t, phi, v, side, xg) in enumerate(instants):
+        if progress is not None:
+            progress(count, len(instants))
         if side == 0:
             key = float(xg)
             if key not in locked_cache:
-                locked_cache[key] = state_at(prepared, t, 0.0, 0.0, 0, xg, g=g)
+                # warm start from the previous locked instant (nearby loads)
+                locked_cache[key] = last_locked = state_at(
+                    prepared, t, 0.0, 0.0, 0, xg, g=g,
+                    locked_start=None if last_locked is None else last_locked.forces)
             ratios = locked_cache[key].friction_demand
         else:
             ratios = state_at(prepared, t, max(phi, 0.0), v, side, xg, g=g).friction_demand
