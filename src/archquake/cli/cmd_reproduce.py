@@ -1,4 +1,4 @@
-"""``archquake reproduce`` (and ``archquake demo``): the paper regenerated, side by side, in one
+"""``archquake reproduce``: the paper regenerated, side by side, in one
 command.
 
 Runs every study of De Lorenzis, DeJong & Ochsendorf (2007) on Oppenheim's arch, writes the
@@ -7,8 +7,7 @@ self-contained report.html) setting each number the paper states beside archquak
 tolerance and a pass/fail mark. Finished studies are cached in DIR/cache/ and reused by a rerun.
 Exit status 0 when no line fails, 1 when some line fails, 2 on a usage error.
 
-``archquake demo`` is ``archquake reproduce --quick --out DIR`` (DIR = out/ by default) plus
-DIR/rocking.gif, the arch of Figure 4(d) rocking to rest.
+``archquake demo`` (cli/cmd_demo.py) runs :func:`reproduce` in quick mode plus an animation.
 """
 
 from __future__ import annotations
@@ -40,32 +39,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print the results as JSON on stdout")
     p.set_defaults(func=run)
 
-    d = sub.add_parser(
-        "demo",
-        help="the paper regenerated (reproduce --quick) and an animation of the rocking arch",
-        description="'archquake reproduce --quick' into one folder, plus DIR/rocking.gif: the arch of "
-        "Figure 4(d) rocking to rest. The report is DIR/report.html.",
-    )
-    d.add_argument(
-        "--out", type=Path, default=Path("out"), metavar="DIR", help="output folder (default out/)"
-    )
-    d.add_argument("--json", action="store_true", help="print the results as JSON on stdout")
-    d.set_defaults(func=run_demo)
 
 
 def run(args: argparse.Namespace) -> int:
     return reproduce(args.out, quick=args.quick, force=args.force, only=args.only, json=args.json)
-
-
-def run_demo(args: argparse.Namespace) -> int:
-    """``archquake demo``: :func:`reproduce` in quick mode, then the animation of Figure 4(d)."""
-    from archquake.reproduce.figure4 import animation
-    from archquake.validation.paper import oppenheim_arch
-
-    def gif(out: Path) -> dict:
-        return {"animation": str(animation(oppenheim_arch(), out / "rocking.gif", quick=True))}
-
-    return reproduce(args.out, quick=True, json=args.json, prefix="demo", extra=gif)
 
 
 def reproduce(

@@ -34,7 +34,8 @@ COMMANDS: tuple[str, ...] = (
     "thrust",
     "friction",
     "domain",
-    "reproduce",  # also registers "demo" (= reproduce --quick plus the animation)
+    "reproduce",
+    "demo",
 )
 
 #: The line each command shows in ``archquake --help``, by module name (the command's name is
