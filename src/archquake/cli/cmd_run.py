@@ -82,7 +82,6 @@ def run(args: argparse.Namespace) -> int:
     out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
-    out["model"] = "analytical"
     if args.json:
         print_json(out)
         return 0
