@@ -51,7 +51,7 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
     res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s), g=g)
     if res.outcome is Outcome.COLLAPSE:
-        half = res.collapse_half_cycle
+        half = int(res.collapse_half_cycle or 0)
         if first_only and half != 1:
             return Outcome.SURVIVES, 0
         return Outcome.COLLAPSE, 0 if governing_only else half

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +25,10 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 
+if TYPE_CHECKING:
+    from archquake.dem.result import DemResult
+    from archquake.mechanism.simulate import SimulationResult
+
 #: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
 #: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
 VOUSSOIRS = "voussoirs"
@@ -31,8 +36,9 @@ HINGES = "hinges"
 ASSEMBLIES = (VOUSSOIRS, HINGES)
 
 #: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
-#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.5 s after the impulse ends
-#: (3.29 s), so 5 sqrt(R/g) (5.05 s there) covers the second half cycle.
+#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
+#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
+#: second half cycle.
 DEFAULT_TAIL = 5.0
 
 
@@ -101,8 +107,8 @@ class HistoryComparison:
         Wall time of each run, s.
     """
 
-    analytical: object = field(repr=False)
-    dem: object = field(repr=False)
+    analytical: SimulationResult = field(repr=False)
+    dem: DemResult = field(repr=False)
     assembly: str
     window: float
     max_difference: float

@@ -92,12 +92,12 @@ class Span(NamedTuple):
 
 class Output(NamedTuple):
     """Samples written by :func:`run`: ``times`` (k,), ``states`` (k, nb, 6), ``energies``
-    (k, 8) and ``count`` (1,), the number written so far."""
+    (k, 8) and ``written`` (1,), the number written so far."""
 
     times: np.ndarray
     states: np.ndarray
     energies: np.ndarray
-    count: np.ndarray
+    written: np.ndarray
 
 
 def scratch(packed: Packed) -> Scratch:
@@ -466,7 +466,7 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
                    np.zeros((nv, 2)), np.zeros((nv, 3)))
     record = work.record
     out_every = span.out_every
-    out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.count
+    out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.written
     n = span.step0
     while n < span.n_steps:
         t = n * dt

@@ -92,7 +92,7 @@ def build_slots(packed: Packed, pairs: list[tuple[int, int]]) -> Packed:
                 packed.sl_edge[s],
                 packed.sl_f[s].copy(),
             )
-    rows = []
+    rows: list[tuple[int, int, int, int, int]] = []
     vs = packed.vstart
     for a, b in pairs:
         na, nbv = vs[a + 1] - vs[a], vs[b + 1] - vs[b]
@@ -120,7 +120,7 @@ def _params(assembly: Assembly, settings: DemSettings, dt: float, g: float) -> n
     par[K.P_ALPHA], par[K.P_BETA] = settings.damping
     par[K.P_MU] = law.friction
     par[K.P_KN] = law.normal_stiffness * assembly.depth
-    par[K.P_KS] = law.shear_stiffness * assembly.depth
+    par[K.P_KS] = float(law.shear_stiffness or law.normal_stiffness) * assembly.depth
     par[K.P_TOL] = contact_tolerance(assembly)
     par[K.P_DMAX] = 0.25 * assembly.min_edge
     return par
@@ -344,7 +344,7 @@ def simulate_dem(
                    np.zeros(1, dtype=np.int64))
     span = K.Span(0, n_steps, out_every, True, False, settings.stop_at_collapse)
     packed, taken = advance(packed, span, out)
-    k = int(out.count[0])
+    k = int(out.written[0])
     return DemResult.from_samples(
         assembly, settings,
         motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(motion)}, g,
