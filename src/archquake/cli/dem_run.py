@@ -128,9 +128,11 @@ def _print_text(out: dict, result) -> None:
 def _label_of(out: dict) -> str:
     e = out["excitation"]
     if e.get("type") == "step":
-        return f"step a = {e['magnitude_g']:.3g} g, t_p = {e['duration_s']:.3g} s"
+        return (f"step a = {e['magnitude_g']:.3g} g, t_p = {e['duration_s']:.3g} s"
+                + _towards(e))
     if e.get("type") == "sine":
-        return f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
+        return (f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
+                + _towards(e))
     return str(e.get("name", "record"))
 
 
@@ -142,3 +144,8 @@ def _write_history(result, path: Path) -> None:
         w.writerow(names)
         for row in zip(*(cols[n] for n in names)):
             w.writerow([f"{x:.9e}" for x in row])
+
+
+def _towards(motion: dict) -> str:
+    """', first towards +x' for a mirrored pulse (the default's first lobe is towards -x)."""
+    return ", first towards +x (mirrored)" if motion.get("direction", -1) > 0 else ""
