@@ -44,7 +44,7 @@ def main(quick: bool = False) -> None:
     domain = failure_domain(arch, "step", durations, settings=settings)
     print("t_p [s]  no hinging [g]  collapse [g]  1st half cycle [g]")
     for row in domain.to_dict():
-        print(f"{row['duration']:7.2f}  {row['no_hinging_g']:14.3f}  "
+        print(f"{row['duration_s']:7.2f}  {row['no_hinging_g']:14.3f}  "
               f"{row['collapse_g'] or float('nan'):12.3f}  {row['first_half_cycle_g'] or float('nan'):18.3f}")
 
 

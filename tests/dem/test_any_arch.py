@@ -118,5 +118,5 @@ def test_voussoir_dem_on_the_semicircle_hinges_above_lambda(semicircle):
     (chord from hinge A at joint 3 to hinge B at joint 7) opens in the first mechanism's sense."""
     res = simulate_dem(dem_assembly(semicircle, "voussoirs"), StepImpulse.from_g(0.2, 0.3),
                        DemSettings(duration=0.4))
-    assert res.first_hinge_time is not None and res.first_hinge_time < 0.3
+    assert res.onset_time is not None and res.onset_time < 0.3
     assert res.rotation[-1] > 1e-3

@@ -27,7 +27,7 @@ def test_arch_stands_under_gravity_and_below_the_static_threshold(arch):
     """Limit analysis: no hinge below lambda = 0.37 g (here 0.3 g held for 0.4 s)."""
     res = simulate_dem(arch, StepImpulse.from_g(0.3, 0.4), DemSettings(duration=0.5))
     assert res.outcome.value == "no_hinging"
-    assert res.first_hinge_time is None
+    assert res.onset_time is None
 
 
 def test_builder_uses_exact_merged_mass_properties(arch):

@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 from archquake.domains import evaluate_pulses, evaluate_pulses_scalar
-from archquake.domains._batch import default_t_end
+from archquake.domains._kernels import default_t_end
 from archquake.ground import StepImpulse
 from archquake.mechanism import simulate
+from archquake.outcome import Outcome
 
 
 def _grid(family):
@@ -33,7 +34,7 @@ def test_batch_equals_scalar_point_by_point(oppenheim_prepared, family, early):
     fast = evaluate_pulses(oppenheim_prepared, family, a, d, early=early)
     slow = evaluate_pulses_scalar(oppenheim_prepared, family, a, d)
     # the grid must exercise every outcome and both half cycles, or the test proves little
-    assert {0, 1, 2} <= set(slow.outcome.tolist())
+    assert set(Outcome) <= set(slow.outcome.tolist())
     assert {1, 2} <= set(slow.collapse_half_cycle.tolist())
     np.testing.assert_array_equal(fast.outcome, slow.outcome)
     np.testing.assert_array_equal(fast.collapse_half_cycle, slow.collapse_half_cycle)
@@ -42,7 +43,7 @@ def test_batch_equals_scalar_point_by_point(oppenheim_prepared, family, early):
 def test_early_stop_is_used_for_survivors(oppenheim_prepared):
     # surviving cases are decided from a run capped at a few impacts (one run), not run to rest
     r = evaluate_pulses(oppenheim_prepared, "step", [0.5, 0.8], [0.2, 0.2])
-    assert (r.outcome == 1).all() and (r.runs == 1).all()
+    assert r.outcome.tolist() == [Outcome.SURVIVES] * 2 and (r.runs == 1).all()
 
 
 def test_paper_figure4_pulses(oppenheim_prepared):
@@ -50,7 +51,7 @@ def test_paper_figure4_pulses(oppenheim_prepared):
     # 0.20 s survives
     r = evaluate_pulses(oppenheim_prepared, "step", 1.0, [0.44, 0.27, 0.20])
     assert r.collapse_half_cycle.tolist() == [1, 2, 0]
-    assert r.outcome.tolist() == [2, 2, 1]
+    assert r.outcome.tolist() == [Outcome.COLLAPSE, Outcome.COLLAPSE, Outcome.SURVIVES]
 
 
 def test_analysis_end_matches_simulate_default(oppenheim_prepared):
@@ -58,6 +59,19 @@ def test_analysis_end_matches_simulate_default(oppenheim_prepared):
     r = simulate(oppenheim_prepared, StepImpulse.from_g(0.5, 0.3))
     ours = default_t_end(np.array([0.9]), 10.0, r.g)[0]
     assert ours == pytest.approx(r.stats["t_end"], rel=1e-14)
+
+
+def test_plugged_outcomes_are_outcome_values():
+    """A model plugged into the domain search speaks Outcome (or its strings), never the
+    kernel's integer codes."""
+    from archquake.domains import PulseOutcomes
+
+    ok = PulseOutcomes(np.ones(2), np.ones(2), ["collapse", Outcome.SURVIVES], np.array([1, 0]),
+                       np.ones(2, int))
+    assert ok.outcome.tolist() == [Outcome.COLLAPSE, Outcome.SURVIVES]
+    assert ok.collapses.tolist() == [True, False] and ok.collapses_first.tolist() == [True, False]
+    with pytest.raises(ValueError):
+        PulseOutcomes(np.ones(1), np.ones(1), [2], np.array([1]), np.ones(1, int))
 
 
 def test_bad_input_is_one_line(oppenheim_prepared):

@@ -16,7 +16,7 @@ def test_domain_json(capsys):
     code = main(["domain", "--durations", "0.27:0.44:2", "--scan", "20", "--json"])
     assert code == 0
     rows = json.loads(capsys.readouterr().out)
-    assert [round(r["duration"], 2) for r in rows] == [0.27, 0.44]
+    assert [round(r["duration_s"], 2) for r in rows] == [0.27, 0.44]
     # paper Figure 4: at 1.0 g, t_p = 0.27 s lies between the boundaries, 0.44 s above both
     assert rows[0]["collapse_g"] < 1.0 < rows[0]["first_half_cycle_g"]
     assert rows[1]["first_half_cycle_g"] < 1.0

@@ -121,8 +121,8 @@ def test_step_recovery_band_below_first_half_cycle_boundary(step_domain):
 
 def test_result_serialises(step_domain, tmp_path):
     rows = step_domain.to_dict()
-    assert [r["duration"] for r in rows] == step_domain.durations.tolist()
-    assert set(rows[0]) >= {"duration", "no_hinging_g", "first_half_cycle_g", "collapse_g",
+    assert [r["duration_s"] for r in rows] == step_domain.durations.tolist()
+    assert set(rows[0]) >= {"duration_s", "no_hinging_g", "first_half_cycle_g", "collapse_g",
                             "non_monotonic_bands"}
     json.dumps(rows, allow_nan=False)
     json.dumps(step_domain.summary(), allow_nan=False)

@@ -51,8 +51,8 @@ def test_sweep_obeys_dimensional_scaling(tmp_path):
         outcomes.add(small["outcome"])
         assert small["outcome"] == large["outcome"]
         assert small["collapse_half_cycle"] == large["collapse_half_cycle"]
-        assert len(small["impact_times"]) == len(large["impact_times"])
-        for ts, tl in zip(small["impact_times"], large["impact_times"], strict=True):
+        assert len(small["impact_times_s"]) == len(large["impact_times_s"])
+        for ts, tl in zip(small["impact_times_s"], large["impact_times_s"], strict=True):
             assert tl == pytest.approx(2.0 * ts, rel=1e-6)
         assert large["peak_rotation_rad"] == pytest.approx(small["peak_rotation_rad"], rel=1e-6)
     assert len(outcomes) >= 2  # the range spans more than one regime, so the check has teeth

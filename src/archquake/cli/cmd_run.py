@@ -82,7 +82,6 @@ def run(args: argparse.Namespace) -> int:
     out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
-    out["model"] = "analytical"
     if args.json:
         print_json(out)
         return 0
@@ -96,9 +95,11 @@ def run(args: argparse.Namespace) -> int:
 def _label(motion, g: float) -> str:
     d = motion.to_dict()
     if d.get("type") == "step":
-        return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s"
+        return (f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s"
+                + _towards(d))
     if d.get("type") == "sine":
-        return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s"
+        return (f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s"
+                + _towards(d))
     return str(getattr(motion, "name", "record"))
 
 
@@ -143,3 +144,8 @@ def _run_dem(args, arch, motion) -> int:
     from archquake.cli import dem_run
 
     return dem_run.run(args, arch, motion)
+
+
+def _towards(motion: dict) -> str:
+    """', first towards +x' for a mirrored pulse (the default's first lobe is towards -x)."""
+    return ", first towards +x (mirrored)" if motion.get("direction", -1) > 0 else ""

@@ -1,8 +1,8 @@
 """``archquake run --model dem``: one distinct-element time history (the paper's UDEC model).
 
-The output uses the analytical run's keys where they apply (outcome, collapse_half_cycle,
-collapse_time, onset_time, impact_times, peak_rotation_rad; see
-:func:`archquake.compare.dem_summary`) plus the DEM's own under ``dem``.
+The output is ``DemResult.to_dict()``: the analytical run's keys
+(:data:`archquake.outcome.RESULT_KEYS`: outcome, collapse_half_cycle, collapse_time_s,
+onset_time_s, impact_times_s, peak_rotation_rad, ...) followed by the DEM's own.
 """
 
 from __future__ import annotations
@@ -61,7 +61,7 @@ def settings_from_args(args: argparse.Namespace, duration: float):
 
 def run(args: argparse.Namespace, arch, motion) -> int:
     """Run the DEM for ``arch`` under ``motion`` and print/plot/animate as the options say."""
-    from archquake.compare import default_dem_duration, dem_assembly, dem_summary
+    from archquake.compare import default_dem_duration, dem_assembly
     from archquake.dem import simulate_dem
 
     if args.restitution is not None:
@@ -81,10 +81,9 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         animate_dem(result, args.animate, fps=15)
     if args.history:
         _write_history(result, args.history)
-    out = dem_summary(result)
+    out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
-    out["model"] = "dem"
     if args.json:
         from archquake.cli.common import print_json
 
@@ -98,23 +97,23 @@ def run(args: argparse.Namespace, arch, motion) -> int:
 
 
 def _print_text(out: dict, result) -> None:
-    d = out["dem"]
-    s = d["settings"]
+    s = out["settings"]
     print(f"excitation          {_label_of(out)}")
-    print(f"model               distinct elements: {d['assembly']['name']}, "
+    print(f"model               distinct elements: {out['assembly']['name']}, "
           f"k = {s['contact']['normal_stiffness_Pa_m']:.3g} Pa/m, Rayleigh alpha = "
           f"{s['rayleigh_alpha_1_s']:.3g} 1/s, beta = {s['rayleigh_beta_s']:.3g} s")
     print(f"time step           {result.time_step:.3g} s, {result.n_steps} steps, "
-          f"{float(result.times[-1]) if result.times.size else 0.0:.2f} s simulated")
+          f"{out['end_time_s']:.2f} s simulated")
     if out["collapse_half_cycle"]:
-        what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = {out['collapse_time']:.3f} s "
-                "(DEM criterion: crown fallen by t or a block below the springings)")
+        what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = "
+                f"{out['collapse_time_s']:.3f} s (DEM criterion: crown fallen by t or a block "
+                "below the springings)")
     else:
         what = out["outcome"]
     print(f"outcome             {what}")
-    if out["onset_time"] is not None:
-        print(f"hinging from        {out['onset_time']:.3f} s")
-    imp = out["impact_times"]
+    if out["onset_time_s"] is not None:
+        print(f"hinging from        {out['onset_time_s']:.3f} s")
+    imp = out["impact_times_s"]
     if imp:
         more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
         print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
@@ -122,16 +121,18 @@ def _print_text(out: dict, result) -> None:
     if peaks:
         print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
               + (" ..." if len(peaks) > 6 else ""))
-    print(f"energy balance      {d['energy_error']:.1e} of the input work; dissipated: damping "
-          f"{d['dissipated_damping_J']:.4g} J, friction {d['dissipated_friction_J']:.4g} J")
+    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated: damping "
+          f"{out['dissipated_damping_J']:.4g} J, friction {out['dissipated_friction_J']:.4g} J")
 
 
 def _label_of(out: dict) -> str:
     e = out["excitation"]
     if e.get("type") == "step":
-        return f"step a = {e['magnitude_g']:.3g} g, t_p = {e['duration_s']:.3g} s"
+        return (f"step a = {e['magnitude_g']:.3g} g, t_p = {e['duration_s']:.3g} s"
+                + _towards(e))
     if e.get("type") == "sine":
-        return f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
+        return (f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
+                + _towards(e))
     return str(e.get("name", "record"))
 
 
@@ -143,3 +144,8 @@ def _write_history(result, path: Path) -> None:
         w.writerow(names)
         for row in zip(*(cols[n] for n in names)):
             w.writerow([f"{x:.9e}" for x in row])
+
+
+def _towards(motion: dict) -> str:
+    """', first towards +x' for a mirrored pulse (the default's first lobe is towards -x)."""
+    return ", first towards +x (mirrored)" if motion.get("direction", -1) > 0 else ""

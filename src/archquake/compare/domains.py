@@ -21,17 +21,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from archquake.compare.histories import (
-    HINGES,
-    VOUSSOIRS,
-    dem_assembly,
-    dem_collapse_half_cycle,
-)
+from archquake.compare.histories import HINGES, VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains import DomainSettings, FailureDomain, PulseFamily, PulseOutcomes, failure_domain
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.mechanism import _kernels as K
+from archquake.outcome import Outcome
 
 #: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
 #: magnitudes (geometric from lambda), 4 fine ones between the boundaries, brackets of 0.01 g.
@@ -45,23 +40,22 @@ DOMAIN_TAIL = 6.0
 
 
 def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
-             first_only: bool, g: float, governing_only: bool = False) -> tuple[int, int]:
-    """One DEM run: (kernel outcome code, collapse half cycle or 0). Module-level: picklable.
+             first_only: bool, g: float, governing_only: bool = False) -> tuple[Outcome, int]:
+    """One DEM run: (outcome, collapse half cycle or 0). Module-level: picklable.
 
-    With ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the
-    search brackets no first-half-cycle boundary."""
+    With ``first_only`` a collapse after the first impact counts as a survival; with
+    ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the search
+    brackets no first-half-cycle boundary."""
     from archquake.dem import simulate_dem
 
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
     res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s), g=g)
-    half = dem_collapse_half_cycle(res) or 0
-    if res.outcome.value == "collapse":
+    if res.outcome is Outcome.COLLAPSE:
+        half = int(res.collapse_half_cycle or 0)
         if first_only and half != 1:
-            return K.OUTCOME_SURVIVES, 0
-        return K.OUTCOME_COLLAPSE, 0 if governing_only else half
-    if res.outcome.value == "no_hinging":
-        return K.OUTCOME_NO_HINGING, 0
-    return K.OUTCOME_SURVIVES, 0
+            return Outcome.SURVIVES, 0
+        return Outcome.COLLAPSE, 0 if governing_only else half
+    return res.outcome, 0
 
 
 @dataclass
@@ -121,7 +115,7 @@ class DemPulseEvaluator:
             self._memo.update(zip(todo, results))
             self.runs += len(todo)
         self.seconds += time.perf_counter() - t0
-        out = np.array([self._memo[k][0] for k in keys], dtype=np.int64)
+        out = np.array([self._memo[k][0] for k in keys], dtype=object)
         half = np.array([self._memo[k][1] for k in keys], dtype=np.int64)
         return PulseOutcomes(mags.copy(), np.array(durs, float), out, half, np.ones(mags.size, np.int64))
 

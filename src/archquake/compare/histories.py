@@ -6,8 +6,9 @@ gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B 
 cut at the analytical hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
-This module turns a DEM run into the analytical result's vocabulary (impact times, half
-cycles, collapse half cycle, peak rotation per half cycle) and freezes one comparison.
+Both results speak one vocabulary (:class:`~archquake.outcome.Outcome`, impact times, peak
+rotation per half cycle, collapse half cycle: the DEM result computes its own, see
+:mod:`archquake.dem.result`); this module only runs the two models and compares them.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,9 +33,14 @@ from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.validation.paper import FIGURE4_DURATIONS
 
+if TYPE_CHECKING:
+    from archquake.dem.result import DemResult
+    from archquake.mechanism.simulate import SimulationResult
+
 #: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
-#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.5 s after the impulse ends
-#: (3.29 s), so 5 sqrt(R/g) (5.05 s there) covers the second half cycle.
+#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
+#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
+#: second half cycle.
 DEFAULT_TAIL = 5.0
 
 
@@ -41,102 +48,6 @@ def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFA
                          g: float = STANDARD_GRAVITY) -> float:
     """End of the excitation plus ``tail`` sqrt(R/g), s: the DEM's default simulated time."""
     return float(motion.duration) + tail * math.sqrt(arch.radius / g)
-
-
-# ----------------------------------------------------------------------------- DEM in the
-# analytical model's vocabulary
-def dem_crossings(result) -> np.ndarray:
-    """Times (s) at which the DEM rotation measure changes sign: the DEM's impacts.
-
-    A crossing counts only after the rotation has exceeded ``settings.hinge_opening`` rad on
-    the current side since the previous crossing (the hysteresis of
-    ``DemResult.first_impact_time``, of which this is the continuation), and only before the
-    collapse. Times are interpolated linearly between samples. Small rocking below the
-    threshold (contact vibration at rest) is not counted.
-
-    Returns
-    -------
-    ndarray (k,), s
-    """
-    t, rot = result.times, result.rotation
-    thr = result.settings.hinge_opening
-    stop = len(t) if result.collapse_time is None else int(np.searchsorted(t, result.collapse_time))
-    out = []
-    armed_sign = 0.0
-    for k in range(stop):
-        r = rot[k]
-        if armed_sign == 0.0:
-            if abs(r) > thr:
-                armed_sign = math.copysign(1.0, r)
-            continue
-        if armed_sign * r <= 0.0 and k > 0:
-            r0 = rot[k - 1]
-            frac = r0 / (r0 - r) if r0 != r else 1.0
-            out.append(float(t[k - 1] + frac * (t[k] - t[k - 1])))
-            armed_sign = 0.0
-            if abs(r) > thr:
-                armed_sign = math.copysign(1.0, r)
-    return np.array(out)
-
-
-def dem_half_cycles(result) -> tuple[np.ndarray, np.ndarray]:
-    """Peak |rotation| (rad) in each half cycle and the impact times (s) that separate them.
-
-    Returns
-    -------
-    peaks : ndarray (h,), rad
-        Largest |rotation| between consecutive crossings (and before the collapse).
-    impacts : ndarray (h - 1,) or (h,), s
-        :func:`dem_crossings`.
-    """
-    impacts = dem_crossings(result)
-    t, rot = result.times, np.abs(result.rotation)
-    stop = t[-1] if result.collapse_time is None else result.collapse_time
-    edges = np.concatenate([[-np.inf], impacts, [stop]])
-    peaks = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        sel = (t > a) & (t <= b)
-        if np.any(sel):
-            peaks.append(float(rot[sel].max()))
-    if result.first_hinge_time is None:
-        peaks = []
-    return np.array(peaks), impacts
-
-
-def dem_collapse_half_cycle(result) -> int | None:
-    """The DEM's equivalent of ``SimulationResult.collapse_half_cycle``: 1 + the number of
-    impacts (:func:`dem_crossings`) before the collapse; None if the assembly did not collapse."""
-    if result.collapse_time is None:
-        return None
-    return 1 + int(dem_crossings(result).size)
-
-
-def dem_summary(result) -> dict:
-    """A DEM run in the keys of the analytical ``SimulationResult.to_dict()`` where they apply,
-    plus the DEM's own (``dem``: :meth:`DemResult.to_dict`).
-
-    ``collapse_half_cycle`` is counted from the zero crossings of the rotation measure
-    (:func:`dem_collapse_half_cycle`); ``collapse_time`` is the DEM's criterion (a block's
-    centroid below the springings, the crown fallen by ``collapse_drop`` t, or a block turned
-    by ``collapse_rotation``), which comes later than the analytical one (passing the crest of
-    the potential): compare outcomes and half cycles, not collapse times.
-    """
-    peaks, impacts = dem_half_cycles(result)
-    return {
-        "outcome": result.outcome.value,
-        "collapse_half_cycle": dem_collapse_half_cycle(result),
-        "collapse_half_cycle_basis": "1 + sign changes of the rotation measure before the collapse",
-        "collapse_time": result.collapse_time,
-        "collapse_criterion": "crown drop / block below springing / block rotation (DEM)",
-        "onset_time": result.first_hinge_time,
-        "impact_times": impacts.tolist(),
-        "first_impact_time": result.first_impact_time,
-        "peak_rotation_rad": peaks.tolist(),
-        "max_rotation_rad": float(np.max(np.abs(result.rotation))) if result.rotation.size else 0.0,
-        "final_state": None,
-        "final_state_note": "the DEM runs for a fixed duration; no rest criterion",
-        "dem": result.to_dict(),
-    }
 
 
 # ----------------------------------------------------------------------------- comparison
@@ -162,8 +73,8 @@ class HistoryComparison:
         Wall time of each run, s.
     """
 
-    analytical: object = field(repr=False)
-    dem: object = field(repr=False)
+    analytical: SimulationResult = field(repr=False)
+    dem: DemResult = field(repr=False)
     assembly: str
     window: float
     max_difference: float
@@ -177,14 +88,10 @@ class HistoryComparison:
         return float(r.impact_times[0]) if r.impact_times.size else None
 
     @property
-    def dem_collapse_half_cycle(self) -> int | None:
-        return dem_collapse_half_cycle(self.dem)
-
-    @property
     def same_outcome(self) -> bool:
         """Same outcome and, for a collapse, the same half cycle."""
-        return (self.analytical.outcome.value == self.dem.outcome.value
-                and self.analytical.collapse_half_cycle == self.dem_collapse_half_cycle)
+        return (self.analytical.outcome is self.dem.outcome
+                and self.analytical.collapse_half_cycle == self.dem.collapse_half_cycle)
 
     def to_dict(self) -> dict:
         a, d = self.analytical, self.dem
@@ -195,10 +102,9 @@ class HistoryComparison:
             "analytical": {"outcome": a.outcome.value, "collapse_half_cycle": a.collapse_half_cycle,
                            "first_impact_time_s": self.analytical_first_impact,
                            "collapse_time_s": a.collapse_time, "seconds": self.analytical_seconds},
-            "dem": {"outcome": d.outcome.value, "collapse_half_cycle": self.dem_collapse_half_cycle,
+            "dem": {"outcome": d.outcome.value, "collapse_half_cycle": d.collapse_half_cycle,
                     "first_impact_time_s": d.first_impact_time, "collapse_time_s": d.collapse_time,
-                    "simulated_s": float(d.times[-1]) if d.times.size else 0.0,
-                    "seconds": self.dem_seconds},
+                    "end_time_s": d.end_time, "seconds": self.dem_seconds},
             "same_outcome": self.same_outcome,
             "first_half_cycle_window_s": self.window,
             "max_rotation_difference_rad": self.max_difference,
@@ -332,10 +238,6 @@ __all__ = [
     "compare_history",
     "default_dem_duration",
     "dem_assembly",
-    "dem_collapse_half_cycle",
-    "dem_crossings",
-    "dem_half_cycles",
-    "dem_summary",
     "figure4_comparisons",
     "first_half_cycle_difference",
     "three_voussoir_assembly",

@@ -4,17 +4,18 @@ UDEC as used by De Lorenzis, DeJong & Ochsendorf 2007).
 
 Template -> model -> contacts -> analysis: :func:`build_arch_assembly` /
 :func:`block_on_base` build an :class:`Assembly`; :func:`simulate_dem` runs it under any
-ground motion and returns a frozen :class:`DemResult`.
+ground motion and returns a frozen :class:`DemResult`, which speaks the analytical model's
+vocabulary (:class:`~archquake.outcome.Outcome`, impacts, half cycles, ``to_dict()`` keys).
 """
 
 from archquake.dem.assembly import Assembly, Joint, RotationLink, block_on_base, build_arch_assembly
-from archquake.dem.run import DemOutcome, DemResult, simulate_dem, stable_time_step
+from archquake.dem.result import DemResult
+from archquake.dem.run import simulate_dem, stable_time_step
 from archquake.dem.settings import NO_SLIDING, ContactLaw, DemSettings
 
 __all__ = [
     "Assembly",
     "ContactLaw",
-    "DemOutcome",
     "DemResult",
     "DemSettings",
     "Joint",

@@ -1,10 +1,11 @@
 """Compiled hot loop of the distinct-element model (numba), on packed arrays.
 
 Everything here is private; :mod:`archquake.dem.run` packs the arrays and
-:mod:`archquake.dem._twin` is the plain-NumPy twin of :func:`step` that the tests hold it to.
+:mod:`archquake.dem._reference` is the plain-NumPy reference of :func:`step` that the tests
+hold it to (test-only: production code does not import it).
 
-Packed layout
--------------
+Packed layout (:class:`Packed`)
+-------------------------------
 Blocks (``nb``): ``state[i] = (x, y, theta, vx, vy, omega)`` with the centroid position and the
 rotation at step n and the velocities at n - 1/2 (absolute frame); ``mass``, ``inertia``
 (about the centroid); ``free[i]`` 1 for a moving block, 0 for a block of the base (prescribed
@@ -24,6 +25,7 @@ energies are kept in the frame of the (rigidly translating) ground.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -43,6 +45,66 @@ C_BASE, C_ROT, C_CROWN_BLOCK, C_CROWN_LX, C_CROWN_LY, C_CROWN_Y0, C_CROWN_DROP =
 N_COLLAPSE = 7
 
 STATUS_DONE, STATUS_COLLAPSE, STATUS_REBUILD = 0, 1, 2
+
+
+class Packed(NamedTuple):
+    """The packed arrays of one assembly (module docstring): blocks, vertices and contact
+    slots. The arrays are the run's mutable working state; ``y_ref`` (m) is each block's
+    centroid height at t = 0 (the potential energy's origin) and ``radius`` (m) its bounding
+    circle about the centroid."""
+
+    state: np.ndarray
+    mass: np.ndarray
+    inertia: np.ndarray
+    free: np.ndarray
+    y_ref: np.ndarray
+    vloc: np.ndarray
+    vstart: np.ndarray
+    radius: np.ndarray
+    sl_i: np.ndarray
+    sl_edge: np.ndarray
+    sl_f: np.ndarray
+
+
+class Scratch(NamedTuple):
+    """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
+    vertices ``vw`` (nv, 2) and edge frames ``edir`` (nv, 3)."""
+
+    force: np.ndarray
+    dforce: np.ndarray
+    record: np.ndarray
+    vw: np.ndarray
+    edir: np.ndarray
+
+
+class Span(NamedTuple):
+    """What :func:`run` does: global steps ``step0`` to ``n_steps``, a sample every
+    ``out_every`` steps (0: none), with the ground moving or not (``ground_on``), settling by
+    kinetic damping or not (``settle``), stopping at the first collapsed sample or not."""
+
+    step0: int
+    n_steps: int
+    out_every: int
+    ground_on: bool
+    settle: bool
+    stop_at_collapse: bool
+
+
+class Output(NamedTuple):
+    """Samples written by :func:`run`: ``times`` (k,), ``states`` (k, nb, 6), ``energies``
+    (k, 8) and ``written`` (1,), the number written so far."""
+
+    times: np.ndarray
+    states: np.ndarray
+    energies: np.ndarray
+    written: np.ndarray
+
+
+def scratch(packed: Packed) -> Scratch:
+    """Zeroed work arrays for ``packed``."""
+    nbk, nv = packed.state.shape[0], packed.vloc.shape[0]
+    return Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
+                   np.zeros((nv, 2)), np.zeros((nv, 3)))
 #: A vertex may touch an edge only if neither of its own edges dips into the face by more than
 #: this (sine of the angle; about 3 deg).
 ANGLE_TOL = 0.05
@@ -256,21 +318,34 @@ def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce
 
 
 @nb.njit(cache=True)
-def step(state, mass, inertia, free, y_ref, vloc, vstart, sl_i, sl_edge, sl_f, par, acc,
-         kind, gparams, t, ground_on, settle, force, dforce, record, vw, edir):
+def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     """One central-difference step from t_n: contacts at x^n, forces with the lagged velocities
-    v^(n-1/2), then v^(n+1/2) and x^(n+1). ``record[i] = (x, y, theta, vx, vy, omega)`` at
-    step n (velocities averaged over the two half steps) for output.
+    v^(n-1/2), then v^(n+1/2) and x^(n+1). ``work.record[i] = (x, y, theta, vx, vy, omega)``
+    at step n (velocities averaged over the two half steps) for output.
+
+    Parameters
+    ----------
+    packed : Packed
+    par, acc : (N_PAR,), (N_ACC,) parameters and accumulators (P_*, A_* indices)
+    kind, gparams : the ground motion's kernel spec
+    t : float, s
+    ground_on, settle : bool
+    work : Scratch
+
     Returns the ground acceleration used, m/s^2."""
+    state, mass, inertia, free = packed.state, packed.mass, packed.inertia, packed.free
+    force, dforce, record = work.force, work.dforce, work.record
+    vw, edir = work.vw, work.edir
     dt = par[P_DT]
     g = par[P_G]
     alpha = par[P_ALPHA]
     nbk = state.shape[0]
-    world_vertices(state, vloc, vstart, vw, edir)
-    update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc)
+    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
+    update_contacts(vw, edir, packed.vstart, packed.sl_i, packed.sl_edge, packed.sl_f, par, acc)
     force[:, :] = 0.0
     dforce[:, :] = 0.0
-    acc[A_SE] = contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce)
+    acc[A_SE] = contact_forces(state, vw, edir, packed.sl_i, packed.sl_edge, packed.sl_f, par,
+                               acc, force, dforce)
     ag = ground_acceleration(kind, gparams, t) if ground_on else 0.0
     vb_old = acc[A_VB]
     vb_new = vb_old + ag * dt
@@ -363,27 +438,39 @@ def collapsed(state, free, cpar):
 
 
 @nb.njit(cache=True)
-def run(state, mass, inertia, free, y_ref, vloc, vstart, sl_i, sl_edge, sl_f, par, acc,
-        kind, gparams, step0, n_steps, out_every, ground_on, settle, cpar, stop_at_collapse,
-        ref, radius, margin, out_t, out_state, out_energy, out_count):
-    """Advance from global step ``step0`` until ``n_steps`` (global), recording every
-    ``out_every`` steps. Returns (next global step, status): STATUS_DONE, STATUS_COLLAPSE
-    (first output sample meeting a collapse criterion, when stopping at collapse) or
-    STATUS_REBUILD (some block moved more than margin/2 since the neighbour lists were built).
+def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
+    """Advance from global step ``span.step0`` until ``span.n_steps`` (global), recording every
+    ``span.out_every`` steps into ``out``. Returns (next global step, status): STATUS_DONE,
+    STATUS_COLLAPSE (first output sample meeting a collapse criterion, when stopping at
+    collapse) or STATUS_REBUILD (some block moved more than margin/2 from ``ref`` since the
+    neighbour lists were built).
+
+    Parameters
+    ----------
+    packed : Packed
+    par, acc : parameters and accumulators
+    kind, gparams : the ground motion's kernel spec
+    cpar : (N_COLLAPSE,) collapse criteria (:func:`collapsed`)
+    ref : (nb, 3) block positions when the neighbour lists were built
+    margin : float, m, the neighbour lists' margin
+    span : Span
+    out : Output
     """
+    state, mass, free, y_ref = packed.state, packed.mass, packed.free, packed.y_ref
+    radius = packed.radius
     nbk = state.shape[0]
     dt = par[P_DT]
     g = par[P_G]
-    force = np.zeros((nbk, 3))
-    dforce = np.zeros((nbk, 3))
-    record = np.zeros((nbk, 6))
-    vw = np.zeros((vloc.shape[0], 2))
-    edir = np.zeros((vloc.shape[0], 3))
-    n = step0
-    while n < n_steps:
+    nv = packed.vloc.shape[0]
+    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
+                   np.zeros((nv, 2)), np.zeros((nv, 3)))
+    record = work.record
+    out_every = span.out_every
+    out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.written
+    n = span.step0
+    while n < span.n_steps:
         t = n * dt
-        step(state, mass, inertia, free, y_ref, vloc, vstart, sl_i, sl_edge, sl_f, par, acc,
-             kind, gparams, t, ground_on, settle, force, dforce, record, vw, edir)
+        step(packed, par, acc, kind, gparams, t, span.ground_on, span.settle, work)
         n += 1
         if out_every > 0 and (n - 1) % out_every == 0:
             k = out_count[0]
@@ -405,7 +492,7 @@ def run(state, mass, inertia, free, y_ref, vloc, vstart, sl_i, sl_edge, sl_f, pa
                 out_energy[k, 6] = acc[A_XB] - dt * acc[A_VB]
                 out_energy[k, 7] = record[0, 3] if free[0] == 0 else acc[A_VB]
                 out_count[0] = k + 1
-                if stop_at_collapse and collapsed(record, free, cpar):
+                if span.stop_at_collapse and collapsed(record, free, cpar):
                     return n, STATUS_COLLAPSE
         if (n & 63) == 0:
             for i in range(nbk):

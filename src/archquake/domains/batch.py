@@ -1,7 +1,7 @@
 """Outcomes of many pulses of one family on one arch: the fast path of the domain search.
 
 :func:`evaluate_pulses` runs every (magnitude, duration) pair through one call of the compiled
-batch kernel (:mod:`archquake.domains._batch`), which runs the same compiled time history as
+batch kernel (:mod:`archquake.domains._kernels`), which runs the same compiled time history as
 :func:`archquake.mechanism.simulate` for each case; :func:`evaluate_pulses_scalar` is its plain
 twin, a Python loop over :func:`~archquake.mechanism.simulate`, which the tests hold it to.
 """
@@ -19,13 +19,9 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion
 from archquake.ground.pulses import SinePulse, StepImpulse
-from archquake.mechanism import _kernels as K
 from archquake.mechanism.prepared import PreparedMechanism
-from archquake.mechanism.simulate import (
-    Outcome,
-    SolverOptions,
-    simulate,
-)
+from archquake.mechanism.simulate import SolverOptions, simulate
+from archquake.outcome import Outcome
 
 
 class PulseFamily(str, Enum):
@@ -69,24 +65,21 @@ class PulseFamily(str, Enum):
 #: Integrator settings of :func:`~archquake.mechanism.simulate`'s default.
 DEFAULT_OPTIONS = SolverOptions()
 
-_OUTCOMES = {K.OUTCOME_NO_HINGING: Outcome.NO_HINGING, K.OUTCOME_SURVIVES: Outcome.SURVIVES,
-             K.OUTCOME_COLLAPSE: Outcome.COLLAPSE}
-
-
 @dataclass(frozen=True)
 class PulseOutcomes:
-    """Outcomes of a set of pulses, shape (n,) each.
+    """Outcomes of a set of pulses, shape (n,) each: what any model plugged into the domain
+    search returns (:func:`~archquake.domains.failure_domain`'s ``evaluate``).
 
     Attributes
     ----------
     magnitude_g : ndarray, g
     duration : ndarray, s
-    outcome : ndarray of int
-        Kernel codes: 0 no hinging, 1 survives, 2 collapse.
+    outcome : ndarray of Outcome (object)
+        Built from :class:`~archquake.outcome.Outcome` values (or their strings).
     collapse_half_cycle : ndarray of int
         Half cycle of the collapse (1 = before any impact), 0 where none.
     runs : ndarray of int
-        Kernel runs each case needed (early decision, see :mod:`._batch`).
+        Model runs each case needed (the batch kernel's early decision, see :mod:`._kernels`).
     """
 
     magnitude_g: np.ndarray
@@ -95,17 +88,21 @@ class PulseOutcomes:
     collapse_half_cycle: np.ndarray
     runs: np.ndarray
 
+    def __post_init__(self) -> None:
+        codes = np.empty(len(self.outcome), dtype=object)
+        for i, o in enumerate(self.outcome):
+            codes[i] = Outcome(o)
+        object.__setattr__(self, "outcome", codes)
+
     @property
     def collapses(self) -> np.ndarray:
-        return self.outcome == K.OUTCOME_COLLAPSE
+        """(n,) bool: the pulse collapses the arch."""
+        return np.array([o is Outcome.COLLAPSE for o in self.outcome], dtype=bool)
 
     @property
     def collapses_first(self) -> np.ndarray:
+        """(n,) bool: the pulse collapses the arch in the first half cycle."""
         return self.collapses & (self.collapse_half_cycle == 1)
-
-    def outcomes(self) -> list[Outcome]:
-        """The outcomes as :class:`~archquake.mechanism.Outcome` values."""
-        return [_OUTCOMES[int(o)] for o in self.outcome]
 
 
 def _pairs(magnitudes_g, durations) -> tuple[np.ndarray, np.ndarray]:
@@ -143,7 +140,7 @@ def evaluate_pulses(
         Tolerances, rest rotation and impact cap, as for :func:`~archquake.mechanism.simulate`.
     early : bool
         Stop a surviving case as soon as energy proves it can no longer collapse (see
-        :mod:`archquake.domains._batch`); False runs every case to rest as ``simulate`` does.
+        :mod:`archquake.domains._kernels`); False runs every case to rest as ``simulate`` does.
     g : float
         Gravity, m/s^2.
 
@@ -158,10 +155,10 @@ def evaluate_pulses(
     >>> import math
     >>> from archquake import Arch
     >>> r = evaluate_pulses(Arch(10, 1.5, math.radians(157.5), 7), "step", 1.0, [0.44, 0.27, 0.20])
-    >>> [int(h) for h in r.collapse_half_cycle], [o.value for o in r.outcomes()]
+    >>> [int(h) for h in r.collapse_half_cycle], [o.value for o in r.outcome]
     ([1, 2, 0], ['collapse', 'collapse', 'survives'])
     """
-    from archquake.domains._batch import batch_kernel, default_t_end
+    from archquake.domains._kernels import batch_kernel, decode, default_t_end
 
     prepared = PreparedMechanism.build(arch)
     fam = PulseFamily.parse(family)
@@ -183,7 +180,7 @@ def evaluate_pulses(
                      float(prepared.restitution), t_end, options.rtol, options.atol,
                      options.rest_rotation, int(options.max_impacts), bool(early),
                      outcome, half, n_imp, runs)
-    return PulseOutcomes(a, d, outcome, half, runs)
+    return PulseOutcomes(a, d, decode(outcome), half, runs)
 
 
 def evaluate_pulses_scalar(
@@ -199,13 +196,12 @@ def evaluate_pulses_scalar(
     prepared = PreparedMechanism.build(arch)
     fam = PulseFamily.parse(family)
     a, d = _pairs(magnitudes_g, durations)
-    codes = {v: k for k, v in _OUTCOMES.items()}
-    outcome = np.zeros(a.shape[0], dtype=np.int64)
+    outcome = np.empty(a.shape[0], dtype=object)
     half = np.zeros(a.shape[0], dtype=np.int64)
     opts = SolverOptions(options.rtol, options.atol, options.rest_rotation, options.max_impacts, 0.0)
     for i, (ai, di) in enumerate(zip(a, d)):
         r = simulate(prepared, fam.motion(float(ai), float(di), g=g), options=opts, g=g)
-        outcome[i] = codes[r.outcome]
+        outcome[i] = r.outcome
         half[i] = r.collapse_half_cycle or 0
     return PulseOutcomes(a, d, outcome, half, np.ones(a.shape[0], dtype=np.int64))
 

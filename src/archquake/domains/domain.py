@@ -71,7 +71,7 @@ class DomainSettings:
         Width of the final brackets, g.
     early : bool
         Let the batch stop surviving runs once energy proves they cannot collapse (see
-        :mod:`archquake.domains._batch`).
+        :mod:`archquake.domains._kernels`).
     options : SolverOptions
         Integrator settings of every run (history is never recorded).
     """
@@ -114,7 +114,7 @@ class NonMonotonicBand:
     upper_open: bool = False
 
     def to_dict(self) -> dict:
-        return {"duration": self.duration, "criterion": self.criterion, "lower_g": self.lower_g,
+        return {"duration_s": self.duration, "criterion": self.criterion, "lower_g": self.lower_g,
                 "upper_g": self.upper_g, "upper_open": self.upper_open}
 
 
@@ -174,18 +174,18 @@ class FailureDomain:
         return [b for b in self.non_monotonic_bands if b.duration == duration]
 
     def to_dict(self) -> list[dict]:
-        """One object per duration: ``duration`` (s), ``no_hinging_g``, ``first_half_cycle_g``,
+        """One object per duration: ``duration_s``, ``no_hinging_g``, ``first_half_cycle_g``,
         ``collapse_g`` (g, None where none) and ``non_monotonic_bands`` there."""
         out = []
         for i, d in enumerate(self.durations):
             out.append({
-                "duration": float(d),
+                "duration_s": float(d),
                 "no_hinging_g": _num(self.no_hinging_g[i]),
                 "first_half_cycle_g": _num(self.first_half_cycle_g[i]),
                 "collapse_g": _num(self.collapse_g[i]),
                 "collapse_half_cycle": int(self.collapse_half_cycle[i]) or None,
                 "non_monotonic_bands": [
-                    {k: v for k, v in b.to_dict().items() if k != "duration"}
+                    {k: v for k, v in b.to_dict().items() if k != "duration_s"}
                     for b in self.bands_at(float(d))
                 ],
             })
@@ -194,9 +194,11 @@ class FailureDomain:
     def summary(self) -> dict:
         """What was analysed and how: arch, pulse family, mechanism, c_v, settings."""
         return {"arch": self.arch.describe(), "pulse": self.family.value,
-                "duration": self.family.duration_symbol, "restitution_cv": self.restitution_cv,
+                "duration_symbol": self.family.duration_symbol,
+                "restitution_cv": self.restitution_cv,
                 "energy_gain": self.energy_gain, "mechanism": self.mechanism,
-                "settings": self.settings.to_dict(), "evaluations": self.evaluations, "g": self.g}
+                "settings": self.settings.to_dict(), "evaluations": self.evaluations,
+                "g_m_s2": self.g}
 
     def write_csv(self, path: str | Path) -> Path:
         """Write one row per duration; bands as ``criterion:lower-upper`` separated by ``;``."""
@@ -208,7 +210,7 @@ class FailureDomain:
             for row in self.to_dict():
                 bands = ";".join(f"{b['criterion']}:{b['lower_g']:.4f}-{b['upper_g']:.4f}"
                                  for b in row["non_monotonic_bands"])
-                w.writerow([f"{row['duration']:.6g}"] + [
+                w.writerow([f"{row['duration_s']:.6g}"] + [
                     "" if row[k] is None else f"{row[k]:.4f}"
                     for k in ("no_hinging_g", "first_half_cycle_g", "collapse_g")
                 ] + [row["collapse_half_cycle"] or "", bands])

@@ -39,14 +39,7 @@ from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion
 from archquake.mechanism import _kernels as K
 from archquake.mechanism.prepared import PreparedMechanism
-
-
-class Outcome(str, Enum):
-    """What happened to the arch."""
-
-    NO_HINGING = "no_hinging"
-    SURVIVES = "survives"
-    COLLAPSE = "collapse"
+from archquake.outcome import Outcome
 
 
 class FinalState(str, Enum):
@@ -128,10 +121,11 @@ class History:
         return self.side * self.phi
 
     def to_dict(self) -> dict:
-        out = {"t": self.t, "phi": self.phi, "phi_dot": self.phi_dot, "side": self.side,
-               "ground_acceleration": self.ground_acceleration}
+        """The columns, keyed with their units (as ``archquake run --history`` writes them)."""
+        out = {"t_s": self.t, "phi_rad": self.phi, "phi_dot_rad_s": self.phi_dot,
+               "side": self.side, "ground_acceleration_m_s2": self.ground_acceleration}
         if self.phi_ddot is not None:
-            out["phi_ddot"] = self.phi_ddot
+            out["phi_ddot_rad_s2"] = self.phi_ddot
         return out
 
 
@@ -208,15 +202,20 @@ class SimulationResult:
         return int(self.peak_rotation.shape[0])
 
     def to_dict(self, include_history: bool = False) -> dict:
-        """Plain dict for JSON (the CLI's ``--json``)."""
+        """Plain dict for JSON (the CLI's ``--json``, a sweep's stored row): the keys of
+        :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
+        the analytical model's own."""
         out = {
+            "model": "analytical",
             "outcome": self.outcome.value,
             "final_state": self.final_state.value,
             "collapse_half_cycle": self.collapse_half_cycle,
-            "collapse_time": self.collapse_time,
-            "onset_time": self.onset_time,
-            "impact_times": self.impact_times.tolist(),
+            "collapse_time_s": self.collapse_time,
+            "onset_time_s": self.onset_time,
+            "impact_times_s": self.impact_times.tolist(),
             "peak_rotation_rad": self.peak_rotation.tolist(),
+            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
+            "g_m_s2": self.g,
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,
@@ -226,7 +225,7 @@ class SimulationResult:
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
             "hinges": [h.to_dict() for h in self.mechanism.hinges],
-            "solver": dict(self.stats),
+            "solver": {("t_end_s" if k == "t_end" else k): v for k, v in self.stats.items()},
         }
         if include_history and self.history is not None:
             out["history"] = self.history.to_dict()

@@ -80,7 +80,7 @@ def figure4_comparison(comparisons: dict, path: str | Path, *, t_end: float = 4.
         plot_history_comparison(cs, ax, t_end=t_end)
         parts = [f"analytical {_what(cs[0].analytical.outcome.value, cs[0].analytical.collapse_half_cycle)}"]
         for c in cs:
-            parts.append(f"DEM {c.assembly} {_what(c.dem.outcome.value, c.dem_collapse_half_cycle)}")
+            parts.append(f"DEM {c.assembly} {_what(c.dem.outcome.value, c.dem.collapse_half_cycle)}")
         ax.set_title(f"({'bcdefgh'[k]}) t_p = {tp:.2f} s: " + "; ".join(parts), fontsize=8, loc="left")
         rot = cs[0].analytical.history.signed_rotation
         lim = max(0.08, 1.2 * float(np.max(np.abs(rot), initial=0.0)))

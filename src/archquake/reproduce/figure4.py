@@ -30,7 +30,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     """Figure 4: time histories for a = 1.0 g, t_p = 0.44, 0.27, 0.20 s; DEM overlays
     (three-voussoir arch for 0.44 s, seven voussoirs otherwise, as in the paper), both models
     run by :func:`archquake.compare.compare_history`."""
-    from archquake.compare import HINGES, VOUSSOIRS, compare_history, dem_summary
+    from archquake.compare import HINGES, VOUSSOIRS, compare_history
     from archquake.plotting.compare import figure4_comparison
 
     assemblies = (HINGES, VOUSSOIRS, VOUSSOIRS)
@@ -104,7 +104,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             f"{THREE_VOUSSOIR_AGREEMENT.stated}; collapse in the 1st half cycle",
             f"max |phi_DEM - phi| = {1000 * c44.max_difference:.2f} mrad up to {c44.window:.2f} s "
             f"({100 * c44.relative_difference:.1f} % of the peak); DEM {d44.outcome.value} in half "
-            f"cycle {c44.dem_collapse_half_cycle}",
+            f"cycle {c44.dem.collapse_half_cycle}",
             f"{THREE_VOUSSOIR_AGREEMENT.tolerance_text} (5 % of 0.1 rad) over the first half cycle, "
             "and the same outcome",
             THREE_VOUSSOIR_AGREEMENT.why,
@@ -151,7 +151,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     data = {
         "analytical": {str(tp): r.to_dict() for tp, r in zip(FIGURE4_DURATIONS, res)},
         "comparison": {str(tp): c.to_dict() for tp, c in zip(FIGURE4_DURATIONS, cmp)},
-        "dem": {str(tp): dem_summary(c.dem) for tp, c in zip(FIGURE4_DURATIONS, cmp)},
+        "dem": {str(tp): c.dem.to_dict() for tp, c in zip(FIGURE4_DURATIONS, cmp)},
     }
     fig = figure4_comparison(
         {(tp, c.assembly): c for tp, c in zip(FIGURE4_DURATIONS, cmp)},

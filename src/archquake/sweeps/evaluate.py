@@ -11,9 +11,12 @@ Models:
 - ``dem``: :func:`archquake.dem.simulate_dem` on the arch with every voussoir a block, the
   paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: the end
   of the excitation + 5 sqrt(R/g), :func:`archquake.compare.default_dem_duration`), summarised
-  by :func:`archquake.compare.dem_summary` (the analytical keys where they apply: outcome,
-  collapse_half_cycle, impact_times, peak_rotation_rad, ...; the DEM's own under ``dem``).
+  by ``result.to_dict()``.
   ``restitution`` does not apply to it (a case giving one is refused).
+
+Both summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
+collapse_half_cycle, collapse_time_s, impact_times_s, peak_rotation_rad, ...), so a store
+holding both models has one column per quantity.
 """
 
 from __future__ import annotations
@@ -61,8 +64,9 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``result.to_dict(include_history=False)``: outcome, collapse half cycle, impact times
-        (s), peak rotation per half cycle (rad), restitution statistics, ...
+        ``result.to_dict()`` (no history): the keys of :data:`archquake.outcome.RESULT_KEYS`
+        (outcome, collapse half cycle, impact times in s, peak rotation per half cycle in
+        rad, ...), then the model's own.
 
     Raises
     ------
@@ -80,7 +84,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
                           g=case.options.g)
         return result.to_dict(include_history=False)
     # the DEM's impacts follow from its contacts and damping: no coefficient of restitution
-    from archquake.compare import default_dem_duration, dem_summary
+    from archquake.compare import default_dem_duration
     from archquake.dem import DemSettings
 
     if case.options.restitution is not None:
@@ -89,7 +93,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     arch = case.arch.build()
     duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
     result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
-    return dem_summary(result)
+    return result.to_dict()
 
 
 @lru_cache(maxsize=256)

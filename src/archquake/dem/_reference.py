@@ -1,8 +1,10 @@
-"""Plain-NumPy twin of :func:`archquake.dem._kernels.step` (vectorised over slots and blocks).
+"""Plain-NumPy reference of :func:`archquake.dem._kernels.step` (vectorised over slots and
+blocks). Test-only: no production code imports it.
 
 Written independently of the compiled loops (array expressions instead of scalar loops) so
 that a test can hold the kernel to it: same trajectory to round-off over a few hundred steps.
-Same packed layout and the same rules, in the same order (see the kernel module docstring).
+Same packed layout (:class:`~archquake.dem._kernels.Packed`) and the same rules, in the same
+order (see the kernel module docstring).
 """
 
 from __future__ import annotations
@@ -75,10 +77,8 @@ def _edge_frame(vw, edir, e, p):
     return overlap, spar, n, t, length
 
 
-def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc, allowance=0.0):
-    """Twin of the kernel's contact update; ``allowance`` > 0 (m) also accepts vertices up to
-    that far outside an edge (used to find the contacts of an assembly at rest, exactly
-    touching, for the stable time step)."""
+def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
+    """The kernel's contact update."""
     tol, dmax = par[P_TOL], par[P_DMAX]
     v, a, b = sl_i[:, 0], sl_i[:, 1], sl_i[:, 2]
     act = np.flatnonzero(sl_edge >= 0)
@@ -105,7 +105,7 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc, allowance=0
         overlap, spar, n, t, length = _edge_frame(vw, edir, edges, vw[vv])
         out_n = np.sum(edir[vv, :2] * n, axis=1)
         out_p = -np.sum(edir[vp, :2] * n, axis=1)
-        ok = (overlap > -allowance) & (overlap <= dmax) & (spar >= 0) & (spar <= 1)
+        ok = (overlap > 0) & (overlap <= dmax) & (spar >= 0) & (spar <= 1)
         ok &= (out_n >= -ANGLE_TOL) & (out_p >= -ANGLE_TOL)
         face = np.minimum(np.sum(edir[vp, :2] * t, axis=1), np.sum(edir[vv, :2] * t, axis=1))
         score = np.where(ok, face, np.inf)
@@ -190,9 +190,13 @@ def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce
     return float(np.sum(0.5 * fn_el * overlap + 0.5 * fs * fs / ks))
 
 
-def step(state, mass, inertia, free, y_ref, vloc, vstart, sl_i, sl_edge, sl_f, par, acc,
-         kind, gparams, t, ground_on, settle, force, dforce, record, vw=None, edir=None):
-    """NumPy twin of :func:`archquake.dem._kernels.step` (same arguments, same effects)."""
+def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
+    """NumPy reference of :func:`archquake.dem._kernels.step` (same arguments, same effects;
+    ``work.vw`` and ``work.edir`` are not used)."""
+    state, mass, inertia, free = packed.state, packed.mass, packed.inertia, packed.free
+    vloc, vstart = packed.vloc, packed.vstart
+    sl_i, sl_edge, sl_f = packed.sl_i, packed.sl_edge, packed.sl_f
+    force, dforce, record = work.force, work.dforce, work.record
     dt, g, alpha = par[P_DT], par[P_G], par[P_ALPHA]
     vw, edir = world_vertices(state, vloc, vstart)
     update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc)

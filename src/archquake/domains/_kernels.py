@@ -35,11 +35,13 @@ import numpy as np
 
 from archquake.mechanism._kernels import (
     OUTCOME_COLLAPSE,
+    OUTCOME_NO_HINGING,
     OUTCOME_SURVIVES,
     excitation_end,
     simulate_kernel,
 )
 from archquake.mechanism.kinematics import PHI_CRIT, eom_terms, potential
+from archquake.outcome import Outcome
 
 #: Relative safety margin on the energy barrier below which an early "survives" is accepted.
 ENERGY_MARGIN = 1e-6
@@ -104,10 +106,24 @@ def batch_kernel(mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, ma
         runs[i] = r
 
 
+#: The kernel's outcome codes as :class:`~archquake.outcome.Outcome` values.
+OUTCOMES = {OUTCOME_NO_HINGING: Outcome.NO_HINGING, OUTCOME_SURVIVES: Outcome.SURVIVES,
+            OUTCOME_COLLAPSE: Outcome.COLLAPSE}
+
+
+def decode(codes: np.ndarray) -> np.ndarray:
+    """The kernel's outcome codes (n,) as an object array of :class:`~archquake.outcome.Outcome`."""
+    out = np.empty(len(codes), dtype=object)
+    for i, c in enumerate(codes):
+        out[i] = OUTCOMES[int(c)]
+    return out
+
+
 def default_t_end(excitation_end_s: np.ndarray, radius: float, g: float) -> np.ndarray:
     """End of each analysis, s: the default of :func:`archquake.mechanism.simulate`
     (the end of the excitation plus 60 sqrt(R/g)); a test holds the two equal."""
     return np.asarray(excitation_end_s, dtype=float) + 60.0 * math.sqrt(radius / g)
 
 
-__all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "batch_kernel", "default_t_end"]
+__all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "OUTCOMES", "batch_kernel", "decode",
+           "default_t_end"]

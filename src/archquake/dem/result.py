@@ -1,0 +1,441 @@
+"""The result of a distinct-element run, in the analytical model's vocabulary.
+
+:class:`DemResult` holds the sampled histories of a run (:func:`archquake.dem.simulate_dem`)
+and computes from them what the analytical :class:`~archquake.mechanism.SimulationResult`
+reports: the :class:`~archquake.outcome.Outcome`, the onset of hinging, the impacts, the peak
+rotation of each half cycle, the collapse half cycle and time, and ``to_dict()`` with the keys
+of :data:`archquake.outcome.RESULT_KEYS`. The post-processing (joint openings and slips, the
+rotation measure, the collapse criteria) lives here too; the driver (:mod:`archquake.dem.run`)
+only packs, steps and records.
+
+The rotation measure
+--------------------
+``rotation`` is the rotation of a chord of the assembly, ``RotationLink``: for an arch the chord
+from hinge A to hinge B of the analytical first mechanism (the one a ground acceleration towards
+-x opens), signed > 0 in that mechanism's opening sense, like the analytical
+``History.signed_rotation``. When the assembly is its own mirror image (x -> -x) and the
+mirror-image mechanism opens first (a ground motion towards +x first), the measure is the
+mirror-image chord's, so that a mirrored excitation gives the exact mirror of the measure
+(negative first), with the same impacts, half cycles and outcome.
+
+Impacts
+-------
+The DEM's impacts are the sign changes of the rotation measure before the collapse, each
+counted only after the rotation has exceeded ``settings.hinge_opening`` rad on the current side
+(small rocking below it, contact vibration at rest, is not counted); times are interpolated
+linearly between samples. The collapse half cycle is 1 + the impacts before the collapse.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from archquake.dem import _kernels as K
+from archquake.dem.assembly import Assembly, RotationLink
+from archquake.dem.settings import DemSettings
+from archquake.outcome import Outcome
+
+
+# --------------------------------------------------------------------------- kinematics
+def carry(assembly: Assembly, pos: np.ndarray, block: int, point) -> np.ndarray:
+    """World position (nt, 2), m, of a point fixed to ``block`` (given in the undisplaced
+    assembly), for the recorded positions ``pos`` (nt, nb, >= 3)."""
+    local = np.asarray(point, dtype=float) - assembly.centroids[block]
+    th = pos[:, block, 2]
+    c, s = np.cos(th), np.sin(th)
+    return np.column_stack(
+        [pos[:, block, 0] + c * local[0] - s * local[1], pos[:, block, 1] + s * local[0] + c * local[1]]
+    )
+
+
+def joint_kinematics(assembly: Assembly, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m."""
+    nt = pos.shape[0]
+    nj = len(assembly.joints)
+    opening = np.zeros((nt, nj, 2))
+    slip = np.zeros((nt, nj))
+    for j, joint in enumerate(assembly.joints):
+        p0, p1 = joint.points
+        tan0 = (p1 - p0) / np.linalg.norm(p1 - p0)
+        nrm0 = np.array([tan0[1], -tan0[0]])
+        if np.dot(assembly.centroids[joint.right] - assembly.centroids[joint.left], nrm0) < 0:
+            nrm0 = -nrm0
+        th = pos[:, joint.left, 2]
+        c, s = np.cos(th), np.sin(th)
+        nrm = np.column_stack([c * nrm0[0] - s * nrm0[1], s * nrm0[0] + c * nrm0[1]])
+        tan = np.column_stack([c * tan0[0] - s * tan0[1], s * tan0[0] + c * tan0[1]])
+        tang = np.zeros((nt, 2))
+        for end in range(2):
+            gap = carry(assembly, pos, joint.right, joint.points[end]) - carry(
+                assembly, pos, joint.left, joint.points[end]
+            )
+            opening[:, j, end] = np.sum(gap * nrm, axis=1)
+            tang[:, end] = np.sum(gap * tan, axis=1)
+        closed_end = np.argmin(opening[:, j, :], axis=1)
+        slip[:, j] = tang[np.arange(nt), closed_end]
+    return opening, slip
+
+
+def link_rotation(assembly: Assembly, pos: np.ndarray, link: RotationLink) -> np.ndarray:
+    """``link.sign`` times the rotation of the chord from A to B, rad, (nt,), unwrapped."""
+    a = carry(assembly, pos, link.block_a, link.point_a)
+    b = carry(assembly, pos, link.block_b, link.point_b)
+    d0 = np.asarray(link.point_b) - np.asarray(link.point_a)
+    d = b - a
+    ang = np.arctan2(d[:, 1], d[:, 0]) - math.atan2(d0[1], d0[0])
+    ang = (ang + np.pi) % (2 * np.pi) - np.pi
+    return link.sign * np.unwrap(ang)
+
+
+def mirror_link(assembly: Assembly, *, rtol: float = 1e-9) -> RotationLink | None:
+    """The mirror image (x -> -x) of ``assembly.rotation_link``, or None if the assembly is not
+    its own mirror image (every block's polygon reflected onto another block's, to ``rtol``
+    of the assembly's size, with the same mass).
+
+    The sign stays: reflection reverses angles, so in the mirror-image motion the mirrored
+    chord's measure is minus the original chord's measure in the original motion.
+    """
+    polys = assembly.polygons
+    tol = rtol * max(float(np.max(np.abs(p))) for p in polys)
+    image = {}
+    for i, p in enumerate(polys):
+        q = p * np.array([-1.0, 1.0])
+        for j, pj in enumerate(polys):
+            if (pj.shape == q.shape and bool(assembly.base[i]) == bool(assembly.base[j])
+                    and float(np.max(np.min(np.hypot(*(q[:, None, :] - pj[None, :, :]).T), axis=0)))
+                    <= tol
+                    and (assembly.base[i] or math.isclose(float(assembly.masses[i]),
+                                                          float(assembly.masses[j]), rel_tol=1e-9))):
+                image[i] = j
+                break
+        else:
+            return None
+    link = assembly.rotation_link
+    flip = np.array([-1.0, 1.0])
+    return RotationLink(image[link.block_a], np.asarray(link.point_a) * flip,
+                        image[link.block_b], np.asarray(link.point_b) * flip, link.sign)
+
+
+def _first_above(values: np.ndarray, threshold: float) -> int:
+    hit = np.flatnonzero(values > threshold)
+    return int(hit[0]) if hit.size else len(values)
+
+
+def rotation_measure(assembly: Assembly, pos: np.ndarray, threshold: float
+                     ) -> tuple[np.ndarray, RotationLink]:
+    """The rotation measure, rad, (nt,), and the link it is taken on (module docstring).
+
+    The assembly's link, unless the assembly is its own mirror image and the mirror-image
+    mechanism opens first: its link's rotation goes below ``-threshold`` rad before the
+    assembly's link's goes above ``threshold``.
+    """
+    link = assembly.rotation_link
+    rot = link_rotation(assembly, pos, link)
+    mirror = mirror_link(assembly)
+    if mirror is None:
+        return rot, link
+    rot_m = link_rotation(assembly, pos, mirror)
+    if _first_above(-rot_m, threshold) < _first_above(rot, threshold):
+        return rot_m, mirror
+    return rot, link
+
+
+def crown_height(assembly: Assembly, pos: np.ndarray) -> np.ndarray:
+    """Height of the crown point, m, (nt,) (NaN without a crown block)."""
+    if assembly.crown_block < 0:
+        return np.full(pos.shape[0], np.nan)
+    return carry(assembly, pos, assembly.crown_block, assembly.crown_point)[:, 1]
+
+
+def collapse_parameters(assembly: Assembly, settings: DemSettings, crown_y0: float) -> np.ndarray:
+    """The packed collapse criteria of :func:`archquake.dem._kernels.collapsed`: a free block's
+    centroid below the springings, a block turned by more than ``collapse_rotation``, or the
+    crown fallen by more than ``collapse_drop`` reference lengths below ``crown_y0`` (m, its
+    height at the start of the ground motion)."""
+    cpar = np.zeros(K.N_COLLAPSE)
+    cpar[K.C_BASE] = assembly.base_level
+    cpar[K.C_ROT] = settings.collapse_rotation
+    cpar[K.C_CROWN_BLOCK] = assembly.crown_block
+    cpar[K.C_CROWN_LX], cpar[K.C_CROWN_LY] = (
+        np.asarray(assembly.crown_point) - assembly.centroids[assembly.crown_block]
+    )
+    cpar[K.C_CROWN_Y0] = crown_y0
+    cpar[K.C_CROWN_DROP] = settings.collapse_drop * assembly.reference_length
+    return cpar
+
+
+def collapse_time(assembly: Assembly, settings: DemSettings, t: np.ndarray, pos: np.ndarray
+                  ) -> float | None:
+    """The first sample meeting a collapse criterion, s (the crown's drop measured from the
+    first sample), or None."""
+    if len(t) == 0:
+        return None
+    cpar = collapse_parameters(assembly, settings, float(crown_height(assembly, pos[:1])[0]))
+    free = (~np.asarray(assembly.base)).astype(np.int64)
+    for k in range(len(t)):
+        if K.collapsed(pos[k], free, cpar):
+            return float(t[k])
+    return None
+
+
+# --------------------------------------------------------------------------- half cycles
+def crossings(t: np.ndarray, rot: np.ndarray, threshold: float, stop: int | None = None
+              ) -> np.ndarray:
+    """Times (s) at which ``rot`` changes sign, each after it exceeded ``threshold`` on the
+    current side, among the first ``stop`` samples: the DEM's impacts (module docstring)."""
+    stop = len(t) if stop is None else stop
+    out = []
+    armed_sign = 0.0
+    for k in range(stop):
+        r = rot[k]
+        if armed_sign == 0.0:
+            if abs(r) > threshold:
+                armed_sign = math.copysign(1.0, r)
+            continue
+        if armed_sign * r <= 0.0 and k > 0:
+            r0 = rot[k - 1]
+            frac = r0 / (r0 - r) if r0 != r else 1.0
+            out.append(float(t[k - 1] + frac * (t[k] - t[k - 1])))
+            armed_sign = 0.0
+            if abs(r) > threshold:
+                armed_sign = math.copysign(1.0, r)
+    return np.array(out)
+
+
+def half_cycle_peaks(t: np.ndarray, rot: np.ndarray, impacts: np.ndarray, end: float) -> np.ndarray:
+    """Largest |rot| (rad) between consecutive impacts, and from the last one to ``end`` (s)."""
+    edges = np.concatenate([[-np.inf], impacts, [end]])
+    mag = np.abs(rot)
+    peaks = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        sel = (t > a) & (t <= b)
+        if np.any(sel):
+            peaks.append(float(mag[sel].max()))
+    return np.array(peaks)
+
+
+# --------------------------------------------------------------------------- result
+@dataclass(frozen=True)
+class DemResult:
+    """Histories of a distinct-element run, sampled every ``output_interval``, and what became
+    of the assembly in the analytical model's vocabulary.
+
+    Attributes
+    ----------
+    times : ndarray (nt,)
+        s, from the start of the ground motion.
+    positions : ndarray (nt, nb, 3)
+        Centroid x, y (m) and rotation (rad, counter-clockwise from the undisplaced block) of
+        every block (base blocks included; absolute frame).
+    velocities : ndarray (nt, nb, 3)
+        vx, vy (m/s, absolute) and omega (rad/s), averaged over the two half steps.
+    base_displacement, base_velocity : ndarray (nt,)
+        The ground's x_g (m) and x_g' (m/s) as integrated inside the stepping.
+    joint_opening : ndarray (nt, nj, 2)
+        Gap at each end of every recorded joint (m, > 0 open; overlaps are negative), the two
+        ends being ``assembly.joints[j].faces`` (intrados, extrados for arches).
+    joint_slip : ndarray (nt, nj)
+        Tangential offset of the two blocks at the more closed end of each joint, m.
+    rotation : ndarray (nt,)
+        The rotation measure, rad (module docstring): comparable with the analytical
+        ``History.signed_rotation``, > 0 while the first mechanism opens, < 0 in its mirror.
+    rotation_link : RotationLink
+        The chord ``rotation`` is measured on (the assembly's, or its mirror image).
+    kinetic, potential, strain, damping, friction, input_work : ndarray (nt,)
+        Energies relative to the ground, J: kinetic, gravitational (from t = 0), elastic in the
+        contact springs, dissipated by Rayleigh damping, dissipated by friction (slip, and the
+        shear energy released when a contact opens), work of the inertial load -m x_g''.
+    outcome : Outcome
+    onset_time : float or None
+        s: first sample with a joint open by more than ``settings.hinge_opening *
+        reference_length``.
+    impact_times : ndarray (k,)
+        s: the sign changes of ``rotation`` before the collapse (module docstring).
+    peak_rotation : ndarray (half cycles,)
+        Largest |rotation| in each half cycle (before the collapse), rad; empty without hinging.
+    collapse_half_cycle : int or None
+        1 + the impacts before the collapse.
+    collapse_time : float or None
+        s: first sample where a free block's centroid is below the springings, the crown has
+        fallen by ``collapse_drop`` reference lengths, or a block has turned by
+        ``collapse_rotation`` (later than the analytical crest: compare outcomes and half
+        cycles, not collapse times).
+    time_step : float
+        s. ``n_steps`` steps were taken after settling (fewer if the run stopped at the
+        collapse), ``settle_steps`` before.
+    """
+
+    times: np.ndarray
+    positions: np.ndarray
+    velocities: np.ndarray
+    base_displacement: np.ndarray
+    base_velocity: np.ndarray
+    joint_opening: np.ndarray
+    joint_slip: np.ndarray
+    rotation: np.ndarray
+    rotation_link: RotationLink
+    kinetic: np.ndarray
+    potential: np.ndarray
+    strain: np.ndarray
+    damping: np.ndarray
+    friction: np.ndarray
+    input_work: np.ndarray
+    outcome: Outcome
+    onset_time: float | None
+    impact_times: np.ndarray
+    peak_rotation: np.ndarray
+    collapse_half_cycle: int | None
+    collapse_time: float | None
+    time_step: float
+    omega_max: float
+    n_steps: int
+    settle_steps: int
+    settings: DemSettings
+    assembly: Assembly
+    motion: dict
+    g: float
+
+    @classmethod
+    def from_samples(cls, assembly: Assembly, settings: DemSettings, motion: dict, g: float,
+                     time_step: float, omega_max: float, n_steps: int, settle_steps: int,
+                     times: np.ndarray, states: np.ndarray, energies: np.ndarray) -> DemResult:
+        """Post-process the recorded samples of a run.
+
+        Parameters
+        ----------
+        times : (nt,), s
+        states : (nt, nb, 6): x, y, theta, vx, vy, omega per block
+        energies : (nt, 8): kinetic, potential, strain, damping, friction, input work (J),
+            base displacement (m), base velocity (m/s)
+        """
+        t = np.array(times, dtype=float)
+        pos = states[:, :, :3].copy()
+        vel = states[:, :, 3:].copy()
+        e = energies
+        opening, slip = joint_kinematics(assembly, pos)
+        rot, link = rotation_measure(assembly, pos, settings.hinge_opening)
+        thr = settings.hinge_opening * assembly.reference_length
+        open_any = np.any(opening > thr, axis=(1, 2)) if opening.size else np.zeros(len(t), bool)
+        onset = float(t[np.argmax(open_any)]) if np.any(open_any) else None
+        t_collapse = collapse_time(assembly, settings, t, pos)
+        stop = len(t) if t_collapse is None else int(np.searchsorted(t, t_collapse))
+        impacts = crossings(t, rot, settings.hinge_opening, stop)
+        if onset is None:
+            peaks = np.zeros(0)
+        else:
+            end = float(t[-1]) if t_collapse is None else t_collapse
+            peaks = half_cycle_peaks(t, rot, impacts, end)
+        if t_collapse is not None:
+            outcome, half = Outcome.COLLAPSE, 1 + int(impacts.size)
+        else:
+            outcome, half = (Outcome.NO_HINGING if onset is None else Outcome.SURVIVES), None
+        return cls(
+            times=t, positions=pos, velocities=vel,
+            base_displacement=e[:, 6].copy(), base_velocity=e[:, 7].copy(),
+            joint_opening=opening, joint_slip=slip, rotation=rot, rotation_link=link,
+            kinetic=e[:, 0].copy(), potential=e[:, 1].copy(), strain=e[:, 2].copy(),
+            damping=e[:, 3].copy(), friction=e[:, 4].copy(), input_work=e[:, 5].copy(),
+            outcome=outcome, onset_time=onset, impact_times=impacts, peak_rotation=peaks,
+            collapse_half_cycle=half, collapse_time=t_collapse, time_step=time_step,
+            omega_max=omega_max, n_steps=n_steps, settle_steps=settle_steps, settings=settings,
+            assembly=assembly, motion=motion, g=g,
+        )
+
+    @property
+    def first_impact_time(self) -> float | None:
+        """The first of ``impact_times``, s (None before any impact)."""
+        return float(self.impact_times[0]) if self.impact_times.size else None
+
+    @property
+    def half_cycles(self) -> int:
+        return int(self.peak_rotation.shape[0])
+
+    @property
+    def end_time(self) -> float:
+        """Time of the last sample, s (the collapse, when the run stopped there)."""
+        return float(self.times[-1]) if self.times.size else 0.0
+
+    @property
+    def total_energy(self) -> np.ndarray:
+        """kinetic + potential + strain + dissipated - input, J (constant up to the scheme)."""
+        return (
+            self.kinetic + self.potential + self.strain + self.damping + self.friction
+            - self.input_work
+        )
+
+    @property
+    def energy_error(self) -> float:
+        """max |total energy - its initial value| / max(input work, kinetic, strain), -."""
+        e = self.total_energy
+        scale = max(
+            float(np.max(np.abs(self.input_work))),
+            float(np.max(self.kinetic)),
+            float(np.max(self.strain)),
+            1e-300,
+        )
+        return float(np.max(np.abs(e - e[0])) / scale)
+
+    @property
+    def hinge_open(self) -> np.ndarray:
+        """(nt, nj, 2) bool: joint end open beyond the hinge threshold."""
+        thr = self.settings.hinge_opening * self.assembly.reference_length
+        return self.joint_opening > thr
+
+    def to_dict(self) -> dict:
+        """Summary for JSON (no histories): the keys of :data:`archquake.outcome.RESULT_KEYS`,
+        shared with the analytical result (``final_state``: ``collapsed`` or None, the DEM runs
+        for a fixed time with no rest criterion), then the DEM's own."""
+        return {
+            "model": "dem",
+            "outcome": self.outcome.value,
+            "final_state": "collapsed" if self.outcome is Outcome.COLLAPSE else None,
+            "collapse_half_cycle": self.collapse_half_cycle,
+            "collapse_time_s": self.collapse_time,
+            "onset_time_s": self.onset_time,
+            "impact_times_s": self.impact_times.tolist(),
+            "peak_rotation_rad": self.peak_rotation.tolist(),
+            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
+            "g_m_s2": self.g,
+            "end_time_s": self.end_time,
+            "energy_error": self.energy_error,
+            "dissipated_damping_J": float(self.damping[-1]) if self.damping.size else 0.0,
+            "dissipated_friction_J": float(self.friction[-1]) if self.friction.size else 0.0,
+            "assembly": self.assembly.to_dict(),
+            "excitation": self.motion,
+            "settings": self.settings.to_dict(),
+            "solver": {"steps": self.n_steps, "settle_steps": self.settle_steps,
+                       "time_step_s": self.time_step, "omega_max_rad_s": self.omega_max,
+                       "t_end_s": self.settings.duration},
+        }
+
+    def to_table(self) -> dict[str, np.ndarray]:
+        """Columns for a tabular export: time, rotation, energies, base motion."""
+        return {
+            "time_s": self.times,
+            "rotation_rad": self.rotation,
+            "kinetic_J": self.kinetic,
+            "potential_J": self.potential,
+            "strain_J": self.strain,
+            "damping_J": self.damping,
+            "friction_J": self.friction,
+            "input_work_J": self.input_work,
+            "base_displacement_m": self.base_displacement,
+            "base_velocity_m_s": self.base_velocity,
+        }
+
+
+__all__ = [
+    "DemResult",
+    "collapse_parameters",
+    "collapse_time",
+    "crossings",
+    "crown_height",
+    "half_cycle_peaks",
+    "joint_kinematics",
+    "link_rotation",
+    "mirror_link",
+    "rotation_measure",
+]
