@@ -14,8 +14,8 @@ The rotation measure
 from hinge A to hinge B of the analytical first mechanism (the one a ground acceleration towards
 -x opens), signed > 0 in that mechanism's opening sense, like the analytical
 ``History.signed_rotation``. When the assembly is its own mirror image (x -> -x) and the
-mirror-image mechanism opens first (a ground motion towards +x first), the measure is the
-mirror-image chord's, so that a mirrored excitation gives the exact mirror of the measure
+mirror-image mechanism opens first (the ground accelerates towards +x when the hinges open:
+:func:`mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored excitation gives the exact mirror of the measure
 (negative first), with the same impacts, half cycles and outcome.
 
 Impacts
@@ -119,28 +119,39 @@ def mirror_link(assembly: Assembly, *, rtol: float = 1e-9) -> RotationLink | Non
                         image[link.block_b], np.asarray(link.point_b) * flip, link.sign)
 
 
-def _first_above(values: np.ndarray, threshold: float) -> int:
-    hit = np.flatnonzero(values > threshold)
-    return int(hit[0]) if hit.size else len(values)
-
-
-def rotation_measure(assembly: Assembly, pos: np.ndarray, threshold: float
+def rotation_measure(assembly: Assembly, pos: np.ndarray, *, mirrored: bool
                      ) -> tuple[np.ndarray, RotationLink]:
     """The rotation measure, rad, (nt,), and the link it is taken on (module docstring).
 
-    The assembly's link, unless the assembly is its own mirror image and the mirror-image
-    mechanism opens first: its link's rotation goes below ``-threshold`` rad before the
-    assembly's link's goes above ``threshold``.
+    The assembly's link, unless ``mirrored`` (the mirror-image mechanism opened first: see
+    :func:`mirror_opens_first`) and the assembly is its own mirror image.
     """
     link = assembly.rotation_link
-    rot = link_rotation(assembly, pos, link)
-    mirror = mirror_link(assembly)
+    mirror = mirror_link(assembly) if mirrored else None
     if mirror is None:
-        return rot, link
-    rot_m = link_rotation(assembly, pos, mirror)
-    if _first_above(-rot_m, threshold) < _first_above(rot, threshold):
-        return rot_m, mirror
-    return rot, link
+        return link_rotation(assembly, pos, link), link
+    return link_rotation(assembly, pos, mirror), mirror
+
+
+def mirror_opens_first(times: np.ndarray, base_velocity: np.ndarray, onset: float | None,
+                       window: float = 0.01) -> bool:
+    """Whether the ground drove the arch towards -x when its hinges opened, so that the
+    mirror image of the first mechanism opened (a ground acceleration towards -x loads the
+    arch towards +x and opens the first mechanism; towards +x, its mirror).
+
+    Read from the ground velocity's change over the ``window`` s (at least one sample) before
+    the onset of hinging: an acceleration at the onset must exceed the arch's collapse
+    acceleration, so its sign is the driving direction. A mirrored excitation flips that sign
+    exactly, so the choice, and with it the rotation measure, is mirror-symmetric. (An earlier
+    rule compared which of the two chords turned first; on an arch whose hinges are not
+    symmetric the DEM's real mechanism turns both chords and that rule picked the wrong one.)
+    """
+    if onset is None or times.size < 2:
+        return False
+    i = int(np.searchsorted(times, onset))
+    i = min(max(i, 1), times.size - 1)
+    j = min(int(np.searchsorted(times, times[i] - window)), i - 1)
+    return bool(base_velocity[i] - base_velocity[j] > 0.0)
 
 
 def crown_height(assembly: Assembly, pos: np.ndarray) -> np.ndarray:
@@ -316,10 +327,11 @@ class DemResult:
         vel = states[:, :, 3:].copy()
         e = energies
         opening, slip = joint_kinematics(assembly, pos)
-        rot, link = rotation_measure(assembly, pos, settings.hinge_opening)
         thr = settings.hinge_opening * assembly.reference_length
         open_any = np.any(opening > thr, axis=(1, 2)) if opening.size else np.zeros(len(t), bool)
         onset = float(t[np.argmax(open_any)]) if np.any(open_any) else None
+        rot, link = rotation_measure(assembly, pos,
+                                     mirrored=mirror_opens_first(t, e[:, 7], onset))
         t_collapse = collapse_time(assembly, settings, t, pos)
         stop = len(t) if t_collapse is None else int(np.searchsorted(t, t_collapse))
         impacts = crossings(t, rot, settings.hinge_opening, stop)
@@ -437,5 +449,6 @@ __all__ = [
     "joint_kinematics",
     "link_rotation",
     "mirror_link",
+    "mirror_opens_first",
     "rotation_measure",
 ]
