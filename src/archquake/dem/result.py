@@ -15,8 +15,9 @@ from hinge A to hinge B of the analytical first mechanism (the one a ground acce
 -x opens), signed > 0 in that mechanism's opening sense, like the analytical
 ``History.signed_rotation``. When the assembly is its own mirror image (x -> -x) and the
 mirror-image mechanism opens first (the ground accelerates towards +x when the hinges open:
-:func:`mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored excitation gives the exact mirror of the measure
-(negative first), with the same impacts, half cycles and outcome.
+:func:`mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored
+excitation gives the exact mirror of the measure (negative first), with the same impacts, half
+cycles and outcome.
 
 Impacts
 -------
