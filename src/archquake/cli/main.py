@@ -24,6 +24,7 @@ COMMANDS: tuple[str, ...] = (
     "min_thickness",
     "run",
     "record",
+    "records",
     "sweep",
     "thrust",
     "friction",
