@@ -26,6 +26,7 @@ COMMANDS: tuple[str, ...] = (
     "record",
     "records",
     "sweep",
+    "ida",
     "thrust",
     "friction",
     "domain",
