@@ -64,7 +64,7 @@ def test_collapse_fraction_fit_recovers_parameters():
     cap = _capacities(5)
     levels = np.geomspace(0.2, 3.0, 15)
     fit = fit_collapse_fraction(levels, cap[:, None] <= levels[None, :],
-                                rng=np.random.default_rng(6), bootstrap=200)
+                                rng=np.random.default_rng(6), bootstrap=60)
     assert fit.median == pytest.approx(MEDIAN, rel=0.05)
     assert fit.beta == pytest.approx(BETA, rel=0.10)
     assert fit.median_ci[0] < fit.median < fit.median_ci[1]
