@@ -275,7 +275,7 @@ def incremental_dynamic_analysis(
     hunt_step: float = 0.25,
     hunt_growth: float = 1.5,
     model: Model | str = Model.ANALYTICAL,
-    options: CaseOptions = CaseOptions(),
+    options: CaseOptions | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
     chunk_size: int | None = None,
@@ -301,8 +301,9 @@ def incremental_dynamic_analysis(
         See :class:`archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
         transition within 2 % of the IM).
     model : {'analytical', 'dem'}
-    options : CaseOptions
-        Prescribed restitution (analytical only), end time, gravity.
+    options : CaseOptions, optional
+        Prescribed restitution (analytical only), end time, gravity (default: none, the
+        model's own, standard gravity).
     executor, workers, chunk_size
         As :func:`archquake.sweeps.run_sweep` (default: a local process pool).
     progress : callable, optional
@@ -318,6 +319,7 @@ def incremental_dynamic_analysis(
     from archquake.sweeps.runner import run_sweep
 
     measure = parse_im(im)
+    options = CaseOptions() if options is None else options
     model = Model(getattr(model, "value", model))
     if not motions:
         raise InvalidParameterError("the suite holds no records")
@@ -342,7 +344,7 @@ def incremental_dynamic_analysis(
                 "hunt_step": hunt_step, "hunt_growth": hunt_growth,
                 "restitution": options.restitution, "t_end_s": options.t_end_s}
     hf = []
-    for name, s in zip(names, starts, strict=True):
+    for s in starts:
         start = min(float(s), float(ceiling))
         hf.append(HuntFill(start, float(ceiling), precision, fill, hunt_step, hunt_growth))
 
@@ -373,9 +375,8 @@ def incremental_dynamic_analysis(
             new_cases, store,
             evaluate=None, evaluate_batch=evaluate_cases if model is Model.ANALYTICAL else None,
             executor=executor, workers=workers, chunk_size=chunk_size,
-            progress=None if progress is None else (
-                lambda done, total, _r=rounds, _t=total_so_far, _n=len(new_cases):
-                progress(_t - _n + done, _t, _r)))
+            progress=None if progress is None else _round_progress(
+                progress, rounds, total_so_far, len(new_cases)))
         computed += report.computed
         stored = store.lookup(c.case_id for c in new_cases)
         for i in range(len(motions)):
@@ -408,6 +409,12 @@ def incremental_dynamic_analysis(
                      settings=settings, static_acceleration_g=lam, critical_rotation_rad=phi_crit,
                      rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
                      store=str(store.path), motions=tuple(motions))
+
+
+def _round_progress(progress, rounds: int, total: int, new: int):
+    """The sweep's ``progress(done, total)`` of one round as the analysis's
+    ``progress(stored, total_so_far, round)``."""
+    return lambda done, _total: progress(total - new + done, total, rounds)
 
 
 def _peak(outputs: dict) -> float:

@@ -144,7 +144,7 @@ def fit_first_collapse(values: Sequence[float], *, ceiling=None,
     --------
     >>> fit = fit_first_collapse([1.0, 2.0, 4.0])
     >>> round(fit.median, 12), round(fit.beta, 6)
-    (2.0, 0.565979)
+    (2.0, 0.565952)
     """
     x = np.asarray(values, dtype=float)
     censored = ~np.isfinite(x)
