@@ -12,7 +12,15 @@ from archquake.ground.measures import (
     scale_to,
 )
 from archquake.ground.pulses import SinePulse, StepImpulse
-from archquake.ground.records import Record, read_at2, read_csv, read_record
+from archquake.ground.records import (
+    Record,
+    baseline_corrected,
+    read_at2,
+    read_csv,
+    read_record,
+    resampled,
+)
+from archquake.ground.suites import Suite, available_suites, load_suite
 
 __all__ = [
     "GroundMotion",
@@ -21,12 +29,17 @@ __all__ = [
     "Record",
     "SinePulse",
     "StepImpulse",
+    "Suite",
+    "available_suites",
+    "baseline_corrected",
     "im_value",
     "intensity_measures",
+    "load_suite",
     "parse_im",
     "read_at2",
     "read_csv",
     "read_record",
+    "resampled",
     "response_spectrum",
     "scale_to",
 ]

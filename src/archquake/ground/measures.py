@@ -198,7 +198,7 @@ def parse_im(text: str | IntensityMeasure) -> IntensityMeasure:
     raise InvalidParameterError(f"intensity measure {text!r} is not one of {_IM_HELP}")
 
 
-def im_value(motion, im: str | IntensityMeasure, *, g: float = STANDARD_GRAVITY) -> float:
+def im_value(motion, im: str | IntensityMeasure, g: float = STANDARD_GRAVITY) -> float:
     """Value of one intensity measure of ``motion`` in the measure's unit (see :func:`parse_im`).
 
     Examples

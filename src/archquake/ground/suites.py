@@ -125,14 +125,24 @@ class Suite:
         return Suite(self.name, tuple(r.scaled(factor) for r in self.records),
                      self.description, self.source, self.metadata)
 
-    def summary(self, *, periods: Iterable[float] = (), g: float = STANDARD_GRAVITY) -> dict:
+    def summary(self, *, periods: Iterable[float] = (), g: float = STANDARD_GRAVITY,
+                cache: dict | None = None) -> dict:
         """Counts and the range of each intensity measure over the components (for JSON).
 
-        Each measure gets ``{'min', 'median', 'max'}`` in the unit of its key.
+        Each measure gets ``{'min', 'median', 'max'}`` in the unit of its key. ``cache``
+        (optional, a dict the caller keeps) reuses the measures of records met before, e.g.
+        when summarising suites that share records.
         """
         from archquake.ground.measures import intensity_measures
 
-        ims = [intensity_measures(r, periods=periods, g=g).to_dict() for r in self.records]
+        periods = tuple(float(p) for p in periods)
+        cache = {} if cache is None else cache
+        ims = []
+        for r in self.records:
+            key = (r, periods, g)
+            if key not in cache:
+                cache[key] = intensity_measures(r, periods=periods, g=g).to_dict()
+            ims.append(cache[key])
         keys = ["pga_g", "pgv_m_s", "pgd_m", "arias_m_s", "cav_m_s", "d5_95_s", "mean_period_s"]
         out = {
             "name": self.name,
