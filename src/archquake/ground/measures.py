@@ -43,7 +43,6 @@ from dataclasses import dataclass, field
 
 import numba as nb
 import numpy as np
-from scipy.linalg import expm
 
 from archquake._validate import require_finite, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
@@ -464,6 +463,8 @@ def _transition(omega: float, zeta: float, h: float) -> np.ndarray:
     """2x4 coefficients c with [u, v](t+h) = c @ [u, v, a(t), a(t+h)](t) for input linear on
     [t, t+h], from the state-transition matrix of the augmented system
     z = [u, v, a, a'], z' = [[0,1,0,0], [-w^2,-2 zeta w,-1,0], [0,0,0,1], [0,0,0,0]] z."""
+    from scipy.linalg import expm  # (lazy: keeps ``import archquake`` light)
+
     if h == 0.0:
         return np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]])
     m = np.array([[0.0, 1.0, 0.0, 0.0],
