@@ -146,3 +146,12 @@ def test_resampling_errors():
         resampled(rec, 0.01 * np.pi / 3.3)
     with pytest.raises(InvalidParameterError, match="'polyphase' or 'linear'"):
         resampled(rec, 0.005, method="cubic")
+
+
+def test_component_and_metadata_travel_with_the_record():
+    """Scaling and mirroring keep the provenance; == still compares name, dt and samples only."""
+    rec = Record([0.0, 1.0, -1.0], 0.01, name="r", component="a", metadata={"event": "X"})
+    for other in (rec.scaled(2.0), rec.mirrored()):
+        assert other.component == "a" and other.metadata == {"event": "X"}
+    assert rec == Record([0.0, 1.0, -1.0], 0.01, name="r")
+    assert rec.to_dict()["component"] == "a" and rec.to_dict()["metadata"] == {"event": "X"}
