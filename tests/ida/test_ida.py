@@ -228,7 +228,16 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
     assert out["im"] == "pga" and out["records_total"] == 3
     assert out["computed_now"] == out["cases_total"] > 0
     assert {"first_collapse", "collapse_fraction"} <= set(out["fragility"])
-    assert out["fragility_dimensionless"]["divisor"] == "/ lambda"
+    dim = out["fragility_dimensionless"]
+    assert dim["divisor"] == "/ lambda"
+    assert dim["first_collapse"]["median_dimensionless"] == pytest.approx(
+        out["fragility"]["first_collapse"]["median_g"] / out["static_acceleration_g"], rel=1e-12)
+    # the dispersion row of the analysis's own IM is fit (a) without bootstrap
+    (pga,) = [r for r in out["dispersion_by_im"] if r["im"] == "pga"]
+    assert pga["median_g"] == pytest.approx(out["fragility"]["first_collapse"]["median_g"],
+                                            rel=1e-9)
+    assert pga["beta"] == pytest.approx(out["fragility"]["first_collapse"]["beta"], rel=1e-9)
+    assert {"pgv", "sa:1", "arias"} <= {r["im"] for r in out["dispersion_by_im"]}
     lines = (tmp_path / "runs.csv").read_text().splitlines()
     assert len(lines) == out["cases_total"] + 1
     assert main(argv) == 0  # resumed entirely from the store
@@ -243,13 +252,16 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
     (["--restitution", "1.5"], "--restitution"),
     (["--model", "dem", "--restitution", "0.5"], "--restitution"),
     (["--plot", "x.txt"], "--plot"),
+    (["--records", "no-such-suite"], "--records"),
 ])
 def test_cli_bad_options_are_one_line(tmp_path, capsys, extra, needle):
     from archquake.cli.main import main
 
-    assert main(["ida", "--records", "near-field-pulse", *extra]) == 2
+    assert main(["ida", "--records", "near-field-pulse", *extra,
+                 "--store", str(tmp_path / "never.sqlite")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and needle in err[0]
+    assert not (tmp_path / "never.sqlite").exists()
 
 
 def test_ceiling_default_is_the_median_record_at_5_g(tmp_path, records):

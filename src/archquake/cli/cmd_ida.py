@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from archquake.cli.common import add_arch_arguments, arch_from_args, number, print_json, whole
-from archquake.errors import InvalidParameterError
+from archquake.errors import ArchquakeError, InvalidParameterError
 
 #: Measures whose first-collapse dispersion is compared (besides the one of the analysis).
 DISPERSION_IMS = ("pga", "pgv", "sa:0.2", "sa:0.5", "sa:1.0", "arias", "cav")
@@ -113,7 +113,10 @@ def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
     spec = ArchSpec(arch.radius, arch.thickness / arch.radius, math.degrees(arch.embrace),
                     arch.voussoirs, arch.depth, arch.density)
-    suite = load_suite(args.records, units=args.units, dt=args.dt)
+    try:
+        suite = load_suite(args.records, units=args.units, dt=args.dt)
+    except ArchquakeError as exc:
+        raise InvalidParameterError(f"--records: {exc}") from None
     options = CaseOptions(restitution=args.restitution)
     store_path = args.store or Path("ida.sqlite")
     bar = _Bar(disable=args.no_progress)
@@ -149,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
     if divisor is not None:
         out["fragility_dimensionless"] = {
             "divisor": divisor[1], "divisor_value": divisor[0],
-            **{k: (None if fits[k] is None else fits[k].scaled(divisor[0]).to_dict("1"))
+            **{k: (None if fits[k] is None else fits[k].scaled(divisor[0]).to_dict("dimensionless"))
                for k in ("first_collapse", "collapse_fraction")}}
     out["dispersion_by_im"] = dispersion
     if args.json:
@@ -208,8 +211,8 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
         if row["beta"] is None:
             print(f"  {row['im']:<8} not enough collapses")
         else:
-            print(f"  {row['im']:<8} beta {row['beta']:.3f}  median {row['median']:.4g} "
-                  f"{row['unit']}")
+            median = next(v for k, v in row.items() if k.startswith("median_"))
+            print(f"  {row['im']:<8} beta {row['beta']:.3f}  median {median:.4g} {row['unit']}")
     if args.csv is not None:
         print(f"runs written to {args.csv}")
     if args.plot is not None:

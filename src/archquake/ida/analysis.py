@@ -149,7 +149,8 @@ class IdaResult:
     im : IntensityMeasure
     records : tuple of RecordIda
     settings : dict
-        precision, fill, hunt step and growth, ceiling (IM units), restitution.
+        ``ceiling_<unit>`` (IM units), precision, fill, hunt step and growth (relative),
+        restitution, t_end_s.
     static_acceleration_g : float
         lambda (g).
     critical_rotation_rad : float
@@ -186,7 +187,7 @@ class IdaResult:
 
     @property
     def ceiling(self) -> float:
-        return float(self.settings["ceiling"])
+        return float(self.settings[f"ceiling_{self.unit_key}"])
 
     def collapse_fraction(self, levels) -> np.ndarray:
         """Fraction of the records that collapse the arch at each level (IM units)."""
@@ -340,7 +341,8 @@ def incremental_dynamic_analysis(
     starts = im0 * (lam / pga0) ** k
     if ceiling is None:
         ceiling = float(np.median(im0 * (DEFAULT_CEILING_PGA_G / pga0) ** k))
-    settings = {"ceiling": float(ceiling), "precision": precision, "fill": fill,
+    unit = {"g": "g", "m/s": "m_s", "m": "m"}[measure.unit]
+    settings = {f"ceiling_{unit}": float(ceiling), "precision": precision, "fill": fill,
                 "hunt_step": hunt_step, "hunt_growth": hunt_growth,
                 "restitution": options.restitution, "t_end_s": options.t_end_s}
     hf = []

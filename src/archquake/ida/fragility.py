@@ -87,6 +87,8 @@ class LognormalFit:
                             self.censored, ci, self.beta_ci, self.confidence, self.bootstrap)
 
     def to_dict(self, unit: str) -> dict:
+        """JSON form; ``unit`` suffixes the keys of the median (e.g. ``g``, ``m_s``,
+        ``dimensionless``)."""
         return {"method": self.method, f"median_{unit}": self.median, "beta": self.beta,
                 f"median_ci_{unit}": None if self.median_ci is None else list(self.median_ci),
                 "beta_ci": None if self.beta_ci is None else list(self.beta_ci),
@@ -317,8 +319,9 @@ def dispersion_by_im(result, ims: Sequence[str]) -> list[dict]:
             fit = fit_first_collapse(values, ceiling=ceilings)
         except InvalidParameterError:
             fit = None
+        unit = {"g": "g", "m/s": "m_s", "m": "m"}[im.unit]
         rows.append({"im": im.label, "unit": im.unit,
-                     "median": None if fit is None else fit.median,
+                     f"median_{unit}": None if fit is None else fit.median,
                      "beta": None if fit is None else fit.beta,
                      "records_collapsing": int(np.sum(np.isfinite(values)))})
     return rows
