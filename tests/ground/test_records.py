@@ -226,8 +226,8 @@ def test_csv_units_must_be_stated(tmp_path):
     path.write_text("0,1\n0.01,2\n")
     with pytest.raises(InvalidParameterError, match="units of r.csv must be given"):
         read_record(path)
-    with pytest.raises(InvalidParameterError, match="units must be 'g' or 'm/s2'"):
-        read_csv(path, units="cm/s2")
+    with pytest.raises(InvalidParameterError, match="units must be 'g', 'm/s2' or 'cm/s2'"):
+        read_csv(path, units="mm/s2")
     with pytest.raises(TypeError):
         read_csv(path)  # type: ignore[call-arg]  # no silent default in the library
     at2 = write_at2(tmp_path / "r.at2", np.array([1.0, 2.0]), 0.01, style="old")

@@ -1,55 +1,103 @@
-"""``archquake record FILE``: read an accelerogram and summarise it before a run."""
+"""``archquake record FILE``: read an accelerogram, summarise it and print its intensity
+measures before a run."""
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
 
-from archquake.cli.common import (
-    RECORD_UNITS,
-    add_output_arguments,
-    number,
-    print_json,
-    record_from_args,
-)
+from archquake.cli.common import add_output_arguments, number, print_json, record_from_args
 from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
+from archquake.ground.records import UNITS, baseline_corrected, resampled
+
+#: Sa periods printed unless --periods says otherwise, s.
+DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
+
+
+def periods_list(text: str) -> tuple[float, ...]:
+    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1'."""
+    out = []
+    for tok in (t for t in text.replace(" ", "").split(",") if t):
+        try:
+            value = float(tok)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
+            ) from None
+        if not (value >= 0 and value < float("inf")):
+            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
+        out.append(value)
+    return tuple(out)
+
+
+def add_record_file_arguments(p: argparse.ArgumentParser) -> None:
+    """--units, --dt: how to read CSV/text files (shared with ``archquake records``)."""
+    p.add_argument("--units", choices=UNITS, default=None,
+                   help="units of a CSV/text file's acceleration column: g, m/s2 or cm/s2 (= gal) "
+                        "(default g; .AT2 files are always in g)")
+    p.add_argument("--dt", type=number, metavar="S",
+                   help="time step of a one-column file, s (> 0); a two-column file (time, "
+                        "acceleration) gives its own")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "record",
-        help="check an accelerogram file (.AT2 or CSV): points, dt, duration, PGA",
+        help="check an accelerogram file (.AT2 or CSV): points, dt, PGA, PGV, Arias, Sa(T), ...",
         description=(
-            "Read a recorded ground acceleration and print what archquake understood: name, "
-            "number of points, time step, duration and peak ground acceleration (in g and m/s^2). "
+            "Read a recorded ground acceleration and print what archquake understood (name, "
+            "points, time step, duration) and its intensity measures: PGA (g), PGV (m/s), "
+            "PGD (m), Arias intensity (m/s), CAV (m/s), significant duration D5-95 (s), mean "
+            "period Tm (s) and the 5 %%-damped pseudo-spectral acceleration Sa(T) (g). "
             "Positive values are ground accelerations towards +x."
         ),
     )
     p.add_argument("file", type=Path, metavar="FILE",
-                   help="PEER .AT2 (values in g) or .csv/.txt with two columns: time (s), "
-                        "acceleration")
-    p.add_argument("--units", choices=RECORD_UNITS, default=None,
-                   help="units of a CSV file's acceleration column (default g; .AT2 files are "
-                        "always in g)")
+                   help="PEER .AT2 (values in g), .csv/.txt with two columns time (s), "
+                        "acceleration, or one column of accelerations with --dt")
+    add_record_file_arguments(p)
     p.add_argument("--scale", type=number, metavar="S",
                    help="factor applied to every value (> 0; default 1)")
+    p.add_argument("--baseline", type=int, metavar="ORDER", default=None,
+                   help="remove a polynomial baseline of this degree (0 to 5) from the "
+                        "acceleration, fitted to the velocity (default: none)")
+    p.add_argument("--resample", type=number, metavar="DT",
+                   help="resample to this time step, s (> 0; anti-aliased polyphase filter)")
+    p.add_argument("--periods", type=periods_list, metavar="T,T,...", default=DEFAULT_PERIODS,
+                   help="periods of Sa(T), s, comma-separated (default "
+                        f"{','.join(f'{t:g}' for t in DEFAULT_PERIODS)})")
     add_output_arguments(p, plot=False)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    record = record_from_args(args.file, args.units, args.scale)
     g = STANDARD_GRAVITY
+    record = record_from_args(args.file, args.units, args.scale, g=g, dt=args.dt)
+    if args.baseline is not None:
+        if not 0 <= args.baseline <= 5:
+            raise InvalidParameterError(f"--baseline must be a degree from 0 to 5, got "
+                                        f"{args.baseline}")
+        record = baseline_corrected(record, order=args.baseline)
+    if args.resample is not None:
+        if args.resample <= 0:
+            raise InvalidParameterError(f"--resample must be a time step > 0 s, got "
+                                        f"{args.resample:g}")
+        record = resampled(record, args.resample)
+    ims = intensity_measures(record, periods=args.periods, g=g)
     summary = record.to_dict(g=g)
-    is_csv = args.file.suffix.lower() in (".csv", ".txt")
-    summary["units_in_file"] = (args.units or "g") if is_csv else "g"
+    is_text = args.file.suffix.lower() in (".csv", ".txt")
+    summary["units_in_file"] = (args.units or "g") if is_text else "g"
     summary["g_m_s2"] = g
+    summary["baseline_order"] = args.baseline
+    summary["intensity_measures"] = ims.to_dict()
     if args.json:
         print_json(summary)
         return 0
     signed = float(record.accelerations[int(round(record.time_of_peak / record.dt))])
     units_note = summary["units_in_file"]
-    if is_csv and args.units is None:
+    if is_text and args.units is None:
         units_note += " (default; use --units m/s2 if the file is in m/s^2)"
     lines = [
         f"record     {record.name}",
@@ -63,5 +111,20 @@ def run(args: argparse.Namespace) -> int:
     ]
     if record.scale != 1.0:
         lines.append(f"scale      {record.scale:g} (applied to the file's values)")
+    if args.baseline is not None:
+        lines.append(f"baseline   polynomial of degree {args.baseline} removed")
+    if args.resample is not None:
+        lines.append(f"resampled  to dt = {record.dt:g} s")
+    lines += [
+        f"PGV        {ims.pgv_m_s:.4g} m/s",
+        f"PGD        {ims.pgd_m:.4g} m",
+        f"Arias      {ims.arias_m_s:.4g} m/s",
+        f"CAV        {ims.cav_m_s:.4g} m/s",
+        f"D5-95      {ims.d5_95_s:.4g} s",
+        f"Tm         {ims.mean_period_s:.4g} s (mean period, 0.25-20 Hz)",
+    ]
+    for period, sa in ims.sa_g.items():
+        lines.append(f"Sa({period:g} s) {' ' * max(0, 4 - len(f'{period:g}'))}{sa:.4g} g "
+                     f"({100 * DEFAULT_DAMPING:g} % damping)")
     print("\n".join(lines))
     return 0

@@ -24,6 +24,7 @@ from archquake.geometry.arch import (
     Arch,
 )
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
+from archquake.ground.records import UNITS
 
 
 def number(text: str) -> float:
@@ -127,7 +128,7 @@ def print_json(obj: Any) -> None:
 
 
 #: Units the CLI accepts for a CSV record's acceleration column (the default is g).
-RECORD_UNITS = ("g", "m/s2")
+RECORD_UNITS = UNITS
 
 
 def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
@@ -160,17 +161,20 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def record_from_args(path: Path, units: str | None, scale: float | None, *,
-                     g: float = STANDARD_GRAVITY) -> Record:
+                     g: float = STANDARD_GRAVITY, dt: float | None = None) -> Record:
     """Read a record given on the command line: CSV units default to g here (and only here,
-    where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record)."""
+    where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record);
+    ``--dt`` (s, > 0) is the step of a one-column text file."""
     scale = 1.0 if scale is None else scale
     if scale <= 0:
         raise InvalidParameterError(
             f"--scale must be > 0, got {scale:g}; use --mirror to reverse the record"
         )
+    if dt is not None and dt <= 0:
+        raise InvalidParameterError(f"--dt must be > 0 s, got {dt:g}")
     if units is None and path.suffix.lower() in (".csv", ".txt"):
         units = "g"
-    return read_record(path, units=units, scale=scale, g=g)
+    return read_record(path, units=units, dt=dt, scale=scale, g=g)
 
 
 def ground_motion_from_args(args: argparse.Namespace, *,

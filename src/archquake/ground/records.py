@@ -6,7 +6,8 @@ exactly as the compiled evaluator (:func:`archquake.ground._kernel.ground_accele
 kind ``KIND_SAMPLED``) computes it.
 
 Readers convert to SI at the edge: ``.AT2`` files are in g by definition of the format; CSV
-files have no standard unit, so :func:`read_csv` requires ``units`` ("g" or "m/s2"). A file
+files have no standard unit, so :func:`read_csv` requires ``units`` ("g", "m/s2" or "cm/s2",
+also written "gal"); a one-column file also needs its time step ``dt``. A file
 that cannot be read raises :class:`~archquake.errors.GroundMotionFormatError` with one line
 naming the file, the line, what is wrong and how to fix it.
 """
@@ -15,7 +16,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -28,8 +29,11 @@ from archquake.ground.base import KIND_SAMPLED
 #: Largest allowed deviation of a CSV sample time from the uniform grid, as a fraction of dt.
 SPACING_TOLERANCE = 1e-6
 
-#: Units a CSV acceleration column may be in, and their factor to m/s^2 per unit of g.
-_UNITS = {"g": None, "m/s2": 1.0, "m/s^2": 1.0}
+#: Units a CSV acceleration column may be in, and their factor to m/s^2 (None: times g).
+_UNITS = {"g": None, "m/s2": 1.0, "m/s^2": 1.0, "cm/s2": 0.01, "cm/s^2": 0.01, "gal": 0.01}
+
+#: The unit names as users write them (``_UNITS`` also takes the ``^2`` spellings).
+UNITS = ("g", "m/s2", "cm/s2", "gal")
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
 _WEST2 = re.compile(rf"NPTS\s*=\s*(?P<npts>{_NUMBER})\s*,?\s*DT\s*=\s*(?P<dt>{_NUMBER})", re.I)
@@ -60,6 +64,13 @@ class Record:
     scale : float
         Factor already applied to the file's values, mirror included (provenance only; not
         compared by ``==``).
+    component : str or None
+        Which horizontal component of an earthquake recording this is (e.g. ``'a'``/``'b'``
+        in the FEMA P695 sets, or the PEER file's azimuth); provenance only.
+    metadata : dict
+        Facts about the recording that travel with it (event, station, magnitude, the
+        database's published PGA/PGV, ...; keys carry units); provenance only, not compared
+        by ``==``.
 
     Notes
     -----
@@ -80,6 +91,8 @@ class Record:
     name: str = "record"
     source: str | None = None
     scale: float = 1.0
+    component: str | None = None
+    metadata: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         try:
@@ -103,6 +116,7 @@ class Record:
         object.__setattr__(self, "scale", require_finite("record scale", self.scale))
         if not isinstance(self.name, str):
             raise InvalidParameterError(f"record name must be a string, got {self.name!r}")
+        object.__setattr__(self, "metadata", dict(self.metadata or {}))
 
     # -- value semantics ---------------------------------------------------------------
     def __eq__(self, other: object) -> bool:
@@ -189,12 +203,12 @@ class Record:
 
     def mirrored(self) -> Record:
         """The same record towards the other side (every acceleration times -1)."""
-        return Record(-self.accelerations, self.dt, self.name, self.source, -self.scale)
+        return replace(self, accelerations=-self.accelerations, scale=-self.scale)
 
     def scaled(self, factor: float) -> Record:
         """The record with every acceleration multiplied by ``factor`` (dimensionless)."""
         f = require_finite("scale factor", factor)
-        return Record(f * self.accelerations, self.dt, self.name, self.source, f * self.scale)
+        return replace(self, accelerations=f * self.accelerations, scale=f * self.scale)
 
     def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
         """Summary for JSON (the samples themselves are not included)."""
@@ -209,6 +223,8 @@ class Record:
             "pga_g": self.peak / g,
             "time_of_pga_s": self.time_of_peak,
             "scale": self.scale,
+            "component": self.component,
+            "metadata": dict(self.metadata),
         }
 
 
@@ -280,9 +296,13 @@ def read_at2(path: str | Path, *, scale: float = 1.0, g: float = STANDARD_GRAVIT
     return Record(np.asarray(values) * factor, dt, name=path.stem, source=str(path), scale=scale)
 
 
-def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
+def read_csv(path: str | Path, *, units: str, dt: float | None = None, scale: float = 1.0,
              g: float = STANDARD_GRAVITY) -> Record:
     """Read a two-column (time s, acceleration) text file into a :class:`Record` (m/s^2).
+
+    With ``dt`` given, the file is one column of accelerations sampled every ``dt`` seconds
+    from t = 0 instead (same rules for separators, comments and one header row; exactly one
+    value per row).
 
     Rules:
 
@@ -299,8 +319,11 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
     ----------
     path : str or Path
         The file.
-    units : {"g", "m/s2"}
-        Units of the acceleration column; required (there is no safe default).
+    units : {"g", "m/s2", "cm/s2", "gal"}
+        Units of the acceleration column; required (there is no safe default). ``gal`` is
+        cm/s^2.
+    dt : float or None
+        Time step (s, > 0) of a one-column file; None (default) for a two-column file.
     scale : float
         Dimensionless factor applied to every value.
     g : float
@@ -315,7 +338,11 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
     """
     path = Path(path)
     factor = _csv_factor(units, scale, g)
+    if dt is not None:
+        dt = require_positive("time step dt", dt, "s")
     lines = _read_lines(path)
+    columns = 2 if dt is None else 1
+    what = "time (s), acceleration" if dt is None else "acceleration (one value per row)"
     times: list[float] = []
     accs: list[float] = []
     line_of: list[int] = []
@@ -337,10 +364,18 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
                 continue
             bad = cells[[p is None for p in parsed].index(True)]
             raise _err(path, number, f"{bad!r} is not a number; after the header every row must "
-                       "be two numbers: time (s), acceleration")
-        if len(parsed) != 2:
+                       f"be {'two numbers: ' if columns == 2 else ''}{what}")
+        if len(parsed) != columns:
+            if columns == 2 and len(parsed) == 1:
+                raise _err(path, number, "expected 2 columns (time s, acceleration), found 1; "
+                           "for a one-column file give its time step (dt=..., --dt S)")
+            if columns == 1:
+                raise _err(path, number, f"expected 1 column (acceleration, dt = {dt:g} s), found "
+                           f"{len(parsed)}; a file with a time column is read without dt")
             raise _err(path, number, f"expected 2 columns (time s, acceleration), found "
                        f"{len(parsed)}; keep only the time and acceleration columns")
+        if columns == 1:
+            parsed = [dt * len(times), parsed[0]]
         t, a = parsed
         if not (math.isfinite(t) and math.isfinite(a)):
             raise _err(path, number, f"{text!r} holds a value that is not finite; replace it "
@@ -350,7 +385,10 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
         line_of.append(number)
     if len(times) < 2:
         raise _err(path, None, f"has {len(times)} data row(s); a record needs at least 2 rows "
-                   "of time (s), acceleration")
+                   f"of {what}")
+    if columns == 1:
+        return Record(np.asarray(accs) * factor, dt, name=path.stem, source=str(path),
+                      scale=scale)
     t = np.asarray(times)
     steps = np.diff(t)
     back = np.flatnonzero(steps <= 0)
@@ -377,15 +415,19 @@ def read_csv(path: str | Path, *, units: str, scale: float = 1.0,
                   scale=scale)
 
 
-def read_record(path: str | Path, *, units: str | None = None, scale: float = 1.0,
-                g: float = STANDARD_GRAVITY) -> Record:
+def read_record(path: str | Path, *, units: str | None = None, dt: float | None = None,
+                scale: float = 1.0, g: float = STANDARD_GRAVITY) -> Record:
     """Read an accelerogram, choosing the reader by extension.
 
     ``.at2`` (any case) -> :func:`read_at2` (values in g; ``units`` may be omitted or "g");
-    ``.csv`` / ``.txt`` -> :func:`read_csv` (``units`` required).
+    ``.csv`` / ``.txt`` -> :func:`read_csv` (``units`` required; ``dt`` for a one-column
+    file).
     """
     path = Path(path)
     ext = path.suffix.lower()
+    if ext == ".at2" and dt is not None:
+        raise InvalidParameterError(
+            f"dt does not apply to {path.name}: a PEER .AT2 file states its own DT; leave dt unset")
     if ext == ".at2":
         if units is not None and _unit_key(units) != "g":
             raise InvalidParameterError(
@@ -400,11 +442,103 @@ def read_record(path: str | Path, *, units: str | None = None, scale: float = 1.
     if ext in (".csv", ".txt"):
         if units is None:
             raise InvalidParameterError(
-                f"units of {path.name} must be given: 'g' or 'm/s2' (a CSV file does not say)"
+                f"units of {path.name} must be given: 'g', 'm/s2' or 'cm/s2' (a CSV file does "
+                "not say)"
             )
-        return read_csv(path, units=units, scale=scale, g=g)
+        return read_csv(path, units=units, dt=dt, scale=scale, g=g)
     raise _err(path, None, f"unknown extension {ext or '(none)'!r}; use .AT2 (PEER, in g) or "
                ".csv/.txt (two columns: time s, acceleration)")
+
+
+# -------------------------------------------------------------------------------------
+# processing
+# -------------------------------------------------------------------------------------
+def baseline_corrected(record: Record, *, order: int = 1) -> Record:
+    """The record with a polynomial baseline removed so that its velocity has no drift.
+
+    The ground velocity v(t) = int_0^t a (exact for the linear interpolant) is fitted by
+    least squares with a polynomial q(t) = c_1 t + ... + c_{k} t^k of degree k = order + 1
+    through q(0) = 0 (the ground starts at rest), and q'(t) is subtracted from the
+    acceleration: order 0 removes a constant, order 1 (default) a linear trend, order 2 a
+    quadratic one (the quadratic velocity fit of Boore & Bommer 2005, Soil Dyn. Earthq. Eng.
+    25, section 4.3, is order 1). A polynomial baseline of degree <= ``order`` added to any
+    record is removed exactly up to the fit of the record's own velocity.
+
+    Parameters
+    ----------
+    record : Record
+    order : int
+        Degree of the polynomial removed from the acceleration, 0 to 5.
+
+    Returns
+    -------
+    Record
+        Same dt, name, provenance; ``metadata['baseline_order']`` says what was done.
+    """
+    from archquake._validate import require_int
+
+    order = require_int("baseline order", order, 0, 5)
+    t = record.times
+    a = record.accelerations
+    v = np.concatenate([[0.0], np.cumsum(0.5 * record.dt * (a[:-1] + a[1:]))])
+    scale_t = max(record.duration, record.dt)
+    s = t / scale_t  # well-conditioned basis on [0, 1]
+    powers = np.arange(1, order + 2)
+    basis = s[:, None] ** powers[None, :]
+    coef, *_ = np.linalg.lstsq(basis, v, rcond=None)
+    # q(t) = sum c_k (t/L)^k  ->  q'(t) = sum k c_k (t/L)^(k-1) / L
+    dq = (powers[None, :] * s[:, None] ** (powers[None, :] - 1)) @ coef / scale_t
+    meta = dict(record.metadata, baseline_order=order)
+    return replace(record, accelerations=a - dq, metadata=meta)
+
+
+def resampled(record: Record, dt: float, *, method: str = "polyphase") -> Record:
+    """The record sampled every ``dt`` seconds from t = 0 to its duration.
+
+    Parameters
+    ----------
+    record : Record
+    dt : float
+        New time step, s (> 0).
+    method : {"polyphase", "linear"}
+        ``"polyphase"`` (default): band-limited resampling with an anti-aliasing low-pass
+        filter (:func:`scipy.signal.resample_poly`, Kaiser window), for a ratio of old to new
+        step that is a fraction p/q with p, q <= 1000. Use it to change the step of a
+        record (and always to make it coarser: linear sampling would alias).
+        ``"linear"``: samples of the record's own linear interpolant, the motion archquake
+        integrates; refining by an integer factor leaves that motion unchanged.
+
+    Returns
+    -------
+    Record
+        floor(duration/dt) + 1 samples; ``metadata['resampled_from_dt_s']`` keeps the old step.
+    """
+    from fractions import Fraction
+
+    dt = require_positive("resampling time step dt", dt, "s")
+    n = int(math.floor(record.duration / dt * (1.0 + 1e-12))) + 1
+    if n < 2:
+        raise InvalidParameterError(
+            f"resampling time step dt = {dt:g} s is longer than the record ({record.duration:g} s)")
+    if method == "linear":
+        values = record.acceleration(dt * np.arange(n))
+    elif method == "polyphase":
+        from scipy.signal import resample_poly
+
+        ratio = Fraction(record.dt / dt).limit_denominator(1000)
+        if abs(float(ratio) - record.dt / dt) > 1e-9 * record.dt / dt or ratio.numerator > 1000:
+            raise InvalidParameterError(
+                f"cannot resample from dt = {record.dt:g} s to {dt:g} s by a fraction p/q with "
+                "p, q <= 1000; choose a step in a simple ratio to the record's, or method='linear'")
+        values = resample_poly(record.accelerations, ratio.numerator, ratio.denominator)
+        if values.size < n:  # (never expected; keep the length honest)
+            values = np.concatenate([values, np.zeros(n - values.size)])
+        values = values[:n]
+    else:
+        raise InvalidParameterError(
+            f"resampling method must be 'polyphase' or 'linear', got {method!r}")
+    meta = dict(record.metadata, resampled_from_dt_s=record.dt)
+    return replace(record, accelerations=values, dt=dt, metadata=meta)
 
 
 # -------------------------------------------------------------------------------------
@@ -495,7 +629,8 @@ def _unit_key(units: object) -> str:
     key = units.strip().lower().replace(" ", "") if isinstance(units, str) else None
     if key not in _UNITS:
         raise InvalidParameterError(
-            f"units must be 'g' or 'm/s2' (the units of the acceleration column), got {units!r}"
+            f"units must be 'g', 'm/s2' or 'cm/s2' (= 'gal'), the units of the acceleration "
+            f"column, got {units!r}"
         )
     return key
 
@@ -521,4 +656,13 @@ def _tidy_dt(dt: float) -> float:
     return dt
 
 
-__all__ = ["Record", "read_at2", "read_csv", "read_record", "SPACING_TOLERANCE"]
+__all__ = [
+    "Record",
+    "SPACING_TOLERANCE",
+    "UNITS",
+    "baseline_corrected",
+    "read_at2",
+    "read_csv",
+    "read_record",
+    "resampled",
+]

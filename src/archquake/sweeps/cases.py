@@ -23,6 +23,8 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from archquake._validate import require_finite, require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
@@ -155,6 +157,13 @@ class ExcitationSpec:
         Factor applied to the record's accelerations (> 0; ``record`` only, default 1).
     file_sha256 : str, optional
         SHA-256 of the record file's bytes; computed from ``file`` when omitted.
+    motion : GroundMotion, optional
+        ``record`` only, instead of ``file``: a ground motion held in memory (a
+        :class:`~archquake.ground.Record` of a suite, or any motion with ``kernel_spec`` and
+        ``scaled``), in m/s^2, travelling with the case to the worker. It enters the id through
+        its name and the SHA-256 of its kernel description (:func:`motion_digest`), and
+        ``units`` is then "m/s2". This is the case kind "a record scaled by a factor" of
+        incremental dynamic analysis (:mod:`archquake.ida`).
     """
 
     kind: ExcitationKind
@@ -166,6 +175,7 @@ class ExcitationSpec:
     units: str | None = None
     scale: float | None = None
     file_sha256: str | None = field(default=None, compare=False)
+    motion: Any = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         try:
@@ -187,6 +197,20 @@ class ExcitationSpec:
         if direction not in (-1, 1) or isinstance(direction, bool):
             raise InvalidParameterError(f"direction must be -1 or +1, got {direction!r}")
         _set(self, "direction", int(direction))
+        if self.motion is not None and kind is not ExcitationKind.RECORD:
+            raise InvalidParameterError(f"motion does not apply to a {kind.value} excitation")
+        if kind is ExcitationKind.RECORD and self.motion is not None:
+            if self.file is not None:
+                raise InvalidParameterError("a record excitation takes file or motion, not both")
+            if self.units not in (None, "m/s2"):
+                raise InvalidParameterError(f"an in-memory motion is in m/s2, got units "
+                                            f"{self.units!r}")
+            _set(self, "units", "m/s2")
+            scale = 1.0 if self.scale is None else self.scale
+            _set(self, "scale", require_positive("scale", scale))
+            if self.file_sha256 is None:
+                _set(self, "file_sha256", motion_digest(self.motion))
+            return
         if kind is ExcitationKind.RECORD:
             if not isinstance(self.file, str) or not self.file:
                 raise InvalidParameterError("a record excitation needs file = path of the record")
@@ -215,12 +239,23 @@ class ExcitationSpec:
             return StepImpulse.from_g(self.magnitude_g, self.duration_s, self.direction, g=g)
         if self.kind is ExcitationKind.SINE:
             return SinePulse.from_g(self.magnitude_g, self.period_s, self.direction, g=g)
+        if self.motion is not None:
+            return self.motion.scaled(self.scale * self.direction)
         return _load_record(self, g=g)
+
+    @property
+    def record_name(self) -> str | None:
+        """The record's label: its file name, or an in-memory motion's ``name``."""
+        if self.file:
+            return Path(self.file).name
+        if self.motion is not None:
+            return motion_name(self.motion)
+        return None
 
     def canonical(self) -> dict[str, Any]:
         out: dict[str, Any] = {"type": self.kind.value, "direction": self.direction}
         if self.kind is ExcitationKind.RECORD:
-            out.update(record=Path(self.file).name, record_sha256=self.file_sha256,
+            out.update(record=self.record_name, record_sha256=self.file_sha256,
                        units=self.units, scale=self.scale)
         elif self.kind is ExcitationKind.STEP:
             out.update(magnitude_g=self.magnitude_g, duration_s=self.duration_s)
@@ -332,7 +367,7 @@ class Case:
                 "excitation": exc.kind.value, "magnitude_g": exc.magnitude_g,
                 "duration_s": exc.duration_s, "period_s": exc.period_s,
                 "direction": exc.direction,
-                "record": Path(exc.file).name if exc.file else None,
+                "record": exc.record_name,
                 "record_sha256": exc.file_sha256, "record_units": exc.units, "scale": exc.scale,
                 "restitution": self.options.restitution, "t_end_s": self.options.t_end_s,
                 "g_m_s2": self.options.g}
@@ -361,6 +396,25 @@ def file_digest(path: str | Path) -> str:
     except OSError as exc:
         raise InvalidParameterError(
             f"cannot read record file {str(path)!r}: {exc.strerror}") from None
+
+
+def motion_name(motion: Any) -> str:
+    """Label of an in-memory motion: its ``name`` attribute, else its class name."""
+    name = getattr(motion, "name", None)
+    return name if isinstance(name, str) and name else type(motion).__name__
+
+
+def motion_digest(motion: Any) -> str:
+    """SHA-256 (hex) of a ground motion's compiled description (its kind and parameters, e.g.
+    a record's t0, dt and samples in m/s^2): equal motions give equal digests on any machine."""
+    try:
+        kind, params = motion.kernel_spec()
+    except AttributeError:
+        raise InvalidParameterError(f"motion must be a ground motion with kernel_spec(), got "
+                                    f"{type(motion).__name__}") from None
+    h = hashlib.sha256(str(int(kind)).encode())
+    h.update(np.ascontiguousarray(params, dtype="<f8").tobytes())
+    return h.hexdigest()
 
 
 def _floats(obj: Any) -> Any:
@@ -395,4 +449,6 @@ __all__ = [
     "RECORD_UNITS",
     "canonical_json",
     "file_digest",
+    "motion_digest",
+    "motion_name",
 ]

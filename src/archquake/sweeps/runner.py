@@ -32,6 +32,9 @@ from archquake.sweeps.store import STATUS_ERROR, STATUS_OK, CaseRecord, ResultSt
 
 #: A pure case function: one case in, a JSON-able summary out (``outcome`` read if present).
 CaseFunction = Callable[[Case], Mapping[str, Any]]
+#: A batch function: many cases in, one summary (or the ArchquakeError refusing it) per case,
+#: in order (e.g. one compiled call over a whole round of incremental dynamic analysis).
+BatchFunction = Callable[[Sequence[Case]], Sequence[Any]]
 #: Progress callback: ``progress(stored, total)`` after every stored batch (and once at start).
 Progress = Callable[[int, int], None]
 
@@ -124,11 +127,40 @@ def evaluate_chunk(evaluate: CaseFunction, cases: Sequence[Case]) -> list[CaseRe
     return records
 
 
+def evaluate_batch_chunk(evaluate_batch: BatchFunction, cases: Sequence[Case]) -> list[CaseRecord]:
+    """Evaluate a chunk with one call of a batch function (the task a worker runs).
+
+    ``evaluate_batch(cases)`` returns one item per case, in order: a summary dict, or an
+    :class:`~archquake.errors.ArchquakeError` instance for a case the model refuses (stored as
+    an ``"error"`` row, as :func:`evaluate_chunk` does). ``elapsed_s`` is the call's wall time
+    shared equally between its cases.
+    """
+    t0 = time.perf_counter()
+    results = list(evaluate_batch(list(cases)))
+    if len(results) != len(cases):
+        raise RuntimeError(f"batch function returned {len(results)} results for {len(cases)} "
+                           "cases")
+    each = (time.perf_counter() - t0) / max(1, len(cases))
+    records = []
+    for case, result in zip(cases, results, strict=True):
+        if isinstance(result, ModelUnavailableError):
+            raise result
+        if isinstance(result, ArchquakeError):
+            records.append(CaseRecord(case.case_id, STATUS_ERROR, {}, None, str(result), each))
+            continue
+        outputs = jsonable(dict(result))
+        outcome = outputs.get("outcome")
+        records.append(CaseRecord(case.case_id, STATUS_OK, outputs,
+                                  None if outcome is None else str(outcome), None, each))
+    return records
+
+
 def run_sweep(
     cases: Iterable[Case],
     store: ResultStore,
     *,
     evaluate: CaseFunction | None = None,
+    evaluate_batch: BatchFunction | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
     chunk_size: int | None = None,
@@ -145,6 +177,9 @@ def run_sweep(
     evaluate : callable, optional
         Pure ``Case -> dict`` (picklable for process pools and Dask). Default:
         :func:`archquake.sweeps.evaluate.evaluate_case` (the real models).
+    evaluate_batch : callable, optional
+        Instead of ``evaluate``: a pure function evaluating a whole chunk in one call
+        (see :func:`evaluate_batch_chunk`); each chunk is one call.
     executor : concurrent.futures.Executor, optional
         Where chunks run. Default: a ``ProcessPoolExecutor`` with ``workers`` processes, created
         and shut down here; an injected executor is left open.
@@ -172,7 +207,9 @@ def run_sweep(
         The Dask scheduler was lost, or no worker was connected for ``no_worker_timeout``
         seconds; every completed batch is stored first.
     """
-    if evaluate is None:
+    if evaluate is not None and evaluate_batch is not None:
+        raise InvalidParameterError("give evaluate or evaluate_batch, not both")
+    if evaluate is None and evaluate_batch is None:
         from archquake.sweeps.evaluate import evaluate_case as evaluate
     by_id: dict[str, Case] = {}
     for case in cases:
@@ -199,7 +236,8 @@ def run_sweep(
         if own:
             executor = process_pool(workers)
         try:
-            task = partial(evaluate_chunk, evaluate)
+            task = (partial(evaluate_chunk, evaluate) if evaluate_batch is None
+                    else partial(evaluate_batch_chunk, evaluate_batch))
             check = _cluster_check(executor, no_worker_timeout)
             for records in _map_window(executor, task, _chunks(pending, chunk_size), 2 * workers,
                                        check=check):
@@ -393,11 +431,13 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
 
 
 __all__ = [
+    "BatchFunction",
     "CaseFunction",
     "ClusterLostError",
     "SerialExecutor",
     "SweepReport",
     "cap_workers",
+    "evaluate_batch_chunk",
     "evaluate_chunk",
     "open_executor",
     "process_pool",

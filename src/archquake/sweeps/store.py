@@ -119,6 +119,19 @@ class ResultStore:
         """Ids of every stored case."""
         return {row[0] for row in self._db.execute("SELECT case_id FROM results")}
 
+    def lookup(self, case_ids: Iterable[str]) -> dict[str, CaseRecord]:
+        """The stored records of ``case_ids`` (ids not stored are absent), outputs decoded."""
+        wanted = list(dict.fromkeys(case_ids))
+        out: dict[str, CaseRecord] = {}
+        for start in range(0, len(wanted), 500):  # SQLite's bound-parameter limit
+            part = wanted[start:start + 500]
+            sql = ("SELECT case_id, status, outputs_json, outcome, error, elapsed_s FROM results "
+                   f"WHERE case_id IN ({', '.join('?' * len(part))})")
+            for cid, status, outputs, outcome, error, elapsed in self._db.execute(sql, part):
+                out[cid] = CaseRecord(cid, status, json.loads(outputs), outcome, error,
+                                      elapsed or 0.0)
+        return out
+
     def count(self) -> int:
         return int(self._db.execute("SELECT COUNT(*) FROM results").fetchone()[0])
 

@@ -1,0 +1,82 @@
+"""Benchmark: incremental dynamic analysis of Oppenheim's arch under the 28 FEMA P695 near-field
+pulse components (PGA, hunt-and-fill to 2 % of the IM, fill 10 %, ceiling 5 g), against running
+the same cases one by one through :func:`archquake.mechanism.simulate` in the same run.
+
+The IDA goes through the sweep store (a fresh SQLite file) in rounds, each round one compiled
+batch (:func:`archquake.ida.batch.evaluate_cases`, numba ``prange`` over the cases, first run
+stopped 10 sqrt(R/g) after the record when energy proves survival); serial executor, so the only
+parallelism is numba's threads. The plain loop calls ``simulate`` (prepared mechanism reused,
+no history) on exactly the scaled records the IDA ran. Also printed: the batch alone on the same
+cases (no store, no rounds) and the time per outcome. Needs the FEMA suites
+(``pip install 'archquake[records]'``). Run:
+
+    .venv/bin/python benchmarks/bench_ida.py
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+from collections import defaultdict
+from pathlib import Path
+
+from archquake.ground.suites import load_suite
+from archquake.ida import incremental_dynamic_analysis
+from archquake.ida.batch import evaluate_cases
+from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
+from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, SerialExecutor
+
+
+def main() -> None:
+    arch = ArchSpec(10, 0.15, 157.5, 7)
+    suite = load_suite("near-field-pulse")
+    records = suite.records
+    prepared = PreparedMechanism.build(arch.build())
+    with tempfile.TemporaryDirectory() as tmp:
+        with ResultStore(Path(tmp) / "warm.sqlite") as store:  # compile the kernels
+            incremental_dynamic_analysis(arch, records[:1], "pga", store, ceiling=1.0,
+                                         precision=0.5, fill=2.0, executor=SerialExecutor())
+        simulate(prepared, records[0], options=SolverOptions(output_interval=0.0))
+        t0 = time.perf_counter()
+        with ResultStore(Path(tmp) / "ida.sqlite") as store:
+            res = incremental_dynamic_analysis(arch, records, "pga", store, ceiling=5.0,
+                                               precision=0.02, fill=0.10,
+                                               executor=SerialExecutor())
+        t_ida = time.perf_counter() - t0
+    cases = [Case(arch, ExcitationSpec("record", motion=m, scale=float(f)))
+             for rec, m in zip(res.records, records, strict=True) for f in rec.factors]
+    n = len(cases)
+    print(f"IDA, {len(records)} near-field pulse components, PGA to 2 % (fill 10 %, ceiling "
+          f"5 g): {n} runs in {res.rounds} rounds, {t_ida:.2f} s through the store "
+          f"({t_ida / n * 1e3:.2f} ms per run; numba threads: "
+          f"{os.environ.get('NUMBA_NUM_THREADS', 'all')})")
+
+    t0 = time.perf_counter()
+    batch = evaluate_cases(cases)
+    t_batch = time.perf_counter() - t0
+
+    per_outcome: dict[str, float] = defaultdict(float)
+    count: dict[str, int] = defaultdict(int)
+    t0 = time.perf_counter()
+    mismatches = 0
+    opts = SolverOptions(output_interval=0.0)
+    for case, b in zip(cases, batch, strict=True):
+        t1 = time.perf_counter()
+        r = simulate(prepared, case.excitation.build(), options=opts)
+        per_outcome[r.outcome.value] += time.perf_counter() - t1
+        count[r.outcome.value] += 1
+        mismatches += r.outcome.value != b["outcome"]
+    t_loop = time.perf_counter() - t0
+    print(f"same {n} cases one by one through simulate: {t_loop:.2f} s "
+          f"({t_loop / n * 1e3:.2f} ms per run)")
+    print(f"same cases in one batch call (no store, no rounds): {t_batch:.2f} s")
+    print("simulate time by outcome: " + ", ".join(
+        f"{k} {count[k]} runs {per_outcome[k]:.2f} s" for k in sorted(count)))
+    print(f"outcomes differing between the batch and simulate: {mismatches}")
+    print(f"ratio simulate loop / IDA: {t_loop / t_ida:.2f}x "
+          f"(batch alone: {t_loop / t_batch:.2f}x; target >= 5x)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,431 @@
+"""Incremental dynamic analysis of an arch under a suite of records, through the sweep store.
+
+:func:`incremental_dynamic_analysis` runs hunt-and-fill (:mod:`archquake.ida.huntfill`) for every
+record of a suite at once, in rounds: each round asks :func:`~archquake.ida.huntfill.propose_levels`
+for the next levels of every record (a pure function of what the store already holds), turns each
+level into a sweep case "this record scaled by this factor" (:class:`archquake.sweeps.Case` with
+an in-memory motion), and evaluates the round through :func:`archquake.sweeps.run_sweep`: the
+store skips what it holds and stores each batch as it completes, on a local pool or a Dask cluster.
+An interrupted analysis rerun with the same store replays the rounds from the store and computes
+only what is missing.
+
+The analytical model goes through one compiled batch call per round and chunk
+(:func:`archquake.ida.batch.evaluate_cases`); the DEM (``model="dem"``) through
+:func:`archquake.sweeps.evaluate_case` case by case.
+
+Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
+m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
+``s = (x / IM(r))^(1/k)`` (k = 1, or 2 for Arias intensity), as
+:func:`archquake.ground.measures.scale_to` scales it.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from collections.abc import Callable, Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.ground.measures import IntensityMeasure, im_value, parse_im
+from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
+from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationSpec, Model
+from archquake.sweeps.store import STATUS_ERROR, ResultStore
+
+#: Default ceiling: the level at which the suite's median record has this PGA, g.
+DEFAULT_CEILING_PGA_G = 5.0
+#: Rounds at most (a safeguard: hunt-and-fill converges in a few tens).
+MAX_ROUNDS = 200
+
+
+@dataclass(frozen=True)
+class RecordIda:
+    """The IDA trace of one record.
+
+    Attributes
+    ----------
+    name : str
+    im_unscaled : float
+        The record's intensity measure as recorded (IM units).
+    levels : ndarray
+        Levels run, ascending (IM units).
+    factors : ndarray
+        Scale factor of each level.
+    outcomes : tuple of str
+        ``no_hinging``, ``survives`` or ``collapse`` at each level.
+    collapse_half_cycles : tuple
+        Half cycle of each collapse (None for the others).
+    peak_rotation : ndarray
+        Largest mechanism rotation of each run, rad (for a collapse: where the run stopped).
+    start, ceiling : float
+        First level (PGA = lambda g) and ceiling (IM units).
+    """
+
+    name: str
+    im_unscaled: float
+    levels: np.ndarray
+    factors: np.ndarray
+    outcomes: tuple[str, ...]
+    collapse_half_cycles: tuple
+    peak_rotation: np.ndarray
+    start: float
+    ceiling: float
+
+    @property
+    def collapsed(self) -> np.ndarray:
+        return np.array([o == "collapse" for o in self.outcomes], dtype=bool)
+
+    @property
+    def collapse_intervals(self) -> list[Interval]:
+        """Every run of collapsing levels (the last may be open up to the ceiling)."""
+        return intervals(self.levels, self.collapsed, True)
+
+    @property
+    def first_collapse(self) -> Interval | None:
+        """The lowest collapse interval (``low``: lowest collapsing level, ``below``: highest
+        surviving level under it), None if the record never collapses the arch up to the
+        ceiling."""
+        runs = self.collapse_intervals
+        return runs[0] if runs else None
+
+    @property
+    def first_collapse_level(self) -> float:
+        """Estimate of the first-collapse intensity: geometric midpoint of its bracket (within
+        ``precision`` of the collapsing level); NaN if none up to the ceiling."""
+        first = self.first_collapse
+        return math.nan if first is None else first.lower_edge
+
+    @property
+    def resurrections(self) -> list[Interval]:
+        """Runs of surviving levels above the first collapse (the arch stands again although a
+        smaller scale of the same record collapsed it)."""
+        first = self.first_collapse
+        if first is None:
+            return []
+        return [r for r in intervals(self.levels, self.collapsed, False) if r.low > first.low]
+
+    def collapses_at(self, level: float) -> bool:
+        """Whether the trace says this record collapses the arch at ``level`` (IM units)."""
+        return collapsed_at(self.levels, self.collapsed, level)
+
+    def factor_at(self, level: float, exponent: int) -> float:
+        """Scale factor of ``level``."""
+        return (level / self.im_unscaled) ** (1.0 / exponent)
+
+    def to_dict(self, unit: str) -> dict:
+        first = self.first_collapse
+        return {
+            "record": self.name,
+            f"im_unscaled_{unit}": self.im_unscaled,
+            f"start_{unit}": self.start,
+            f"ceiling_{unit}": self.ceiling,
+            f"first_collapse_{unit}": None if first is None else first.lower_edge,
+            f"first_collapse_run_{unit}": None if first is None else first.low,
+            f"first_collapse_below_{unit}": None if first is None else first.below,
+            "collapse_intervals": [r.to_dict(unit) for r in self.collapse_intervals],
+            "resurrections": [r.to_dict(unit) for r in self.resurrections],
+            "runs": [{f"level_{unit}": float(x), "scale": float(f), "outcome": o,
+                      "collapse_half_cycle": h, "peak_rotation_rad": float(p)}
+                     for x, f, o, h, p in zip(self.levels, self.factors, self.outcomes,
+                                              self.collapse_half_cycles, self.peak_rotation,
+                                              strict=True)],
+        }
+
+
+@dataclass(frozen=True)
+class IdaResult:
+    """Incremental dynamic analysis of one arch under a suite.
+
+    Attributes
+    ----------
+    arch : ArchSpec
+    model : Model
+    im : IntensityMeasure
+    records : tuple of RecordIda
+    settings : dict
+        ``ceiling_<unit>`` (IM units), precision, fill, hunt step and growth (relative),
+        restitution, t_end_s.
+    static_acceleration_g : float
+        lambda (g).
+    critical_rotation_rad : float
+        Crest of the mechanism's potential, rad (scale of the IDA curves).
+    rounds : int
+    computed : int
+        Cases evaluated by this call (the rest came from the store).
+    total : int
+        Cases of the analysis.
+    """
+
+    arch: ArchSpec
+    model: Model
+    im: IntensityMeasure
+    records: tuple[RecordIda, ...]
+    settings: dict
+    static_acceleration_g: float
+    critical_rotation_rad: float
+    rounds: int
+    computed: int
+    total: int
+    g: float = STANDARD_GRAVITY
+    store: str = ""
+    motions: tuple = field(default=(), repr=False, compare=False)
+
+    @property
+    def unit_key(self) -> str:
+        return {"g": "g", "m/s": "m_s", "m": "m"}[self.im.unit]
+
+    @property
+    def first_collapse_levels(self) -> np.ndarray:
+        """First-collapse intensity of each record (NaN: none up to its ceiling)."""
+        return np.array([r.first_collapse_level for r in self.records])
+
+    @property
+    def ceiling(self) -> float:
+        return float(self.settings[f"ceiling_{self.unit_key}"])
+
+    def collapse_fraction(self, levels) -> np.ndarray:
+        """Fraction of the records that collapse the arch at each level (IM units)."""
+        levels = np.atleast_1d(np.asarray(levels, dtype=float))
+        return np.array([np.mean([r.collapses_at(x) for r in self.records]) for x in levels])
+
+    def stripe_levels(self, count: int = 20) -> np.ndarray:
+        """``count`` levels, geometric between the smallest first level and the ceiling."""
+        low = min(r.start for r in self.records)
+        return np.geomspace(low, self.ceiling, count)
+
+    def first_collapse_in(self, im: str | IntensityMeasure) -> np.ndarray:
+        """The first-collapse intensity of each record expressed in another measure: the
+        record scaled by its first-collapse factor, measured with ``im`` (NaN: no collapse)."""
+        measure = parse_im(im)
+        out = []
+        for rec, motion in zip(self.records, self.motions, strict=True):
+            first = rec.first_collapse
+            if first is None:
+                out.append(math.nan)
+                continue
+            factor = rec.factor_at(first.lower_edge, self.im.exponent)
+            out.append(measure.of(motion, g=self.g) * factor ** measure.exponent)
+        return np.array(out)
+
+    def ceiling_in(self, im: str | IntensityMeasure) -> np.ndarray:
+        """Each record's ceiling (the largest level run) expressed in another measure."""
+        measure = parse_im(im)
+        return np.array([measure.of(m, g=self.g) * rec.factor_at(rec.ceiling, self.im.exponent)
+                         ** measure.exponent for rec, m in zip(self.records, self.motions,
+                                                                strict=True)])
+
+    def to_dict(self) -> dict:
+        unit = self.unit_key
+        levels = self.stripe_levels()
+        first = self.first_collapse_levels
+        return {
+            "arch": self.arch.canonical(),
+            "model": self.model.value,
+            "im": self.im.label,
+            "im_unit": self.im.unit,
+            "static_acceleration_g": self.static_acceleration_g,
+            "critical_rotation_rad": self.critical_rotation_rad,
+            "settings": dict(self.settings),
+            "records_total": len(self.records),
+            "records_collapsing": int(np.sum(np.isfinite(first))),
+            "records_with_resurrections": sum(1 for r in self.records if r.resurrections),
+            "cases_total": self.total,
+            "computed_now": self.computed,
+            "already_stored": self.total - self.computed,
+            "rounds": self.rounds,
+            "store": self.store,
+            "collapse_fraction": [{f"level_{unit}": float(x), "fraction": float(p)}
+                                  for x, p in zip(levels, self.collapse_fraction(levels),
+                                                  strict=True)],
+            "records": [r.to_dict(unit) for r in self.records],
+        }
+
+    def write_csv(self, path: str | Path) -> Path:
+        """One row per run: record, level, scale factor, outcome, half cycle, peak rotation."""
+        path = Path(path)
+        unit = self.unit_key
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["record", f"{self.im.name}_{unit}" if self.im.name != "sa"
+                        else self.im.key, "scale", "outcome", "collapse_half_cycle",
+                        "peak_rotation_rad", "peak_over_critical"])
+            for r in self.records:
+                for x, f, o, h, p in zip(r.levels, r.factors, r.outcomes,
+                                         r.collapse_half_cycles, r.peak_rotation, strict=True):
+                    w.writerow([r.name, repr(float(x)), repr(float(f)), o,
+                                "" if h is None else h, repr(float(p)),
+                                repr(float(p) / self.critical_rotation_rad)])
+        return path
+
+
+def incremental_dynamic_analysis(
+    arch: ArchSpec,
+    motions: Sequence[Any],
+    im: str | IntensityMeasure,
+    store: ResultStore,
+    *,
+    ceiling: float | None = None,
+    precision: float = 0.02,
+    fill: float = 0.10,
+    hunt_step: float = 0.25,
+    hunt_growth: float = 1.5,
+    model: Model | str = Model.ANALYTICAL,
+    options: CaseOptions | None = None,
+    executor: Executor | None = None,
+    workers: int | None = None,
+    chunk_size: int | None = None,
+    progress: Callable[[int, int, int], None] | None = None,
+) -> IdaResult:
+    """Hunt-and-fill IDA of ``arch`` under every motion of ``motions``.
+
+    Parameters
+    ----------
+    arch : ArchSpec
+        The arch (study units: m, degrees).
+    motions : sequence of GroundMotion
+        The suite's records (unscaled, m/s^2), or any motions with ``scaled`` and
+        ``kernel_spec`` (a step pulse as a one-record suite); names must be unique.
+    im : str or IntensityMeasure
+        ``pga``, ``pgv``, ``sa:T``, ``arias``, ... (:func:`archquake.ground.measures.parse_im`).
+    store : ResultStore
+        Where every case is stored (and found again on a rerun).
+    ceiling : float, optional
+        Largest level, IM units (default: the IM of the suite's median record scaled to
+        PGA = 5 g).
+    precision, fill, hunt_step, hunt_growth : float
+        See :class:`archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
+        transition within 2 % of the IM).
+    model : {'analytical', 'dem'}
+    options : CaseOptions, optional
+        Prescribed restitution (analytical only), end time, gravity (default: none, the
+        model's own, standard gravity).
+    executor, workers, chunk_size
+        As :func:`archquake.sweeps.run_sweep` (default: a local process pool).
+    progress : callable, optional
+        ``progress(stored, total_so_far, round)`` after every stored batch.
+
+    Returns
+    -------
+    IdaResult
+    """
+    from archquake.ida.batch import evaluate_cases
+    from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
+    from archquake.sweeps.evaluate import _prepared
+    from archquake.sweeps.runner import run_sweep
+
+    measure = parse_im(im)
+    options = CaseOptions() if options is None else options
+    model = Model(getattr(model, "value", model))
+    if not motions:
+        raise InvalidParameterError("the suite holds no records")
+    names = [getattr(m, "name", f"motion{i}") for i, m in enumerate(motions)]
+    if len(set(names)) != len(names):
+        raise InvalidParameterError("record names must be unique within a suite")
+    g = options.g
+    prepared = _prepared(arch)
+    lam = float(prepared.packed[G0] / abs(prepared.packed[H0]))  # lambda = G0 / |H0|
+    phi_crit = float(prepared.packed[PHI_CRIT])
+    im0 = np.array([im_value(m, measure, g=g) for m in motions])
+    pga0 = np.array([im_value(m, "pga", g=g) for m in motions])
+    for name, v in zip(names, im0, strict=True):
+        if not v > 0:
+            raise InvalidParameterError(f"record {name!r} has {measure.label} = 0: it cannot "
+                                        "be scaled to an intensity level")
+    k = measure.exponent
+    starts = im0 * (lam / pga0) ** k
+    if ceiling is None:
+        ceiling = float(np.median(im0 * (DEFAULT_CEILING_PGA_G / pga0) ** k))
+    unit = {"g": "g", "m/s": "m_s", "m": "m"}[measure.unit]
+    settings = {f"ceiling_{unit}": float(ceiling), "precision": precision, "fill": fill,
+                "hunt_step": hunt_step, "hunt_growth": hunt_growth,
+                "restitution": options.restitution, "t_end_s": options.t_end_s}
+    hf = []
+    for s in starts:
+        start = min(float(s), float(ceiling))
+        hf.append(HuntFill(start, float(ceiling), precision, fill, hunt_step, hunt_growth))
+
+    def case_of(i: int, level: float) -> Case:
+        factor = (level / im0[i]) ** (1.0 / k)
+        return Case(arch, ExcitationSpec("record", motion=motions[i], scale=float(factor)),
+                    model, options)
+
+    runs: list[dict[float, Case]] = [{} for _ in motions]
+    outcomes: list[dict[float, Any]] = [{} for _ in motions]
+    computed = 0
+    rounds = 0
+    for rounds in range(1, MAX_ROUNDS + 1):  # noqa: B007
+        new_cases: list[Case] = []
+        for i in range(len(motions)):
+            done = outcomes[i]
+            levels = list(done)
+            collapsed = [done[x].outcome == "collapse" for x in levels]
+            for x in propose_levels(levels, collapsed, hf[i]):
+                case = case_of(i, x)
+                runs[i][x] = case
+                new_cases.append(case)
+        if not new_cases:
+            rounds -= 1
+            break
+        total_so_far = sum(len(r) for r in runs)
+        report = run_sweep(
+            new_cases, store,
+            evaluate=None, evaluate_batch=evaluate_cases if model is Model.ANALYTICAL else None,
+            executor=executor, workers=workers, chunk_size=chunk_size,
+            progress=None if progress is None else _round_progress(
+                progress, rounds, total_so_far, len(new_cases)))
+        computed += report.computed
+        stored = store.lookup(c.case_id for c in new_cases)
+        for i in range(len(motions)):
+            for x, case in runs[i].items():
+                if x in outcomes[i]:
+                    continue
+                rec = stored.get(case.case_id)
+                if rec is None:
+                    raise ArchquakeError(f"case {case.case_id} of record {names[i]!r} is missing "
+                                         f"from the store after its round")
+                if rec.status == STATUS_ERROR:
+                    raise ArchquakeError(f"record {names[i]!r} at {measure.label} = {x:.4g} "
+                                         f"{measure.unit}: {rec.error}")
+                outcomes[i][x] = rec
+    else:
+        raise ArchquakeError(f"incremental dynamic analysis did not converge in {MAX_ROUNDS} "
+                             "rounds")
+    records = []
+    for i, name in enumerate(names):
+        levels = sorted(outcomes[i])
+        recs = [outcomes[i][x] for x in levels]
+        records.append(RecordIda(
+            name=name, im_unscaled=float(im0[i]), levels=np.array(levels),
+            factors=np.array([(x / im0[i]) ** (1.0 / k) for x in levels]),
+            outcomes=tuple(r.outcome for r in recs),
+            collapse_half_cycles=tuple(r.outputs.get("collapse_half_cycle") for r in recs),
+            peak_rotation=np.array([_peak(r.outputs) for r in recs]),
+            start=hf[i].start, ceiling=float(ceiling)))
+    return IdaResult(arch=arch, model=model, im=measure, records=tuple(records),
+                     settings=settings, static_acceleration_g=lam, critical_rotation_rad=phi_crit,
+                     rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
+                     store=str(store.path), motions=tuple(motions))
+
+
+def _round_progress(progress, rounds: int, total: int, new: int):
+    """The sweep's ``progress(done, total)`` of one round as the analysis's
+    ``progress(stored, total_so_far, round)``."""
+    return lambda done, _total: progress(total - new + done, total, rounds)
+
+
+def _peak(outputs: dict) -> float:
+    """Largest rotation of a run from any model's summary, rad."""
+    for key in ("peak_rotation_max_rad", "max_rotation_rad"):
+        if outputs.get(key) is not None:
+            return float(outputs[key])
+    peaks = outputs.get("peak_rotation_rad") or [0.0]
+    return float(max(peaks))
+
+
+__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "incremental_dynamic_analysis"]

@@ -1,0 +1,125 @@
+"""Evaluate many sweep cases of the analytical model in one compiled call per arch.
+
+:func:`evaluate_cases` is the batch function incremental dynamic analysis hands to
+:func:`archquake.sweeps.run_sweep` (``evaluate_batch=``): the cases of one round (records scaled
+by factors, pulses) are grouped by arch and options, each group goes through
+:func:`archquake.ida._batch.batch_kernel` (the compiled kernel of
+:func:`~archquake.mechanism.simulate`, with the failure domains' early decision), and every case
+gets the summary incremental dynamic analysis reads: outcome, collapse half cycle and the largest
+rotation of the run. It is a smaller summary than :func:`archquake.sweeps.evaluate_case` stores
+(no impact times, no solver counters): ``evaluator`` says which produced a row.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.sweeps.cases import Case, Model
+
+#: The ``evaluator`` key of a batch summary.
+BATCH_EVALUATOR = "ida batch (compiled, early decision)"
+_OUTCOME_NAMES = {0: "no_hinging", 1: "survives", 2: "collapse"}
+
+
+def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
+    """Outcome and peak rotation of every case, one compiled call per (arch, options) group.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        Analytical-model cases (any excitation).
+    early : bool
+        Stop a surviving case once energy proves it cannot collapse any more (the peak rotation
+        is still exact, see :mod:`archquake.ida._batch`).
+
+    Returns
+    -------
+    list
+        Per case, in order: ``{"outcome", "collapse_half_cycle", "peak_rotation_max_rad",
+        "critical_rotation_rad", "static_acceleration_g", "restitution_cv", "impacts",
+        "kernel_runs", "t_end_s", "evaluator"}``, or the :class:`~archquake.errors.ArchquakeError`
+        refusing the case (e.g. an arch too thin to stand).
+    """
+    from archquake.sweeps.evaluate import _prepared
+
+    out: list[Any] = [None] * len(cases)
+    groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        if case.model is not Model.ANALYTICAL:
+            raise InvalidParameterError(f"the batch evaluator runs the analytical model only, "
+                                        f"got {case.model.value!r}")
+        groups.setdefault((case.arch, case.options), []).append(i)
+    for (arch, options), idx in groups.items():
+        try:
+            prepared = _prepared(arch)
+        except ArchquakeError as exc:
+            for i in idx:
+                out[i] = exc
+            continue
+        results = _run_group(prepared, [cases[i] for i in idx], options, early)
+        for i, r in zip(idx, results, strict=True):
+            out[i] = r
+    return out
+
+
+def _run_group(prepared, cases, options, early) -> list[Any]:
+    from archquake.domains._batch import default_t_end
+    from archquake.ida._batch import WINDOW_TAU, batch_kernel
+    from archquake.mechanism import SolverOptions
+    from archquake.mechanism._kernels import excitation_end
+
+    g = options.g
+    solver = SolverOptions()
+    cv = prepared.restitution if options.restitution is None else float(options.restitution)
+    kinds, parts, results = [], [], []
+    for case in cases:
+        kind, params = case.excitation.build(g=g).kernel_spec()
+        kinds.append(int(kind))
+        parts.append(np.ascontiguousarray(params, dtype=np.float64))
+    n = len(cases)
+    kinds_a = np.asarray(kinds, dtype=np.int64)
+    offsets = np.zeros(n + 1, dtype=np.int64)
+    offsets[1:] = np.cumsum([p.size for p in parts])
+    flat = np.concatenate(parts) if parts else np.zeros(0)
+    t_exc = np.array([excitation_end(k, p) for k, p in zip(kinds_a, parts, strict=True)])
+    if options.t_end_s is None:
+        t_end = default_t_end(t_exc, prepared.mechanism.arch.radius, g)
+    else:
+        t_end = np.full(n, float(options.t_end_s))
+    outcome = np.zeros(n, dtype=np.int64)
+    half = np.zeros(n, dtype=np.int64)
+    n_imp = np.zeros(n, dtype=np.int64)
+    runs = np.zeros(n, dtype=np.int64)
+    peak = np.zeros(n)
+    if n:
+        window = WINDOW_TAU * math.sqrt(prepared.mechanism.arch.radius / g)
+        batch_kernel(prepared.packed, kinds_a, flat, offsets, float(g), float(cv), t_end,
+                     window, solver.rtol, solver.atol, solver.rest_rotation, int(solver.max_impacts),
+                     bool(early), outcome, half, n_imp, runs, peak)
+    from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
+
+    static_g = float(prepared.packed[G0] / abs(prepared.packed[H0]))
+    phi_crit = float(prepared.packed[PHI_CRIT])
+    for i in range(n):
+        o = int(outcome[i])
+        results.append({
+            "outcome": _OUTCOME_NAMES[o],
+            "collapse_half_cycle": int(half[i]) if o == 2 else None,
+            "peak_rotation_max_rad": float(peak[i]),
+            "critical_rotation_rad": phi_crit,
+            "static_acceleration_g": static_g,
+            "restitution_cv": float(cv),
+            "impacts": int(n_imp[i]),
+            "kernel_runs": int(runs[i]),
+            "t_end_s": float(t_end[i]),
+            "evaluator": BATCH_EVALUATOR,
+        })
+    return results
+
+
+__all__ = ["BATCH_EVALUATOR", "evaluate_cases"]
