@@ -56,8 +56,7 @@ _LAZY: dict[str, str] = {
     "HingeMechanism": "archquake.geometry",
     "limit_analysis": "archquake.limit",
     "simulate": "archquake.mechanism",
-    # moving to archquake.outcome (issue 11); archquake.mechanism keeps re-exporting it
-    "Outcome": "archquake.mechanism",
+    "Outcome": "archquake.outcome",
     "simulate_dem": "archquake.dem",
     "failure_domain": "archquake.domains",
     "StepImpulse": "archquake.ground",
@@ -72,7 +71,8 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.geometry import Arch, Face, Hinge, HingeMechanism
     from archquake.ground import Record, SinePulse, StepImpulse, read_record
     from archquake.limit import limit_analysis
-    from archquake.mechanism import Outcome, simulate
+    from archquake.mechanism import simulate
+    from archquake.outcome import Outcome
 
 
 def __getattr__(name: str) -> Any:

@@ -3,7 +3,7 @@
 :func:`evaluate_cases` is the batch function incremental dynamic analysis hands to
 :func:`archquake.sweeps.run_sweep` (``evaluate_batch=``): the cases of one round (records scaled
 by factors, pulses) are grouped by arch and options, each group goes through
-:func:`archquake.ida._batch.batch_kernel` (the compiled kernel of
+:func:`archquake.ida._kernels.batch_kernel` (the compiled kernel of
 :func:`~archquake.mechanism.simulate`, with the failure domains' early decision), and every case
 gets the summary incremental dynamic analysis reads: outcome, collapse half cycle and the largest
 rotation of the run. It is a smaller summary than :func:`archquake.sweeps.evaluate_case` stores
@@ -35,7 +35,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
         Analytical-model cases (any excitation).
     early : bool
         Stop a surviving case once energy proves it cannot collapse any more (the peak rotation
-        is still exact, see :mod:`archquake.ida._batch`).
+        is still exact, see :mod:`archquake.ida._kernels`).
 
     Returns
     -------
@@ -68,8 +68,8 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
 
 
 def _run_group(prepared, cases, options, early) -> list[Any]:
-    from archquake.domains._batch import default_t_end
-    from archquake.ida._batch import WINDOW_TAU, batch_kernel
+    from archquake.domains._kernels import default_t_end
+    from archquake.ida._kernels import WINDOW_TAU, batch_kernel
     from archquake.mechanism import SolverOptions
     from archquake.mechanism._kernels import excitation_end
 

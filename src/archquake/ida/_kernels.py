@@ -5,7 +5,7 @@ step or sine pulse), already scaled, with its own end time, on one packed mechan
 runs :func:`archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
 :func:`archquake.mechanism.simulate`, without history, so the event logic is that kernel's.
 
-The early decision is the failure domains' criterion (:mod:`archquake.domains._batch`): a
+The early decision is the failure domains' criterion (:mod:`archquake.domains._kernels`): a
 surviving arch is accepted as such when an impact at or after the end of the excitation leaves a
 kinetic energy below ``(1 - margin)`` of the barrier ``g [V(phi_crit) - V(0)]`` with
 ``c_v <= 1``: free rocking only loses energy at impacts, so the crest cannot be reached again.
@@ -27,7 +27,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from archquake.domains._batch import ENERGY_MARGIN
+from archquake.domains._kernels import ENERGY_MARGIN
 from archquake.mechanism._kernels import (
     FINAL_MOVING,
     OUTCOME_COLLAPSE,
