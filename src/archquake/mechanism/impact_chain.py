@@ -342,6 +342,9 @@ class ChainImpact:
         Largest |shear| / normal impulse over the joints that carry impulse.
     candidates : int
         Four-hinge mechanisms with a positive generalised momentum (could start opening).
+    exact_hinges : tuple of (joint, face)
+        Where the exact response turns (joints whose rotation exceeds 2 % of the largest; a joint
+        turning about both ends lifts off and is listed twice); empty when not computed.
     """
 
     pre: HingeMechanism
@@ -356,6 +359,7 @@ class ChainImpact:
     impulses: JointForces | None
     friction_demand: float
     candidates: int
+    exact_hinges: tuple = ()
 
     @property
     def valid(self) -> bool:
@@ -372,6 +376,7 @@ class ChainImpact:
             "distance": self.distance,
             "exact_ct": self.exact_ct,
             "friction_demand": self.friction_demand,
+            "exact_hinges": [[j, f] for j, f in self.exact_hinges],
         }
 
 
@@ -495,13 +500,16 @@ def _diagnose(resp: ChainImpact, v_p, w_p, t_pre, exact: bool) -> ChainImpact:
     if not exact:
         return replace(resp, validity="outside", distance=float("nan"), exact_ct=float("nan"))
     arch = resp.pre.arch
-    vx, wx, _ = cone_projection(arch, -v_p, -w_p)
+    vx, wx, x = cone_projection(arch, -v_p, -w_p)
+    big = x > 0.02 * max(float(x.max()), 1e-300)
+    hinges = tuple((int(k // 2), "intrados" if k % 2 == 0 else "extrados") for k in np.flatnonzero(big))
     t_exact = 2.0 * kinetic_energy(arch, vx, wx)
     v_q, w_q = _field_of(resp.post)
     dv, dw = vx - resp.post_rate * v_q, wx - resp.post_rate * w_q
     dist = float(np.sqrt(2.0 * kinetic_energy(arch, dv, dw) / max(t_exact, 1e-300 * t_pre)))
     validity = "near_four_hinge" if dist <= NEAR_FOUR_HINGE_TOL else "outside"
-    return replace(resp, validity=validity, distance=dist, exact_ct=t_exact / t_pre)
+    return replace(resp, validity=validity, distance=dist, exact_ct=t_exact / t_pre,
+                   exact_hinges=hinges)
 
 
 __all__ = [
