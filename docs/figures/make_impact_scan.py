@@ -1,5 +1,8 @@
 """Figure for docs/mechanism.md: c_v against the number of voussoirs, semicircles R = 5 m,
-under Eq. 4 (the paper's law) and the chain law. Run: PYTHONPATH=src python docs/figures/make_impact_scan.py"""
+under Eq. 4 (the paper's law) and the chain law.
+
+Run: PYTHONPATH=src python docs/figures/make_impact_scan.py
+"""
 
 import math
 from pathlib import Path

@@ -132,7 +132,7 @@ def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
             "validity": sol.validity,
             "is_mirror": None if sol.chain is None else sol.chain.is_mirror,
         }
-        if law == "chain":
+        if law == "chain" and sol.chain is not None:
             exact = sol.chain.exact_ct
             if sol.chain.exact_hinges:
                 exact_h = " ".join(f"{j}{f[0]}" for j, f in sol.chain.exact_hinges)

@@ -72,8 +72,9 @@ IMPULSE_LINE_RTOL = 1e-7
 #: model is outside its validity.
 NEAR_FOUR_HINGE_TOL = 0.1
 
-#: Validity labels of :class:`ChainImpact`.
-VALIDITY = ("four_hinge", "at_rest", "near_four_hinge", "outside")
+#: Validity labels of :class:`ChainImpact` ("not_four_hinge": the impulse line failed and the exact
+#: response was not computed, ``exact=False``).
+VALIDITY = ("four_hinge", "at_rest", "near_four_hinge", "outside", "not_four_hinge")
 
 
 # ----------------------------------------------------------------------------- velocity fields
@@ -331,7 +332,8 @@ class ChainImpact:
         'four_hinge' (the exact impact response is ``post``), 'at_rest' (the exact response is
         rest: a perfectly plastic impact), 'near_four_hinge' (the exact response is a motion of
         more degrees of freedom within :data:`NEAR_FOUR_HINGE_TOL` of ``post``), or 'outside'
-        (the analytical four-hinge model does not describe the impact).
+        (the analytical four-hinge model does not describe the impact); 'not_four_hinge' when the
+        impulse line failed and the exact response was not computed (``exact=False``).
     distance : float
         ||v_exact - v_four_hinge||_M / ||v_exact||_M (0 when exact).
     exact_ct : float
@@ -450,7 +452,7 @@ def chain_impact(pre: HingeMechanism, *, post: HingeMechanism | str | None = Non
     exact : bool
         If the four-hinge motion fails the impulse line, compute the exact response (a small
         quadratic program) to tell 'near_four_hinge' from 'outside'. With False that case is
-        reported as 'outside' with ``distance`` and ``exact_ct`` nan (cheaper).
+        reported as 'not_four_hinge' with ``distance`` and ``exact_ct`` nan (cheaper).
 
     Returns
     -------
@@ -467,14 +469,13 @@ def chain_impact(pre: HingeMechanism, *, post: HingeMechanism | str | None = Non
         proj = -float(arch.voussoir_masses @ (v_q * v_p).sum(axis=1)
                       + arch.voussoir_inertias @ (w_q * w_p))
         meff_q = 2.0 * kinetic_energy(arch, v_q, w_q)
-        rate = proj / meff_q
-        ct = proj * rate / t_pre
+        q_rate = proj / meff_q
+        q_ct = proj * q_rate / t_pre
         is_mirror = q.joints == pre.mirrored().joints and q.faces == pre.mirrored().faces
-        if rate <= 0.0:
+        if q_rate <= 0.0:
             return _response(pre, None, None, 0.0, 0.0, "outside", 1.0, float("nan"), 0, is_mirror)
-        resp = _response(pre, q, (v_q, w_q), rate, ct, "four_hinge", 0.0, ct, 1, is_mirror)
-        inside, _ = impulse_line_inside(resp.impulses)
-        if inside:
+        resp = _response(pre, q, (v_q, w_q), q_rate, q_ct, "four_hinge", 0.0, q_ct, 1, is_mirror)
+        if _inside(resp):
             return resp
         return _diagnose(resp, v_p, w_p, t_pre, exact)
     mechs, rate, ct = impact_scores(pre)
@@ -487,18 +488,22 @@ def chain_impact(pre: HingeMechanism, *, post: HingeMechanism | str | None = Non
     is_mirror = q.joints == mirror.joints and q.faces == mirror.faces
     resp = _response(pre, q, _field_of(q), float(rate[i]), float(ct[i]), "four_hinge", 0.0,
                      float(ct[i]), candidates, is_mirror)
-    inside, _ = impulse_line_inside(resp.impulses)
-    if inside:
+    if _inside(resp):
         return resp
     return _diagnose(resp, v_p, w_p, t_pre, exact)
+
+
+def _inside(resp: ChainImpact) -> bool:
+    return resp.impulses is not None and impulse_line_inside(resp.impulses)[0]
 
 
 def _diagnose(resp: ChainImpact, v_p, w_p, t_pre, exact: bool) -> ChainImpact:
     """The chosen four-hinge motion fails the impulse line: compare it with the exact response."""
     from dataclasses import replace
 
-    if not exact:
-        return replace(resp, validity="outside", distance=float("nan"), exact_ct=float("nan"))
+    if not exact or resp.post is None:
+        return replace(resp, validity="not_four_hinge", distance=float("nan"),
+                       exact_ct=float("nan"))
     arch = resp.pre.arch
     vx, wx, x = cone_projection(arch, -v_p, -w_p)
     big = x > 0.02 * max(float(x.max()), 1e-300)
