@@ -73,7 +73,7 @@ IMPULSE_LINE_RTOL = 1e-7
 NEAR_FOUR_HINGE_TOL = 0.1
 
 #: Validity labels of :class:`ChainImpact` ("not_four_hinge": the impulse line failed and the exact
-#: response was not computed, ``exact=False``).
+#: response was not computed, ``exact=False``, or its quadratic program did not converge).
 VALIDITY = ("four_hinge", "at_rest", "near_four_hinge", "outside", "not_four_hinge")
 
 
@@ -275,6 +275,11 @@ def cone_projection(arch: Arch, velocity: np.ndarray, spin: np.ndarray
     program (SLSQP on 2(n+1) non-negative joint rotations with the 3 closure equations).
 
     Returns the projected velocity (n, 2), spin (n,) and the joint rotations x (2(n+1),).
+
+    Raises
+    ------
+    SolverError
+        If the quadratic program does not converge.
     """
     from scipy.optimize import minimize
 
@@ -300,6 +305,10 @@ def cone_projection(arch: Arch, velocity: np.ndarray, spin: np.ndarray
                    bounds=[(0.0, None)] * (2 * (n + 1)),
                    constraints=[{"type": "eq", "fun": lambda x: cs @ x, "jac": lambda x: cs}],
                    options={"ftol": 1e-15, "maxiter": 2000})
+    if not res.success:
+        from archquake.errors import SolverError
+
+        raise SolverError(f"the impact's cone projection did not converge: {res.message}")
     x = np.maximum(res.x, 0.0)
     v = g @ x
     return v.reshape(n, 3)[:, :2].copy(), v.reshape(n, 3)[:, 2].copy(), x
@@ -382,7 +391,7 @@ class ChainImpact:
         }
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=4)  # ~30 MB per 40-voussoir arch
 def _mechanisms(arch: Arch) -> tuple[MechanismSet, np.ndarray]:
     mechs = admissible_mechanisms(arch)
     return mechs, generalised_masses(arch, mechs)
@@ -444,7 +453,9 @@ def chain_impact(pre: HingeMechanism, *, post: HingeMechanism | str | None = Non
     Parameters
     ----------
     pre : HingeMechanism
-        The mechanism whose hinges close (any four-hinge mechanism of the arch).
+        The mechanism whose hinges close (any four-hinge mechanism of an arch of at most
+        :data:`~archquake.limit.kinematic.MAX_KINEMATIC_VOUSSOIRS` voussoirs, the enumeration's
+        limit).
     post : HingeMechanism, 'mirror' or None
         None (default): the post-impact mechanism is chosen (maximum restitution, checked by the
         impulse line). A mechanism or 'mirror' forces it (generalised momentum of that mechanism
@@ -505,7 +516,13 @@ def _diagnose(resp: ChainImpact, v_p, w_p, t_pre, exact: bool) -> ChainImpact:
         return replace(resp, validity="not_four_hinge", distance=float("nan"),
                        exact_ct=float("nan"))
     arch = resp.pre.arch
-    vx, wx, x = cone_projection(arch, -v_p, -w_p)
+    from archquake.errors import SolverError
+
+    try:
+        vx, wx, x = cone_projection(arch, -v_p, -w_p)
+    except SolverError:
+        return replace(resp, validity="not_four_hinge", distance=float("nan"),
+                       exact_ct=float("nan"))
     big = x > 0.02 * max(float(x.max()), 1e-300)
     hinges = tuple((int(k // 2), "intrados" if k % 2 == 0 else "extrados") for k in np.flatnonzero(big))
     t_exact = 2.0 * kinetic_energy(arch, vx, wx)
