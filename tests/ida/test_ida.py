@@ -109,7 +109,7 @@ def test_step_pulse_ida_reproduces_the_failure_domain(tmp_path, tp):
     halves = dict(zip(rec.levels, rec.collapse_half_cycles, strict=True))
     assert {halves[x] for x in rec.levels if first.low <= x <= first.high} == {2}
     assert {halves[x] for x in rec.levels if x >= second.low} == {1}
-    assert rec.start == pytest.approx(res.static_acceleration_g, rel=1e-12)
+    assert rec.start == pytest.approx(res.collapse_acceleration_g, rel=1e-12)
     assert rec.outcomes[0] == "no_hinging"
 
 
@@ -186,7 +186,7 @@ def test_levels_are_the_intensity_measure_of_the_scaled_record(tmp_path, records
         assert im_value(records[0].scaled(factor), "pgv") == pytest.approx(level, rel=1e-12)
     # the first level is where the scaled record's PGA is lambda g
     assert im_value(records[0].scaled(rec.factors[0]), "pga") == pytest.approx(
-        res.static_acceleration_g, rel=1e-12)
+        res.collapse_acceleration_g, rel=1e-12)
     # the first collapse in PGA terms is the same scale factor seen through PGA
     first_pga = res.first_collapse_in("pga")[0]
     assert first_pga == pytest.approx(
@@ -232,7 +232,7 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
     dim = out["fragility_dimensionless"]
     assert dim["divisor"] == "/ lambda"
     assert dim["first_collapse"]["median_dimensionless"] == pytest.approx(
-        out["fragility"]["first_collapse"]["median_g"] / out["static_acceleration_g"], rel=1e-12)
+        out["fragility"]["first_collapse"]["median_g"] / out["collapse_acceleration_g"], rel=1e-12)
     # the dispersion row of the analysis's own IM is fit (a) without bootstrap
     (pga,) = [r for r in out["dispersion_by_im"] if r["im"] == "pga"]
     assert pga["median_g"] == pytest.approx(out["fragility"]["first_collapse"]["median_g"],

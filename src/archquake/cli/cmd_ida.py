@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     rng = np.random.default_rng(args.seed)
     fits = fragility_of(result, rng=rng, bootstrap=args.bootstrap)
     dispersion = dispersion_by_im(result, dict.fromkeys([im.label, *DISPERSION_IMS]))
-    divisor = dimensionless_divisor(im, static_acceleration_g=result.static_acceleration_g,
+    divisor = dimensionless_divisor(im, collapse_acceleration_g=result.collapse_acceleration_g,
                                     radius=arch.radius, g=result.g)
     if args.csv is not None:
         result.write_csv(args.csv)
@@ -168,7 +168,7 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
     u = im.unit
     print(f"IDA: arch R = {a.radius:g} m, t/R = {a.thickness_ratio:.3f}, embrace "
           f"{a.embrace_deg:g} deg, {a.voussoirs} voussoirs (lambda = "
-          f"{result.static_acceleration_g:.3f} g); {result.model.value} model"
+          f"{result.collapse_acceleration_g:.3f} g); {result.model.value} model"
           + (f", c_v = {result.settings['restitution']:g} (prescribed)"
              if result.settings["restitution"] is not None else ""))
     print(f"suite {suite.name} ({len(result.records)} records); IM {im.label} ({u}); "

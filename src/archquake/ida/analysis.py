@@ -151,7 +151,7 @@ class IdaResult:
     settings : dict
         ``ceiling_<unit>`` (IM units), precision, fill, hunt step and growth (relative),
         restitution, t_end_s.
-    static_acceleration_g : float
+    collapse_acceleration_g : float
         lambda (g).
     critical_rotation_rad : float
         Crest of the mechanism's potential, rad (scale of the IDA curves).
@@ -167,7 +167,7 @@ class IdaResult:
     im: IntensityMeasure
     records: tuple[RecordIda, ...]
     settings: dict
-    static_acceleration_g: float
+    collapse_acceleration_g: float
     critical_rotation_rad: float
     rounds: int
     computed: int
@@ -229,7 +229,7 @@ class IdaResult:
             "model": self.model.value,
             "im": self.im.label,
             "im_unit": self.im.unit,
-            "static_acceleration_g": self.static_acceleration_g,
+            "collapse_acceleration_g": self.collapse_acceleration_g,
             "critical_rotation_rad": self.critical_rotation_rad,
             "settings": dict(self.settings),
             "records_total": len(self.records),
@@ -315,7 +315,6 @@ def incremental_dynamic_analysis(
     IdaResult
     """
     from archquake.ida.batch import evaluate_cases
-    from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
     from archquake.sweeps.evaluate import _prepared
     from archquake.sweeps.runner import run_sweep
 
@@ -329,8 +328,8 @@ def incremental_dynamic_analysis(
         raise InvalidParameterError("record names must be unique within a suite")
     g = options.g
     prepared = _prepared(arch)
-    lam = float(prepared.packed[G0] / abs(prepared.packed[H0]))  # lambda = G0 / |H0|
-    phi_crit = float(prepared.packed[PHI_CRIT])
+    lam = prepared.collapse_acceleration_g
+    phi_crit = prepared.critical_rotation
     im0 = np.array([im_value(m, measure, g=g) for m in motions])
     pga0 = np.array([im_value(m, "pga", g=g) for m in motions])
     for name, v in zip(names, im0, strict=True):
@@ -408,7 +407,7 @@ def incremental_dynamic_analysis(
             peak_rotation=np.array([_peak(r.outputs) for r in recs]),
             start=hf[i].start, ceiling=float(ceiling)))
     return IdaResult(arch=arch, model=model, im=measure, records=tuple(records),
-                     settings=settings, static_acceleration_g=lam, critical_rotation_rad=phi_crit,
+                     settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
                      rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
                      store=str(store.path), motions=tuple(motions))
 

@@ -18,12 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from archquake.domains._kernels import OUTCOMES
 from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.outcome import Outcome
 from archquake.sweeps.cases import Case, Model
 
 #: The ``evaluator`` key of a batch summary.
 BATCH_EVALUATOR = "ida batch (compiled, early decision)"
-_OUTCOME_NAMES = {0: "no_hinging", 1: "survives", 2: "collapse"}
 
 
 def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
@@ -41,7 +42,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     -------
     list
         Per case, in order: ``{"outcome", "collapse_half_cycle", "peak_rotation_max_rad",
-        "critical_rotation_rad", "static_acceleration_g", "restitution_cv", "impacts",
+        "critical_rotation_rad", "collapse_acceleration_g", "restitution_cv", "impacts",
         "kernel_runs", "t_end_s", "evaluator"}``, or the :class:`~archquake.errors.ArchquakeError`
         refusing the case (e.g. an arch too thin to stand).
     """
@@ -101,18 +102,17 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
         batch_kernel(prepared.packed, kinds_a, flat, offsets, float(g), float(cv), t_end,
                      window, solver.rtol, solver.atol, solver.rest_rotation, int(solver.max_impacts),
                      bool(early), outcome, half, n_imp, runs, peak)
-    from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
 
-    static_g = float(prepared.packed[G0] / abs(prepared.packed[H0]))
-    phi_crit = float(prepared.packed[PHI_CRIT])
+    static_g = prepared.collapse_acceleration_g
+    phi_crit = prepared.critical_rotation
     for i in range(n):
         o = int(outcome[i])
         results.append({
-            "outcome": _OUTCOME_NAMES[o],
-            "collapse_half_cycle": int(half[i]) if o == 2 else None,
+            "outcome": OUTCOMES[o].value,
+            "collapse_half_cycle": int(half[i]) if OUTCOMES[o] is Outcome.COLLAPSE else None,
             "peak_rotation_max_rad": float(peak[i]),
             "critical_rotation_rad": phi_crit,
-            "static_acceleration_g": static_g,
+            "collapse_acceleration_g": static_g,
             "restitution_cv": float(cv),
             "impacts": int(n_imp[i]),
             "kernel_runs": int(runs[i]),

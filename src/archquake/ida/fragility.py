@@ -252,7 +252,7 @@ def _with_ci(fit: LognormalFit, meds: np.ndarray, betas: np.ndarray, confidence:
 
 
 # ----------------------------------------------------------------------------- IDA results
-def dimensionless_divisor(im, *, static_acceleration_g: float, radius: float,
+def dimensionless_divisor(im, *, collapse_acceleration_g: float, radius: float,
                           g: float) -> tuple[float, str] | None:
     """The scale that makes an intensity transfer between arch sizes, and its label.
 
@@ -262,7 +262,7 @@ def dimensionless_divisor(im, *, static_acceleration_g: float, radius: float,
     """
     name = getattr(im, "name", im)
     if name in ("pga", "sa"):
-        return static_acceleration_g, "/ lambda"
+        return collapse_acceleration_g, "/ lambda"
     if name == "pgv":
         return math.sqrt(g * radius), "/ sqrt(g R)"
     return None

@@ -21,6 +21,7 @@ arches use the static method (:mod:`archquake.limit.static`), which is exact for
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from itertools import combinations
 
 import numpy as np
@@ -38,8 +39,64 @@ def _perp(v: np.ndarray) -> np.ndarray:
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
-def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Virtual-work load factor of every admissible four-hinge mechanism under a load towards +x.
+@dataclass(frozen=True)
+class MechanismSet:
+    """Every admissible four-hinge mechanism of an arch, as packed arrays (m mechanisms).
+
+    A mechanism opens with link AB turning at ``rates[:, 0]`` (rad per unit phi-dot, +1 or -1:
+    the sense that opens all four hinges on their free faces, counter-clockwise positive), the
+    coupler BC at ``rates[:, 1]`` and CD at ``rates[:, 2]``, at the undisplaced configuration;
+    these are :attr:`HingeMechanism.rates` for every mechanism at once.
+
+    Attributes
+    ----------
+    joints : ndarray of int, shape (m, 4)
+        Hinge joints A, B, C, D.
+    faces : ndarray of int, shape (m, 4)
+        0 for intrados, 1 for extrados.
+    points : ndarray, shape (m, 4, 2)
+        Hinge points A, B, C, D, m.
+    rates : ndarray, shape (m, 3)
+        Link angular velocities (AB, BC, CD) per unit opening rate, rad/rad.
+    """
+
+    joints: np.ndarray
+    faces: np.ndarray
+    points: np.ndarray
+    rates: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.joints.shape[0])
+
+    def mechanism(self, i: int, arch: Arch) -> HingeMechanism:
+        """Mechanism ``i`` as a :class:`HingeMechanism` of ``arch``."""
+        return HingeMechanism(
+            arch,
+            tuple(int(j) for j in self.joints[i]),  # type: ignore[arg-type]
+            tuple(Face.EXTRADOS if f else Face.INTRADOS for f in self.faces[i]),  # type: ignore[arg-type]
+        )
+
+    def subset(self, mask: np.ndarray) -> MechanismSet:
+        return MechanismSet(self.joints[mask], self.faces[mask], self.points[mask], self.rates[mask])
+
+
+def _check_size(arch: Arch) -> None:
+    n = arch.voussoirs
+    if n > MAX_KINEMATIC_VOUSSOIRS:
+        raise InvalidParameterError(
+            f"the kinematic enumeration of four-hinge mechanisms needs voussoirs <= "
+            f"{MAX_KINEMATIC_VOUSSOIRS} (it grows as n^4), got {n}; use the static method"
+        )
+
+
+def admissible_mechanisms(arch: Arch) -> MechanismSet:
+    """Every four-hinge mechanism of ``arch`` with hinges at joints that can open.
+
+    Quadruples of joints ``a < b < c < d`` in [0, n], each hinge on the intrados or the
+    extrados, kept when one sense of motion opens all four hinges on their free faces (the
+    sense is returned in ``rates[:, 0]``). Mechanisms driven by a load towards +x and towards
+    -x are both included, and so are those a horizontal load does not drive at all (symmetric
+    ones).
 
     Parameters
     ----------
@@ -48,30 +105,13 @@ def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
     Returns
     -------
-    joints : ndarray of int, shape (m, 4)
-        Hinge joints A, B, C, D of each mechanism.
-    faces : ndarray of int, shape (m, 4)
-        0 for intrados, 1 for extrados.
-    multipliers : ndarray, shape (m,)
-        lambda (in g) of each mechanism; only mechanisms that a load towards +x drives
-        (positive work) are returned.
+    MechanismSet
     """
+    _check_size(arch)
     n = arch.voussoirs
-    if n > MAX_KINEMATIC_VOUSSOIRS:
-        raise InvalidParameterError(
-            f"the kinematic enumeration of four-hinge mechanisms needs voussoirs <= "
-            f"{MAX_KINEMATIC_VOUSSOIRS} (it grows as n^4), got {n}; use the static method"
-        )
     quads = np.array(list(combinations(range(n + 1), 4)), dtype=np.int64)  # (q, 4)
-    a, b, c, d = quads.T
-    m = arch.voussoir_masses
-    cm = np.concatenate([[0.0], np.cumsum(m)])  # mass of voussoirs [0, k)
-    cs = np.vstack([np.zeros((1, 2)), np.cumsum(m[:, None] * arch.voussoir_centroids, axis=0)])
-    m_ab, m_bc, m_cd = cm[b] - cm[a], cm[c] - cm[b], cm[d] - cm[c]
-    s_ab, s_bc, s_cd = cs[b] - cs[a], cs[c] - cs[b], cs[d] - cs[c]
     ends = np.stack([arch.intrados_points, arch.extrados_points])  # (2, n+1, 2)
-
-    out_j, out_f, out_l = [], [], []
+    out_j, out_f, out_p, out_r = [], [], [], []
     for code in range(16):
         bits = np.array([(code >> i) & 1 for i in range(4)])
         pa, pb, pc, pd = (ends[bits[i]][quads[:, i]] for i in range(4))
@@ -93,21 +133,54 @@ def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarra
         minus = np.all(sign == -need, axis=1)
         ok &= plus | minus
         sense = np.where(plus, 1.0, -1.0)
-        # sum of m v over the three links, per unit opening rate
-        p_sum = (
-            _perp(s_ab - m_ab[:, None] * pa)
-            + m_bc[:, None] * _perp(pb - pa)
-            + w_bc[:, None] * _perp(s_bc - m_bc[:, None] * pb)
-            + w_cd[:, None] * _perp(s_cd - m_cd[:, None] * pd)
-        ) * sense[:, None]
-        ok &= p_sum[:, 0] > 0.0  # a load towards +x does positive work
         if np.any(ok):
             out_j.append(quads[ok])
             out_f.append(np.broadcast_to(bits, (int(ok.sum()), 4)))
-            out_l.append(p_sum[ok, 1] / p_sum[ok, 0])
+            out_p.append(np.stack([pa[ok], pb[ok], pc[ok], pd[ok]], axis=1))
+            out_r.append(sense[ok, None] * np.column_stack([np.ones(int(ok.sum())), w_bc[ok], w_cd[ok]]))
     if not out_j:
-        return np.zeros((0, 4), np.int64), np.zeros((0, 4), np.int64), np.zeros(0)
-    return np.vstack(out_j), np.vstack(out_f), np.concatenate(out_l)
+        return MechanismSet(np.zeros((0, 4), np.int64), np.zeros((0, 4), np.int64),
+                            np.zeros((0, 4, 2)), np.zeros((0, 3)))
+    return MechanismSet(np.vstack(out_j), np.vstack(out_f), np.concatenate(out_p),
+                        np.vstack(out_r))
+
+
+def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Virtual-work load factor of every admissible four-hinge mechanism under a load towards +x.
+
+    Parameters
+    ----------
+    arch : Arch
+        With at most :data:`MAX_KINEMATIC_VOUSSOIRS` voussoirs.
+
+    Returns
+    -------
+    joints : ndarray of int, shape (m, 4)
+        Hinge joints A, B, C, D of each mechanism.
+    faces : ndarray of int, shape (m, 4)
+        0 for intrados, 1 for extrados.
+    multipliers : ndarray, shape (m,)
+        lambda (in g) of each mechanism; only mechanisms that a load towards +x drives
+        (positive work) are returned.
+    """
+    mechs = admissible_mechanisms(arch)
+    m = arch.voussoir_masses
+    cm = np.concatenate([[0.0], np.cumsum(m)])  # mass of voussoirs [0, k)
+    cs = np.vstack([np.zeros((1, 2)), np.cumsum(m[:, None] * arch.voussoir_centroids, axis=0)])
+    a, b, c, d = mechs.joints.T
+    m_bc = cm[c] - cm[b]
+    s_ab, s_bc, s_cd = cs[b] - cs[a], cs[c] - cs[b], cs[d] - cs[c]
+    m_ab, m_cd = cm[b] - cm[a], cm[d] - cm[c]
+    pa, pb, pd = mechs.points[:, 0], mechs.points[:, 1], mechs.points[:, 3]
+    w_ab, w_bc, w_cd = mechs.rates.T
+    # sum of m v over the three links, per unit opening rate
+    p_sum = (
+        w_ab[:, None] * (_perp(s_ab - m_ab[:, None] * pa) + m_bc[:, None] * _perp(pb - pa))
+        + w_bc[:, None] * _perp(s_bc - m_bc[:, None] * pb)
+        + w_cd[:, None] * _perp(s_cd - m_cd[:, None] * pd)
+    )
+    ok = p_sum[:, 0] > 0.0  # a load towards +x does positive work
+    return mechs.joints[ok], mechs.faces[ok], p_sum[ok, 1] / p_sum[ok, 0]
 
 
 def kinematic_collapse(arch: Arch) -> tuple[float, HingeMechanism]:
@@ -141,4 +214,10 @@ def kinematic_collapse(arch: Arch) -> tuple[float, HingeMechanism]:
     return float(lam[i]), mech
 
 
-__all__ = ["MAX_KINEMATIC_VOUSSOIRS", "kinematic_collapse", "mechanism_multipliers"]
+__all__ = [
+    "MAX_KINEMATIC_VOUSSOIRS",
+    "MechanismSet",
+    "admissible_mechanisms",
+    "kinematic_collapse",
+    "mechanism_multipliers",
+]

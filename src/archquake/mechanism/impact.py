@@ -15,15 +15,40 @@ The internal impulses at B and C pass through the points the moments are taken a
 self-weight is neglected during the impact. All five equations are linear and homogeneous in the
 pre-impact rate, so the post-impact rate is ``c_v`` times the pre-impact rate's magnitude, with
 ``c_v`` a function of t/R, the embrace and the number of voussoirs only.
+
+Impact laws
+-----------
+:func:`solve_impact` holds every impact law behind one signature (``law=``):
+
+``"paper"``
+    Eqs. 4a-4e above, the post-impact mechanism the mirror image (the paper's assumption). Kept
+    to reproduce the paper; it can create energy (c_T > 1) or give c_v < 0 for arches whose
+    hinges are not symmetric.
+``"chain"``
+    The impact law of a chain of rigid voussoirs (:mod:`archquake.mechanism.impact_chain`):
+    the post-impact mechanism is the four-hinge mechanism of maximum restitution (conservation of
+    its generalised momentum), checked by the impulse line; never creates energy; reports its
+    validity.
+``"mirror"``
+    The chain law with the post-impact mechanism forced to be the mirror image: equal to
+    ``"paper"`` for mechanisms with symmetric hinges, c_T <= 1 always.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from archquake.errors import InvalidParameterError
 from archquake.geometry.hinges import HingeMechanism
+
+if TYPE_CHECKING:
+    from archquake.mechanism.impact_chain import ChainImpact
+
+#: Names of the impact laws (see the module docstring).
+IMPACT_LAWS = ("paper", "chain", "mirror")
 
 
 @dataclass(frozen=True)
@@ -46,7 +71,19 @@ class ImpactSolution:
         which is not an admissible motion (seen for some thick, shallow arches);
         :func:`archquake.mechanism.simulate` then treats the impact as perfectly plastic.
     residual : float
-        Max |A x - b| of the 5x5 solve, relative to |b| (a check that the solve is sound).
+        Max |A x - b| of the 5x5 solve, relative to |b| (a check that the solve is sound); for
+        the chain laws, the consistency of the impulse line's four hinge conditions.
+    law : str
+        The impact law (:data:`IMPACT_LAWS`).
+    post : HingeMechanism or None
+        The post-impact mechanism (the mirror image for ``"paper"`` and ``"mirror"``; chosen for
+        ``"chain"``; None if the arch stops or no four-hinge mechanism is the response).
+    validity : str
+        ``"four_hinge"``, ``"at_rest"``, ``"near_four_hinge"`` or ``"outside"`` for the chain laws
+        (see :class:`~archquake.mechanism.impact_chain.ChainImpact`); for ``"paper"``,
+        ``"assumed"`` (not checked), or ``"outside"`` when it creates energy or is inadmissible.
+    chain : ChainImpact or None
+        The chain laws' full solution (impulse line, exact response, ...).
     """
 
     restitution_cv: float
@@ -55,6 +92,10 @@ class ImpactSolution:
     impulse_d: np.ndarray
     energy_gain: bool
     residual: float
+    law: str = "paper"
+    post: HingeMechanism | None = field(default=None, repr=False)
+    validity: str = "assumed"
+    chain: ChainImpact | None = field(default=None, repr=False)
 
     @property
     def admissible(self) -> bool:
@@ -66,6 +107,9 @@ class ImpactSolution:
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,
             "admissible": self.admissible,
+            "law": self.law,
+            "validity": self.validity,
+            "post_hinges": None if self.post is None else [h.to_dict() for h in self.post.hinges],
         }
 
 
@@ -97,7 +141,45 @@ def _momenta_mirrored(mech: HingeMechanism, rate: float):
     return (p * np.array([-1.0, 1.0]))[::-1], -spin[::-1]
 
 
-def solve_impact(before: HingeMechanism) -> ImpactSolution:
+def solve_impact(before: HingeMechanism, law: str = "paper") -> ImpactSolution:
+    """The impact of the mechanism ``before`` closing, under the impact law ``law``.
+
+    Parameters
+    ----------
+    before : HingeMechanism
+        The mechanism whose hinges close (pre-impact rate -1 rad/s, i.e. closing).
+    law : {"paper", "chain", "mirror"}
+        See the module docstring. Default "paper" (Eqs. 4a-4e).
+
+    Returns
+    -------
+    ImpactSolution
+    """
+    if law == "paper":
+        return _solve_paper(before)
+    if law in ("chain", "mirror"):
+        from archquake.mechanism.impact_chain import chain_impact
+
+        sol = chain_impact(before, post="mirror" if law == "mirror" else None)
+        n = before.arch.voussoirs
+        zero = np.zeros(2)
+        imp = sol.impulses
+        return ImpactSolution(
+            restitution_cv=sol.restitution_cv,
+            restitution_ct=sol.restitution_ct,
+            impulse_a=zero if imp is None else imp.force[0].copy(),
+            impulse_d=zero if imp is None else -imp.force[n].copy(),
+            energy_gain=False,
+            residual=0.0,
+            law=law,
+            post=sol.post,
+            validity=sol.validity,
+            chain=sol,
+        )
+    raise InvalidParameterError(f"impact law must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
+
+
+def _solve_paper(before: HingeMechanism) -> ImpactSolution:
     """Solve Eqs. 4a-4e for the mechanism ``before`` closing and its mirror image opening.
 
     The post-impact mechanism is the mirror image of ``before`` (the paper's assumption of
@@ -150,13 +232,17 @@ def solve_impact(before: HingeMechanism) -> ImpactSolution:
     t_before = _kinetic(p_i, s_i, arch)
     t_after = _kinetic(k_p * cv, k_s * cv, arch)
     ct = t_after / t_before
+    gain = bool(ct > 1.0 + 1e-12)
     return ImpactSolution(
         restitution_cv=cv,
         restitution_ct=float(ct),
         impulse_a=x[0:2].copy(),
         impulse_d=x[2:4].copy(),
-        energy_gain=bool(ct > 1.0 + 1e-12),
+        energy_gain=gain,
         residual=residual,
+        law="paper",
+        post=before.mirrored(),
+        validity="outside" if (gain or cv < 0.0) else "assumed",
     )
 
 
@@ -167,4 +253,4 @@ def _kinetic(p: np.ndarray, spin: np.ndarray, arch) -> float:
     )
 
 
-__all__ = ["ImpactSolution", "solve_impact"]
+__all__ = ["IMPACT_LAWS", "ImpactSolution", "solve_impact"]

@@ -181,10 +181,13 @@ class PreparedMechanism:
         return max(self.impact.restitution_cv, 0.0)
 
     @classmethod
-    def build(cls, arch_or_mechanism: Arch | HingeMechanism | PreparedMechanism) -> PreparedMechanism:
+    def build(cls, arch_or_mechanism: Arch | HingeMechanism | PreparedMechanism,
+              impact: str = "paper") -> PreparedMechanism:
         """Prepare an arch (its hinges: :func:`hinges_of`), a given mechanism (mirrored if a load
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
-        towards -x opens), or return a prepared mechanism unchanged."""
+        towards -x opens), or return a prepared mechanism unchanged (it carries its own impact
+        law). ``impact`` is the impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`;
+        default "paper", Eq. 4)."""
         if isinstance(arch_or_mechanism, PreparedMechanism):
             return arch_or_mechanism
         if isinstance(arch_or_mechanism, HingeMechanism):
@@ -197,7 +200,7 @@ class PreparedMechanism:
             raise InvalidParameterError(
                 f"expected an Arch or a HingeMechanism, got {type(arch_or_mechanism).__name__}"
             )
-        return cls(mech, pack_mechanism(mech), solve_impact(mech))
+        return cls(mech, pack_mechanism(mech), solve_impact(mech, impact))
 
 
 __all__ = ["PreparedMechanism", "hinges_of", "pack_mechanism"]

@@ -159,6 +159,16 @@ class SimulationResult:
         False if the impact model's c_v is negative (inadmissible: it would start the mirror
         mechanism closing); the impacts are then computed as perfectly plastic (c_v = 0) unless
         a restitution is prescribed.
+    impact_law : str
+        The impact law (``"paper"``: Eq. 4; ``"chain"``, ``"mirror"``: see
+        :mod:`archquake.mechanism.impact`).
+    impact_validity : str
+        The law's validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
+    impact_followed : bool
+        True if the time history moves on the mechanism the law selects after an impact. The
+        kernel carries a mechanism and its mirror only: under ``"chain"``, where the selected
+        mechanism is not the mirror, the history continues on the mirror with the chain law's
+        energy ratio (c_v = sqrt(c_T)), and this is False.
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
     collapse_acceleration_g : float
@@ -196,6 +206,9 @@ class SimulationResult:
     history: History | None = field(repr=False, default=None)
     stats: dict = field(default_factory=dict, repr=False)
     evaluated: History | None = field(repr=False, default=None)
+    impact_law: str = "paper"
+    impact_validity: str = "assumed"
+    impact_followed: bool = True
 
     @property
     def half_cycles(self) -> int:
@@ -221,6 +234,9 @@ class SimulationResult:
             "energy_gain": self.energy_gain,
             "impact_model_cv": self.impact_model_cv,
             "impact_admissible": self.impact_admissible,
+            "impact_law": self.impact_law,
+            "impact_validity": self.impact_validity,
+            "impact_followed": self.impact_followed,
             "collapse_acceleration_g": self.collapse_acceleration_g,
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
@@ -237,6 +253,7 @@ def simulate(
     motion: GroundMotion,
     *,
     restitution: float | None = None,
+    impact: str = "paper",
     t_end: float | None = None,
     initial_rate: float = 0.0,
     options: SolverOptions = SolverOptions(),
@@ -253,6 +270,10 @@ def simulate(
         Any archquake ground motion (step impulse, sine pulse, record).
     restitution : float, optional
         Prescribed c_v instead of the impact model's (the paper allows either).
+    impact : {"paper", "chain", "mirror"}
+        Impact law when ``arch`` is not already prepared (a PreparedMechanism carries its own):
+        "paper" (Eq. 4, default), or the chain law (:mod:`archquake.mechanism.impact_chain`;
+        see ``SimulationResult.impact_followed``).
     t_end : float, optional
         End of the analysis, s. Default: the end of the excitation plus 60 sqrt(R/g).
     initial_rate : float, optional
@@ -286,7 +307,7 @@ def simulate(
     >>> r.outcome.value, r.collapse_half_cycle, round(float(r.impact_times[0]), 2)
     ('collapse', 2, 0.86)
     """
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
     require_positive("g", g, "m/s^2")
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution
@@ -358,6 +379,10 @@ def simulate(
         energy_gain=bool(float(cv) ** 2 > 1.0),
         impact_model_cv=float(model_cv),
         impact_admissible=bool(model_cv >= 0.0),
+        impact_law=prepared.impact.law,
+        impact_validity=prepared.impact.validity,
+        impact_followed=bool(prepared.impact.law != "chain" or prepared.impact.post is None
+                             or prepared.impact.chain.is_mirror),
         mechanism=mech,
         collapse_acceleration_g=prepared.collapse_acceleration_g,
         critical_rotation=prepared.critical_rotation,
