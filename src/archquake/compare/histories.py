@@ -28,6 +28,7 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
 )
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import GroundMotion
 
 #: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
@@ -250,7 +251,7 @@ def compare_history(
     from archquake.dem import DemSettings, simulate_dem
     from archquake.mechanism import PreparedMechanism, simulate
 
-    if not isinstance(arch, Arch):
+    if not isinstance(arch, VoussoirChain):
         raise InvalidParameterError(f"compare_history needs an Arch, got {type(arch).__name__}")
     asm = dem_assembly(arch, assembly)
     st = DemSettings() if settings is None else settings

@@ -13,6 +13,8 @@ from archquake.limit.kinematic import (
 )
 from archquake.limit.static import (
     collapse_state,
+    geometric_safety_factor,
+    min_thickness,
     min_thickness_ratio,
     stands,
     static_collapse,
@@ -33,6 +35,8 @@ __all__ = [
     "arch_joint_points",
     "collapse_joint_forces",
     "collapse_state",
+    "geometric_safety_factor",
+    "min_thickness",
     "joint_forces",
     "joint_frames",
     "kinematic_collapse",

@@ -26,7 +26,8 @@ from itertools import combinations
 import numpy as np
 
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import Arch
+from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
 
 #: Largest number of voussoirs the exhaustive mechanism enumeration accepts.
@@ -38,12 +39,13 @@ def _perp(v: np.ndarray) -> np.ndarray:
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
-def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mechanism_multipliers(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Virtual-work load factor of every admissible four-hinge mechanism under a load towards +x.
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
         With at most :data:`MAX_KINEMATIC_VOUSSOIRS` voussoirs.
 
     Returns
@@ -110,7 +112,7 @@ def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return np.vstack(out_j), np.vstack(out_f), np.concatenate(out_l)
 
 
-def kinematic_collapse(arch: Arch) -> tuple[float, HingeMechanism]:
+def kinematic_collapse(arch: VoussoirChain) -> tuple[float, HingeMechanism]:
     """Least virtual-work load factor over all four-hinge mechanisms (load towards +x).
 
     Returns
