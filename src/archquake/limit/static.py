@@ -212,6 +212,14 @@ def geometric_safety_factor(arch: VoussoirChain) -> float:
 
 def unstable_error(arch: VoussoirChain) -> UnstableArchError:
     """The one-line error for an arch too thin to stand, naming its minimum thickness."""
+    piers = getattr(arch, "piers", None)
+    if piers is not None and stands(arch.arch):  # type: ignore[attr-defined]
+        return UnstableArchError(
+            f"the piers are too slender to stand under the arch's thrust ({piers.height:g} m "
+            f"high, {piers.width:g} m wide): no line of thrust fits inside them; increase "
+            "--pier-width or lower --pier-height",
+            min_thickness_ratio=None,
+        )
     if not isinstance(arch, Arch):
         try:
             t_min = min_thickness(arch)
