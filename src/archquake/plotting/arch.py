@@ -127,7 +127,8 @@ def plot_arch(
         pad = 0.06 * arch.radius
         # labels pushed away from the circle's centre (a circular arch) or a point below the
         # springing line (any other shape)
-        centre = np.zeros(2) if isinstance(arch, Arch) else np.array([0.0, arch.springing_y - 0.3 * arch.rise])
+        below = arch.springing_y - 0.3 * arch.rise
+        centre = np.zeros(2) if isinstance(arch, Arch) else np.array([0.0, below])
         for p, label in zip(pts, labels, strict=True):
             r = np.hypot(*(p - centre))
             offset = (p - centre) / r * pad if r > 0 else np.array([0.0, pad])
