@@ -73,3 +73,16 @@ def test_bad_geometry_is_one_line_exit_2(args, message, capsys):
     assert cli_main.main(["static", *args]) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
+
+
+def test_min_thickness_of_shapes_and_safety_factor(capsys):
+    """Vertical joints: Makris & Alexakis's 0.1095 (200 voussoirs, R = 1 m); a given thickness
+    reports t / t_min."""
+    assert cli_main.main(["min-thickness", "--joints", "vertical", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["min_thickness_ratio"] == pytest.approx(0.1095, abs=5e-4)
+    assert cli_main.main(["min-thickness", "--shape", "pointed", "--span", "10", "--rise", "7",
+                          "--voussoirs", "30", "--thickness", "0.6", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["geometric_safety_factor"] == pytest.approx(0.6 / data["min_thickness_m"])
+    assert data["geometric_safety_factor"] > 1.0
