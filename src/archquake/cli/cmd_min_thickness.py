@@ -26,11 +26,68 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "default 180)")
     p.add_argument("--voussoirs", type=whole, default=200,
                    help=f"number of voussoirs (3 to {MAX_VOUSSOIRS}; default 200)")
+    from archquake.geometry.shapes import JOINTS, SHAPES
+
+    g = p.add_argument_group(
+        "other arches (lengths in m): any of these gives the minimum thickness t_min in m of that "
+        "shape, and with --thickness the geometric factor of safety t / t_min")
+    g.add_argument("--shape", choices=SHAPES, help="arch shape (with --span and --rise)")
+    g.add_argument("--span", type=number, help="centreline span, m")
+    g.add_argument("--rise", type=number, help="centreline rise, m")
+    g.add_argument("--eccentricity", type=number, help="pointed arch instead of --rise")
+    g.add_argument("--radius", type=number, help="circular arch by embrace: radius R, m")
+    g.add_argument("--thickness", type=number,
+                   help="the arch's ring thickness, m: reports t / t_min")
+    g.add_argument("--joints", choices=JOINTS, default="radial",
+                   help="radial (default) or vertical joints")
+    g.add_argument("--pier-height", type=number, help="piers under the springings: height, m")
+    g.add_argument("--pier-width", type=number, help="pier width, m")
+    g.add_argument("--pier-courses", type=whole, help="courses in each pier (default 1)")
     p.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     p.set_defaults(func=run)
 
 
+_SHAPE_OPTIONS = ("shape", "span", "rise", "eccentricity", "radius", "thickness", "pier_height",
+                  "pier_width", "pier_courses")
+
+
+def _run_shape(args: argparse.Namespace) -> int:
+    """Minimum thickness (m) of any arch, and t / t_min when --thickness is given."""
+    from archquake.cli.common import arch_from_args, describe_arch
+    from archquake.limit import min_thickness
+
+    ns = argparse.Namespace(**vars(args))
+    ns.depth, ns.density, ns.blocks, ns._arch_defaults = 1.0, 2000.0, None, False
+    if args.shape in (None, "circular") and args.span is None:
+        ns.radius = 1.0 if args.radius is None else args.radius
+        ns.thickness = 0.5 * ns.radius if args.thickness is None else args.thickness
+    else:
+        ns.embrace = None
+        if args.span is None:
+            raise InvalidParameterError(f"a {args.shape} arch needs --span (m)")
+        if args.thickness is None:  # a probe: only the shape matters for t_min
+            ns.thickness = 0.01 * args.span
+    arch = arch_from_args(ns)
+    t_min = min_thickness(arch)
+    out = {"arch": arch.describe(), "min_thickness_m": t_min,
+           "min_thickness_ratio": t_min / arch.radius, "length_scale_m": arch.radius}
+    if args.thickness is not None:
+        out["thickness_m"] = args.thickness
+        out["geometric_safety_factor"] = args.thickness / t_min if t_min > 0 else math.inf
+    if args.json:
+        print_json(out)
+        return 0
+    print(f"minimum thickness: t_min = {t_min:.5g} m (t_min / R = {t_min / arch.radius:.5f}, R = "
+          f"{arch.radius:.5g} m the characteristic length; self-weight only)")
+    if args.thickness is not None:
+        print(f"geometric factor of safety: t / t_min = {out['geometric_safety_factor']:.3f} "
+              f"({describe_arch(arch)})")
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
+    if any(getattr(args, k, None) is not None for k in _SHAPE_OPTIONS) or args.joints != "radial":
+        return _run_shape(args)
     if not (0.0 < args.embrace <= MAX_EMBRACE_DEG):
         raise InvalidParameterError(
             f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {args.embrace:g}"

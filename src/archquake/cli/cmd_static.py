@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import argparse
 
-from archquake.cli.common import add_arch_arguments, add_output_arguments, arch_from_args, print_json
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_output_arguments,
+    arch_from_args,
+    describe_arch,
+    print_json,
+)
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
 
@@ -53,11 +59,9 @@ def run(args: argparse.Namespace) -> int:
 def format_result(result) -> str:
     """Human-readable summary of a :class:`~archquake.limit.LimitAnalysis`."""
     arch = result.arch
-    d = arch.describe()
     n = arch.voussoirs
     lines = [
-        f"arch: R = {d['radius_m']:g} m, t = {d['thickness_m']:g} m (t/R = "
-        f"{d['thickness_ratio']:.4g}), embrace {d['embrace_deg']:g} deg, {n} voussoirs",
+        f"arch: {describe_arch(arch)}",
         f"collapse acceleration: {result.collapse_acceleration_g:.4f} g "
         "(horizontal, load towards +x; the mirror mechanism for -x)",
     ]

@@ -46,57 +46,190 @@ def whole(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
 
 
-def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True) -> None:
-    """--radius, --thickness, --embrace (degrees), --voussoirs, --depth, --density.
+#: Oppenheim's arch, the default when no shape option is given (m, degrees).
+OPPENHEIM_DEFAULTS = {"radius": 10.0, "thickness": 1.5, "embrace": 157.5, "voussoirs": 7}
 
-    Defaults are Oppenheim's arch (R = 10 m, t = 1.5 m, 157.5 degrees, 7 voussoirs).
+
+def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True) -> None:
+    """The arch: a shape (--shape, --span, --rise, --thickness, --voussoirs, --joints; circular
+    arches also by --radius and --embrace), optional piers (--pier-height, --pier-width,
+    --pier-courses), or blocks from a file (--blocks); --depth and --density.
+
+    With no shape option the arch is Oppenheim's (R = 10 m, t = 1.5 m, 157.5 degrees,
+    7 voussoirs; ``defaults=False`` leaves it unset).
     """
-    g = parser.add_argument_group("arch (defaults: Oppenheim's arch)")
-    g.add_argument("--radius", type=number, default=10.0 if defaults else None,
-                   help=f"centreline radius R, m ({RADIUS_RANGE[0]:g} to {RADIUS_RANGE[1]:g}; default 10)")
-    g.add_argument("--thickness", type=number, default=1.5 if defaults else None,
-                   help="thickness t, m (0 < t < 2R; default 1.5)")
-    g.add_argument("--embrace", type=number, default=157.5 if defaults else None,
-                   help=f"angle of embrace, degrees (0 < embrace <= {MAX_EMBRACE_DEG:g}; default 157.5)")
-    g.add_argument("--voussoirs", type=whole, default=7 if defaults else None,
+    from archquake.geometry.shapes import JOINTS, SHAPES
+
+    g = parser.add_argument_group(
+        "arch (lengths in m, angles in degrees; default: Oppenheim's arch, R = 10 m, t = 1.5 m, "
+        "157.5 deg, 7 voussoirs)")
+    g.add_argument("--shape", choices=SHAPES, default=None,
+                   help="arch shape (default circular); every shape but circular-by-radius takes "
+                        "--span and --rise of the centreline")
+    g.add_argument("--span", type=number, default=None,
+                   help="centreline span between the springings, m (> 0)")
+    g.add_argument("--rise", type=number, default=None,
+                   help="centreline rise from the springing line to the crown, m (> 0; <= span/2 "
+                        "for segmental, >= span/2 for pointed, < span/2 for three-centred)")
+    g.add_argument("--eccentricity", type=number, default=None,
+                   help="pointed arch instead of --rise: distance of the two centres from the axis "
+                        "over the half-span (0 semicircle, 1 equilateral, < 1 drop, > 1 lancet)")
+    g.add_argument("--radius", type=number, default=None,
+                   help=f"circular arch: centreline radius R, m ({RADIUS_RANGE[0]:g} to "
+                        f"{RADIUS_RANGE[1]:g}; default 10)")
+    g.add_argument("--thickness", type=number, default=None,
+                   help="ring thickness t, m (0 < t < 2R; default 1.5 for the default arch)")
+    g.add_argument("--embrace", type=number, default=None,
+                   help=f"circular arch: angle of embrace, degrees (0 < embrace <= "
+                        f"{MAX_EMBRACE_DEG:g}; default 157.5)")
+    g.add_argument("--voussoirs", type=whole, default=None,
                    help=f"number of voussoirs (3 to {MAX_VOUSSOIRS}; default 7)")
+    g.add_argument("--joints", choices=JOINTS, default="radial",
+                   help="joints normal to the centreline (radial, default) or vertical")
+    g.add_argument("--pier-height", type=number, default=None,
+                   help="piers under the springings: height from the rigid base to the intrados "
+                        "springing, m (> 0; with --pier-width)")
+    g.add_argument("--pier-width", type=number, default=None,
+                   help="pier width, m (at least the springing joint's horizontal extent)")
+    g.add_argument("--pier-courses", type=whole, default=None,
+                   help="number of courses (blocks) in each pier (1 to 500; default 1)")
+    g.add_argument("--blocks", type=Path, default=None, metavar="FILE",
+                   help="the arch's blocks from a surveyed file: .json, .csv or .dxf (see "
+                        "docs/geometry.md)")
     g.add_argument("--depth", type=number, default=1.0, help="out-of-plane depth, m (default 1)")
     g.add_argument("--density", type=number, default=2000.0,
                    help="density, kg/m^3 (default 2000)")
+    parser.set_defaults(_arch_defaults=defaults)
 
 
-def arch_from_args(args: argparse.Namespace) -> Arch:
-    """Build the Arch, checking the degree-valued embrace here so the message is in degrees."""
-    embrace = args.embrace
-    if not (0.0 < embrace <= MAX_EMBRACE_DEG):
-        raise InvalidParameterError(
-            f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {embrace:g}"
-        )
-    if args.voussoirs < 3 or args.voussoirs > MAX_VOUSSOIRS:
-        raise InvalidParameterError(
-            f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {args.voussoirs}"
-        )
-    low, high = RADIUS_RANGE
-    if not low <= args.radius <= high:
-        raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {args.radius:g}")
-    if args.thickness <= 0 or args.thickness >= 2 * args.radius:
-        raise InvalidParameterError(
-            f"--thickness must be in (0, 2 x radius) = (0, {2 * args.radius:g}) m, "
-            f"got {args.thickness:g}"
-        )
+def _given(args: argparse.Namespace, *names: str) -> list[str]:
+    return ["--" + n.replace("_", "-") for n in names if getattr(args, n, None) is not None]
+
+
+def arch_from_args(args: argparse.Namespace):
+    """Build the arch (any :class:`~archquake.geometry.VoussoirChain`) from the options of
+    :func:`add_arch_arguments`; every inconsistent combination is one line naming the option."""
+    from archquake.geometry import OnPiers, Piers
+    from archquake.geometry.shapes import ShapedArch, pointed
+
     if not 0 < args.depth <= MAX_DEPTH:
         raise InvalidParameterError(f"--depth must be in (0, {MAX_DEPTH:g}] m, got {args.depth:g}")
     if not 0 < args.density <= MAX_DENSITY:
         raise InvalidParameterError(
             f"--density must be in (0, {MAX_DENSITY:g}] kg/m^3, got {args.density:g}")
+    shape = getattr(args, "shape", None)
+    blocks = getattr(args, "blocks", None)
+    joints = getattr(args, "joints", "radial") or "radial"
+    if blocks is not None:
+        clash = _given(args, "shape", "span", "rise", "eccentricity", "radius", "embrace",
+                       "thickness", "voussoirs")
+        if clash:
+            raise InvalidParameterError(f"--blocks gives the whole geometry; drop {', '.join(clash)}")
+        from archquake.geometry.survey import read_blocks
+
+        arch = read_blocks(blocks, depth=args.depth, density=args.density)
+    elif shape in (None, "circular") and (getattr(args, "span", None) is None
+                                          and getattr(args, "rise", None) is None):
+        if _given(args, "eccentricity"):
+            raise InvalidParameterError("--eccentricity applies to --shape pointed")
+        arch = _circular_from_args(args, joints)
+    else:
+        shape = shape or "circular"
+        clash = _given(args, "radius", "embrace")
+        if clash:
+            raise InvalidParameterError(
+                f"{', '.join(clash)} apply to a circular arch given by radius and embrace; a "
+                f"{shape} arch takes --span and --rise")
+        if args.span is None:
+            raise InvalidParameterError(f"a {shape} arch needs --span (m)")
+        if args.thickness is None:
+            raise InvalidParameterError(f"a {shape} arch needs --thickness (m)")
+        voussoirs = 7 if args.voussoirs is None else args.voussoirs
+        if shape == "pointed" and args.eccentricity is not None:
+            if args.rise is not None:
+                raise InvalidParameterError("give --rise or --eccentricity, not both")
+            arch = pointed(span=args.span, eccentricity=args.eccentricity, thickness=args.thickness,
+                           voussoirs=voussoirs, joints=joints, depth=args.depth,
+                           density=args.density)
+        else:
+            if _given(args, "eccentricity"):
+                raise InvalidParameterError("--eccentricity applies to --shape pointed")
+            if args.rise is None:
+                raise InvalidParameterError(f"a {shape} arch needs --rise (m)")
+            arch = ShapedArch(shape, args.span, args.rise, args.thickness, voussoirs, joints,
+                              args.depth, args.density)
+            if shape in ("circular", "segmental") and joints == "radial":
+                r, beta = arch._circle()
+                arch = Arch(r, args.thickness, beta, voussoirs, args.depth, args.density)
+    height, width = getattr(args, "pier_height", None), getattr(args, "pier_width", None)
+    courses = getattr(args, "pier_courses", None)
+    if height is None and width is None:
+        if courses is not None:
+            raise InvalidParameterError("--pier-courses needs --pier-height and --pier-width")
+        return arch
+    if height is None or width is None:
+        raise InvalidParameterError("piers need both --pier-height and --pier-width (m)")
+    return OnPiers(arch, Piers(height, width, 1 if courses is None else courses))
+
+
+def _circular_from_args(args: argparse.Namespace, joints: str):
+    """The circular arch by radius and embrace (Oppenheim's by default), checking the
+    degree-valued embrace here so the message is in degrees."""
+    use = OPPENHEIM_DEFAULTS if getattr(args, "_arch_defaults", True) else {}
+    values = {k: getattr(args, k) if getattr(args, k) is not None else use.get(k)
+              for k in ("radius", "thickness", "embrace", "voussoirs")}
+    missing = [k for k, v in values.items() if v is None]
+    if missing:
+        raise InvalidParameterError(
+            f"a circular arch needs {', '.join('--' + k for k in missing)}")
+    radius, thickness, embrace, voussoirs = (values[k] for k in ("radius", "thickness", "embrace",
+                                                                  "voussoirs"))
+    if not (0.0 < embrace <= MAX_EMBRACE_DEG):
+        raise InvalidParameterError(
+            f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {embrace:g}"
+        )
+    if voussoirs < 3 or voussoirs > MAX_VOUSSOIRS:
+        raise InvalidParameterError(
+            f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {voussoirs}"
+        )
+    low, high = RADIUS_RANGE
+    if not low <= radius <= high:
+        raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {radius:g}")
+    if thickness <= 0 or thickness >= 2 * radius:
+        raise InvalidParameterError(
+            f"--thickness must be in (0, 2 x radius) = (0, {2 * radius:g}) m, "
+            f"got {thickness:g}"
+        )
+    if joints == "vertical":
+        from archquake.geometry.shapes import circular
+
+        return circular(radius=radius, embrace=math.radians(embrace), thickness=thickness,
+                        voussoirs=voussoirs, joints=joints, depth=args.depth, density=args.density)
     return Arch(
-        radius=args.radius,
-        thickness=args.thickness,
+        radius=radius,
+        thickness=thickness,
         embrace=math.radians(embrace),
-        voussoirs=args.voussoirs,
+        voussoirs=voussoirs,
         depth=args.depth,
         density=args.density,
     )
+
+
+def describe_arch(arch) -> str:
+    """One line describing any arch for the text output (m, degrees)."""
+    d = arch.describe()
+    if "radius_m" in d and "shape" not in d:
+        text = (f"R = {d['radius_m']:g} m, t = {d['thickness_m']:g} m (t/R = "
+                f"{d['thickness_ratio']:.4g}), embrace {d['embrace_deg']:g} deg, "
+                f"{d['voussoirs']} voussoirs")
+    else:
+        text = (f"{d.get('shape', 'blocks')}, span {d['span_m']:.4g} m, rise {d['rise_m']:.4g} m, "
+                f"t = {d['thickness_m']:.4g} m, {d['voussoirs']} voussoirs"
+                + (f", {d['joints']} joints" if "joints" in d else ""))
+    if "pier_height_m" in d:
+        text += (f", on piers {d['pier_height_m']:g} m high x {d['pier_width_m']:g} m wide "
+                 f"({d['pier_courses']} courses)")
+    return text
 
 
 def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) -> None:
@@ -274,6 +407,7 @@ __all__ = [
     "add_ground_motion_arguments",
     "add_output_arguments",
     "arch_from_args",
+    "describe_arch",
     "ground_motion_from_args",
     "number",
     "parse_durations",

@@ -26,6 +26,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.domains import DomainSettings, FailureDomain, PulseFamily, PulseOutcomes, failure_domain
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.outcome import Outcome
 
 #: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
@@ -212,7 +213,7 @@ def dem_failure_domain(
     """
     from archquake.dem import DemSettings
 
-    if not isinstance(arch, Arch):
+    if not isinstance(arch, VoussoirChain):
         raise InvalidParameterError(f"dem_failure_domain needs an Arch, got {type(arch).__name__}")
     fam = PulseFamily.parse(family)
     first_only = (assembly == HINGES) if first_only is None else bool(first_only)

@@ -30,6 +30,7 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
 )
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import GroundMotion
 from archquake.validation.paper import FIGURE4_DURATIONS
 
@@ -157,7 +158,7 @@ def compare_history(
     from archquake.dem import DemSettings, simulate_dem
     from archquake.mechanism import PreparedMechanism, simulate
 
-    if not isinstance(arch, Arch):
+    if not isinstance(arch, VoussoirChain):
         raise InvalidParameterError(f"compare_history needs an Arch, got {type(arch).__name__}")
     asm = dem_assembly(arch, assembly)
     st = DemSettings() if settings is None else settings

@@ -27,7 +27,9 @@ import numpy as np
 from archquake._validate import require_positive
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
+from archquake.geometry.polygon import polygon_mass_properties
 from archquake.mechanism.prepared import hinges_of
 
 #: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
@@ -164,19 +166,6 @@ def _signed_area(p: np.ndarray) -> float:
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-def _polygon_mass_properties(p: np.ndarray, density: float, depth: float):
-    """Mass, centroid and centroidal inertia of a uniform polygon (shoelace formulas)."""
-    x, y = p[:, 0], p[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cr = x * y1 - x1 * y
-    area = 0.5 * cr.sum()
-    cx = ((x + x1) * cr).sum() / (6 * area)
-    cy = ((y + y1) * cr).sum() / (6 * area)
-    jo = ((x * x + x * x1 + x1 * x1 + y * y + y * y1 + y1 * y1) * cr).sum() / 12.0
-    m = density * depth * area
-    return m, np.array([cx, cy]), density * depth * (jo - area * (cx * cx + cy * cy))
-
-
 def _sorted_ccw(points: np.ndarray) -> np.ndarray:
     c = points.mean(axis=0)
     ang = np.arctan2(points[:, 1] - c[1], points[:, 0] - c[0])
@@ -184,7 +173,7 @@ def _sorted_ccw(points: np.ndarray) -> np.ndarray:
 
 
 def build_arch_assembly(
-    arch: Arch,
+    arch: VoussoirChain,
     *,
     cut_joints: tuple[int, ...] | None = None,
     mechanism: HingeMechanism | None = None,
@@ -255,7 +244,7 @@ def build_arch_assembly(
     for j in (0, n):
         pts = np.array([ip[j], ep[j], [ep[j, 0], y_bot], [ip[j, 0], y_bot]])
         poly = _sorted_ccw(pts)
-        m, c, inertia = _polygon_mass_properties(poly, arch.density, arch.depth)
+        m, c, inertia = polygon_mass_properties(poly, arch.density, arch.depth)
         polys.append(poly)
         outlines.append(poly)
         masses.append(m)
@@ -303,7 +292,7 @@ def build_arch_assembly(
         reference_length=t,
         base_level=y_low,
         crown_block=int(block_of_voussoir[crown_v]),
-        crown_point=np.array([0.0, arch.extrados_radius]),
+        crown_point=np.asarray(arch.crown_point, dtype=float),
         rotation_link=link,
         outlines=tuple(outlines),
         name=f"arch ({n_free} blocks)",
@@ -317,7 +306,7 @@ def build_arch_assembly(
     )
 
 
-def three_voussoir_assembly(arch: Arch) -> Assembly:
+def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
     """The arch cut only at its hinges (:func:`archquake.mechanism.prepared.hinges_of`): the
     paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
 
@@ -340,7 +329,7 @@ def three_voussoir_assembly(arch: Arch) -> Assembly:
     return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech, hold_outside_hinges=True)
 
 
-def dem_assembly(arch: Arch, assembly: str = VOUSSOIRS) -> Assembly:
+def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS) -> Assembly:
     """The DEM assembly of ``arch``: ``'voussoirs'`` (every voussoir a block,
     :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
     :func:`three_voussoir_assembly`)."""
@@ -351,7 +340,12 @@ def dem_assembly(arch: Arch, assembly: str = VOUSSOIRS) -> Assembly:
     raise InvalidParameterError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
 
 
-def _merged_outline(arch: Arch, j0: int, j1: int, per: int = 8) -> np.ndarray:
+def _merged_outline(arch: VoussoirChain, j0: int, j1: int, per: int = 8) -> np.ndarray:
+    if not isinstance(arch, Arch):  # any other shape: its block, or the chord polygon of a group
+        if j1 == j0 + 1:
+            return arch.block_polygons[j0].copy()
+        ip, ep = arch.intrados_points, arch.extrados_points
+        return np.vstack([ip[j0 : j1 + 1], ep[j1 : j0 - 1 if j0 > 0 else None : -1]])
     a0, a1 = arch.joint_angles[j0], arch.joint_angles[j1]
     ang = np.linspace(a1, a0, per * (j1 - j0))
     inner = arch.intrados_radius * np.column_stack([np.cos(ang), np.sin(ang)])
@@ -383,8 +377,8 @@ def block_on_base(
     h = require_positive("block height", height, "m")
     base = np.array([[-5 * b, -b], [5 * b, -b], [5 * b, 0.0], [-5 * b, 0.0]])
     block = np.array([[-0.5 * b, 0.0], [0.5 * b, 0.0], [0.5 * b, h], [-0.5 * b, h]])
-    m, c, inertia = _polygon_mass_properties(block, density, depth)
-    mb, cb, ib = _polygon_mass_properties(base, density, depth)
+    m, c, inertia = polygon_mass_properties(block, density, depth)
+    mb, cb, ib = polygon_mass_properties(base, density, depth)
     return Assembly(
         polygons=(base, block),
         masses=np.array([mb, m]),

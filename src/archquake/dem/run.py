@@ -33,6 +33,7 @@ from archquake.dem.result import DemResult, collapse_parameters, crown_height
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import GroundMotion
 
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
@@ -281,7 +282,7 @@ def simulate_dem(
     DemResult
     """
     assembly = (
-        build_arch_assembly(arch_or_assembly) if isinstance(arch_or_assembly, Arch)
+        build_arch_assembly(arch_or_assembly) if isinstance(arch_or_assembly, VoussoirChain)
         else arch_or_assembly
     )
     if not isinstance(assembly, Assembly):

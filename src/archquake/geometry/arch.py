@@ -20,6 +20,7 @@ import numpy as np
 
 from archquake._validate import require_int, require_positive, require_range
 from archquake.errors import InvalidParameterError
+from archquake.geometry.chain import VoussoirChain
 
 #: Largest supported angle of embrace, rad (240 deg): deeper arches than this are horseshoe
 #: shapes whose springings overhang the centre far enough that a two-support, four-hinge
@@ -40,8 +41,12 @@ MAX_DEPTH = 1e4
 
 
 @dataclass(frozen=True)
-class Arch:
+class Arch(VoussoirChain):
     """A symmetric part-circular arch of ``voussoirs`` equal voussoirs with radial joints.
+
+    The circular builder of the voussoir chain (:class:`~archquake.geometry.chain.
+    VoussoirChain`), with closed-form annular-sector mass properties; its characteristic
+    length is its radius R.
 
     Parameters
     ----------
@@ -261,6 +266,22 @@ class Arch:
                 self.intrados_points[k],
             ]
         )
+
+    @property
+    def block_polygons(self) -> tuple[np.ndarray, ...]:
+        """Outline of every voussoir, its arcs sampled every ~0.05 degrees (drawing, tiling
+        checks and the pier courses; the mass properties are the closed forms), m."""
+        per = max(2, int(math.ceil(math.degrees(self.voussoir_angle) / 0.05)) + 1)
+        return tuple(self.voussoir_outline(k, per)[::-1] for k in range(self.voussoirs))  # CCW
+
+    @property
+    def crown_point(self) -> np.ndarray:  # type: ignore[override]
+        """The crown of the extrados, (0, R + t/2), m."""
+        return np.array([0.0, self.extrados_radius])
+
+    def with_thickness(self, thickness: float) -> Arch:
+        """The same arch with ring thickness ``thickness``, m."""
+        return Arch(self.radius, thickness, self.embrace, self.voussoirs, self.depth, self.density)
 
     def describe(self) -> dict:
         """Plain dict of the inputs in SI (and degrees for the embrace), for JSON output."""

@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.fourbar import link_rates
 
 
@@ -61,12 +61,13 @@ class HingeMechanism:
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch (:mod:`archquake.geometry`): a chain of blocks between two supports.
     joints : tuple of 4 ints, strictly increasing, in [0, n]
     faces : tuple of 4 Face
     """
 
-    arch: Arch
+    arch: VoussoirChain
     joints: tuple[int, int, int, int]
     faces: tuple[Face, Face, Face, Face]
 
@@ -172,7 +173,14 @@ class HingeMechanism:
 
     # ------------------------------------------------------------------ symmetry
     def mirrored(self) -> HingeMechanism:
-        """The mirror image in the vertical axis (joint j -> n - j, order reversed, same faces)."""
+        """The mirror image in the vertical axis (joint j -> n - j, order reversed, same faces).
+
+        Only for symmetric arches (``arch.symmetric``); an asymmetric chain (blocks from a
+        survey) is analysed for each load direction on its own."""
+        if not self.arch.symmetric:
+            raise InvalidParameterError(
+                "the mirror-image mechanism exists only for an arch symmetric about x = 0"
+            )
         n = self.arch.voussoirs
         return HingeMechanism(
             self.arch,
@@ -188,6 +196,8 @@ class HingeMechanism:
         never their own mirror image (the mirror-image faces form the mirror mechanism, which
         the opposite load opens).
         """
+        if not self.arch.symmetric:
+            return False
         return self.mirrored().joints == self.joints
 
     def to_dict(self) -> dict:

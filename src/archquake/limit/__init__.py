@@ -15,6 +15,8 @@ from archquake.limit.kinematic import (
 from archquake.limit.locked import locked_joint_forces
 from archquake.limit.static import (
     collapse_state,
+    geometric_safety_factor,
+    min_thickness,
     min_thickness_ratio,
     stands,
     static_collapse,
@@ -35,6 +37,8 @@ __all__ = [
     "arch_joint_points",
     "collapse_joint_forces",
     "collapse_state",
+    "geometric_safety_factor",
+    "min_thickness",
     "joint_forces",
     "joint_frames",
     "kinematic_collapse",

@@ -52,7 +52,8 @@ import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, SolverError
-from archquake.geometry.arch import Arch
+from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS, kinematic_collapse
 from archquake.limit.static import (
@@ -84,7 +85,8 @@ class LimitAnalysis:
 
     Attributes
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
     collapse_acceleration_g : float
         lambda, the equivalent static collapse acceleration: the horizontal acceleration, in g,
         at which the arch becomes a mechanism (from the line of thrust through the four
@@ -106,7 +108,7 @@ class LimitAnalysis:
         Gravity used for the forces, m/s^2.
     """
 
-    arch: Arch
+    arch: VoussoirChain
     collapse_acceleration_g: float
     mechanism: HingeMechanism
     joint_forces: JointForces
@@ -188,13 +190,14 @@ def collapse_joint_forces(
 
 
 def limit_analysis(
-    arch: Arch, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY
+    arch: VoussoirChain, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY
 ) -> LimitAnalysis:
     """Equivalent static analysis of ``arch`` under a horizontal acceleration towards +x.
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
     method : {"static", "kinematic", "both"}
         "static" (any n), "kinematic" (n <= 60), or "both" (checks that they agree).
     g : float, optional

@@ -27,7 +27,8 @@ from itertools import combinations
 import numpy as np
 
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import Arch
+from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
 
 #: Largest number of voussoirs the exhaustive mechanism enumeration accepts.
@@ -68,7 +69,7 @@ class MechanismSet:
     def __len__(self) -> int:
         return int(self.joints.shape[0])
 
-    def mechanism(self, i: int, arch: Arch) -> HingeMechanism:
+    def mechanism(self, i: int, arch: VoussoirChain) -> HingeMechanism:
         """Mechanism ``i`` as a :class:`HingeMechanism` of ``arch``."""
         return HingeMechanism(
             arch,
@@ -80,7 +81,7 @@ class MechanismSet:
         return MechanismSet(self.joints[mask], self.faces[mask], self.points[mask], self.rates[mask])
 
 
-def _check_size(arch: Arch) -> None:
+def _check_size(arch: VoussoirChain) -> None:
     n = arch.voussoirs
     if n > MAX_KINEMATIC_VOUSSOIRS:
         raise InvalidParameterError(
@@ -89,7 +90,7 @@ def _check_size(arch: Arch) -> None:
         )
 
 
-def admissible_mechanisms(arch: Arch) -> MechanismSet:
+def admissible_mechanisms(arch: VoussoirChain) -> MechanismSet:
     """Every four-hinge mechanism of ``arch`` with hinges at joints that can open.
 
     Quadruples of joints ``a < b < c < d`` in [0, n], each hinge on the intrados or the
@@ -100,7 +101,8 @@ def admissible_mechanisms(arch: Arch) -> MechanismSet:
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
         With at most :data:`MAX_KINEMATIC_VOUSSOIRS` voussoirs.
 
     Returns
@@ -145,7 +147,7 @@ def admissible_mechanisms(arch: Arch) -> MechanismSet:
                         np.vstack(out_r))
 
 
-def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mechanism_multipliers(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Virtual-work load factor of every admissible four-hinge mechanism under a load towards +x.
 
     Parameters
@@ -183,7 +185,7 @@ def mechanism_multipliers(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return mechs.joints[ok], mechs.faces[ok], p_sum[ok, 1] / p_sum[ok, 0]
 
 
-def kinematic_collapse(arch: Arch) -> tuple[float, HingeMechanism]:
+def kinematic_collapse(arch: VoussoirChain) -> tuple[float, HingeMechanism]:
     """Least virtual-work load factor over all four-hinge mechanisms (load towards +x).
 
     Returns

@@ -28,6 +28,7 @@ from scipy.optimize import linprog
 
 from archquake.errors import ArchquakeError, SolverError, UnstableArchError
 from archquake.geometry.arch import MAX_VOUSSOIRS, Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
 from archquake.limit.thrust import arch_joint_points, joint_forces, moments_about_origin
 
@@ -39,7 +40,7 @@ _THINNEST = 1e-9
 MAX_MULTIPLIER = 100.0
 
 
-def _unit_joint_actions(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _unit_joint_actions(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """N and M (moment about the joint centre) at every joint for each unit unknown.
 
     Returns
@@ -74,7 +75,7 @@ def _unit_joint_actions(arch: Arch) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     )
 
 
-def _constraints(arch: Arch) -> tuple[np.ndarray, np.ndarray]:
+def _constraints(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray]:
     """A_ub x <= b_ub over x = (H, V, M0, lambda): rows 2j (intrados: M_j - h N_j <= 0) and
     2j+1 (extrados: -M_j - h N_j <= 0)."""
     normal, moment, half = _unit_joint_actions(arch)
@@ -92,7 +93,7 @@ def _solve(c, a_ub, b_ub, bounds):
     return res
 
 
-def stands(arch: Arch) -> bool:
+def stands(arch: VoussoirChain) -> bool:
     """True if a line of thrust fits inside the arch under self-weight alone.
 
     Examples
@@ -151,8 +152,86 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
     return high
 
 
-def unstable_error(arch: Arch) -> UnstableArchError:
+def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
+    """Least ring thickness, m, for which ``arch`` (its shape, joints, voussoirs and piers
+    kept; :meth:`~archquake.geometry.VoussoirChain.with_thickness`) stands under its own weight.
+
+    Bisection on the feasibility of the static program with lambda = 0, as
+    :func:`min_thickness_ratio` (which it equals times R for a circular :class:`Arch`).
+
+    Raises
+    ------
+    InvalidParameterError
+        The arch has no thickness parameter (blocks read from a file).
+    ArchquakeError
+        No thickness the shape admits lets it stand.
+
+    Examples
+    --------
+    >>> round(min_thickness(Arch(2.0, 0.5, math.pi, 200)) / 2.0, 3)
+    0.107
+    """
+    if isinstance(arch, Arch):
+        return min_thickness_ratio(arch.embrace, arch.voussoirs, rtol=rtol) * arch.radius
+    t0 = arch.thickness
+
+    def ok(t: float) -> bool:
+        return stands(arch.with_thickness(t))
+
+    low, high = 0.0, t0
+    while not ok(high):
+        low, high = high, 2.0 * high
+        try:
+            arch.with_thickness(high)
+        except ArchquakeError:
+            raise ArchquakeError(
+                f"no ring thickness this shape admits lets it stand under its own weight "
+                f"(tried up to {low:.4g} m)"
+            ) from None
+    while high - low > rtol * high:
+        if high < _THINNEST * arch.radius:
+            return 0.0
+        mid = 0.5 * (low + high)
+        try:
+            good = ok(mid)
+        except ArchquakeError:  # a thickness some joint pattern cannot take
+            good = False
+        if good:
+            high = mid
+        else:
+            low = mid
+    return high
+
+
+def geometric_safety_factor(arch: VoussoirChain) -> float:
+    """The geometric factor of safety t / t_min (Heyman): how many times thicker than the
+    thinnest arch of the same shape that stands, dimensionless."""
+    t_min = min_thickness(arch)
+    return math.inf if t_min == 0.0 else arch.thickness / t_min
+
+
+def unstable_error(arch: VoussoirChain) -> UnstableArchError:
     """The one-line error for an arch too thin to stand, naming its minimum thickness."""
+    piers = getattr(arch, "piers", None)
+    if piers is not None and stands(arch.arch):  # type: ignore[attr-defined]
+        return UnstableArchError(
+            f"the piers are too slender to stand under the arch's thrust ({piers.height:g} m "
+            f"high, {piers.width:g} m wide): no line of thrust fits inside them; increase "
+            "--pier-width or lower --pier-height",
+            min_thickness_ratio=None,
+        )
+    if not isinstance(arch, Arch):
+        try:
+            t_min = min_thickness(arch)
+        except ArchquakeError:
+            return UnstableArchError(
+                "the arch is too thin to stand under its own weight: no line of thrust fits "
+                "inside its blocks", min_thickness_ratio=math.nan)
+        return UnstableArchError(
+            f"the arch is too thin to stand under its own weight: its minimum thickness is "
+            f"{t_min:.4g} m, got {arch.thickness:.4g} m; increase --thickness",
+            min_thickness_ratio=t_min / arch.radius,
+        )
     ratio = min_thickness_ratio(arch.embrace, arch.voussoirs)
     return UnstableArchError(
         f"the arch is too thin to stand under its own weight: t/R = {arch.thickness_ratio:.4g} "
@@ -163,12 +242,13 @@ def unstable_error(arch: Arch) -> UnstableArchError:
     )
 
 
-def static_collapse(arch: Arch, *, rtol: float = 1e-7) -> tuple[float, HingeMechanism]:
+def static_collapse(arch: VoussoirChain, *, rtol: float = 1e-7) -> tuple[float, HingeMechanism]:
     """Largest horizontal load factor (towards +x) for which a line of thrust fits.
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
     rtol : float
         Relative threshold on the duals (against the largest) that marks a hinge.
 
@@ -254,6 +334,8 @@ def collapse_state(mechanism: HingeMechanism) -> tuple[float, np.ndarray]:
 __all__ = [
     "MAX_MULTIPLIER",
     "collapse_state",
+    "geometric_safety_factor",
+    "min_thickness",
     "min_thickness_ratio",
     "stands",
     "static_collapse",

@@ -212,7 +212,8 @@ def joint_forces(
 
 
 def arch_joint_points(arch) -> np.ndarray:
-    """Joint end points of an undisplaced :class:`~archquake.geometry.Arch`, m, (n+1, 2, 2)."""
+    """Joint end points of an undisplaced arch (any :class:`~archquake.geometry.VoussoirChain`),
+    m, (n+1, 2, 2)."""
     return np.stack([arch.intrados_points, arch.extrados_points], axis=1)
 
 

@@ -26,7 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import Arch
+from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.mechanism._kernels import linkage_limits_compiled
 from archquake.mechanism.impact import ImpactSolution, solve_impact
@@ -58,7 +59,7 @@ from archquake.mechanism.kinematics import (
 _LIMIT_SAMPLES = 4000
 
 
-def hinges_of(arch: Arch) -> HingeMechanism:
+def hinges_of(arch: VoussoirChain) -> HingeMechanism:
     """The hinges of ``arch``: those of the equivalent static analysis, oriented so that a ground
     acceleration towards -x opens them (the paper's Figure 1).
 
@@ -69,7 +70,8 @@ def hinges_of(arch: Arch) -> HingeMechanism:
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
 
     Returns
     -------
@@ -181,7 +183,7 @@ class PreparedMechanism:
         return max(self.impact.restitution_cv, 0.0)
 
     @classmethod
-    def build(cls, arch_or_mechanism: Arch | HingeMechanism | PreparedMechanism,
+    def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,
               impact: str = "paper") -> PreparedMechanism:
         """Prepare an arch (its hinges: :func:`hinges_of`), a given mechanism (mirrored if a load
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
@@ -194,7 +196,7 @@ class PreparedMechanism:
             mech = arch_or_mechanism
             if mech.load_direction < 0:
                 mech = mech.mirrored()
-        elif isinstance(arch_or_mechanism, Arch):
+        elif isinstance(arch_or_mechanism, VoussoirChain):
             mech = hinges_of(arch_or_mechanism)
         else:
             raise InvalidParameterError(

@@ -16,6 +16,7 @@ import numpy as np
 from matplotlib.patches import Polygon
 
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Hinge
 from archquake.plotting.figures import save
 
@@ -40,7 +41,7 @@ def moved_outline(outline: np.ndarray, centroid: np.ndarray, position: np.ndarra
 
 
 def plot_arch(
-    arch: Arch,
+    arch: VoussoirChain,
     ax=None,
     *,
     voussoir_positions: np.ndarray | None = None,
@@ -58,7 +59,8 @@ def plot_arch(
 
     Parameters
     ----------
-    arch : Arch
+    arch : VoussoirChain
+        Any arch (every shape, on piers, or blocks from a file).
     ax : matplotlib Axes, optional
         Drawn into (a new figure if None).
     voussoir_positions : ndarray, shape (n, 3), optional
@@ -120,9 +122,13 @@ def plot_arch(
         ax.plot(pts[:, 0], pts[:, 1], "o", markersize=8, markerfacecolor="white",
                 markeredgecolor=hinge_color, markeredgewidth=2.0, label="hinges", zorder=5)
         pad = 0.06 * arch.radius
+        # labels pushed away from the circle's centre (a circular arch) or a point below the
+        # springing line (any other shape)
+        below = arch.springing_y - 0.3 * arch.rise
+        centre = np.zeros(2) if isinstance(arch, Arch) else np.array([0.0, below])
         for p, label in zip(pts, labels, strict=True):
-            r = np.hypot(*p)
-            offset = p / r * pad if r > 0 else np.array([0.0, pad])
+            r = np.hypot(*(p - centre))
+            offset = (p - centre) / r * pad if r > 0 else np.array([0.0, pad])
             ax.annotate(label, p + offset, ha="center", va="center", color=hinge_color,
                         fontsize=11, fontweight="bold", zorder=6)
     every = np.vstack(outlines)
@@ -151,15 +157,14 @@ def plot_limit_analysis(result, ax=None):
     arch = result.arch
     ax = plot_arch(arch, ax, hinges=result.mechanism.hinges, thrust_line=result.thrust_line)
     # the horizontal load, drawn at the crown
-    crown = np.array([0.0, arch.extrados_radius + 0.12 * arch.radius])
+    crown = np.array([0.0, float(arch.crown_point[1]) + 0.12 * arch.radius])
     ax.annotate("", crown + [0.12 * arch.radius, 0.0], crown,
                 arrowprops={"arrowstyle": "-|>", "color": "0.2", "linewidth": 1.5})
     ax.text(crown[0] - 0.02 * arch.radius, crown[1], rf"$\lambda g$ = {result.collapse_acceleration_g:.3f} g",
             ha="right", va="center", fontsize=10)
     where = "symmetric" if result.symmetric else "asymmetric"
     ax.set_title(
-        f"t/R = {arch.thickness_ratio:.3g}, embrace {np.degrees(arch.embrace):.4g} deg, "
-        f"{arch.voussoirs} voussoirs: collapse at {result.collapse_acceleration_g:.3f} g, "
+        f"{arch_title(arch)}: collapse at {result.collapse_acceleration_g:.3f} g, "
         f"{where} hinges\nfriction demand {result.min_friction:.3f} at joint "
         f"{result.min_friction_joint}",
         fontsize=10,
@@ -170,6 +175,38 @@ def plot_limit_analysis(result, ax=None):
     return ax
 
 
+def arch_title(arch: VoussoirChain) -> str:
+    """A short description of any arch for a figure title (m, degrees)."""
+    d = arch.describe()
+    if "radius_m" in d and "shape" not in d:
+        text = (f"t/R = {arch.thickness_ratio:.3g}, embrace {np.degrees(arch.embrace):.4g} deg, "
+                f"{d['voussoirs']} voussoirs")
+    else:
+        text = (f"{d.get('shape', 'blocks')}, span {arch.span:.3g} m, rise {arch.rise:.3g} m, "
+                f"t = {arch.thickness:.3g} m, {d['voussoirs']} voussoirs")
+    if "joints" in d and d["joints"] != "radial":
+        text += f" ({d['joints']} joints)"
+    if "pier_height_m" in d:
+        text += f", piers {d['pier_height_m']:g} x {d['pier_width_m']:g} m"
+    return text
+
+
+def plot_shapes(arches: Sequence[VoussoirChain], titles: Sequence[str] | None = None, *,
+                columns: int = 3):
+    """A gallery: every arch of ``arches`` drawn in its own panel (the figure of
+    docs/geometry.md). Returns the figure."""
+    rows = -(-len(arches) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.2 * rows), squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        if k >= len(arches):
+            ax.axis("off")
+            continue
+        plot_arch(arches[k], ax)
+        ax.set_title(titles[k] if titles is not None else arch_title(arches[k]), fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
 def save_limit_analysis(result, path: str | Path) -> Path:
     """Draw :func:`plot_limit_analysis` into a new figure and save it to ``path``."""
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
@@ -177,4 +214,5 @@ def save_limit_analysis(result, path: str | Path) -> Path:
     return save(fig, path, dpi=150)
 
 
-__all__ = ["moved_outline", "plot_arch", "plot_limit_analysis", "save_limit_analysis"]
+__all__ = ["arch_title", "moved_outline", "plot_arch", "plot_limit_analysis", "plot_shapes",
+           "save_limit_analysis"]

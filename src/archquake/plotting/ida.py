@@ -106,10 +106,9 @@ def save_ida(result, fits: dict, path: str | Path) -> Path:
     ax1, ax2 = fig.subplots(1, 2)
     plot_ida_curves(result, ax1)
     plot_fragility(result, fits, ax2)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    return path
+    from archquake.plotting.figures import save
+
+    return save(fig, path, dpi=120)
 
 
 def _cmap(n: int):

@@ -64,59 +64,145 @@ RECORD_UNITS: tuple[str, ...] = ("g", "m/s2")
 
 @dataclass(frozen=True)
 class ArchSpec:
-    """The arch of a case, in study units.
+    """The arch of a case, in study units: a circular arch by radius, t/R and embrace (the
+    paper's), or any shape by span, rise and thickness (:mod:`archquake.geometry.shapes`), with
+    optional piers.
 
     Parameters
     ----------
-    radius : float
-        Centreline radius R, m (1e-3 to 1e4).
-    thickness_ratio : float
-        t/R, dimensionless (0 < t/R < 2).
-    embrace_deg : float
-        Angle of embrace, degrees (0 < embrace <= 240).
+    radius : float, optional
+        Circular arch: centreline radius R, m (1e-3 to 1e4).
+    thickness_ratio : float, optional
+        Circular arch: t/R, dimensionless (0 < t/R < 2).
+    embrace_deg : float, optional
+        Circular arch: angle of embrace, degrees (0 < embrace <= 240).
     voussoirs : int
         Number of voussoirs (3 to 2000).
     depth : float
         Out-of-plane depth, m (0 < depth <= 1e4; default 1).
     density : float
         Density, kg/m^3 (0 < density <= 1e5; default 2000).
+    shape : str
+        One of :data:`archquake.geometry.SHAPES` (default "circular").
+    span, rise, thickness : float, optional
+        Any shape: centreline span and rise, ring thickness, m (instead of radius, t/R and
+        embrace).
+    joints : str
+        "radial" (default) or "vertical".
+    pier_height, pier_width : float, optional
+        Piers under the springings, m (both or neither).
+    pier_courses : int
+        Courses in each pier (default 1).
 
     Examples
     --------
     >>> spec = ArchSpec(10, 0.15, 157.5, 7)
     >>> round(spec.build().thickness, 3)
     1.5
+    >>> ArchSpec(voussoirs=15, shape="pointed", span=10, rise=7, thickness=0.8).build().describe()["shape"]
+    'pointed'
     """
 
-    radius: float
-    thickness_ratio: float
-    embrace_deg: float
-    voussoirs: int
+    radius: float | None = None
+    thickness_ratio: float | None = None
+    embrace_deg: float | None = None
+    voussoirs: int | None = None
     depth: float = 1.0
     density: float = 2000.0
+    shape: str = "circular"
+    span: float | None = None
+    rise: float | None = None
+    thickness: float | None = None
+    joints: str = "radial"
+    pier_height: float | None = None
+    pier_width: float | None = None
+    pier_courses: int = 1
 
     def __post_init__(self) -> None:
-        _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
-                                           low_open=False, high_open=False))
-        _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
-                                                    0, 2))
-        _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0, MAX_EMBRACE_DEG,
-                                                 "degrees", high_open=False))
+        from archquake.geometry.shapes import JOINTS, SHAPES
+
+        if self.voussoirs is None:
+            raise InvalidParameterError("voussoirs is required (3 to 2000)")
+        shape = str(self.shape).replace("_", "-").lower()
+        if shape not in SHAPES:
+            raise InvalidParameterError(f"shape must be one of {', '.join(SHAPES)}, got {self.shape!r}")
+        if self.joints not in JOINTS:
+            raise InvalidParameterError(f"joints must be radial or vertical, got {self.joints!r}")
+        _set(self, "shape", shape)
+        by_radius = (self.radius, self.thickness_ratio, self.embrace_deg)
+        by_span = (self.span, self.rise, self.thickness)
+        if shape == "circular" and all(v is not None for v in by_radius) and all(
+                v is None for v in by_span):
+            _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
+                                               low_open=False, high_open=False))
+            _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
+                                                        0, 2))
+            _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0,
+                                                     MAX_EMBRACE_DEG, "degrees", high_open=False))
+        elif all(v is not None for v in by_span) and all(v is None for v in by_radius):
+            for name in ("span", "rise", "thickness"):
+                _set(self, name, require_positive(name, getattr(self, name), "m"))
+        else:
+            raise InvalidParameterError(
+                "an arch needs radius, thickness_ratio and embrace_deg (circular), or span, rise "
+                "and thickness (any shape), not a mixture")
         _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
         _set(self, "depth", require_range("depth", self.depth, 0, MAX_DEPTH, "m", high_open=False))
         _set(self, "density", require_range("density", self.density, 0, MAX_DENSITY, "kg/m^3",
                                             high_open=False))
+        if (self.pier_height is None) != (self.pier_width is None):
+            raise InvalidParameterError("pier_height and pier_width go together (m)")
+        if self.pier_height is not None:
+            _set(self, "pier_height", require_positive("pier_height", self.pier_height, "m"))
+            _set(self, "pier_width", require_positive("pier_width", self.pier_width, "m"))
+        _set(self, "pier_courses", require_int("pier_courses", self.pier_courses, 1, 500))
 
-    def build(self) -> Arch:
-        """The :class:`~archquake.geometry.Arch` (SI, embrace in rad)."""
-        return Arch.from_ratio(self.thickness_ratio, math.radians(self.embrace_deg),
-                               self.voussoirs, radius=self.radius, depth=self.depth,
-                               density=self.density)
+    @property
+    def _circular_by_radius(self) -> bool:
+        return self.radius is not None
+
+    def build(self):
+        """The arch (:class:`~archquake.geometry.Arch` for the paper's circular arch, else the
+        shape's :class:`~archquake.geometry.VoussoirChain`; SI, embrace in rad)."""
+        from archquake.geometry import OnPiers, Piers
+        from archquake.geometry.shapes import circular, shaped
+
+        if self._circular_by_radius:
+            if self.joints == "radial":
+                arch = Arch.from_ratio(self.thickness_ratio, math.radians(self.embrace_deg),
+                                       self.voussoirs, radius=self.radius, depth=self.depth,
+                                       density=self.density)
+            else:
+                arch = circular(radius=self.radius, embrace=math.radians(self.embrace_deg),
+                                thickness=self.thickness_ratio * self.radius,
+                                voussoirs=self.voussoirs, joints=self.joints, depth=self.depth,
+                                density=self.density)
+        else:
+            arch = shaped(self.shape, span=self.span, rise=self.rise, thickness=self.thickness,
+                          voussoirs=self.voussoirs, joints=self.joints, depth=self.depth,
+                          density=self.density)
+        if self.pier_height is not None:
+            arch = OnPiers(arch, Piers(self.pier_height, self.pier_width, self.pier_courses))
+        return arch
 
     def canonical(self) -> dict[str, Any]:
-        return {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
-                "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
-                "depth_m": self.depth, "density_kg_m3": self.density}
+        """The inputs as a dict: exactly the paper's keys for a circular arch by radius with
+        radial joints and no piers (so the case ids of existing studies never change), and the
+        shape's keys otherwise."""
+        if self._circular_by_radius:
+            out = {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
+                   "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
+                   "depth_m": self.depth, "density_kg_m3": self.density}
+        else:
+            out = {"shape": self.shape, "span_m": self.span, "rise_m": self.rise,
+                   "thickness_m": self.thickness, "voussoirs": self.voussoirs,
+                   "depth_m": self.depth, "density_kg_m3": self.density}
+        if self.joints != "radial":
+            out["joints"] = self.joints
+        if self.pier_height is not None:
+            out.update(pier_height_m=self.pier_height, pier_width_m=self.pier_width,
+                       pier_courses=self.pier_courses)
+        return out
 
     @cached_property
     def canonical_json(self) -> str:
@@ -127,7 +213,8 @@ class ArchSpec:
     def columns(self) -> dict[str, Any]:
         """Flat columns for the store: the canonical inputs plus the thickness in m."""
         cols = self.canonical()
-        cols["thickness_m"] = self.thickness_ratio * self.radius
+        if self._circular_by_radius:
+            cols["thickness_m"] = self.thickness_ratio * self.radius
         return cols
 
 

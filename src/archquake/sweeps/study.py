@@ -7,12 +7,15 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     model = "analytical"                # optional: "analytical" (default) or "dem"
 
     [arches]                            # each axis: a number, a list, or {start, stop, num}
-    radius = [1, 5, 10, 20]             # m (required)
-    thickness_ratio = 0.15              # t/R (required)
-    embrace_deg = 157.5                 # degrees (required)
+    radius = [1, 5, 10, 20]             # m (circular arch: radius, thickness_ratio, embrace_deg)
+    thickness_ratio = 0.15              # t/R
+    embrace_deg = 157.5                 # degrees
     voussoirs = 7                       # (required)
     depth = 1.0                         # m (optional, default 1)
     density = 2000.0                    # kg/m^3 (optional, default 2000)
+    # or any shape (docs/geometry.md): shape = "pointed" (a word or a list of words),
+    # span = 10, rise = 7, thickness = 0.8 (m), joints = "radial" | "vertical",
+    # pier_height = 4, pier_width = 1.5 (m), pier_courses = 3
 
     [excitation]                        # or several [[excitation]] blocks, concatenated
     type = "step"                       # "step", "sine" or "record"
@@ -55,8 +58,12 @@ from archquake.sweeps.cases import (
 _AXIS = "a number, a list of numbers, or {start, stop, num}"
 _TABLES = ("study", "arches", "excitation", "options")
 _STUDY_KEYS = {"name": True, "model": False}
-_ARCH_KEYS = {"radius": True, "thickness_ratio": True, "embrace_deg": True, "voussoirs": True,
-              "depth": False, "density": False}
+_ARCH_KEYS = {"radius": False, "thickness_ratio": False, "embrace_deg": False, "voussoirs": True,
+              "depth": False, "density": False, "shape": False, "span": False, "rise": False,
+              "thickness": False, "joints": False, "pier_height": False, "pier_width": False,
+              "pier_courses": False}
+#: Keys of [arches] whose values are words (a word or a list of words), not numbers.
+_ARCH_WORDS = ("shape", "joints")
 _EXCITATION_KEYS = {
     ExcitationKind.STEP: {"magnitude_g": True, "duration_s": True, "direction": False},
     ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False},
@@ -140,7 +147,17 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
 
     arches_table = p.table(data, "arches", required=True)
     p.keys(arches_table, "arches", _ARCH_KEYS)
-    arches = p.grid("arches", arches_table, ArchSpec, integer={"voussoirs"})
+    words = {}
+    for key in _ARCH_WORDS:
+        if key in arches_table:
+            value = arches_table[key]
+            values = value if isinstance(value, list) else [value]
+            if not values or not all(isinstance(v, str) for v in values):
+                p.fail(f"arches.{key}", f"must be a word or a list of words, got {value!r}")
+            words[key] = values
+    numbers = {k: v for k, v in arches_table.items() if k not in _ARCH_WORDS}
+    arches = p.grid("arches", numbers, ArchSpec, integer={"voussoirs", "pier_courses"},
+                    listed=words)
 
     blocks = data.get("excitation")
     if blocks is None:
