@@ -30,7 +30,7 @@ def test_dem_onset_of_hinging_within_two_percent_of_lambda(name):
     below = simulate_dem(arch, StepImpulse.from_g(0.98 * lam, 0.5), DemSettings(duration=0.5))
     above = simulate_dem(arch, StepImpulse.from_g(1.02 * lam, 0.5), DemSettings(duration=0.5))
     assert below.outcome.value == "no_hinging"
-    assert above.first_hinge_time is not None
+    assert above.onset_time is not None
 
 
 @pytest.mark.parametrize("name", list(SHAPES))

@@ -47,13 +47,15 @@ SUMMARIES: dict[str, str] = {
     "static": "equivalent static analysis: collapse acceleration (g), hinges, friction demand",
     "min_thickness": "minimum thickness ratio t/R of an arch under its own weight",
     "run": "time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
-    "record": "check an accelerogram file (.AT2 or CSV): points, dt, duration, PGA",
+    "record": "check an accelerogram file (.AT2 or CSV): points, dt, PGA, PGV, Arias, Sa(T), ...",
     "sweep": "run a study file's grid of cases into a resumable SQLite store",
     "thrust": "line of thrust of the moving arch at chosen times (paper Figure 8)",
     "friction": "least friction coefficient that prevents sliding during the motion (paper p. 2131)",
     "domain": "failure domain: pulse magnitudes (g) and durations (s) that collapse the arch",
     "reproduce": "regenerate the paper: every study, its figures and a side-by-side report",
     "demo": "reproduce Oppenheim's arch: figures and a short report",
+    "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
+    "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",
 }
 
 
