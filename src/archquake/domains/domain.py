@@ -45,10 +45,18 @@ from archquake.geometry.arch import Arch
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 
-from .batch import PulseFamily, PulseOutcomes, evaluate_pulses
+from .batch import PulseFamily, PulseOutcomes, check_durations, evaluate_pulses
 
 #: Figure 5's durations t_p, s.
 FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())
+
+#: Finest bracket width relative to the scan's ceiling: a bracket [lo, hi] below the ceiling
+#: can be halved while hi - lo exceeds a few ulps of hi (2.2e-16 hi); 1e-12 leaves a margin
+#: of 4500 and the integrator's own tolerance (rtol 1e-9) is coarser still.
+PRECISION_FLOOR = 1e-12
+
+#: Bisection rounds at most: log2(ceiling / (PRECISION_FLOOR ceiling)) = 40, doubled.
+_MAX_ROUNDS = 80
 
 #: What a band or boundary refers to.
 COLLAPSE = "collapse"
@@ -68,7 +76,8 @@ class DomainSettings:
     fine_points : int
         Magnitudes of the fine scan between the two boundaries' coarse brackets.
     precision_g : float
-        Width of the final brackets, g.
+        Width of the final brackets, g; at least :data:`PRECISION_FLOOR` times the ceiling
+        (finer brackets cannot be halved in double precision).
     early : bool
         Let the batch stop surviving runs once energy proves they cannot collapse (see
         :mod:`archquake.domains._kernels`).
@@ -88,6 +97,12 @@ class DomainSettings:
         require_int("coarse_points", self.coarse_points, 2)
         require_int("fine_points", self.fine_points, 0)
         require_positive("precision_g", self.precision_g, "g")
+        floor = PRECISION_FLOOR * self.max_magnitude_g
+        if self.precision_g < floor:
+            raise InvalidParameterError(
+                f"precision_g must be >= {floor:.3g} g ({PRECISION_FLOOR:g} times the ceiling "
+                f"max_magnitude_g = {self.max_magnitude_g:g} g: double precision cannot resolve "
+                f"a finer bracket), got {self.precision_g:g}")
 
     def to_dict(self) -> dict:
         o = self.options
@@ -292,6 +307,7 @@ def failure_domain(
     dur = np.atleast_1d(np.asarray(durations, dtype=float))
     if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
         raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
+    check_durations(fam, dur, prepared.mechanism.arch.radius, g)
     lam = prepared.collapse_acceleration_g
     ceiling = settings.max_magnitude_g
     if ceiling <= lam:
@@ -364,8 +380,9 @@ def failure_domain(
             if not v[-1]:
                 # the band reaches the ceiling: a degenerate bracket marks its open top
                 brackets.append(_Bracket(i, crit, mags[-1], math.inf, False, "band_upper"))
-    while True:
-        live = [b for b in brackets if math.isfinite(b.hi) and b.hi - b.lo > settings.precision_g]
+    for _ in range(_MAX_ROUNDS):
+        live = [b for b in brackets if math.isfinite(b.hi) and b.hi - b.lo > settings.precision_g
+                and b.lo < 0.5 * (b.lo + b.hi) < b.hi]
         if not live:
             break
         mids = np.array([0.5 * (b.lo + b.hi) for b in live])

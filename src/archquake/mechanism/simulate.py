@@ -36,7 +36,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism import _kernels as K
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome
@@ -309,6 +309,7 @@ def simulate(
     params = np.ascontiguousarray(params, dtype=np.float64)
     mech = prepared.mechanism
     tau = math.sqrt(mech.arch.radius / g)
+    check_time_resolution(kind, params, tau)
     excitation = float(K.excitation_end(kind, params))
     if t_end is None:
         t_end = excitation + 60.0 * tau
