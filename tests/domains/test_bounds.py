@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from archquake.domains import DomainSettings, failure_domain
@@ -45,3 +46,33 @@ def test_min_thickness_at_the_finest_rtol_ends_and_agrees():
     a = min_thickness_ratio(math.pi, 7)
     b = min_thickness_ratio(math.pi, 7, rtol=MIN_RTOL)
     assert abs(a - b) <= 1e-7 * a
+
+
+def test_scan_grid_does_not_depend_on_the_ceiling():
+    from archquake.domains.domain import coarse_scan
+
+    lam = 0.37
+    a = coarse_scan(lam, 5.0, 60, 5.0)
+    b = coarse_scan(lam, 3.0, 60, 5.0)
+    c = coarse_scan(lam, 8.0, 60, 5.0)
+    assert a.size == 60 and a[-1] == pytest.approx(5.0)
+    np.testing.assert_array_equal(b[:-1], a[a < 3.0])  # the same magnitudes below 3 g
+    np.testing.assert_array_equal(c[: a.size], a)
+    # doubling the points only adds magnitudes between the previous ones
+    d = coarse_scan(lam, 5.0, 120, 5.0)
+    np.testing.assert_allclose(d[1::2], a, rtol=1e-14)
+
+
+def test_same_band_found_whatever_the_ceiling():
+    # before: the grid was geometric from lambda to the ceiling, so the step impulse's
+    # recovery band at t_p = 0.27 s (docs/domains.md) was scanned at other magnitudes for
+    # each ceiling and its edges (or its presence) moved with --max-magnitude.
+    bands = {}
+    for top in (2.5, 5.0, 9.0):
+        s = DomainSettings(max_magnitude_g=top, coarse_points=40, fine_points=24)
+        d = failure_domain(OPPENHEIM, "step", [0.27], settings=s)
+        bands[top] = [(b.criterion, b.lower_g, b.upper_g) for b in d.non_monotonic_bands
+                      if b.upper_g < 2.5]
+        bands[top + 0.5] = float(d.collapse_g[0])
+    assert bands[2.5] and bands[2.5] == bands[5.0] == bands[9.0]
+    assert bands[3.0] == bands[5.5] == bands[9.5]
