@@ -186,7 +186,9 @@ class SimulationResult:
         Crest of the potential and the linkage's toggle.
     history : History or None
     stats : dict
-        Integrator counters (steps, rejected steps, right-hand-side evaluations).
+        Integrator counters (steps, rejected steps, right-hand-side evaluations; and
+        ``history_reruns`` when the history outgrew its first buffer and the run was repeated
+        with one of the exact size).
     evaluated : History or None
         The states at the times requested with ``simulate(..., t_eval=...)`` (with
         ``phi_ddot``), each reached by an integrator step landing on it; only the times reached
@@ -447,8 +449,8 @@ def simulate(
         history=history,
         stats={"steps": int(counters[3]), "rejected": int(counters[4]),
                "rhs_evaluations": int(counters[5]), "t_end": float(t_end),
-               "history_samples": int(counters[0]) if dt_out != 0 else 0,
-               "history_reruns": reruns},
+               # the history outgrew its first buffer and the run was repeated at its size
+               **({"history_reruns": reruns} if reruns else {})},
         evaluated=evaluated,
     )
 
