@@ -39,6 +39,10 @@ from archquake.ground.base import GroundMotion
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
 MAX_STEPS = 200_000_000
 
+#: Most bytes the recorded output of one run may take (its samples are allocated up front,
+#: duration / output_interval of them).
+MAX_OUTPUT_BYTES = 1_000_000_000
+
 
 # --------------------------------------------------------------------------- packing
 def pack(assembly: Assembly) -> Packed:
@@ -306,6 +310,16 @@ def simulate_dem(
             f"{n_steps + settle_steps} time steps of {dt:.3g} s exceed {MAX_STEPS}: shorten the "
             "duration or soften the contact stiffness"
         )
+    out_every = max(1, int(round(settings.output_interval / dt)))
+    n_out = n_steps // out_every + 2
+    out_bytes = n_out * (assembly.n_blocks * 6 + 9) * 8
+    if out_bytes > MAX_OUTPUT_BYTES:
+        raise InvalidParameterError(
+            f"the recorded output would take {out_bytes / 1e9:.3g} GB ({n_out} samples of "
+            f"{assembly.n_blocks} blocks), more than {MAX_OUTPUT_BYTES / 1e9:g} GB: raise "
+            f"output_interval (now {settings.output_interval:g} s) or shorten the duration "
+            f"(now {settings.duration:g} s)"
+        )
     packed = pack(assembly)
     margin = 0.2 * float(packed.radius[packed.free == 1].min())
     packed = build_slots(packed, neighbour_pairs(packed, margin))
@@ -339,8 +353,6 @@ def simulate_dem(
     packed = packed._replace(y_ref=packed.state[:, 1].copy())
     acc[:] = 0.0
     cpar[K.C_CROWN_Y0] = crown_height(assembly, packed.state[None, :, :3])[0]
-    out_every = max(1, int(round(settings.output_interval / dt)))
-    n_out = n_steps // out_every + 2
     out = K.Output(np.zeros(n_out), np.zeros((n_out, assembly.n_blocks, 6)), np.zeros((n_out, 8)),
                    np.zeros(1, dtype=np.int64))
     span = K.Span(0, n_steps, out_every, True, False, settings.stop_at_collapse)

@@ -18,6 +18,16 @@ from archquake.errors import InvalidParameterError
 #: "very large friction angle").
 NO_SLIDING = 1.0e6
 
+#: Accepted ranges (SI), wide enough for every physical reading (the paper's "10^12 GPa/m"
+#: taken literally is 1e21 Pa/m) and narrow enough that the stable time step, the contact
+#: forces and the step count stay representable; beyond them a run would overflow or never end.
+STIFFNESS_RANGE_PA_M = (1.0e3, 1.0e24)
+MAX_FRICTION = 1.0e9
+MAX_RAYLEIGH_ALPHA = 1.0e6  # 1/s
+MAX_RAYLEIGH_BETA = 10.0  # s
+MAX_DURATION = 1.0e6  # s
+TIME_STEP_RANGE = (1.0e-12, 1.0)  # s
+
 
 @dataclass(frozen=True)
 class ContactLaw:
@@ -46,10 +56,14 @@ class ContactLaw:
     friction: float = NO_SLIDING
 
     def __post_init__(self) -> None:
-        kn = require_positive("normal_stiffness", self.normal_stiffness, "Pa/m")
+        lo, hi = STIFFNESS_RANGE_PA_M
+        kn = require_range("normal_stiffness", self.normal_stiffness, lo, hi, "Pa/m",
+                           low_open=False, high_open=False)
         ks = kn if self.shear_stiffness is None else self.shear_stiffness
-        ks = require_positive("shear_stiffness", ks, "Pa/m")
-        mu = require_positive("friction coefficient", self.friction)
+        ks = require_range("shear_stiffness", ks, lo, hi, "Pa/m", low_open=False,
+                           high_open=False)
+        mu = require_range("friction coefficient", self.friction, 0.0, MAX_FRICTION,
+                           high_open=False)
         object.__setattr__(self, "normal_stiffness", kn)
         object.__setattr__(self, "shear_stiffness", ks)
         object.__setattr__(self, "friction", mu)
@@ -139,8 +153,13 @@ class DemSettings:
             raise InvalidParameterError(
                 f"Rayleigh damping (alpha, beta) must both be >= 0, got ({alpha:g}, {beta:g})"
             )
+        require_range("Rayleigh alpha", alpha, 0.0, MAX_RAYLEIGH_ALPHA, "1/s", low_open=False,
+                      high_open=False)
+        require_range("Rayleigh beta", beta, 0.0, MAX_RAYLEIGH_BETA, "s", low_open=False,
+                      high_open=False)
         object.__setattr__(self, "damping", (alpha, beta))
-        object.__setattr__(self, "duration", require_positive("duration", self.duration, "s"))
+        object.__setattr__(self, "duration", require_range(
+            "duration", self.duration, 0.0, MAX_DURATION, "s", high_open=False))
         object.__setattr__(
             self,
             "output_interval",
@@ -152,12 +171,13 @@ class DemSettings:
             require_range("safety", self.safety, 0.0, 1.0, high_open=False),
         )
         if self.time_step is not None:
-            object.__setattr__(
-                self, "time_step", require_positive("time_step", self.time_step, "s")
-            )
+            object.__setattr__(self, "time_step", require_range(
+                "time_step", self.time_step, *TIME_STEP_RANGE, "s", low_open=False,
+                high_open=False))
         settle = require_finite("settle_time", self.settle_time, "s")
-        if settle < 0:
-            raise InvalidParameterError(f"settle_time must be >= 0 s, got {settle:g}")
+        if not 0.0 <= settle <= MAX_DURATION:
+            raise InvalidParameterError(
+                f"settle_time must be in [0, {MAX_DURATION:g}] s, got {settle:g}")
         object.__setattr__(self, "settle_time", settle)
         object.__setattr__(
             self, "collapse_drop", require_positive("collapse_drop", self.collapse_drop)

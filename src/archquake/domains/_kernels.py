@@ -60,7 +60,7 @@ def _run_case(mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, max_i
     while True:
         impacts = np.zeros((cap, 3))
         peaks = np.zeros(cap + 1)
-        counters = np.zeros(8)
+        counters = np.zeros(9)
         outcome, _final, half = simulate_kernel(
             mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, cap, 0.0,
             hist, impacts, peaks, counters)

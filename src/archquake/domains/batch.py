@@ -8,6 +8,7 @@ twin, a Python loop over :func:`~archquake.mechanism.simulate`, which the tests 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from enum import Enum
 
@@ -17,7 +18,7 @@ from archquake._validate import require_positive
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions, simulate
@@ -118,6 +119,15 @@ def _pairs(magnitudes_g, durations) -> tuple[np.ndarray, np.ndarray]:
     return a.copy(), d.copy()
 
 
+def check_durations(family: PulseFamily, durations: np.ndarray, arch_radius: float,
+                    g: float) -> None:
+    """Refuse durations below the integrators' time resolution
+    (:func:`archquake.ground.base.check_time_resolution`, one error naming t_p or T)."""
+    tau = math.sqrt(arch_radius / g)
+    for d in np.unique(np.asarray(durations, dtype=float)):
+        check_time_resolution(family.kind, np.array([1.0, float(d), -1.0]), tau)
+
+
 def evaluate_pulses(
     arch: Arch | PreparedMechanism,
     family: PulseFamily | str,
@@ -164,6 +174,7 @@ def evaluate_pulses(
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     a, d = _pairs(magnitudes_g, durations)
+    check_durations(fam, d, prepared.mechanism.arch.radius, g)
     n = a.shape[0]
     params = np.empty((n, 3))
     params[:, 0] = a * g

@@ -15,8 +15,13 @@ Search
 ------
 Collapse need not be monotonic in the magnitude, so nothing assumes it:
 
-1. a coarse scan of ``coarse_points`` magnitudes, geometric from lambda to ``max_magnitude_g``,
-   for every duration;
+1. a coarse scan, geometric from lambda with the ratio ``(scan_reference_g / lambda) ** (1 /
+   coarse_points)`` (``coarse_points`` magnitudes up to ``scan_reference_g``, 5 g by default),
+   continued with the same ratio up to ``max_magnitude_g`` and closed by the ceiling itself, for
+   every duration. The grid is anchored at lambda and its spacing does not depend on the ceiling,
+   so a band below both of two ceilings is scanned at the same magnitudes, and found or missed
+   alike, whatever the ceiling; doubling ``coarse_points`` only adds magnitudes between the
+   previous ones;
 2. a fine scan of ``fine_points`` magnitudes, uniform between the coarse brackets of the two
    boundaries (the second-half-cycle region, where the arch's response is least regular);
 3. on the merged scan, each boundary is bracketed by its first collapsing magnitude and the
@@ -24,8 +29,12 @@ Collapse need not be monotonic in the magnitude, so nothing assumes it:
    non-monotonic band; all brackets (boundaries and band edges, all durations) are then bisected
    together, one compiled batch call per round, to ``precision_g``.
 
-Bands narrower than the scan's spacing can be missed, and a bracket hides any transition inside
-it: the result states the scan it used.
+Bands narrower than the scan's spacing can be missed (the coarse ratio is 1.044 by default for
+Oppenheim's arch, lambda = 0.370 g: a band narrower than about 4 % of its magnitude may fall
+between two scanned magnitudes), and a bracket hides any transition inside it: the result
+states the scan it used. The fine scan spans the two boundaries' coarse brackets; when no
+first-half-cycle collapse is found below the ceiling it reaches up to the ceiling, and only then
+does the ceiling move its points.
 """
 
 from __future__ import annotations
@@ -45,10 +54,18 @@ from archquake.geometry.arch import Arch
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 
-from .batch import PulseFamily, PulseOutcomes, evaluate_pulses
+from .batch import PulseFamily, PulseOutcomes, check_durations, evaluate_pulses
 
 #: Figure 5's durations t_p, s.
 FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())
+
+#: Finest bracket width relative to the scan's ceiling: a bracket [lo, hi] below the ceiling
+#: can be halved while hi - lo exceeds a few ulps of hi (2.2e-16 hi); 1e-12 leaves a margin
+#: of 4500 and the integrator's own tolerance (rtol 1e-9) is coarser still.
+PRECISION_FLOOR = 1e-12
+
+#: Bisection rounds at most: log2(ceiling / (PRECISION_FLOOR ceiling)) = 40, doubled.
+_MAX_ROUNDS = 80
 
 #: What a band or boundary refers to.
 COLLAPSE = "collapse"
@@ -67,8 +84,13 @@ class DomainSettings:
         Magnitudes of the coarse scan (geometric from lambda to the ceiling).
     fine_points : int
         Magnitudes of the fine scan between the two boundaries' coarse brackets.
+    scan_reference_g : float
+        Magnitude, g, reached by the ``coarse_points``-th magnitude of the coarse scan: it sets
+        the scan's ratio (its spacing), independently of the ceiling (if it is not above
+        lambda, twice lambda is used).
     precision_g : float
-        Width of the final brackets, g.
+        Width of the final brackets, g; at least :data:`PRECISION_FLOOR` times the ceiling
+        (finer brackets cannot be halved in double precision).
     early : bool
         Let the batch stop surviving runs once energy proves they cannot collapse (see
         :mod:`archquake.domains._kernels`).
@@ -82,17 +104,26 @@ class DomainSettings:
     precision_g: float = 1e-3
     early: bool = True
     options: SolverOptions = SolverOptions()
+    scan_reference_g: float = 5.0
 
     def __post_init__(self) -> None:
         require_positive("max_magnitude_g", self.max_magnitude_g, "g")
         require_int("coarse_points", self.coarse_points, 2)
         require_int("fine_points", self.fine_points, 0)
         require_positive("precision_g", self.precision_g, "g")
+        require_positive("scan_reference_g", self.scan_reference_g, "g")
+        floor = PRECISION_FLOOR * self.max_magnitude_g
+        if self.precision_g < floor:
+            raise InvalidParameterError(
+                f"precision_g must be >= {floor:.3g} g ({PRECISION_FLOOR:g} times the ceiling "
+                f"max_magnitude_g = {self.max_magnitude_g:g} g: double precision cannot resolve "
+                f"a finer bracket), got {self.precision_g:g}")
 
     def to_dict(self) -> dict:
         o = self.options
         return {"max_magnitude_g": self.max_magnitude_g, "coarse_points": self.coarse_points,
                 "fine_points": self.fine_points, "precision_g": self.precision_g,
+                "scan_reference_g": self.scan_reference_g,
                 "early": self.early, "rtol": o.rtol, "atol": o.atol,
                 "rest_rotation": o.rest_rotation, "max_impacts": o.max_impacts}
 
@@ -234,6 +265,28 @@ class _Bracket:
     role: str  # "boundary", "band_lower", "band_upper"
 
 
+#: Most magnitudes the coarse scan may hold (per duration).
+MAX_SCAN_POINTS = 10_000
+
+
+def coarse_scan(lam: float, ceiling: float, points: int, reference: float) -> np.ndarray:
+    """The coarse scan's magnitudes, g: ``lam * (ref / lam) ** (k / points)`` for k = 1, 2, ...
+    up to ``ceiling``, then ``ceiling`` itself if it is not on the grid (``ref`` = ``reference``,
+    or 2 lam if ``reference`` is not above lambda). Anchored at lambda, with a ratio independent of the ceiling."""
+    ref = reference if reference > lam else 2.0 * lam
+    n = int(math.floor(points * math.log(ceiling / lam) / math.log(ref / lam) + 1e-9))
+    if n > MAX_SCAN_POINTS:
+        raise InvalidParameterError(
+            f"max_magnitude_g = {ceiling:g} g would take {n} scanned magnitudes (more than "
+            f"{MAX_SCAN_POINTS}) at the scan's spacing: lower it, or raise scan_reference_g")
+    k = np.arange(1, n + 1)
+    grid = lam * (ref / lam) ** (k / points)
+    grid = grid[grid <= ceiling * (1.0 + 1e-12)]  # the reference itself, within rounding
+    if grid.size == 0 or grid[-1] < ceiling * (1.0 - 1e-12):
+        grid = np.append(grid, ceiling)
+    return grid
+
+
 def _predicate(res, criterion: str) -> np.ndarray:
     return res.collapses_first if criterion == FIRST_HALF_CYCLE else res.collapses
 
@@ -292,6 +345,7 @@ def failure_domain(
     dur = np.atleast_1d(np.asarray(durations, dtype=float))
     if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
         raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
+    check_durations(fam, dur, prepared.mechanism.arch.radius, g)
     lam = prepared.collapse_acceleration_g
     ceiling = settings.max_magnitude_g
     if ceiling <= lam:
@@ -309,8 +363,7 @@ def failure_domain(
                                early=settings.early, g=g)
 
     # 1. coarse scan ------------------------------------------------------------------------
-    k = np.arange(1, settings.coarse_points + 1)
-    coarse = lam * (ceiling / lam) ** (k / settings.coarse_points)
+    coarse = coarse_scan(lam, ceiling, settings.coarse_points, settings.scan_reference_g)
     grid = [coarse.copy() for _ in range(nd)]
     idx = np.repeat(np.arange(nd), coarse.size)
     res = run(np.tile(coarse, nd), idx)
@@ -364,8 +417,9 @@ def failure_domain(
             if not v[-1]:
                 # the band reaches the ceiling: a degenerate bracket marks its open top
                 brackets.append(_Bracket(i, crit, mags[-1], math.inf, False, "band_upper"))
-    while True:
-        live = [b for b in brackets if math.isfinite(b.hi) and b.hi - b.lo > settings.precision_g]
+    for _ in range(_MAX_ROUNDS):
+        live = [b for b in brackets if math.isfinite(b.hi) and b.hi - b.lo > settings.precision_g
+                and b.lo < 0.5 * (b.lo + b.hi) < b.hi]
         if not live:
             break
         mids = np.array([0.5 * (b.lo + b.hi) for b in live])
@@ -423,5 +477,5 @@ def failure_domain(
     )
 
 
-__all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "FailureDomain", "NonMonotonicBand",
+__all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "coarse_scan", "FailureDomain", "NonMonotonicBand",
            "failure_domain"]

@@ -20,9 +20,12 @@ kind        params (float64)                   x_g''(t)
 
 from __future__ import annotations
 
+import math
 from typing import Protocol, runtime_checkable
 
 import numpy as np
+
+from archquake.errors import InvalidParameterError
 
 KIND_STEP = 0
 KIND_SINE = 1
@@ -65,4 +68,60 @@ class GroundMotion(Protocol):
         ...
 
 
-__all__ = ["GroundMotion", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED"]
+#: Shortest piece of a ground motion the integrators resolve, as a fraction of the larger of
+#: the arch's time scale sqrt(R/g), the motion's duration and 1 s (see :func:`time_floor`).
+TIME_RESOLUTION = 1e-9
+
+#: What each kind's shortest piece is called, for the error message.
+_PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
+                KIND_SINE: ("period T", 0.25),  # quarter periods (breakpoints at the extrema)
+                KIND_SAMPLED: ("record time step DT", 1.0)}
+
+
+def time_floor(time_scale: float, duration: float) -> float:
+    """Shortest piece of a ground motion (s) that the compiled integrators resolve.
+
+    ``TIME_RESOLUTION * max(time_scale, duration, 1 s)``. Two resolutions set it: the kernels
+    find the excitation's breakpoints with a tolerance of 1e-12 (1 + t) s (so a piece shorter
+    than that is skipped, and the piece before it continued over the rest of the run: a step
+    of t_p < 3e-13 s used to act forever and collapse the arch), and double precision resolves
+    times near t to about 2.2e-16 t over a run of length ``duration`` + 60 ``time_scale``. The
+    factor 1e-9 keeps every piece 1000 times above both; physically nothing is lost, since a
+    piece that short carries an impulse of order 1e-9 of any realistic one.
+
+    Parameters
+    ----------
+    time_scale : float
+        sqrt(R/g) of the arch, s.
+    duration : float
+        The motion's duration, s.
+    """
+    return TIME_RESOLUTION * max(time_scale, duration, 1.0)
+
+
+def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> None:
+    """Refuse a motion ``(kind, params)`` with a piece shorter than :func:`time_floor`.
+
+    Raises :class:`~archquake.errors.InvalidParameterError` naming the motion's parameter
+    (t_p, T or the record's DT) and its lower bound.
+    """
+    name, fraction = _PIECE_NAMES[kind]
+    if kind == KIND_SAMPLED:
+        value = float(params[1])
+        duration = float(params[0] + params[1] * (params.shape[0] - 3))
+    else:
+        value = float(params[1])
+        duration = value * (3.0 if kind == KIND_STEP else 1.0)
+    if not math.isfinite(duration):
+        raise InvalidParameterError(f"the ground motion's duration must be finite, got "
+                                    f"{name} = {value:g} s")
+    floor = time_floor(time_scale, duration) / fraction
+    if not value >= floor:
+        raise InvalidParameterError(
+            f"{name} must be >= {floor:.3g} s for this arch and motion (1e-9 times the larger "
+            f"of sqrt(R/g) = {time_scale:.3g} s, the motion's duration and 1 s: shorter pieces "
+            f"are below the integrator's time resolution), got {value:g}")
+
+
+__all__ = ["GroundMotion", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION",
+           "check_time_resolution", "time_floor"]

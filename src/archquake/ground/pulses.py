@@ -1,6 +1,7 @@
 """Analytical pulses: Oppenheim's step impulse and the one-cycle sine pulse.
 
-Magnitudes are in m/s^2 (SI inside); ``from_g`` builds from multiples of g.
+Magnitudes are in m/s^2 (SI inside): ``StepImpulse(1.0, 0.2)`` is 1 m/s^2 = 0.102 g, not 1 g.
+``from_g`` builds from multiples of g, and the repr shows both units.
 """
 
 from __future__ import annotations
@@ -38,6 +39,10 @@ def _magnitude(value: object, unit: str) -> float:
 class StepImpulse:
     """Oppenheim's step impulse: ``direction*a`` for ``t_p``, then ``-direction*a/2`` for
     ``2 t_p``, then rest (zero final ground velocity).
+
+    The magnitude is in **m/s^2**, not in g: ``StepImpulse(1.0, 0.2)`` is 1 m/s^2 (0.102 g).
+    Use :meth:`from_g` for a magnitude in g (``StepImpulse.from_g(1.0, 0.2)`` is 1 g); the repr
+    shows both.
 
     Parameters
     ----------
@@ -77,6 +82,11 @@ class StepImpulse:
     def duration(self) -> float:
         return 3.0 * self.pulse_duration
 
+    def __repr__(self) -> str:
+        return (f"StepImpulse(magnitude={self.magnitude:g} m/s^2 "
+                f"({self.magnitude / STANDARD_GRAVITY:.3g} g), pulse_duration={self.pulse_duration:g} s, "
+                f"direction={self.direction:+d})")
+
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         a = self.direction * self.magnitude
@@ -108,6 +118,8 @@ class StepImpulse:
 class SinePulse:
     """One full cycle of ``direction * a * sin(2 pi t / T)`` on [0, T), then rest.
 
+    The magnitude is in **m/s^2**, not in g; :meth:`from_g` takes g.
+
     Parameters
     ----------
     magnitude : float
@@ -138,6 +150,11 @@ class SinePulse:
     @property
     def duration(self) -> float:
         return self.period
+
+    def __repr__(self) -> str:
+        return (f"SinePulse(magnitude={self.magnitude:g} m/s^2 "
+                f"({self.magnitude / STANDARD_GRAVITY:.3g} g), period={self.period:g} s, "
+                f"direction={self.direction:+d})")
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)

@@ -26,6 +26,7 @@ import math
 import numpy as np
 from scipy.optimize import linprog
 
+from archquake._validate import require_range
 from archquake.errors import ArchquakeError, SolverError, UnstableArchError
 from archquake.geometry.arch import MAX_VOUSSOIRS, Arch
 from archquake.geometry.chain import VoussoirChain
@@ -34,6 +35,13 @@ from archquake.limit.thrust import arch_joint_points, joint_forces, moments_abou
 
 #: Below this t/R an arch that still stands is reported as standing at any thickness.
 _THINNEST = 1e-9
+
+#: Smallest relative bracket width :func:`min_thickness_ratio` accepts: a few units of double
+#: precision (2.2e-16) above which the bisection's midpoint still differs from its ends.
+MIN_RTOL = 1e-14
+
+#: Bisections at most: log2(0.5 / _THINNEST) + log2(1 / MIN_RTOL) < 100.
+_MAX_BISECTIONS = 100
 
 #: Largest load factor the program searches (g); beyond it the arch is treated as not
 #: collapsing under any horizontal acceleration (thick, shallow arches can carry any).
@@ -119,7 +127,8 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
     voussoirs : int
         Number of voussoirs (3 .. MAX_VOUSSOIRS).
     rtol : float
-        Relative width of the final bracket.
+        Relative width of the final bracket, in [:data:`MIN_RTOL`, 0.5] (below the floor the
+        bracket's ends cannot be told apart in double precision).
 
     Returns
     -------
@@ -133,6 +142,7 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
     >>> round(min_thickness_ratio(math.pi, 200), 3)
     0.107
     """
+    require_range("rtol", rtol, MIN_RTOL, 0.5, low_open=False, high_open=False)
     low, high = 0.0, 0.5
     while not stands(Arch.from_ratio(high, embrace, voussoirs)):
         low, high = high, min(2.0 * high, 1.999)
@@ -141,7 +151,11 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
                 f"no thickness below 2R lets this arch stand (embrace {math.degrees(embrace):g} "
                 f"degrees, {voussoirs} voussoirs)"
             )
-    while high - low > rtol * high:
+    # each halving takes the bracket's relative width down by 2: log2(1/rtol) + the halvings
+    # from 0.5 down to _THINNEST bound the count (the cap is a guard, never reached)
+    for _ in range(_MAX_BISECTIONS):
+        if high - low <= rtol * high:
+            break
         if high < _THINNEST:
             return 0.0
         mid = 0.5 * (low + high)

@@ -30,11 +30,13 @@ from archquake.mechanism.kinematics import (
     G0,
     H0,
     LENGTH,
+    LINK0,
     PHI_CRIT,
     PHI_TOGGLE,
     acceleration,
     eom_terms,
     linkage_limits,
+    potential,
 )
 
 #: The crest/toggle search of :func:`archquake.mechanism.kinematics.linkage_limits`, compiled.
@@ -221,6 +223,43 @@ def _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t_last, s
 
 
 @nb.njit(cache=True, nogil=True)
+def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_toggle):
+    """True if the ground motion left after ``t_left`` cannot bring a mechanism that is past
+    its crest (``phi >= phi_crit``) and opening (``v >= 0``) back over the crest.
+
+    The sufficient criterion of ``docs/mechanism.md`` (collapse on a record): the ground's power
+    on the mechanism is ``P = -side x_g'' H(phi) phi'`` and by Cauchy-Schwarz
+    ``|H| <= sqrt(M m_eff)`` (M = ``kappa2``, the moving links' mass), so
+    ``|P| <= |x_g''| sqrt(2 M T)``. Until it recrosses the crest the mechanism stays in
+    [phi_crit, phi_toggle], where the potential decreases (checked by the caller), so its
+    kinetic energy is at most ``D + U`` with ``D = E0 - g V(phi_toggle)`` and U the work the
+    ground has exchanged, which gives ``sqrt(D + U) <= sqrt(D) + sqrt(M/2) A`` with
+    ``A = int |x_g''| dt`` over the rest of the record. Turning back and recrossing needs
+    ``U >= T0 + g (V(phi_crit) - V(phi))``; the criterion is that the bound is below it (with
+    a relative margin of 1e-9).
+    """
+    t0, dt = params[0], params[1]
+    n = tail.shape[0]
+    i = int(math.floor((t_left - t0) / dt + 1e-9))
+    if i < 0:
+        a_rem = tail[0]
+    elif i >= n:
+        a_rem = 0.0
+    else:
+        a_rem = tail[i]  # from the start of the current piece: an upper bound
+    ok, meff, _dm, _gg, _hh = eom_terms(mech, phi)
+    if not ok:
+        return False
+    kinetic = 0.5 * meff * v * v
+    v_here = potential(mech, phi)
+    d = max(kinetic + g * (v_here - v_toggle), 0.0)
+    root = math.sqrt(d) + math.sqrt(0.5 * kappa2) * a_rem
+    exchanged = root * root - d
+    needed = kinetic + g * (v_crest - v_here)
+    return exchanged < (1.0 - 1e-9) * needed
+
+
+@nb.njit(cache=True, nogil=True)
 def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
                     max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate=0.0):
     """Integrate one time history (:func:`simulate_kernel_eval` without requested times).
@@ -233,14 +272,15 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     eval_out = np.empty((0, 5))
     outcome, final, collapse_half, _n = simulate_kernel_eval(
         mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation, max_impacts, dt_out,
-        hist, impacts, peaks, counters, initial_rate, t_eval, eval_out)
+        hist, impacts, peaks, counters, initial_rate, t_eval, eval_out, dt_out,
+        hist.shape[0], np.empty(0), 0.0)
     return outcome, final, collapse_half
 
 
 @nb.njit(cache=True, nogil=True)
 def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
                          max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate,
-                         t_eval, eval_out):
+                         t_eval, eval_out, dt_lock, hist_limit, tail, v_toggle):
     """Integrate one time history, with the states at requested times. See the module
     docstring for the logic.
 
@@ -251,11 +291,13 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
         (the rate's absolute tolerance is atol_phi * sqrt(g / R), so that similar arches take
         similar steps);  rest_rotation : rad;  max_impacts : int
     dt_out : output interval, s (0: no history; < 0: every accepted step and event)
-    hist : (cap, 5) out: t, phi, phi', side, x_g''
+    hist : (cap, 5) out: t, phi, phi', side, x_g''. Samples beyond ``cap`` are counted (in
+        counters[0]) but not written: the caller sizes the buffer again and reruns.
     impacts : (max_impacts, 3) out: time, rate before, rate after
     peaks : (max_impacts + 1,) out: peak phi of each half cycle
-    counters : (8,) out: n_hist, n_impacts, n_half_cycles, n_steps, n_rejected, n_rhs,
-        onset_time, collapse_time
+    counters : (9,) out: n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles,
+        n_steps, n_rejected, n_rhs, onset_time, collapse_time, 1 if the run stopped because the
+        history reached ``hist_limit`` samples (counters[8] is written only then)
     initial_rate : rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this
         opening rate (free rocking), instead of from rest.
     t_eval : (m,) requested times, s, sorted (non-decreasing). A time inside an accepted step
@@ -266,6 +308,14 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
         good are locked states; times after a collapse or beyond ``t_end`` are not reached.
     eval_out : (m, 5) out: phi, phi', phi'', side, x_g'' at each time reached (in order);
         x_g'' is the value the step used there (at a breakpoint ending a step, the left limit).
+    dt_lock : history interval while locked, s (>= dt_out; when larger, each locked stretch
+        also gets a sample at its end and the moving samples restart from there)
+    hist_limit : the run stops (counters[8] = 1) when the history reaches this many samples
+    tail : (N,) for a sampled record, int_{t_i}^{end} |x_g''| dt from each sample time t_i to
+        the record's end, m/s (empty: no collapse before the excitation's end); with it a
+        collapse is declared during the record once the remaining motion cannot bring the
+        mechanism back over the crest (:func:`no_return`)
+    v_toggle : potential/g at the toggle, kg m (the lowest past the crest, see ``tail``)
 
     Returns
     -------
@@ -293,6 +343,12 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
     phi = 0.0
     v = 0.0
     t_out = 0.0
+    overflow = False
+    use_tail = tail.shape[0] > 0
+    kappa2 = 0.0  # sum of the link masses: |H| <= sqrt(kappa2 m_eff) (Cauchy-Schwarz)
+    for k in range(3):
+        kappa2 += mech[LINK0 + 4 * k]
+    v_crest = potential(mech, phi_crit) if use_tail else 0.0
     i_ev = 0
     n_eval = t_eval.shape[0]
     tau = math.sqrt(mech[LENGTH] / g)
@@ -310,14 +366,33 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
             t_on, s_on = find_onset(mech, kind, params, t, max(t, min(t_exc, t_end)), g)
             # history while locked
             if dt_out > 0.0:
-                while t_out <= t_on and n_hist < cap:
-                    hist[n_hist, 0] = t_out
-                    hist[n_hist, 1] = 0.0
-                    hist[n_hist, 2] = 0.0
-                    hist[n_hist, 3] = 0.0
-                    hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_out)
+                t_last = -1.0
+                while t_out <= t_on:
+                    if n_hist >= hist_limit:
+                        overflow = True
+                        break
+                    if n_hist < cap:
+                        hist[n_hist, 0] = t_out
+                        hist[n_hist, 1] = 0.0
+                        hist[n_hist, 2] = 0.0
+                        hist[n_hist, 3] = 0.0
+                        hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_out)
+                    t_last = t_out
                     n_hist += 1
-                    t_out += dt_out
+                    t_out += dt_lock
+                if dt_lock > dt_out and not overflow:
+                    # sparse locked samples: close the stretch at its end, resume from there
+                    if t_last < t_on and n_hist < hist_limit:
+                        if n_hist < cap:
+                            hist[n_hist, 0] = t_on
+                            hist[n_hist, 1] = 0.0
+                            hist[n_hist, 2] = 0.0
+                            hist[n_hist, 3] = 0.0
+                            hist[n_hist, 4] = ground_in_piece(kind, params, t_on, t_on)
+                        n_hist += 1
+                    t_out = t_on + dt_out
+                if overflow:
+                    break
             # requested times while locked (all of them once at rest after the excitation)
             while i_ev < n_eval and (t_eval[i_ev] < t_on or (
                     s_on == 0 and (t_on >= t_exc or t_eval[i_ev] <= t_end))):
@@ -414,15 +489,21 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 s_ev = hh
             # ---- dense output up to the event (or the step end)
             if dt_out > 0.0:
-                while t_out <= t + s_ev and n_hist < cap:
+                while t_out <= t + s_ev:
+                    if n_hist >= hist_limit:
+                        overflow = True
+                        break
                     s = t_out - t
-                    hist[n_hist, 0] = t_out
-                    hist[n_hist, 1] = hermite(s, hh, phi, v, phi1, v1)
-                    hist[n_hist, 2] = hermite(s, hh, v, k1, v1, k7)
-                    hist[n_hist, 3] = side
-                    hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_left)
+                    if n_hist < cap:
+                        hist[n_hist, 0] = t_out
+                        hist[n_hist, 1] = hermite(s, hh, phi, v, phi1, v1)
+                        hist[n_hist, 2] = hermite(s, hh, v, k1, v1, k7)
+                        hist[n_hist, 3] = side
+                        hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_left)
                     n_hist += 1
                     t_out += dt_out
+                if overflow:
+                    break
             # ---- peak of the half cycle over [t, t + s_ev] (extremum of the interpolant)
             pk = max(phi, hermite(s_ev, hh, phi, v, phi1, v1))
             if v > 0.0 and v1 <= 0.0:
@@ -440,13 +521,27 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 t = t_new
                 phi, v, k1 = phi1, v1, k7
                 h = h_next
-                if dt_out < 0.0 and n_hist < cap:  # the integrator's own states
-                    hist[n_hist, 0] = t
-                    hist[n_hist, 1] = phi
-                    hist[n_hist, 2] = v
-                    hist[n_hist, 3] = side
-                    hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                if dt_out < 0.0:  # the integrator's own states
+                    if n_hist >= hist_limit:
+                        overflow = True
+                        break
+                    if n_hist < cap:
+                        hist[n_hist, 0] = t
+                        hist[n_hist, 1] = phi
+                        hist[n_hist, 2] = v
+                        hist[n_hist, 3] = side
+                        hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
                     n_hist += 1
+                if (use_tail and not excitation_over and phi >= phi_crit and v >= 0.0
+                        and no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2,
+                                      v_crest, v_toggle)):
+                    # past the crest, opening, and the rest of the record cannot return it
+                    outcome = OUTCOME_COLLAPSE
+                    final = FINAL_COLLAPSED
+                    collapse_time = t
+                    collapse_half = half
+                    t_end = t
+                    break
                 continue
             if ev_kind == 1:
                 s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
@@ -484,12 +579,16 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 # first step of the new half cycle: at most a quarter of its free duration
                 # 2 m_eff v / (g G0), so that tiny half cycles are resolved
                 h = max(min(h_next, 0.5 * meff0 * v_after / (g * mech[G0])), 1e-9 * tau)
-                if dt_out != 0.0 and n_hist < cap:
-                    hist[n_hist, 0] = t
-                    hist[n_hist, 1] = 0.0
-                    hist[n_hist, 2] = v
-                    hist[n_hist, 3] = side
-                    hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                if dt_out != 0.0:
+                    if n_hist >= hist_limit:
+                        overflow = True
+                        break
+                    if n_hist < cap:
+                        hist[n_hist, 0] = t
+                        hist[n_hist, 1] = 0.0
+                        hist[n_hist, 2] = v
+                        hist[n_hist, 3] = side
+                        hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
                     n_hist += 1
                 continue
             # collapse
@@ -508,7 +607,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
             t = t + s
             event_done = True
             t_end = t
-        if final == FINAL_COLLAPSED:
+        if final == FINAL_COLLAPSED or overflow:
             break
     else:
         final = FINAL_MOVING if side != 0 else FINAL_REST
@@ -522,4 +621,6 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
     counters[5] = n_rhs
     counters[6] = onset_time
     counters[7] = collapse_time
+    if overflow:
+        counters[8] = 1.0
     return outcome, final, collapse_half, i_ev

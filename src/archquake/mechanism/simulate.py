@@ -31,12 +31,12 @@ from enum import Enum
 
 import numpy as np
 
-from archquake._validate import require_finite, require_positive
+from archquake._validate import require_finite, require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism import _kernels as K
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome
@@ -51,6 +51,23 @@ class FinalState(str, Enum):
     STALLED = "stalled"  # max_impacts reached after the excitation (impacts accumulating)
 
 
+#: Most impacts a run may record (SolverOptions.max_impacts).
+MAX_IMPACTS = 1_000_000
+
+#: Largest prescribed coefficient of restitution c_v: each impact would multiply the kinetic
+#: energy by c_v^2 = 100 (the impact model's own c_v stays near or below 1).
+MAX_RESTITUTION = 10.0
+
+#: Samples the history buffer starts with (2.6 MB); a run that needs more is rerun once.
+INITIAL_HISTORY_SAMPLES = 1 << 16
+
+#: Most history samples one run may record (40 bytes each: 0.8 GB).
+MAX_HISTORY_SAMPLES = 20_000_000
+
+#: Most samples of a locked stretch during the excitation (its interval is at least the
+#: excitation's duration over this; after the excitation a locked arch records no samples).
+LOCKED_SAMPLES = 100_000
+
 _OUTCOMES = {K.OUTCOME_NO_HINGING: Outcome.NO_HINGING, K.OUTCOME_SURVIVES: Outcome.SURVIVES,
              K.OUTCOME_COLLAPSE: Outcome.COLLAPSE}
 _FINALS = {K.FINAL_REST: FinalState.REST, K.FINAL_MOVING: FinalState.MOVING,
@@ -64,15 +81,17 @@ class SolverOptions:
     Parameters
     ----------
     rtol : float
-        Relative tolerance of the Dormand-Prince 5(4) error estimate.
+        Relative tolerance of the Dormand-Prince 5(4) error estimate, in [1e-13, 1e-2] (below,
+        the error estimate is rounding noise and the steps collapse to the floor; above, the
+        events are located too coarsely to mean anything).
     atol : float
-        Absolute tolerance on phi, rad (on the rate: atol * sqrt(g/R), rad/s).
+        Absolute tolerance on phi, rad (on the rate: atol * sqrt(g/R), rad/s), in [1e-20, 1e-3].
     rest_rotation : float
         The arch is taken to be at rest when an impact leaves it a rate whose next half cycle
-        would peak below this rotation, rad.
+        would peak below this rotation, rad, in (0, 1e-2].
     max_impacts : int
-        Impacts recorded at most; beyond it the arch is locked (reported as ``stalled`` if the
-        excitation is over).
+        Impacts recorded at most (1 to 1,000,000: 32 bytes each); beyond it the arch is locked
+        (reported as ``stalled`` if the excitation is over).
     output_interval : float or None
         History sampling interval, s, by cubic Hermite interpolation of the steps (relative
         error of order 1e-5 at the default tolerances, ample for plots); None picks
@@ -87,11 +106,10 @@ class SolverOptions:
     output_interval: float | None = None
 
     def __post_init__(self) -> None:
-        require_positive("rtol", self.rtol)
-        require_positive("atol", self.atol, "rad")
-        require_positive("rest_rotation", self.rest_rotation, "rad")
-        if int(self.max_impacts) < 1:
-            raise InvalidParameterError(f"max_impacts must be >= 1, got {self.max_impacts}")
+        require_range("rtol", self.rtol, 1e-13, 1e-2, low_open=False, high_open=False)
+        require_range("atol", self.atol, 1e-20, 1e-3, "rad", low_open=False, high_open=False)
+        require_range("rest_rotation", self.rest_rotation, 0.0, 1e-2, "rad", high_open=False)
+        require_int("max_impacts", self.max_impacts, 1, MAX_IMPACTS)
         if self.output_interval is not None and not math.isfinite(self.output_interval):
             raise InvalidParameterError(
                 f"output_interval must be a finite number of seconds, got {self.output_interval}"
@@ -178,7 +196,9 @@ class SimulationResult:
         Crest of the potential and the linkage's toggle.
     history : History or None
     stats : dict
-        Integrator counters (steps, rejected steps, right-hand-side evaluations).
+        Integrator counters (steps, rejected steps, right-hand-side evaluations; and
+        ``history_reruns`` when the history outgrew its first buffer and the run was repeated
+        with one of the exact size).
     evaluated : History or None
         The states at the times requested with ``simulate(..., t_eval=...)`` (with
         ``phi_ddot``), each reached by an integrator step landing on it; only the times reached
@@ -248,6 +268,43 @@ class SimulationResult:
         return out
 
 
+def _record_tail(prepared: PreparedMechanism, kind: int,
+                 params: np.ndarray) -> tuple[np.ndarray, float]:
+    """For a sampled record: ``int_{t_i}^{end} |x_g''| dt`` from each sample (m/s, exact for
+    the linear interpolation, sign changes included) and the potential/g at the toggle, for the
+    no-return collapse criterion (:func:`archquake.mechanism._kernels.no_return`). Empty (the
+    criterion off) for the pulses, or if the potential does not decrease from the crest to the
+    toggle (sampled at 257 points), which the criterion's bound assumes."""
+    from archquake.ground.base import KIND_SAMPLED
+    from archquake.mechanism.kinematics import potential
+
+    empty = (np.empty(0), 0.0)
+    if kind != KIND_SAMPLED:
+        return empty
+    packed = prepared.packed
+    crest, toggle = prepared.critical_rotation, prepared.toggle_rotation
+    if not (math.isfinite(crest) and math.isfinite(toggle) and toggle > crest):
+        return empty
+    phis = np.linspace(crest, crest + (toggle - crest) * (1.0 - 1e-9), 257)
+    pot = np.array([potential(packed, float(p)) for p in phis])
+    if not (np.all(np.isfinite(pot)) and np.all(np.diff(pot) <= 0.0)):
+        return empty
+    x = np.abs(params[2:])
+    dt = float(params[1])
+    signed = params[2:]
+    lo, hi = signed[:-1], signed[1:]
+    same = lo * hi >= 0.0
+    den = np.where(same, 1.0, x[:-1] + x[1:])
+    piece = np.where(same, 0.5 * dt * (x[:-1] + x[1:]),
+                     0.5 * dt * (lo * lo + hi * hi) / den)
+    tail = np.zeros(x.size)
+    tail[:-1] = np.cumsum(piece[::-1])[::-1]
+    # the last sample sits 1e-9 of the range short of the toggle: lower it by far more than
+    # the potential can still drop there (the bound needs a lower bound of the potential)
+    v_toggle = float(pot[-1] - 1e-6 * (pot[0] - pot[-1]))
+    return np.ascontiguousarray(tail), v_toggle
+
+
 def simulate(
     arch: Arch | HingeMechanism | PreparedMechanism,
     motion: GroundMotion,
@@ -312,9 +369,8 @@ def simulate(
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution
     if restitution is not None:
-        cv = require_finite("restitution", restitution)
-        if cv < 0:
-            raise InvalidParameterError(f"restitution (c_v) must be >= 0, got {cv:g}")
+        cv = require_range("restitution (c_v)", restitution, 0.0, MAX_RESTITUTION,
+                           low_open=False, high_open=False)
     initial_rate = require_finite("initial_rate", initial_rate, "rad/s")
     if initial_rate < 0:
         raise InvalidParameterError(f"initial_rate must be >= 0 rad/s, got {initial_rate:g}")
@@ -326,32 +382,59 @@ def simulate(
             raise InvalidParameterError("t_eval must hold finite times >= 0 s")
         if np.any(np.diff(requested) < 0):
             raise InvalidParameterError("t_eval must be sorted (non-decreasing times, s)")
+    if not isinstance(motion, GroundMotion):
+        raise InvalidParameterError(
+            f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
+            f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
+            f"{motion!r}")
     kind, params = motion.kernel_spec()
     params = np.ascontiguousarray(params, dtype=np.float64)
     mech = prepared.mechanism
     tau = math.sqrt(mech.arch.radius / g)
+    check_time_resolution(kind, params, tau)
     excitation = float(K.excitation_end(kind, params))
     if t_end is None:
         t_end = excitation + 60.0 * tau
     require_positive("t_end", t_end, "s")
     dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
     n_imp_cap = int(options.max_impacts)
+    # history: sized by what happens, not by t_end (issue 15). While locked during the
+    # excitation at most LOCKED_SAMPLES samples (then each stretch's end), none after it; while
+    # moving one per dt_out. The buffer starts small; a run that wants more samples is rerun
+    # with the exact size (deterministic: the same steps), up to MAX_HISTORY_SAMPLES.
+    dt_lock = max(dt_out, excitation / LOCKED_SAMPLES) if dt_out > 0 else dt_out
     if dt_out > 0:
-        cap = int(t_end / dt_out) + 2 * n_imp_cap + 16
+        cap = min(int(min(t_end / dt_out, 1e18)) + 2 * n_imp_cap + 16,
+                  INITIAL_HISTORY_SAMPLES + int(min(excitation / dt_lock, 1e18)) + 2)
     elif dt_out < 0:
-        cap = 200_000
+        cap = INITIAL_HISTORY_SAMPLES
     else:
         cap = 1
-    hist = np.zeros((cap, 5))
-    impacts = np.zeros((n_imp_cap, 3))
-    peaks = np.zeros(n_imp_cap + 1)
-    counters = np.zeros(8)
-    eval_out = np.zeros((requested.size, 5))
-    outcome, final, collapse_half, n_eval = K.simulate_kernel_eval(
-        prepared.packed, kind, params, g, cv, float(t_end), options.rtol, options.atol,
-        options.rest_rotation, n_imp_cap, float(dt_out), hist, impacts, peaks, counters,
-        float(initial_rate), requested, eval_out,
-    )
+    tail, v_toggle = _record_tail(prepared, kind, params)
+    reruns = 0
+    while True:
+        hist = np.zeros((cap, 5))
+        impacts = np.zeros((n_imp_cap, 3))
+        peaks = np.zeros(n_imp_cap + 1)
+        counters = np.zeros(9)
+        eval_out = np.zeros((requested.size, 5))
+        outcome, final, collapse_half, n_eval = K.simulate_kernel_eval(
+            prepared.packed, kind, params, g, cv, float(t_end), options.rtol, options.atol,
+            options.rest_rotation, n_imp_cap, float(dt_out), hist, impacts, peaks, counters,
+            float(initial_rate), requested, eval_out, float(dt_lock), MAX_HISTORY_SAMPLES,
+            tail, v_toggle,
+        )
+        if counters[8]:
+            raise InvalidParameterError(
+                f"the history would hold more than {MAX_HISTORY_SAMPLES:,} samples "
+                f"({MAX_HISTORY_SAMPLES * 40 / 1e9:.1f} GB): the arch moves for longer than "
+                f"{MAX_HISTORY_SAMPLES:,} output intervals; raise output_interval "
+                f"(now {dt_out:g} s), shorten t_end (now {t_end:g} s), or set "
+                f"output_interval=0 for no history")
+        if int(counters[0]) <= cap:
+            break
+        cap = int(counters[0])
+        reruns += 1
     n_hist, n_imp, n_half = int(counters[0]), int(counters[1]), int(counters[2])
     n_imp = min(n_imp, n_imp_cap)
     history = None
@@ -390,7 +473,9 @@ def simulate(
         g=g,
         history=history,
         stats={"steps": int(counters[3]), "rejected": int(counters[4]),
-               "rhs_evaluations": int(counters[5]), "t_end": float(t_end)},
+               "rhs_evaluations": int(counters[5]), "t_end": float(t_end),
+               # the history outgrew its first buffer and the run was repeated at its size
+               **({"history_reruns": reruns} if reruns else {})},
         evaluated=evaluated,
     )
 

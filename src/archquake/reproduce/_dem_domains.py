@@ -43,6 +43,10 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         an = an[np.isfinite(an)]
         return factor * float(an.max()) if an.size else 2.0
 
+    def _fitted(top, search):
+        # a scan fitted to the analytical boundary: its coarse points span lambda to the ceiling
+        return DomainSettings(max_magnitude_g=top, scan_reference_g=top, **search)
+
     df, dg = grid(durations_first), grid(durations_gov)
     search = dict(coarse_points=coarse, fine_points=0, precision_g=precision, early=False)
     first = dem_failure_domain(
@@ -50,7 +54,7 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         family,
         df,
         assembly=HINGES,
-        settings=DomainSettings(max_magnitude_g=ceiling(dom.first_half_cycle_g, df, 1.3), **search),
+        settings=_fitted(ceiling(dom.first_half_cycle_g, df, 1.3), search),
         tail=DEM_TAIL_FIRST,
     )
     gov = dem_failure_domain(
@@ -59,7 +63,7 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         dg,
         assembly=VOUSSOIRS,
         governing_only=True,
-        settings=DomainSettings(max_magnitude_g=ceiling(dom.collapse_g, dg, 2.0), **search),
+        settings=_fitted(ceiling(dom.collapse_g, dg, 2.0), search),
         tail=DEM_TAIL_GOVERNING,
     )
     return DomainComparison(dom, first, gov, label)

@@ -9,7 +9,10 @@ cached result (:mod:`archquake.reproduce.runner`) reproduces the same report.
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -259,7 +262,87 @@ class Study:
         return getattr(importlib.import_module(module), func)
 
 
+# ----------------------------------------------------------------------- trustworthy files
+def _fsync_dir(folder: Path) -> None:
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:  # a platform without directory descriptors
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def commit_file(source: str | Path, target: str | Path) -> Path:
+    """Move a finished file into place atomically: fsync its bytes, rename it over ``target``
+    (same folder, so the rename is atomic), fsync the folder. A reader (or a run after a
+    ``kill -9``) sees the old file or the new one, never a part of it."""
+    source, target = Path(source), Path(target)
+    with open(source, "rb") as fh:
+        os.fsync(fh.fileno())
+    os.replace(source, target)
+    _fsync_dir(target.parent)
+    return target
+
+
+def atomic_write_bytes(path: str | Path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` through a temporary file in the same folder, fsync and
+    rename (:func:`commit_file`): an interrupted write leaves the old file or none."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    _fsync_dir(path.parent)
+    return path
+
+
+def atomic_write_text(path: str | Path, text: str) -> Path:
+    """:func:`atomic_write_bytes` of UTF-8 text."""
+    return atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def file_seal(path: str | Path) -> dict:
+    """What a cache entry records of a file it relies on: ``{"size_bytes", "sha256"}``."""
+    h = hashlib.sha256()
+    size = 0
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+            size += len(block)
+    return {"size_bytes": size, "sha256": h.hexdigest()}
+
+
+def seal_intact(path: str | Path, seal: object) -> bool:
+    """True if ``path`` exists with the size and SHA-256 of ``seal`` (:func:`file_seal`); a
+    missing seal, a 0-byte, truncated or altered file is not intact."""
+    if not isinstance(seal, dict) or "size_bytes" not in seal or "sha256" not in seal:
+        return False
+    path = Path(path)
+    try:
+        if path.stat().st_size != seal["size_bytes"]:
+            return False
+        return file_seal(path)["sha256"] == seal["sha256"]
+    except OSError:
+        return False
+
+
 __all__ = [
+    "atomic_write_bytes",
+    "atomic_write_text",
+    "commit_file",
+    "file_seal",
+    "seal_intact",
     "Figure",
     "Row",
     "Study",

@@ -7,15 +7,20 @@ Layout of the output folder ``out``::
     out/cache/<study>-<version>-<quick|full>.json
                                         each finished study's result
 
-A study's cache entry is written only after its figures, so an interrupted run leaves either a
-complete entry or none. A rerun with the same archquake version and the same quick flag skips
-every study whose entry exists and whose figures are all present; ``force`` recomputes.
+A study draws its figures into a staging folder inside ``figures``; each finished figure is then
+fsynced and renamed into place, and the cache entry, which records each figure's size and
+SHA-256, is written last (to a temporary file, fsynced, renamed). An interrupted run (``kill -9``
+included) therefore leaves complete files and either a complete entry or none. A rerun with the
+same archquake version and the same quick flag skips every study whose entry exists and whose
+figures all match their recorded size and hash (a 0-byte or truncated figure is recomputed, never
+embedded); ``force`` recomputes.
 """
 
 from __future__ import annotations
 
 import json
-import os
+import shutil
+import tempfile
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -24,7 +29,14 @@ from pathlib import Path
 from archquake import __version__
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.reproduce.core import Study, StudyResult
+from archquake.reproduce.core import (
+    Study,
+    StudyResult,
+    atomic_write_text,
+    commit_file,
+    file_seal,
+    seal_intact,
+)
 from archquake.reproduce.registry import STUDIES
 from archquake.validation.paper import oppenheim_arch
 
@@ -85,21 +97,41 @@ def cache_path(out: Path, name: str, quick: bool, version: str = __version__) ->
 def _load_cached(out: Path, name: str, quick: bool) -> StudyResult | None:
     path = cache_path(out, name, quick)
     try:
-        result = StudyResult.from_dict(json.loads(path.read_text()))
-    except (OSError, ValueError, KeyError, TypeError):
+        entry = json.loads(path.read_text())
+        result = StudyResult.from_dict(entry)
+        seals = entry.get("figure_seals", {})
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
     figures = Path(out) / "figures"
-    if result.name != name or not all((figures / f.file).is_file() for f in result.figures):
+    if result.name != name or not isinstance(seals, dict):
         return None
+    if not all(seal_intact(figures / f.file, seals.get(f.file)) for f in result.figures):
+        return None  # a figure missing, empty, truncated or altered: recompute the study
     return result
 
 
 def _store(out: Path, result: StudyResult, quick: bool) -> None:
-    path = cache_path(out, result.name, quick)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(result.to_dict(), indent=1))
-    os.replace(tmp, path)  # atomic: an interrupted write leaves no entry
+    """Write the cache entry (atomically) with each figure's size and SHA-256."""
+    figures = Path(out) / "figures"
+    entry = result.to_dict()
+    entry["figure_seals"] = {f.file: file_seal(figures / f.file) for f in result.figures}
+    atomic_write_text(cache_path(out, result.name, quick), json.dumps(entry, indent=1))
+
+
+def _compute(study: Study, arch: Arch, quick: bool, figures: Path) -> StudyResult:
+    """Run ``study`` with its figures drawn into a staging folder, then commit each figure
+    into ``figures`` (fsync, atomic rename)."""
+    staging = Path(tempfile.mkdtemp(dir=figures, prefix=f".{study.name}-"))
+    try:
+        result = study.function()(arch, quick, staging)
+        for item in sorted(staging.rglob("*")):
+            if item.is_file():
+                target = figures / item.relative_to(staging)
+                target.parent.mkdir(parents=True, exist_ok=True)
+                commit_file(item, target)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return result
 
 
 def select(names: Sequence[str] | None) -> tuple[Study, ...]:
@@ -159,7 +191,7 @@ def run_studies(
                 progress(f"{head}: cached ({cached.seconds:.1f} s when computed)")
             continue
         t0 = time.perf_counter()
-        result = study.function()(arch, quick, figures)
+        result = _compute(study, arch, quick, figures)
         result = replace(result, seconds=time.perf_counter() - t0)
         _store(out, result, quick)
         runs.append(StudyRun(result, False))
