@@ -116,3 +116,12 @@ def test_centroid_of_a_vanishingly_thin_arch_is_the_circular_arc_centroid():
     arch = Arch(10.0, 1e-12, math.radians(157.5), 7)
     h = 0.5 * arch.voussoir_angle
     assert arch.centroid_radius == pytest.approx(10.0 * math.sin(h) / h, rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["density", "depth"])
+def test_vanishing_density_or_depth_is_refused_in_one_line(name):
+    """density or depth = 1e-300 once divided by zero in the impact solution (issue 15)."""
+    kwargs = dict(radius=10, thickness=1.5, embrace=2.7, voussoirs=7)
+    with pytest.raises(InvalidParameterError) as info:
+        Arch(**kwargs, **{name: 1e-300})
+    assert str(info.value).startswith(f"{name} must be in [") and "\n" not in str(info.value)

@@ -181,3 +181,14 @@ def test_to_dict_keys(oppenheim):
     assert {"collapse_acceleration_g", "hinges", "symmetric", "min_friction"} <= d.keys()
     assert [h["face"] for h in d["hinges"]] == ["intrados", "extrados", "intrados", "extrados"]
     assert [h["joint"] for h in d["hinges"]] == [0, 3, 5, 7]
+
+
+def test_min_thickness_of_a_shape_refuses_an_unbounded_tolerance():
+    """rtol <= 0 or nan once never ended, or returned nonsense (issue 15)."""
+    from archquake.geometry.shapes import pointed
+    from archquake.limit.static import min_thickness
+
+    arch = pointed(span=10.0, rise=7.0, thickness=0.8, voussoirs=12)
+    for bad in (0.0, -1.0, float("nan")):
+        with pytest.raises(InvalidParameterError, match="rtol"):
+            min_thickness(arch, rtol=bad)

@@ -31,7 +31,8 @@ from archquake.outcome import Outcome
 
 #: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
 #: magnitudes (geometric from lambda), 4 fine ones between the boundaries, brackets of 0.01 g.
-DEM_DOMAIN_SETTINGS = DomainSettings(max_magnitude_g=2.0, scan_reference_g=2.0, coarse_points=8, fine_points=4,
+DEM_DOMAIN_SETTINGS = DomainSettings(max_magnitude_g=2.0, scan_reference_g=2.0, coarse_points=8,
+                                     fine_points=4,
                                      precision_g=0.01, early=False)
 
 #: Seconds simulated after the end of the pulse, in sqrt(R/g), in a domain run. The DEM declares

@@ -272,7 +272,8 @@ MAX_SCAN_POINTS = 10_000
 def coarse_scan(lam: float, ceiling: float, points: int, reference: float) -> np.ndarray:
     """The coarse scan's magnitudes, g: ``lam * (ref / lam) ** (k / points)`` for k = 1, 2, ...
     up to ``ceiling``, then ``ceiling`` itself if it is not on the grid (``ref`` = ``reference``,
-    or 2 lam if ``reference`` is not above lambda). Anchored at lambda, with a ratio independent of the ceiling."""
+    or 2 lam if ``reference`` is not above lambda). Anchored at lambda, with a ratio independent of
+    the ceiling."""
     ref = reference if reference > lam else 2.0 * lam
     n = int(math.floor(points * math.log(ceiling / lam) / math.log(ref / lam) + 1e-9))
     if n > MAX_SCAN_POINTS:
@@ -477,5 +478,6 @@ def failure_domain(
     )
 
 
-__all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "coarse_scan", "FailureDomain", "NonMonotonicBand",
+__all__ = ["COLLAPSE", "FIRST_HALF_CYCLE", "DomainSettings", "coarse_scan", "FailureDomain",
+           "NonMonotonicBand",
            "failure_domain"]

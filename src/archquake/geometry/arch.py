@@ -20,7 +20,13 @@ import numpy as np
 
 from archquake._validate import require_int, require_positive, require_range
 from archquake.errors import InvalidParameterError
-from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.chain import (  # noqa: F401  (the ranges are re-exported here)
+    MAX_DENSITY,
+    MAX_DEPTH,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    VoussoirChain,
+)
 
 #: Largest supported angle of embrace, rad (240 deg): deeper arches than this are horseshoe
 #: shapes whose springings overhang the centre far enough that a two-support, four-hinge
@@ -35,9 +41,6 @@ MAX_VOUSSOIRS = 2000
 #: gained physically, and masses (rho d beta R t) and inertias (~ m R^2) would leave the range
 #: where the limit analysis's linear programme and the time steps are well conditioned.
 RADIUS_RANGE = (1e-3, 1e4)
-#: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
-MAX_DENSITY = 1e5
-MAX_DEPTH = 1e4
 
 
 @dataclass(frozen=True)
@@ -98,8 +101,10 @@ class Arch(VoussoirChain):
             shown="(0, 240] degrees = (0, 4.18879] rad",
         )
         require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS)
-        require_range("depth", self.depth, 0.0, MAX_DEPTH, "m", high_open=False)
-        require_range("density", self.density, 0.0, MAX_DENSITY, "kg/m^3", high_open=False)
+        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
+                      high_open=False)
+        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
+                      low_open=False, high_open=False)
         # store plain Python numbers so that the dataclass hashes and pickles predictably
         for name in ("radius", "thickness", "embrace", "depth", "density"):
             object.__setattr__(self, name, float(getattr(self, name)))
@@ -304,4 +309,4 @@ def raise_thick(t: float, r: float) -> None:
 
 
 __all__ = ["Arch", "MAX_DENSITY", "MAX_DEPTH", "MAX_EMBRACE", "MAX_EMBRACE_DEG", "MAX_VOUSSOIRS",
-           "RADIUS_RANGE"]
+           "MIN_DENSITY", "MIN_DEPTH", "RADIUS_RANGE"]

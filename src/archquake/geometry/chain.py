@@ -35,6 +35,14 @@ from archquake._validate import require_int, require_positive, require_range
 from archquake.errors import InvalidParameterError
 from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 
+#: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
+MAX_DENSITY = 1e5
+MAX_DEPTH = 1e4
+#: Smallest density, kg/m^3, and depth, m: far below any masonry, above where masses and
+#: inertias underflow in the impact and kernel arithmetic (1e-300 divided by zero there).
+MIN_DENSITY = 1e-3
+MIN_DEPTH = 1e-4
+
 
 class VoussoirChain:
     """Base of every arch: the interface the analyses read (see the module docstring).
@@ -296,8 +304,10 @@ class BlockChain(VoussoirChain):
             fixed.append(tuple(map(tuple, arr.tolist())))
         object.__setattr__(self, "blocks", tuple(fixed))
         object.__setattr__(self, "joints", joints)
-        require_range("depth", self.depth, 0.0, 1e4, "m", high_open=False)
-        require_range("density", self.density, 0.0, 1e5, "kg/m^3", high_open=False)
+        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
+                      high_open=False)
+        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
+                      low_open=False, high_open=False)
         object.__setattr__(self, "depth", float(self.depth))
         object.__setattr__(self, "density", float(self.density))
         check_tiling(self)

@@ -46,7 +46,14 @@ from scipy.optimize import brentq
 
 from archquake._validate import require_int, require_positive, require_range
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import MAX_DENSITY, MAX_DEPTH, MAX_VOUSSOIRS, Arch
+from archquake.geometry.arch import (
+    MAX_DENSITY,
+    MAX_DEPTH,
+    MAX_VOUSSOIRS,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    Arch,
+)
 from archquake.geometry.chain import VoussoirChain, three_point_radius
 
 #: Shapes :class:`ShapedArch` knows ("segmental" is the circular arch with f < L/2).
@@ -109,8 +116,10 @@ class ShapedArch(VoussoirChain):
         f = require_positive("rise", self.rise, "m")
         t = require_positive("thickness", self.thickness, "m")
         require_int("voussoirs", self.voussoirs, 4 if joints == "vertical" else 3, MAX_VOUSSOIRS)
-        require_range("depth", self.depth, 0.0, MAX_DEPTH, "m", high_open=False)
-        require_range("density", self.density, 0.0, MAX_DENSITY, "kg/m^3", high_open=False)
+        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
+                      high_open=False)
+        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
+                      low_open=False, high_open=False)
         if shape == "segmental" and f > 0.5 * L:
             raise InvalidParameterError(
                 f"--rise of a segmental arch must be at most half the span ({0.5 * L:g} m), got {f:g} m"

@@ -187,6 +187,7 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     """
     if isinstance(arch, Arch):
         return min_thickness_ratio(arch.embrace, arch.voussoirs, rtol=rtol) * arch.radius
+    require_range("rtol", rtol, MIN_RTOL, 0.5, low_open=False, high_open=False)
     t0 = arch.thickness
 
     def ok(t: float) -> bool:
@@ -202,7 +203,9 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
                 f"no ring thickness this shape admits lets it stand under its own weight "
                 f"(tried up to {low:.4g} m)"
             ) from None
-    while high - low > rtol * high:
+    for _ in range(_MAX_BISECTIONS):
+        if high - low <= rtol * high:
+            break
         if high < _THINNEST * arch.radius:
             return 0.0
         mid = 0.5 * (low + high)

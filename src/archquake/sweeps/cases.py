@@ -33,6 +33,8 @@ from archquake.geometry.arch import (
     MAX_DEPTH,
     MAX_EMBRACE_DEG,
     MAX_VOUSSOIRS,
+    MIN_DENSITY,
+    MIN_DEPTH,
     RADIUS_RANGE,
     Arch,
 )
@@ -147,9 +149,10 @@ class ArchSpec:
                 "an arch needs radius, thickness_ratio and embrace_deg (circular), or span, rise "
                 "and thickness (any shape), not a mixture")
         _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
-        _set(self, "depth", require_range("depth", self.depth, 0, MAX_DEPTH, "m", high_open=False))
-        _set(self, "density", require_range("density", self.density, 0, MAX_DENSITY, "kg/m^3",
-                                            high_open=False))
+        _set(self, "depth", require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m",
+                                          low_open=False, high_open=False))
+        _set(self, "density", require_range("density", self.density, MIN_DENSITY, MAX_DENSITY,
+                                            "kg/m^3", low_open=False, high_open=False))
         if (self.pier_height is None) != (self.pier_width is None):
             raise InvalidParameterError("pier_height and pier_width go together (m)")
         if self.pier_height is not None:
