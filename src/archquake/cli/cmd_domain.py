@@ -136,6 +136,7 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
     settings = DomainSettings(max_magnitude_g=ceiling, coarse_points=scan,
+                              scan_reference_g=DEM_DOMAIN_SETTINGS.scan_reference_g,
                               fine_points=max(scan // 2, 1), precision_g=precision, early=False)
     comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=args.workers)
     rows = comp.rows()
