@@ -70,6 +70,63 @@ def migrating_half_cycle(arch: Arch, *, g: float = STANDARD_GRAVITY, after: floa
     return kept, res, tp, t_imp
 
 
+@dataclass(frozen=True)
+class DemHalfCycle:
+    """The DEM through its first impact under the comparison's pulse.
+
+    ``kept`` = E(t_i + 10 ms) / E(t_p); ``kept_before`` = E(t_i - 10 ms) / E(t_p) (what the
+    swing itself lost); ``sequence``: (t s, open joints) each time the DEM's hinge set
+    (:func:`archquake.compare.dem_hinges`, sampled every 5 ms) changes, from t_p to t_i + 0.1 s.
+    """
+
+    pulse_duration_s: float
+    impact_time_s: float | None
+    kept: float | None
+    kept_before: float | None
+    kept_wide: float | None
+    sequence: tuple
+    t: np.ndarray
+    energy_fraction: np.ndarray
+    energy_error: float
+
+
+def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float = STANDARD_GRAVITY
+                   ) -> DemHalfCycle:
+    """Run the DEM (the paper's stiffness and damping, mu = 0.8: ``DemSettings()``) through the
+    first impact after the comparison's pulse (:func:`archquake.compare.impacts.rocking_pulse`),
+    measuring energy as :mod:`archquake.compare.impacts` does."""
+    from archquake.compare.impacts import WIDE_WINDOW, rocking_pulse
+    from archquake.compare.snapshots import dem_hinges
+    from archquake.dem import simulate_dem
+    from archquake.dem.settings import DemSettings
+
+    pulse, tp, t_imp = rocking_pulse(arch, g=g)
+    settings = DemSettings() if settings is None else settings
+    settings = settings.with_(duration=t_imp * 1.5 + 0.1, output_interval=5e-4,
+                              stop_at_collapse=True)
+    res = simulate_dem(arch, pulse, settings, g=g)
+    ti = res.first_impact_time
+    e = res.kinetic + res.potential + res.strain
+    e_rest = float(res.potential[0] + res.strain[0])
+
+    def at(t):
+        return float(np.interp(t, res.times, e)) - e_rest
+
+    e0 = at(tp)
+    seq = []
+    for t in np.arange(tp, min(float(res.times[-1]), (ti or t_imp) + 0.1), 0.005):
+        h = " ".join(f"{j}{f[0]}" for j, f in dem_hinges(res, t))
+        if not seq or seq[-1][1] != h:
+            seq.append((round(float(t), 4), h))
+    return DemHalfCycle(
+        pulse_duration_s=tp, impact_time_s=ti,
+        kept=None if ti is None else at(ti + window) / e0,
+        kept_before=None if ti is None else at(ti - window) / e0,
+        kept_wide=None if ti is None else at(ti + WIDE_WINDOW) / e0,
+        sequence=tuple(seq), t=res.times, energy_fraction=(e - e_rest) / e0,
+        energy_error=res.energy_error)
+
+
 def fixed_hinge_kept(arch: Arch) -> dict:
     """c_T of Eq. 4 and of the chain law for the arch's limit-analysis mechanism."""
     from archquake.compare.impacts import analytical_impacts
@@ -78,4 +135,4 @@ def fixed_hinge_kept(arch: Arch) -> dict:
     return {"paper": laws["paper"]["ct"], "chain": laws["chain"]["ct"]}
 
 
-__all__ = ["MIGRATION_GEOMETRIES", "RectangularPulse", "fixed_hinge_kept", "migrating_half_cycle"]
+__all__ = ["DemHalfCycle", "MIGRATION_GEOMETRIES", "dem_half_cycle", "RectangularPulse", "fixed_hinge_kept", "migrating_half_cycle"]

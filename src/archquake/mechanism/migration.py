@@ -302,7 +302,8 @@ def choose_migration(cache: MechanismCache, current: Mechanism, phi: float, phi_
                      reexpress: str = "potential"):
     """The mechanism after a hinge opens at ``joint`` on ``face`` (module docstring).
 
-    Returns (mechanism, phi, phi_dot, kept, position jump m, admissible)."""
+    Returns (mechanism, phi, phi_dot, kept, position jump m, admissible); when no candidate is
+    reachable, the current state with ``admissible`` False."""
     arch = cache.arch
     u_p = current.field(phi)
     v = phi_dot * u_p
@@ -347,8 +348,8 @@ def choose_migration(cache: MechanismCache, current: Mechanism, phi: float, phi_
         cand = (ok, kept, q, phi_q, s, jump)
         if best is None or (cand[0], cand[1]) > (best[0], best[1]):
             best = cand
-    if best is None:
-        raise SolverError(f"no four-hinge mechanism contains a hinge at joint {joint} ({face.value})")
+    if best is None:  # no candidate can be reached from here: keep the current mechanism
+        return current, phi, phi_dot, 1.0, 0.0, False
     ok, kept, q, phi_q, s, jump = best
     return q, phi_q, s, kept, jump, ok
 
