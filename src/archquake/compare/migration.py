@@ -113,7 +113,7 @@ def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float 
         return float(np.interp(t, res.times, e)) - e_rest
 
     e0 = at(tp)
-    seq = []
+    seq: list[tuple[float, str]] = []
     for t in np.arange(tp, min(float(res.times[-1]), (ti or t_imp) + 0.1), 0.005):
         h = " ".join(f"{j}{f[0]}" for j, f in dem_hinges(res, t))
         if not seq or seq[-1][1] != h:
@@ -135,4 +135,11 @@ def fixed_hinge_kept(arch: Arch) -> dict:
     return {"paper": laws["paper"]["ct"], "chain": laws["chain"]["ct"]}
 
 
-__all__ = ["DemHalfCycle", "MIGRATION_GEOMETRIES", "dem_half_cycle", "RectangularPulse", "fixed_hinge_kept", "migrating_half_cycle"]
+__all__ = [
+    "MIGRATION_GEOMETRIES",
+    "DemHalfCycle",
+    "RectangularPulse",
+    "dem_half_cycle",
+    "fixed_hinge_kept",
+    "migrating_half_cycle",
+]

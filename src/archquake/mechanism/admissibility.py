@@ -212,8 +212,10 @@ def first_exit(arch, motion: GroundMotion, t_end: float, *, dt: float | None = N
     from archquake.thrust.states import state_at
 
     prep = PreparedMechanism.build(arch, impact)
+    from archquake.mechanism.kinematics import LENGTH
+
     a = prep.mechanism.arch
-    tau = math.sqrt(a.radius / g)
+    tau = math.sqrt(float(prep.packed[LENGTH]) / g)
     dt = tau / 400.0 if dt is None else float(dt)
     grid = np.arange(0.0, float(t_end) + 0.5 * dt, dt)
     opts = SolverOptions(output_interval=0.0)

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -52,7 +53,6 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import Face, HingeMechanism
-from archquake.ground.base import GroundMotion
 from archquake.mechanism.admissibility import DEFAULT_FRICTION, state_margins
 from archquake.mechanism.configuration import displaced_arch
 from archquake.mechanism.kinematics import acceleration, eom_terms, potential
@@ -112,7 +112,8 @@ class Mechanism:
         h = FIELD_STEP
         if phi > h:
             return (self.positions(phi + h) - self.positions(phi - h)) / (2 * h)
-        return (-3 * self.positions(phi) + 4 * self.positions(phi + h) - self.positions(phi + 2 * h)) / (2 * h)
+        p0, p1, p2 = self.positions(phi), self.positions(phi + h), self.positions(phi + 2 * h)
+        return (-3 * p0 + 4 * p1 - p2) / (2 * h)
 
 
 class MechanismCache:
@@ -135,7 +136,8 @@ class MechanismCache:
     def of(self, joints, faces) -> Mechanism:
         faces = tuple(Face.EXTRADOS if int(f) else Face.INTRADOS for f in faces) \
             if not isinstance(faces[0], Face) else tuple(faces)
-        return self.get(HingeMechanism(self.arch, tuple(int(j) for j in joints), faces))
+        a, b, c, d = (int(j) for j in joints)
+        return self.get(HingeMechanism(self.arch, (a, b, c, d), faces))
 
     def inner(self, a: np.ndarray, b: np.ndarray) -> float:
         """<a, b>_M over the voussoirs' (vx, vy, w)."""
@@ -355,17 +357,34 @@ def choose_migration(cache: MechanismCache, current: Mechanism, phi: float, phi_
 
 
 # ----------------------------------------------------------------------------- integrator
-def _pieces(motion: GroundMotion | None, t_end: float) -> list[float]:
+class Excitation(Protocol):
+    """What the integrator reads of a ground motion (any :class:`GroundMotion` has it)."""
+
+    @property
+    def duration(self) -> float: ...
+
+    def acceleration(self, t): ...
+
+    def breakpoints(self) -> np.ndarray: ...
+
+
+def _event(fn, direction: int) -> None:
+    """Mark ``fn`` as a terminal solve_ivp event crossing zero in ``direction``."""
+    setattr(fn, "terminal", True)  # noqa: B010 (solve_ivp reads these attributes)
+    setattr(fn, "direction", direction)  # noqa: B010
+
+
+def _pieces(motion: Excitation | None, t_end: float) -> list[float]:
     if motion is None:
         return [0.0, t_end]
     from archquake.mechanism.reference import _pieces as pieces
 
-    return pieces(motion, t_end)
+    return pieces(motion, t_end)  # type: ignore[arg-type]
 
 
 def simulate_migrating(
     arch: Arch,
-    motion: GroundMotion | None,
+    motion: Excitation | None,
     *,
     t_end: float | None = None,
     stop_after_impacts: int | None = None,
@@ -384,7 +403,7 @@ def simulate_migrating(
     Parameters
     ----------
     arch : Arch
-    motion : GroundMotion or None
+    motion : GroundMotion (or any Excitation) or None
         None: no ground motion (free rocking from ``initial``).
     t_end : float, optional
         s (default: the excitation's end + 60 sqrt(R/g)).
@@ -496,7 +515,7 @@ def simulate_migrating(
         def closure(tt, y):
             return y[0]
 
-        closure.terminal, closure.direction = True, -1
+        _event(closure, -1)
 
         def margins(tt, y, m=m, right=right):
             return state_margins(m.prepared, tt, max(y[0], 0.0), y[1], m.side, ground(tt, right),
@@ -511,24 +530,24 @@ def simulate_migrating(
                 mm[list(sup)] = np.nan
             return float(np.nanmin(mm)) if np.any(np.isfinite(mm)) else 1.0
 
-        exit_.terminal, exit_.direction = True, -1
+        _event(exit_, -1)
 
         def recover(tt, y, sup=frozenset(suppressed)):
             if not sup or y[0] < 0:
                 return -1.0
             return float(np.min(margins(tt, y)[list(sup)]))
 
-        recover.terminal, recover.direction = True, 1
+        _event(recover, 1)
 
         def crest(tt, y, over=over, crit=crit):
             return y[0] - crit if over else 1.0
 
-        crest.terminal, crest.direction = True, 1
+        _event(crest, 1)
 
         def tog(tt, y, toggle=toggle):
             return y[0] - toggle * (1 - 1e-9)
 
-        tog.terminal, tog.direction = True, 1
+        _event(tog, 1)
         # joints already outside at the start of a stretch cannot trigger the exit event; they
         # are watched by ``recover`` instead (the four-hinge model is outside its validity there)
         start = margins(t, [phi, v])
@@ -552,7 +571,7 @@ def simulate_migrating(
             yy = sol.sol(tt)
             ts.append(tt)
             es.append(np.array([m.energy(max(a, 0.0), b, g) for a, b in yy.T]))
-            ps.append(m.side * m.hinges.opening_sign * 0 + m.side * np.maximum(yy[0], 0.0))
+            ps.append(m.side * np.maximum(yy[0], 0.0))
             segments.append((t, float(t_ev), m.energy(phi, v, g), m.energy(max(float(y_ev[0]), 0.0),
                                                                          float(y_ev[1]), g), m.label))
         t = float(t_ev)
