@@ -69,3 +69,42 @@ fig.suptitle("Energy from the end of the pulse (2 lambda g towards -x) to 10 ms 
 fig.tight_layout()
 fig.savefig("docs/figures/migration_energy.png", dpi=110)
 print(json.dumps(rows, indent=1, default=str))
+
+
+# --- docs/figures/migration_hinges.png: Oppenheim's hinges over the first half cycle, side by side
+def _intervals(sequence, t_stop):
+    """[(t0, t1, 'ji ...')] from [(t, labels)]."""
+    out = []
+    for k, (t0, lab) in enumerate(sequence):
+        t1 = sequence[k + 1][0] if k + 1 < len(sequence) else t_stop
+        out.append((t0, t1, lab))
+    return out
+
+
+opp = rows[0]
+t_stop = max(opp["dem_impact_s"], opp["potential_impact_s"]) + 0.1
+fig2, ax2 = plt.subplots(figsize=(10, 4.2))
+model = [(s[0], s[2]) for s in opp["potential_sequence"]]
+lanes = (("DEM", [tuple(s) for s in opp["dem_sequence"]], "k", -0.18),
+         ("migrating model (equal potential)", model, "C2", 0.18))
+for name, seq, color, dy in lanes:
+    first = True
+    for t0, t1, lab in _intervals(seq, t_stop):
+        for h in lab.split():
+            if h == "-":
+                continue
+            j, f = int(h[:-1]), h[-1]
+            ax2.plot([t0, t1], [j + dy, j + dy], color=color, lw=4 if f == "e" else 2,
+                     solid_capstyle="butt", label=name if first else None)
+            first = False
+for t_i, c in ((opp["dem_impact_s"], "k"), (opp["potential_impact_s"], "C2")):
+    ax2.axvline(t_i, color=c, ls=":", lw=1)
+ax2.axvline(opp["t_p_s"], color="0.6", ls="--", lw=1)
+ax2.set_yticks(range(8))
+ax2.set_ylabel("joint (thick: extrados hinge, thin: intrados)")
+ax2.set_xlabel("t (s)  (dashed: end of pulse; dotted: first impact)")
+ax2.set_title("Oppenheim's arch, pulse 2 lambda g: hinges of the migrating model and open joints of the DEM",
+              fontsize=10)
+ax2.legend(fontsize=8, loc="upper left")
+fig2.tight_layout()
+fig2.savefig("docs/figures/migration_hinges.png", dpi=110)
