@@ -4,6 +4,7 @@ studies ``figure6`` and ``figure11`` (the paper compares both models on both fig
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -44,7 +45,7 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         return factor * float(an.max()) if an.size else 2.0
 
     df, dg = grid(durations_first), grid(durations_gov)
-    search = dict(coarse_points=coarse, fine_points=0, precision_g=precision, early=False)
+    search: dict[str, Any] = dict(coarse_points=coarse, fine_points=0, precision_g=precision, early=False)
     first = dem_failure_domain(
         arch,
         family,
