@@ -54,7 +54,7 @@ def require_int(name: str, value: object, minimum: int, maximum: int | None = No
     """An integer >= minimum (and <= maximum when given)."""
     if isinstance(value, bool) or not isinstance(value, Integral):
         if isinstance(value, Real) and float(value).is_integer():
-            value = int(value)
+            value = int(float(value))
         else:
             raise InvalidParameterError(f"{name} must be a whole number, got {value!r}")
     v = int(value)

@@ -10,6 +10,7 @@ import argparse
 import math
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -135,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     bar.close()
     rng = np.random.default_rng(args.seed)
     fits = fragility_of(result, rng=rng, bootstrap=args.bootstrap)
-    dispersion = dispersion_by_im(result, dict.fromkeys([im.label, *DISPERSION_IMS]))
+    dispersion = dispersion_by_im(result, list(dict.fromkeys([im.label, *DISPERSION_IMS])))
     divisor = dimensionless_divisor(im, collapse_acceleration_g=result.collapse_acceleration_g,
                                     radius=arch.radius, g=result.g)
     if args.csv is not None:
@@ -225,7 +226,7 @@ class _Bar:
 
     def __init__(self, *, disable: bool):
         self._disable = disable
-        self._bar = None
+        self._bar: Any = None  # a tqdm bar (tqdm is untyped)
 
     def __call__(self, done: int, total: int, rounds: int) -> None:
         if self._bar is None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from archquake.cli.cmd_record import add_record_file_arguments, periods_list
 from archquake.cli.common import add_output_arguments, print_json
@@ -54,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
     units = args.units
     suite = load_suite(args.suite, units=units or "g", dt=args.dt, normalized=args.normalized,
                        g=g)
-    rows = []
+    rows: list[dict[str, Any]] = []
     for r in suite:
         ims = intensity_measures(r, periods=args.periods, g=g).to_dict()
         rows.append({"name": r.name, "component": r.component, "points": r.points,

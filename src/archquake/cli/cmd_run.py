@@ -63,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
 
     prepared = PreparedMechanism.build(arch)
     result = simulate(prepared, motion, restitution=args.restitution, t_end=args.t_end)
+    assert result.history is not None  # simulate always records the history
     g = STANDARD_GRAVITY
     if args.plot:
         from archquake.plotting.history import figure4

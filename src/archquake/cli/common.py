@@ -23,6 +23,7 @@ from archquake.geometry.arch import (
     RADIUS_RANGE,
     Arch,
 )
+from archquake.geometry.chain import VoussoirChain
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
 from archquake.ground.records import UNITS
 
@@ -127,7 +128,7 @@ def arch_from_args(args: argparse.Namespace):
             raise InvalidParameterError(f"--blocks gives the whole geometry; drop {', '.join(clash)}")
         from archquake.geometry.survey import read_blocks
 
-        arch = read_blocks(blocks, depth=args.depth, density=args.density)
+        arch: VoussoirChain = read_blocks(blocks, depth=args.depth, density=args.density)
     elif shape in (None, "circular") and (getattr(args, "span", None) is None
                                           and getattr(args, "rise", None) is None):
         if _given(args, "eccentricity"):
@@ -176,7 +177,7 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
     """The circular arch by radius and embrace (Oppenheim's by default), checking the
     degree-valued embrace here so the message is in degrees."""
     use = OPPENHEIM_DEFAULTS if getattr(args, "_arch_defaults", True) else {}
-    values = {k: getattr(args, k) if getattr(args, k) is not None else use.get(k)
+    values: dict[str, Any] = {k: getattr(args, k) if getattr(args, k) is not None else use.get(k)
               for k in ("radius", "thickness", "embrace", "voussoirs")}
     missing = [k for k, v in values.items() if v is None]
     if missing:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time as _time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,6 +18,9 @@ from archquake.compare.histories import VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.geometry.arch import Arch
 from archquake.validation.paper import FIGURE9_TIMES, FIGURE10_DAMPING, FIGURE10_PULSE, FIGURE10_TIME
+
+if TYPE_CHECKING:
+    from archquake.dem.result import DemResult
 
 
 def dem_hinges(result, time: float, *, relative: float = 0.1) -> list[tuple[int, str]]:
@@ -77,7 +81,7 @@ class HingeComparison:
     analytical: tuple
     dem: tuple
     states: tuple = field(repr=False)
-    dem_result: object = field(repr=False)
+    dem_result: DemResult = field(repr=False)
     seconds: float = 0.0
 
     def rows(self) -> list[dict]:
@@ -128,8 +132,8 @@ class ReducedDampingSnapshot:
         :func:`joint_displacements` at ``time``.
     """
 
-    reduced: object = field(repr=False)
-    paper: object = field(repr=False)
+    reduced: DemResult = field(repr=False)
+    paper: DemResult = field(repr=False)
     time: float
     reduced_displacements: dict = field(repr=False)
     paper_displacements: dict = field(repr=False)

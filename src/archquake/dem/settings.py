@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from archquake._validate import require_finite, require_positive, require_range
 from archquake.errors import InvalidParameterError
@@ -214,7 +215,7 @@ class DemSettings:
         omega = 2.0 * math.pi * f
         return xi * omega, xi / omega
 
-    def with_(self, **changes: object) -> DemSettings:
+    def with_(self, **changes: Any) -> DemSettings:
         """A copy with some fields changed (validated again)."""
         from dataclasses import replace
 

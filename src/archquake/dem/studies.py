@@ -62,7 +62,7 @@ def free_rocking_restitution(
     # time for a quarter cycle plus the rebound, from the rigid-body period (generous)
     p = math.sqrt(3 * g / (4 * 0.5 * math.hypot(width, height)))
     duration = 6.0 * math.acosh(1.0 / (1.0 - release)) / p + 0.05
-    res = simulate_dem(asm, Record([0.0, 0.0], 1.0), settings.with_(duration=duration), g=g)
+    res = simulate_dem(asm, Record(np.array([0.0, 0.0]), 1.0), settings.with_(duration=duration), g=g)
     tilt = theta0 - res.positions[:, 1, 2]
     cross = np.flatnonzero(tilt <= 0.0)
     if cross.size == 0:
@@ -115,14 +115,14 @@ def ramp_and_hold(acceleration: float, ramp: float, hold: float) -> Record:
     """Ground acceleration rising linearly to ``acceleration`` (m/s^2) over ``ramp`` s, then
     constant for ``hold`` s (a quasi-static constant acceleration)."""
     n_hold = max(2, int(math.ceil(hold / ramp)))
-    return Record([0.0] + [acceleration] * (n_hold + 1), ramp, name="ramp and hold")
+    return Record(np.array([0.0] + [acceleration] * (n_hold + 1)), ramp, name="ramp and hold")
 
 
 def rectangular_pulse(acceleration: float, duration: float, *, samples: int = 2000) -> Record:
     """A rectangular acceleration pulse (m/s^2, s), sampled finely (the fall to zero takes
     duration / samples)."""
     dt = duration / samples
-    return Record([acceleration] * (samples + 1) + [0.0, 0.0], dt, name="rectangular pulse")
+    return Record(np.array([acceleration] * (samples + 1) + [0.0, 0.0]), dt, name="rectangular pulse")
 
 
 __all__ = [

@@ -51,6 +51,7 @@ from archquake._validate import require_int, require_positive
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 
@@ -184,7 +185,7 @@ class FailureDomain:
         Gravity, m/s^2.
     """
 
-    arch: Arch
+    arch: VoussoirChain
     family: PulseFamily
     durations: np.ndarray
     no_hinging_g: np.ndarray
@@ -426,8 +427,8 @@ def failure_domain(
         mids = np.array([0.5 * (b.lo + b.hi) for b in live])
         r = run(mids, np.array([b.index for b in live]))
         for n, b in enumerate(live):
-            v = bool(_predicate(r, b.criterion)[n])
-            if v == b.v_lo:
+            hit = bool(_predicate(r, b.criterion)[n])
+            if hit == b.v_lo:
                 b.lo = mids[n]
             else:
                 b.hi = mids[n]

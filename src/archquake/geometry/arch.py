@@ -280,7 +280,7 @@ class Arch(VoussoirChain):
         return tuple(self.voussoir_outline(k, per)[::-1] for k in range(self.voussoirs))  # CCW
 
     @property
-    def crown_point(self) -> np.ndarray:  # type: ignore[override]
+    def crown_point(self) -> np.ndarray:
         """The crown of the extrados, (0, R + t/2), m."""
         return np.array([0.0, self.extrados_radius])
 

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -60,7 +61,19 @@ class VoussoirChain:
     # ------------------------------------------------------------------ to provide
     # (``radius``, ``span``, ``rise``, ``embrace``, ``springing_y`` are fields of some
     # subclasses, so the base never defines them: a dataclass would take an inherited
-    # attribute of a field's name for its default)
+    # attribute of a field's name for its default); the type checker sees them as read-only
+    if TYPE_CHECKING:
+        @property
+        def radius(self) -> float: ...
+        @property
+        def span(self) -> float: ...
+        @property
+        def rise(self) -> float: ...
+        @property
+        def embrace(self) -> float: ...
+        @property
+        def springing_y(self) -> float: ...
+
     def _build_layout(self) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
         """(joints (n+1, 2, 2): intrados end [j, 0], extrados end [j, 1]; block polygons)."""
         raise NotImplementedError
@@ -352,7 +365,7 @@ class BlockChain(VoussoirChain):
         return float(np.hypot(d[:, 0], d[:, 1]).mean())
 
     @cached_property
-    def radius(self) -> float:  # type: ignore[override]
+    def radius(self) -> float:
         """Radius of the circle through the support joints' centres and the highest joint
         centre, m (the characteristic length; the half-span if these are collinear)."""
         return three_point_radius(self.joint_mid_points)
@@ -479,23 +492,23 @@ class OnPiers(VoussoirChain):
         return self.arch.density
 
     @property
-    def radius(self) -> float:  # type: ignore[override]
+    def radius(self) -> float:
         return self.arch.radius
 
     @property
-    def embrace(self) -> float:  # type: ignore[override]
+    def embrace(self) -> float:
         return self.arch.embrace
 
     @property
-    def span(self) -> float:  # type: ignore[override]
+    def span(self) -> float:
         return self.arch.span
 
     @property
-    def rise(self) -> float:  # type: ignore[override]
+    def rise(self) -> float:
         return self.arch.rise
 
     @property
-    def springing_y(self) -> float:  # type: ignore[override]
+    def springing_y(self) -> float:
         return self.arch.springing_y
 
     @property

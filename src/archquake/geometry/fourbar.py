@@ -47,7 +47,7 @@ def link_rates(points: np.ndarray) -> np.ndarray:
     jba = np.array([-(b - a)[1], (b - a)[0]])
     mat = np.column_stack([jcb, -jcd])
     det = np.linalg.det(mat)
-    scale = np.linalg.norm(c - b) * np.linalg.norm(c - d)
+    scale = float(np.linalg.norm(c - b) * np.linalg.norm(c - d))
     if abs(det) <= 1e-12 * max(scale, 1e-300):
         return np.array([1.0, np.nan, np.nan])
     w_bc, w_cd = np.linalg.solve(mat, -jba)

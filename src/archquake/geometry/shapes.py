@@ -311,12 +311,13 @@ class ShapedArch(VoussoirChain):
                 lines.append((pj, up))
             lines.append((np.array([-x_spring, 0.0]), up))
             lines.append(at(2 * half))
-        joints, idx = [], []
+        rows: list[list[np.ndarray]] = []
+        idx: list[list[int]] = []
         last = len(intrados) - 2
         for j, (c, d) in enumerate(lines):
             if j in (0, n):  # the springing joints are the faces' end points, exactly
                 k = 0 if j == 0 else -1
-                joints.append([intrados[k], extrados[k]])
+                rows.append([intrados[k], extrados[k]])
                 idx.append([0 if j == 0 else last, 0 if j == 0 else last])
                 continue
             ends, where = [], []
@@ -325,9 +326,9 @@ class ShapedArch(VoussoirChain):
                 smooth = self.joints == "radial" and not (self.shape == "pointed" and 2 * j == n)
                 ends.append(c + side * 0.5 * self.thickness * d if smooth else q)  # exact offset
                 where.append(i)
-            joints.append(ends)
+            rows.append(ends)
             idx.append(where)
-        joints = np.array(joints)
+        joints = np.array(rows)
         # the first vertical joints pass exactly through the intrados springing points
         if self.joints == "vertical":
             joints[1, 0], joints[n - 1, 0] = intrados[0], intrados[-1]
@@ -345,7 +346,7 @@ class ShapedArch(VoussoirChain):
 
     # ------------------------------------------------------------------ the chain's scalars
     @property
-    def radius(self) -> float:  # type: ignore[override]
+    def radius(self) -> float:
         """Characteristic length: the radius of the circle through the centreline's springing
         points and crown, m (R for circular arches)."""
         if self.shape in ("circular", "segmental"):
@@ -354,13 +355,13 @@ class ShapedArch(VoussoirChain):
         return (0.25 * L * L + f * f) / (2.0 * f)
 
     @property
-    def embrace(self) -> float:  # type: ignore[override]
+    def embrace(self) -> float:
         """Angle between the centreline's normals at the springings, rad."""
         _, n = self._half(np.array([0.0]))
         return 2.0 * math.atan2(-n[0, 0], n[0, 1])
 
     @property
-    def springing_y(self) -> float:  # type: ignore[override]
+    def springing_y(self) -> float:
         p, _ = self._half(np.array([0.0]))
         return float(p[0, 1])
 
@@ -465,6 +466,7 @@ def pointed(*, span: float, thickness: float, voussoirs: int, rise: float | None
         e = require_range("eccentricity", eccentricity, 0.0, 100.0, low_open=False, high_open=False)
         c = 0.5 * span * e
         rise = math.sqrt(0.25 * span * span + span * c)
+    assert rise is not None  # exactly one of rise and eccentricity is given
     return ShapedArch("pointed", span, rise, thickness, voussoirs, joints, depth, density)
 
 

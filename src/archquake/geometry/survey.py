@@ -144,7 +144,7 @@ def chain_from_polygons(polygons, *, depth: float = 1.0, density: float = 2000.0
                 pts = polys[a][ia]
                 # the two extreme shared vertices are the joint's ends
                 far = np.hypot(*(pts[:, None] - pts[None]).transpose(2, 0, 1))
-                i, j = np.unravel_index(np.argmax(far), far.shape)
+                i, j = map(int, np.unravel_index(np.argmax(far), far.shape))
                 shared[(a, b)] = np.array([pts[i], pts[j]])
     degree = np.zeros(nb, dtype=int)
     for a, b in shared:
@@ -173,13 +173,13 @@ def chain_from_polygons(polygons, *, depth: float = 1.0, density: float = 2000.0
     for side, k in ((0, order[0]), (1, order[-1])):
         p = polys[k]
         nbr = order[1] if side == 0 else order[-2]
-        joint = shared[tuple(sorted((k, nbr)))]
+        joint = shared[(min(k, nbr), max(k, nbr))]
         edges = [(p[i], p[(i + 1) % len(p)]) for i in range(len(p))]
         free = [e for e in edges
                 if not (min(np.hypot(*(e[0] - joint).T)) <= tol and min(np.hypot(*(e[1] - joint).T)) <= tol)]
         low = min(free, key=lambda e: 0.5 * (e[0][1] + e[1][1]))
         joints.append(np.array(low))
-    inner = [shared[tuple(sorted((a, b)))] for a, b in zip(order, order[1:])]
+    inner = [shared[(min(a, b), max(a, b))] for a, b in zip(order, order[1:])]
     ends_ = [joints[0], *inner, joints[1]]
     blocks = [polys[k] for k in order]
     oriented = []

@@ -36,7 +36,10 @@ KIND_SAMPLED = 2
 class GroundMotion(Protocol):
     """A horizontal ground acceleration history."""
 
-    name: str
+    @property
+    def name(self) -> str:
+        """Label of the motion (read-only: the motions are frozen dataclasses)."""
+        ...
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         """Ground acceleration x_g'' at times ``t`` (s), m/s^2, positive towards +x."""

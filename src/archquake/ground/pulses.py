@@ -22,7 +22,7 @@ def _direction(value: object) -> int:
         raise InvalidParameterError(
             f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}"
         )
-    return int(value)  # type: ignore[arg-type]
+    return int(value)
 
 
 def _magnitude(value: object, unit: str) -> float:

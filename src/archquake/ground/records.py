@@ -375,18 +375,21 @@ def read_csv(path: str | Path, *, units: str, dt: float | None = None, scale: fl
             raise _err(path, number, f"expected 2 columns (time s, acceleration), found "
                        f"{len(parsed)}; keep only the time and acceleration columns")
         if columns == 1:
+            assert dt is not None  # one column exactly when dt is given
             parsed = [dt * len(times), parsed[0]]
-        t, a = parsed
-        if not (math.isfinite(t) and math.isfinite(a)):
+        ti, a = parsed
+        assert ti is not None and a is not None  # a row with a non-number raised above
+        if not (math.isfinite(ti) and math.isfinite(a)):
             raise _err(path, number, f"{text!r} holds a value that is not finite; replace it "
                        "by a number")
-        times.append(t)
+        times.append(ti)
         accs.append(a)
         line_of.append(number)
     if len(times) < 2:
         raise _err(path, None, f"has {len(times)} data row(s); a record needs at least 2 rows "
                    f"of {what}")
     if columns == 1:
+        assert dt is not None
         return Record(np.asarray(accs) * factor, dt, name=path.stem, source=str(path),
                       scale=scale)
     t = np.asarray(times)
@@ -405,7 +408,7 @@ def read_csv(path: str | Path, *, units: str, dt: float | None = None, scale: fl
         raise _err(path, line_of[k], f"time {times[k]:.10g} s is {steps[k - 1]:.10g} s after the "
                    f"row before, but the time step is {typical:.10g} s elsewhere; resample the "
                    "record to a constant time step")
-    dt = (t[-1] - t[0]) / (t.size - 1)
+    dt = float((t[-1] - t[0]) / (t.size - 1))
     drift = np.flatnonzero(np.abs(t - (t[0] + dt * np.arange(t.size))) > SPACING_TOLERANCE * dt)
     if drift.size:
         k = int(drift[0])

@@ -212,7 +212,7 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
         return _fema_suite(key, normalized, g)
     if normalized:
         raise InvalidParameterError("normalized=True applies to the FEMA P695 suites only")
-    path = Path(name_or_path)
+    path = Path(text)
     if path.is_dir():
         files = sorted((p for p in path.iterdir()
                         if p.is_file() and p.suffix.lower() in RECORD_EXTENSIONS),

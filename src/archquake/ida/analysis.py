@@ -35,7 +35,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
-from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationSpec, Model
+from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationKind, ExcitationSpec, Model
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
 
 #: Default ceiling: the level at which the suite's median record has this PGA, g.
@@ -351,7 +351,7 @@ def incremental_dynamic_analysis(
 
     def case_of(i: int, level: float) -> Case:
         factor = (level / im0[i]) ** (1.0 / k)
-        return Case(arch, ExcitationSpec("record", motion=motions[i], scale=float(factor)),
+        return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i], scale=float(factor)),
                     model, options)
 
     runs: list[dict[float, Case]] = [{} for _ in motions]

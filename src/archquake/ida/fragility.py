@@ -245,10 +245,10 @@ def _with_ci(fit: LognormalFit, meds: np.ndarray, betas: np.ndarray, confidence:
     if used < 2:
         return fit
     q = [50 * (1 - confidence), 50 * (1 + confidence)]
-    mci = tuple(float(v) for v in np.percentile(meds, q))
-    bci = tuple(float(v) for v in np.percentile(betas, q))
-    return LognormalFit(fit.median, fit.beta, fit.method, fit.samples, fit.censored, mci, bci,
-                        confidence, used)
+    m_lo, m_hi = (float(v) for v in np.percentile(meds, q))
+    b_lo, b_hi = (float(v) for v in np.percentile(betas, q))
+    return LognormalFit(fit.median, fit.beta, fit.method, fit.samples, fit.censored, (m_lo, m_hi),
+                        (b_lo, b_hi), confidence, used)
 
 
 # ----------------------------------------------------------------------------- IDA results

@@ -31,7 +31,7 @@ records its settings.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from archquake._validate import require_positive, require_range
@@ -82,7 +82,7 @@ class HuntFill:
             raise InvalidParameterError(f"hunt_growth must be >= 1, got {self.hunt_growth:g}")
 
 
-def _sorted(levels: Sequence[float], collapsed: Sequence[bool]) -> list[tuple[float, bool]]:
+def _sorted(levels: Collection[float], collapsed: Collection[bool]) -> list[tuple[float, bool]]:
     if len(levels) != len(collapsed):
         raise InvalidParameterError("levels and collapsed must have the same length")
     return sorted(zip((float(x) for x in levels), (bool(c) for c in collapsed), strict=True))
@@ -174,7 +174,7 @@ class Interval:
                 f"above_{unit}": self.above, "open_to_ceiling": self.above is None}
 
 
-def intervals(levels: Sequence[float], collapsed: Sequence[bool],
+def intervals(levels: Collection[float], collapsed: Collection[bool],
               outcome: bool) -> list[Interval]:
     """Maximal runs of neighbouring levels whose ``collapsed`` equals ``outcome``."""
     obs = _sorted(levels, collapsed)
@@ -193,7 +193,7 @@ def intervals(levels: Sequence[float], collapsed: Sequence[bool],
     return out
 
 
-def collapsed_at(levels: Sequence[float], collapsed: Sequence[bool], x: float) -> bool:
+def collapsed_at(levels: Collection[float], collapsed: Collection[bool], x: float) -> bool:
     """Whether the trace says the arch collapses at level ``x``: the outcome of the highest level
     run at or below ``x`` (False below the first level, where nothing happens). Exact at the
     levels run; between them, right to within the bracket of a transition."""

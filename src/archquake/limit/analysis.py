@@ -237,7 +237,7 @@ def limit_analysis(
         lam_kin, mech_kin = kinematic_collapse(arch)
         if method is Method.KINEMATIC:
             mech = mech_kin
-        elif abs(lam_kin - lam_static) > 1e-6 * max(1.0, abs(lam_kin)):
+        elif lam_static is not None and abs(lam_kin - lam_static) > 1e-6 * max(1.0, abs(lam_kin)):
             raise SolverError(
                 f"static ({lam_static:.9g} g) and kinematic ({lam_kin:.9g} g) collapse "
                 "multipliers disagree"

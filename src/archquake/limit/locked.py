@@ -18,11 +18,11 @@ import numpy as np
 from scipy.optimize import linprog
 
 from archquake.errors import SolverError
-from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces
 
 
-def locked_joint_forces(arch: Arch, loads: np.ndarray, moments: np.ndarray, *,
+def locked_joint_forces(arch: VoussoirChain, loads: np.ndarray, moments: np.ndarray, *,
                         tol: float = 1e-6, start: JointForces | None = None) -> JointForces:
     """The admissible line of thrust of the undisplaced arch that needs the least friction.
 

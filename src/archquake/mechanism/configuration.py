@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from archquake.errors import InvalidParameterError, SolverError
-from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face
 from archquake.limit.thrust import arch_joint_points
 from archquake.mechanism.kinematics import fourbar, link_states
@@ -73,7 +73,7 @@ class DisplacedArch:
         A, B, C, D in the displaced arch, m.
     """
 
-    arch: Arch = field(repr=False)
+    arch: VoussoirChain = field(repr=False)
     phi: float
     phi_dot: float
     phi_ddot: float
@@ -163,7 +163,7 @@ def _mirrored(parts, n: int):
             tuple(n - j for j in reversed(joints)), tuple(reversed(faces)), hinges[::-1] * flip)
 
 
-def _joint_lines(arch: Arch, left: np.ndarray, right: np.ndarray, joints, faces,
+def _joint_lines(arch: VoussoirChain, left: np.ndarray, right: np.ndarray, joints, faces,
                  hinges: np.ndarray) -> np.ndarray:
     """Joint end points (n+1, 2, 2) of the displaced arch: the common face where the two sides
     touch, the bisector from the hinge point where a hinge has opened."""

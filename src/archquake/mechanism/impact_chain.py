@@ -55,7 +55,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.limit.kinematic import MechanismSet, admissible_mechanisms
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces
@@ -86,7 +86,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def mechanism_field(points: np.ndarray, rates: np.ndarray, joints, arch: Arch
+def mechanism_field(points: np.ndarray, rates: np.ndarray, joints, arch: VoussoirChain
                     ) -> tuple[np.ndarray, np.ndarray]:
     """Velocity field of one four-hinge mechanism per unit opening rate, at phi = 0.
 
@@ -121,7 +121,7 @@ def mirrored_field(velocity: np.ndarray, spin: np.ndarray) -> tuple[np.ndarray, 
     return (velocity * np.array([-1.0, 1.0]))[::-1].copy(), -spin[::-1].copy()
 
 
-def kinetic_energy(arch: Arch, velocity: np.ndarray, spin: np.ndarray) -> float:
+def kinetic_energy(arch: VoussoirChain, velocity: np.ndarray, spin: np.ndarray) -> float:
     """sum m |v|^2 / 2 + I w^2 / 2, J (per (rad/s)^2 for unit-rate fields)."""
     return 0.5 * float(arch.voussoir_masses @ (velocity**2).sum(axis=1)
                        + arch.voussoir_inertias @ spin**2)
@@ -131,7 +131,7 @@ def _prefix(values: np.ndarray) -> np.ndarray:
     return np.concatenate([np.zeros((1,) + values.shape[1:]), np.cumsum(values, axis=0)])
 
 
-def generalised_momenta(arch: Arch, mechs: MechanismSet, velocity: np.ndarray,
+def generalised_momenta(arch: VoussoirChain, mechs: MechanismSet, velocity: np.ndarray,
                         spin: np.ndarray) -> np.ndarray:
     """u_R . M v for every mechanism R of ``mechs`` and one velocity field v of the chain.
 
@@ -166,7 +166,7 @@ def generalised_momenta(arch: Arch, mechs: MechanismSet, velocity: np.ndarray,
             + w_bc * about(b, cc, pb) + w_cd * about(cc, d, pd))
 
 
-def generalised_masses(arch: Arch, mechs: MechanismSet) -> np.ndarray:
+def generalised_masses(arch: VoussoirChain, mechs: MechanismSet) -> np.ndarray:
     """u_R . M u_R (twice the kinetic energy per unit rate squared) of every mechanism, kg m^2."""
     m = arch.voussoir_masses
     c = arch.voussoir_centroids
@@ -188,7 +188,7 @@ def generalised_masses(arch: Arch, mechs: MechanismSet) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- impulse line
-def impulse_line(arch: Arch, impulse_force: np.ndarray, impulse_moment: np.ndarray,
+def impulse_line(arch: VoussoirChain, impulse_force: np.ndarray, impulse_moment: np.ndarray,
                  hinge_points: np.ndarray, hinge_joints) -> tuple[JointForces, float]:
     """The joint impulses carrying the generalised impulse Pi, with the post-impact hinges' joints
     transmitting their impulse through the hinge points.
@@ -242,7 +242,7 @@ def impulse_line_inside(forces: JointForces, *, rtol: float = IMPULSE_LINE_RTOL)
 
 
 # ----------------------------------------------------------------------------- cone projection
-def _generators(arch: Arch) -> tuple[np.ndarray, np.ndarray]:
+def _generators(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray]:
     """Admissible-velocity cone of the chain: v = G x, x >= 0, C x = 0.
 
     x = (a_0, b_0, ..., a_n, b_n): rotation about the intrados end (relative rotation -a_j) and
@@ -268,7 +268,7 @@ def _generators(arch: Arch) -> tuple[np.ndarray, np.ndarray]:
     return g, con
 
 
-def cone_projection(arch: Arch, velocity: np.ndarray, spin: np.ndarray
+def cone_projection(arch: VoussoirChain, velocity: np.ndarray, spin: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The exact impact response: the M-projection of a velocity field onto the cone of admissible
     motions of the chain (hinges or lift-off at any joints, no sliding), by a small quadratic
@@ -392,7 +392,7 @@ class ChainImpact:
 
 
 @lru_cache(maxsize=4)  # ~30 MB per 40-voussoir arch
-def _mechanisms(arch: Arch) -> tuple[MechanismSet, np.ndarray]:
+def _mechanisms(arch: VoussoirChain) -> tuple[MechanismSet, np.ndarray]:
     mechs = admissible_mechanisms(arch)
     return mechs, generalised_masses(arch, mechs)
 

@@ -130,22 +130,22 @@ def simulate_reference(
         def closure(tt, y):
             return y[0]
 
-        closure.terminal, closure.direction = True, -1
+        closure.terminal, closure.direction = True, -1  # type: ignore[attr-defined]  # solve_ivp event attributes
 
         def crest(tt, y, over=over):
             return y[0] - phi_crit if over else 1.0
 
-        crest.terminal, crest.direction = True, 1
+        crest.terminal, crest.direction = True, 1  # type: ignore[attr-defined]  # solve_ivp event attributes
 
         def turn(tt, y, over=over):  # beyond the crest, closing, turning open again
             return y[1] if over else 1.0
 
-        turn.terminal, turn.direction = True, 1
+        turn.terminal, turn.direction = True, 1  # type: ignore[attr-defined]  # solve_ivp event attributes
 
         def toggle(tt, y):
             return y[0] - phi_toggle * (1 - 1e-9)
 
-        toggle.terminal, toggle.direction = True, 1
+        toggle.terminal, toggle.direction = True, 1  # type: ignore[attr-defined]  # solve_ivp event attributes
         sol = solve_ivp(rhs, (t, right), [phi, v], method="DOP853", rtol=rtol,
                         atol=[atol, atol * math.sqrt(g / mech[LENGTH])],
                         events=[closure, crest, toggle, turn], dense_output=True)

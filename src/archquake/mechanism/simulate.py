@@ -465,7 +465,8 @@ def simulate(
         impact_law=prepared.impact.law,
         impact_validity=prepared.impact.validity,
         impact_followed=bool(prepared.impact.law != "chain" or prepared.impact.post is None
-                             or prepared.impact.chain.is_mirror),
+                             or (prepared.impact.chain is not None
+                                 and prepared.impact.chain.is_mirror)),
         mechanism=mech,
         collapse_acceleration_g=prepared.collapse_acceleration_g,
         critical_rotation=prepared.critical_rotation,

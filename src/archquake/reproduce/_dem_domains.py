@@ -4,6 +4,7 @@ studies ``figure6`` and ``figure11`` (the paper compares both models on both fig
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -48,7 +49,7 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         return DomainSettings(max_magnitude_g=top, scan_reference_g=top, **search)
 
     df, dg = grid(durations_first), grid(durations_gov)
-    search = dict(coarse_points=coarse, fine_points=0, precision_g=precision, early=False)
+    search: dict[str, Any] = dict(coarse_points=coarse, fine_points=0, precision_g=precision, early=False)
     first = dem_failure_domain(
         arch,
         family,

@@ -32,11 +32,13 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     lam_r, sym_r, cv_r = series(by_ratio)
     lam_b, sym_b, cv_b = series(by_embrace)  # embrace increasing
     # domains shift upwards: governing boundary at every duration, for the arches without energy gain
-    ok_r = [c for c in by_ratio if not c.domain.energy_gain]
-    up_r = all(at_least(b.domain.collapse_g, a.domain.collapse_g, tol) for a, b in zip(ok_r, ok_r[1:]))
+    # (series() above read every case's domain: all are present)
+    ok_r = [c.domain for c in by_ratio if c.domain is not None and not c.domain.energy_gain]
+    dom_b = [c.domain for c in by_embrace if c.domain is not None]
+    up_r = all(at_least(b.collapse_g, a.collapse_g, tol) for a, b in zip(ok_r, ok_r[1:]))
     up_b = all(
-        at_least(a.domain.collapse_g, b.domain.collapse_g, tol)
-        for a, b in zip(by_embrace, by_embrace[1:])
+        at_least(a.collapse_g, b.collapse_g, tol)
+        for a, b in zip(dom_b, dom_b[1:])
     )
 
     def switch(flags):  # False ... False True ... True (asymmetric to symmetric) once
@@ -102,6 +104,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     departures = []
     gain = [c for c in (*by_ratio, *by_embrace) if c.domain is not None and c.domain.energy_gain]
     for c in gain:
+        assert c.domain is not None
         rows.append(
             Row(
                 f"{c.label}: impact model",

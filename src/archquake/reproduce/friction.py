@@ -4,6 +4,7 @@ thresholds (p. 2134)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from archquake.geometry.arch import Arch
 from archquake.ground import StepImpulse
@@ -68,7 +69,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         "archquake's analytical value equals the paper's UDEC threshold (the paper's analytical "
         "number is given only approximately)."
     ]
-    data = {f"{a:g} g, t_p {tp:.2f} s": r.to_dict() for (a, tp), r in res.items()}
+    data: dict[str, Any] = {f"{a:g} g, t_p {tp:.2f} s": r.to_dict() for (a, tp), r in res.items()}
     from archquake.dem.studies import friction_threshold
 
     rtol = 1e-2 if quick else 2.5e-3

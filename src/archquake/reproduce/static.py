@@ -16,6 +16,8 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     from archquake.plotting.arch import save_limit_analysis
 
     res = limit_analysis(arch, method="both")
+    assert res.kinematic_collapse_acceleration_g is not None  # method "both" sets both
+    assert res.static_collapse_acceleration_g is not None
     fig = save_limit_analysis(res, figures / "static_collapse.png")
     lam = res.collapse_acceleration_g
     n = arch.voussoirs

@@ -38,6 +38,7 @@ from archquake.geometry.arch import (
     RADIUS_RANGE,
     Arch,
 )
+from archquake.geometry.chain import VoussoirChain
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
 CASE_SCHEMA = 1
@@ -170,7 +171,10 @@ class ArchSpec:
         from archquake.geometry import OnPiers, Piers
         from archquake.geometry.shapes import circular, shaped
 
+        arch: VoussoirChain
         if self._circular_by_radius:
+            assert (self.radius is not None and self.thickness_ratio is not None  # __post_init__
+                    and self.embrace_deg is not None and self.voussoirs is not None)
             if self.joints == "radial":
                 arch = Arch.from_ratio(self.thickness_ratio, math.radians(self.embrace_deg),
                                        self.voussoirs, radius=self.radius, depth=self.depth,
@@ -185,6 +189,7 @@ class ArchSpec:
                           voussoirs=self.voussoirs, joints=self.joints, depth=self.depth,
                           density=self.density)
         if self.pier_height is not None:
+            assert self.pier_width is not None  # __post_init__: both or neither
             arch = OnPiers(arch, Piers(self.pier_height, self.pier_width, self.pier_courses))
         return arch
 
@@ -192,6 +197,7 @@ class ArchSpec:
         """The inputs as a dict: exactly the paper's keys for a circular arch by radius with
         radial joints and no piers (so the case ids of existing studies never change), and the
         shape's keys otherwise."""
+        out: dict[str, Any]
         if self._circular_by_radius:
             out = {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
                    "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
@@ -217,6 +223,7 @@ class ArchSpec:
         """Flat columns for the store: the canonical inputs plus the thickness in m."""
         cols = self.canonical()
         if self._circular_by_radius:
+            assert self.thickness_ratio is not None and self.radius is not None
             cols["thickness_m"] = self.thickness_ratio * self.radius
         return cols
 
@@ -325,11 +332,15 @@ class ExcitationSpec:
         """The :class:`~archquake.ground.GroundMotion` (SI)."""
         from archquake.ground.pulses import SinePulse, StepImpulse
 
+        assert self.direction is not None  # __post_init__ sets -1 or +1
         if self.kind is ExcitationKind.STEP:
+            assert self.magnitude_g is not None and self.duration_s is not None
             return StepImpulse.from_g(self.magnitude_g, self.duration_s, self.direction, g=g)
         if self.kind is ExcitationKind.SINE:
+            assert self.magnitude_g is not None and self.period_s is not None
             return SinePulse.from_g(self.magnitude_g, self.period_s, self.direction, g=g)
         if self.motion is not None:
+            assert self.scale is not None  # __post_init__ sets it for a record
             return self.motion.scaled(self.scale * self.direction)
         return _load_record(self, g=g)
 
@@ -521,6 +532,7 @@ def _load_record(spec: ExcitationSpec, *, g: float):
     """Read a record file into a GroundMotion in m/s^2, scaled and signed as the spec says."""
     from archquake.ground.records import read_record
 
+    assert spec.file is not None and spec.scale is not None and spec.direction is not None
     return read_record(spec.file, units=spec.units, scale=spec.scale * spec.direction, g=g)
 
 

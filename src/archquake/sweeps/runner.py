@@ -90,7 +90,7 @@ class SerialExecutor(Executor):
     and one-core machines). ``KeyboardInterrupt`` and other non-``Exception`` errors propagate
     at once instead of being kept in the future."""
 
-    def submit(self, fn, /, *args, **kwargs) -> Future:  # type: ignore[override]
+    def submit(self, fn, /, *args, **kwargs) -> Future:
         future: Future = Future()
         try:
             result = fn(*args, **kwargs)
@@ -235,9 +235,13 @@ def run_sweep(
     if pending:
         if own:
             executor = process_pool(workers)
+        assert executor is not None
         try:
-            task = (partial(evaluate_chunk, evaluate) if evaluate_batch is None
-                    else partial(evaluate_batch_chunk, evaluate_batch))
+            if evaluate is not None:
+                task = partial(evaluate_chunk, evaluate)
+            else:
+                assert evaluate_batch is not None  # one of the two is given (checked above)
+                task = partial(evaluate_batch_chunk, evaluate_batch)
             check = _cluster_check(executor, no_worker_timeout)
             for records in _map_window(executor, task, _chunks(pending, chunk_size), 2 * workers,
                                        check=check):

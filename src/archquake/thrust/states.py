@@ -43,6 +43,7 @@ from archquake._validate import require_finite
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import GroundMotion
 from archquake.limit.locked import locked_joint_forces
 from archquake.limit.thrust import JointForces, joint_forces, moments_about_origin
@@ -178,7 +179,7 @@ class MotionState:
         }
 
 
-def _voussoir_loads(arch: Arch, centroids: np.ndarray, acc: np.ndarray, alpha: np.ndarray,
+def _voussoir_loads(arch: VoussoirChain, centroids: np.ndarray, acc: np.ndarray, alpha: np.ndarray,
                     ground: float, g: float) -> tuple[np.ndarray, np.ndarray]:
     """Weight, ground inertia and own inertia of each voussoir (N, (n, 2)) and their moments
     about O (N m, (n,))."""
