@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -45,6 +46,232 @@ def whole(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
 
 
+# ---------------------------------------------------------------------------------------------
+# The one place for every kind of value the command line takes: its range in the user's units.
+# Ranges come from what the computation represents without overflow or a time step below float
+# resolution, and from what is physically meaningful (an impact cannot create energy).
+# ---------------------------------------------------------------------------------------------
+#: Pulse magnitude and domain ceiling, g (--magnitude, --max-magnitude).
+MAGNITUDE_RANGE_G = (0.0, 1000.0)
+#: Pulse duration t_p and period T, s (--duration, --period, --durations).
+PULSE_TIME_RANGE_S = (1e-6, 1000.0)
+#: End of an analysis, s (--t-end); also the latest instant --times may ask for.
+T_END_RANGE_S = (0.01, 1e4)
+#: Factor on a record's values (--scale).
+SCALE_RANGE = (0.0, 1000.0)
+#: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
+RESTITUTION_RANGE = (0.0, 1.0)
+#: Least thickness ratio t/R, least depth (m) and least density (kg/m^3) of an arch: below them
+#: masses and the limit analysis's coefficients leave the range of floats.
+MIN_THICKNESS_RATIO = 1e-6
+MIN_DEPTH = 1e-3
+MIN_DENSITY = 1.0
+#: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
+STIFFNESS_RANGE = (1e6, 1e14)
+#: DEM friction coefficient tan(phi) (--friction): phi from 0.06 to 89.4 degrees.
+FRICTION_RANGE = (1e-3, 100.0)
+#: DEM Rayleigh damping: alpha (1/s), beta (s); beta bounds the explicit time step.
+RAYLEIGH_ALPHA_RANGE = (0.0, 1e3)
+RAYLEIGH_BETA_RANGE = (0.0, 1e-3)
+#: UDEC's minimum-damping form (--damping F_MIN,XI_MIN): Hz and percent.
+DAMPING_FREQUENCY_RANGE_HZ = (1e-3, 1e3)
+DAMPING_RATIO_RANGE_PERCENT = (0.0, 100.0)
+#: Domain search (--precision, g; --scan; number of --durations and of --times).
+PRECISION_RANGE_G = (1e-6, 1.0)
+SCAN_RANGE = (2, 1000)
+MAX_DURATIONS = 1000
+MAX_TIMES = 1000
+#: Worker processes a command may ask for (more are capped to the cores by the runner).
+WORKERS_RANGE = (1, 4096)
+
+
+def _fmt_range(low: float, high: float, unit: str, low_open: bool, high_open: bool) -> str:
+    u = f" {unit}" if unit else ""
+    return f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}{u}"
+
+
+def check_range(option: str, value: float, low: float, high: float, unit: str = "", *,
+                low_open: bool = False, high_open: bool = False, hint: str = "") -> float:
+    """``value`` of ``option`` (as the user typed it, e.g. ``--duration``) inside its range in the
+    user's units, or :class:`InvalidParameterError` naming both (``hint`` says what to do)."""
+    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
+    if not (math.isfinite(value) and ok):
+        rng = _fmt_range(low, high, unit, low_open, high_open)
+        raise InvalidParameterError(
+            f"{option} must be in {rng}, got {value:g}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def check_whole(option: str, value: int, low: int, high: int, hint: str = "") -> int:
+    """A whole number ``value`` of ``option`` from ``low`` to ``high``."""
+    if not low <= value <= high:
+        raise InvalidParameterError(f"{option} must be a whole number from {low} to {high}, got "
+                                    f"{value}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def ranged(low: float, high: float, unit: str = "", *, low_open: bool = False,
+           high_open: bool = False, hint: str = ""):
+    """argparse type: a finite number in a range (argparse names the option on failure)."""
+
+    def parse(text: str) -> float:
+        value = number(text)
+        try:
+            return check_range("value", value, low, high, unit, low_open=low_open,
+                               high_open=high_open, hint=hint)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc).replace("value must", "must", 1)) from None
+
+    parse.__name__ = "number"
+    return parse
+
+
+def ranged_whole(low: int, high: int, hint: str = ""):
+    """argparse type: a whole number from ``low`` to ``high``."""
+
+    def parse(text: str) -> int:
+        value = whole(text)
+        try:
+            return check_whole("value", value, low, high, hint)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc).replace("value must", "must", 1)) from None
+
+    parse.__name__ = "whole number"
+    return parse
+
+
+def comma_numbers(text: str, count: int | None, what: str) -> list[float]:
+    """``A,B,...``: finite numbers, no empty item; exactly ``count`` of them when given."""
+    items = text.split(",")
+    if any(not item.strip() for item in items):
+        raise argparse.ArgumentTypeError(f"empty item in {text!r}: expected {what}")
+    try:
+        values = [float(item) for item in items]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite numbers ({what}), got {text!r}")
+    if count is not None and len(values) != count:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+    return values
+
+
+# ---------------------------------------------------------------------------------------------
+# Output paths: checked when the command line is parsed, before any computation.
+# ---------------------------------------------------------------------------------------------
+#: Accepted suffixes by kind of output.
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+ANIMATION_SUFFIXES = (".gif",)
+CSV_SUFFIXES = (".csv",)
+TABLE_SUFFIXES = (".csv", ".parquet")
+
+
+def check_output_file(path: Path, suffixes: tuple[str, ...] | None, *,
+                      create_parents: bool = False) -> Path:
+    """``path`` as a file this command can write, or :class:`InvalidParameterError` saying why.
+
+    Refused: an empty name, an existing directory, a suffix outside ``suffixes`` (None: any),
+    a parent folder that does not exist (unless ``create_parents``: then the nearest existing
+    ancestor must be a folder), a place the process cannot write. The path is written exactly
+    as given: no suffix is added.
+    """
+    text = str(path)
+    if not text.strip() or text.endswith(("/", "\\")) or path.name in ("", ".", ".."):
+        raise InvalidParameterError(f"{text!r} is not a file name")
+    if path.is_dir():
+        raise InvalidParameterError(f"{text} is a directory; give a file name"
+                                    + (f" ending in {_either(suffixes)}" if suffixes else ""))
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise InvalidParameterError(
+            f"{text}: unknown file type {path.suffix or '(no suffix)'!r}; use {_either(suffixes)}")
+    parent = path.parent
+    if not parent.is_dir():
+        if not create_parents:
+            raise InvalidParameterError(f"{text}: folder {str(parent)!r} does not exist; create it first")
+        ancestor = parent
+        while not ancestor.exists() and ancestor != ancestor.parent:
+            ancestor = ancestor.parent
+        if not ancestor.is_dir():
+            raise InvalidParameterError(f"{text}: {str(ancestor)!r} is a file, not a folder")
+        _check_writable_folder(text, ancestor)
+        return path
+    if path.exists():
+        if not os.access(path, os.W_OK):
+            raise InvalidParameterError(f"{text}: the file is read-only")
+        return path
+    _check_writable_folder(text, parent)
+    return path
+
+
+def check_output_folder(path: Path) -> Path:
+    """``path`` as a folder this command can create (with its parents) and write into."""
+    text = str(path)
+    if not text.strip():
+        raise InvalidParameterError(f"{text!r} is not a folder name")
+    if path.exists() and not path.is_dir():
+        raise InvalidParameterError(f"{text} is a file, not a folder")
+    ancestor = path
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise InvalidParameterError(f"{text}: {str(ancestor)!r} is a file, not a folder")
+    _check_writable_folder(text, ancestor)
+    return path
+
+
+def _check_writable_folder(text: str, folder: Path) -> None:
+    """Create and remove a scratch file in ``folder`` (os.access is wrong for root, read-only
+    mounts and /proc-like file systems)."""
+    import tempfile
+
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".archquake-probe-"):
+            pass
+    except OSError as exc:
+        raise InvalidParameterError(
+            f"{text}: cannot write in folder {str(folder)!r} ({exc.strerror or exc})") from None
+
+
+def _either(suffixes: tuple[str, ...] | None) -> str:
+    if not suffixes:
+        return "any suffix"
+    return ", ".join(suffixes[:-1]) + (" or " if len(suffixes) > 1 else "") + suffixes[-1]
+
+
+def output_file(*suffixes: str, create_parents: bool = False):
+    """argparse type: an output file checked by :func:`check_output_file` at parse time, so a
+    bad path fails before any computation (argparse names the option)."""
+
+    def parse(text: str) -> Path:
+        try:
+            return check_output_file(Path(text), suffixes or None, create_parents=create_parents)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    parse.__name__ = "file name"
+    return parse
+
+
+def output_folder(text: str) -> Path:
+    """argparse type: an output folder checked by :func:`check_output_folder`."""
+    try:
+        return check_output_folder(Path(text))
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def refuse_unless(options: dict[str, object], applies: bool, why: str) -> None:
+    """Refuse every option of ``options`` (``{"--stiffness": args.stiffness, ...}``, None when
+    not given) that the user gave although it does not apply (``applies`` False); ``why`` says
+    what to do, e.g. "add --model dem"."""
+    if applies:
+        return
+    given = [name for name, value in options.items() if value is not None and value is not False]
+    if given:
+        raise InvalidParameterError(f"{', '.join(given)} {'applies' if len(given) == 1 else 'apply'} "
+                                    f"only {why}")
+
+
 def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True) -> None:
     """--radius, --thickness, --embrace (degrees), --voussoirs, --depth, --density.
 
@@ -54,20 +281,21 @@ def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True
     g.add_argument("--radius", type=number, default=10.0 if defaults else None,
                    help=f"centreline radius R, m ({RADIUS_RANGE[0]:g} to {RADIUS_RANGE[1]:g}; default 10)")
     g.add_argument("--thickness", type=number, default=1.5 if defaults else None,
-                   help="thickness t, m (0 < t < 2R; default 1.5)")
+                   help=f"thickness t, m ({MIN_THICKNESS_RATIO:g} R <= t < 2R; default 1.5)")
     g.add_argument("--embrace", type=number, default=157.5 if defaults else None,
                    help=f"angle of embrace, degrees (0 < embrace <= {MAX_EMBRACE_DEG:g}; default 157.5)")
     g.add_argument("--voussoirs", type=whole, default=7 if defaults else None,
                    help=f"number of voussoirs (3 to {MAX_VOUSSOIRS}; default 7)")
-    g.add_argument("--depth", type=number, default=1.0, help="out-of-plane depth, m (default 1)")
+    g.add_argument("--depth", type=number, default=1.0,
+                   help=f"out-of-plane depth, m ({MIN_DEPTH:g} to {MAX_DEPTH:g}; default 1)")
     g.add_argument("--density", type=number, default=2000.0,
-                   help="density, kg/m^3 (default 2000)")
+                   help=f"density, kg/m^3 ({MIN_DENSITY:g} to {MAX_DENSITY:g}; default 2000)")
 
 
 def arch_from_args(args: argparse.Namespace) -> Arch:
     """Build the Arch, checking the degree-valued embrace here so the message is in degrees."""
     embrace = args.embrace
-    if not (0.0 < embrace <= MAX_EMBRACE_DEG):
+    if not (0.0 < embrace <= MAX_EMBRACE_DEG):  # compared in degrees: 240 is accepted
         raise InvalidParameterError(
             f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {embrace:g}"
         )
@@ -78,16 +306,14 @@ def arch_from_args(args: argparse.Namespace) -> Arch:
     low, high = RADIUS_RANGE
     if not low <= args.radius <= high:
         raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {args.radius:g}")
-    if args.thickness <= 0 or args.thickness >= 2 * args.radius:
+    thin = MIN_THICKNESS_RATIO * args.radius
+    if not thin <= args.thickness < 2 * args.radius:
         raise InvalidParameterError(
-            f"--thickness must be in (0, 2 x radius) = (0, {2 * args.radius:g}) m, "
-            f"got {args.thickness:g}"
+            f"--thickness must be in [{MIN_THICKNESS_RATIO:g} x radius, 2 x radius) = "
+            f"[{thin:g}, {2 * args.radius:g}) m, got {args.thickness:g}"
         )
-    if not 0 < args.depth <= MAX_DEPTH:
-        raise InvalidParameterError(f"--depth must be in (0, {MAX_DEPTH:g}] m, got {args.depth:g}")
-    if not 0 < args.density <= MAX_DENSITY:
-        raise InvalidParameterError(
-            f"--density must be in (0, {MAX_DENSITY:g}] kg/m^3, got {args.density:g}")
+    check_range("--depth", args.depth, MIN_DEPTH, MAX_DEPTH, "m")
+    check_range("--density", args.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3")
     return Arch(
         radius=args.radius,
         thickness=args.thickness,
@@ -101,8 +327,8 @@ def arch_from_args(args: argparse.Namespace) -> Arch:
 def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) -> None:
     parser.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     if plot:
-        parser.add_argument("--plot", metavar="FILE", type=Path,
-                            help="draw the result to FILE (.png, .pdf or .svg)")
+        parser.add_argument("--plot", metavar="FILE", type=output_file(*FIGURE_SUFFIXES),
+                            help=f"draw the result to FILE ({_either(FIGURE_SUFFIXES)})")
 
 
 def quiet_dask() -> None:
@@ -141,11 +367,13 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                           "-a/2 for 2 t_p), 'sine' = one cycle of a sin(2 pi t/T); the first lobe "
                           "is a ground acceleration towards -x (see --mirror)")
     grp.add_argument("--magnitude", type=number, metavar="A",
-                     help="pulse magnitude a, in g (>= 0)")
+                     help=f"pulse magnitude a, in g (0 to {MAGNITUDE_RANGE_G[1]:g})")
     grp.add_argument("--duration", type=number, metavar="TP",
-                     help="step impulse: duration t_p of the first lobe, s (> 0)")
+                     help="step impulse: duration t_p of the first lobe, s "
+                          f"({PULSE_TIME_RANGE_S[0]:g} to {PULSE_TIME_RANGE_S[1]:g})")
     grp.add_argument("--period", type=number, metavar="T",
-                     help="sine pulse: period T, s (> 0)")
+                     help=f"sine pulse: period T, s ({PULSE_TIME_RANGE_S[0]:g} to "
+                          f"{PULSE_TIME_RANGE_S[1]:g})")
     grp.add_argument("--record", type=Path, metavar="FILE",
                      help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
                           "time (s), acceleration (units from --units); positive = towards +x")
@@ -153,7 +381,8 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                      help="units of a CSV record's acceleration column (default g; .AT2 files "
                           "are always in g)")
     grp.add_argument("--scale", type=number, metavar="S",
-                     help="factor applied to every value of the record (> 0; default 1)")
+                     help=f"factor applied to every value of the record (> 0 and <= "
+                          f"{SCALE_RANGE[1]:g}; default 1)")
     grp.add_argument("--mirror", action="store_true",
                      help="reverse the excitation: pulses start towards +x instead of -x; a "
                           "record is multiplied by -1")
@@ -164,10 +393,8 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
     """Read a record given on the command line: CSV units default to g here (and only here,
     where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record)."""
     scale = 1.0 if scale is None else scale
-    if scale <= 0:
-        raise InvalidParameterError(
-            f"--scale must be > 0, got {scale:g}; use --mirror to reverse the record"
-        )
+    check_range("--scale", scale, *SCALE_RANGE, low_open=True,
+                hint="use --mirror to reverse the record" if scale < 0 else "")
     if units is None and path.suffix.lower() in (".csv", ".txt"):
         units = "g"
     return read_record(path, units=units, scale=scale, g=g)
@@ -202,10 +429,8 @@ def ground_motion_from_args(args: argparse.Namespace, *,
             )
     if args.magnitude is None:
         raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")
-    if args.magnitude < 0:
-        raise InvalidParameterError(
-            f"--magnitude must be >= 0 g, got {args.magnitude:g}; use --mirror to reverse the pulse"
-        )
+    check_range("--magnitude", args.magnitude, *MAGNITUDE_RANGE_G, "g",
+                hint="use --mirror to reverse the pulse" if args.magnitude < 0 else "")
     direction = 1 if args.mirror else -1
     if pulse == "step":
         if args.period is not None:
@@ -214,16 +439,14 @@ def ground_motion_from_args(args: argparse.Namespace, *,
         if args.duration is None:
             raise InvalidParameterError("--pulse step needs --duration TP (s, > 0): the length "
                                         "t_p of its first lobe")
-        if args.duration <= 0:
-            raise InvalidParameterError(f"--duration must be > 0 s, got {args.duration:g}")
+        check_range("--duration", args.duration, *PULSE_TIME_RANGE_S, "s")
         return StepImpulse.from_g(args.magnitude, args.duration, direction, g=g)
     if args.duration is not None:
         raise InvalidParameterError("--duration applies to --pulse step; the sine pulse takes "
                                     "--period T (s)")
     if args.period is None:
         raise InvalidParameterError("--pulse sine needs --period T (s, > 0)")
-    if args.period <= 0:
-        raise InvalidParameterError(f"--period must be > 0 s, got {args.period:g}")
+    check_range("--period", args.period, *PULSE_TIME_RANGE_S, "s")
     return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
 
 
@@ -251,16 +474,20 @@ def _durations(text: str) -> np.ndarray:
         raise InvalidParameterError(
             f"expected START:STOP:COUNT in s (e.g. 0.05:1.5:40) or one duration, got {text!r}"
         ) from None
-    if count < 1:
-        raise InvalidParameterError(f"COUNT must be >= 1 in START:STOP:COUNT, got {text!r}")
+    if not 1 <= count <= MAX_DURATIONS:
+        raise InvalidParameterError(
+            f"COUNT must be from 1 to {MAX_DURATIONS} in START:STOP:COUNT, got {text!r}")
     if count > 1 and not stop > start:
         raise InvalidParameterError(f"STOP must exceed START in START:STOP:COUNT, got {text!r}")
     return _positive(np.linspace(start, stop, count), text)
 
 
 def _positive(values: np.ndarray, text: str) -> np.ndarray:
+    low, high = PULSE_TIME_RANGE_S
     if not np.all(np.isfinite(values)) or np.any(values <= 0):
         raise InvalidParameterError(f"durations must be finite and > 0 s, got {text!r}")
+    if np.any(values < low) or np.any(values > high):
+        raise InvalidParameterError(f"durations must be in [{low:g}, {high:g}] s, got {text!r}")
     return values
 
 
