@@ -18,7 +18,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from archquake.cli.common import output_folder, print_json
+from archquake.cli.common import print_json
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="regenerate the paper: every study, its figures and a side-by-side report",
         description=__doc__.split("\n\n")[1] + " Studies: " + ", ".join(s.name for s in STUDIES) + ".",
     )
-    p.add_argument("--out", type=output_folder, required=True, metavar="DIR", help="output folder (created)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder (created)")
     p.add_argument(
         "--quick",
         action="store_true",
@@ -47,7 +47,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "Figure 4(d) rocking to rest. The report is DIR/report.html.",
     )
     d.add_argument(
-        "--out", type=output_folder, default="out", metavar="DIR", help="output folder (default out/)"
+        "--out", type=Path, default=Path("out"), metavar="DIR", help="output folder (default out/)"
     )
     d.add_argument("--json", action="store_true", help="print the results as JSON on stdout")
     d.set_defaults(func=run_demo)
@@ -82,8 +82,10 @@ def reproduce(
 
     ``extra(out)`` writes more files after the report (``archquake demo``: the animation) and
     returns what ``--json`` adds (file paths)."""
+    from archquake.cli.common import check_output_folder
     from archquake.reproduce import run_studies
 
+    check_output_folder(Path(out), "--out")  # before any study: a file, or an unwritable place, fails now
     stream = sys.stderr if json else sys.stdout
 
     def progress(line: str) -> None:

@@ -15,12 +15,15 @@ import numpy as np
 
 from archquake._json import to_jsonable
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import InvalidParameterError
+from archquake.errors import GroundMotionFormatError, InvalidParameterError
 from archquake.geometry.arch import (
     MAX_DENSITY,
     MAX_DEPTH,
     MAX_EMBRACE_DEG,
     MAX_VOUSSOIRS,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
 )
@@ -57,15 +60,13 @@ MAGNITUDE_RANGE_G = (0.0, 1000.0)
 PULSE_TIME_RANGE_S = (1e-6, 1000.0)
 #: End of an analysis, s (--t-end); also the latest instant --times may ask for.
 T_END_RANGE_S = (0.01, 1e4)
+#: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
+#: file is not an accelerogram.
+RECORD_DT_RANGE_S = (1e-6, 1.0)
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
 #: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
 RESTITUTION_RANGE = (0.0, 1.0)
-#: Least thickness ratio t/R, least depth (m) and least density (kg/m^3) of an arch: below them
-#: masses and the limit analysis's coefficients leave the range of floats.
-MIN_THICKNESS_RATIO = 1e-6
-MIN_DEPTH = 1e-3
-MIN_DENSITY = 1.0
 #: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
 STIFFNESS_RANGE = (1e6, 1e14)
 #: DEM friction coefficient tan(phi) (--friction): phi from 0.06 to 89.4 degrees.
@@ -203,8 +204,18 @@ def check_output_file(path: Path, suffixes: tuple[str, ...] | None, *,
     return path
 
 
-def check_output_folder(path: Path) -> Path:
-    """``path`` as a folder this command can create (with its parents) and write into."""
+def check_output_folder(path: Path, option: str = "") -> Path:
+    """``path`` as a folder this command can create (with its parents) and write into
+    (``option``, e.g. ``--out``, starts the message when given)."""
+    try:
+        return _check_output_folder(path)
+    except InvalidParameterError as exc:
+        if option:
+            raise InvalidParameterError(f"{option}: {exc}") from None
+        raise
+
+
+def _check_output_folder(path: Path) -> Path:
     text = str(path)
     if not text.strip():
         raise InvalidParameterError(f"{text!r} is not a folder name")
@@ -397,7 +408,29 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
                 hint="use --mirror to reverse the record" if scale < 0 else "")
     if units is None and path.suffix.lower() in (".csv", ".txt"):
         units = "g"
-    return read_record(path, units=units, scale=scale, g=g)
+    if path.suffix.lower() == ".at2" and units not in (None, "g"):
+        raise InvalidParameterError(f"--units {units} does not apply to {path.name}: PEER .AT2 "
+                                    "files are in g; leave --units out")
+    try:
+        with np.errstate(all="ignore"):  # an overflow is refused in one line, not warned about
+            record = read_record(path, units=units, scale=scale, g=g)
+    except GroundMotionFormatError:
+        raise  # names the file and line already
+    except InvalidParameterError as exc:  # the samples themselves (non-finite once in m/s^2, ...)
+        raise InvalidParameterError(f"{path}: {exc}") from None
+    low, high = RECORD_DT_RANGE_S
+    if not low <= record.dt <= high:
+        raise InvalidParameterError(
+            f"{path}: time step DT = {record.dt:g} s is outside [{low:g}, {high:g}] s")
+    if record.duration > T_END_RANGE_S[1]:
+        raise InvalidParameterError(f"{path}: the record lasts {record.duration:g} s, more than "
+                                    f"{T_END_RANGE_S[1]:g} s")
+    peak_g = record.peak / g
+    if not peak_g <= MAGNITUDE_RANGE_G[1]:
+        raise InvalidParameterError(
+            f"{path}: peak {peak_g:g} g (after --scale {scale:g}) is above "
+            f"{MAGNITUDE_RANGE_G[1]:g} g; lower --scale")
+    return record
 
 
 def ground_motion_from_args(args: argparse.Namespace, *,

@@ -37,6 +37,11 @@ RADIUS_RANGE = (1e-3, 1e4)
 #: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
 MAX_DENSITY = 1e5
 MAX_DEPTH = 1e4
+#: Least density (kg/m^3), depth (m) and thickness ratio t/R: below them masses and the limit
+#: analysis's coefficients leave the range of floats (the CLI fuzz found 1e-300 of each).
+MIN_DENSITY = 1.0
+MIN_DEPTH = 1e-3
+MIN_THICKNESS_RATIO = 1e-6
 
 
 @dataclass(frozen=True)
@@ -83,6 +88,10 @@ class Arch:
         t = require_positive("thickness", self.thickness, "m")
         if t >= 2.0 * r:
             raise_thick(t, r)
+        if t < MIN_THICKNESS_RATIO * r:
+            raise InvalidParameterError(
+                f"thickness must be >= {MIN_THICKNESS_RATIO:g} x radius = "
+                f"{MIN_THICKNESS_RATIO * r:g} m, got {t:g}")
         require_range(
             "embrace",
             self.embrace,
@@ -93,8 +102,10 @@ class Arch:
             shown="(0, 240] degrees = (0, 4.18879] rad",
         )
         require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS)
-        require_range("depth", self.depth, 0.0, MAX_DEPTH, "m", high_open=False)
-        require_range("density", self.density, 0.0, MAX_DENSITY, "kg/m^3", high_open=False)
+        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
+                      high_open=False)
+        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
+                      low_open=False, high_open=False)
         # store plain Python numbers so that the dataclass hashes and pickles predictably
         for name in ("radius", "thickness", "embrace", "depth", "density"):
             object.__setattr__(self, name, float(getattr(self, name)))

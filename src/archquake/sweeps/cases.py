@@ -31,6 +31,9 @@ from archquake.geometry.arch import (
     MAX_DEPTH,
     MAX_EMBRACE_DEG,
     MAX_VOUSSOIRS,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
 )
@@ -97,13 +100,14 @@ class ArchSpec:
         _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
                                            low_open=False, high_open=False))
         _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
-                                                    0, 2))
+                                                    MIN_THICKNESS_RATIO, 2, low_open=False))
         _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0, MAX_EMBRACE_DEG,
                                                  "degrees", high_open=False))
         _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
-        _set(self, "depth", require_range("depth", self.depth, 0, MAX_DEPTH, "m", high_open=False))
-        _set(self, "density", require_range("density", self.density, 0, MAX_DENSITY, "kg/m^3",
-                                            high_open=False))
+        _set(self, "depth", require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m",
+                                          low_open=False, high_open=False))
+        _set(self, "density", require_range("density", self.density, MIN_DENSITY, MAX_DENSITY,
+                                            "kg/m^3", low_open=False, high_open=False))
 
     def build(self) -> Arch:
         """The :class:`~archquake.geometry.Arch` (SI, embrace in rad)."""

@@ -563,16 +563,12 @@ def states(
     times = [require_finite("time", float(t)) for t in np.atleast_1d(times)]
     if any(t < 0 for t in times):
         raise InvalidParameterError(f"times must be >= 0 s, got {min(times):g}")
-    tau = math.sqrt(prepared.mechanism.arch.radius / g)
     if result is None:
-        # run at least two output samples (tau / 200 each) past the last time: the history must
-        # hold a sample after an onset at the last time (t = 0 alone under a pulse above the
-        # onset is the opening mechanism at 0+, not the locked arch)
-        t_end = max(max(times), 1e-9) * 1.001 + 1e-6 + tau / 100.0
-        result = simulate(prepared, motion, t_end=t_end, g=g)
+        result = simulate(prepared, motion, t_end=max(max(times), 1e-9) * 1.001 + 1e-6, g=g)
     h = result.history
     if h is None or h.t.size == 0:
         raise InvalidParameterError("the simulation result has no history (output_interval = 0)")
+    tau = math.sqrt(prepared.mechanism.arch.radius / g)
     out = []
     for t in times:
         if result.collapse_time is not None and t > result.collapse_time:
