@@ -9,6 +9,7 @@ the time bound.
 from __future__ import annotations
 
 import contextlib
+import faulthandler
 import io
 import os
 import signal
@@ -53,6 +54,9 @@ def call(argv: Sequence[str], timeout: float = 30.0) -> Outcome:
     code, crash, timed_out = None, None, False
     old = signal.signal(signal.SIGALRM, _alarm)
     signal.setitimer(signal.ITIMER_REAL, timeout)
+    # SIGALRM cannot interrupt compiled (numba) code: past twice the bound, dump every thread's
+    # stack and end the process, so that a runaway kernel fails the run instead of hanging it
+    faulthandler.dump_traceback_later(2 * timeout + 30, exit=True)
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
             try:
@@ -64,6 +68,7 @@ def call(argv: Sequence[str], timeout: float = 30.0) -> Outcome:
     except Exception:  # noqa: BLE001  (a bug: reported, not raised, so the fuzz can count them)
         crash = traceback.format_exc()
     finally:
+        faulthandler.cancel_dump_traceback_later()
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, old)
     return Outcome(tuple(argv), code, out.getvalue(), err.getvalue(), crash, timed_out)

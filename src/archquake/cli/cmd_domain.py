@@ -7,11 +7,6 @@ import argparse
 import math
 
 from archquake.cli.common import (
-    CSV_SUFFIXES,
-    MAGNITUDE_RANGE_G,
-    PRECISION_RANGE_G,
-    SCAN_RANGE,
-    WORKERS_RANGE,
     add_arch_arguments,
     add_output_arguments,
     arch_from_args,
@@ -23,6 +18,13 @@ from archquake.cli.common import (
     refuse_unless,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    CSV_SUFFIXES,
+    MAGNITUDE_RANGE_G,
+    PRECISION_RANGE_G,
+    SCAN_RANGE,
+    WORKERS_RANGE,
+)
 
 
 def register(sub: argparse._SubParsersAction) -> None:

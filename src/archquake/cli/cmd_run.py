@@ -7,10 +7,6 @@ import csv
 from pathlib import Path
 
 from archquake.cli.common import (
-    ANIMATION_SUFFIXES,
-    CSV_SUFFIXES,
-    RESTITUTION_RANGE,
-    T_END_RANGE_S,
     add_arch_arguments,
     add_ground_motion_arguments,
     add_output_arguments,
@@ -22,6 +18,12 @@ from archquake.cli.common import (
 )
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    ANIMATION_SUFFIXES,
+    CSV_SUFFIXES,
+    RESTITUTION_RANGE,
+    T_END_RANGE_S,
+)
 
 
 def register(sub: argparse._SubParsersAction) -> None:

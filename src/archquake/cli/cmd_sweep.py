@@ -11,8 +11,6 @@ import sys
 from pathlib import Path
 
 from archquake.cli.common import (
-    TABLE_SUFFIXES,
-    WORKERS_RANGE,
     number,
     output_file,
     print_json,
@@ -20,6 +18,10 @@ from archquake.cli.common import (
     ranged_whole,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    TABLE_SUFFIXES,
+    WORKERS_RANGE,
+)
 from archquake.sweeps import ResultStore, load_study, model_function, open_executor, run_sweep
 from archquake.sweeps.evaluate import evaluate_case
 from archquake.sweeps.runner import (

@@ -6,8 +6,6 @@ import argparse
 import math
 
 from archquake.cli.common import (
-    MAX_TIMES,
-    T_END_RANGE_S,
     add_arch_arguments,
     add_ground_motion_arguments,
     add_output_arguments,
@@ -17,6 +15,10 @@ from archquake.cli.common import (
     print_json,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    MAX_TIMES,
+    T_END_RANGE_S,
+)
 
 
 def _times(text: str) -> list[float]:

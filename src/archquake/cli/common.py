@@ -28,6 +28,15 @@ from archquake.geometry.arch import (
     Arch,
 )
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
+from archquake.ranges import (  # the one place of every range
+    FIGURE_SUFFIXES,
+    MAGNITUDE_RANGE_G,
+    MAX_DURATIONS,
+    PULSE_TIME_RANGE_S,
+    RECORD_DT_RANGE_S,
+    SCALE_RANGE,
+    T_END_RANGE_S,
+)
 
 
 def number(text: str) -> float:
@@ -50,40 +59,8 @@ def whole(text: str) -> int:
 
 
 # ---------------------------------------------------------------------------------------------
-# The one place for every kind of value the command line takes: its range in the user's units.
-# Ranges come from what the computation represents without overflow or a time step below float
-# resolution, and from what is physically meaningful (an impact cannot create energy).
+# Checks of a value against its range (archquake.ranges), named as the user typed the option.
 # ---------------------------------------------------------------------------------------------
-#: Pulse magnitude and domain ceiling, g (--magnitude, --max-magnitude).
-MAGNITUDE_RANGE_G = (0.0, 1000.0)
-#: Pulse duration t_p and period T, s (--duration, --period, --durations).
-PULSE_TIME_RANGE_S = (1e-6, 1000.0)
-#: End of an analysis, s (--t-end); also the latest instant --times may ask for.
-T_END_RANGE_S = (0.01, 1e4)
-#: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
-#: file is not an accelerogram.
-RECORD_DT_RANGE_S = (1e-6, 1.0)
-#: Factor on a record's values (--scale).
-SCALE_RANGE = (0.0, 1000.0)
-#: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
-RESTITUTION_RANGE = (0.0, 1.0)
-#: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
-STIFFNESS_RANGE = (1e6, 1e14)
-#: DEM friction coefficient tan(phi) (--friction): phi from 0.06 to 89.4 degrees.
-FRICTION_RANGE = (1e-3, 100.0)
-#: DEM Rayleigh damping: alpha (1/s), beta (s); beta bounds the explicit time step.
-RAYLEIGH_ALPHA_RANGE = (0.0, 1e3)
-RAYLEIGH_BETA_RANGE = (0.0, 1e-3)
-#: UDEC's minimum-damping form (--damping F_MIN,XI_MIN): Hz and percent.
-DAMPING_FREQUENCY_RANGE_HZ = (1e-3, 1e3)
-DAMPING_RATIO_RANGE_PERCENT = (0.0, 100.0)
-#: Domain search (--precision, g; --scan; number of --durations and of --times).
-PRECISION_RANGE_G = (1e-6, 1.0)
-SCAN_RANGE = (2, 1000)
-MAX_DURATIONS = 1000
-MAX_TIMES = 1000
-#: Worker processes a command may ask for (more are capped to the cores by the runner).
-WORKERS_RANGE = (1, 4096)
 
 
 def _fmt_range(low: float, high: float, unit: str, low_open: bool, high_open: bool) -> str:
@@ -160,11 +137,6 @@ def comma_numbers(text: str, count: int | None, what: str) -> list[float]:
 # ---------------------------------------------------------------------------------------------
 # Output paths: checked when the command line is parsed, before any computation.
 # ---------------------------------------------------------------------------------------------
-#: Accepted suffixes by kind of output.
-FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
-ANIMATION_SUFFIXES = (".gif",)
-CSV_SUFFIXES = (".csv",)
-TABLE_SUFFIXES = (".csv", ".parquet")
 
 
 def check_output_file(path: Path, suffixes: tuple[str, ...] | None, *,

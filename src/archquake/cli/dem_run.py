@@ -12,18 +12,20 @@ import csv
 from pathlib import Path
 
 from archquake.cli.common import (
-    DAMPING_FREQUENCY_RANGE_HZ,
-    DAMPING_RATIO_RANGE_PERCENT,
-    FRICTION_RANGE,
-    RAYLEIGH_ALPHA_RANGE,
-    RAYLEIGH_BETA_RANGE,
-    STIFFNESS_RANGE,
     check_range,
     comma_numbers,
     ranged,
     refuse_unless,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    DAMPING_FREQUENCY_RANGE_HZ,
+    DAMPING_RATIO_RANGE_PERCENT,
+    FRICTION_RANGE,
+    RAYLEIGH_ALPHA_RANGE,
+    RAYLEIGH_BETA_RANGE,
+    STIFFNESS_RANGE,
+)
 
 #: The paper's joint stiffness, Pa/m, and Rayleigh (alpha 1/s, beta s).
 DEFAULT_STIFFNESS = 1e12

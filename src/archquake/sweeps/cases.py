@@ -23,7 +23,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
-from archquake._validate import require_finite, require_int, require_positive, require_range
+from archquake._validate import require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import (
@@ -37,6 +37,7 @@ from archquake.geometry.arch import (
     RADIUS_RANGE,
     Arch,
 )
+from archquake.ranges import MAGNITUDE_RANGE_G, PULSE_TIME_RANGE_S, SCALE_RANGE, T_END_RANGE_S
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
 CASE_SCHEMA = 1
@@ -200,16 +201,17 @@ class ExcitationSpec:
                     f"units must be one of {list(RECORD_UNITS)}, got {units!r}")
             _set(self, "units", units)
             scale = 1.0 if self.scale is None else self.scale
-            _set(self, "scale", require_positive("scale", scale))
+            _set(self, "scale", require_range("scale", scale, *SCALE_RANGE, high_open=False))
             if self.file_sha256 is None:
                 _set(self, "file_sha256", file_digest(self.file))
             return
-        magnitude = require_finite("magnitude_g", self.magnitude_g, "g")
-        if magnitude < 0:
-            raise InvalidParameterError(f"magnitude_g must be >= 0 g, got {magnitude:g}")
+        magnitude = require_range("magnitude_g", self.magnitude_g, *MAGNITUDE_RANGE_G, "g",
+                                  low_open=False, high_open=False)
         _set(self, "magnitude_g", magnitude)
         time_name = "duration_s" if kind is ExcitationKind.STEP else "period_s"
-        _set(self, time_name, require_positive(time_name, getattr(self, time_name), "s"))
+        _set(self, time_name, require_range(time_name, getattr(self, time_name),
+                                            *PULSE_TIME_RANGE_S, "s", low_open=False,
+                                            high_open=False))
 
     def build(self, *, g: float = STANDARD_GRAVITY):
         """The :class:`~archquake.ground.GroundMotion` (SI)."""
@@ -262,7 +264,8 @@ class CaseOptions:
             _set(self, "restitution", require_range("restitution", self.restitution, 0, 1,
                                                      high_open=False))
         if self.t_end_s is not None:
-            _set(self, "t_end_s", require_positive("t_end_s", self.t_end_s, "s"))
+            _set(self, "t_end_s", require_range("t_end_s", self.t_end_s, *T_END_RANGE_S, "s",
+                                                low_open=False, high_open=False))
         _set(self, "g", require_positive("g", self.g, "m/s^2"))
 
     def canonical(self) -> dict[str, Any]:
