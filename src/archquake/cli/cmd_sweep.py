@@ -17,7 +17,7 @@ from archquake.cli.common import (
     quiet_dask,
     ranged_whole,
 )
-from archquake.errors import InvalidParameterError
+from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ranges import (
     TABLE_SUFFIXES,
     WORKERS_RANGE,
@@ -89,7 +89,11 @@ def run(args: argparse.Namespace) -> int:
     study = load_study(args.study)
     evaluate = case_function(study.model)
     store_path = args.store or study.default_store
-    with ResultStore(store_path) as store:
+    try:
+        opened = ResultStore(store_path)
+    except ArchquakeError as exc:  # not a database, another schema, an unwritable place
+        raise ArchquakeError(f"--store {exc}" if args.store else str(exc)) from None
+    with opened as store:
         wanted = {c.case_id for c in study.cases}
         workers = args.workers
         if args.scheduler is None:
