@@ -37,8 +37,9 @@ PRECISION_RANGE_G = (1e-6, 1.0)
 SCAN_RANGE = (2, 1000)
 MAX_DURATIONS = 1000
 MAX_TIMES = 1000
-#: Worker processes a command may ask for (more are capped to the cores by the runner).
-WORKERS_RANGE = (1, 4096)
+#: Worker processes a command may ask for; more than the usable cores (or the work) are capped
+#: to them with a line (archquake.sweeps.runner.cap_workers).
+WORKERS_RANGE = (1, 10**9)
 
 #: Accepted suffixes by kind of output file.
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")

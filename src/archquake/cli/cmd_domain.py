@@ -156,7 +156,16 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     _check_search(arch, scan, precision, ceiling)
     settings = DomainSettings(max_magnitude_g=ceiling, coarse_points=scan,
                               fine_points=max(scan // 2, 1), precision_g=precision, early=False)
-    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=args.workers)
+    workers = args.workers
+    if workers is not None:  # never more processes than cores or runs (a line says so)
+        import sys
+
+        from archquake.sweeps.runner import cap_workers
+
+        workers, note = cap_workers(workers, 2 * len(durations))
+        if note is not None:
+            print(f"archquake: --workers: {note}", file=sys.stderr)
+    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers)
     rows = comp.rows()
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
