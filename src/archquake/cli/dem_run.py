@@ -38,11 +38,14 @@ def _pair(text: str) -> tuple[float, float]:
 
 
 def refuse_dem_options(args: argparse.Namespace) -> None:
-    """The DEM's options are an error unless ``--model dem`` (never silently ignored)."""
+    """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
+    ``--dem-assembly`` defaults to every voussoir."""
     refuse_unless({"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
                    "--friction": args.friction, "--damping": args.damping,
                    "--rayleigh": args.rayleigh}, args.model == "dem",
                   "to the distinct-element model: add --model dem, or leave it out")
+    if args.dem_assembly is None:  # None until here, so that giving it is seen
+        args.dem_assembly = "voussoirs"
 
 
 def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
@@ -109,7 +112,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
                                     "impacts follow from its contacts and damping (--damping)")
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
     settings = settings_from_args(args, duration)
-    assembly = dem_assembly(arch, args.dem_assembly or "voussoirs")
+    assembly = dem_assembly(arch, args.dem_assembly)
     result = simulate_dem(assembly, motion, settings)
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
