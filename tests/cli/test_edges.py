@@ -43,6 +43,8 @@ def one_line(capsys) -> str:
     (["run", *PULSE, "--model", "dem", "--rayleigh", "0,1"], ("--rayleigh BETA", "s")),
     (["run", *PULSE, "--model", "dem", "--friction", "nan"], ("--friction",)),
     (["sweep", "x.toml", "--workers", "0"], ("--workers",)),
+    (["static", "--method", "kinematic", "--voussoirs", "200"],
+     ("--method kinematic", "--voussoirs <= 60", "--method static")),
 ])
 def test_out_of_range_values_are_one_line_naming_the_option(capsys, argv, names):
     assert main(argv) == 2

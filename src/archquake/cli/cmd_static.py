@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from archquake.cli.common import add_arch_arguments, add_output_arguments, arch_from_args, print_json
+from archquake.errors import InvalidParameterError
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
 
@@ -36,6 +37,10 @@ def run(args: argparse.Namespace) -> int:
     method = args.method
     if method == "auto":
         method = "both" if arch.voussoirs <= MAX_KINEMATIC_VOUSSOIRS else "static"
+    elif method in ("kinematic", "both") and arch.voussoirs > MAX_KINEMATIC_VOUSSOIRS:
+        raise InvalidParameterError(
+            f"--method {method} enumerates the mechanisms and needs --voussoirs <= "
+            f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use --method static (or auto)")
     result = limit_analysis(arch, method=method)
     if args.plot is not None:
         from archquake.plotting.arch import save_limit_analysis
