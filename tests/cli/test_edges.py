@@ -43,6 +43,9 @@ def one_line(capsys) -> str:
     (["run", *PULSE, "--model", "dem", "--rayleigh", "0,1"], ("--rayleigh BETA", "s")),
     (["run", *PULSE, "--model", "dem", "--friction", "nan"], ("--friction",)),
     (["sweep", "x.toml", "--workers", "0"], ("--workers",)),
+    (["run", *PULSE, "--model", "dem", "--t-end", "500"], ("--t-end", "<= 120 s")),
+    (["run", "--pulse", "step", "--magnitude", "0.5", "--duration", "900", "--model", "dem"],
+     ("default --t-end", "<= 120 s")),
     (["static", "--method", "kinematic", "--voussoirs", "200"],
      ("--method kinematic", "--voussoirs <= 60", "--method static")),
 ])

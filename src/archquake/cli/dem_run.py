@@ -21,6 +21,7 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     DAMPING_FREQUENCY_RANGE_HZ,
     DAMPING_RATIO_RANGE_PERCENT,
+    DEM_T_END_MAX_S,
     FRICTION_RANGE,
     RAYLEIGH_ALPHA_RANGE,
     RAYLEIGH_BETA_RANGE,
@@ -111,6 +112,12 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         raise InvalidParameterError("--restitution applies to the analytical model only; the DEM's "
                                     "impacts follow from its contacts and damping (--damping)")
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
+    if duration > DEM_T_END_MAX_S:
+        given = ("--t-end" if args.t_end is not None
+                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
+        raise InvalidParameterError(
+            f"{given} is {duration:g} s; with --model dem it must be <= {DEM_T_END_MAX_S:g} s "
+            "(the explicit DEM needs millions of steps): give a shorter --t-end")
     settings = settings_from_args(args, duration)
     assembly = dem_assembly(arch, args.dem_assembly)
     result = simulate_dem(assembly, motion, settings)
