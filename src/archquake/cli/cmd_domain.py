@@ -20,6 +20,7 @@ from archquake.cli.common import (
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     CSV_SUFFIXES,
+    DEM_T_END_MAX_S,
     MAGNITUDE_RANGE_G,
     PRECISION_RANGE_G,
     SCAN_RANGE,
@@ -154,6 +155,12 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
     _check_search(arch, scan, precision, ceiling)
+    lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
+    if lobes * float(max(durations)) > DEM_T_END_MAX_S:
+        raise InvalidParameterError(
+            f"--durations up to {float(max(durations)):g} s make DEM runs longer than "
+            f"{DEM_T_END_MAX_S:g} s of simulated time; with --model dem keep them <= "
+            f"{DEM_T_END_MAX_S / lobes:g} s")
     settings = DomainSettings(max_magnitude_g=ceiling, coarse_points=scan,
                               fine_points=max(scan // 2, 1), precision_g=precision, early=False)
     workers = args.workers
