@@ -37,6 +37,8 @@ def main(path: str | None = None, *, units: str | None = None, scale: float = 1.
         if path is None:
             path = str(synthetic_record(Path(tmp) / "synthetic.csv", duration=3.0 if quick else 6.0))
             units = "g"
+        if units is None and Path(path).suffix.lower() in (".csv", ".txt"):
+            units = "g"  # a CSV file does not say its units: g unless --units says otherwise
         record = read_record(path, units=units, scale=scale)
     arch = Arch(radius=10.0, thickness=1.5, embrace=math.radians(157.5), voussoirs=7)
     print(f"{record.name}: {record.duration:.2f} s, peak {record.peak / 9.80665:.3f} g (scaled x{scale:g})")

@@ -82,4 +82,4 @@ def test_malformed_file_exits_2_with_one_line(tmp_path, capsys, name, content, f
 
 def test_bad_scale_exits_2(northridge_csv, capsys):
     assert cli_main.main(["record", str(northridge_csv), "--scale", "-1"]) == 2
-    assert "--scale must be > 0" in capsys.readouterr().err
+    assert "--scale must be in (0, 1000]" in capsys.readouterr().err

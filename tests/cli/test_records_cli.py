@@ -64,7 +64,7 @@ def test_one_column_gal_file(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     ("argv", "fragment"),
-    [(["--dt", "0"], "--dt must be > 0 s"),
+    [(["--dt", "0"], "--dt must be in [1e-06, 1] s"),
      (["--baseline", "7"], "--baseline must be a degree from 0 to 5"),
      (["--resample", "-1"], "--resample must be a time step > 0 s"),
      (["--periods", "0.5,x"], "expected periods in s separated by commas")],

@@ -69,10 +69,10 @@ def test_min_thickness_json(capsys):
 @pytest.mark.parametrize(
     "args, names",
     [
-        (["--thickness", "0"], ("--thickness", "(0, 20) m")),
-        (["--thickness", "-1"], ("--thickness", "(0, 20) m")),
-        (["--thickness", "20"], ("--thickness", "(0, 20) m")),
-        (["--thickness", "25"], ("--thickness", "(0, 20) m")),
+        (["--thickness", "0"], ("--thickness", "[1e-05, 20) m")),
+        (["--thickness", "-1"], ("--thickness", "[1e-05, 20) m")),
+        (["--thickness", "20"], ("--thickness", "[1e-05, 20) m")),
+        (["--thickness", "25"], ("--thickness", "[1e-05, 20) m")),
         (["--embrace", "0"], ("--embrace", "(0, 240] degrees")),
         (["--embrace", "-10"], ("--embrace", "(0, 240] degrees")),
         (["--embrace", "250"], ("--embrace", "(0, 240] degrees")),

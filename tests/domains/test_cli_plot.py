@@ -37,7 +37,8 @@ def test_domain_csv_and_plot(tmp_path, capsys):
     (["--durations", "0.2:x:3"], "expected START:STOP:COUNT"),
     (["--durations", "0.5:0.1:3"], "STOP must exceed START"),
     (["--durations", "0:1:3"], "durations must be finite and > 0 s"),
-    (["--max-magnitude", "0.2", "--durations", "0.3"], "max_magnitude_g must exceed"),
+    (["--max-magnitude", "0.2", "--durations", "0.3"],
+     "--max-magnitude must exceed the arch's no-hinging limit"),
     (["--pulse", "ramp"], "invalid choice"),
 ])
 def test_domain_bad_input_exit_2(capsys, argv, message):

@@ -39,3 +39,13 @@ def test_record_example_reads_a_given_file(tmp_path):
     out = run_example("examples/earthquake_record.py", str(csv), "--units", "m/s2", "--scale", "1.2",
                       "--quick")
     assert "quake" in out and "peak 0.612 g (scaled x1.2)" in out
+
+
+def test_record_example_reads_a_csv_without_units_in_g(tmp_path):
+    """A CSV record given without --units is read in g (as the CLI and the --help say), not
+    refused by read_record for want of units (issue 15)."""
+    csv = tmp_path / "quake.csv"
+    csv.write_text("time,acc\n" + "\n".join(f"{0.01 * i:.2f},{(0.5 if 10 <= i < 60 else 0.0):g}"
+                                             for i in range(300)) + "\n")
+    out = run_example("examples/earthquake_record.py", str(csv), "--quick")
+    assert "peak 0.500 g (scaled x1)" in out

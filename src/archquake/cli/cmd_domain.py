@@ -5,18 +5,27 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 
 from archquake.cli.common import (
     add_arch_arguments,
     add_output_arguments,
     arch_from_args,
-    number,
+    output_file,
     parse_durations,
     print_json,
-    whole,
+    ranged,
+    ranged_whole,
+    refuse_unless,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    CSV_SUFFIXES,
+    DEM_T_END_MAX_S,
+    MAGNITUDE_RANGE_G,
+    PRECISION_RANGE_G,
+    SCAN_RANGE,
+    WORKERS_RANGE,
+)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -39,12 +48,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    metavar="START:STOP:COUNT",
                    help="durations in s, evenly spaced (default 0.05:1.5:40; with --model dem "
                         "0.1:0.8:4), or one duration")
-    p.add_argument("--max-magnitude", type=number, default=None, metavar="G",
-                   help="ceiling of the magnitude scan, g (default 5; with --model dem 2); "
+    p.add_argument("--max-magnitude", type=ranged(*MAGNITUDE_RANGE_G, "g", low_open=True),
+                   default=None, metavar="G",
+                   help="ceiling of the magnitude scan, g (above the no-hinging limit, at most "
+                        f"{MAGNITUDE_RANGE_G[1]:g}; default 5; with --model dem 2); "
                         "boundaries above it are null")
-    p.add_argument("--precision", type=number, default=None, metavar="G",
-                   help="width of the final brackets, g (default 0.001; with --model dem 0.01)")
-    p.add_argument("--scan", type=whole, default=None, metavar="N",
+    p.add_argument("--precision", type=ranged(*PRECISION_RANGE_G, "g"), default=None, metavar="G",
+                   help=f"width of the final brackets, g ({PRECISION_RANGE_G[0]:g} to "
+                        f"{PRECISION_RANGE_G[1]:g}; default 0.001; with --model dem 0.01)")
+    p.add_argument("--scan", type=ranged_whole(*SCAN_RANGE), default=None, metavar="N",
                    help="magnitudes in the coarse scan (default 60, with --model dem 8; the fine "
                         "scan uses 2/3 of it, with --model dem 1/2)")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
@@ -52,10 +64,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "1st-half-cycle boundary on the arch cut at the analytical hinges, its "
                         "governing boundary with every voussoir a block (paper Figures 6, 11); "
                         "one DEM time history per point, ~1-2 min per duration on 2 cores")
-    p.add_argument("--workers", type=whole, default=None, metavar="N",
+    p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), default=None, metavar="N",
                    help="with --model dem: worker processes for the DEM runs (default: all cores)")
     add_output_arguments(p)
-    p.add_argument("--csv", type=Path, metavar="FILE", help="write the domain as CSV to FILE")
+    p.add_argument("--csv", type=output_file(*CSV_SUFFIXES), metavar="FILE",
+                   help="write the domain as CSV to FILE (.csv)")
     p.set_defaults(func=run)
 
 
@@ -63,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
     from archquake.domains import DomainSettings, failure_domain
 
     arch = arch_from_args(args)
+    refuse_unless({"--workers": args.workers}, args.model == "dem",
+                  "with --model dem (the analytical domain runs in this process); leave it out")
     if args.model == "dem":
         return _run_dem(args, arch)
     if args.durations is None:
@@ -70,12 +85,7 @@ def run(args: argparse.Namespace) -> int:
     args.scan = 60 if args.scan is None else args.scan
     args.precision = 1e-3 if args.precision is None else args.precision
     args.max_magnitude = 5.0 if args.max_magnitude is None else args.max_magnitude
-    if args.scan < 2:
-        raise InvalidParameterError(f"--scan must be >= 2, got {args.scan}")
-    if args.precision <= 0:
-        raise InvalidParameterError(f"--precision must be > 0 g, got {args.precision:g}")
-    if args.max_magnitude <= 0:
-        raise InvalidParameterError(f"--max-magnitude must be > 0 g, got {args.max_magnitude:g}")
+    _check_search(arch, args.scan, args.precision, args.max_magnitude)
     settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
                               fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
     dom = failure_domain(arch, args.pulse, args.durations, settings=settings)
@@ -115,6 +125,23 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
+    """The magnitude search's options, in g, against each other and the arch's onset."""
+    from archquake.cli.common import check_range, check_whole
+    from archquake.mechanism import PreparedMechanism
+
+    check_whole("--scan", scan, *SCAN_RANGE)
+    check_range("--precision", precision, *PRECISION_RANGE_G, "g")
+    check_range("--max-magnitude", ceiling, *MAGNITUDE_RANGE_G, "g", low_open=True)
+    lam = PreparedMechanism.build(arch).collapse_acceleration_g
+    if not ceiling > lam:
+        raise InvalidParameterError(
+            f"--max-magnitude must exceed the arch's no-hinging limit {lam:.4f} g, got {ceiling:g}")
+    if precision >= ceiling:
+        raise InvalidParameterError(
+            f"--precision must be below --max-magnitude ({ceiling:g} g), got {precision:g} g")
+
+
 def _run_dem(args: argparse.Namespace, arch) -> int:
     """``--model dem``: the distinct-element failure domain beside the analytical one (paper
     Figures 6 and 11), through :func:`archquake.compare.compare_domains`."""
@@ -127,18 +154,26 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     scan = DEM_DOMAIN_SETTINGS.coarse_points if args.scan is None else args.scan
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
-    if scan < 2:
-        raise InvalidParameterError(f"--scan must be >= 2, got {scan}")
-    if precision <= 0:
-        raise InvalidParameterError(f"--precision must be > 0 g, got {precision:g}")
-    if ceiling <= 0:
-        raise InvalidParameterError(f"--max-magnitude must be > 0 g, got {ceiling:g}")
-    if args.workers is not None and args.workers < 1:
-        raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
+    _check_search(arch, scan, precision, ceiling)
+    lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
+    if lobes * float(max(durations)) > DEM_T_END_MAX_S:
+        raise InvalidParameterError(
+            f"--durations up to {float(max(durations)):g} s make DEM runs longer than "
+            f"{DEM_T_END_MAX_S:g} s of simulated time; with --model dem keep them <= "
+            f"{DEM_T_END_MAX_S / lobes:g} s")
     settings = DomainSettings(max_magnitude_g=ceiling, coarse_points=scan,
                               scan_reference_g=DEM_DOMAIN_SETTINGS.scan_reference_g,
                               fine_points=max(scan // 2, 1), precision_g=precision, early=False)
-    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=args.workers)
+    workers = args.workers
+    if workers is not None:  # never more processes than cores or runs (a line says so)
+        import sys
+
+        from archquake.sweeps.runner import cap_workers
+
+        workers, note = cap_workers(workers, 2 * len(durations))
+        if note is not None:
+            print(f"archquake: --workers: {note}", file=sys.stderr)
+    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers)
     rows = comp.rows()
     if args.csv:
         with open(args.csv, "w", newline="") as fh:

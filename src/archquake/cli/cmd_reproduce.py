@@ -59,8 +59,10 @@ def reproduce(
 
     ``extra(out)`` writes more files after the report (``archquake demo``: the animation) and
     returns what ``--json`` adds (file paths)."""
+    from archquake.cli.common import check_output_folder
     from archquake.reproduce import run_studies
 
+    check_output_folder(Path(out), "--out")  # before any study: a file, or an unwritable place, fails now
     stream = sys.stderr if json else sys.stdout
 
     def progress(line: str) -> None:

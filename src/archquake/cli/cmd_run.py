@@ -12,11 +12,18 @@ from archquake.cli.common import (
     add_output_arguments,
     arch_from_args,
     ground_motion_from_args,
-    number,
+    output_file,
     print_json,
+    ranged,
 )
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    ANIMATION_SUFFIXES,
+    CSV_SUFFIXES,
+    RESTITUTION_RANGE,
+    T_END_RANGE_S,
+)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -31,32 +38,32 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
-    p.add_argument("--restitution", type=number, metavar="CV",
-                   help="prescribe the coefficient of restitution c_v (on the angular velocity) "
-                        "instead of the impact model's (paper Eq. 4)")
-    p.add_argument("--t-end", type=number, metavar="S",
-                   help="end of the analysis, s (default: end of the excitation + 60 sqrt(R/g))")
+    p.add_argument("--restitution", type=ranged(*RESTITUTION_RANGE), metavar="CV",
+                   help="prescribe the coefficient of restitution c_v (on the angular velocity, "
+                        "0 to 1) instead of the impact model's (paper Eq. 4)")
+    p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
+                   help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
+                        "default: end of the excitation + 60 sqrt(R/g))")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical four-link model (default) or the distinct-element model")
     from archquake.cli.dem_run import add_dem_arguments
 
     add_dem_arguments(p)
     add_output_arguments(p)
-    p.add_argument("--animate", metavar="FILE.gif", type=Path,
+    p.add_argument("--animate", metavar="FILE.gif", type=output_file(*ANIMATION_SUFFIXES),
                    help="write an animated GIF of the rocking arch")
-    p.add_argument("--history", metavar="FILE.csv", type=Path,
+    p.add_argument("--history", metavar="FILE.csv", type=output_file(*CSV_SUFFIXES),
                    help="write the time history as CSV (t s, phi rad, phi_dot rad/s, side, "
                         "ground acceleration m/s^2)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from archquake.cli.dem_run import refuse_dem_options
+
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    if args.t_end is not None and args.t_end <= 0:
-        raise InvalidParameterError(f"--t-end must be > 0 s, got {args.t_end:g}")
-    if args.restitution is not None and args.restitution < 0:
-        raise InvalidParameterError(f"--restitution must be >= 0, got {args.restitution:g}")
+    refuse_dem_options(args)
     if args.model == "dem":
         return _run_dem(args, arch, motion)
     from archquake.mechanism import PreparedMechanism, simulate

@@ -11,6 +11,7 @@ from archquake.cli.common import (
     describe_arch,
     print_json,
 )
+from archquake.errors import InvalidParameterError
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
 
@@ -42,6 +43,10 @@ def run(args: argparse.Namespace) -> int:
     method = args.method
     if method == "auto":
         method = "both" if arch.voussoirs <= MAX_KINEMATIC_VOUSSOIRS else "static"
+    elif method in ("kinematic", "both") and arch.voussoirs > MAX_KINEMATIC_VOUSSOIRS:
+        raise InvalidParameterError(
+            f"--method {method} enumerates the mechanisms and needs --voussoirs <= "
+            f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use --method static (or auto)")
     result = limit_analysis(arch, method=method)
     if args.plot is not None:
         from archquake.plotting.arch import save_limit_analysis

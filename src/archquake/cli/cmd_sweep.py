@@ -10,8 +10,18 @@ import argparse
 import sys
 from pathlib import Path
 
-from archquake.cli.common import number, print_json, quiet_dask, whole
-from archquake.errors import InvalidParameterError
+from archquake.cli.common import (
+    number,
+    output_file,
+    print_json,
+    quiet_dask,
+    ranged_whole,
+)
+from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.ranges import (
+    TABLE_SUFFIXES,
+    WORKERS_RANGE,
+)
 from archquake.sweeps import ResultStore, load_study, model_function, open_executor, run_sweep
 from archquake.sweeps.evaluate import evaluate_case
 from archquake.sweeps.runner import (
@@ -41,18 +51,18 @@ def register(sub: argparse._SubParsersAction) -> None:
         ),
     )
     p.add_argument("study", type=Path, metavar="STUDY.toml", help="the study file")
-    p.add_argument("--store", type=Path, metavar="FILE",
+    p.add_argument("--store", type=output_file(create_parents=True), metavar="FILE",
                    help="SQLite store (default: <study name>.sqlite beside the study file)")
-    p.add_argument("--workers", type=whole, metavar="N",
+    p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), metavar="N",
                    help="local worker processes (default: all cores; 1 runs serially)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="run on the Dask cluster whose scheduler listens at this address")
     p.add_argument("--worker-wait", type=number, metavar="S", default=NO_WORKER_TIMEOUT,
                    help="with --scheduler: seconds to wait while the cluster has no worker before "
                         f"stopping (what is done is kept; default {NO_WORKER_TIMEOUT:g})")
-    p.add_argument("--chunk-size", type=whole, metavar="N",
+    p.add_argument("--chunk-size", type=ranged_whole(1, 10**6), metavar="N",
                    help="cases per task (default: chosen from the number of cases and workers)")
-    p.add_argument("--export", type=Path, metavar="FILE",
+    p.add_argument("--export", type=output_file(*TABLE_SUFFIXES), metavar="FILE",
                    help="afterwards, write the store's rows to FILE (.csv or .parquet)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.add_argument("--json", action="store_true",
@@ -79,7 +89,11 @@ def run(args: argparse.Namespace) -> int:
     study = load_study(args.study)
     evaluate = case_function(study.model)
     store_path = args.store or study.default_store
-    with ResultStore(store_path) as store:
+    try:
+        opened = ResultStore(store_path)
+    except ArchquakeError as exc:  # not a database, another schema, an unwritable place
+        raise ArchquakeError(f"--store {exc}" if args.store else str(exc)) from None
+    with opened as store:
         wanted = {c.case_id for c in study.cases}
         workers = args.workers
         if args.scheduler is None:

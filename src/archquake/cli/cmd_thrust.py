@@ -10,20 +10,26 @@ from archquake.cli.common import (
     add_ground_motion_arguments,
     add_output_arguments,
     arch_from_args,
+    comma_numbers,
     ground_motion_from_args,
     print_json,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    MAX_TIMES,
+    T_END_RANGE_S,
+)
 
 
 def _times(text: str) -> list[float]:
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"expected comma-separated times in s, e.g. 0.2,0.5,0.8, got {text!r}") from None
-    if not values or not all(math.isfinite(v) for v in values):
-        raise argparse.ArgumentTypeError(f"expected finite times in s, got {text!r}")
+    """``T1,T2,...``: instants in s, each in [0, T_END_RANGE_S[1]], no empty item."""
+    values = comma_numbers(text, None, "comma-separated times in s, e.g. 0.2,0.5,0.8")
+    if len(values) > MAX_TIMES:
+        raise argparse.ArgumentTypeError(f"at most {MAX_TIMES} times, got {len(values)}")
+    high = T_END_RANGE_S[1]
+    for v in values:
+        if not 0.0 <= v <= high:
+            raise argparse.ArgumentTypeError(f"each time must be in [0, {high:g}] s, got {v:g}")
     return values
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -14,18 +15,30 @@ import numpy as np
 
 from archquake._json import to_jsonable
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import InvalidParameterError
+from archquake.errors import GroundMotionFormatError, InvalidParameterError
 from archquake.geometry.arch import (
     MAX_DENSITY,
     MAX_DEPTH,
     MAX_EMBRACE_DEG,
     MAX_VOUSSOIRS,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
 )
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
 from archquake.ground.records import UNITS
+from archquake.ranges import (  # the one place of every range
+    FIGURE_SUFFIXES,
+    MAGNITUDE_RANGE_G,
+    MAX_DURATIONS,
+    PULSE_TIME_RANGE_S,
+    RECORD_DT_RANGE_S,
+    SCALE_RANGE,
+    T_END_RANGE_S,
+)
 
 
 def number(text: str) -> float:
@@ -49,6 +62,203 @@ def whole(text: str) -> int:
 
 #: Oppenheim's arch, the default when no shape option is given (m, degrees).
 OPPENHEIM_DEFAULTS = {"radius": 10.0, "thickness": 1.5, "embrace": 157.5, "voussoirs": 7}
+
+
+# ---------------------------------------------------------------------------------------------
+# Checks of a value against its range (archquake.ranges), named as the user typed the option.
+# ---------------------------------------------------------------------------------------------
+
+
+def _fmt_range(low: float, high: float, unit: str, low_open: bool, high_open: bool) -> str:
+    u = f" {unit}" if unit else ""
+    return f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}{u}"
+
+
+def check_range(option: str, value: float, low: float, high: float, unit: str = "", *,
+                low_open: bool = False, high_open: bool = False, hint: str = "") -> float:
+    """``value`` of ``option`` (as the user typed it, e.g. ``--duration``) inside its range in the
+    user's units, or :class:`InvalidParameterError` naming both (``hint`` says what to do)."""
+    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
+    if not (math.isfinite(value) and ok):
+        rng = _fmt_range(low, high, unit, low_open, high_open)
+        raise InvalidParameterError(
+            f"{option} must be in {rng}, got {value:g}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def check_whole(option: str, value: int, low: int, high: int, hint: str = "") -> int:
+    """A whole number ``value`` of ``option`` from ``low`` to ``high``."""
+    if not low <= value <= high:
+        raise InvalidParameterError(f"{option} must be a whole number from {low} to {high}, got "
+                                    f"{value}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def ranged(low: float, high: float, unit: str = "", *, low_open: bool = False,
+           high_open: bool = False, hint: str = ""):
+    """argparse type: a finite number in a range (argparse names the option on failure)."""
+
+    def parse(text: str) -> float:
+        value = number(text)
+        try:
+            return check_range("value", value, low, high, unit, low_open=low_open,
+                               high_open=high_open, hint=hint)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc).replace("value must", "must", 1)) from None
+
+    parse.__name__ = "number"
+    return parse
+
+
+def ranged_whole(low: int, high: int, hint: str = ""):
+    """argparse type: a whole number from ``low`` to ``high``."""
+
+    def parse(text: str) -> int:
+        value = whole(text)
+        try:
+            return check_whole("value", value, low, high, hint)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc).replace("value must", "must", 1)) from None
+
+    parse.__name__ = "whole number"
+    return parse
+
+
+def comma_numbers(text: str, count: int | None, what: str) -> list[float]:
+    """``A,B,...``: finite numbers, no empty item; exactly ``count`` of them when given."""
+    items = text.split(",")
+    if any(not item.strip() for item in items):
+        raise argparse.ArgumentTypeError(f"empty item in {text!r}: expected {what}")
+    try:
+        values = [float(item) for item in items]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite numbers ({what}), got {text!r}")
+    if count is not None and len(values) != count:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+    return values
+
+
+# ---------------------------------------------------------------------------------------------
+# Output paths: checked when the command line is parsed, before any computation.
+# ---------------------------------------------------------------------------------------------
+
+
+def check_output_file(path: Path, suffixes: tuple[str, ...] | None, *,
+                      create_parents: bool = False) -> Path:
+    """``path`` as a file this command can write, or :class:`InvalidParameterError` saying why.
+
+    Refused: an empty name, an existing directory, a suffix outside ``suffixes`` (None: any),
+    a parent folder that does not exist (unless ``create_parents``: then the nearest existing
+    ancestor must be a folder), a place the process cannot write. The path is written exactly
+    as given: no suffix is added.
+    """
+    text = str(path)
+    if not text.strip() or text.endswith(("/", "\\")) or path.name in ("", ".", ".."):
+        raise InvalidParameterError(f"{text!r} is not a file name")
+    if path.is_dir():
+        raise InvalidParameterError(f"{text} is a directory; give a file name"
+                                    + (f" ending in {_either(suffixes)}" if suffixes else ""))
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise InvalidParameterError(
+            f"{text}: unknown file type {path.suffix or '(no suffix)'!r}; use {_either(suffixes)}")
+    parent = path.parent
+    if not parent.is_dir():
+        if not create_parents:
+            raise InvalidParameterError(f"{text}: folder {str(parent)!r} does not exist; create it first")
+        ancestor = parent
+        while not ancestor.exists() and ancestor != ancestor.parent:
+            ancestor = ancestor.parent
+        if not ancestor.is_dir():
+            raise InvalidParameterError(f"{text}: {str(ancestor)!r} is a file, not a folder")
+        _check_writable_folder(text, ancestor)
+        return path
+    if path.exists():
+        if not os.access(path, os.W_OK):
+            raise InvalidParameterError(f"{text}: the file is read-only")
+        return path
+    _check_writable_folder(text, parent)
+    return path
+
+
+def check_output_folder(path: Path, option: str = "") -> Path:
+    """``path`` as a folder this command can create (with its parents) and write into
+    (``option``, e.g. ``--out``, starts the message when given)."""
+    try:
+        return _check_output_folder(path)
+    except InvalidParameterError as exc:
+        if option:
+            raise InvalidParameterError(f"{option}: {exc}") from None
+        raise
+
+
+def _check_output_folder(path: Path) -> Path:
+    text = str(path)
+    if not text.strip():
+        raise InvalidParameterError(f"{text!r} is not a folder name")
+    if path.exists() and not path.is_dir():
+        raise InvalidParameterError(f"{text} is a file, not a folder")
+    ancestor = path
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise InvalidParameterError(f"{text}: {str(ancestor)!r} is a file, not a folder")
+    _check_writable_folder(text, ancestor)
+    return path
+
+
+def _check_writable_folder(text: str, folder: Path) -> None:
+    """Create and remove a scratch file in ``folder`` (os.access is wrong for root, read-only
+    mounts and /proc-like file systems)."""
+    import tempfile
+
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".archquake-probe-"):
+            pass
+    except OSError as exc:
+        raise InvalidParameterError(
+            f"{text}: cannot write in folder {str(folder)!r} ({exc.strerror or exc})") from None
+
+
+def _either(suffixes: tuple[str, ...] | None) -> str:
+    if not suffixes:
+        return "any suffix"
+    return ", ".join(suffixes[:-1]) + (" or " if len(suffixes) > 1 else "") + suffixes[-1]
+
+
+def output_file(*suffixes: str, create_parents: bool = False):
+    """argparse type: an output file checked by :func:`check_output_file` at parse time, so a
+    bad path fails before any computation (argparse names the option)."""
+
+    def parse(text: str) -> Path:
+        try:
+            return check_output_file(Path(text), suffixes or None, create_parents=create_parents)
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    parse.__name__ = "file name"
+    return parse
+
+
+def output_folder(text: str) -> Path:
+    """argparse type: an output folder checked by :func:`check_output_folder`."""
+    try:
+        return check_output_folder(Path(text))
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def refuse_unless(options: dict[str, object], applies: bool, why: str) -> None:
+    """Refuse every option of ``options`` (``{"--stiffness": args.stiffness, ...}``, None when
+    not given) that the user gave although it does not apply (``applies`` False); ``why`` says
+    what to do, e.g. "add --model dem"."""
+    if applies:
+        return
+    given = [name for name, value in options.items() if value is not None and value is not False]
+    if given:
+        raise InvalidParameterError(f"{', '.join(given)} {'applies' if len(given) == 1 else 'apply'} "
+                                    f"only {why}")
 
 
 def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True) -> None:
@@ -97,9 +307,10 @@ def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True
     g.add_argument("--blocks", type=Path, default=None, metavar="FILE",
                    help="the arch's blocks from a surveyed file: .json, .csv or .dxf (see "
                         "docs/geometry.md)")
-    g.add_argument("--depth", type=number, default=1.0, help="out-of-plane depth, m (default 1)")
+    g.add_argument("--depth", type=number, default=1.0,
+                   help=f"out-of-plane depth, m ({MIN_DEPTH:g} to {MAX_DEPTH:g}; default 1)")
     g.add_argument("--density", type=number, default=2000.0,
-                   help="density, kg/m^3 (default 2000)")
+                   help=f"density, kg/m^3 ({MIN_DENSITY:g} to {MAX_DENSITY:g}; default 2000)")
     parser.set_defaults(_arch_defaults=defaults)
 
 
@@ -113,11 +324,8 @@ def arch_from_args(args: argparse.Namespace):
     from archquake.geometry import OnPiers, Piers
     from archquake.geometry.shapes import ShapedArch, pointed
 
-    if not 0 < args.depth <= MAX_DEPTH:
-        raise InvalidParameterError(f"--depth must be in (0, {MAX_DEPTH:g}] m, got {args.depth:g}")
-    if not 0 < args.density <= MAX_DENSITY:
-        raise InvalidParameterError(
-            f"--density must be in (0, {MAX_DENSITY:g}] kg/m^3, got {args.density:g}")
+    check_range("--depth", args.depth, MIN_DEPTH, MAX_DEPTH, "m")
+    check_range("--density", args.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3")
     shape = getattr(args, "shape", None)
     blocks = getattr(args, "blocks", None)
     joints = getattr(args, "joints", "radial") or "radial"
@@ -196,10 +404,11 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
     low, high = RADIUS_RANGE
     if not low <= radius <= high:
         raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {radius:g}")
-    if thickness <= 0 or thickness >= 2 * radius:
+    thin = MIN_THICKNESS_RATIO * radius
+    if not thin <= thickness < 2 * radius:
         raise InvalidParameterError(
-            f"--thickness must be in (0, 2 x radius) = (0, {2 * radius:g}) m, "
-            f"got {thickness:g}"
+            f"--thickness must be in [{MIN_THICKNESS_RATIO:g} x radius, 2 x radius) = "
+            f"[{thin:g}, {2 * radius:g}) m, got {thickness:g}"
         )
     if joints == "vertical":
         from archquake.geometry.shapes import circular
@@ -236,8 +445,8 @@ def describe_arch(arch) -> str:
 def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) -> None:
     parser.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     if plot:
-        parser.add_argument("--plot", metavar="FILE", type=Path,
-                            help="draw the result to FILE (.png, .pdf or .svg)")
+        parser.add_argument("--plot", metavar="FILE", type=output_file(*FIGURE_SUFFIXES),
+                            help=f"draw the result to FILE ({_either(FIGURE_SUFFIXES)})")
 
 
 def quiet_dask() -> None:
@@ -276,11 +485,13 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                           "-a/2 for 2 t_p), 'sine' = one cycle of a sin(2 pi t/T); the first lobe "
                           "is a ground acceleration towards -x (see --mirror)")
     grp.add_argument("--magnitude", type=number, metavar="A",
-                     help="pulse magnitude a, in g (>= 0)")
+                     help=f"pulse magnitude a, in g (0 to {MAGNITUDE_RANGE_G[1]:g})")
     grp.add_argument("--duration", type=number, metavar="TP",
-                     help="step impulse: duration t_p of the first lobe, s (> 0)")
+                     help="step impulse: duration t_p of the first lobe, s "
+                          f"({PULSE_TIME_RANGE_S[0]:g} to {PULSE_TIME_RANGE_S[1]:g})")
     grp.add_argument("--period", type=number, metavar="T",
-                     help="sine pulse: period T, s (> 0)")
+                     help=f"sine pulse: period T, s ({PULSE_TIME_RANGE_S[0]:g} to "
+                          f"{PULSE_TIME_RANGE_S[1]:g})")
     grp.add_argument("--record", type=Path, metavar="FILE",
                      help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
                           "time (s), acceleration (units from --units); positive = towards +x")
@@ -288,7 +499,8 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                      help="units of a CSV record's acceleration column (default g; .AT2 files "
                           "are always in g)")
     grp.add_argument("--scale", type=number, metavar="S",
-                     help="factor applied to every value of the record (> 0; default 1)")
+                     help=f"factor applied to every value of the record (> 0 and <= "
+                          f"{SCALE_RANGE[1]:g}; default 1)")
     grp.add_argument("--mirror", action="store_true",
                      help="reverse the excitation: pulses start towards +x instead of -x; a "
                           "record is multiplied by -1")
@@ -300,15 +512,35 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
     where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record);
     ``--dt`` (s, > 0) is the step of a one-column text file."""
     scale = 1.0 if scale is None else scale
-    if scale <= 0:
-        raise InvalidParameterError(
-            f"--scale must be > 0, got {scale:g}; use --mirror to reverse the record"
-        )
-    if dt is not None and dt <= 0:
-        raise InvalidParameterError(f"--dt must be > 0 s, got {dt:g}")
+    if dt is not None:
+        check_range("--dt", dt, *RECORD_DT_RANGE_S, "s")
+    check_range("--scale", scale, *SCALE_RANGE, low_open=True,
+                hint="use --mirror to reverse the record" if scale < 0 else "")
     if units is None and path.suffix.lower() in (".csv", ".txt"):
         units = "g"
-    return read_record(path, units=units, dt=dt, scale=scale, g=g)
+    if path.suffix.lower() == ".at2" and units not in (None, "g"):
+        raise InvalidParameterError(f"--units {units} does not apply to {path.name}: PEER .AT2 "
+                                    "files are in g; leave --units out")
+    try:
+        with np.errstate(all="ignore"):  # an overflow is refused in one line, not warned about
+            record = read_record(path, units=units, dt=dt, scale=scale, g=g)
+    except GroundMotionFormatError:
+        raise  # names the file and line already
+    except InvalidParameterError as exc:  # the samples themselves (non-finite once in m/s^2, ...)
+        raise InvalidParameterError(f"{path}: {exc}") from None
+    low, high = RECORD_DT_RANGE_S
+    if not low <= record.dt <= high:
+        raise InvalidParameterError(
+            f"{path}: time step DT = {record.dt:g} s is outside [{low:g}, {high:g}] s")
+    if record.duration > T_END_RANGE_S[1]:
+        raise InvalidParameterError(f"{path}: the record lasts {record.duration:g} s, more than "
+                                    f"{T_END_RANGE_S[1]:g} s")
+    peak_g = record.peak / g
+    if not peak_g <= MAGNITUDE_RANGE_G[1]:
+        raise InvalidParameterError(
+            f"{path}: peak {peak_g:g} g (after --scale {scale:g}) is above "
+            f"{MAGNITUDE_RANGE_G[1]:g} g; lower --scale")
+    return record
 
 
 def ground_motion_from_args(args: argparse.Namespace, *,
@@ -340,10 +572,8 @@ def ground_motion_from_args(args: argparse.Namespace, *,
             )
     if args.magnitude is None:
         raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")
-    if args.magnitude < 0:
-        raise InvalidParameterError(
-            f"--magnitude must be >= 0 g, got {args.magnitude:g}; use --mirror to reverse the pulse"
-        )
+    check_range("--magnitude", args.magnitude, *MAGNITUDE_RANGE_G, "g",
+                hint="use --mirror to reverse the pulse" if args.magnitude < 0 else "")
     direction = 1 if args.mirror else -1
     if pulse == "step":
         if args.period is not None:
@@ -352,16 +582,14 @@ def ground_motion_from_args(args: argparse.Namespace, *,
         if args.duration is None:
             raise InvalidParameterError("--pulse step needs --duration TP (s, > 0): the length "
                                         "t_p of its first lobe")
-        if args.duration <= 0:
-            raise InvalidParameterError(f"--duration must be > 0 s, got {args.duration:g}")
+        check_range("--duration", args.duration, *PULSE_TIME_RANGE_S, "s")
         return StepImpulse.from_g(args.magnitude, args.duration, direction, g=g)
     if args.duration is not None:
         raise InvalidParameterError("--duration applies to --pulse step; the sine pulse takes "
                                     "--period T (s)")
     if args.period is None:
         raise InvalidParameterError("--pulse sine needs --period T (s, > 0)")
-    if args.period <= 0:
-        raise InvalidParameterError(f"--period must be > 0 s, got {args.period:g}")
+    check_range("--period", args.period, *PULSE_TIME_RANGE_S, "s")
     return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
 
 
@@ -389,16 +617,20 @@ def _durations(text: str) -> np.ndarray:
         raise InvalidParameterError(
             f"expected START:STOP:COUNT in s (e.g. 0.05:1.5:40) or one duration, got {text!r}"
         ) from None
-    if count < 1:
-        raise InvalidParameterError(f"COUNT must be >= 1 in START:STOP:COUNT, got {text!r}")
+    if not 1 <= count <= MAX_DURATIONS:
+        raise InvalidParameterError(
+            f"COUNT must be from 1 to {MAX_DURATIONS} in START:STOP:COUNT, got {text!r}")
     if count > 1 and not stop > start:
         raise InvalidParameterError(f"STOP must exceed START in START:STOP:COUNT, got {text!r}")
     return _positive(np.linspace(start, stop, count), text)
 
 
 def _positive(values: np.ndarray, text: str) -> np.ndarray:
+    low, high = PULSE_TIME_RANGE_S
     if not np.all(np.isfinite(values)) or np.any(values <= 0):
         raise InvalidParameterError(f"durations must be finite and > 0 s, got {text!r}")
+    if np.any(values < low) or np.any(values > high):
+        raise InvalidParameterError(f"durations must be in [{low:g}, {high:g}] s, got {text!r}")
     return values
 
 

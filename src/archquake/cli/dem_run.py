@@ -11,15 +11,42 @@ import argparse
 import csv
 from pathlib import Path
 
+from archquake.cli.common import (
+    check_range,
+    comma_numbers,
+    ranged,
+    refuse_unless,
+)
 from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    DAMPING_FREQUENCY_RANGE_HZ,
+    DAMPING_RATIO_RANGE_PERCENT,
+    DEM_T_END_MAX_S,
+    FRICTION_RANGE,
+    RAYLEIGH_ALPHA_RANGE,
+    RAYLEIGH_BETA_RANGE,
+    STIFFNESS_RANGE,
+)
+
+#: The paper's joint stiffness, Pa/m, and Rayleigh (alpha 1/s, beta s).
+DEFAULT_STIFFNESS = 1e12
+DEFAULT_RAYLEIGH = (6.28e-5, 1.59e-4)
 
 
 def _pair(text: str) -> tuple[float, float]:
-    try:
-        a, b = (float(x) for x in text.split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}") from None
+    a, b = comma_numbers(text, 2, "two numbers A,B")
     return a, b
+
+
+def refuse_dem_options(args: argparse.Namespace) -> None:
+    """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
+    ``--dem-assembly`` defaults to every voussoir."""
+    refuse_unless({"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
+                   "--friction": args.friction, "--damping": args.damping,
+                   "--rayleigh": args.rayleigh}, args.model == "dem",
+                  "to the distinct-element model: add --model dem, or leave it out")
+    if args.dem_assembly is None:  # None until here, so that giving it is seen
+        args.dem_assembly = "voussoirs"
 
 
 def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
@@ -27,35 +54,52 @@ def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
     grp = parser.add_argument_group("distinct-element model (with --model dem; --t-end sets the "
                                     "simulated time, default end of excitation + 5 sqrt(R/g); "
                                     "--history writes the DEM's rotation, energies and base motion)")
-    grp.add_argument("--dem-assembly", choices=("voussoirs", "hinges"), default="voussoirs",
+    grp.add_argument("--dem-assembly", choices=("voussoirs", "hinges"), default=None,
                      help="DEM blocks: every voussoir (default) or the arch cut only at the "
                           "analytical hinges (the paper's three-voussoir arch)")
-    grp.add_argument("--stiffness", type=float, metavar="PA_PER_M", default=1e12,
-                     help="joint normal and shear stiffness, Pa/m (default 1e12, the paper's)")
-    grp.add_argument("--friction", type=float, metavar="MU",
-                     help="joint friction coefficient tan(friction angle) (default: no sliding)")
+    grp.add_argument("--stiffness", type=ranged(*STIFFNESS_RANGE, "Pa/m"), metavar="PA_PER_M",
+                     help=f"joint normal and shear stiffness, Pa/m ({STIFFNESS_RANGE[0]:g} to "
+                          f"{STIFFNESS_RANGE[1]:g}; default {DEFAULT_STIFFNESS:g}, the paper's)")
+    grp.add_argument("--friction", type=ranged(*FRICTION_RANGE), metavar="MU",
+                     help=f"joint friction coefficient tan(friction angle) ({FRICTION_RANGE[0]:g} "
+                          f"to {FRICTION_RANGE[1]:g}; default: no sliding)")
     damp = grp.add_mutually_exclusive_group()
     damp.add_argument("--damping", type=_pair, metavar="F_MIN,XI_MIN",
                       help="Rayleigh damping as UDEC's minimum: frequency in Hz, damping ratio in "
-                           "percent (default 0.1,0.01, the paper's; Figure 10: 0.05,0.001)")
+                           "percent (default 0.1,0.01, the paper's; Figure 10: 0.05,0.001); the "
+                           f"resulting beta must be <= {RAYLEIGH_BETA_RANGE[1]:g} s")
     damp.add_argument("--rayleigh", type=_pair, metavar="ALPHA,BETA",
-                      help="Rayleigh coefficients: alpha in 1/s, beta in s (default 6.28e-5,1.59e-4)")
+                      help=f"Rayleigh coefficients: alpha in 1/s (0 to {RAYLEIGH_ALPHA_RANGE[1]:g}), "
+                           f"beta in s (0 to {RAYLEIGH_BETA_RANGE[1]:g}) (default 6.28e-5,1.59e-4)")
 
 
 def settings_from_args(args: argparse.Namespace, duration: float):
     """The DemSettings the options ask for."""
     from archquake.dem import ContactLaw, DemSettings
 
-    if not args.stiffness > 0:
-        raise InvalidParameterError(f"--stiffness must be > 0 Pa/m, got {args.stiffness:g}")
-    law = ContactLaw(normal_stiffness=args.stiffness) if args.friction is None else ContactLaw(
-        normal_stiffness=args.stiffness, friction=args.friction)
-    damping = (6.28e-5, 1.59e-4)
+    stiffness = DEFAULT_STIFFNESS if args.stiffness is None else args.stiffness
+    check_range("--stiffness", stiffness, *STIFFNESS_RANGE, "Pa/m")
+    if args.friction is not None:
+        check_range("--friction", args.friction, *FRICTION_RANGE)
+    law = ContactLaw(normal_stiffness=stiffness) if args.friction is None else ContactLaw(
+        normal_stiffness=stiffness, friction=args.friction)
+    damping = DEFAULT_RAYLEIGH
     if args.damping is not None:
         f_min, xi_percent = args.damping
+        check_range("--damping F_MIN", f_min, *DAMPING_FREQUENCY_RANGE_HZ, "Hz")
+        check_range("--damping XI_MIN", xi_percent, *DAMPING_RATIO_RANGE_PERCENT, "%")
         damping = DemSettings.rayleigh_from_minimum(f_min, xi_percent / 100.0)
+        low, high = RAYLEIGH_BETA_RANGE
+        if damping[1] > high:
+            raise InvalidParameterError(
+                f"--damping {f_min:g},{xi_percent:g} gives beta = {damping[1]:.3g} s, above "
+                f"{high:g} s (the explicit time step would vanish): raise F_MIN or lower XI_MIN")
+        check_range("--damping (alpha = XI_MIN 2 pi F_MIN)", damping[0], *RAYLEIGH_ALPHA_RANGE, "1/s")
     elif args.rayleigh is not None:
-        damping = args.rayleigh
+        alpha, beta = args.rayleigh
+        check_range("--rayleigh ALPHA", alpha, *RAYLEIGH_ALPHA_RANGE, "1/s")
+        check_range("--rayleigh BETA", beta, *RAYLEIGH_BETA_RANGE, "s")
+        damping = (alpha, beta)
     return DemSettings(contact=law, damping=damping, duration=duration)
 
 
@@ -68,6 +112,12 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         raise InvalidParameterError("--restitution applies to the analytical model only; the DEM's "
                                     "impacts follow from its contacts and damping (--damping)")
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
+    if duration > DEM_T_END_MAX_S:
+        given = ("--t-end" if args.t_end is not None
+                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
+        raise InvalidParameterError(
+            f"{given} is {duration:g} s; with --model dem it must be <= {DEM_T_END_MAX_S:g} s "
+            "(the explicit DEM needs millions of steps): give a shorter --t-end")
     settings = settings_from_args(args, duration)
     assembly = dem_assembly(arch, args.dem_assembly)
     result = simulate_dem(assembly, motion, settings)

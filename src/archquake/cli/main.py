@@ -84,7 +84,10 @@ class OneLineParser(argparse.ArgumentParser):
     """argparse that reports a bad command line as one line and exit status 2."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
+        # main() prints the one "archquake: error: " prefix; name the command, not the program
+        command = self.prog.removeprefix("archquake").strip()
+        where = f"{command}: " if command else ""
+        raise UsageError(f"{where}{message} (see '{self.prog} --help')")
 
 
 def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:

@@ -25,6 +25,7 @@ from archquake.geometry.chain import (  # noqa: F401  (the ranges are re-exporte
     MAX_DEPTH,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
     VoussoirChain,
 )
 
@@ -309,4 +310,4 @@ def raise_thick(t: float, r: float) -> None:
 
 
 __all__ = ["Arch", "MAX_DENSITY", "MAX_DEPTH", "MAX_EMBRACE", "MAX_EMBRACE_DEG", "MAX_VOUSSOIRS",
-           "MIN_DENSITY", "MIN_DEPTH", "RADIUS_RANGE"]
+           "MIN_DENSITY", "MIN_DEPTH", "MIN_THICKNESS_RATIO", "RADIUS_RANGE"]

@@ -39,10 +39,13 @@ from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 #: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
 MAX_DENSITY = 1e5
 MAX_DEPTH = 1e4
-#: Smallest density, kg/m^3, and depth, m: far below any masonry, above where masses and
-#: inertias underflow in the impact and kernel arithmetic (1e-300 divided by zero there).
-MIN_DENSITY = 1e-3
-MIN_DEPTH = 1e-4
+#: Least density (kg/m^3) and depth (m): far below any masonry; below them masses leave the
+#: range where the impact and kernel arithmetic is sound (the CLI fuzz found 1e-300 of each
+#: dividing by zero). Least thickness ratio t/R the CLI and study files accept: below it the
+#: limit analysis's coefficients overflow (an Arch itself may be thinner, as a limit case).
+MIN_DENSITY = 1.0
+MIN_DEPTH = 1e-3
+MIN_THICKNESS_RATIO = 1e-6
 
 
 class VoussoirChain:

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from archquake._validate import require_finite, require_int, require_positive, require_range
+from archquake._validate import require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import (
@@ -35,10 +35,12 @@ from archquake.geometry.arch import (
     MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
 )
 from archquake.geometry.chain import VoussoirChain
+from archquake.ranges import MAGNITUDE_RANGE_G, PULSE_TIME_RANGE_S, SCALE_RANGE, T_END_RANGE_S
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
 CASE_SCHEMA = 1
@@ -139,7 +141,7 @@ class ArchSpec:
             _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
                                                low_open=False, high_open=False))
             _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
-                                                        0, 2))
+                                                        MIN_THICKNESS_RATIO, 2, low_open=False))
             _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0,
                                                      MAX_EMBRACE_DEG, "degrees", high_open=False))
         elif all(v is not None for v in by_span) and all(v is None for v in by_radius):
@@ -317,16 +319,17 @@ class ExcitationSpec:
                     f"units must be one of {list(RECORD_UNITS)}, got {units!r}")
             _set(self, "units", units)
             scale = 1.0 if self.scale is None else self.scale
-            _set(self, "scale", require_positive("scale", scale))
+            _set(self, "scale", require_range("scale", scale, *SCALE_RANGE, high_open=False))
             if self.file_sha256 is None:
                 _set(self, "file_sha256", file_digest(self.file))
             return
-        magnitude = require_finite("magnitude_g", self.magnitude_g, "g")
-        if magnitude < 0:
-            raise InvalidParameterError(f"magnitude_g must be >= 0 g, got {magnitude:g}")
+        magnitude = require_range("magnitude_g", self.magnitude_g, *MAGNITUDE_RANGE_G, "g",
+                                  low_open=False, high_open=False)
         _set(self, "magnitude_g", magnitude)
         time_name = "duration_s" if kind is ExcitationKind.STEP else "period_s"
-        _set(self, time_name, require_positive(time_name, getattr(self, time_name), "s"))
+        _set(self, time_name, require_range(time_name, getattr(self, time_name),
+                                            *PULSE_TIME_RANGE_S, "s", low_open=False,
+                                            high_open=False))
 
     def build(self, *, g: float = STANDARD_GRAVITY):
         """The :class:`~archquake.ground.GroundMotion` (SI)."""
@@ -394,7 +397,8 @@ class CaseOptions:
             _set(self, "restitution", require_range("restitution", self.restitution, 0, 1,
                                                      high_open=False))
         if self.t_end_s is not None:
-            _set(self, "t_end_s", require_positive("t_end_s", self.t_end_s, "s"))
+            _set(self, "t_end_s", require_range("t_end_s", self.t_end_s, *T_END_RANGE_S, "s",
+                                                low_open=False, high_open=False))
         _set(self, "g", require_positive("g", self.g, "m/s^2"))
 
     def canonical(self) -> dict[str, Any]:

@@ -203,6 +203,12 @@ def friction_demand(
         sides.append(side)
         if onset is None and result.onset_time is not None and side != 0 and t == result.onset_time:
             onset = (float(ratios[j]), j)
+    if not demand:  # tension from the first instant: nothing to report (the fuzz found this)
+        assert tension is not None  # the loop ends early only by finding tension
+        t0, j0 = tension
+        raise InvalidParameterError(
+            f"the mechanism loses contact at once: joint {j0} would need tension from t = "
+            f"{t0:g} s, so no friction demand can be computed; lower the excitation's magnitude")
     demand_a = np.array(demand)
     k = int(np.argmax(demand_a))
     static = limit_analysis(geometry, g=g)

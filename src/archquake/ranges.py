@@ -1,0 +1,76 @@
+"""The range of every kind of value a user gives, in the user's units (g, s, m, degrees).
+
+One place: the command line (:mod:`archquake.cli.common`) and the study files
+(:mod:`archquake.sweeps.cases`) check against these. Ranges come from what the computation
+represents without overflow or a time step below float resolution, and from what is physically
+meaningful (an impact cannot create energy). Geometry's ranges (radius, depth, density,
+thickness ratio, embrace, voussoirs) live with the Arch in :mod:`archquake.geometry.arch`.
+"""
+
+from __future__ import annotations
+
+#: Pulse magnitude and domain ceiling, g (--magnitude, --max-magnitude).
+MAGNITUDE_RANGE_G = (0.0, 1000.0)
+#: Pulse duration t_p and period T, s (--duration, --period, --durations).
+PULSE_TIME_RANGE_S = (1e-6, 1000.0)
+#: End of an analysis, s (--t-end); also the latest instant --times may ask for.
+T_END_RANGE_S = (0.01, 1e4)
+#: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
+#: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.
+DEM_T_END_MAX_S = 120.0
+#: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
+#: file is not an accelerogram.
+RECORD_DT_RANGE_S = (1e-6, 1.0)
+#: Factor on a record's values (--scale).
+SCALE_RANGE = (0.0, 1000.0)
+#: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
+RESTITUTION_RANGE = (0.0, 1.0)
+#: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
+STIFFNESS_RANGE = (1e6, 1e14)
+#: DEM friction coefficient tan(phi) (--friction): phi from 0.06 to 89.4 degrees.
+FRICTION_RANGE = (1e-3, 100.0)
+#: DEM Rayleigh damping: alpha (1/s), beta (s); beta bounds the explicit time step.
+RAYLEIGH_ALPHA_RANGE = (0.0, 1e3)
+RAYLEIGH_BETA_RANGE = (0.0, 1e-3)
+#: UDEC's minimum-damping form (--damping F_MIN,XI_MIN): Hz and percent.
+DAMPING_FREQUENCY_RANGE_HZ = (1e-3, 1e3)
+DAMPING_RATIO_RANGE_PERCENT = (0.0, 100.0)
+#: Domain search (--precision, g; --scan; number of --durations and of --times).
+PRECISION_RANGE_G = (1e-6, 1.0)
+SCAN_RANGE = (2, 1000)
+MAX_DURATIONS = 1000
+MAX_TIMES = 1000
+#: Worker processes a command may ask for; more than the usable cores (or the work) are capped
+#: to them with a line (archquake.sweeps.runner.cap_workers).
+WORKERS_RANGE = (1, 10**9)
+
+#: Accepted suffixes by kind of output file.
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+ANIMATION_SUFFIXES = (".gif",)
+CSV_SUFFIXES = (".csv",)
+TABLE_SUFFIXES = (".csv", ".parquet")
+
+__all__ = [
+    "ANIMATION_SUFFIXES",
+    "CSV_SUFFIXES",
+    "DAMPING_FREQUENCY_RANGE_HZ",
+    "DAMPING_RATIO_RANGE_PERCENT",
+    "DEM_T_END_MAX_S",
+    "FIGURE_SUFFIXES",
+    "FRICTION_RANGE",
+    "MAGNITUDE_RANGE_G",
+    "MAX_DURATIONS",
+    "MAX_TIMES",
+    "PRECISION_RANGE_G",
+    "PULSE_TIME_RANGE_S",
+    "RAYLEIGH_ALPHA_RANGE",
+    "RAYLEIGH_BETA_RANGE",
+    "RECORD_DT_RANGE_S",
+    "RESTITUTION_RANGE",
+    "SCALE_RANGE",
+    "SCAN_RANGE",
+    "STIFFNESS_RANGE",
+    "TABLE_SUFFIXES",
+    "T_END_RANGE_S",
+    "WORKERS_RANGE",
+]
