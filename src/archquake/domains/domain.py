@@ -218,6 +218,8 @@ class FailureDomain:
                 "collapse_g": _num(self.collapse_g[i]),
                 "collapse_half_cycle": int(self.collapse_half_cycle[i]) or None,
                 "collapse_verdict": self.collapse_verdict[i],
+                "impact_law": self.impact_law,
+                "impact_validity": self.impact_validity,
                 "non_monotonic_bands": [
                     {k: v for k, v in b.to_dict().items() if k != "duration_s"}
                     for b in self.bands_at(float(d))

@@ -307,5 +307,5 @@ def _kinetic(p: np.ndarray, spin: np.ndarray, arch) -> float:
     )
 
 
-__all__ = ["DESCRIBED", "IMPACT_LAWS", "VALIDITY_MEANING", "ImpactSolution", "check_impact_law", "check_restitution",
-           "solve_impact"]
+__all__ = ["DESCRIBED", "IMPACT_LAWS", "VALIDITY_MEANING", "ImpactSolution", "check_impact_law",
+           "check_restitution", "solve_impact"]

@@ -177,6 +177,8 @@ class SimulationResult:
         energy ratio (c_v = sqrt(c_T)), and this is False.
     computed_outcome : Outcome
         What the model computed with the impact law as stated (no_hinging, survives, collapse).
+    restitution_prescribed : bool
+        True if ``restitution_cv`` was prescribed (``simulate(..., restitution=...)``).
     impact_described : bool
         True if the impact law describes this arch's impacts
         (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`).
@@ -222,6 +224,7 @@ class SimulationResult:
     impact_followed: bool = True
     computed_outcome: Outcome | None = None
     impact_described: bool = True
+    restitution_prescribed: bool = False
 
     @property
     def half_cycles(self) -> int:
@@ -251,6 +254,7 @@ class SimulationResult:
             "impact_validity": self.impact_validity,
             "impact_followed": self.impact_followed,
             "impact_described": self.impact_described,
+            "restitution_prescribed": self.restitution_prescribed,
             "computed_outcome": (self.outcome if self.computed_outcome is None
                                  else self.computed_outcome).value,
             "collapse_acceleration_g": self.collapse_acceleration_g,
@@ -385,6 +389,7 @@ def simulate(
                         impact_described=described),
         computed_outcome=computed,
         impact_described=described,
+        restitution_prescribed=restitution is not None,
         final_state=_FINALS[int(final)],
         collapse_half_cycle=int(collapse_half) if computed is Outcome.COLLAPSE else None,
         collapse_time=float(ctime) if math.isfinite(ctime) else None,

@@ -100,6 +100,9 @@ class FrictionDemand:
             "tension_joint": self.tension_joint,
             "instants": int(self.times.size),
             "outcome": self.simulation.outcome.value,
+            "impact_law": self.simulation.impact_law,
+            "impact_validity": self.simulation.impact_validity,
+            "restitution_cv": self.simulation.restitution_cv,
         }
         if include_history:
             out["history"] = {"t": self.times, "demand": self.demand,
