@@ -237,3 +237,27 @@ def test_oppenheim_under_eq4_keeps_figure4():
         assert r.impact_described and r.impact_validity == "assumed"
         got.append((r.outcome.value, r.collapse_half_cycle))
     assert got == [("collapse", 1), ("collapse", 2), ("survives", None)]
+
+
+# ----------------------------------------------------------------------------- plots
+def test_plots_say_indeterminate(tmp_path):
+    """The domain figure hatches the indeterminate region and the history title names the law's
+    validity (read back from the figure's artists, not from pixels)."""
+    import matplotlib.pyplot as plt
+
+    from archquake.plotting.domains import plot_domain
+    from archquake.plotting.history import verdict_text
+
+    s = DomainSettings(coarse_points=8, fine_points=2, precision_g=0.01)
+    dom = failure_domain(BRIDGE, "step", [0.15, 0.3], settings=s, impact="paper")
+    assert not dom.impact_described
+    assert dom.collapse_verdict == ("indeterminate", "indeterminate")
+    ax = plot_domain(dom)
+    labels = [h.get_label() for h in ax.get_legend_handles_labels()[0]]
+    assert any(lab.startswith("indeterminate: impact law paper outside") for lab in labels)
+    plt.close(ax.figure)
+    r = simulate(BRIDGE, StepImpulse.from_g(0.15, 0.1))
+    assert verdict_text(r) == ("indeterminate (computed: collapse in half cycle 2); "
+                               "impact paper: outside")
+    r = simulate(OPPENHEIM, StepImpulse.from_g(1.0, 0.27))
+    assert verdict_text(r) == "collapse in half cycle 2; impact paper: assumed"

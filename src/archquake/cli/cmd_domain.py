@@ -102,7 +102,8 @@ def run(args: argparse.Namespace) -> int:
           f"{arch.voussoirs} voussoirs; c_v = {dom.restitution_cv:.4f}"
           + (" (prescribed)" if dom.restitution_prescribed else "")
           + ("  (> 1: impact model gains energy)" if dom.energy_gain else ""))
-    print(impact_line(dom.impact_law, dom.impact_validity, dom.impact_described))
+    print(impact_line(dom.impact_law, dom.impact_validity, dom.impact_described,
+                      dom.restitution_prescribed))
     if not dom.impact_described:
         print("  only lambda and the 1st-half-cycle boundary are certain; a collapse after an "
               "impact is the law's computation, marked '?' (indeterminate)")

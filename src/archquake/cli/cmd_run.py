@@ -111,7 +111,8 @@ def _print_text(result, motion, g: float) -> None:
     print(f"restitution         c_v = {result.restitution_cv:.4f}, c_T = {result.restitution_ct:.4f}"
           + (" (prescribed)" if result.restitution_prescribed else "")
           + ("  (c_T > 1: the impact model gains energy for this geometry)" if result.energy_gain else ""))
-    print(impact_line(result.impact_law, result.impact_validity, result.impact_described))
+    print(impact_line(result.impact_law, result.impact_validity, result.impact_described,
+                      result.restitution_prescribed))
     if not result.impact_followed:
         print("                    the law's post-impact mechanism is not the mirror: the history "
               "continues on the mirror with the law's energy ratio")

@@ -256,12 +256,17 @@ def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
             "impact": getattr(args, "impact", None)}
 
 
-def impact_line(law: str, validity: str, described: bool) -> str:
+def impact_line(law: str, validity: str, described: bool, prescribed: bool = False) -> str:
     """One line of text: the impact law, its validity and what that means for the verdict."""
     from archquake.mechanism.impact import VALIDITY_MEANING
 
     meaning = VALIDITY_MEANING.get(validity, "")
-    verdict = "" if described else "; verdicts reached after an impact are indeterminate"
+    if not described:
+        verdict = "; verdicts reached after an impact are indeterminate"
+    elif prescribed and law == "paper" and validity == "outside":
+        verdict = "; the prescribed c_v replaces Eq. 4's, and verdicts rest on that assumption"
+    else:
+        verdict = ""
     return f"impact law          {law}, validity {validity}: {meaning}{verdict}"
 
 
