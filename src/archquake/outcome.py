@@ -2,7 +2,7 @@
 
 Both the analytical rocking model (:func:`archquake.mechanism.simulate`) and the
 distinct-element model (:func:`archquake.dem.simulate_dem`) classify a run as one of these
-three outcomes, and the failure-domain search (:mod:`archquake.domains`) brackets their
+outcomes, and the failure-domain search (:mod:`archquake.domains`) brackets their
 boundaries whichever model is plugged in.
 
 Examples
@@ -30,11 +30,59 @@ class Outcome(str, Enum):
         mechanism passes the crest of its potential energy after the excitation or reaches
         its toggle; the distinct-element model when the crown has fallen, a block has gone
         below the springings or turned too far).
+    ``indeterminate``
+        The analytical model reached a verdict only through an impact its impact law cannot
+        describe (:func:`qualify` states the rule): neither collapse nor survival is claimed.
+        The distinct-element model never returns it.
     """
 
     NO_HINGING = "no_hinging"
     SURVIVES = "survives"
     COLLAPSE = "collapse"
+    INDETERMINATE = "indeterminate"
+
+
+def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
+            impact_described: bool) -> Outcome:
+    """The verdict as it may be stated, given whether the impact law describes the impacts.
+
+    The rule (docs/mechanism.md, "An honest verdict"): a verdict *depends on an impact* when an
+    impact happened before it was reached:
+
+    * ``collapse`` in half cycle 2 or later (an impact preceded it; half cycle 1 does not
+      depend on any impact);
+    * ``survives`` after at least one impact (the arch's later half cycles, and so the absence
+      of collapse, follow from the impacts; survival with no impact does not);
+    * ``no_hinging`` never (no mechanism opened, no impact).
+
+    If the verdict depends on an impact and the law does not describe the impacts
+    (:meth:`archquake.mechanism.impact.ImpactSolution.describes`: Eq. 4 creating energy or
+    giving c_v < 0; the chain law's response outside the four-hinge model), the verdict is
+    ``indeterminate``; otherwise it stands.
+
+    Parameters
+    ----------
+    outcome : Outcome
+        What the model computed with the law as stated.
+    collapse_half_cycle : int or None
+        1 = collapse before any impact (ignored unless ``outcome`` is collapse).
+    impacts : int
+        Impacts computed before the verdict (before the collapse, or in the whole run).
+    impact_described : bool
+
+    Examples
+    --------
+    >>> qualify(Outcome.COLLAPSE, collapse_half_cycle=2, impacts=1, impact_described=False).value
+    'indeterminate'
+    >>> qualify(Outcome.COLLAPSE, collapse_half_cycle=1, impacts=0, impact_described=False).value
+    'collapse'
+    """
+    outcome = Outcome(outcome)
+    if impact_described or outcome in (Outcome.NO_HINGING, Outcome.INDETERMINATE):
+        return outcome
+    if outcome is Outcome.COLLAPSE:
+        return Outcome.INDETERMINATE if (collapse_half_cycle or 1) >= 2 else outcome
+    return Outcome.INDETERMINATE if impacts > 0 else outcome
 
 
 #: The keys that every model's ``result.to_dict()`` carries, with the same meaning and units
@@ -53,4 +101,4 @@ RESULT_KEYS = ("model", "outcome", "final_state", "collapse_half_cycle", "collap
                "g_m_s2")
 
 
-__all__ = ["Outcome", "RESULT_KEYS"]
+__all__ = ["Outcome", "RESULT_KEYS", "qualify"]

@@ -8,8 +8,11 @@ import math
 
 from archquake.cli.common import (
     add_arch_arguments,
+    add_impact_arguments,
     add_output_arguments,
     arch_from_args,
+    impact_from_args,
+    impact_line,
     output_file,
     parse_durations,
     print_json,
@@ -66,6 +69,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "one DEM time history per point, ~1-2 min per duration on 2 cores")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), default=None, metavar="N",
                    help="with --model dem: worker processes for the DEM runs (default: all cores)")
+    add_impact_arguments(p)
     add_output_arguments(p)
     p.add_argument("--csv", type=output_file(*CSV_SUFFIXES), metavar="FILE",
                    help="write the domain as CSV to FILE (.csv)")
@@ -78,7 +82,11 @@ def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
     refuse_unless({"--workers": args.workers}, args.model == "dem",
                   "with --model dem (the analytical domain runs in this process); leave it out")
+    impact = impact_from_args(args)
     if args.model == "dem":
+        if any(v is not None for v in impact.values()):
+            raise InvalidParameterError("--restitution and --impact apply to the analytical model "
+                                        "only; the DEM's impacts follow from its contacts and damping")
         return _run_dem(args, arch)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
@@ -88,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     _check_search(arch, args.scan, args.precision, args.max_magnitude)
     settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
                               fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
-    dom = failure_domain(arch, args.pulse, args.durations, settings=settings)
+    dom = failure_domain(arch, args.pulse, args.durations, settings=settings, **impact)
     if args.csv:
         dom.write_csv(args.csv)
     if args.plot:
@@ -102,7 +110,13 @@ def run(args: argparse.Namespace) -> int:
     print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "
           f"t/R = {arch.thickness_ratio:.3f}, embrace {math.degrees(arch.embrace):g} deg, "
           f"{arch.voussoirs} voussoirs; c_v = {dom.restitution_cv:.4f}"
+          + (" (prescribed)" if dom.restitution_prescribed else "")
           + ("  (> 1: impact model gains energy)" if dom.energy_gain else ""))
+    print(impact_line(dom.impact_law, dom.impact_validity, dom.impact_described,
+                      dom.restitution_prescribed))
+    if not dom.impact_described:
+        print("  only lambda and the 1st-half-cycle boundary are certain; a collapse after an "
+              "impact is the law's computation, marked '?' (indeterminate)")
     print(f"{sym + ' [s]':>9} {'no hinging':>11} {'1st half':>9} {'collapse':>9} {'in half':>7}  (g)")
 
     def fmt(x: float) -> str:
@@ -110,8 +124,9 @@ def run(args: argparse.Namespace) -> int:
 
     for i, d in enumerate(dom.durations):
         h = int(dom.collapse_half_cycle[i])
+        doubt = "?" if dom.collapse_verdict[i] == "indeterminate" else ""
         print(f"{d:9.4g} {dom.no_hinging_g[i]:11.3f} {fmt(dom.first_half_cycle_g[i])} "
-              f"{fmt(dom.collapse_g[i])} {h if h else '-':>7}")
+              f"{fmt(dom.collapse_g[i])} {h if h else '-':>7}{doubt}")
     if dom.non_monotonic_bands:
         print("non-monotonic bands (survives although a smaller magnitude collapses):")
         for b in dom.non_monotonic_bands:

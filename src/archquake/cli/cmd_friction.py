@@ -10,9 +10,11 @@ import sys
 from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
+    add_impact_arguments,
     add_output_arguments,
     arch_from_args,
     ground_motion_from_args,
+    impact_from_args,
     print_json,
 )
 
@@ -29,6 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
+    add_impact_arguments(p)
     add_output_arguments(p, plot=False)
     p.set_defaults(func=run)
 
@@ -58,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
     with _progress_bar() as progress:
-        result = friction_demand(arch, motion, progress=progress)
+        result = friction_demand(arch, motion, progress=progress, **impact_from_args(args))
     if args.json:
         out = result.to_dict()
         out["arch"] = arch.describe()

@@ -14,7 +14,15 @@ from typing import Any
 
 import numpy as np
 
-from archquake.cli.common import add_arch_arguments, arch_from_args, number, print_json, whole
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_impact_arguments,
+    arch_from_args,
+    impact_from_args,
+    number,
+    print_json,
+    whole,
+)
 from archquake.errors import ArchquakeError, InvalidParameterError
 
 #: Measures whose first-collapse dispersion is compared (besides the one of the analysis).
@@ -51,9 +59,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="largest relative gap between levels run (default 0.10)")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical rocking mechanism (default) or the DEM")
-    p.add_argument("--restitution", type=number, metavar="CV",
-                   help="prescribed coefficient of restitution c_v in (0, 1] (analytical "
-                        "model; default: the paper's impact model)")
+    add_impact_arguments(p)
     p.add_argument("--store", type=Path, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
@@ -80,13 +86,12 @@ def _check(args: argparse.Namespace) -> None:
     if args.ceiling is not None and not args.ceiling > 0:
         raise InvalidParameterError(f"--ceiling must be > 0 (in the measure's unit), got "
                                     f"{args.ceiling:g}")
-    if args.restitution is not None:
-        if not 0 < args.restitution <= 1:
-            raise InvalidParameterError(f"--restitution must be in (0, 1], got "
-                                        f"{args.restitution:g}")
-        if args.model == "dem":
-            raise InvalidParameterError("--restitution applies to the analytical model only "
-                                        "(the DEM's impacts follow from its contacts)")
+    impact = impact_from_args(args)
+    if args.model == "dem":
+        for option, value in (("--restitution", impact["restitution"]), ("--impact", impact["impact"])):
+            if value is not None:
+                raise InvalidParameterError(f"{option} applies to the analytical model only "
+                                            "(the DEM's impacts follow from its contacts)")
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
     if args.bootstrap < 0:
@@ -118,7 +123,7 @@ def run(args: argparse.Namespace) -> int:
         suite = load_suite(args.records, units=args.units, dt=args.dt)
     except ArchquakeError as exc:
         raise InvalidParameterError(f"--records: {exc}") from None
-    options = CaseOptions(restitution=args.restitution)
+    options = CaseOptions(**impact_from_args(args))
     store_path = args.store or Path("ida.sqlite")
     bar = _Bar(disable=args.no_progress)
     with ResultStore(store_path) as store:
@@ -171,7 +176,12 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
           f"{a.embrace_deg:g} deg, {a.voussoirs} voussoirs (lambda = "
           f"{result.collapse_acceleration_g:.3f} g); {result.model.value} model"
           + (f", c_v = {result.settings['restitution']:g} (prescribed)"
-             if result.settings["restitution"] is not None else ""))
+             if result.settings["restitution"] is not None else "")
+          + f"; impact law {result.settings.get('impact', 'paper')}")
+    indeterminate = sum(int(r.indeterminate.sum()) for r in result.records)
+    if indeterminate:
+        print(f"{indeterminate} run(s) indeterminate (the verdict came after an impact the law "
+              "does not describe): counted as collapses, so the fragility is an upper bound")
     print(f"suite {suite.name} ({len(result.records)} records); IM {im.label} ({u}); "
           f"hunt-and-fill to {100 * result.settings['precision']:g} % (fill "
           f"{100 * result.settings['fill']:g} %), ceiling {result.ceiling:.4g} {u}")

@@ -9,9 +9,12 @@ from pathlib import Path
 from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
+    add_impact_arguments,
     add_output_arguments,
     arch_from_args,
     ground_motion_from_args,
+    impact_from_args,
+    impact_line,
     output_file,
     print_json,
     ranged,
@@ -21,7 +24,6 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     ANIMATION_SUFFIXES,
     CSV_SUFFIXES,
-    RESTITUTION_RANGE,
     T_END_RANGE_S,
 )
 
@@ -38,9 +40,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
-    p.add_argument("--restitution", type=ranged(*RESTITUTION_RANGE), metavar="CV",
-                   help="prescribe the coefficient of restitution c_v (on the angular velocity, "
-                        "0 to 1) instead of the impact model's (paper Eq. 4)")
+    add_impact_arguments(p)
     p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
                         "default: end of the excitation + 60 sqrt(R/g))")
@@ -64,12 +64,13 @@ def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
     refuse_dem_options(args)
+    impact = impact_from_args(args)
     if args.model == "dem":
         return _run_dem(args, arch, motion)
     from archquake.mechanism import PreparedMechanism, simulate
 
-    prepared = PreparedMechanism.build(arch)
-    result = simulate(prepared, motion, restitution=args.restitution, t_end=args.t_end)
+    prepared = PreparedMechanism.build(arch, impact["impact"])
+    result = simulate(prepared, motion, restitution=impact["restitution"], t_end=args.t_end)
     assert result.history is not None  # simulate always records the history
     g = STANDARD_GRAVITY
     if args.plot:
@@ -117,13 +118,24 @@ def _print_text(result, motion, g: float) -> None:
     print(f"hinges (A, B, C, D) {hinges}")
     print(f"onset of hinging    {result.collapse_acceleration_g:.4f} g (equivalent static analysis)")
     print(f"restitution         c_v = {result.restitution_cv:.4f}, c_T = {result.restitution_ct:.4f}"
+          + (" (prescribed)" if result.restitution_prescribed else "")
           + ("  (c_T > 1: the impact model gains energy for this geometry)" if result.energy_gain else ""))
+    print(impact_line(result.impact_law, result.impact_validity, result.impact_described,
+                      result.restitution_prescribed))
+    if not result.impact_followed:
+        print("                    the law's post-impact mechanism is not the mirror: the history "
+              "continues on the mirror with the law's energy ratio")
     if not result.impact_admissible:
         print(f"                    the impact model gives c_v = {result.impact_model_cv:.4f} < 0 for this "
               "geometry (inadmissible): impacts computed as perfectly plastic; see --restitution")
-    print(f"outcome             {result.outcome.value}" + (
-        f" in half cycle {result.collapse_half_cycle} at t = {result.collapse_time:.3f} s"
-        if result.collapse_half_cycle else f" ({result.final_state.value})"))
+    computed = result.computed_outcome or result.outcome
+    when = (f" in half cycle {result.collapse_half_cycle} at t = {result.collapse_time:.3f} s"
+            if result.collapse_half_cycle else f" ({result.final_state.value})")
+    if result.outcome is computed:
+        print(f"outcome             {result.outcome.value}{when}")
+    else:
+        print(f"outcome             {result.outcome.value}: the model computed {computed.value}{when}, "
+              "but only through an impact its law does not describe (see --impact, --restitution)")
     if result.impact_times.size:
         shown = ", ".join(f"{t:.3f}" for t in result.impact_times[:6])
         more = f" ... ({result.impact_times.size} in all)" if result.impact_times.size > 6 else ""

@@ -8,10 +8,12 @@ import math
 from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
+    add_impact_arguments,
     add_output_arguments,
     arch_from_args,
     comma_numbers,
     ground_motion_from_args,
+    impact_from_args,
     print_json,
 )
 from archquake.errors import InvalidParameterError
@@ -48,6 +50,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_ground_motion_arguments(p)
     p.add_argument("--times", type=_times, default=[0.2, 0.5, 0.8, 1.1, 1.5, 2.22], metavar="T1,T2,...",
                    help="instants, s, comma-separated (default: Figure 8's 0.2,0.5,0.8,1.1,1.5,2.22)")
+    add_impact_arguments(p)
     add_output_arguments(p)
     p.set_defaults(func=run)
 
@@ -59,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     if min(args.times) < 0:
         raise InvalidParameterError(f"--times must be >= 0 s, got {min(args.times):g}")
-    snapshots = states(arch, motion, args.times)
+    snapshots = states(arch, motion, args.times, **impact_from_args(args))
     if args.plot is not None:
         from archquake.plotting.thrust import save_thrust_snapshots
 

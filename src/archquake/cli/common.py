@@ -442,6 +442,44 @@ def describe_arch(arch) -> str:
     return text
 
 
+def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
+    """--restitution and --impact: the impact of the analytical model (every command that runs a
+    time history; :func:`impact_from_args` reads them)."""
+    from archquake.mechanism.impact import IMPACT_LAWS
+
+    g = parser.add_argument_group("impact (analytical model)")
+    g.add_argument("--restitution", type=number, default=None, metavar="CV",
+                   help="prescribe the coefficient of restitution c_v on the angular velocity, "
+                        "in [0, 1] (0 = perfectly plastic), instead of the impact law's")
+    g.add_argument("--impact", choices=IMPACT_LAWS, default=None,
+                   help="impact law: 'paper' (the paper's Eq. 4, default), 'chain' (chain of "
+                        "rigid voussoirs: maximum restitution, never creates energy) or 'mirror' "
+                        "(chain law, mirror mechanism forced); see docs/mechanism.md")
+
+
+def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
+    """``{"restitution": c_v or None, "impact": law or None}`` from :func:`add_impact_arguments`'s
+    options, checked (one line naming --restitution and its range)."""
+    from archquake.mechanism.impact import check_restitution
+
+    return {"restitution": check_restitution(getattr(args, "restitution", None), "--restitution"),
+            "impact": getattr(args, "impact", None)}
+
+
+def impact_line(law: str, validity: str, described: bool, prescribed: bool = False) -> str:
+    """One line of text: the impact law, its validity and what that means for the verdict."""
+    from archquake.mechanism.impact import VALIDITY_MEANING
+
+    meaning = VALIDITY_MEANING.get(validity, "")
+    if not described:
+        verdict = "; verdicts reached after an impact are indeterminate"
+    elif prescribed and law == "paper" and validity == "outside":
+        verdict = "; the prescribed c_v replaces Eq. 4's, and verdicts rest on that assumption"
+    else:
+        verdict = ""
+    return f"impact law          {law}, validity {validity}: {meaning}{verdict}"
+
+
 def add_output_arguments(parser: argparse.ArgumentParser, *, plot: bool = True) -> None:
     parser.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     if plot:

@@ -108,6 +108,9 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     from archquake.compare import default_dem_duration, dem_assembly
     from archquake.dem import simulate_dem
 
+    if getattr(args, "impact", None) is not None:
+        raise InvalidParameterError("--impact applies to the analytical model only; the DEM's "
+                                    "impacts follow from its contacts and damping (--damping)")
     if args.restitution is not None:
         raise InvalidParameterError("--restitution applies to the analytical model only; the DEM's "
                                     "impacts follow from its contacts and damping (--damping)")

@@ -90,7 +90,8 @@ class HistoryComparison:
 
     @property
     def same_outcome(self) -> bool:
-        """Same outcome and, for a collapse, the same half cycle."""
+        """Same outcome and, for a collapse, the same half cycle (an indeterminate analytical
+        verdict is never the same as the DEM's: it claims neither collapse nor survival)."""
         return (self.analytical.outcome is self.dem.outcome
                 and self.analytical.collapse_half_cycle == self.dem.collapse_half_cycle)
 
@@ -101,6 +102,7 @@ class HistoryComparison:
             "blocks": int(np.sum(~d.assembly.base)),
             "motion": d.motion,
             "analytical": {"outcome": a.outcome.value, "collapse_half_cycle": a.collapse_half_cycle,
+                           "impact_law": a.impact_law, "impact_validity": a.impact_validity,
                            "first_impact_time_s": self.analytical_first_impact,
                            "collapse_time_s": a.collapse_time, "seconds": self.analytical_seconds},
             "dem": {"outcome": d.outcome.value, "collapse_half_cycle": d.collapse_half_cycle,

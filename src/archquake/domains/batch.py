@@ -22,7 +22,7 @@ from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions, simulate
-from archquake.outcome import Outcome
+from archquake.outcome import Outcome, qualify
 
 
 class PulseFamily(str, Enum):
@@ -76,9 +76,12 @@ class PulseOutcomes:
     magnitude_g : ndarray, g
     duration : ndarray, s
     outcome : ndarray of Outcome (object)
-        Built from :class:`~archquake.outcome.Outcome` values (or their strings).
+        Built from :class:`~archquake.outcome.Outcome` values (or their strings); the verdict
+        as it may be stated (``indeterminate`` where it depends on an impact the law does not
+        describe, :func:`archquake.outcome.qualify`).
     collapse_half_cycle : ndarray of int
-        Half cycle of the collapse (1 = before any impact), 0 where none.
+        Half cycle of the computed collapse (1 = before any impact), 0 where none (also set
+        where the verdict is indeterminate: the law as stated computed that collapse).
     runs : ndarray of int
         Model runs each case needed (the batch kernel's early decision, see :mod:`._kernels`).
     """
@@ -97,8 +100,17 @@ class PulseOutcomes:
 
     @property
     def collapses(self) -> np.ndarray:
-        """(n,) bool: the pulse collapses the arch."""
-        return np.array([o is Outcome.COLLAPSE for o in self.outcome], dtype=bool)
+        """(n,) bool: the model, with its impact law as stated, computes a collapse (a certain
+        collapse, or an indeterminate verdict whose computation collapsed: the domain search
+        brackets the law's boundary and marks what is not certain, see
+        :attr:`~archquake.domains.FailureDomain.collapse_verdict`)."""
+        return np.array([o is Outcome.COLLAPSE or (o is Outcome.INDETERMINATE and h > 0)
+                         for o, h in zip(self.outcome, self.collapse_half_cycle)], dtype=bool)
+
+    @property
+    def indeterminate(self) -> np.ndarray:
+        """(n,) bool: the verdict depends on an impact the law does not describe."""
+        return np.array([o is Outcome.INDETERMINATE for o in self.outcome], dtype=bool)
 
     @property
     def collapses_first(self) -> np.ndarray:
@@ -134,6 +146,8 @@ def evaluate_pulses(
     magnitudes_g,
     durations,
     *,
+    restitution: float | None = None,
+    impact: str | None = None,
     options: SolverOptions = DEFAULT_OPTIONS,
     early: bool = True,
     g: float = STANDARD_GRAVITY,
@@ -146,6 +160,10 @@ def evaluate_pulses(
     family : PulseFamily or {'step', 'sine'}
     magnitudes_g : array_like, (n,), g
     durations : array_like, (n,), s (t_p for the step impulse, T for the sine pulse)
+    restitution : float, optional
+        Prescribed c_v in [0, 1]; None: the impact law's.
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law; None: a PreparedMechanism's own, else "paper".
     options : SolverOptions
         Tolerances, rest rotation and impact cap, as for :func:`~archquake.mechanism.simulate`.
     early : bool
@@ -170,7 +188,8 @@ def evaluate_pulses(
     """
     from archquake.domains._kernels import batch_kernel, decode, default_t_end
 
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
+    cv = prepared.restitution_for(restitution)
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     a, d = _pairs(magnitudes_g, durations)
@@ -188,10 +207,15 @@ def evaluate_pulses(
     runs = np.zeros(n, dtype=np.int64)
     if n:
         batch_kernel(prepared.packed, fam.kind, params, float(g),
-                     float(prepared.restitution), t_end, options.rtol, options.atol,
+                     float(cv), t_end, options.rtol, options.atol,
                      options.rest_rotation, int(options.max_impacts), bool(early),
                      outcome, half, n_imp, runs)
-    return PulseOutcomes(a, d, decode(outcome), half, runs)
+    described = prepared.describes_impact(restitution)
+    verdict = np.empty(n, dtype=object)
+    for i, o in enumerate(decode(outcome)):
+        verdict[i] = qualify(o, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
+                             impact_described=described)
+    return PulseOutcomes(a, d, verdict, half, runs)
 
 
 def evaluate_pulses_scalar(
@@ -200,18 +224,21 @@ def evaluate_pulses_scalar(
     magnitudes_g,
     durations,
     *,
+    restitution: float | None = None,
+    impact: str | None = None,
     options: SolverOptions = DEFAULT_OPTIONS,
     g: float = STANDARD_GRAVITY,
 ) -> PulseOutcomes:
     """The plain twin of :func:`evaluate_pulses`: a loop over :func:`~archquake.mechanism.simulate`."""
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
     fam = PulseFamily.parse(family)
     a, d = _pairs(magnitudes_g, durations)
     outcome = np.empty(a.shape[0], dtype=object)
     half = np.zeros(a.shape[0], dtype=np.int64)
     opts = SolverOptions(options.rtol, options.atol, options.rest_rotation, options.max_impacts, 0.0)
     for i, (ai, di) in enumerate(zip(a, d)):
-        r = simulate(prepared, fam.motion(float(ai), float(di), g=g), options=opts, g=g)
+        r = simulate(prepared, fam.motion(float(ai), float(di), g=g), restitution=restitution,
+                     options=opts, g=g)
         outcome[i] = r.outcome
         half[i] = r.collapse_half_cycle or 0
     return PulseOutcomes(a, d, outcome, half, np.ones(a.shape[0], dtype=np.int64))

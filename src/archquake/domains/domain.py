@@ -54,6 +54,7 @@ from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
+from archquake.outcome import Outcome
 
 from .batch import PulseFamily, PulseOutcomes, check_durations, evaluate_pulses
 
@@ -174,7 +175,8 @@ class FailureDomain:
         Half cycle in which ``collapse_g`` collapses the arch (0 where none).
     non_monotonic_bands : tuple of NonMonotonicBand
     restitution_cv : float
-        c_v of the impact model (> 1 means the model creates energy: see ``energy_gain``).
+        c_v of the impact law, or the prescribed one (> 1 means the law creates energy: see
+        ``energy_gain``).
     energy_gain : bool
     mechanism : dict
         The hinges (joints, faces, symmetric).
@@ -183,6 +185,18 @@ class FailureDomain:
         Time histories run by the search.
     g : float
         Gravity, m/s^2.
+    impact_law : str
+        The impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
+    impact_validity : str
+        Its validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
+    impact_described : bool
+        True if the law (with the prescribed c_v, if any) describes this arch's impacts. If
+        False, every verdict reached after an impact is indeterminate
+        (:func:`archquake.outcome.qualify`): lambda and the first-half-cycle boundary stand, and
+        ``collapse_g`` where it collapses after an impact is the law's computed boundary, not a
+        certain one (:attr:`collapse_verdict`).
+    restitution_prescribed : bool
+        True if ``restitution_cv`` was prescribed.
     """
 
     arch: VoussoirChain
@@ -201,6 +215,25 @@ class FailureDomain:
     settings: DomainSettings = field(repr=False, default=DomainSettings())
     evaluations: int = 0
     g: float = STANDARD_GRAVITY
+    impact_law: str = "paper"
+    impact_validity: str = "assumed"
+    impact_described: bool = True
+    restitution_prescribed: bool = False
+
+    @property
+    def collapse_verdict(self) -> tuple[str | None, ...]:
+        """Per duration: ``"collapse"`` where ``collapse_g`` is a certain collapse (in the first
+        half cycle, or the law describes the impacts), ``"indeterminate"`` where it collapses
+        only after an impact the law does not describe, None where no collapse was found."""
+        out: list[str | None] = []
+        for g_c, half in zip(self.collapse_g, self.collapse_half_cycle):
+            if not math.isfinite(g_c):
+                out.append(None)
+            elif self.impact_described or int(half) == 1:
+                out.append(Outcome.COLLAPSE.value)
+            else:
+                out.append(Outcome.INDETERMINATE.value)
+        return tuple(out)
 
     def bands_at(self, duration: float) -> list[NonMonotonicBand]:
         return [b for b in self.non_monotonic_bands if b.duration == duration]
@@ -216,6 +249,9 @@ class FailureDomain:
                 "first_half_cycle_g": _num(self.first_half_cycle_g[i]),
                 "collapse_g": _num(self.collapse_g[i]),
                 "collapse_half_cycle": int(self.collapse_half_cycle[i]) or None,
+                "collapse_verdict": self.collapse_verdict[i],
+                "impact_law": self.impact_law,
+                "impact_validity": self.impact_validity,
                 "non_monotonic_bands": [
                     {k: v for k, v in b.to_dict().items() if k != "duration_s"}
                     for b in self.bands_at(float(d))
@@ -228,7 +264,10 @@ class FailureDomain:
         return {"arch": self.arch.describe(), "pulse": self.family.value,
                 "duration_symbol": self.family.duration_symbol,
                 "restitution_cv": self.restitution_cv,
-                "energy_gain": self.energy_gain, "mechanism": self.mechanism,
+                "restitution_prescribed": self.restitution_prescribed,
+                "energy_gain": self.energy_gain, "impact_law": self.impact_law,
+                "impact_validity": self.impact_validity,
+                "impact_described": self.impact_described, "mechanism": self.mechanism,
                 "settings": self.settings.to_dict(), "evaluations": self.evaluations,
                 "g_m_s2": self.g}
 
@@ -299,6 +338,8 @@ def failure_domain(
     durations=None,
     *,
     settings: DomainSettings | None = None,
+    restitution: float | None = None,
+    impact: str | None = None,
     g: float = STANDARD_GRAVITY,
     evaluate: Callable[[np.ndarray, np.ndarray], PulseOutcomes] | None = None,
 ) -> FailureDomain:
@@ -312,6 +353,11 @@ def failure_domain(
     durations : array_like, (n,), s
         t_p for the step impulse, T for the sine pulse (default: 40 from 0.05 to 1.5 s, Figure 5).
     settings : DomainSettings
+    restitution : float, optional
+        Prescribed c_v in [0, 1] (0: perfectly plastic); None: the impact law's.
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law (:mod:`archquake.mechanism.impact`); None: a PreparedMechanism's own, else
+        "paper".
     g : float
         Gravity, m/s^2.
     evaluate : callable, optional
@@ -339,7 +385,8 @@ def failure_domain(
     (True, 2)
     """
     settings = DomainSettings() if settings is None else settings
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
+    cv = prepared.restitution_for(restitution)
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     if durations is None:
@@ -361,8 +408,8 @@ def failure_domain(
         evaluations += mags.size
         if evaluate is not None:
             return evaluate(mags, dur[idx])
-        return evaluate_pulses(prepared, fam, mags, dur[idx], options=settings.options,
-                               early=settings.early, g=g)
+        return evaluate_pulses(prepared, fam, mags, dur[idx], restitution=restitution,
+                               options=settings.options, early=settings.early, g=g)
 
     # 1. coarse scan ------------------------------------------------------------------------
     coarse = coarse_scan(lam, ceiling, settings.coarse_points, settings.scan_reference_g)
@@ -469,13 +516,18 @@ def failure_domain(
         collapse_below_g=collapse_below,
         collapse_half_cycle=half,
         non_monotonic_bands=tuple(bands),
-        restitution_cv=float(prepared.impact.restitution_cv),
-        energy_gain=bool(prepared.impact.energy_gain),
+        restitution_cv=float(prepared.impact.restitution_cv if restitution is None else cv),
+        energy_gain=bool(prepared.impact.energy_gain and restitution is None),
         mechanism={"joints": list(mech.joints), "faces": [f.value for f in mech.faces],
                    "symmetric": bool(mech.symmetric)},
         settings=settings,
         evaluations=evaluations,
         g=g,
+        impact_law=prepared.impact.law,
+        impact_validity=prepared.impact.validity,
+        # another model's outcomes (the DEM) carry their own impacts
+        impact_described=evaluate is not None or prepared.describes_impact(restitution),
+        restitution_prescribed=restitution is not None,
     )
 
 

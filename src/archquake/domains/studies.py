@@ -54,16 +54,20 @@ class StudyCase:
 
 def study_case(label: str, arch: Arch, family: PulseFamily | str, durations,
                settings: DomainSettings | None,
-               *, g: float = STANDARD_GRAVITY) -> StudyCase:
-    """The domain of one arch, with any problem stated."""
+               *, g: float = STANDARD_GRAVITY, impact: str | None = None) -> StudyCase:
+    """The domain of one arch under the impact law ``impact`` (None: "paper", as the paper's
+    studies), with any problem stated."""
     try:
-        dom = failure_domain(arch, family, durations, settings=settings, g=g)
+        dom = failure_domain(arch, family, durations, settings=settings, g=g, impact=impact)
     except ArchquakeError as exc:  # e.g. UnstableArchError: the arch cannot stand
         return StudyCase(label, arch, None, str(exc))
     problem = None
     if dom.energy_gain:
         problem = (f"impact model gives c_v = {dom.restitution_cv:.4f} > 1 (energy gain at impact): "
                    "free rocking grows, so the collapse boundary is not meaningful")
+    elif not dom.impact_described:
+        problem = (f"impact law {dom.impact_law!r} does not describe this arch's impacts "
+                   f"(validity {dom.impact_validity}): a collapse after an impact is indeterminate")
     return StudyCase(label, arch, dom, problem)
 
 

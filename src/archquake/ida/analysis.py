@@ -35,6 +35,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
+from archquake.outcome import Outcome
 from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationKind, ExcitationSpec, Model
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
 
@@ -42,6 +43,12 @@ from archquake.sweeps.store import STATUS_ERROR, ResultStore
 DEFAULT_CEILING_PGA_G = 5.0
 #: Rounds at most (a safeguard: hunt-and-fill converges in a few tens).
 MAX_ROUNDS = 200
+
+#: Outcomes the IDA counts as collapse (the hunt, the collapse intervals and the fragility): a
+#: collapse, and an indeterminate verdict (the arch is not shown to survive: the fragility is
+#: then an upper bound of the analytical model's, and each record reports how many runs were
+#: indeterminate, ``indeterminate_runs``).
+COUNTED_AS_COLLAPSE = (Outcome.COLLAPSE.value, Outcome.INDETERMINATE.value)
 
 
 @dataclass(frozen=True)
@@ -79,7 +86,14 @@ class RecordIda:
 
     @property
     def collapsed(self) -> np.ndarray:
-        return np.array([o == "collapse" for o in self.outcomes], dtype=bool)
+        """(levels,) bool: the run collapsed, or its verdict is indeterminate (counted with the
+        collapses: the model cannot show the arch survives; see :data:`COUNTED_AS_COLLAPSE`)."""
+        return np.array([o in COUNTED_AS_COLLAPSE for o in self.outcomes], dtype=bool)
+
+    @property
+    def indeterminate(self) -> np.ndarray:
+        """(levels,) bool: the verdict depends on an impact the law does not describe."""
+        return np.array([o == Outcome.INDETERMINATE.value for o in self.outcomes], dtype=bool)
 
     @property
     def collapse_intervals(self) -> list[Interval]:
@@ -128,6 +142,7 @@ class RecordIda:
             f"first_collapse_{unit}": None if first is None else first.lower_edge,
             f"first_collapse_run_{unit}": None if first is None else first.low,
             f"first_collapse_below_{unit}": None if first is None else first.below,
+            "indeterminate_runs": int(self.indeterminate.sum()),
             "collapse_intervals": [r.to_dict(unit) for r in self.collapse_intervals],
             "resurrections": [r.to_dict(unit) for r in self.resurrections],
             "runs": [{f"level_{unit}": float(x), "scale": float(f), "outcome": o,
@@ -303,7 +318,7 @@ def incremental_dynamic_analysis(
         transition within 2 % of the IM).
     model : {'analytical', 'dem'}
     options : CaseOptions, optional
-        Prescribed restitution (analytical only), end time, gravity (default: none, the
+        Prescribed restitution and impact law (analytical only), end time, gravity (default: none, the
         model's own, standard gravity).
     executor, workers, chunk_size
         As :func:`archquake.sweeps.run_sweep` (default: a local process pool).
@@ -343,7 +358,8 @@ def incremental_dynamic_analysis(
     unit = {"g": "g", "m/s": "m_s", "m": "m"}[measure.unit]
     settings = {f"ceiling_{unit}": float(ceiling), "precision": precision, "fill": fill,
                 "hunt_step": hunt_step, "hunt_growth": hunt_growth,
-                "restitution": options.restitution, "t_end_s": options.t_end_s}
+                "restitution": options.restitution, "impact": options.impact or "paper",
+                "t_end_s": options.t_end_s}
     hf = []
     for s in starts:
         start = min(float(s), float(ceiling))
@@ -363,7 +379,7 @@ def incremental_dynamic_analysis(
         for i in range(len(motions)):
             done = outcomes[i]
             levels = list(done)
-            collapsed = [done[x].outcome == "collapse" for x in levels]
+            collapsed = [done[x].outcome in COUNTED_AS_COLLAPSE for x in levels]
             for x in propose_levels(levels, collapsed, hf[i]):
                 case = case_of(i, x)
                 runs[i][x] = case

@@ -20,7 +20,7 @@ import numpy as np
 
 from archquake.domains._kernels import OUTCOMES
 from archquake.errors import ArchquakeError, InvalidParameterError
-from archquake.outcome import Outcome
+from archquake.outcome import Outcome, qualify
 from archquake.sweeps.cases import Case, Model
 
 #: The ``evaluator`` key of a batch summary.
@@ -57,7 +57,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
         groups.setdefault((case.arch, case.options), []).append(i)
     for (arch, options), idx in groups.items():
         try:
-            prepared = _prepared(arch)
+            prepared = _prepared(arch, options.impact)
         except ArchquakeError as exc:
             for i in idx:
                 out[i] = exc
@@ -76,7 +76,8 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
 
     g = options.g
     solver = SolverOptions()
-    cv = prepared.restitution if options.restitution is None else float(options.restitution)
+    cv = prepared.restitution_for(options.restitution)
+    described = prepared.describes_impact(options.restitution)
     kinds, parts, results = [], [], []
     for case in cases:
         kind, params = case.excitation.build(g=g).kernel_spec()
@@ -106,14 +107,20 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
     static_g = prepared.collapse_acceleration_g
     phi_crit = prepared.critical_rotation
     for i in range(n):
-        o = int(outcome[i])
+        computed = OUTCOMES[int(outcome[i])]
+        verdict = qualify(computed, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
+                          impact_described=described)
         results.append({
-            "outcome": OUTCOMES[o].value,
-            "collapse_half_cycle": int(half[i]) if OUTCOMES[o] is Outcome.COLLAPSE else None,
+            "outcome": verdict.value,
+            "computed_outcome": computed.value,
+            "collapse_half_cycle": int(half[i]) if computed is Outcome.COLLAPSE else None,
             "peak_rotation_max_rad": float(peak[i]),
             "critical_rotation_rad": phi_crit,
             "collapse_acceleration_g": static_g,
             "restitution_cv": float(cv),
+            "impact_law": prepared.impact.law,
+            "impact_validity": prepared.impact.validity,
+            "impact_described": described,
             "impacts": int(n_imp[i]),
             "kernel_runs": int(runs[i]),
             "t_end_s": float(t_end[i]),

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from archquake._validate import require_range
 from archquake.errors import InvalidParameterError
 from archquake.geometry.hinges import HingeMechanism
 
@@ -49,6 +50,40 @@ if TYPE_CHECKING:
 
 #: Names of the impact laws (see the module docstring).
 IMPACT_LAWS = ("paper", "chain", "mirror")
+
+#: One line of meaning for each validity (what ``archquake run`` prints and the plots show).
+VALIDITY_MEANING = {
+    "assumed": "Eq. 4 with the paper's assumed mirror mechanism (not checked; c_T <= 1, c_v >= 0)",
+    "four_hinge": "the impact response is exactly a four-hinge mechanism",
+    "near_four_hinge": "the impact response is a four-hinge mechanism within 1 % of its energy",
+    "at_rest": "the impact stops the arch (perfectly plastic)",
+    "outside": "the impact law does not describe this arch's impacts",
+    "not_four_hinge": "the impact response is not a four-hinge mechanism",
+}
+
+#: The chain laws' validities under which the impact is described (:meth:`ImpactSolution.describes`).
+DESCRIBED = ("four_hinge", "near_four_hinge", "at_rest")
+
+
+def check_restitution(value: object, name: str = "restitution") -> float | None:
+    """The one check of a prescribed coefficient of restitution c_v: None (the law's own) or a
+    number in [0, 1] (0 = perfectly plastic: the arch stops at the impact; above 1 an impact
+    would create energy). ``name`` is the option as the caller's user typed it
+    (``--restitution`` on the command line)."""
+    if value is None:
+        return None
+    shown = "[0, 1] (c_v, 0 = perfectly plastic)"
+    try:
+        return require_range(name, value, 0.0, 1.0, low_open=False, high_open=False, shown=shown)
+    except InvalidParameterError:
+        raise InvalidParameterError(f"{name} must be in {shown}, got {value!r}") from None
+
+
+def check_impact_law(law: object, name: str = "impact") -> str:
+    """The one check of an impact law's name (:data:`IMPACT_LAWS`)."""
+    if law not in IMPACT_LAWS:
+        raise InvalidParameterError(f"{name} must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
+    return str(law)
 
 
 @dataclass(frozen=True)
@@ -100,6 +135,24 @@ class ImpactSolution:
     @property
     def admissible(self) -> bool:
         return self.restitution_cv >= 0.0
+
+    def describes(self, prescribed: bool = False) -> bool:
+        """True if this law describes the impact, so that a verdict reached after it stands.
+
+        * ``"paper"``: the c_v of Eq. 4 is usable: no energy gain (c_T <= 1) and admissible
+          (c_v >= 0). A prescribed c_v (``prescribed=True``, in [0, 1]) replaces that number
+          and keeps the paper's assumed mirror mechanism, so it describes the impact.
+        * ``"chain"``, ``"mirror"``: the response is a four-hinge mechanism (validity
+          ``four_hinge``, ``near_four_hinge``) or rest (``at_rest``); ``outside`` and
+          ``not_four_hinge`` do not describe it, whatever c_v is prescribed (a prescription
+          replaces the number, not the mechanism).
+
+        The rule that turns this into :attr:`archquake.outcome.Outcome.INDETERMINATE` is
+        :func:`archquake.outcome.qualify`.
+        """
+        if self.law == "paper":
+            return bool(prescribed or (not self.energy_gain and self.restitution_cv >= 0.0))
+        return self.validity in DESCRIBED
 
     def to_dict(self) -> dict:
         return {
@@ -155,6 +208,7 @@ def solve_impact(before: HingeMechanism, law: str = "paper") -> ImpactSolution:
     -------
     ImpactSolution
     """
+    check_impact_law(law, "impact law")
     if law == "paper":
         return _solve_paper(before)
     if law in ("chain", "mirror"):
@@ -176,7 +230,7 @@ def solve_impact(before: HingeMechanism, law: str = "paper") -> ImpactSolution:
             validity=sol.validity,
             chain=sol,
         )
-    raise InvalidParameterError(f"impact law must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
+    raise AssertionError(law)  # unreachable: check_impact_law above
 
 
 def _solve_paper(before: HingeMechanism) -> ImpactSolution:
@@ -253,4 +307,5 @@ def _kinetic(p: np.ndarray, spin: np.ndarray, arch) -> float:
     )
 
 
-__all__ = ["IMPACT_LAWS", "ImpactSolution", "solve_impact"]
+__all__ = ["DESCRIBED", "IMPACT_LAWS", "VALIDITY_MEANING", "ImpactSolution", "check_impact_law",
+           "check_restitution", "solve_impact"]

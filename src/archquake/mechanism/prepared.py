@@ -21,7 +21,7 @@ Its properties are the mechanism's scalar characteristics, so that no code outsi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -30,7 +30,12 @@ from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.mechanism._kernels import linkage_limits_compiled
-from archquake.mechanism.impact import ImpactSolution, solve_impact
+from archquake.mechanism.impact import (
+    ImpactSolution,
+    check_impact_law,
+    check_restitution,
+    solve_impact,
+)
 from archquake.mechanism.kinematics import (
     AX,
     AY,
@@ -182,16 +187,35 @@ class PreparedMechanism:
         the model's is negative (inadmissible; see :class:`~archquake.mechanism.ImpactSolution`)."""
         return max(self.impact.restitution_cv, 0.0)
 
+    def restitution_for(self, restitution: float | None = None) -> float:
+        """The c_v a time history uses: ``restitution`` if prescribed (checked once, here:
+        :func:`~archquake.mechanism.impact.check_restitution`, [0, 1]), else :attr:`restitution`
+        (the impact law's own)."""
+        cv = check_restitution(restitution)
+        return self.restitution if cv is None else cv
+
+    def describes_impact(self, restitution: float | None = None) -> bool:
+        """True if the impact law (with ``restitution`` prescribed or not) describes this arch's
+        impacts (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`)."""
+        return self.impact.describes(prescribed=restitution is not None)
+
     @classmethod
     def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,
-              impact: str = "paper") -> PreparedMechanism:
+              impact: str | None = None) -> PreparedMechanism:
         """Prepare an arch (its hinges: :func:`hinges_of`), a given mechanism (mirrored if a load
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
-        towards -x opens), or return a prepared mechanism unchanged (it carries its own impact
-        law). ``impact`` is the impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`;
-        default "paper", Eq. 4)."""
+        towards -x opens), or take a prepared mechanism. ``impact`` is the impact law
+        (:data:`archquake.mechanism.impact.IMPACT_LAWS`); None: a prepared mechanism's own, or
+        "paper" (Eq. 4). A prepared mechanism under another law is re-solved for that law only
+        (the packed mechanism is kept)."""
+        if impact is not None:
+            check_impact_law(impact)
         if isinstance(arch_or_mechanism, PreparedMechanism):
-            return arch_or_mechanism
+            prep = arch_or_mechanism
+            if impact is None or impact == prep.impact.law:
+                return prep
+            return replace(prep, impact=solve_impact(prep.mechanism, impact))
+        impact = "paper" if impact is None else impact
         if isinstance(arch_or_mechanism, HingeMechanism):
             mech = arch_or_mechanism
             if mech.load_direction < 0:

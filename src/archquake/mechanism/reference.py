@@ -58,7 +58,7 @@ def simulate_reference(
     """Time history with solve_ivp; see :func:`archquake.mechanism.simulate` for the arguments."""
     prep = PreparedMechanism.build(arch)
     mech = prep.packed
-    cv = prep.restitution if restitution is None else float(restitution)
+    cv = prep.restitution_for(restitution)
     tau = math.sqrt(mech[LENGTH] / g)
     t_exc = float(motion.duration)
     t_end = t_exc + 60.0 * tau if t_end is None else float(t_end)

@@ -21,6 +21,9 @@ Outcomes
     Anything else: the arch came to rest (the next half cycle's peak rotation would be below
     ``rest_rotation``), or was still rocking below the crest at ``t_end`` (``final_state``
     says which).
+``indeterminate``
+    One of the two above was computed, but only through an impact the impact law does not
+    describe (:func:`archquake.outcome.qualify`); ``computed_outcome`` keeps what was computed.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism import _kernels as K
 from archquake.mechanism.prepared import PreparedMechanism
-from archquake.outcome import Outcome
+from archquake.outcome import Outcome, qualify
 
 
 class FinalState(str, Enum):
@@ -53,10 +56,6 @@ class FinalState(str, Enum):
 
 #: Most impacts a run may record (SolverOptions.max_impacts).
 MAX_IMPACTS = 1_000_000
-
-#: Largest prescribed coefficient of restitution c_v: each impact would multiply the kinetic
-#: energy by c_v^2 = 100 (the impact model's own c_v stays near or below 1).
-MAX_RESTITUTION = 10.0
 
 #: Samples the history buffer starts with (2.6 MB); a run that needs more is rerun once.
 INITIAL_HISTORY_SAMPLES = 1 << 16
@@ -154,9 +153,12 @@ class SimulationResult:
     Attributes
     ----------
     outcome : Outcome
+        The verdict as it may be stated: ``computed_outcome``, or ``indeterminate`` where that
+        depends on an impact the law does not describe (:func:`archquake.outcome.qualify`).
     final_state : FinalState
     collapse_half_cycle : int or None
-        1 = collapse before any impact, 2 = after the first impact, ...
+        1 = collapse before any impact, 2 = after the first impact, ... (the computed collapse,
+        also when the verdict is indeterminate).
     collapse_time : float or None, s
     onset_time : float or None
         When hinging started, s.
@@ -187,6 +189,13 @@ class SimulationResult:
         kernel carries a mechanism and its mirror only: under ``"chain"``, where the selected
         mechanism is not the mirror, the history continues on the mirror with the chain law's
         energy ratio (c_v = sqrt(c_T)), and this is False.
+    computed_outcome : Outcome
+        What the model computed with the impact law as stated (no_hinging, survives, collapse).
+    restitution_prescribed : bool
+        True if ``restitution_cv`` was prescribed (``simulate(..., restitution=...)``).
+    impact_described : bool
+        True if the impact law describes this arch's impacts
+        (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`).
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
     collapse_acceleration_g : float
@@ -229,6 +238,9 @@ class SimulationResult:
     impact_law: str = "paper"
     impact_validity: str = "assumed"
     impact_followed: bool = True
+    computed_outcome: Outcome | None = None
+    impact_described: bool = True
+    restitution_prescribed: bool = False
 
     @property
     def half_cycles(self) -> int:
@@ -257,6 +269,10 @@ class SimulationResult:
             "impact_law": self.impact_law,
             "impact_validity": self.impact_validity,
             "impact_followed": self.impact_followed,
+            "impact_described": self.impact_described,
+            "restitution_prescribed": self.restitution_prescribed,
+            "computed_outcome": (self.outcome if self.computed_outcome is None
+                                 else self.computed_outcome).value,
             "collapse_acceleration_g": self.collapse_acceleration_g,
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
@@ -310,7 +326,7 @@ def simulate(
     motion: GroundMotion,
     *,
     restitution: float | None = None,
-    impact: str = "paper",
+    impact: str | None = None,
     t_end: float | None = None,
     initial_rate: float = 0.0,
     options: SolverOptions = SolverOptions(),
@@ -326,11 +342,12 @@ def simulate(
     motion : GroundMotion
         Any archquake ground motion (step impulse, sine pulse, record).
     restitution : float, optional
-        Prescribed c_v instead of the impact model's (the paper allows either).
-    impact : {"paper", "chain", "mirror"}
-        Impact law when ``arch`` is not already prepared (a PreparedMechanism carries its own):
-        "paper" (Eq. 4, default), or the chain law (:mod:`archquake.mechanism.impact_chain`;
-        see ``SimulationResult.impact_followed``).
+        Prescribed c_v in [0, 1] instead of the impact law's (the paper allows either; 0 is
+        perfectly plastic); outside it is refused.
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law (:mod:`archquake.mechanism.impact`): "paper" (Eq. 4), "chain" (the chain
+        law, :mod:`archquake.mechanism.impact_chain`; see ``SimulationResult.impact_followed``)
+        or "mirror". None: a PreparedMechanism's own law, else "paper".
     t_end : float, optional
         End of the analysis, s. Default: the end of the excitation plus 60 sqrt(R/g).
     initial_rate : float, optional
@@ -367,10 +384,7 @@ def simulate(
     prepared = PreparedMechanism.build(arch, impact)
     require_positive("g", g, "m/s^2")
     model_cv = prepared.impact.restitution_cv
-    cv = prepared.restitution
-    if restitution is not None:
-        cv = require_range("restitution (c_v)", restitution, 0.0, MAX_RESTITUTION,
-                           low_open=False, high_open=False)
+    cv = prepared.restitution_for(restitution)
     initial_rate = require_finite("initial_rate", initial_rate, "rad/s")
     if initial_rate < 0:
         raise InvalidParameterError(f"initial_rate must be >= 0 rad/s, got {initial_rate:g}")
@@ -448,10 +462,16 @@ def simulate(
                             e[:, 3].astype(int), e[:, 4].copy(), phi_ddot=e[:, 2].copy())
     onset = counters[6]
     ctime = counters[7]
+    computed = _OUTCOMES[int(outcome)]
+    described = prepared.describes_impact(restitution)
     return SimulationResult(
-        outcome=_OUTCOMES[int(outcome)],
+        outcome=qualify(computed, collapse_half_cycle=int(collapse_half), impacts=n_imp,
+                        impact_described=described),
+        computed_outcome=computed,
+        impact_described=described,
+        restitution_prescribed=restitution is not None,
         final_state=_FINALS[int(final)],
-        collapse_half_cycle=int(collapse_half) if outcome == K.OUTCOME_COLLAPSE else None,
+        collapse_half_cycle=int(collapse_half) if computed is Outcome.COLLAPSE else None,
         collapse_time=float(ctime) if math.isfinite(ctime) else None,
         onset_time=float(onset) if math.isfinite(onset) else None,
         impact_times=impacts[:n_imp, 0].copy(),

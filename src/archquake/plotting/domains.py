@@ -44,12 +44,22 @@ def plot_domain(domain: FailureDomain, ax=None, *, regions: bool = True, bands: 
         c_top = np.where(np.isfinite(coll), coll, top)
         f_top = np.where(np.isfinite(first), first, top)
         ax.fill_between(d, 0, lam, color=_REGION_COLOURS["no hinging"], lw=0)
-        ax.fill_between(d, lam, c_top, color=_REGION_COLOURS["recovery"], lw=0)
-        ax.fill_between(d, c_top, f_top, color=_REGION_COLOURS["collapse in 2nd half cycle"], lw=0)
+        if domain.impact_described:
+            ax.fill_between(d, lam, c_top, color=_REGION_COLOURS["recovery"], lw=0)
+            ax.fill_between(d, c_top, f_top, color=_REGION_COLOURS["collapse in 2nd half cycle"],
+                            lw=0)
+        else:  # every verdict after an impact is indeterminate (outcome.qualify)
+            ax.fill_between(d, lam, f_top, facecolor="0.92", edgecolor="0.6", hatch="//", lw=0,
+                            label=f"indeterminate: impact law {domain.impact_law} "
+                                  f"{domain.impact_validity.replace('_', ' ')}")
         ax.fill_between(d, f_top, top, color=_REGION_COLOURS["collapse in 1st half cycle"], lw=0)
     ax.plot(d, first, "-", color="firebrick", lw=1.8, label="failure during 1st half cycle")
-    ax.plot(d, coll, "-", color="darkorange", lw=1.8, label="failure (governing; " +
-            later.replace("collapse in ", "") + ")")
+    if domain.impact_described:
+        ax.plot(d, coll, "-", color="darkorange", lw=1.8, label="failure (governing; " +
+                later.replace("collapse in ", "") + ")")
+    else:
+        ax.plot(d, coll, ":", color="darkorange", lw=1.8,
+                label=f"computed with impact law {domain.impact_law} (indeterminate)")
     ax.plot(d, lam, "--", color="0.4", lw=1, label=f"no hinging below lambda = {lam[0]:.3f} g")
     if bands:
         for k, b in enumerate(domain.non_monotonic_bands):
@@ -66,6 +76,8 @@ def plot_domain(domain: FailureDomain, ax=None, *, regions: bool = True, bands: 
         labels = [("no hinging", 0.5 * lam[i]), ("recovery", mid(lam[i], coll[i])),
                   (later, mid(coll[i], first[i])),
                   ("collapse in 1st half cycle", mid(first[i], top))]
+        if not domain.impact_described:
+            labels[1:3] = [("indeterminate", mid(lam[i], first[i]))]
         for text, y in labels:
             if y is not None:
                 ax.text(x, y, text, ha="left", va="center", fontsize=8, color="0.15")
@@ -93,7 +105,7 @@ def plot_domains(cases: Sequence[StudyCase], ax=None, *, boundary: str = "collap
             continue
         d = case.domain
         y = d.collapse_g if boundary == "collapse" else d.first_half_cycle_g
-        style = ":" if d.energy_gain else "-"
+        style = ":" if d.energy_gain or not d.impact_described else "-"
         note = f" (c_v = {d.restitution_cv:.3f} > 1)" if d.energy_gain else ""
         sym = "sym." if d.mechanism.get("symmetric") else "asym."
         ax.plot(d.durations, y, style, lw=1.6, label=f"{case.label}, {sym}{note}")

@@ -55,6 +55,25 @@ def plot_history(result, ax=None, *, label: str | None = None, color: str | None
     return ax
 
 
+def verdict_text(result) -> str:
+    """The verdict of a time history in words, with the impact law's validity: what the plots
+    put in their titles (``"indeterminate (computed: collapse in half cycle 2); impact paper:
+    outside"``)."""
+    what = result.outcome.value.replace("_", " ")
+    computed = getattr(result, "computed_outcome", None)
+    if result.collapse_half_cycle:
+        detail = f"collapse in half cycle {result.collapse_half_cycle}"
+        what = (f"{what} (computed: {detail})" if computed is not None
+                and computed is not result.outcome else f"{what} in half cycle "
+                f"{result.collapse_half_cycle}")
+    elif computed is not None and computed is not result.outcome:
+        what += f" (computed: {computed.value.replace('_', ' ')})"
+    law = getattr(result, "impact_law", None)
+    if law is not None:
+        what += f"; impact {law}: {result.impact_validity.replace('_', ' ')}"
+    return what
+
+
 def plot_ground_motion(motion, t_end: float, ax=None, *, label: str | None = None,
                        g: float = STANDARD_GRAVITY, samples: int = 2000):
     """Ground acceleration in g against time (the paper's Figure 4(a))."""
@@ -93,9 +112,7 @@ def figure4(results: Sequence, motions: Sequence, labels: Sequence[str], path: s
     for k, (res, label) in enumerate(zip(results, labels)):
         ax = axes[k + 1]
         plot_history(res, ax, label=label)
-        what = res.outcome.value.replace("_", " ")
-        if res.collapse_half_cycle:
-            what += f" in half cycle {res.collapse_half_cycle}"
+        what = verdict_text(res)
         if res.impact_times.size:
             what += f"; first impact {res.impact_times[0]:.2f} s"
         ax.set_title(f"({letters[k]}) {label}: {what}", fontsize=9, loc="left")
@@ -168,4 +185,4 @@ def animate_history(prepared, result, path: str | Path, *, fps: int = 20, t_end:
     return path
 
 
-__all__ = ["animate_history", "figure4", "plot_ground_motion", "plot_history"]
+__all__ = ["animate_history", "figure4", "plot_ground_motion", "plot_history", "verdict_text"]

@@ -193,7 +193,7 @@ def animation(arch: Arch, path: Path, *, quick: bool = True) -> Path:
     from archquake.mechanism import PreparedMechanism, simulate
     from archquake.plotting.history import animate_history
 
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, "paper")  # the paper's Eq. 4, always
     result = simulate(prepared, StepImpulse.from_g(FIGURE4_MAGNITUDE_G, FIGURE4_DURATIONS[2]))
     return animate_history(prepared, result, path, fps=8 if quick else 20, t_end=3.0, exaggerate=4.0)
 

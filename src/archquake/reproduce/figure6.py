@@ -42,6 +42,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         "step",
         durations * math.sqrt(2.0),
         settings=settings,
+        impact="paper",
     )
     diff = np.nanmax(
         np.abs(

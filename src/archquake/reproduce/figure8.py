@@ -18,7 +18,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     from archquake.plotting.thrust import save_thrust_snapshots
     from archquake.thrust import states
 
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, "paper")  # the paper's Eq. 4, always
     snaps = states(prepared, StepImpulse.from_g(*FIGURE8_PULSE), FIGURE8_TIMES)
     fig = save_thrust_snapshots(
         arch, snaps, figures / "figure8_thrust.png", suptitle="Figure 8: step impulse 1.0 g, 0.20 s"

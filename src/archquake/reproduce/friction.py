@@ -24,7 +24,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     from archquake.mechanism import PreparedMechanism
     from archquake.thrust.friction import friction_demand
 
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, "paper")  # the paper's Eq. 4, always
     n = arch.voussoirs
     durations = FIGURE4_DURATIONS[1:2] if quick else FIGURE4_DURATIONS
     res = {

@@ -380,8 +380,12 @@ class CaseOptions:
     Parameters
     ----------
     restitution : float, optional
-        Coefficient of restitution on angular velocity, in (0, 1]; None: the model's own
-        (the paper's theoretical value for the analytical model).
+        Coefficient of restitution on angular velocity, in [0, 1] (0: perfectly plastic); None:
+        the impact law's own (analytical model).
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law of the analytical model (:mod:`archquake.mechanism.impact`); None: "paper".
+        Left out of the case's canonical form when None or "paper" (the same model), so existing
+        case ids are unchanged.
     t_end_s : float, optional
         End of the simulation, s (> 0); None: the model's default.
     g : float
@@ -391,18 +395,25 @@ class CaseOptions:
     restitution: float | None = None
     t_end_s: float | None = None
     g: float = STANDARD_GRAVITY
+    impact: str | None = None
 
     def __post_init__(self) -> None:
-        if self.restitution is not None:
-            _set(self, "restitution", require_range("restitution", self.restitution, 0, 1,
-                                                     high_open=False))
+        from archquake.mechanism.impact import check_impact_law, check_restitution
+
+        _set(self, "restitution", check_restitution(self.restitution))
+        if self.impact is not None:
+            _set(self, "impact", check_impact_law(self.impact))
         if self.t_end_s is not None:
             _set(self, "t_end_s", require_range("t_end_s", self.t_end_s, *T_END_RANGE_S, "s",
                                                 low_open=False, high_open=False))
         _set(self, "g", require_positive("g", self.g, "m/s^2"))
 
     def canonical(self) -> dict[str, Any]:
-        return {"restitution": self.restitution, "t_end_s": self.t_end_s, "g_m_s2": self.g}
+        out: dict[str, Any] = {"restitution": self.restitution, "t_end_s": self.t_end_s,
+                               "g_m_s2": self.g}
+        if self.impact not in (None, "paper"):  # the default law keeps the ids it always had
+            out["impact"] = self.impact
+        return out
 
     @cached_property
     def canonical_json(self) -> str:

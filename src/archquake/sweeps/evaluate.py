@@ -12,7 +12,7 @@ Models:
   paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: the end
   of the excitation + 5 sqrt(R/g), :func:`archquake.compare.default_dem_duration`), summarised
   by ``result.to_dict()``.
-  ``restitution`` does not apply to it (a case giving one is refused).
+  ``restitution`` and ``impact`` do not apply to it (a case giving one is refused).
 
 Both summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
 collapse_half_cycle, collapse_time_s, impact_times_s, peak_rotation_rad, ...), so a store
@@ -79,7 +79,8 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         from archquake.mechanism import SolverOptions
 
         # no time history is kept (the store holds summaries), which also saves its memory
-        result = simulate(_prepared(case.arch), motion, restitution=case.options.restitution,
+        result = simulate(_prepared(case.arch, case.options.impact), motion,
+                          restitution=case.options.restitution,
                           t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
                           g=case.options.g)
         return result.to_dict(include_history=False)
@@ -87,9 +88,10 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     from archquake.compare import default_dem_duration
     from archquake.dem import DemSettings
 
-    if case.options.restitution is not None:
-        raise InvalidParameterError("restitution applies to the analytical model only; the DEM's "
-                                    "impacts follow from its contacts and damping")
+    for key in ("restitution", "impact"):
+        if getattr(case.options, key) is not None:
+            raise InvalidParameterError(f"{key} applies to the analytical model only; the DEM's "
+                                        "impacts follow from its contacts and damping")
     arch = case.arch.build()
     duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
     result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
@@ -97,13 +99,14 @@ def evaluate_case(case: Case) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=256)
-def _prepared(arch: ArchSpec):
+def _prepared(arch: ArchSpec, impact: str | None = None):
     """The arch's mechanism from the equivalent static analysis, packed for the kernels with
-    its impact solution. A pure function of the arch, memoised per process: a sweep usually
-    runs many excitations on each arch, and this limit analysis costs more than a case."""
+    its impact solution under ``impact`` (None: "paper"). A pure function of the arch and the
+    law, memoised per process: a sweep usually runs many excitations on each arch, and this
+    limit analysis (and the chain law's impact) costs more than a case."""
     from archquake.mechanism import PreparedMechanism
 
-    return PreparedMechanism.build(arch.build())
+    return PreparedMechanism.build(arch.build(), impact)
 
 
 __all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function"]

@@ -26,7 +26,8 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     direction = -1                      # optional: -1 (default for pulses) or +1, or [-1, 1]
 
     [options]                           # optional; axes like the others
-    restitution = 0.9                   # in (0, 1]; omitted: the model's own
+    restitution = 0.9                   # c_v in [0, 1] (0 perfectly plastic); omitted: the law's
+    impact = "chain"                    # "paper" (Eq. 4), "chain" or "mirror"; omitted: "paper"
     t_end_s = 10.0                      # s; omitted: the model's default
 
 Every error is one line naming the file, the key and what is expected
@@ -69,7 +70,22 @@ _EXCITATION_KEYS = {
     ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False},
     ExcitationKind.RECORD: {"files": True, "units": False, "scale": False, "direction": False},
 }
-_OPTION_KEYS = {"restitution": False, "t_end_s": False}
+_OPTION_KEYS = {"restitution": False, "impact": False, "t_end_s": False}
+#: Keys of [options] whose values are words.
+_OPTION_WORDS = ("impact",)
+
+
+def _words(p, table: dict, where: str, keys) -> dict[str, list]:
+    """The word-valued keys of a table (a word or a list of words), as lists."""
+    words = {}
+    for key in keys:
+        if key in table:
+            value = table[key]
+            values = value if isinstance(value, list) else [value]
+            if not values or not all(isinstance(v, str) for v in values):
+                p.fail(f"{where}.{key}", f"must be a word or a list of words, got {value!r}")
+            words[key] = values
+    return words
 
 #: Most cases one study may hold. A case costs about 1 kB in memory and a row in the store;
 #: two million build in seconds. Larger grids are refused before they are expanded.
@@ -147,14 +163,7 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
 
     arches_table = p.table(data, "arches", required=True)
     p.keys(arches_table, "arches", _ARCH_KEYS)
-    words = {}
-    for key in _ARCH_WORDS:
-        if key in arches_table:
-            value = arches_table[key]
-            values = value if isinstance(value, list) else [value]
-            if not values or not all(isinstance(v, str) for v in values):
-                p.fail(f"arches.{key}", f"must be a word or a list of words, got {value!r}")
-            words[key] = values
+    words = _words(p, arches_table, "arches", _ARCH_WORDS)
     numbers = {k: v for k, v in arches_table.items() if k not in _ARCH_WORDS}
     arches = p.grid("arches", numbers, ArchSpec, integer={"voussoirs", "pier_courses"},
                     listed=words)
@@ -173,7 +182,9 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
 
     options_table = p.table(data, "options", required=False)
     p.keys(options_table, "options", _OPTION_KEYS)
-    options = p.grid("options", options_table, CaseOptions)
+    option_words = _words(p, options_table, "options", _OPTION_WORDS)
+    options = p.grid("options", {k: v for k, v in options_table.items()
+                                 if k not in _OPTION_WORDS}, CaseOptions, listed=option_words)
 
     total = len(arches) * len(excitations) * len(options)
     if total > MAX_CASES:

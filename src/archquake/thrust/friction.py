@@ -100,6 +100,9 @@ class FrictionDemand:
             "tension_joint": self.tension_joint,
             "instants": int(self.times.size),
             "outcome": self.simulation.outcome.value,
+            "impact_law": self.simulation.impact_law,
+            "impact_validity": self.simulation.impact_validity,
+            "restitution_cv": self.simulation.restitution_cv,
         }
         if include_history:
             out["history"] = {"t": self.times, "demand": self.demand,
@@ -135,6 +138,8 @@ def friction_demand(
     motion: GroundMotion,
     *,
     result: SimulationResult | None = None,
+    restitution: float | None = None,
+    impact: str | None = None,
     g: float = STANDARD_GRAVITY,
     progress: Callable[[int, int], None] | None = None,
 ) -> FrictionDemand:
@@ -146,6 +151,11 @@ def friction_demand(
     motion : GroundMotion
     result : SimulationResult, optional
         The time history, if already computed (must hold its history).
+    restitution : float, optional
+        Prescribed c_v in [0, 1] for the time history (as in
+        :func:`archquake.mechanism.simulate`); ignored with ``result``.
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law of the time history (as in :func:`archquake.mechanism.simulate`).
     g : float
         Gravity, m/s^2.
     progress : callable, optional
@@ -169,9 +179,9 @@ def friction_demand(
     >>> round(fd.max_friction_demand, 3), fd.joint, fd.time, round(fd.static_friction_demand, 3)
     (0.509, 7, 0.0, 0.495)
     """
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
     if result is None:
-        result = simulate(prepared, motion, g=g)
+        result = simulate(prepared, motion, restitution=restitution, g=g)
     geometry = prepared.mechanism.arch
     tau = float(np.sqrt(geometry.radius / g))
     locked_cache: dict[float, MotionState] = {}

@@ -317,6 +317,7 @@ def states(
     times,
     *,
     restitution: float | None = None,
+    impact: str | None = None,
     options: SolverOptions | None = None,
     g: float = STANDARD_GRAVITY,
 ) -> list[MotionState]:
@@ -335,7 +336,9 @@ def states(
     times : sequence of float
         Instants, s (>= 0, before any collapse; any order, repeats allowed).
     restitution : float, optional
-        Prescribed c_v, as in :func:`archquake.mechanism.simulate`.
+        Prescribed c_v in [0, 1], as in :func:`archquake.mechanism.simulate`.
+    impact : {"paper", "chain", "mirror"}, optional
+        Impact law, as in :func:`archquake.mechanism.simulate`.
     options : SolverOptions, optional
         Integrator settings (default: simulate's; no history is recorded).
     g : float
@@ -346,7 +349,7 @@ def states(
     list of MotionState
         In the order of ``times``.
     """
-    prepared = PreparedMechanism.build(arch)
+    prepared = PreparedMechanism.build(arch, impact)
     times = [require_finite("time", float(t), "s") for t in np.atleast_1d(times)]
     if any(t < 0 for t in times):
         raise InvalidParameterError(f"times must be >= 0 s, got {min(times):g}")
