@@ -38,7 +38,8 @@ def test_keys_carry_units(bridge):
     _, res, _, _ = bridge
     st = res["sections"]["static"]
     assert {"collapse_acceleration_g", "min_thickness_m", "thickness_m"} <= set(st)
-    assert {"mass_kg", "centroid_x_m", "centroid_y_m"} == set(res["sections"]["arch"]["blocks"][0]) - {"block"}
+    block = res["sections"]["arch"]["blocks"][0]
+    assert {"mass_kg", "centroid_x_m", "centroid_y_m"} == set(block) - {"block"}
     assert {"durations_s", "collapse_g"} <= set(res["sections"]["pulses"]["step"])
 
 

@@ -551,8 +551,14 @@ def verdict(config, prior: dict) -> dict:
                      "depends on the duration of the motion.")
         pulses_collapse = [f for f in ("step", "sine") if pul.get(f, {}).get("collapses_at_site")]
         if pulses_collapse:
-            parts.append(f"Pulses of the site PGA collapse it ({' and '.join(pulses_collapse)} "
-                         "pulses of the longer durations scanned).")
+            which = []
+            for f in pulses_collapse:
+                durs = pul[f]["durations_collapsing_at_site_s"]
+                sym = "t_p" if f == "step" else "T"
+                which.append(f"{f} pulses with {sym} from {min(durs):.3g} s to {max(durs):.3g} s"
+                             f" ({len(durs)} of the {len(pul[f]['durations_s'])} durations "
+                             "scanned)")
+            parts.append("Pulses of the site PGA collapse it: " + "; ".join(which) + ".")
         else:
             parts.append("No step or sine pulse of the site PGA in the scanned durations "
                          "collapses it.")
