@@ -30,7 +30,9 @@ def elements(rep) -> list[tuple]:
     s = {k: v.data for k, v in rep.sections.items()}
     el: list[tuple] = [("h1", f"Assessment of {cfg.source}"),
                        ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
-                             f"{rep.seconds:.0f} s. Sections: the arch, static capacity, pulses"
+                             f"computed in {sum(r.seconds for r in rep.sections.values()):.0f} s"
+                             f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
+                             "Sections: the arch, static capacity, pulses"
                              + (", records" if "records" in s else "")
                              + (", the DEM check" if "dem" in s else "")
                              + ", validity, verdict.")]
@@ -79,7 +81,7 @@ def elements(rep) -> list[tuple]:
                             strict=True):
             rows.append([fam, f"{t:.3f}", _f(c), _f(f1)])
     el.append(("table", ["pulse", "duration (s)", "collapse (g)", "1st half cycle (g)"], rows))
-    items = []
+    items: list = []
     for fam in ("step", "sine"):
         d = pu[fam]
         text = f"{fam}: lowest collapse magnitude {_f(d['min_collapse_g'])} g"
@@ -152,9 +154,13 @@ def elements(rep) -> list[tuple]:
                              f"UNCONSERVATIVE there by at least "
                              f"{100 * c['unconservative_by_at_least']:.0f} %.")
             else:
+                at_one = [r for r in c["runs"] if r["factor"] >= 1.0]
+                more = (" The DEM survives even at the analytical collapse level: the analytical"
+                        " result is conservative there." if at_one and
+                        at_one[0]["dem_outcome"] != "collapse" else "")
                 items.append(f"{c['case']}: the DEM does not collapse below the analytical "
                              f"level ({c['analytical_level_g']:.4f} g) at the fractions run: "
-                             "no sign that the analytical result is unconservative.")
+                             f"no sign that the analytical result is unconservative.{more}")
         el.append(("ul", items))
 
     va = s["validity"]

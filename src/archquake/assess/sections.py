@@ -282,7 +282,7 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
     for _ in range(n):
         sample = first[rng.integers(0, first.size, first.size)]
         try:
-            fit = fit_first_collapse(sample, ceiling=ceiling, bootstrap=0)
+            fit = fit_first_collapse(list(sample), ceiling=ceiling, bootstrap=0)
         except ArchquakeError:
             continue
         ps.append(float(fit.probability(site)))
@@ -349,6 +349,7 @@ def section_records(ctx: Context) -> StudyResult:
         i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
                                       np.nan)))
         rec = res.records[i]
+        assert rec.first_collapse is not None  # its first-collapse level is finite
         governing = {"record": rec.name, "index": int(suite.records.index(records[i])),
                      "first_collapse_g": float(first[i]),
                      "survives_below_g": _num(rec.first_collapse.below),
@@ -434,7 +435,8 @@ def section_dem(ctx: Context) -> StudyResult:
         c["analytical_level_g"] = c["runs"][0]["level_g"] / c["runs"][0]["factor"]
         c["lowest_dem_collapse_factor"] = lowest
         c["dem_more_vulnerable"] = bool(lowest is not None and lowest < 1.0)
-        c["unconservative_by_at_least"] = (1.0 - lowest) if c["dem_more_vulnerable"] else 0.0
+        c["unconservative_by_at_least"] = (1.0 - lowest) if lowest is not None and \
+            lowest < 1.0 else 0.0
         data["cases"].append(c)
     data["dem_more_vulnerable"] = any(c["dem_more_vulnerable"] for c in data["cases"])
     return StudyResult("dem", "5. The DEM check", (), (), (), data)
@@ -563,7 +565,7 @@ def verdict(config, prior: dict) -> dict:
             parts.append("No step or sine pulse of the site PGA in the scanned durations "
                          "collapses it.")
         p = None if rec is None else rec.get("p_collapse_at_site")
-        if p is not None:
+        if rec is not None and p is not None:
             ci = rec.get("p_collapse_at_site_ci")
             numbers["p_collapse_at_site"] = p
             numbers["p_collapse_at_site_ci"] = ci
