@@ -404,8 +404,8 @@ def section_dem(ctx: Context) -> StudyResult:
                              StepImpulse.from_g(mag, float(durs[i]), -1), float(durs[i]) + 3.0,
                              mag))
     gov = ctx.prior.get("records", {}).get("governing")
-    data["record_case"] = gov is not None and not ctx.mode.quick
-    if gov is not None and not ctx.mode.quick:
+    data["record_case"] = gov is not None
+    if gov is not None:
         cfg = ctx.config
         suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
                            units=cfg.units)
