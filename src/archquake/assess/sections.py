@@ -577,6 +577,20 @@ def verdict(config, prior: dict) -> dict:
                      else "rocks but survives")
         else:
             level = "at risk" if pulses_collapse else "rocks but survives"
+    imp = val.get("impact", {})
+    if "used_restitution_cv" in imp:
+        numbers["restitution_cv"] = imp["used_restitution_cv"]
+        how = ("prescribed" if imp.get("prescribed_restitution_cv") is not None
+               else f"from the {imp['law']} impact law")
+        sens = val.get("restitution_sensitivity", [])
+        text = f"Impacts use c_v = {imp['used_restitution_cv']:.3g} ({how})"
+        if sens and site is not None and site > lam:
+            same = all(e[f]["collapses_at_site"] == pul[f]["collapses_at_site"]
+                       for e in sens for f in ("step", "sine"))
+            cvs = " and ".join(format(e["restitution_cv"], ".2g") for e in sens)
+            text += (f"; the pulse verdict is the same at c_v = {cvs}" if same else
+                     f"; the pulse verdict changes at c_v = {cvs}")
+        parts.append(text + ".")
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
                      f" > {config.friction:g}).")
