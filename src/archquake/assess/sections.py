@@ -140,9 +140,7 @@ def workers() -> int:
 
 # ----------------------------------------------------------------------------- 1. the arch
 def section_arch(ctx: Context) -> StudyResult:
-    import matplotlib
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure as MplFigure
 
     from archquake.plotting.arch import plot_arch
     from archquake.plotting.figures import save
@@ -154,7 +152,8 @@ def section_arch(ctx: Context) -> StudyResult:
     width = float(np.ptp(pts[:, 0]))
     height = float(np.ptp(pts[:, 1]))
     desc = arch.describe()
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig = MplFigure(figsize=(8, 5))
+    ax = fig.subplots()
     plot_arch(arch, ax)
     for k, c in enumerate(cents):
         ax.text(c[0], c[1], str(k + 1), ha="center", va="center", fontsize=7)
@@ -245,7 +244,7 @@ def pulse_domains(ctx: Context, cv: float) -> dict:
 
 
 def section_pulses(ctx: Context) -> StudyResult:
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure as MplFigure
 
     from archquake.plotting.domains import plot_domain
     from archquake.plotting.figures import save
@@ -257,7 +256,8 @@ def section_pulses(ctx: Context) -> StudyResult:
     for fam, d in domains.items():
         ctx.say(f"  {fam} domain: {d.evaluations} time histories")
         data[fam] = _domain_data(d, ctx.site)
-        fig, ax = plt.subplots(figsize=(7, 4.6))
+        fig = MplFigure(figsize=(7, 4.6))
+        ax = fig.subplots()
         plot_domain(d, ax, title=f"{fam} pulse, c_v = {cv:.3g}")
         if ctx.site is not None:
             ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
@@ -294,7 +294,7 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
 
 
 def section_records(ctx: Context) -> StudyResult:
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure as MplFigure
 
     from archquake.ground.suites import load_suite
     from archquake.ida import incremental_dynamic_analysis
@@ -318,7 +318,8 @@ def section_records(ctx: Context) -> StudyResult:
         res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                            executor=executor, workers=n, **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0), bootstrap=ctx.mode.bootstrap)
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig = MplFigure(figsize=(12, 4.8))
+    a1, a2 = fig.subplots(1, 2)
     plot_ida_curves(res, a1)
     plot_fragility(res, fits, a2)
     first = res.first_collapse_levels
