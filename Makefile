@@ -1,5 +1,6 @@
 # archquake: the two commands a fresh machine needs.
-#   make demo   create .venv, install archquake, reproduce Oppenheim's arch into out/
+#   make demo   create .venv, install archquake, reproduce Oppenheim's arch into out/ and assess
+#               the example bridge (examples/bridge.toml, quick mode) into out/bridge/
 #   make test   create .venv, install archquake with its test dependencies, run the test suite
 PYTHON ?= python3.11
 VENV   := .venv
@@ -14,7 +15,7 @@ $(BIN)/python:
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 $(STAMP_RUN): pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e .
+	$(BIN)/python -m pip install --quiet -e ".[records]"
 	touch $@
 
 $(STAMP_TEST): pyproject.toml | $(BIN)/python
@@ -23,6 +24,9 @@ $(STAMP_TEST): pyproject.toml | $(BIN)/python
 
 demo: $(STAMP_RUN)
 	$(BIN)/archquake demo --out out
+	$(BIN)/archquake assess examples/bridge.toml --out out/bridge --quick
+	@echo "the paper reproduced:   out/report.html"
+	@echo "the bridge assessed:    out/bridge/report.html"
 
 test: $(STAMP_TEST)
 	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq >/dev/null && \

@@ -37,6 +37,7 @@ COMMANDS: tuple[str, ...] = (
     "friction",
     "domain",
     "reproduce",
+    "assess",
     "demo",
 )
 
@@ -53,6 +54,7 @@ SUMMARIES: dict[str, str] = {
     "friction": "least friction coefficient that prevents sliding during the motion (paper p. 2131)",
     "domain": "failure domain: pulse magnitudes (g) and durations (s) that collapse the arch",
     "reproduce": "regenerate the paper: every study, its figures and a side-by-side report",
+    "assess": "assess your own arch: statics, pulses, records, DEM check, validity, verdict",
     "demo": "reproduce Oppenheim's arch: figures and a short report",
     "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
     "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",

@@ -1,0 +1,253 @@
+"""The assessment file (TOML): the arch, the seismic input and the options, validated before any
+computation.
+
+::
+
+    [arch]          # the study files' arch keys (archquake.sweeps.ArchSpec), one value each
+    radius = 5.0            # m  (circular by radius: radius, thickness_ratio, embrace_deg)
+    thickness_ratio = 0.12  #    (or shape, span, rise, thickness [m], joints)
+    embrace_deg = 180       # degrees
+    voussoirs = 15
+    density = 1800          # kg/m^3 (default 2000)
+    depth = 1.0             # m (default 1)
+    friction = 0.6          # friction coefficient of the joints (required)
+    # piers: pier_height, pier_width (m), pier_courses
+
+    [seismic]
+    site_pga_g = 0.15                # the site's peak ground acceleration, g
+    suite = "near-field-pulse"       # a FEMA P695 set, a folder, a .list file, or a list of files
+    units = "g"                      # units of CSV records (g, m/s2, cm/s2)
+
+    [options]
+    impact = "paper"        # impact law: paper, chain or mirror
+    restitution = 0.8       # prescribed c_v in (0, 1] (instead of the impact law's)
+    dem = true              # run the distinct-element check
+
+Every problem is one line naming the key as the file spells it (``[arch] radius``), raised as
+:class:`~archquake.errors.StudyFileError` (exit status 2 on the command line).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from archquake.errors import ArchquakeError, StudyFileError
+
+#: Keys of [arch]: the study files' arch keys (one home: archquake.sweeps.study) and friction.
+ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "density", "shape",
+             "span", "rise", "thickness", "joints", "pier_height", "pier_width", "pier_courses",
+             "friction")
+SEISMIC_KEYS = ("site_pga_g", "suite", "units")
+OPTION_KEYS = ("impact", "restitution", "dem")
+TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS}
+_WORDS = ("shape", "joints")
+_INTEGERS = ("voussoirs", "pier_courses")
+
+
+@dataclass(frozen=True)
+class AssessConfig:
+    """A validated assessment file.
+
+    Attributes
+    ----------
+    arch : ArchSpec
+        The arch, in study units (m, degrees, kg/m^3).
+    friction : float
+        Friction coefficient of the joints, dimensionless (> 0).
+    site_pga_g : float or None
+        Site peak ground acceleration, g.
+    suite : str or tuple of str or None
+        FEMA P695 set name, folder, ``.list`` file, one file, or a tuple of files (absolute).
+    units : str or None
+        Units of CSV/text records.
+    impact : str
+        Impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
+    restitution : float or None
+        Prescribed c_v (overrides the impact law's), in (0, 1].
+    dem : bool
+        Run the distinct-element check.
+    source : str
+        The file read (for messages).
+    """
+
+    arch: Any
+    friction: float
+    site_pga_g: float | None
+    suite: str | tuple[str, ...] | None
+    units: str | None
+    impact: str
+    restitution: float | None
+    dem: bool
+    source: str = "assessment"
+
+    def canonical(self) -> dict:
+        """Everything that determines the results (the cache key's input)."""
+        return {"arch": self.arch.canonical(), "friction": self.friction,
+                "site_pga_g": self.site_pga_g,
+                "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
+                "units": self.units, "impact": self.impact, "restitution": self.restitution,
+                "dem": self.dem}
+
+    @property
+    def digest(self) -> str:
+        """First 10 hex digits of the SHA-256 of :meth:`canonical` (names the cache entries)."""
+        text = json.dumps(self.canonical(), sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()[:10]
+
+    def build_arch(self):
+        """The arch (:meth:`ArchSpec.build`)."""
+        return self.arch.build()
+
+
+def _fail(source: str, key: str, what: str) -> StudyFileError:
+    return StudyFileError(f"{source}: {key} {what}")
+
+
+def _number(source: str, key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise _fail(source, key, f"must be a finite number, got {value!r}")
+    return float(value)
+
+
+def load_config(path: str | Path) -> AssessConfig:
+    """Read and validate an assessment file (nothing is computed; record files are only
+    checked to exist, FEMA set names to be known).
+
+    Raises
+    ------
+    StudyFileError
+        One line naming the key: unknown table or key, missing [arch], a value out of range, a
+        record file or folder that does not exist.
+    """
+    path = Path(path)
+    source = path.name
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise StudyFileError(f"{path}: cannot read the assessment file ({exc.strerror})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyFileError(f"{source}: not valid TOML ({exc})") from None
+    return parse_config(data, source=source, base_dir=path.parent)
+
+
+def parse_config(data: dict, *, source: str = "assessment",
+                 base_dir: Path | None = None) -> AssessConfig:
+    """Validate the parsed TOML ``data`` (see :func:`load_config`); relative record paths are
+    relative to ``base_dir``."""
+    from archquake.sweeps.cases import ArchSpec
+
+    base_dir = Path.cwd() if base_dir is None else Path(base_dir)
+    for name, value in data.items():
+        if name not in TABLES:
+            raise _fail(source, f"[{name}]", f"is not a known table; expected {list(TABLES)}")
+        if not isinstance(value, dict):
+            raise _fail(source, name, f"must be a [{name}] table")
+        for key in value:
+            if key not in TABLES[name]:
+                raise _fail(source, f"[{name}] {key}",
+                            f"is not a known key; expected one of {list(TABLES[name])}")
+    if "arch" not in data:
+        raise _fail(source, "[arch]", "is missing: the file must describe the arch")
+    arch_t = dict(data["arch"])
+    if "friction" not in arch_t:
+        raise _fail(source, "[arch] friction", "is missing: the joints' friction coefficient")
+    friction = _number(source, "[arch] friction", arch_t.pop("friction"))
+    if not 0 < friction <= 10:
+        raise _fail(source, "[arch] friction", f"must be in (0, 10], got {friction:g}")
+    kwargs: dict[str, Any] = {}
+    for key, value in arch_t.items():
+        if key in _WORDS:
+            if not isinstance(value, str):
+                raise _fail(source, f"[arch] {key}", f"must be a word, got {value!r}")
+            kwargs[key] = value
+        elif key in _INTEGERS:
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise _fail(source, f"[arch] {key}", f"must be a whole number, got {value!r}")
+            kwargs[key] = value
+        else:
+            kwargs[key] = _number(source, f"[arch] {key}", value)
+    try:
+        spec = ArchSpec(**kwargs)
+        arch = spec.build()
+    except ArchquakeError as exc:
+        text = str(exc)
+        bad = next((k for k in kwargs if text.startswith(k)), None)
+        raise _fail(source, f"[arch] {bad}" if bad else "[arch]", f"is invalid: {text}") from None
+    from archquake.limit import stands
+    if not stands(arch):
+        from archquake.limit.static import unstable_error
+        raise _fail(source, "[arch]", f"is invalid: {unstable_error(arch)}")
+
+    seismic = data.get("seismic", {})
+    site = None
+    if "site_pga_g" in seismic:
+        site = _number(source, "[seismic] site_pga_g", seismic["site_pga_g"])
+        if not 0 < site <= 5:
+            raise _fail(source, "[seismic] site_pga_g", f"must be in (0, 5] g, got {site:g}")
+    units = seismic.get("units")
+    if units is not None:
+        from archquake.ground.records import UNITS
+        if units not in UNITS:
+            raise _fail(source, "[seismic] units", f"must be one of {list(UNITS)}, got {units!r}")
+    suite = _suite(source, seismic.get("suite"), base_dir)
+    if site is None and suite is None:
+        raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set)")
+
+    options = data.get("options", {})
+    from archquake.mechanism.impact import IMPACT_LAWS
+    impact = options.get("impact", "paper")
+    if impact not in IMPACT_LAWS:
+        raise _fail(source, "[options] impact", f"must be one of {list(IMPACT_LAWS)}, got "
+                                                f"{impact!r}")
+    restitution = None
+    if "restitution" in options:
+        restitution = _number(source, "[options] restitution", options["restitution"])
+        if not 0 < restitution <= 1:
+            raise _fail(source, "[options] restitution", f"must be in (0, 1], got "
+                                                         f"{restitution:g}")
+    dem = options.get("dem", True)
+    if not isinstance(dem, bool):
+        raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
+    return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source)
+
+
+def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:
+    """The suite as load_suite takes it, with every path checked to exist (absolute)."""
+    if value is None:
+        return None
+    key = "[seismic] suite"
+    if isinstance(value, list):
+        if not value or not all(isinstance(v, str) for v in value):
+            raise _fail(source, key, "must be a set name, a path, or a non-empty list of paths")
+        out = []
+        for v in value:
+            p = (base_dir / v).resolve()
+            if not p.is_file():
+                raise _fail(source, key, f"names {v!r}, which does not exist")
+            out.append(str(p))
+        return tuple(out)
+    if not isinstance(value, str) or not value:
+        raise _fail(source, key, f"must be a set name, a path, or a list of paths, got {value!r}")
+    from archquake.ground.suites import ALIASES, FEMA_SUITES, fema_available
+
+    p = (base_dir / value)
+    if p.exists():
+        return str(p.resolve())
+    name = ALIASES.get(value.lower(), value.lower())
+    if name in FEMA_SUITES:
+        if not fema_available():
+            raise _fail(source, key, f"{value!r} needs the FEMA P695 records: "
+                                     "pip install 'archquake[records]'")
+        return name
+    known = ", ".join(list(FEMA_SUITES) + sorted(ALIASES))
+    raise _fail(source, key, f"{value!r} is not a file or folder that exists, nor a set name "
+                             f"({known})")
+
+
+__all__ = ["ARCH_KEYS", "AssessConfig", "load_config", "parse_config"]

@@ -1,0 +1,269 @@
+"""The assessment's report: one list of elements (headings, paragraphs, tables, figures) written
+as Markdown (figures linked) and as one self-contained HTML page (figures embedded; the
+reproduction's style sheet and image embedding, :mod:`archquake.reproduce.report`)."""
+
+from __future__ import annotations
+
+import html
+import math
+from pathlib import Path
+
+from archquake import __version__
+from archquake.assess.sections import ASSUMPTIONS
+from archquake.reproduce.report import _CSS, _img, _md_cell
+
+_EXTRA_CSS = (".verdict{font-size:1.05em;padding:0.8em;border-left:6px solid #888;"
+              "background:#f7f7f7}.verdict.uncertain{border-color:#c0392b;background:#fbecea}"
+              ".verdict.certain{border-color:#2e7d32}li.serious{color:#8a1010}")
+
+
+def _f(x, digits: int = 3) -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "none"
+    return f"{x:.{digits}f}" if isinstance(x, float) else str(x)
+
+
+def elements(rep) -> list[tuple]:
+    """The report as (kind, ...) tuples: ("h1", text), ("h2", id, text), ("p", text),
+    ("table", headers, rows), ("fig", file, caption), ("ul", items), ("verdict", text, certain)."""
+    cfg = rep.config
+    s = {k: v.data for k, v in rep.sections.items()}
+    el: list[tuple] = [("h1", f"Assessment of {cfg.source}"),
+                       ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
+                             f"computed in {sum(r.seconds for r in rep.sections.values()):.0f} s"
+                             f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
+                             "Sections: the arch, static capacity, pulses"
+                             + (", records" if "records" in s else "")
+                             + (", the DEM check" if "dem" in s else "")
+                             + ", validity, verdict.")]
+    v = rep.verdict
+    el.append(("verdict", v["text"], v["certain"]))
+
+    a = s["arch"]
+    el.append(("h2", "arch", "1. The arch"))
+    el.append(("p", "Input: " + ", ".join(f"{k} = {val}" for k, val in cfg.arch.canonical().items())
+               + f"; friction coefficient {cfg.friction:g}. Total mass "
+               f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m), overall "
+               f"{a['overall_width_m']:.2f} m wide and {a['overall_height_m']:.2f} m high."))
+    el.append(("fig", "arch.png", rep.sections["arch"].figures[0].caption))
+    el.append(("table", ["block", "mass (kg)", "centroid x (m)", "centroid y (m)"],
+               [[b["block"], f"{b['mass_kg']:.1f}", f"{b['centroid_x_m']:.3f}",
+                 f"{b['centroid_y_m']:.3f}"] for b in a["blocks"]]))
+
+    st = s["static"]
+    el.append(("h2", "static", "2. Static capacity"))
+    hinges = ", ".join(f"{'ABCD'[i]} at joint {h['joint']} ({h['face']})"
+                       for i, h in enumerate(st["hinges"]))
+    rows = [["collapse acceleration lambda", f"{st['collapse_acceleration_g']:.4f} g"],
+            ["hinges (load towards +x)", hinges],
+            ["thickness t", f"{st['thickness_m']:.3f} m"],
+            ["minimum thickness t_min (same shape)", f"{st['min_thickness_m']:.4f} m"],
+            ["geometric factor of safety t / t_min", f"{st['geometric_safety_factor']:.3f}"],
+            ["static friction demand max |V|/N", f"{st['static_friction_demand']:.3f} (joint "
+                                                   f"{st['static_friction_joint']})"],
+            ["friction coefficient given", f"{st['friction_coefficient']:g}"],
+            ["sliding", "YES: the joints slide before the arch rocks" if st["sliding"]
+             else "no (demand below the coefficient)"]]
+    if "site_over_lambda" in st:
+        rows.append(["site PGA / lambda", f"{st['site_over_lambda']:.2f}"])
+    el.append(("table", ["quantity", "value"], rows))
+    el.append(("fig", "static.png", rep.sections["static"].figures[0].caption))
+
+    pu = s["pulses"]
+    el.append(("h2", "pulses", "3. Pulses"))
+    el.append(("p", f"Failure domains of the step and the one-cycle sine pulse, c_v = "
+                    f"{pu['restitution_cv']:.3g}. Below the governing boundary the arch "
+                    "survives; above it, it collapses (except in non-monotonic bands)."))
+    rows = []
+    for fam in ("step", "sine"):
+        d = pu[fam]
+        for t, c, f1 in zip(d["durations_s"], d["collapse_g"], d["first_half_cycle_g"],
+                            strict=True):
+            rows.append([fam, f"{t:.3f}", _f(c), _f(f1)])
+    el.append(("table", ["pulse", "duration (s)", "collapse (g)", "1st half cycle (g)"], rows))
+    items: list = []
+    for fam in ("step", "sine"):
+        d = pu[fam]
+        text = f"{fam}: lowest collapse magnitude {_f(d['min_collapse_g'])} g"
+        if cfg.site_pga_g is not None:
+            cs = d["durations_collapsing_at_site_s"]
+            text += (f"; at the site PGA {cfg.site_pga_g:g} g the durations "
+                     + ", ".join(f"{x:.3g}" for x in cs) + " s collapse it" if cs else
+                     f"; no duration scanned collapses it at the site PGA {cfg.site_pga_g:g} g")
+        bands = d["non_monotonic_bands"]
+        text += (f"; {len(bands)} non-monotonic band(s): " + ", ".join(
+            f"{b['duration_s']:.3g} s: {b['lower_g']:.3f}-{b['upper_g']:.3f} g ({b['criterion']})"
+            for b in bands)) if bands else "; no non-monotonic band"
+        items.append(text)
+    el.append(("ul", items))
+    for f in rep.sections["pulses"].figures:
+        el.append(("fig", f.file, f.caption))
+
+    if "records" in s:
+        r = s["records"]
+        el.append(("h2", "records", "4. Records"))
+        fit = r["fragility"]["first_collapse"]
+        text = (f"Incremental dynamic analysis (PGA) of {len(r['records_used'])} of the "
+                f"{r['records_in_suite']} records of {r['suite']} ({r['runs']} time histories, "
+                f"c_v = {r['restitution_cv']:.3g}); {r['records_collapsing']} collapse the arch "
+                f"below the ceiling {r['ceiling_g']:.2f} g.")
+        if fit is not None:
+            ci = fit.get("median_ci_g")
+            text += (f" Fragility (first collapse, lognormal): median {fit['median_g']:.3f} g"
+                     + (f" [{ci[0]:.3f}, {ci[1]:.3f}]" if ci else "")
+                     + f", beta {fit['beta']:.2f}.")
+        if "p_collapse_at_site" in r:
+            ci = r.get("p_collapse_at_site_ci")
+            text += (f" P(collapse | PGA = {cfg.site_pga_g:g} g) = {r['p_collapse_at_site']:.3f}"
+                     + (f" (90 % bootstrap interval over the records {ci[0]:.3f} to {ci[1]:.3f})"
+                        if ci else "") + f"; fraction of the records collapsing at that level "
+                     f"{r['fraction_collapsing_at_site']:.2f}.")
+        el.append(("p", text))
+        el.append(("table", ["record", "first collapse PGA (g)"],
+                   [[n, _f(x)] for n, x in zip(r["records_used"], r["first_collapse_g"],
+                                               strict=True)]))
+        el.append(("fig", "records.png", rep.sections["records"].figures[0].caption))
+
+    if "dem" in s:
+        d = s["dem"]
+        el.append(("h2", "dem", "5. The DEM check"))
+        el.append(("p", "The distinct-element model (every voussoir a rigid block on Coulomb "
+                        "contacts, the paper's stiffness and damping) on the governing cases: a "
+                        "step pulse on the analytical domain boundary and the record whose first "
+                        "collapse is nearest the fragility median, run at fractions of the "
+                        "analytical collapse level (where the analytical model survives)."
+                   + (f" The record is run to 3 s after 95 % of its Arias intensity "
+                      f"({d['record_window_s']:.1f} s)." if "record_window_s" in d else "")))
+        if rep.quick:
+            el.append(("p", "Quick mode: one DEM run per case, at 0.85 x the analytical level; "
+                            "the full mode runs 1.0, 0.85 and 0.7 x."))
+        rows = []
+        for c in d["cases"]:
+            for run in c["runs"]:
+                rows.append([c["case"], f"{run['factor']:g}", f"{run['level_g']:.4f}",
+                             run["analytical_outcome"], run["dem_outcome"]])
+        el.append(("table", ["case", "x analytical collapse level", "magnitude / PGA (g)",
+                             "analytical", "DEM"], rows))
+        items = []
+        for c in d["cases"]:
+            if c["dem_more_vulnerable"]:
+                items.append(f"{c['case']}: the DEM is more vulnerable: it collapses at "
+                             f"{c['lowest_dem_collapse_factor']:g} x the analytical level "
+                             f"({c['analytical_level_g']:.4f} g); the analytical result is "
+                             f"UNCONSERVATIVE there by at least "
+                             f"{100 * c['unconservative_by_at_least']:.0f} %.")
+            else:
+                at_one = [r for r in c["runs"] if r["factor"] >= 1.0]
+                more = (" The DEM survives even at the analytical collapse level: the analytical"
+                        " result is conservative there." if at_one and
+                        at_one[0]["dem_outcome"] != "collapse" else "")
+                items.append(f"{c['case']}: the DEM does not collapse below the analytical "
+                             f"level ({c['analytical_level_g']:.4f} g) at the fractions run: "
+                             f"no sign that the analytical result is unconservative.{more}")
+        el.append(("ul", items))
+
+    va = s["validity"]
+    el.append(("h2", "validity", "6. Validity"))
+    imp = va["impact"]
+    el.append(("p", f"Impact law '{imp['law']}': c_v = {imp['law_restitution_cv']:.4g}, c_T = "
+                    f"{imp['law_restitution_ct']:.4g}, validity '{imp['law_validity']}'"
+               + (", creates energy" if imp["law_energy_gain"] else "")
+               + (f"; prescribed c_v = {imp['prescribed_restitution_cv']:g} used"
+                  if imp["prescribed_restitution_cv"] is not None else "")
+               + f". c_v used by every analytical time history: {imp['used_restitution_cv']:.4g}."))
+    items = [(f"{w['warning']}: {w['meaning']}.", w["serious"]) for w in va["warnings"]]
+    el.append(("ul", items or ["no warning raised"]))
+    if va["restitution_sensitivity"]:
+        rows = [[f"{e['restitution_cv']:.3g}"] + [
+            f"{_f(e[f]['min_collapse_g'])} g, {'collapses' if e[f]['collapses_at_site'] else 'survives'}"
+            for f in ("step", "sine")] for e in va["restitution_sensitivity"]]
+        rows.insert(0, [f"{pu['restitution_cv']:.3g} (used)"] + [
+            f"{_f(pu[f]['min_collapse_g'])} g, "
+            f"{'collapses' if pu[f]['collapses_at_site'] else 'survives'}"
+            for f in ("step", "sine")])
+        el.append(("p", "Restitution sensitivity: the lowest collapse magnitude of each pulse "
+                        "family and the verdict at the site PGA, at c_v and c_v +- 0.1."))
+        el.append(("table", ["c_v", "step", "sine"], rows))
+
+    el.append(("h2", "verdict", "7. Verdict"))
+    el.append(("verdict", v["text"], v["certain"]))
+    el.append(("table", ["number", "value"], [[k, _f(x) if not isinstance(x, list) else
+                                               ", ".join(_f(y) for y in x)]
+                                              for k, x in v["numbers"].items()]))
+    el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
+                    "between the blocks; the ground moves horizontally in the arch's plane."))
+    return el
+
+
+def write_markdown(rep, path: Path) -> Path:
+    lines: list[str] = []
+    for e in elements(rep):
+        kind = e[0]
+        if kind == "h1":
+            lines += [f"# {e[1]}", ""]
+        elif kind == "h2":
+            lines += [f"## {e[2]}", ""]
+        elif kind == "p":
+            lines += [e[1], ""]
+        elif kind == "verdict":
+            lines += [f"> **Verdict{'' if e[2] else ' (not conclusive)'}:** {e[1]}", ""]
+        elif kind == "ul":
+            lines += [f"- {x[0] if isinstance(x, tuple) else x}" for x in e[1]] + [""]
+        elif kind == "table":
+            lines.append("| " + " | ".join(e[1]) + " |")
+            lines.append("| " + " | ".join("---" for _ in e[1]) + " |")
+            lines += ["| " + " | ".join(_md_cell(c) for c in row) + " |" for row in e[2]]
+            lines.append("")
+        elif kind == "fig":
+            lines += [f"![{e[2]}](figures/{e[1]})", "", f"*{e[2]}*", ""]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _serious(flag: bool) -> str:
+    return "serious" if flag else "note"
+
+
+def write_html(rep, path: Path) -> Path:
+    esc = html.escape
+    figures = Path(rep.out) / "figures"
+    title = f"archquake assessment: {rep.config.source}"
+    parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
+             f"<title>{esc(title)}</title>", f"<style>{_CSS}{_EXTRA_CSS}</style></head><body>"]
+    open_section = False
+    for e in elements(rep):
+        kind = e[0]
+        if kind == "h1":
+            parts.append(f"<h1>{esc(e[1])}</h1>")
+        elif kind == "h2":
+            if open_section:
+                parts.append("</section>")
+            parts.append(f'<section id="{esc(e[1])}"><h2>{esc(e[2])}</h2>')
+            open_section = True
+        elif kind == "p":
+            parts.append(f"<p>{esc(e[1])}</p>")
+        elif kind == "verdict":
+            cls = "certain" if e[2] else "uncertain"
+            label = "Verdict" if e[2] else "Verdict (not conclusive)"
+            parts.append(f'<p class="verdict {cls}"><b>{label}:</b> {esc(e[1])}</p>')
+        elif kind == "ul":
+            parts.append("<ul>" + "".join(
+                f'<li class="{_serious(x[1])}">{esc(x[0])}</li>'
+                if isinstance(x, tuple) else f"<li>{esc(x)}</li>" for x in e[1]) + "</ul>")
+        elif kind == "table":
+            parts.append("<table><thead><tr>" + "".join(f"<th>{esc(h)}</th>" for h in e[1])
+                         + "</tr></thead><tbody>")
+            parts += ["<tr>" + "".join(f"<td>{esc(str(c))}</td>" for c in row) + "</tr>"
+                      for row in e[2]]
+            parts.append("</tbody></table>")
+        elif kind == "fig":
+            parts.append(f'<figure><img alt="{esc(e[2])}" src="{_img(figures / e[1])}">'
+                         f"<figcaption>{esc(e[2])}</figcaption></figure>")
+    if open_section:
+        parts.append("</section>")
+    parts.append("</body></html>")
+    path.write_text("\n".join(parts) + "\n")
+    return path
+
+
+__all__ = ["elements", "write_html", "write_markdown"]

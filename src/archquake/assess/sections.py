@@ -1,0 +1,612 @@
+"""The sections of an assessment, in the order an engineer reads them (issue 14).
+
+Each section is a pure function ``section(ctx) -> StudyResult`` (the reproduction's result type:
+its ``data`` holds every number, its ``figures`` the files it wrote), so the reproduction's
+cache stores and resumes it (:mod:`archquake.assess.runner`). A later section reads the numbers
+of the earlier ones from ``ctx.prior`` (their ``data``), never recomputes them.
+
+Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.reproduce.core import Figure, StudyResult
+
+#: The assumptions every verdict rests on.
+ASSUMPTIONS = ("rigid blocks", "no tension at the joints", "infinite compressive strength",
+               "in-plane motion only", "no backfill or spandrel walls")
+
+
+@dataclass(frozen=True)
+class Mode:
+    """How fine each part of the assessment is (``quick`` or full)."""
+
+    quick: bool
+
+    @property
+    def durations(self) -> np.ndarray:
+        """Pulse durations of the failure domains (t_p of the step, T of the sine), s."""
+        return np.geomspace(0.1, 2.0, 6 if self.quick else 14)
+
+    @property
+    def domain_settings(self):
+        from archquake.domains import DomainSettings
+
+        if self.quick:
+            return DomainSettings(coarse_points=16, fine_points=6, precision_g=5e-3)
+        return DomainSettings(coarse_points=40, fine_points=20, precision_g=2e-3)
+
+    def records(self, records: tuple) -> tuple:
+        """The records analysed: all of them, or four spread over the suite (quick)."""
+        if not self.quick or len(records) <= 4:
+            return tuple(records)
+        step = len(records) / 4
+        return tuple(records[int(k * step)] for k in range(4))
+
+    @property
+    def ida(self) -> dict:
+        return {"precision": 0.05, "fill": 0.25} if self.quick else {"precision": 0.02,
+                                                                      "fill": 0.10}
+
+    @property
+    def bootstrap(self) -> int:
+        return 200 if self.quick else 1000
+
+    @property
+    def dem_factors(self) -> tuple[float, ...]:
+        """Fractions of the analytical collapse level at which the DEM runs."""
+        return (0.85,) if self.quick else (1.0, 0.85, 0.7)
+
+
+@dataclass(frozen=True)
+class Context:
+    """What a section needs: the configuration, the arch, the mode, where figures go, and
+    the data of the sections before it (by name)."""
+
+    config: Any
+    arch: Any
+    mode: Mode
+    figures: Path
+    out: Path
+    prior: dict = field(default_factory=dict)
+    progress: Callable[[str], None] | None = None
+
+    def say(self, line: str) -> None:
+        if self.progress is not None:
+            self.progress(line)
+
+    @property
+    def site(self) -> float | None:
+        return self.config.site_pga_g
+
+
+def prepared_mechanism(arch, impact: str = "paper", restitution: float | None = None):
+    """The arch's prepared mechanism with its impact law, and c_v replaced by a prescribed
+    ``restitution`` when given (the impact solution then says ``law = "prescribed"``; the law's
+    own solution is kept by the caller for the validity section)."""
+    from archquake.mechanism.prepared import PreparedMechanism
+
+    prep = PreparedMechanism.build(arch, impact)
+    if restitution is None:
+        return prep
+    imp = replace(prep.impact, restitution_cv=float(restitution),
+                  restitution_ct=float(restitution) ** 2, energy_gain=False, law="prescribed",
+                  validity="prescribed")
+    return replace(prep, impact=imp)
+
+
+def used_restitution(config, arch) -> tuple[float, Any]:
+    """c_v the time histories use (prescribed, or the law's clipped at 0) and the law's own
+    :class:`~archquake.mechanism.impact.ImpactSolution`."""
+    own = prepared_mechanism(arch, config.impact).impact
+    cv = config.restitution if config.restitution is not None else max(own.restitution_cv, 0.0)
+    return float(cv), own
+
+
+def _num(x) -> float | None:
+    return float(x) if x is not None and math.isfinite(float(x)) else None
+
+
+def process_pool(workers: int):
+    """A process pool started by ``spawn``, whose workers end with this process
+    (:func:`archquake.sweeps.runner.process_pool`'s watch). Not ``fork``: by the time the records
+    run, this process has run the domains' threaded kernels, and a forked child of a process
+    that used an OpenMP/TBB thread pool can crash in its own parallel code."""
+    import multiprocessing
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    from archquake.sweeps.runner import _watch_parent
+
+    return ProcessPoolExecutor(max_workers=workers,
+                               mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_watch_parent, initargs=(os.getpid(),))
+
+
+def workers() -> int:
+    from archquake.sweeps.runner import usable_cores
+
+    return max(1, usable_cores())
+
+
+# ----------------------------------------------------------------------------- 1. the arch
+def section_arch(ctx: Context) -> StudyResult:
+    from matplotlib.figure import Figure as MplFigure
+
+    from archquake.plotting.arch import plot_arch
+    from archquake.plotting.figures import save
+
+    arch = ctx.arch
+    masses = np.asarray(arch.voussoir_masses)
+    cents = np.asarray(arch.voussoir_centroids)
+    pts = np.vstack([np.asarray(p) for p in arch.block_polygons])
+    width = float(np.ptp(pts[:, 0]))
+    height = float(np.ptp(pts[:, 1]))
+    desc = arch.describe()
+    fig = MplFigure(figsize=(8, 5))
+    ax = fig.subplots()
+    plot_arch(arch, ax)
+    for k, c in enumerate(cents):
+        ax.text(c[0], c[1], str(k + 1), ha="center", va="center", fontsize=7)
+    x0, x1 = float(pts[:, 0].min()), float(pts[:, 0].max())
+    y0, y1 = float(pts[:, 1].min()), float(pts[:, 1].max())
+    ax.annotate("", (x0, y0 - 0.08 * height), (x1, y0 - 0.08 * height),
+                arrowprops={"arrowstyle": "<->", "color": "k"})
+    ax.text(0.5 * (x0 + x1), y0 - 0.12 * height, f"overall width {width:.2f} m", ha="center",
+            va="top", fontsize=8)
+    ax.annotate("", (x1 + 0.05 * width, y0), (x1 + 0.05 * width, y1),
+                arrowprops={"arrowstyle": "<->", "color": "k"})
+    ax.text(x1 + 0.07 * width, 0.5 * (y0 + y1), f"overall height\n{height:.2f} m", va="center",
+            fontsize=8)
+    dims = ", ".join(f"{k.removesuffix('_m')} {v:.3g} m" for k, v in desc.items()
+                     if k.endswith("_m") and k not in ("depth_m", "length_scale_m"))
+    ax.set_title(f"{desc.get('shape', 'circular')} arch: {dims}", fontsize=9)
+    ax.set_xlim(x0 - 0.1 * width, x1 + 0.25 * width)
+    ax.set_ylim(y0 - 0.2 * height, y1 + 0.08 * height)
+    save(fig, ctx.figures / "arch.png", dpi=120)
+    blocks = [{"block": k + 1, "mass_kg": float(m), "centroid_x_m": float(c[0]),
+               "centroid_y_m": float(c[1])} for k, (m, c) in enumerate(zip(masses, cents,
+                                                                            strict=True))]
+    data = {"describe": desc, "blocks": blocks, "total_mass_kg": float(masses.sum()),
+            "overall_width_m": width, "overall_height_m": height,
+            "friction_coefficient": ctx.config.friction,
+            "density_kg_m3": float(ctx.config.arch.density), "depth_m": float(ctx.config.arch.depth)}
+    return StudyResult("arch", "1. The arch", (),
+                       (Figure("arch.png", "The arch: blocks numbered from the left springing, "
+                               "with its overall dimensions."),), (), data)
+
+
+# ----------------------------------------------------------------------------- 2. statics
+def section_static(ctx: Context) -> StudyResult:
+    from archquake.limit import geometric_safety_factor, limit_analysis, min_thickness
+    from archquake.plotting.arch import save_limit_analysis
+
+    la = limit_analysis(ctx.arch)
+    t_min = min_thickness(ctx.arch)
+    fos = geometric_safety_factor(ctx.arch)
+    save_limit_analysis(la, ctx.figures / "static.png")
+    demand = la.min_friction
+    mu = ctx.config.friction
+    data = {
+        "collapse_acceleration_g": la.collapse_acceleration_g,
+        "hinges": [h.to_dict() for h in la.mechanism.hinges],
+        "symmetric": la.symmetric,
+        "thickness_m": float(ctx.arch.thickness),
+        "min_thickness_m": t_min,
+        "geometric_safety_factor": fos,
+        "static_friction_demand": demand,
+        "static_friction_joint": la.min_friction_joint,
+        "friction_coefficient": mu,
+        "sliding": bool(demand > mu),
+        "thrust_x_m": la.thrust_line[:, 0], "thrust_y_m": la.thrust_line[:, 1],
+    }
+    if ctx.site is not None:
+        data["site_over_lambda"] = ctx.site / la.collapse_acceleration_g
+    return StudyResult("static", "2. Static capacity", (),
+                       (Figure("static.png", "The four-hinge mechanism at the collapse "
+                               "acceleration lambda (load towards +x) and its line of thrust."),),
+                       (), data)
+
+
+# ----------------------------------------------------------------------------- 3. pulses
+def _domain_data(d, site: float | None) -> dict:
+    coll = np.asarray(d.collapse_g, dtype=float)
+    out = {"durations_s": d.durations, "no_hinging_g": d.no_hinging_g,
+           "first_half_cycle_g": d.first_half_cycle_g, "collapse_g": coll,
+           "non_monotonic_bands": [b.to_dict() for b in d.non_monotonic_bands],
+           "restitution_cv": d.restitution_cv, "evaluations": d.evaluations,
+           "min_collapse_g": _num(np.nanmin(coll)) if np.any(np.isfinite(coll)) else None}
+    if site is not None:
+        below = np.isfinite(coll) & (coll <= site)
+        out["durations_collapsing_at_site_s"] = d.durations[below]
+        # a non-monotonic band reaching below the site PGA also counts: a pulse in it collapses
+        out["collapses_at_site"] = bool(np.any(below))
+    return out
+
+
+def pulse_domains(ctx: Context, cv: float) -> dict:
+    """Step and sine failure domains at restitution ``cv`` (FailureDomain objects)."""
+    from archquake.domains import failure_domain
+
+    prep = prepared_mechanism(ctx.arch, ctx.config.impact, cv)
+    return {fam: failure_domain(prep, fam, ctx.mode.durations,
+                                settings=ctx.mode.domain_settings)
+            for fam in ("step", "sine")}
+
+
+def section_pulses(ctx: Context) -> StudyResult:
+    from matplotlib.figure import Figure as MplFigure
+
+    from archquake.plotting.domains import plot_domain
+    from archquake.plotting.figures import save
+
+    cv, _ = used_restitution(ctx.config, ctx.arch)
+    domains = pulse_domains(ctx, cv)
+    data: dict[str, Any] = {"restitution_cv": cv}
+    figs = []
+    for fam, d in domains.items():
+        ctx.say(f"  {fam} domain: {d.evaluations} time histories")
+        data[fam] = _domain_data(d, ctx.site)
+        fig = MplFigure(figsize=(7, 4.6))
+        ax = fig.subplots()
+        plot_domain(d, ax, title=f"{fam} pulse, c_v = {cv:.3g}")
+        if ctx.site is not None:
+            ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
+                       label=f"site PGA {ctx.site:g} g")
+            ax.legend(loc="upper right", fontsize=7)
+        save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
+        figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
+                           f"against {'t_p' if fam == 'step' else 'T'}), site PGA dashed."))
+    return StudyResult("pulses", "3. Pulses", (), tuple(figs), (), data)
+
+
+# ----------------------------------------------------------------------------- 4. records
+def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
+                  confidence: float = 0.9) -> tuple[float, float] | None:
+    """Percentile-bootstrap interval of P(collapse | site PGA) over the records (resampled
+    with replacement, the first-collapse fit refitted each time)."""
+    from archquake.errors import ArchquakeError
+    from archquake.ida.fragility import fit_first_collapse
+
+    rng = np.random.default_rng(0)
+    ps = []
+    for _ in range(n):
+        sample = first[rng.integers(0, first.size, first.size)]
+        try:
+            fit = fit_first_collapse(list(sample), ceiling=ceiling, bootstrap=0)
+        except ArchquakeError:
+            continue
+        ps.append(float(fit.probability(site)))
+    if len(ps) < max(10, n // 2):
+        return None
+    q = [50 * (1 - confidence), 50 * (1 + confidence)]
+    lo, hi = np.percentile(ps, q)
+    return float(lo), float(hi)
+
+
+def section_records(ctx: Context) -> StudyResult:
+    from matplotlib.figure import Figure as MplFigure
+
+    from archquake.ground.suites import load_suite
+    from archquake.ida import incremental_dynamic_analysis
+    from archquake.ida.fragility import fragility_of
+    from archquake.plotting.figures import save
+    from archquake.plotting.ida import plot_fragility, plot_ida_curves
+    from archquake.sweeps import CaseOptions, ResultStore
+
+    cfg = ctx.config
+    suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                       units=cfg.units)
+    records = ctx.mode.records(suite.records)
+    cv, _ = used_restitution(cfg, ctx.arch)
+    options = CaseOptions(restitution=max(cv, 1e-6))
+    store_path = ctx.out / "cache" / f"ida-{cfg.digest}-{'quick' if ctx.mode.quick else 'full'}.sqlite"
+    store_path.parent.mkdir(parents=True, exist_ok=True)
+    ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name} "
+            f"(store {store_path.name})")
+    n = workers()
+    with ResultStore(store_path) as store, process_pool(n) as executor:
+        res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
+                                           executor=executor, workers=n, **ctx.mode.ida)
+    fits = fragility_of(res, rng=np.random.default_rng(0), bootstrap=ctx.mode.bootstrap)
+    fig = MplFigure(figsize=(12, 4.8))
+    a1, a2 = fig.subplots(1, 2)
+    plot_ida_curves(res, a1)
+    plot_fragility(res, fits, a2)
+    first = res.first_collapse_levels
+    data: dict[str, Any] = {
+        "suite": suite.name, "records_in_suite": len(suite.records),
+        "records_used": [r.name for r in res.records], "restitution_cv": cv,
+        "ceiling_g": res.ceiling, "runs": res.total,
+        "first_collapse_g": [_num(x) for x in first],
+        "records_collapsing": int(np.sum(np.isfinite(first))),
+        "records_with_resurrections": sum(1 for r in res.records if r.resurrections),
+        "fragility": {k: (None if fits[k] is None else fits[k].to_dict("g"))
+                      for k in ("first_collapse", "collapse_fraction")},
+    }
+    fit = fits["first_collapse"]
+    if ctx.site is not None:
+        for ax in (a1, a2):
+            (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
+                                                      label=f"site PGA {ctx.site:g} g")
+        data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
+        if fit is not None:
+            data["p_collapse_at_site"] = float(fit.probability(ctx.site))
+            ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
+            data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
+            data["p_collapse_confidence"] = 0.9
+    save(fig, ctx.figures / "records.png", dpi=110)
+    governing = None
+    if fit is not None and np.any(np.isfinite(first)):
+        i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
+                                      np.nan)))
+        rec = res.records[i]
+        assert rec.first_collapse is not None  # its first-collapse level is finite
+        governing = {"record": rec.name, "index": int(suite.records.index(records[i])),
+                     "first_collapse_g": float(first[i]),
+                     "survives_below_g": _num(rec.first_collapse.below),
+                     "pga_unscaled_g": float(rec.im_unscaled)}
+    data["governing"] = governing
+    return StudyResult("records", "4. Records", (),
+                       (Figure("records.png", "IDA curves (left: PGA against peak rotation over "
+                               "the crest rotation) and the fragility curves (right), site PGA "
+                               "dashed."),), (), data)
+
+
+# ----------------------------------------------------------------------------- 5. DEM
+def _dem_outcome(arch, motion, duration: float) -> str:
+    """One DEM run: its outcome's word (module level: picklable)."""
+    from archquake.dem import simulate_dem
+    from archquake.dem.settings import DemSettings
+
+    res = simulate_dem(arch, motion, DemSettings().with_(duration=duration))
+    return str(getattr(res.outcome, "value", res.outcome))
+
+
+def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
+    """Time at which the record's Arias intensity reaches ``fraction`` of its total, s."""
+    from archquake.ground.measures import _piecewise
+
+    t, a = _piecewise(motion)
+    sq = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] ** 2 + a[:-1] ** 2) * np.diff(t))])
+    return float(np.interp(fraction * sq[-1], sq, t))
+
+
+def section_dem(ctx: Context) -> StudyResult:
+    from archquake.ground.suites import load_suite
+
+    jobs: list[tuple[str, float, Any, float, float]] = []  # (case, factor, motion, duration, level)
+    data: dict[str, Any] = {"factors": list(ctx.mode.dem_factors), "cases": []}
+    pul = ctx.prior.get("pulses", {})
+    step = pul.get("step")
+    if step is not None:
+        coll = np.asarray(step["collapse_g"], dtype=float)
+        durs = np.asarray(step["durations_s"], dtype=float)
+        lam = ctx.prior["static"]["collapse_acceleration_g"]
+        finite = np.flatnonzero(np.isfinite(coll))
+        # the longest duration whose boundary stays well above lambda (1.2x) at every factor run
+        clear = [j for j in finite if min(ctx.mode.dem_factors) * coll[j] > 1.2 * lam]
+        if finite.size:
+            i = int(clear[-1] if clear else finite[finite.size // 2])
+            from archquake.ground.pulses import StepImpulse
+
+            for f in ctx.mode.dem_factors:
+                mag = f * coll[i]
+                jobs.append((f"step pulse t_p = {durs[i]:.3g} s", f,
+                             StepImpulse.from_g(mag, float(durs[i]), -1), float(durs[i]) + 3.0,
+                             mag))
+    gov = ctx.prior.get("records", {}).get("governing")
+    data["record_case"] = gov is not None
+    if gov is not None:
+        cfg = ctx.config
+        suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                           units=cfg.units)
+        rec = suite.records[gov["index"]]
+        end = min(float(rec.duration), strong_motion_end(rec) + 3.0)
+        for f in ctx.mode.dem_factors:
+            level = f * gov["first_collapse_g"]
+            jobs.append((f"record {gov['record']}", f, rec.scaled(level / gov["pga_unscaled_g"]),
+                         end, level))
+        data["record_window_s"] = end
+    ctx.say(f"  {len(jobs)} DEM runs")
+    if len(jobs) <= 1:
+        outcomes = [_dem_outcome(ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+    else:
+        with process_pool(min(workers(), len(jobs))) as pool:
+            futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+            outcomes = [fu.result() for fu in futures]
+    by_case: dict[str, dict] = {}
+    for (case, f, _, dur, level), outcome in zip(jobs, outcomes, strict=True):
+        c = by_case.setdefault(case, {"case": case, "runs": []})
+        c["runs"].append({"factor": f, "level_g": level, "duration_s": dur,
+                          "dem_outcome": outcome,
+                          "analytical_outcome": "collapse" if f >= 1.0 else "survives"})
+    for c in by_case.values():
+        dem_collapses = [r["factor"] for r in c["runs"] if r["dem_outcome"] == "collapse"]
+        lowest = min(dem_collapses) if dem_collapses else None
+        c["analytical_level_g"] = c["runs"][0]["level_g"] / c["runs"][0]["factor"]
+        c["lowest_dem_collapse_factor"] = lowest
+        c["dem_more_vulnerable"] = bool(lowest is not None and lowest < 1.0)
+        c["unconservative_by_at_least"] = (1.0 - lowest) if lowest is not None and \
+            lowest < 1.0 else 0.0
+        data["cases"].append(c)
+    data["dem_more_vulnerable"] = any(c["dem_more_vulnerable"] for c in data["cases"])
+    return StudyResult("dem", "5. The DEM check", (), (), (), data)
+
+
+# ----------------------------------------------------------------------------- 6. validity
+def section_validity(ctx: Context) -> StudyResult:
+    cfg = ctx.config
+    cv, own = used_restitution(cfg, ctx.arch)
+    warnings: list[dict] = []
+
+    def warn(key: str, text: str, means: str, serious: bool = True) -> None:
+        warnings.append({"key": key, "warning": text, "meaning": means, "serious": serious})
+
+    impact = {"law": cfg.impact, "law_restitution_cv": own.restitution_cv,
+              "law_restitution_ct": own.restitution_ct, "law_validity": own.validity,
+              "law_energy_gain": own.energy_gain, "prescribed_restitution_cv": cfg.restitution,
+              "used_restitution_cv": cv}
+    law_outside = own.validity == "outside" or own.energy_gain or own.restitution_cv < 0
+    if law_outside and cfg.restitution is None:
+        warn("impact_law", f"the {cfg.impact} impact law is outside its validity for this arch "
+             f"(c_v = {own.restitution_cv:.3g}, c_T = {own.restitution_ct:.3g}, validity "
+             f"'{own.validity}')",
+             "the rocking after the first impact is not trustworthy; prescribe a restitution "
+             "or use the chain law")
+    elif law_outside:
+        warn("impact_law", f"the {cfg.impact} impact law gives c_v = {own.restitution_cv:.3g} "
+             f"(validity '{own.validity}') for this arch; a prescribed c_v = {cv:g} is used",
+             "the result depends on the prescribed restitution: see the sensitivity below",
+             serious=False)
+    elif own.validity == "near_four_hinge":
+        warn("impact_law", f"the {cfg.impact} impact law is near the edge of its validity "
+             "(near_four_hinge)", "the post-impact mechanism is approximate", serious=False)
+    static = ctx.prior.get("static", {})
+    if static.get("sliding"):
+        warn("sliding", f"the joints need a friction coefficient of "
+             f"{static['static_friction_demand']:.3f} at the onset of rocking, more than the "
+             f"given {cfg.friction:g}",
+             "the arch slides before it rocks: the rocking models (analytical and the "
+             "collapse criterion) do not cover sliding; the capacities are upper bounds")
+    for fam in ("step", "sine"):
+        bands = ctx.prior.get("pulses", {}).get(fam, {}).get("non_monotonic_bands", [])
+        if bands:
+            warn(f"non_monotonic_{fam}", f"{len(bands)} non-monotonic band(s) in the {fam} "
+                 "domain", "a stronger pulse is not always worse: some pulses above a collapsing "
+                 "one leave the arch standing (do not read safety from a larger survived pulse)",
+                 serious=False)
+    rec = ctx.prior.get("records", {})
+    if rec.get("records_with_resurrections"):
+        warn("resurrections", f"{rec['records_with_resurrections']} record(s) collapse the arch "
+             "at some scale and not at a larger one", "the IDA curves are not monotonic; the "
+             "first-collapse fit is the one that counts", serious=False)
+    dem = ctx.prior.get("dem", {})
+    for c in dem.get("cases", []):
+        if c["dem_more_vulnerable"]:
+            warn("dem", f"the DEM collapses under the {c['case']} at "
+                 f"{c['lowest_dem_collapse_factor']:g} x the analytical collapse level "
+                 f"({c['analytical_level_g']:.3g} g)",
+                 f"the analytical result is unconservative there by at least "
+                 f"{100 * c['unconservative_by_at_least']:.0f} %")
+    # restitution sensitivity: the pulse verdict at c_v +- 0.1
+    sens = []
+    if ctx.site is not None:
+        base = ctx.prior.get("pulses", {})
+        for dcv in (-0.1, 0.1):
+            c2 = min(max(cv + dcv, 0.0), 1.0)
+            if c2 == cv:
+                continue
+            ctx.say(f"  step and sine domains at c_v = {c2:.3g}")
+            doms = pulse_domains(ctx, c2)
+            entry: dict[str, Any] = {"restitution_cv": c2}
+            for fam, d in doms.items():
+                dd = _domain_data(d, ctx.site)
+                entry[fam] = {"min_collapse_g": dd["min_collapse_g"],
+                              "collapses_at_site": dd["collapses_at_site"]}
+            sens.append(entry)
+        changed = [e for e in sens if any(e[f]["collapses_at_site"] != base[f]
+                                          ["collapses_at_site"] for f in ("step", "sine"))]
+        if changed:
+            warn("restitution", "the pulse verdict at the site PGA changes within c_v +- 0.1 "
+                 f"(at c_v = {', '.join(format(e['restitution_cv'], '.2g') for e in changed)})",
+                 "the verdict rests on the restitution, which the rigid-block model cannot "
+                 "fix: treat it as uncertain")
+    data = {"impact": impact, "warnings": warnings, "restitution_sensitivity": sens,
+            "serious": any(w["serious"] for w in warnings)}
+    return StudyResult("validity", "6. Validity", (), (), (), data)
+
+
+# ----------------------------------------------------------------------------- 7. verdict
+def verdict(config, prior: dict) -> dict:
+    """The one-paragraph verdict and the numbers it rests on (from the sections' data)."""
+    site = config.site_pga_g
+    st = prior["static"]
+    lam = st["collapse_acceleration_g"]
+    pul = prior.get("pulses", {})
+    rec = prior.get("records")
+    val = prior.get("validity", {})
+    numbers = {"collapse_acceleration_g": lam, "geometric_safety_factor":
+               st["geometric_safety_factor"], "site_pga_g": site,
+               "step_min_collapse_g": pul.get("step", {}).get("min_collapse_g"),
+               "sine_min_collapse_g": pul.get("sine", {}).get("min_collapse_g")}
+    parts = []
+    if site is None:
+        level = "capacity only"
+        parts.append(f"No site PGA was given: the arch starts to rock at lambda = {lam:.3f} g.")
+    elif site <= lam:
+        level = "stands"
+        parts.append(f"The site PGA ({site:g} g) is below the static collapse acceleration "
+                     f"lambda = {lam:.3f} g: the arch moves rigidly with the ground and does "
+                     "not even start to rock.")
+    else:
+        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+                     f"acceleration lambda = {lam:.3f} g: the arch rocks; whether it collapses "
+                     "depends on the duration of the motion.")
+        pulses_collapse = [f for f in ("step", "sine") if pul.get(f, {}).get("collapses_at_site")]
+        if pulses_collapse:
+            which = []
+            for f in pulses_collapse:
+                durs = pul[f]["durations_collapsing_at_site_s"]
+                sym = "t_p" if f == "step" else "T"
+                which.append(f"{f} pulses with {sym} from {min(durs):.3g} s to {max(durs):.3g} s"
+                             f" ({len(durs)} of the {len(pul[f]['durations_s'])} durations "
+                             "scanned)")
+            parts.append("Pulses of the site PGA collapse it: " + "; ".join(which) + ".")
+        else:
+            parts.append("No step or sine pulse of the site PGA in the scanned durations "
+                         "collapses it.")
+        p = None if rec is None else rec.get("p_collapse_at_site")
+        if rec is not None and p is not None:
+            ci = rec.get("p_collapse_at_site_ci")
+            numbers["p_collapse_at_site"] = p
+            numbers["p_collapse_at_site_ci"] = ci
+            ci_text = "" if ci is None else f" (90 % interval {ci[0]:.2f} to {ci[1]:.2f})"
+            parts.append(f"Under the {rec['suite']} records scaled to the site PGA the "
+                         f"probability of collapse is {p:.2f}{ci_text}, fragility median "
+                         f"{rec['fragility']['first_collapse']['median_g']:.3f} g.")
+            level = ("collapse likely" if p >= 0.5 else "at risk" if p >= 0.1
+                     else "rocks but survives")
+        else:
+            level = "at risk" if pulses_collapse else "rocks but survives"
+    imp = val.get("impact", {})
+    if "used_restitution_cv" in imp:
+        numbers["restitution_cv"] = imp["used_restitution_cv"]
+        how = ("prescribed" if imp.get("prescribed_restitution_cv") is not None
+               else f"from the {imp['law']} impact law")
+        sens = val.get("restitution_sensitivity", [])
+        text = f"Impacts use c_v = {imp['used_restitution_cv']:.3g} ({how})"
+        if sens and site is not None and site > lam:
+            same = all(e[f]["collapses_at_site"] == pul[f]["collapses_at_site"]
+                       for e in sens for f in ("step", "sine"))
+            cvs = " and ".join(format(e["restitution_cv"], ".2g") for e in sens)
+            text += (f"; the pulse verdict is the same at c_v = {cvs}" if same else
+                     f"; the pulse verdict changes at c_v = {cvs}")
+        parts.append(text + ".")
+    if st.get("sliding"):
+        parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
+                     f" > {config.friction:g}).")
+    serious = [w for w in val.get("warnings", []) if w["serious"]]
+    certain = not serious
+    if not certain:
+        parts.insert(0, "NOT CONCLUSIVE: the models are outside their validity here ("
+                     + "; ".join(w["warning"] for w in serious) + ").")
+    parts.append("Assumptions: " + ", ".join(ASSUMPTIONS) + ".")
+    return {"level": level, "certain": certain, "text": " ".join(parts), "numbers": numbers}
+
+
+SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
+    ("arch", section_arch), ("static", section_static), ("pulses", section_pulses),
+    ("records", section_records), ("dem", section_dem), ("validity", section_validity))
+
+__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "prepared_mechanism",
+           "strong_motion_end", "used_restitution", "verdict"]

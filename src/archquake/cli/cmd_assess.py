@@ -1,0 +1,58 @@
+"""``archquake assess``: one report on the user's own arch.
+
+Reads ARCH.toml (the arch, the seismic input and the options; see docs/assess.md), validates it
+before computing anything, and writes DIR/report.html (self-contained), DIR/report.md,
+DIR/results.json and DIR/figures/: the arch, its static capacity, the pulse failure domains,
+the records' IDA and fragility, the distinct-element check, the models' validity and a verdict.
+Finished sections are cached in DIR/cache/ and reused by a rerun.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from archquake.cli.common import print_json
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "assess",
+        help="assess your own arch: statics, pulses, records, DEM check, validity, verdict",
+        description=__doc__.split("\n\n")[1],
+    )
+    p.add_argument("file", type=Path, metavar="ARCH.toml", help="the assessment file")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder (created)")
+    p.add_argument("--quick", action="store_true",
+                   help="coarse domains, four records of the suite, fewer DEM runs (about a "
+                        "minute)")
+    p.add_argument("--force", action="store_true", help="recompute sections cached in DIR/cache/")
+    p.add_argument("--json", action="store_true", help="print results.json on stdout")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    return assess(args.file, args.out, quick=args.quick, force=args.force, json=args.json)
+
+
+def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = False,
+           prefix: str = "assess") -> int:
+    """Validate ``file``, run the assessment into ``out``, print where the report is."""
+    from archquake.assess import load_config
+
+    config = load_config(file)  # every input error is raised here, before any computation
+    from archquake.assess import run_assessment
+
+    def progress(line: str) -> None:
+        print(f"[{prefix}] {line}", file=sys.stderr, flush=True)
+
+    rep = run_assessment(config, out, quick=quick, force=force, progress=progress)
+    if json:
+        print_json(rep.to_dict())
+        return 0
+    v = rep.verdict
+    print(f"[{prefix}] verdict ({v['level']}{'' if v['certain'] else ', NOT conclusive'}): "
+          f"{v['text']}")
+    print(f"[{prefix}] report: {Path(out) / 'report.html'} (and report.md, results.json)")
+    return 0

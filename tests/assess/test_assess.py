@@ -1,0 +1,151 @@
+"""The quick assessment of examples/bridge.toml: every section present in the three outputs,
+every number checked against the API run again on the same input (the oracle: the library's
+own functions called directly, not through the assessment), the full mode's static numbers
+equal to the quick mode's, and a rerun served from the cache."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from archquake.assess import load_config
+from archquake.assess.sections import Context, Mode, prepared_mechanism, section_arch, section_static
+
+from .conftest import EXAMPLES
+
+SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity")
+TITLES = ("1. The arch", "2. Static capacity", "3. Pulses", "4. Records", "5. The DEM check",
+          "6. Validity", "7. Verdict")
+
+
+def test_every_section_is_present(bridge):
+    rep, res, out, _ = bridge
+    assert tuple(res["sections"]) == SECTIONS
+    md = (out / "report.md").read_text()
+    html = (out / "report.html").read_text()
+    for title in TITLES:
+        assert f"## {title}" in md and f"<h2>{title}</h2>" in html
+    for fig in ("arch.png", "static.png", "domain_step.png", "domain_sine.png", "records.png"):
+        assert (out / "figures" / fig).is_file() and f"figures/{fig}" in md
+    assert "Verdict" in md and "Assumptions" in md
+    assert res["verdict"]["text"] in md.replace("> **Verdict:** ", "")
+
+
+def test_keys_carry_units(bridge):
+    _, res, _, _ = bridge
+    st = res["sections"]["static"]
+    assert {"collapse_acceleration_g", "min_thickness_m", "thickness_m"} <= set(st)
+    block = res["sections"]["arch"]["blocks"][0]
+    assert {"mass_kg", "centroid_x_m", "centroid_y_m"} == set(block) - {"block"}
+    assert {"durations_s", "collapse_g"} <= set(res["sections"]["pulses"]["step"])
+
+
+def test_static_numbers_equal_the_api(bridge):
+    from archquake.limit import geometric_safety_factor, limit_analysis, min_thickness
+
+    _, res, out, _ = bridge
+    arch = load_config(EXAMPLES / "bridge.toml").build_arch()
+    la = limit_analysis(arch)
+    st = res["sections"]["static"]
+    assert st["collapse_acceleration_g"] == la.collapse_acceleration_g
+    assert st["min_thickness_m"] == min_thickness(arch)
+    assert st["geometric_safety_factor"] == geometric_safety_factor(arch)
+    assert st["static_friction_demand"] == la.min_friction
+    assert st["sliding"] == (la.min_friction > 0.6)
+    assert [h["joint"] for h in st["hinges"]] == list(la.mechanism.joints)
+    a = res["sections"]["arch"]
+    assert math.isclose(a["total_mass_kg"], arch.mass, rel_tol=1e-12)
+    assert [b["mass_kg"] for b in a["blocks"]] == list(arch.voussoir_masses)
+    md = (out / "report.md").read_text()
+    assert f"{la.collapse_acceleration_g:.4f} g" in md
+    assert f"{min_thickness(arch):.4f} m" in md
+
+
+def test_pulse_domain_equals_the_api(bridge):
+    """The step domain at one duration, searched again with the same settings and c_v."""
+    from archquake.domains import failure_domain
+
+    _, res, _, _ = bridge
+    pu = res["sections"]["pulses"]
+    arch = load_config(EXAMPLES / "bridge.toml").build_arch()
+    assert pu["restitution_cv"] == 0.8  # the example's prescribed value
+    k = 2
+    d = failure_domain(prepared_mechanism(arch, "paper", 0.8), "step",
+                       [pu["step"]["durations_s"][k]], settings=Mode(True).domain_settings)
+    assert pu["step"]["collapse_g"][k] == pytest.approx(float(d.collapse_g[0]), rel=1e-12)
+    site = 0.15
+    coll = np.array([np.nan if x is None else x for x in pu["step"]["collapse_g"]], dtype=float)
+    assert pu["step"]["collapses_at_site"] == bool(np.any(coll <= site))
+
+
+def test_records_numbers_follow_from_the_fit(bridge):
+    """P(collapse) at the site is the lognormal fit's value at the site PGA; the fit is the
+    first-collapse MLE of the listed first-collapse levels (refitted here)."""
+    from archquake.ida.fragility import LognormalFit, fit_first_collapse
+
+    _, res, _, _ = bridge
+    r = res["sections"]["records"]
+    fit = r["fragility"]["first_collapse"]
+    p = LognormalFit(fit["median_g"], fit["beta"], "first_collapse", fit["records"]).probability(0.15)
+    assert r["p_collapse_at_site"] == pytest.approx(float(p), rel=1e-12)
+    first = np.array([np.nan if x is None else x for x in r["first_collapse_g"]])
+    again = fit_first_collapse(first, ceiling=r["ceiling_g"], bootstrap=0)
+    assert again.median == pytest.approx(fit["median_g"], rel=1e-9)
+    assert again.beta == pytest.approx(fit["beta"], rel=1e-9)
+    lo, hi = r["p_collapse_at_site_ci"]
+    assert 0 <= lo <= hi <= 1
+    assert len(r["records_used"]) == 4 and r["records_in_suite"] == 28
+
+
+def test_validity_reports_the_paper_law_and_the_sensitivity(bridge):
+    """The semicircle's paper-law c_v (49.9, creating energy) is reported, and the verdict is
+    recomputed at c_v = 0.7 and 0.9."""
+    from archquake.mechanism.prepared import PreparedMechanism
+
+    _, res, _, _ = bridge
+    va = res["sections"]["validity"]
+    own = PreparedMechanism.build(load_config(EXAMPLES / "bridge.toml").build_arch()).impact
+    assert va["impact"]["law_restitution_cv"] == own.restitution_cv
+    assert va["impact"]["law_energy_gain"] and va["impact"]["used_restitution_cv"] == 0.8
+    assert any(w["key"] == "impact_law" for w in va["warnings"])
+    assert [round(e["restitution_cv"], 6) for e in va["restitution_sensitivity"]] == [0.7, 0.9]
+
+
+def test_verdict_is_not_certain_when_a_serious_warning_is_raised(bridge):
+    from archquake.assess.sections import verdict
+
+    rep, res, _, _ = bridge
+    prior = {k: dict(v.data) for k, v in rep.sections.items()}
+    prior["validity"] = dict(prior["validity"], warnings=[
+        {"key": "x", "warning": "outside", "meaning": "m", "serious": True}])
+    v = verdict(rep.config, prior)
+    assert not v["certain"] and v["text"].startswith("NOT CONCLUSIVE")
+    assert res["verdict"]["certain"] == (not any(w["serious"] for w in
+                                               res["sections"]["validity"]["warnings"]))
+
+
+def test_full_and_quick_agree_on_the_static_numbers(bridge, tmp_path):
+    rep, res, _, _ = bridge
+    cfg = load_config(EXAMPLES / "bridge.toml")
+    ctx = Context(cfg, cfg.build_arch(), Mode(False), tmp_path, tmp_path)
+    full = json.loads(json.dumps(section_static(ctx).to_dict()))["data"]
+    quick = res["sections"]["static"]
+    for key, value in full.items():
+        assert quick[key] == value, key
+    arch_full = json.loads(json.dumps(section_arch(ctx).to_dict()))["data"]
+    assert arch_full["blocks"] == res["sections"]["arch"]["blocks"]
+
+
+def test_rerun_is_served_from_the_cache(bridge):
+    from archquake.assess import run_assessment
+
+    rep, res, out, _ = bridge
+    lines: list[str] = []
+    again = run_assessment(rep.config, out, quick=True, progress=lines.append)
+    assert all(again.cached.values()) and all("cached" in line for line in lines)
+    assert again.verdict == rep.verdict
+    assert json.loads((out / "results.json").read_text())["sections"]["static"] == \
+        res["sections"]["static"] | {"cached": True}
