@@ -73,8 +73,9 @@ def test_pulse_domain_equals_the_api(bridge):
     arch = load_config(EXAMPLES / "bridge.toml").build_arch()
     assert pu["restitution_cv"] == 0.8  # the example's prescribed value
     k = 2
-    d = failure_domain(prepared_mechanism(arch, "paper", 0.8), "step",
-                       [pu["step"]["durations_s"][k]], settings=Mode(True).domain_settings)
+    d = failure_domain(prepared_mechanism(arch, "paper"), "step",
+                       [pu["step"]["durations_s"][k]], settings=Mode(True).domain_settings,
+                       restitution=0.8)
     assert pu["step"]["collapse_g"][k] == pytest.approx(float(d.collapse_g[0]), rel=1e-12)
     site = 0.15
     coll = np.array([np.nan if x is None else x for x in pu["step"]["collapse_g"]], dtype=float)

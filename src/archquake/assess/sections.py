@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -89,19 +89,13 @@ class Context:
         return self.config.site_pga_g
 
 
-def prepared_mechanism(arch, impact: str = "paper", restitution: float | None = None):
-    """The arch's prepared mechanism with its impact law, and c_v replaced by a prescribed
-    ``restitution`` when given (the impact solution then says ``law = "prescribed"``; the law's
-    own solution is kept by the caller for the validity section)."""
+def prepared_mechanism(arch, impact: str = "paper"):
+    """The arch's prepared mechanism under its impact law (a prescribed c_v is passed to each
+    analysis as ``restitution=``, so that the law's validity and the verdict's dependence on it
+    are judged in one place: :func:`archquake.outcome.qualify`)."""
     from archquake.mechanism.prepared import PreparedMechanism
 
-    prep = PreparedMechanism.build(arch, impact)
-    if restitution is None:
-        return prep
-    imp = replace(prep.impact, restitution_cv=float(restitution),
-                  restitution_ct=float(restitution) ** 2, energy_gain=False, law="prescribed",
-                  validity="prescribed")
-    return replace(prep, impact=imp)
+    return PreparedMechanism.build(arch, impact)
 
 
 def used_restitution(config, arch) -> tuple[float, Any]:
@@ -237,9 +231,11 @@ def pulse_domains(ctx: Context, cv: float) -> dict:
     """Step and sine failure domains at restitution ``cv`` (FailureDomain objects)."""
     from archquake.domains import failure_domain
 
-    prep = prepared_mechanism(ctx.arch, ctx.config.impact, cv)
+    prep = prepared_mechanism(ctx.arch, ctx.config.impact)
+    prescribed = ctx.config.restitution is not None or cv != prep.restitution
     return {fam: failure_domain(prep, fam, ctx.mode.durations,
-                                settings=ctx.mode.domain_settings)
+                                settings=ctx.mode.domain_settings,
+                                restitution=cv if prescribed else None)
             for fam in ("step", "sine")}
 
 
@@ -308,7 +304,8 @@ def section_records(ctx: Context) -> StudyResult:
                        units=cfg.units)
     records = ctx.mode.records(suite.records)
     cv, _ = used_restitution(cfg, ctx.arch)
-    options = CaseOptions(restitution=max(cv, 1e-6))
+    # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
+    options = CaseOptions(restitution=cfg.restitution, impact=cfg.impact)
     store_path = ctx.out / "cache" / f"ida-{cfg.digest}-{'quick' if ctx.mode.quick else 'full'}.sqlite"
     store_path.parent.mkdir(parents=True, exist_ok=True)
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name} "
