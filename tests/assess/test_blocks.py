@@ -120,3 +120,14 @@ def test_asymmetric_block_file_gets_one_line_not_a_traceback(tmp_path):
     assert not res["verdict"]["certain"] and "not assessed" in res["verdict"]["text"]
     md = (tmp_path / "o" / "report.md").read_text()
     assert "## 3. Pulses" in md and "Not run: the arch is not symmetric" in md
+    # below lambda the arch does not rock: the statics decide, the refusal is only a note
+    from archquake.assess import load_config, run_assessment
+
+    low = tmp_path / "low"
+    low.mkdir()
+    _write_blocks(low / "arch.json", warp=0.05)
+    rep = run_assessment(load_config(_toml(low, "arch.json", site=0.05)), low / "o", quick=True)
+    assert rep.sections["static"].data["collapse_acceleration_g"] > 0.05
+    assert rep.verdict["level"] == "stands" and rep.verdict["certain"]
+    assert [w["serious"] for w in rep.sections["validity"].data["warnings"]
+            if w["key"] == "asymmetric"] == [False]

@@ -58,7 +58,9 @@ def test_interrupted_assessment_resumes_from_its_cache(tmp_path):
     cache = out / "cache"
     proc = subprocess.Popen([sys.executable, "-m", "archquake.cli.main", "assess", str(toml),
                              "--out", str(out), "--quick"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env=os.environ.copy())
+                            stderr=subprocess.PIPE, text=True, env=os.environ.copy(),
+                            # a shell's background job inherits SIGINT ignored: undo that
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     while not list(cache.glob("assess-arch-*.json")) and proc.poll() is None:
         assert time.monotonic() < deadline, "no section finished in 120 s"

@@ -513,7 +513,10 @@ def section_validity(ctx: Context) -> StudyResult:
 
     refusal = dynamics_refusal(ctx.arch)
     if refusal is not None:
-        warn("asymmetric", "the dynamic sections were not run", refusal)
+        # serious unless the site PGA is below lambda: then the arch does not rock at all
+        lam = ctx.prior.get("static", {}).get("collapse_acceleration_g", math.inf)
+        warn("asymmetric", "the dynamic sections were not run", refusal,
+             serious=ctx.site is None or ctx.site > lam)
     impact: dict[str, Any] = {"law": cfg.impact, "prescribed_restitution_cv": cfg.restitution}
     if refusal is not None:
         cv = cfg.restitution if cfg.restitution is not None else math.nan
