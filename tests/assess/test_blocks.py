@@ -131,3 +131,33 @@ def test_asymmetric_block_file_gets_one_line_not_a_traceback(tmp_path):
     assert rep.verdict["level"] == "stands" and rep.verdict["certain"]
     assert [w["serious"] for w in rep.sections["validity"].data["warnings"]
             if w["key"] == "asymmetric"] == [False]
+
+
+def test_study_file_takes_a_block_file_and_stores_its_cases(tmp_path):
+    """A study file's [arches] blocks (relative to the study file) builds the same ArchSpec as
+    the assessment's, and its cases go through the sweep into the store (whose input columns
+    have no radius for a block file: None, not a KeyError)."""
+    from archquake.sweeps import ResultStore, SerialExecutor, load_study, run_sweep
+
+    _write_blocks(tmp_path / "arch.json")
+    study = tmp_path / "s.toml"
+    study.write_text('[study]\nname = "s"\n[arches]\nblocks = "arch.json"\n'
+                     '[excitation]\ntype = "step"\nmagnitude_g = 0.3\nduration_s = 0.3\n'
+                     '[options]\nrestitution = 0.8\n')
+    st = load_study(study)
+    (case,) = st.cases
+    assert case.arch == ArchSpec(blocks=str(tmp_path / "arch.json"))
+    assert case.columns()["radius_m"] is None and case.columns()["density_kg_m3"] == 2000.0
+    with ResultStore(tmp_path / "s.sqlite") as store:
+        run_sweep(st.cases, store, executor=SerialExecutor())
+        rows = store.rows()
+    assert len(rows) == 1 and rows[0]["status"] == "ok"
+    study.write_text(study.read_text().replace('blocks = "arch.json"',
+                                               'blocks = "arch.json"\nvoussoirs = 15'))
+    with pytest.raises(StudyFileError, match="arches.blocks is invalid: blocks .* does not go "
+                                             "with the shape keys voussoirs"):
+        load_study(study)
+    study.write_text(study.read_text().replace('blocks = "arch.json"\nvoussoirs = 15',
+                                               'blocks = "gone.json"'))
+    with pytest.raises(StudyFileError, match="arches.blocks names 'gone.json', which does not"):
+        load_study(study)

@@ -534,7 +534,7 @@ class Case:
                 "record_sha256": exc.file_sha256, "record_units": exc.units, "scale": exc.scale,
                 "restitution": self.options.restitution, "t_end_s": self.options.t_end_s,
                 "g_m_s2": self.options.g}
-        return {name: cols[name] for name in INPUT_COLUMNS}
+        return {name: cols.get(name) for name in INPUT_COLUMNS}
 
 
 #: Flat input columns of the store, in order, with their SQLite types.
