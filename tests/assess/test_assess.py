@@ -150,3 +150,49 @@ def test_rerun_is_served_from_the_cache(bridge):
     assert again.verdict == rep.verdict
     assert json.loads((out / "results.json").read_text())["sections"]["static"] == \
         res["sections"]["static"] | {"cached": True}
+
+
+def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
+    """P(collapse | site PGA) of the records at c_v = 0.7, 0.8 and 0.9: three values, the middle
+    one the records section's own; the c_v = 0.9 one equal to the library's IDA of the same four
+    records run here again (serially, a fresh store) and its first-collapse fit at 0.15 g.
+    Physics: a larger c_v keeps more kinetic energy through each impact, so P(collapse) should
+    not fall as c_v grows; where it does, the validity section must say so (warning
+    restitution_ida_order), and only then."""
+    from archquake.ground.suites import load_suite
+    from archquake.ida import incremental_dynamic_analysis
+    from archquake.ida.fragility import fit_first_collapse
+    from archquake.sweeps import CaseOptions, ResultStore, SerialExecutor
+
+    _, res, out, _ = bridge
+    va = res["sections"]["validity"]
+    ida = va["restitution_sensitivity_ida"]
+    assert [round(e["restitution_cv"], 6) for e in ida] == [0.7, 0.8, 0.9]
+    rec = res["sections"]["records"]
+    assert ida[1]["p_collapse_at_site"] == rec["p_collapse_at_site"]
+    assert ida[1]["fragility_median_g"] == rec["fragility"]["first_collapse"]["median_g"]
+    ps = [e["p_collapse_at_site"] for e in ida]
+    assert all(p is not None and 0.0 <= p <= 1.0 for p in ps)
+    ordered = ps[0] <= ps[1] <= ps[2]
+    keys = [w["key"] for w in va["warnings"]]
+    assert ordered or "restitution_ida_order" in keys
+    assert ordered != ("restitution_ida_order" in keys)
+    for e in ida:  # each P is a lognormal CDF at the site PGA: below 1/2 iff the median is above
+        assert (e["p_collapse_at_site"] < 0.5) == (e["fragility_median_g"] > 0.15)
+    cfg = load_config(EXAMPLES / "bridge.toml")
+    suite = load_suite(cfg.suite)
+    records = Mode(True).records(suite.records)
+    assert [r.name for r in records] == rec["records_used"]
+    with ResultStore(tmp_path / "ida.sqlite") as store:
+        again = incremental_dynamic_analysis(cfg.arch, records, "pga", store,
+                                             options=CaseOptions(restitution=0.9),
+                                             executor=SerialExecutor(), workers=1,
+                                             **Mode(True).ida)
+    fit = fit_first_collapse(list(again.first_collapse_levels), ceiling=again.ceiling,
+                             bootstrap=0)
+    assert ida[2]["p_collapse_at_site"] == pytest.approx(float(fit.probability(0.15)), rel=1e-9)
+    md = (out / "report.md").read_text()
+    assert "Restitution sensitivity of the records" in md
+    for e in ida:
+        assert f"{e['p_collapse_at_site']:.3f}" in md
+    assert "P(collapse) of the records is" in res["verdict"]["text"]

@@ -12,6 +12,8 @@ computation.
     depth = 1.0             # m (default 1)
     friction = 0.6          # friction coefficient of the joints (required)
     # piers: pier_height, pier_width (m), pier_courses
+    # or a surveyed arch: blocks = "arch.json" (.json, .csv or .dxf, relative to this file),
+    # with only depth, density and friction beside it
 
     [seismic]
     site_pga_g = 0.15                # the site's peak ground acceleration, g
@@ -42,7 +44,7 @@ from archquake.errors import ArchquakeError, StudyFileError
 #: Keys of [arch]: the study files' arch keys (one home: archquake.sweeps.study) and friction.
 ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "density", "shape",
              "span", "rise", "thickness", "joints", "pier_height", "pier_width", "pier_courses",
-             "friction")
+             "blocks", "friction")
 SEISMIC_KEYS = ("site_pga_g", "suite", "units")
 OPTION_KEYS = ("impact", "restitution", "dem")
 TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS}
@@ -162,7 +164,16 @@ def parse_config(data: dict, *, source: str = "assessment",
         raise _fail(source, "[arch] friction", f"must be in (0, 10], got {friction:g}")
     kwargs: dict[str, Any] = {}
     for key, value in arch_t.items():
-        if key in _WORDS:
+        if key == "blocks":
+            if not isinstance(value, str) or not value:
+                raise _fail(source, "[arch] blocks", f"must be the path of a .json, .csv or "
+                                                     f".dxf file, got {value!r}")
+            full = (base_dir / value).resolve()
+            if not full.is_file():
+                raise _fail(source, "[arch] blocks", f"names {value!r}, which does not exist "
+                                                     "(paths are relative to the file)")
+            kwargs[key] = str(full)
+        elif key in _WORDS:
             if not isinstance(value, str):
                 raise _fail(source, f"[arch] {key}", f"must be a word, got {value!r}")
             kwargs[key] = value
@@ -177,6 +188,8 @@ def parse_config(data: dict, *, source: str = "assessment",
         arch = spec.build()
     except ArchquakeError as exc:
         text = str(exc)
+        if "blocks" in kwargs and text.startswith(f"--blocks {kwargs['blocks']}: "):
+            text = text[len(f"--blocks {kwargs['blocks']}: "):]  # read_blocks names the file
         bad = next((k for k in kwargs if text.startswith(k)), None)
         raise _fail(source, f"[arch] {bad}" if bad else "[arch]", f"is invalid: {text}") from None
     from archquake.limit import stands

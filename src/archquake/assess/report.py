@@ -32,7 +32,8 @@ def elements(rep) -> list[tuple]:
                        ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
                              f"computed in {sum(r.seconds for r in rep.sections.values()):.0f} s"
                              f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
-                             "Sections: the arch, static capacity, pulses"
+                             "Sections: the arch, static capacity"
+                             + (", pulses" if "pulses" in s else "")
                              + (", records" if "records" in s else "")
                              + (", the DEM check" if "dem" in s else "")
                              + ", validity, verdict.")]
@@ -57,8 +58,10 @@ def elements(rep) -> list[tuple]:
     rows = [["collapse acceleration lambda", f"{st['collapse_acceleration_g']:.4f} g"],
             ["hinges (load towards +x)", hinges],
             ["thickness t", f"{st['thickness_m']:.3f} m"],
-            ["minimum thickness t_min (same shape)", f"{st['min_thickness_m']:.4f} m"],
-            ["geometric factor of safety t / t_min", f"{st['geometric_safety_factor']:.3f}"],
+            ["minimum thickness t_min (same shape)",
+             "not defined: " + str(st.get("min_thickness_note")) if st["min_thickness_m"] is None
+             else f"{st['min_thickness_m']:.4f} m"],
+            ["geometric factor of safety t / t_min", _f(st["geometric_safety_factor"])],
             ["static friction demand max |V|/N", f"{st['static_friction_demand']:.3f} (joint "
                                                    f"{st['static_friction_joint']})"],
             ["friction coefficient given", f"{st['friction_coefficient']:g}"],
@@ -69,7 +72,29 @@ def elements(rep) -> list[tuple]:
     el.append(("table", ["quantity", "value"], rows))
     el.append(("fig", "static.png", rep.sections["static"].figures[0].caption))
 
-    pu = s["pulses"]
+    pu = s.get("pulses")
+    if pu is None:
+        el.append(("h2", "pulses", "3. Pulses"))
+        el.append(("p", "Not run: " + str(_refusal(s)) + "."))
+    else:
+        _pulses(el, rep, cfg, pu)
+    _records_dem_validity(el, rep, cfg, s, pu)
+    el.append(("h2", "verdict", "7. Verdict"))
+    el.append(("verdict", v["text"], v["certain"]))
+    el.append(("table", ["number", "value"], [[k, _f(x) if not isinstance(x, list) else
+                                               ", ".join(_f(y) for y in x)]
+                                              for k, x in v["numbers"].items()]))
+    el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
+                    "between the blocks; the ground moves horizontally in the arch's plane."))
+    return el
+
+
+def _refusal(s: dict) -> str | None:
+    return next((w["meaning"] for w in s["validity"]["warnings"] if w["key"] == "asymmetric"),
+                None)
+
+
+def _pulses(el: list, rep, cfg, pu: dict) -> None:
     el.append(("h2", "pulses", "3. Pulses"))
     el.append(("p", f"Failure domains of the step and the one-cycle sine pulse, c_v = "
                     f"{pu['restitution_cv']:.3g}. Below the governing boundary the arch "
@@ -98,6 +123,9 @@ def elements(rep) -> list[tuple]:
     el.append(("ul", items))
     for f in rep.sections["pulses"].figures:
         el.append(("fig", f.file, f.caption))
+
+
+def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
 
     if "records" in s:
         r = s["records"]
@@ -165,15 +193,20 @@ def elements(rep) -> list[tuple]:
     va = s["validity"]
     el.append(("h2", "validity", "6. Validity"))
     imp = va["impact"]
-    el.append(("p", f"Impact law '{imp['law']}': c_v = {imp['law_restitution_cv']:.4g}, c_T = "
-                    f"{imp['law_restitution_ct']:.4g}, validity '{imp['law_validity']}'"
-               + (", creates energy" if imp["law_energy_gain"] else "")
-               + (f"; prescribed c_v = {imp['prescribed_restitution_cv']:g} used"
-                  if imp["prescribed_restitution_cv"] is not None else "")
-               + f". c_v used by every analytical time history: {imp['used_restitution_cv']:.4g}."))
-    items = [(f"{w['warning']}: {w['meaning']}.", w["serious"]) for w in va["warnings"]]
-    el.append(("ul", items or ["no warning raised"]))
-    if va["restitution_sensitivity"]:
+    if "law_restitution_cv" not in imp:
+        el.append(("p", f"Impact law '{imp['law']}': not evaluated (no time history is run)."))
+    else:
+        el.append(("p", f"Impact law '{imp['law']}': c_v = {imp['law_restitution_cv']:.4g}, "
+                        f"c_T = "
+                        f"{imp['law_restitution_ct']:.4g}, validity '{imp['law_validity']}'"
+                   + (", creates energy" if imp["law_energy_gain"] else "")
+                   + (f"; prescribed c_v = {imp['prescribed_restitution_cv']:g} used"
+                      if imp["prescribed_restitution_cv"] is not None else "")
+                   + ". c_v used by every analytical time history: "
+                   + f"{imp['used_restitution_cv']:.4g}."))
+    warned: list = [(f"{w['warning']}: {w['meaning']}.", w["serious"]) for w in va["warnings"]]
+    el.append(("ul", warned or ["no warning raised"]))
+    if va["restitution_sensitivity"] and pu is not None:
         rows = [[f"{e['restitution_cv']:.3g}"] + [
             f"{_f(e[f]['min_collapse_g'])} g, {'collapses' if e[f]['collapses_at_site'] else 'survives'}"
             for f in ("step", "sine")] for e in va["restitution_sensitivity"]]
@@ -184,15 +217,17 @@ def elements(rep) -> list[tuple]:
         el.append(("p", "Restitution sensitivity: the lowest collapse magnitude of each pulse "
                         "family and the verdict at the site PGA, at c_v and c_v +- 0.1."))
         el.append(("table", ["c_v", "step", "sine"], rows))
-
-    el.append(("h2", "verdict", "7. Verdict"))
-    el.append(("verdict", v["text"], v["certain"]))
-    el.append(("table", ["number", "value"], [[k, _f(x) if not isinstance(x, list) else
-                                               ", ".join(_f(y) for y in x)]
-                                              for k, x in v["numbers"].items()]))
-    el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
-                    "between the blocks; the ground moves horizontally in the arch's plane."))
-    return el
+    ida = va.get("restitution_sensitivity_ida", [])
+    if ida:
+        el.append(("p", f"Restitution sensitivity of the records: the IDA of the same records "
+                        f"rerun at c_v +- 0.1 (clipped to [0, 1]), P(collapse | PGA = "
+                        f"{cfg.site_pga_g:g} g) from each first-collapse fit."))
+        el.append(("table", ["c_v", "P(collapse | site PGA)", "fragility median (g)",
+                             "records collapsing"],
+                   [[f"{e['restitution_cv']:.3g}" + (" (used)" if e["section"] == "records"
+                                                     else ""),
+                     _f(e["p_collapse_at_site"]), _f(e["fragility_median_g"]),
+                     e["records_collapsing"]] for e in ida]))
 
 
 def write_markdown(rep, path: Path) -> Path:

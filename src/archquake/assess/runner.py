@@ -22,7 +22,7 @@ from pathlib import Path
 from archquake import __version__
 from archquake._json import to_jsonable
 from archquake.assess.config import AssessConfig
-from archquake.assess.sections import SECTIONS, Context, Mode, verdict
+from archquake.assess.sections import SECTIONS, Context, Mode, dynamics_refusal, verdict
 from archquake.reproduce.core import StudyResult
 from archquake.reproduce.runner import _load_cached, _store
 
@@ -58,13 +58,17 @@ class Assessment:
         })
 
 
-def section_names(config: AssessConfig) -> list[str]:
-    """The sections this input calls for (records only with a suite, the DEM only if asked)."""
+def section_names(config: AssessConfig, arch=None) -> list[str]:
+    """The sections this input calls for (records only with a suite, the DEM only if asked; no
+    pulses, records or DEM for an ``arch`` the rocking model cannot take:
+    :func:`~archquake.assess.sections.dynamics_refusal`, reported in the validity section)."""
     names = [n for n, _ in SECTIONS]
     if config.suite is None:
         names.remove("records")
     if not config.dem:
         names.remove("dem")
+    if arch is not None and dynamics_refusal(arch) is not None:
+        names = [n for n in names if n not in ("pulses", "records", "dem")]
     return names
 
 
@@ -93,7 +97,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     figures.mkdir(parents=True, exist_ok=True)
     arch = config.build_arch()
     funcs = dict(SECTIONS)
-    names = section_names(config)
+    names = section_names(config, arch)
     results: dict[str, StudyResult] = {}
     cached: dict[str, bool] = {}
     for k, name in enumerate(names, 1):

@@ -11,7 +11,8 @@ Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg`
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -106,24 +107,60 @@ def used_restitution(config, arch) -> tuple[float, Any]:
     return float(cv), own
 
 
+def dynamics_refusal(arch) -> str | None:
+    """Why the time histories (pulses, records, DEM check) cannot run on ``arch``, or None.
+
+    The analytical model switches to the mirror-image mechanism after each impact, which exists
+    only for a symmetric chain (:attr:`VoussoirChain.symmetric`, docs/geometry.md); a surveyed
+    asymmetric arch gets its static capacity and this one-line reason instead."""
+    if getattr(arch, "symmetric", True):
+        return None
+    return ("the arch is not symmetric about x = 0 (blocks from a file): the rocking model "
+            "switches to the mirror-image mechanism after each impact, which exists only for a "
+            "symmetric arch, so the pulse, record and DEM sections are not run; the static "
+            "capacity (section 2) stands")
+
+
 def _num(x) -> float | None:
     return float(x) if x is not None and math.isfinite(float(x)) else None
 
 
-def process_pool(workers: int):
+@contextmanager
+def process_pool(workers: int) -> Iterator[Any]:
     """A process pool started by ``spawn``, whose workers end with this process
     (:func:`archquake.sweeps.runner.process_pool`'s watch). Not ``fork``: by the time the records
     run, this process has run the domains' threaded kernels, and a forked child of a process
-    that used an OpenMP/TBB thread pool can crash in its own parallel code."""
+    that used an OpenMP/TBB thread pool can crash in its own parallel code.
+
+    The workers ignore SIGINT (a Ctrl-C reaches the whole process group; this process alone
+    turns it into one line and exit status 130), and an exception here, a KeyboardInterrupt
+    included, cancels the queued work and ends the workers at once instead of waiting for
+    them: what they finished is already in the result store, from which a rerun resumes."""
     import multiprocessing
     import os
     from concurrent.futures import ProcessPoolExecutor
 
+    pool = ProcessPoolExecutor(max_workers=workers,
+                               mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_quiet_worker, initargs=(os.getpid(),))
+    try:
+        yield pool
+    except BaseException:
+        for proc in list((getattr(pool, "_processes", None) or {}).values()):
+            proc.terminate()
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _quiet_worker(parent: int) -> None:
+    """Worker initializer: ignore SIGINT, end when ``parent`` ends."""
+    import signal
+
     from archquake.sweeps.runner import _watch_parent
 
-    return ProcessPoolExecutor(max_workers=workers,
-                               mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_watch_parent, initargs=(os.getpid(),))
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _watch_parent(parent)
 
 
 def workers() -> int:
@@ -181,12 +218,18 @@ def section_arch(ctx: Context) -> StudyResult:
 
 # ----------------------------------------------------------------------------- 2. statics
 def section_static(ctx: Context) -> StudyResult:
+    from archquake.errors import InvalidParameterError
     from archquake.limit import geometric_safety_factor, limit_analysis, min_thickness
     from archquake.plotting.arch import save_limit_analysis
 
     la = limit_analysis(ctx.arch)
-    t_min = min_thickness(ctx.arch)
-    fos = geometric_safety_factor(ctx.arch)
+    try:
+        t_min: float | None = min_thickness(ctx.arch)
+        fos: float | None = geometric_safety_factor(ctx.arch)
+        t_min_note = None
+    except InvalidParameterError as exc:  # blocks from a file: no ring thickness to vary
+        t_min = fos = None
+        t_min_note = str(exc)
     save_limit_analysis(la, ctx.figures / "static.png")
     demand = la.min_friction
     mu = ctx.config.friction
@@ -197,6 +240,7 @@ def section_static(ctx: Context) -> StudyResult:
         "thickness_m": float(ctx.arch.thickness),
         "min_thickness_m": t_min,
         "geometric_safety_factor": fos,
+        "min_thickness_note": t_min_note,
         "static_friction_demand": demand,
         "static_friction_joint": la.min_friction_joint,
         "friction_coefficient": mu,
@@ -289,32 +333,51 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
     return float(lo), float(hi)
 
 
-def section_records(ctx: Context) -> StudyResult:
-    from matplotlib.figure import Figure as MplFigure
+def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None):
+    """The IDA in PGA of the mode's records (all, or four in quick mode) at ``restitution``
+    (None: the impact law's own), its runs kept in a SQLite store under ``out/cache`` named by
+    the input's digest, the restitution and the mode (so an interrupted run resumes them).
 
+    Returns
+    -------
+    (suite, records, IDAResult, fits)
+        ``fits`` as :func:`archquake.ida.fragility.fragility_of` gives them.
+    """
     from archquake.ground.suites import load_suite
     from archquake.ida import incremental_dynamic_analysis
     from archquake.ida.fragility import fragility_of
-    from archquake.plotting.figures import save
-    from archquake.plotting.ida import plot_fragility, plot_ida_curves
     from archquake.sweeps import CaseOptions, ResultStore
 
     cfg = ctx.config
     suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
                        units=cfg.units)
     records = ctx.mode.records(suite.records)
-    cv, _ = used_restitution(cfg, ctx.arch)
-    # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
-    options = CaseOptions(restitution=cfg.restitution, impact=cfg.impact)
-    store_path = ctx.out / "cache" / f"ida-{cfg.digest}-{'quick' if ctx.mode.quick else 'full'}.sqlite"
+    options = CaseOptions(restitution=restitution, impact=cfg.impact)
+    tag = "" if restitution == cfg.restitution else f"-cv{restitution:.4g}"
+    store_path = (ctx.out / "cache" /
+                  f"ida-{cfg.digest}{tag}-{'quick' if ctx.mode.quick else 'full'}.sqlite")
     store_path.parent.mkdir(parents=True, exist_ok=True)
-    ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name} "
-            f"(store {store_path.name})")
+    ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
+            + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
     n = workers()
     with ResultStore(store_path) as store, process_pool(n) as executor:
         res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                            executor=executor, workers=n, **ctx.mode.ida)
-    fits = fragility_of(res, rng=np.random.default_rng(0), bootstrap=ctx.mode.bootstrap)
+    fits = fragility_of(res, rng=np.random.default_rng(0),
+                        bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
+    return suite, records, res, fits
+
+
+def section_records(ctx: Context) -> StudyResult:
+    from matplotlib.figure import Figure as MplFigure
+
+    from archquake.plotting.figures import save
+    from archquake.plotting.ida import plot_fragility, plot_ida_curves
+
+    cfg = ctx.config
+    cv, _ = used_restitution(cfg, ctx.arch)
+    # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
+    suite, records, res, fits = run_ida(ctx, cfg.restitution)
     fig = MplFigure(figsize=(12, 4.8))
     a1, a2 = fig.subplots(1, 2)
     plot_ida_curves(res, a1)
@@ -443,31 +506,41 @@ def section_dem(ctx: Context) -> StudyResult:
 # ----------------------------------------------------------------------------- 6. validity
 def section_validity(ctx: Context) -> StudyResult:
     cfg = ctx.config
-    cv, own = used_restitution(cfg, ctx.arch)
     warnings: list[dict] = []
 
     def warn(key: str, text: str, means: str, serious: bool = True) -> None:
         warnings.append({"key": key, "warning": text, "meaning": means, "serious": serious})
 
-    impact = {"law": cfg.impact, "law_restitution_cv": own.restitution_cv,
-              "law_restitution_ct": own.restitution_ct, "law_validity": own.validity,
-              "law_energy_gain": own.energy_gain, "prescribed_restitution_cv": cfg.restitution,
-              "used_restitution_cv": cv}
-    law_outside = own.validity == "outside" or own.energy_gain or own.restitution_cv < 0
-    if law_outside and cfg.restitution is None:
-        warn("impact_law", f"the {cfg.impact} impact law is outside its validity for this arch "
-             f"(c_v = {own.restitution_cv:.3g}, c_T = {own.restitution_ct:.3g}, validity "
-             f"'{own.validity}')",
-             "the rocking after the first impact is not trustworthy; prescribe a restitution "
-             "or use the chain law")
-    elif law_outside:
-        warn("impact_law", f"the {cfg.impact} impact law gives c_v = {own.restitution_cv:.3g} "
-             f"(validity '{own.validity}') for this arch; a prescribed c_v = {cv:g} is used",
-             "the result depends on the prescribed restitution: see the sensitivity below",
-             serious=False)
-    elif own.validity == "near_four_hinge":
-        warn("impact_law", f"the {cfg.impact} impact law is near the edge of its validity "
-             "(near_four_hinge)", "the post-impact mechanism is approximate", serious=False)
+    refusal = dynamics_refusal(ctx.arch)
+    if refusal is not None:
+        # serious unless the site PGA is below lambda: then the arch does not rock at all
+        lam = ctx.prior.get("static", {}).get("collapse_acceleration_g", math.inf)
+        warn("asymmetric", "the dynamic sections were not run", refusal,
+             serious=ctx.site is None or ctx.site > lam)
+    impact: dict[str, Any] = {"law": cfg.impact, "prescribed_restitution_cv": cfg.restitution}
+    if refusal is not None:
+        cv = cfg.restitution if cfg.restitution is not None else math.nan
+    else:
+        cv, own = used_restitution(cfg, ctx.arch)
+        impact.update({"law_restitution_cv": own.restitution_cv,
+                       "law_restitution_ct": own.restitution_ct, "law_validity": own.validity,
+                       "law_energy_gain": own.energy_gain, "used_restitution_cv": cv})
+        law_outside = own.validity == "outside" or own.energy_gain or own.restitution_cv < 0
+        if law_outside and cfg.restitution is None:
+            warn("impact_law", f"the {cfg.impact} impact law is outside its validity for this "
+                 f"arch (c_v = {own.restitution_cv:.3g}, c_T = {own.restitution_ct:.3g}, validity "
+                 f"'{own.validity}')",
+                 "the rocking after the first impact is not trustworthy; prescribe a restitution "
+                 "or use the chain law")
+        elif law_outside:
+            warn("impact_law", f"the {cfg.impact} impact law gives c_v = "
+                 f"{own.restitution_cv:.3g} (validity '{own.validity}') for this arch; a "
+                 f"prescribed c_v = {cv:g} is used",
+                 "the result depends on the prescribed restitution: see the sensitivity below",
+                 serious=False)
+        elif own.validity == "near_four_hinge":
+            warn("impact_law", f"the {cfg.impact} impact law is near the edge of its validity "
+                 "(near_four_hinge)", "the post-impact mechanism is approximate", serious=False)
     static = ctx.prior.get("static", {})
     if static.get("sliding"):
         warn("sliding", f"the joints need a friction coefficient of "
@@ -497,8 +570,8 @@ def section_validity(ctx: Context) -> StudyResult:
                  f"{100 * c['unconservative_by_at_least']:.0f} %")
     # restitution sensitivity: the pulse verdict at c_v +- 0.1
     sens = []
-    if ctx.site is not None:
-        base = ctx.prior.get("pulses", {})
+    if ctx.site is not None and "pulses" in ctx.prior:
+        base = ctx.prior["pulses"]
         for dcv in (-0.1, 0.1):
             c2 = min(max(cv + dcv, 0.0), 1.0)
             if c2 == cv:
@@ -518,9 +591,65 @@ def section_validity(ctx: Context) -> StudyResult:
                  f"(at c_v = {', '.join(format(e['restitution_cv'], '.2g') for e in changed)})",
                  "the verdict rests on the restitution, which the rigid-block model cannot "
                  "fix: treat it as uncertain")
+    ida_sens = _ida_sensitivity(ctx, cv, warn) if "p_collapse_at_site" in rec else []
     data = {"impact": impact, "warnings": warnings, "restitution_sensitivity": sens,
+            "restitution_sensitivity_ida": ida_sens,
             "serious": any(w["serious"] for w in warnings)}
     return StudyResult("validity", "6. Validity", (), (), (), data)
+
+
+def _ida_sensitivity(ctx: Context, cv: float, warn) -> list[dict]:
+    """P(collapse | site PGA) of the records at c_v - 0.1, c_v and c_v + 0.1 (clipped to
+    [0, 1]; the same records and IDA settings as section 4, whose value is the middle one).
+
+    A larger c_v keeps more energy through each impact, so P(collapse) should not fall as c_v
+    grows; where it does, the warning says why (the IDA's first-collapse levels are not
+    monotonic in c_v: a different c_v shifts the rocking's phase against the record's pulses,
+    as the non-monotonic bands of the pulse domains show). A verdict level that changes within
+    c_v +- 0.1 is a serious warning, as for the pulses."""
+    rec = ctx.prior["records"]
+    out = [{"restitution_cv": cv, "p_collapse_at_site": rec["p_collapse_at_site"],
+            "fragility_median_g": rec["fragility"]["first_collapse"]["median_g"],
+            "records_collapsing": rec["records_collapsing"], "section": "records"}]
+    for dcv in (-0.1, 0.1):
+        c2 = min(max(cv + dcv, 0.0), 1.0)
+        if c2 == cv:
+            continue
+        _, _, res, fits = run_ida(ctx, c2, bootstrap=0)
+        fit = fits["first_collapse"]
+        out.append({"restitution_cv": c2,
+                    "p_collapse_at_site": None if fit is None else float(
+                        fit.probability(ctx.site)),
+                    "fragility_median_g": None if fit is None else float(fit.median),
+                    "records_collapsing": int(np.sum(np.isfinite(res.first_collapse_levels))),
+                    "section": "validity"})
+    out.sort(key=lambda e: e["restitution_cv"])
+    ps = [e["p_collapse_at_site"] for e in out]
+    if any(p is None for p in ps):
+        warn("restitution_ida", "no first-collapse fit at c_v = " + ", ".join(
+             format(e["restitution_cv"], ".2g") for e in out if e["p_collapse_at_site"] is None),
+             "P(collapse) cannot be compared across c_v there", serious=False)
+        return out
+    if any(b < a - 1e-12 for a, b in zip(ps, ps[1:], strict=False)):
+        warn("restitution_ida_order", "P(collapse) at the site PGA is not non-decreasing in c_v "
+             "(" + ", ".join(f"{p:.2f} at c_v = {e['restitution_cv']:.2g}"
+                             for p, e in zip(ps, out, strict=True)) + ")",
+             "a larger c_v keeps more energy through each impact, yet here it changes the "
+             "rocking's phase against the records' pulses (as the domains' non-monotonic bands "
+             "do), and with few records each first collapse moves the fit", serious=False)
+    levels = {_p_level(p) for p in ps}
+    if len(levels) > 1:
+        warn("restitution_ida", "the records' verdict at the site PGA changes within c_v +- 0.1 "
+             "(" + ", ".join(f"P = {p:.2f} at c_v = {e['restitution_cv']:.2g}"
+                             for p, e in zip(ps, out, strict=True)) + ")",
+             "the probability of collapse rests on the restitution, which the rigid-block model "
+             "cannot fix: treat it as uncertain")
+    return out
+
+
+def _p_level(p: float) -> str:
+    """The verdict's level from P(collapse | site PGA) (one rule for verdict and validity)."""
+    return "collapse likely" if p >= 0.5 else "at risk" if p >= 0.1 else "rocks but survives"
 
 
 # ----------------------------------------------------------------------------- 7. verdict
@@ -545,6 +674,11 @@ def verdict(config, prior: dict) -> dict:
         parts.append(f"The site PGA ({site:g} g) is below the static collapse acceleration "
                      f"lambda = {lam:.3f} g: the arch moves rigidly with the ground and does "
                      "not even start to rock.")
+    elif "pulses" not in prior:
+        level = "rocks: dynamics not assessed"
+        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+                     f"acceleration lambda = {lam:.3f} g: the arch rocks, and whether it "
+                     "collapses was not assessed (the dynamic sections were not run).")
     else:
         parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
                      f"acceleration lambda = {lam:.3f} g: the arch rocks; whether it collapses "
@@ -571,8 +705,7 @@ def verdict(config, prior: dict) -> dict:
             parts.append(f"Under the {rec['suite']} records scaled to the site PGA the "
                          f"probability of collapse is {p:.2f}{ci_text}, fragility median "
                          f"{rec['fragility']['first_collapse']['median_g']:.3f} g.")
-            level = ("collapse likely" if p >= 0.5 else "at risk" if p >= 0.1
-                     else "rocks but survives")
+            level = _p_level(p)
         else:
             level = "at risk" if pulses_collapse else "rocks but survives"
     imp = val.get("impact", {})
@@ -588,6 +721,10 @@ def verdict(config, prior: dict) -> dict:
             cvs = " and ".join(format(e["restitution_cv"], ".2g") for e in sens)
             text += (f"; the pulse verdict is the same at c_v = {cvs}" if same else
                      f"; the pulse verdict changes at c_v = {cvs}")
+        ida = val.get("restitution_sensitivity_ida", [])
+        if len(ida) > 1 and all(e["p_collapse_at_site"] is not None for e in ida):
+            text += ("; P(collapse) of the records is " + ", ".join(
+                f"{e['p_collapse_at_site']:.2f} at c_v = {e['restitution_cv']:.2g}" for e in ida))
         parts.append(text + ".")
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
@@ -605,5 +742,6 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("arch", section_arch), ("static", section_static), ("pulses", section_pulses),
     ("records", section_records), ("dem", section_dem), ("validity", section_validity))
 
-__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "prepared_mechanism",
+__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal", "prepared_mechanism",
+           "run_ida",
            "strong_motion_end", "used_restitution", "verdict"]

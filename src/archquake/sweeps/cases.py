@@ -98,6 +98,13 @@ class ArchSpec:
         Piers under the springings, m (both or neither).
     pier_courses : int
         Courses in each pier (default 1).
+    blocks : str, optional
+        A surveyed arch instead of a shape: the path of a .json, .csv or .dxf block file
+        (:func:`archquake.geometry.survey.read_blocks`, the one reader), with only ``depth`` and
+        ``density`` beside it. It enters the case id through the file's name and the SHA-256 of
+        its bytes (``blocks_sha256``), not its directory, as a record file does.
+    blocks_sha256 : str, optional
+        SHA-256 of the block file's bytes; computed from ``blocks`` when omitted.
 
     Examples
     --------
@@ -122,10 +129,19 @@ class ArchSpec:
     pier_height: float | None = None
     pier_width: float | None = None
     pier_courses: int = 1
+    blocks: str | None = None
+    blocks_sha256: str | None = field(default=None, compare=False)
+
+    #: Keys that describe a shape, which a block file replaces.
+    SHAPE_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "span", "rise",
+                  "thickness", "pier_height", "pier_width")
 
     def __post_init__(self) -> None:
         from archquake.geometry.shapes import JOINTS, SHAPES
 
+        if self.blocks is not None:
+            self._check_blocks()
+            return
         if self.voussoirs is None:
             raise InvalidParameterError("voussoirs is required (3 to 2000)")
         shape = str(self.shape).replace("_", "-").lower()
@@ -163,6 +179,30 @@ class ArchSpec:
             _set(self, "pier_width", require_positive("pier_width", self.pier_width, "m"))
         _set(self, "pier_courses", require_int("pier_courses", self.pier_courses, 1, 500))
 
+    def _check_blocks(self) -> None:
+        """A block file: no shape keys beside it (one line naming them), depth and density in
+        range, the file's SHA-256 taken once."""
+        if not isinstance(self.blocks, str) or not self.blocks:
+            raise InvalidParameterError("blocks must be the path of a .json, .csv or .dxf file")
+        mixed = [k for k in self.SHAPE_KEYS if getattr(self, k) is not None]
+        mixed += [k for k, default in (("shape", "circular"), ("joints", "radial"),
+                                       ("pier_courses", 1)) if getattr(self, k) != default]
+        if mixed:
+            raise InvalidParameterError(f"blocks (a surveyed arch) does not go with the shape "
+                                        f"keys {', '.join(mixed)}: give the block file or a "
+                                        "shape, not both")
+        _set(self, "depth", require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m",
+                                          low_open=False, high_open=False))
+        _set(self, "density", require_range("density", self.density, MIN_DENSITY, MAX_DENSITY,
+                                            "kg/m^3", low_open=False, high_open=False))
+        if self.blocks_sha256 is None:
+            try:
+                digest = hashlib.sha256(Path(self.blocks).read_bytes()).hexdigest()
+            except OSError as exc:
+                raise InvalidParameterError(f"blocks: cannot read {self.blocks!r} "
+                                            f"({exc.strerror})") from None
+            _set(self, "blocks_sha256", digest)
+
     @property
     def _circular_by_radius(self) -> bool:
         return self.radius is not None
@@ -174,6 +214,10 @@ class ArchSpec:
         from archquake.geometry.shapes import circular, shaped
 
         arch: VoussoirChain
+        if self.blocks is not None:
+            from archquake.geometry.survey import read_blocks
+
+            return read_blocks(self.blocks, depth=self.depth, density=self.density)
         if self._circular_by_radius:
             assert (self.radius is not None and self.thickness_ratio is not None  # __post_init__
                     and self.embrace_deg is not None and self.voussoirs is not None)
@@ -200,6 +244,9 @@ class ArchSpec:
         radial joints and no piers (so the case ids of existing studies never change), and the
         shape's keys otherwise."""
         out: dict[str, Any]
+        if self.blocks is not None:
+            return {"blocks": Path(self.blocks).name, "blocks_sha256": self.blocks_sha256,
+                    "depth_m": self.depth, "density_kg_m3": self.density}
         if self._circular_by_radius:
             out = {"radius_m": self.radius, "thickness_ratio": self.thickness_ratio,
                    "embrace_deg": self.embrace_deg, "voussoirs": self.voussoirs,
@@ -487,7 +534,7 @@ class Case:
                 "record_sha256": exc.file_sha256, "record_units": exc.units, "scale": exc.scale,
                 "restitution": self.options.restitution, "t_end_s": self.options.t_end_s,
                 "g_m_s2": self.options.g}
-        return {name: cols[name] for name in INPUT_COLUMNS}
+        return {name: cols.get(name) for name in INPUT_COLUMNS}
 
 
 #: Flat input columns of the store, in order, with their SQLite types.

@@ -16,6 +16,8 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     # or any shape (docs/geometry.md): shape = "pointed" (a word or a list of words),
     # span = 10, rise = 7, thickness = 0.8 (m), joints = "radial" | "vertical",
     # pier_height = 4, pier_width = 1.5 (m), pier_courses = 3
+    # or surveyed arches: blocks = "survey.json" (or a list of .json/.csv/.dxf files, relative
+    # to this file), with only depth and density beside it (voussoirs is then not asked for)
 
     [excitation]                        # or several [[excitation]] blocks, concatenated
     type = "step"                       # "step", "sine" or "record"
@@ -62,9 +64,9 @@ _STUDY_KEYS = {"name": True, "model": False}
 _ARCH_KEYS = {"radius": False, "thickness_ratio": False, "embrace_deg": False, "voussoirs": True,
               "depth": False, "density": False, "shape": False, "span": False, "rise": False,
               "thickness": False, "joints": False, "pier_height": False, "pier_width": False,
-              "pier_courses": False}
+              "pier_courses": False, "blocks": False}
 #: Keys of [arches] whose values are words (a word or a list of words), not numbers.
-_ARCH_WORDS = ("shape", "joints")
+_ARCH_WORDS = ("shape", "joints", "blocks")
 _EXCITATION_KEYS = {
     ExcitationKind.STEP: {"magnitude_g": True, "duration_s": True, "direction": False},
     ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False},
@@ -162,8 +164,11 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
         p.fail("study.model", f"must be one of {[m.value for m in Model]}, got {model_text!r}")
 
     arches_table = p.table(data, "arches", required=True)
-    p.keys(arches_table, "arches", _ARCH_KEYS)
+    # a block file (a surveyed arch) replaces the shape, voussoirs included
+    p.keys(arches_table, "arches", dict(_ARCH_KEYS, voussoirs="blocks" not in arches_table))
     words = _words(p, arches_table, "arches", _ARCH_WORDS)
+    if "blocks" in words:
+        words["blocks"] = [p.existing("arches.blocks", b) for b in words["blocks"]]
     numbers = {k: v for k, v in arches_table.items() if k not in _ARCH_WORDS}
     arches = p.grid("arches", numbers, ArchSpec, integer={"voussoirs", "pier_courses"},
                     listed=words)
@@ -224,6 +229,14 @@ class _Parser:
         for key, required in spec.items():
             if required and key not in table:
                 self.fail(f"{where}.{key}", "is missing (required)")
+
+    def existing(self, key: str, name: str) -> str:
+        """``name`` relative to the study file, absolute; one line if it does not exist."""
+        full = (self.base_dir / name).resolve()
+        if not full.is_file():
+            self.fail(key, f"names {name!r}, which does not exist (paths are relative to the "
+                           "study file)")
+        return str(full)
 
     def axis(self, key: str, value: Any, *, integer: bool = False) -> list:
         """A number, a list of numbers, or {start, stop, num} (inclusive linspace)."""
