@@ -26,7 +26,7 @@ from archquake.sweeps.runner import open_executor  # noqa: E402
 
 @pytest.mark.slow
 def test_ida_on_a_dask_cluster_equals_the_serial_run(tmp_path, cluster, records):  # noqa: F811
-    address, _workers = cluster
+    address = cluster.address
     kwargs = dict(ceiling=3.0, precision=0.05, fill=0.3)
     with ResultStore(tmp_path / "serial.sqlite") as store:
         serial = incremental_dynamic_analysis(OPPENHEIM, records[:2], "pga", store,
