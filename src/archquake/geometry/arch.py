@@ -200,15 +200,6 @@ class Arch(VoussoirChain):
         a = self.joint_angles
         return self.extrados_radius * np.column_stack([np.cos(a), np.sin(a)])
 
-    def joint_point(self, joint: int, face: str) -> np.ndarray:
-        """End point of ``joint`` on ``face`` ('intrados' or 'extrados'), m, shape (2,)."""
-        face = str(getattr(face, "value", face))
-        if face == "intrados":
-            return self.intrados_points[joint].copy()
-        if face == "extrados":
-            return self.extrados_points[joint].copy()
-        raise ValueError(f"face must be 'intrados' or 'extrados', got {face!r}")
-
     # ------------------------------------------------------------------ voussoirs
     @cached_property
     def voussoir_mid_angles(self) -> np.ndarray:
