@@ -56,8 +56,10 @@ for (label, r, t, emb, n), ax in zip(MIGRATION_GEOMETRIES, axes.ravel()):
                 label=f"{name} ({row[mode]:.2f})" if imp else f"{name} ({res.outcome})")
         t_hi = max(t_hi, tx[-1])
     tt = np.linspace(tp, t_hi + 0.1, 400)
-    ax.plot(tt, np.where(tt < t_imp, 1.0, fixed["paper"]), "C0--", label=f"fixed, Eq. 4 ({fixed['paper']:.2f})")
-    ax.plot(tt, np.where(tt < t_imp, 1.0, fixed["chain"]), "C1--", label=f"fixed, chain law ({fixed['chain']:.2f})")
+    ax.plot(tt, np.where(tt < t_imp, 1.0, fixed["paper"]), "C0--",
+            label=f"fixed, Eq. 4 ({fixed['paper']:.2f})")
+    ax.plot(tt, np.where(tt < t_imp, 1.0, fixed["chain"]), "C1--",
+            label=f"fixed, chain law ({fixed['chain']:.2f})")
     ax.set_title(label, fontsize=10)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("E / E(end of pulse)")

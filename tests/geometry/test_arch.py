@@ -125,3 +125,17 @@ def test_vanishing_density_or_depth_is_refused_in_one_line(name):
     with pytest.raises(InvalidParameterError) as info:
         Arch(**kwargs, **{name: 1e-300})
     assert str(info.value).startswith(f"{name} must be in [") and "\n" not in str(info.value)
+
+
+def test_the_circular_arch_layout_equals_its_closed_forms():
+    """Arch's joint ends and outlines through the base class's layout are its closed forms
+    (the one chain interface: an Arch read as a generic VoussoirChain gives the same joints)."""
+    from archquake.geometry.chain import VoussoirChain
+
+    arch = Arch(10.0, 1.5, math.radians(157.5), 7)
+    joints, polygons = arch._build_layout()
+    np.testing.assert_array_equal(joints[:, 0], arch.intrados_points)
+    np.testing.assert_array_equal(joints[:, 1], arch.extrados_points)
+    assert len(polygons) == arch.voussoirs
+    with pytest.raises(TypeError):
+        VoussoirChain()  # abstract: describe, scaled and the layout come from each shape

@@ -264,6 +264,12 @@ class Arch(VoussoirChain):
             ]
         )
 
+    def _build_layout(self) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
+        """The joints' ends and the voussoir outlines, from the closed forms (the properties
+        below override the base class's readers of this layout with the same values)."""
+        return (np.stack([self.intrados_points, self.extrados_points], axis=1),
+                self.block_polygons)
+
     @property
     def block_polygons(self) -> tuple[np.ndarray, ...]:
         """Outline of every voussoir, its arcs sampled every ~0.05 degrees (drawing, tiling

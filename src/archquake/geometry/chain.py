@@ -26,6 +26,7 @@ any of them on piers (the pier courses become more blocks of the same chain).
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -48,7 +49,7 @@ MIN_DEPTH = 1e-3
 MIN_THICKNESS_RATIO = 1e-6
 
 
-class VoussoirChain:
+class VoussoirChain(ABC):
     """Base of every arch: the interface the analyses read (see the module docstring).
 
     Subclasses are frozen dataclasses that provide ``voussoirs``, ``thickness``, ``depth``,
@@ -77,15 +78,17 @@ class VoussoirChain:
         @property
         def springing_y(self) -> float: ...
 
+    @abstractmethod
     def _build_layout(self) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
         """(joints (n+1, 2, 2): intrados end [j, 0], extrados end [j, 1]; block polygons)."""
-        raise NotImplementedError
 
-    def describe(self) -> dict:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def describe(self) -> dict:
+        """The arch's defining quantities, for reports and JSON (lengths in m)."""
 
-    def scaled(self, factor: float) -> VoussoirChain:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def scaled(self, factor: float) -> VoussoirChain:
+        """The geometrically similar arch with every length multiplied by ``factor``."""
 
     def with_thickness(self, thickness: float) -> VoussoirChain:
         """The same shape with another ring thickness (m), for the minimum-thickness search."""
