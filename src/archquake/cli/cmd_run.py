@@ -123,8 +123,15 @@ def _print_text(result, motion, g: float) -> None:
     print(impact_line(result.impact_law, result.impact_validity, result.impact_described,
                       result.restitution_prescribed))
     if not result.impact_followed:
-        print("                    the law's post-impact mechanism is not the mirror: the history "
-              "continues on the mirror with the law's energy ratio")
+        print("                    the law's mechanisms reach beyond the tabulated set: an impact "
+              "leaving it stops the history (unresolved)")
+    if result.impact_law == "chain" and result.mechanisms:
+        events = list(result.mechanisms)[:8]
+        for k, e in enumerate(events):
+            what = (f"{e.kind:<10} {e.hinges}" + (f" ({e.validity})" if e.validity else ""))
+            print(f"{'mechanisms' if k == 0 else '':<19} t = {e.time_s:.3f} s  {what}")
+        if len(result.mechanisms) > len(events):
+            print(f"{'':<19} ... {len(result.mechanisms) - len(events)} more")
     if not result.impact_admissible:
         print(f"                    the impact model gives c_v = {result.impact_model_cv:.4f} < 0 for this "
               "geometry (inadmissible): impacts computed as perfectly plastic; see --restitution")

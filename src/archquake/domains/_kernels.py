@@ -1,10 +1,11 @@
 """Many pulse time histories at once: a parallel numba loop over the scalar kernel.
 
 Each case is one pulse of the family (``kind``; params ``[a, duration, direction]``) on the same
-packed mechanism. Every case runs :func:`archquake.mechanism._kernels.simulate_kernel`, the
-compiled path behind :func:`archquake.mechanism.simulate`, with no history (``dt_out = 0``):
-the event logic (onset, closure and impact, rest, crest and toggle collapse) is that kernel's,
-unchanged.
+stack of packed mechanisms with its impact table
+(:class:`~archquake.mechanism.prepared.ImpactTable`). Every case runs
+:func:`archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
+:func:`archquake.mechanism.simulate`, with no history (``dt_out = 0``): the event logic (onset,
+closure and impact, rest, crest and toggle collapse) is that kernel's, unchanged.
 
 Deciding early (``early=True``)
 -------------------------------
@@ -16,10 +17,17 @@ the full run's) and accepts the answer when the trajectory up to the cap already
 * the case ended with fewer impacts than the cap (no hinging, rest, or a collapse): it is the
   full run;
 * an impact at or after the end of the excitation left a kinetic energy
-  ``1/2 m_eff(0) phi'^2`` below ``(1 - margin)`` times the potential barrier
-  ``g [V(phi_crit) - V(0)]`` and ``c_v <= 1``: from then on the arch rocks freely and every
-  impact removes energy, so it can never reach the crest again (energy conservation between
-  impacts, Eq. 2 with x_g'' = 0): it survives.
+  ``1/2 m_eff(0) phi'^2`` (of the post-impact row) below ``(1 - margin)`` times the least
+  potential barrier ``g [V_r(phi_crit,r) - V_r(0)]`` over the rows r of the table, and no row's
+  impact gains energy (``c_T <= 1``): from then on the arch rocks freely, its total energy (the
+  kinetic energy at phi = 0, the undisplaced configuration common to every row) is conserved
+  within each half cycle (Eq. 2 with x_g'' = 0) and never grows at an impact, and a half cycle
+  on any row r reaches that row's crest only with at least its barrier, which is at least the
+  least one: it can never reach a crest again and survives. A row the law's impacts leave
+  (``next < 0``) stops the run and is flagged, so no motion outside the table is assumed.
+  The verdict it states must not hide an undescribed impact still to come: an early survival
+  is accepted only if every row's impact is described, or an undescribed impact has already
+  happened (the survival is then indeterminate whatever follows).
 
 Otherwise the case is run again with an eight times larger cap, up to the full
 ``max_impacts``. ``early=False`` runs every case in full. A test holds both modes to
@@ -34,6 +42,8 @@ import numba as nb
 import numpy as np
 
 from archquake.mechanism._kernels import (
+    HIST_COLUMNS,
+    IMPACT_COLUMNS,
     OUTCOME_COLLAPSE,
     OUTCOME_NO_HINGING,
     OUTCOME_SURVIVES,
@@ -50,60 +60,98 @@ FIRST_IMPACT_CAP = 4
 
 
 @nb.njit(cache=True, nogil=True)
-def _run_case(mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, max_impacts,
-              early, barrier, meff0):
-    """One case; returns (outcome, collapse_half_cycle, impacts, runs)."""
-    hist = np.zeros((1, 5))
+def undescribed_seen(impacts, n_imp, undescribed):
+    """True if one of the first ``n_imp`` recorded impacts is of a row whose impact the law
+    does not describe."""
+    for k in range(min(n_imp, impacts.shape[0])):
+        if undescribed[int(impacts[k, 3])]:
+            return True
+    return False
+
+
+@nb.njit(cache=True, nogil=True)
+def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
+              max_impacts, early, barrier, meff0, undescribed, ct_max):
+    """One case; returns (outcome, collapse_half_cycle, impacts, runs, undescribed impact seen)."""
+    hist = np.zeros((1, HIST_COLUMNS))
     t_exc = excitation_end(kind, params)
     cap = min(FIRST_IMPACT_CAP, max_impacts) if early else max_impacts
+    any_undescribed = False
+    for r in range(undescribed.shape[0]):
+        any_undescribed = any_undescribed or undescribed[r]
     runs = 0
     while True:
-        impacts = np.zeros((cap, 3))
+        impacts = np.zeros((cap, IMPACT_COLUMNS))
         peaks = np.zeros(cap + 1)
-        counters = np.zeros(9)
+        counters = np.zeros(10)
+        onsets = np.zeros((cap + 1, 2))
         outcome, _final, half = simulate_kernel(
-            mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, cap, 0.0,
-            hist, impacts, peaks, counters)
+            mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation, cap,
+            0.0, hist, impacts, peaks, counters, onsets)
         runs += 1
         n_imp = int(counters[1])
         if cap >= max_impacts or n_imp < cap:
-            return outcome, half, n_imp, runs
-        if outcome == OUTCOME_SURVIVES and cv <= 1.0:
+            return outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp, undescribed)
+        if outcome == OUTCOME_SURVIVES and ct_max <= 1.0:
             for k in range(cap):
                 if impacts[k, 0] >= t_exc:
                     v = impacts[k, 2]
-                    if 0.5 * meff0 * v * v < (1.0 - ENERGY_MARGIN) * barrier:
-                        return outcome, half, n_imp, runs
+                    row = int(impacts[k, 4])
+                    seen = undescribed_seen(impacts, k + 1, undescribed)
+                    if (row >= 0 and (seen or not any_undescribed)
+                            and 0.5 * meff0[row] * v * v < (1.0 - ENERGY_MARGIN) * barrier):
+                        return outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp,
+                                                                            undescribed)
                     break
         cap = min(8 * cap, max_impacts)
 
 
+@nb.njit(cache=True, nogil=True)
+def table_energies(mechs, g):
+    """m_eff(0) of each row, kg m^2, and the least crest barrier over the rows,
+    ``min_r g [V_r(phi_crit,r) - V_r(0)]``, J."""
+    m = mechs.shape[0]
+    meff0 = np.empty(m)
+    barrier = math.inf
+    for r in range(m):
+        _ok, me, _dm, _gg, _hh = eom_terms(mechs[r], 0.0)
+        meff0[r] = me
+        b = g * (potential(mechs[r], mechs[r, PHI_CRIT]) - potential(mechs[r], 0.0))
+        barrier = min(barrier, b)
+    return meff0, barrier
+
+
 @nb.njit(cache=True, parallel=True)
-def batch_kernel(mech, kind, params, g, cv, t_end, rtol, atol, rest_rotation, max_impacts,
-                 early, outcome, half, n_impacts, runs):
+def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
+                 max_impacts, early, undescribed, ct_max, outcome, half, n_impacts, runs,
+                 unseen):
     """Run ``params.shape[0]`` cases in parallel.
 
     Parameters
     ----------
-    mech : (30,) packed mechanism
+    mechs, nxt, flip, ratio : the mechanism table, as :func:`simulate_kernel`
     kind : int, ground-motion kind (step or sine)
     params : (n, 3) per case ``[a (m/s^2), duration (s), direction]``
-    g, cv, rtol, atol, rest_rotation, max_impacts : as :func:`simulate_kernel`
+    g, rtol, atol, rest_rotation, max_impacts : as :func:`simulate_kernel`
     t_end : (n,) end of each analysis, s
     early : bool, decide early (module docstring)
+    undescribed : (m,) bool, the law does not describe the row's impact
+    ct_max : the largest kinetic-energy ratio of the rows' impacts
     outcome, half, n_impacts, runs : (n,) int64 out: outcome code, collapse half cycle (0 if
         none), impacts in the deciding run, kernel runs used
+    unseen : (n,) bool out: an undescribed impact happened before the verdict
     """
     n = params.shape[0]
-    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
-    barrier = g * (potential(mech, mech[PHI_CRIT]) - potential(mech, 0.0))
+    meff0, barrier = table_energies(mechs, g)
     for i in nb.prange(n):
-        o, h, m, r = _run_case(mech, kind, params[i], g, cv, t_end[i], rtol, atol, rest_rotation,
-                               max_impacts, early, barrier, meff0)
+        o, h, m, r, u = _run_case(mechs, nxt, flip, ratio, kind, params[i], g, t_end[i], rtol,
+                                  atol, rest_rotation, max_impacts, early, barrier, meff0,
+                                  undescribed, ct_max)
         outcome[i] = o
         half[i] = h if o == OUTCOME_COLLAPSE else 0
         n_impacts[i] = m
         runs[i] = r
+        unseen[i] = u
 
 
 #: The kernel's outcome codes as :class:`~archquake.outcome.Outcome` values.
@@ -126,4 +174,4 @@ def default_t_end(excitation_end_s: np.ndarray, radius: float, g: float) -> np.n
 
 
 __all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "OUTCOMES", "batch_kernel", "decode",
-           "default_t_end"]
+           "default_t_end", "table_energies", "undescribed_seen"]

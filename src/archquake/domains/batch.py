@@ -20,6 +20,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.ground.pulses import SinePulse, StepImpulse
+from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions, simulate
 from archquake.outcome import Outcome, qualify
@@ -189,7 +190,11 @@ def evaluate_pulses(
     from archquake.domains._kernels import batch_kernel, decode, default_t_end
 
     prepared = PreparedMechanism.build(arch, impact)
-    cv = prepared.restitution_for(restitution)
+    prescribed = check_restitution(restitution)
+    table = prepared.table
+    mechs, nxt, flip, ratio = table.kernel_arrays(prescribed)
+    undescribed = ~table.described(prepared.impact.law, prescribed)
+    ct_max = float(np.max(table.restitution_cts(prescribed)))
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     a, d = _pairs(magnitudes_g, durations)
@@ -205,16 +210,17 @@ def evaluate_pulses(
     half = np.zeros(n, dtype=np.int64)
     n_imp = np.zeros(n, dtype=np.int64)
     runs = np.zeros(n, dtype=np.int64)
+    unseen = np.zeros(n, dtype=np.bool_)
     if n:
-        batch_kernel(prepared.packed, fam.kind, params, float(g),
-                     float(cv), t_end, options.rtol, options.atol,
-                     options.rest_rotation, int(options.max_impacts), bool(early),
-                     outcome, half, n_imp, runs)
-    described = prepared.describes_impact(restitution)
+        batch_kernel(mechs, nxt, flip, ratio, fam.kind, params, float(g), t_end, options.rtol,
+                     options.atol, options.rest_rotation, int(options.max_impacts), bool(early),
+                     np.ascontiguousarray(undescribed), ct_max, outcome, half, n_imp, runs,
+                     unseen)
     verdict = np.empty(n, dtype=object)
     for i, o in enumerate(decode(outcome)):
+        # per impact: the verdict depends on the impacts before it (all those recorded)
         verdict[i] = qualify(o, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
-                             impact_described=described)
+                             impact_described=not bool(unseen[i]))
     return PulseOutcomes(a, d, verdict, half, runs)
 
 

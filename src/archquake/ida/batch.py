@@ -76,8 +76,14 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
 
     g = options.g
     solver = SolverOptions()
+    from archquake.mechanism.impact import check_restitution
+
     cv = prepared.restitution_for(options.restitution)
-    described = prepared.describes_impact(options.restitution)
+    prescribed = check_restitution(options.restitution)
+    table = prepared.table
+    mechs, nxt, flip, ratio = table.kernel_arrays(prescribed)
+    undescribed = np.ascontiguousarray(~table.described(prepared.impact.law, prescribed))
+    ct_max = float(np.max(table.restitution_cts(prescribed)))
     kinds, parts, results = [], [], []
     for case in cases:
         kind, params = case.excitation.build(g=g).kernel_spec()
@@ -98,16 +104,21 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
     n_imp = np.zeros(n, dtype=np.int64)
     runs = np.zeros(n, dtype=np.int64)
     peak = np.zeros(n)
+    unseen = np.zeros(n, dtype=np.bool_)
     if n:
         window = WINDOW_TAU * math.sqrt(prepared.mechanism.arch.radius / g)
-        batch_kernel(prepared.packed, kinds_a, flat, offsets, float(g), float(cv), t_end,
-                     window, solver.rtol, solver.atol, solver.rest_rotation, int(solver.max_impacts),
-                     bool(early), outcome, half, n_imp, runs, peak)
+        batch_kernel(mechs, nxt, flip, ratio, kinds_a, flat, offsets, float(g), t_end,
+                     window, solver.rtol, solver.atol, solver.rest_rotation,
+                     int(solver.max_impacts), bool(early), undescribed, ct_max, outcome, half,
+                     n_imp, runs, peak, unseen)
 
     static_g = prepared.collapse_acceleration_g
     phi_crit = prepared.critical_rotation
     for i in range(n):
         computed = OUTCOMES[int(outcome[i])]
+        # per impact: those before the verdict (none: whether the law describes the first's)
+        described = (not bool(unseen[i])) if n_imp[i] else prepared.describes_impact(
+            options.restitution)
         verdict = qualify(computed, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
                           impact_described=described)
         results.append({

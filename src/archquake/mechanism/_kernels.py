@@ -1,16 +1,24 @@
 """Compiled time history of the rocking arch: Dormand-Prince 5(4) with events.
 
-State machine (one mechanism packed by :func:`archquake.mechanism.prepared.pack_mechanism`):
+State machine over a stack of mechanisms (rows of an (m, 30) array, each packed by
+:func:`archquake.mechanism.prepared.pack_mechanism`; :class:`~archquake.mechanism.prepared.ImpactTable`
+holds the stack and its impact table). The state is (row, side, phi, phi'): the open mechanism
+is row ``row`` (side +1) or its mirror image (side -1, the paper's Eq. 3: the same coefficients
+with the ground term negated).
 
 * ``side = 0``: locked. The arch moves rigidly with the ground until the ground acceleration
-  opens a mechanism: side +1 (the packed mechanism) when ``-g G0 - a(t) H0 > 0``, side -1 (its
-  mirror image, the paper's Eq. 3, same coefficients with the ground term negated) when
-  ``-g G0 + a(t) H0 > 0``. These are exactly ``|a| > lambda g`` in the right direction.
-* ``side = +-1``: open, integrating ``m_eff phi'' = -1/2 m_eff' phi'^2 - g G - side a(t) H``.
-  Steps never straddle a breakpoint of the excitation (where it jumps or kinks).
+  opens a mechanism of row 0 (the limit-analysis mechanism): side +1 when
+  ``-g G0 - a(t) H0 > 0``, side -1 when ``-g G0 + a(t) H0 > 0``. These are exactly
+  ``|a| > lambda g`` in the right direction.
+* ``side = +-1``: open, integrating ``m_eff phi'' = -1/2 m_eff' phi'^2 - g G - side a(t) H``
+  of the current row. Steps never straddle a breakpoint of the excitation (where it jumps or
+  kinks).
 * Closure (phi returns to 0 while closing): located on the step's cubic Hermite interpolant,
-  then refined by re-integrating to the event (Newton on phi). The impact turns the rate into
-  ``cv |phi'|`` on the other side. If the next half cycle's peak would be below
+  then refined by re-integrating to the event (Newton on phi). The impact table gives the next
+  state: ``row = nxt[row]``, ``side = side * flip[row]``, ``phi' = ratio[row] |phi'|`` (the
+  post mechanism's own rate; for the paper's law one row, ``nxt = 0``, ``flip = -1``,
+  ``ratio = c_v``). A row whose impact leaves the tabulated set (``nxt < 0``) stops the run
+  (``FINAL_UNRESOLVED``). If the next half cycle's peak (on the new row) would be below
   ``rest_rotation`` the arch locks (rest).
 * Collapse: once the excitation is over, phi >= phi_crit (the crest of the potential, where
   gravity can no longer bring it back) while opening; or, at any time, phi reaching the toggle
@@ -49,6 +57,12 @@ FINAL_REST = 0
 FINAL_MOVING = 1
 FINAL_COLLAPSED = 2
 FINAL_STALLED = 3
+FINAL_UNRESOLVED = 4
+#: Columns of the impacts array: time, rate before, rate after, row before, row after (-1: the
+#: impact leaves the tabulated set), side after, 1 if the arch locked at the impact (rest or cap).
+IMPACT_COLUMNS = 7
+#: Columns of the history and of the requested states.
+HIST_COLUMNS = 6
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
@@ -200,7 +214,7 @@ def find_onset(mech, kind, params, t, t_limit, g):
 
 @nb.njit(cache=True, nogil=True)
 def _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t_last, s_max,
-                   t_eval, eval_out, i_ev):
+                   t_eval, eval_out, i_ev, row):
     """States at the requested times in (t, t_last] of the step that starts at (t, phi, v):
     each is one Dormand-Prince step from the step's start landing on the time (never an
     interpolant), capped at ``s_max``. Returns (next index into t_eval, rhs evaluations)."""
@@ -218,6 +232,7 @@ def _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t_last, s
         eval_out[i_ev, 2] = aa
         eval_out[i_ev, 3] = side
         eval_out[i_ev, 4] = ground_in_piece(kind, params, t + sub, t_left)
+        eval_out[i_ev, 5] = row
         i_ev += 1
     return i_ev, n_rhs
 
@@ -260,8 +275,9 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
 
 
 @nb.njit(cache=True, nogil=True)
-def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
-                    max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate=0.0):
+def simulate_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
+                    rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters, onsets,
+                    initial_rate=0.0):
     """Integrate one time history (:func:`simulate_kernel_eval` without requested times).
 
     Returns
@@ -269,35 +285,41 @@ def simulate_kernel(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotat
     (outcome, final_state, collapse_half_cycle)
     """
     t_eval = np.empty(0)
-    eval_out = np.empty((0, 5))
+    eval_out = np.empty((0, HIST_COLUMNS))
     outcome, final, collapse_half, _n = simulate_kernel_eval(
-        mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation, max_impacts, dt_out,
-        hist, impacts, peaks, counters, initial_rate, t_eval, eval_out, dt_out,
-        hist.shape[0], np.empty(0), 0.0)
+        mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi, rest_rotation,
+        max_impacts, dt_out, hist, impacts, peaks, counters, onsets, initial_rate, t_eval,
+        eval_out, dt_out, hist.shape[0], np.empty(0), np.zeros(mechs.shape[0]))
     return outcome, final, collapse_half
 
 
 @nb.njit(cache=True, nogil=True)
-def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_rotation,
-                         max_impacts, dt_out, hist, impacts, peaks, counters, initial_rate,
-                         t_eval, eval_out, dt_lock, hist_limit, tail, v_toggle):
+def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
+                         rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters,
+                         onsets, initial_rate, t_eval, eval_out, dt_lock, hist_limit, tail,
+                         v_toggle):
     """Integrate one time history, with the states at requested times. See the module
     docstring for the logic.
 
     Parameters
     ----------
-    mech : (30,) packed mechanism;  kind, params : ground motion;  g : gravity, m/s^2
-    cv : coefficient of restitution on the rate;  t_end : s;  rtol, atol_phi : tolerances
+    mechs : (m, 30) packed mechanisms (row 0: the limit-analysis mechanism, which the onsets
+        open);  nxt : (m,) int64 row after an impact of each row (-1: outside the set);
+        flip : (m,) +-1.0, the side after = side before * flip;  ratio : (m,) opening rate of the
+        post mechanism per unit closing rate (the paper's law: c_v)
+    kind, params : ground motion;  g : gravity, m/s^2;  t_end : s;  rtol, atol_phi : tolerances
         (the rate's absolute tolerance is atol_phi * sqrt(g / R), so that similar arches take
         similar steps);  rest_rotation : rad;  max_impacts : int
     dt_out : output interval, s (0: no history; < 0: every accepted step and event)
-    hist : (cap, 5) out: t, phi, phi', side, x_g''. Samples beyond ``cap`` are counted (in
+    hist : (cap, 6) out: t, phi, phi', side, x_g'', row. Samples beyond ``cap`` are counted (in
         counters[0]) but not written: the caller sizes the buffer again and reruns.
-    impacts : (max_impacts, 3) out: time, rate before, rate after
+    impacts : (max_impacts, 7) out: the :data:`IMPACT_COLUMNS`
     peaks : (max_impacts + 1,) out: peak phi of each half cycle
-    counters : (9,) out: n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles,
+    counters : (10,) out: n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles,
         n_steps, n_rejected, n_rhs, onset_time, collapse_time, 1 if the run stopped because the
-        history reached ``hist_limit`` samples (counters[8] is written only then)
+        history reached ``hist_limit`` samples (counters[8] is written only then), n_onsets
+    onsets : (k, 2) out: time and side of each onset of hinging from rest (row 0), as many as
+        fit (an onset follows a lock, and a lock an impact: max_impacts + 1 always fit)
     initial_rate : rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this
         opening rate (free rocking), instead of from rest.
     t_eval : (m,) requested times, s, sorted (non-decreasing). A time inside an accepted step
@@ -306,7 +328,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
         time at an impact gets the closing state; at the onset of hinging, the opening one
         (phi = 0, the ground just after the onset). Times after the arch has come to rest for
         good are locked states; times after a collapse or beyond ``t_end`` are not reached.
-    eval_out : (m, 5) out: phi, phi', phi'', side, x_g'' at each time reached (in order);
+    eval_out : (m, 6) out: phi, phi', phi'', side, x_g'', row at each time reached (in order);
         x_g'' is the value the step used there (at a breakpoint ending a step, the left limit).
     dt_lock : history interval while locked, s (>= dt_out; when larger, each locked stretch
         also gets a sample at its end and the moving samples restart from there)
@@ -315,17 +337,21 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
         the record's end, m/s (empty: no collapse before the excitation's end); with it a
         collapse is declared during the record once the remaining motion cannot bring the
         mechanism back over the crest (:func:`no_return`)
-    v_toggle : potential/g at the toggle, kg m (the lowest past the crest, see ``tail``)
+    v_toggle : (m,) potential/g at each row's toggle, kg m (the lowest past the crest, see
+        ``tail``; nan: the criterion does not apply to that row)
 
     Returns
     -------
     (outcome, final_state, collapse_half_cycle, number of requested times reached)
     """
     t_exc = excitation_end(kind, params)
+    row = 0
+    mech = mechs[row]
     atol_v = atol_phi * math.sqrt(g / mech[LENGTH])
     phi_crit = mech[PHI_CRIT]
     phi_toggle = mech[PHI_TOGGLE]
     _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
+    n_on = 0
     n_hist = 0
     cap = hist.shape[0]
     n_imp = 0
@@ -349,6 +375,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
     for k in range(3):
         kappa2 += mech[LINK0 + 4 * k]
     v_crest = potential(mech, phi_crit) if use_tail else 0.0
+    row_tail = use_tail and math.isfinite(v_toggle[row])
     i_ev = 0
     n_eval = t_eval.shape[0]
     tau = math.sqrt(mech[LENGTH] / g)
@@ -377,6 +404,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                         hist[n_hist, 2] = 0.0
                         hist[n_hist, 3] = 0.0
                         hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_out)
+                        hist[n_hist, 5] = 0.0
                     t_last = t_out
                     n_hist += 1
                     t_out += dt_lock
@@ -389,6 +417,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                             hist[n_hist, 2] = 0.0
                             hist[n_hist, 3] = 0.0
                             hist[n_hist, 4] = ground_in_piece(kind, params, t_on, t_on)
+                            hist[n_hist, 5] = 0.0
                         n_hist += 1
                     t_out = t_on + dt_out
                 if overflow:
@@ -401,6 +430,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 eval_out[i_ev, 2] = 0.0
                 eval_out[i_ev, 3] = 0.0
                 eval_out[i_ev, 4] = ground_in_piece(kind, params, t_eval[i_ev], t_eval[i_ev])
+                eval_out[i_ev, 5] = 0.0
                 i_ev += 1
             if s_on == 0:
                 t = t_on
@@ -410,6 +440,10 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
             side = s_on
             phi = 0.0
             v = 0.0
+            if n_on < onsets.shape[0]:
+                onsets[n_on, 0] = t_on
+                onsets[n_on, 1] = s_on
+            n_on += 1
             half += 1
             peaks[half - 1] = 0.0
             if outcome == OUTCOME_NO_HINGING:
@@ -423,7 +457,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
         n_rhs += 1
         if i_ev < n_eval and t_eval[i_ev] <= t:  # at the onset (or t = 0 of free rocking)
             i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t,
-                                         0.0, t_eval, eval_out, i_ev)
+                                         0.0, t_eval, eval_out, i_ev, row)
         excitation_over = t >= t_exc - 1e-12 * (1.0 + t_exc)
         if excitation_over and phi >= phi_crit and v >= 0.0:
             outcome = OUTCOME_COLLAPSE
@@ -437,7 +471,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
             if hh < h_min:
                 if i_ev < n_eval:
                     i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_stop, hh, t_eval, eval_out, i_ev)
+                                                 k1, t_stop, hh, t_eval, eval_out, i_ev, row)
                     n_rhs += extra
                 t = t_stop
                 break
@@ -500,6 +534,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                         hist[n_hist, 2] = hermite(s, hh, v, k1, v1, k7)
                         hist[n_hist, 3] = side
                         hist[n_hist, 4] = ground_in_piece(kind, params, t_out, t_left)
+                        hist[n_hist, 5] = row
                     n_hist += 1
                     t_out += dt_out
                 if overflow:
@@ -516,7 +551,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 t_new = t + hh if t + hh < t_stop else t_stop
                 if i_ev < n_eval:
                     i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_new, hh, t_eval, eval_out, i_ev)
+                                                 k1, t_new, hh, t_eval, eval_out, i_ev, row)
                     n_rhs += extra
                 t = t_new
                 phi, v, k1 = phi1, v1, k7
@@ -531,10 +566,11 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                         hist[n_hist, 2] = v
                         hist[n_hist, 3] = side
                         hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                        hist[n_hist, 5] = row
                     n_hist += 1
-                if (use_tail and not excitation_over and phi >= phi_crit and v >= 0.0
+                if (row_tail and not excitation_over and phi >= phi_crit and v >= 0.0
                         and no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2,
-                                      v_crest, v_toggle)):
+                                      v_crest, v_toggle[row])):
                     # past the crest, opening, and the rest of the record cannot return it
                     outcome = OUTCOME_COLLAPSE
                     final = FINAL_COLLAPSED
@@ -549,26 +585,56 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                 t_imp = t + s
                 if i_ev < n_eval:  # up to the impact: the closing mechanism
                     i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_imp, s, t_eval, eval_out, i_ev)
+                                                 k1, t_imp, s, t_eval, eval_out, i_ev, row)
                     n_rhs += extra
-                v_after = cv * abs(v_e)
+                nrow = nxt[row]
+                v_after = ratio[row] * abs(v_e)
+                if nrow < 0:  # the impact leaves the tabulated set: never extrapolated
+                    v_after = 0.0
+                new_side = side * flip[row]
                 if n_imp < impacts.shape[0]:
                     impacts[n_imp, 0] = t_imp
                     impacts[n_imp, 1] = v_e
                     impacts[n_imp, 2] = v_after
+                    impacts[n_imp, 3] = row
+                    impacts[n_imp, 4] = nrow
+                    impacts[n_imp, 5] = new_side
+                    impacts[n_imp, 6] = 0.0
                 n_imp += 1
                 t = t_imp
                 event_done = True
+                if nrow < 0:
+                    if n_imp <= impacts.shape[0]:
+                        impacts[n_imp - 1, 6] = 1.0
+                    side = 0
+                    phi = 0.0
+                    v = 0.0
+                    final = FINAL_UNRESOLVED
+                    t_end = t
+                    break
+                if nrow != row:  # the post mechanism's row, once per half cycle
+                    row = nrow
+                    mech = mechs[row]
+                    phi_crit = mech[PHI_CRIT]
+                    phi_toggle = mech[PHI_TOGGLE]
+                    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
+                    kappa2 = 0.0
+                    for k in range(3):
+                        kappa2 += mech[LINK0 + 4 * k]
+                    v_crest = potential(mech, phi_crit) if use_tail else 0.0
+                    row_tail = use_tail and math.isfinite(v_toggle[row])
                 # peak rotation of the coming half cycle on a linear potential g G0 phi
                 peak_next = 0.5 * meff0 * v_after * v_after / (g * mech[G0])
                 if peak_next < rest_rotation or n_imp >= max_impacts:
                     side = 0
                     phi = 0.0
                     v = 0.0
+                    if n_imp <= impacts.shape[0]:
+                        impacts[n_imp - 1, 6] = 1.0
                     if n_imp >= max_impacts and t >= t_exc:
                         final = FINAL_STALLED
                 else:
-                    side = -side
+                    side = new_side
                     phi = 0.0
                     v = v_after
                     half += 1
@@ -589,7 +655,19 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                         hist[n_hist, 2] = v
                         hist[n_hist, 3] = side
                         hist[n_hist, 4] = ground_in_piece(kind, params, t, t_left)
+                        hist[n_hist, 5] = row
                     n_hist += 1
+                if side == 0 and row != 0:  # locked: the next onset opens row 0 (or its mirror)
+                    row = 0
+                    mech = mechs[row]
+                    phi_crit = mech[PHI_CRIT]
+                    phi_toggle = mech[PHI_TOGGLE]
+                    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
+                    kappa2 = 0.0
+                    for k in range(3):
+                        kappa2 += mech[LINK0 + 4 * k]
+                    v_crest = potential(mech, phi_crit) if use_tail else 0.0
+                    row_tail = use_tail and math.isfinite(v_toggle[row])
                 continue
             # collapse
             s = s_ev
@@ -598,7 +676,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
                                             s_ev, phi_crit, 0.0, hh)
             if i_ev < n_eval:
                 i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                             t + s, s, t_eval, eval_out, i_ev)
+                                             t + s, s, t_eval, eval_out, i_ev, row)
                 n_rhs += extra
             outcome = OUTCOME_COLLAPSE
             final = FINAL_COLLAPSED
@@ -607,7 +685,7 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
             t = t + s
             event_done = True
             t_end = t
-        if final == FINAL_COLLAPSED or overflow:
+        if final == FINAL_COLLAPSED or final == FINAL_UNRESOLVED or overflow:
             break
     else:
         final = FINAL_MOVING if side != 0 else FINAL_REST
@@ -623,4 +701,5 @@ def simulate_kernel_eval(mech, kind, params, g, cv, t_end, rtol, atol_phi, rest_
     counters[7] = collapse_time
     if overflow:
         counters[8] = 1.0
+    counters[9] = n_on
     return outcome, final, collapse_half, i_ev

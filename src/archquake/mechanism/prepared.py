@@ -16,12 +16,18 @@ Its properties are the mechanism's scalar characteristics, so that no code outsi
 * :attr:`PreparedMechanism.critical_rotation`: the crest of the potential, rad;
 * :attr:`PreparedMechanism.toggle_rotation`: the toggle of the linkage, rad;
 * :attr:`PreparedMechanism.restitution`: the c_v the time histories use.
+
+:attr:`PreparedMechanism.table` is the set of mechanisms the time history may move on under the
+impact law, with its impact table (:class:`ImpactTable`): for ``"paper"`` and ``"mirror"`` the
+first mechanism alone (its mirror image is the same packed row on the other side), for
+``"chain"`` every mechanism the law's post-impact map reaches from it.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -59,6 +65,17 @@ from archquake.mechanism.kinematics import (
     SIGMA,
     eom_terms,
 )
+
+#: Most mechanisms of a reachable set (:class:`ImpactTable`); an impact whose post-impact
+#: mechanism would be the next one is flagged (validity ``beyond_set``), never extrapolated.
+MAX_REACHABLE = 32
+
+#: The impact law a history uses when none is given: the one place the default is stated.
+DEFAULT_IMPACT_LAW = "paper"
+
+#: Validity of a row's impact beyond the chain laws' (:data:`~archquake.mechanism.impact_chain.VALIDITY`
+#: and Eq. 4's ``assumed``): the post-impact mechanism is not in the tabulated set.
+BEYOND_SET = "beyond_set"
 
 #: Samples of the crest/toggle search (:func:`archquake.mechanism.kinematics.linkage_limits`).
 _LIMIT_SAMPLES = 4000
@@ -134,6 +151,180 @@ def pack_mechanism(mech: HingeMechanism) -> np.ndarray:
     return out
 
 
+def _canonical(mech: HingeMechanism) -> tuple[HingeMechanism, int]:
+    """The row mechanism (opened by a ground acceleration towards -x) and the side that gives
+    ``mech``: +1 for itself, -1 for the mirror image of the row (symmetric arches only)."""
+    if mech.load_direction < 0 and mech.arch.symmetric:
+        return mech.mirrored(), -1
+    return mech, 1
+
+
+def _meff0(packed: np.ndarray) -> float:
+    return float(eom_terms(packed, 0.0)[1])
+
+
+@dataclass(frozen=True)
+class ImpactTable:
+    """The mechanisms a time history may move on, packed, with what an impact of each does.
+
+    Row i is a mechanism Q_i (side +1 in the kernel) whose mirror image is side -1. An impact of
+    row i closing at rate |phi'| (either side) continues on row ``next_row[i]``, on side
+    ``side * flip[i]``, opening at ``rate_ratio[i] |phi'|`` (the post mechanism's own phi, so
+    ``rate_ratio`` is not c_v unless the two rows are one: the kinetic energies
+    ``1/2 m_eff_i(0) phi'^2`` keep the ratio ``restitution_ct[i]`` exactly).
+
+    Attributes
+    ----------
+    mechanisms : tuple of HingeMechanism
+        Q_0 (the limit-analysis mechanism), Q_1, ... in the order the law reaches them.
+    packed : ndarray (m, 30)
+        :func:`pack_mechanism` of each.
+    next_row : ndarray (m,) int64
+        Row after an impact of each row (-1: the post-impact mechanism is beyond the
+        :data:`MAX_REACHABLE` rows tabulated; the history stops there, flagged).
+    flip : ndarray (m,) int64
+        +-1: the side after the impact is the side before times this.
+    rate_ratio : ndarray (m,)
+        The law's post-impact opening rate per unit closing rate, rad/s per rad/s (0: rest).
+    restitution_ct : ndarray (m,)
+        The law's kinetic-energy ratio across each row's impact.
+    validity : tuple of str
+        Each row's impact validity (the law's, ``assumed`` for Eq. 4, :data:`BEYOND_SET`).
+    """
+
+    mechanisms: tuple[HingeMechanism, ...]
+    packed: np.ndarray
+    next_row: np.ndarray
+    flip: np.ndarray
+    rate_ratio: np.ndarray
+    restitution_ct: np.ndarray
+    validity: tuple[str, ...]
+
+    @property
+    def size(self) -> int:
+        return len(self.mechanisms)
+
+    @property
+    def complete(self) -> bool:
+        """True if every impact stays in the set (no row is :data:`BEYOND_SET`)."""
+        return bool(np.all(self.next_row >= 0))
+
+    def meff0(self) -> np.ndarray:
+        """m_eff(0) of each row, kg m^2: the kinetic energy at phi = 0 is 1/2 m_eff(0) phi'^2."""
+        return np.array([_meff0(p) for p in self.packed])
+
+    def ratios(self, restitution: float | None = None) -> np.ndarray:
+        """The kernel's rate ratios: the law's, or for a prescribed c_v the ones that keep the
+        law's post-impact mechanism and give it c_v^2 of the kinetic energy before the impact
+        (``c_v sqrt(m_eff_i(0) / m_eff_next(0))``; c_v itself when the next mechanism is the
+        same row, as for Eq. 4). Where the law stops the arch (no post-impact mechanism) a
+        prescribed c_v continues on the mirror image (next row = the row, flip -1)."""
+        if restitution is None:
+            return self.rate_ratio.copy()
+        meff = self.meff0()
+        nxt = np.where(self.next_row >= 0, self.next_row, np.arange(self.size))
+        out = np.where(nxt == np.arange(self.size), restitution,
+                       restitution * np.sqrt(meff / meff[nxt]))
+        return np.where(self.next_row >= 0, out, 0.0)
+
+    def restitution_cts(self, restitution: float | None = None) -> np.ndarray:
+        """Kinetic-energy ratio across each row's impact under :meth:`ratios`."""
+        if restitution is not None:
+            return np.where(self.next_row >= 0, float(restitution) ** 2, 0.0)
+        return self.restitution_ct.copy()
+
+    def described(self, law: str, restitution: float | None = None) -> np.ndarray:
+        """(m,) bool: the law describes each row's impact
+        (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`, per row)."""
+        from archquake.mechanism.impact import DESCRIBED
+
+        if law == "paper":
+            return np.array([restitution is not None or v == "assumed" for v in self.validity])
+        return np.array([v in DESCRIBED for v in self.validity])
+
+    def kernel_arrays(self, restitution: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(packed, next_row, flip, rate ratio): what the compiled kernels take."""
+        return (np.ascontiguousarray(self.packed),
+                np.ascontiguousarray(self.next_row, dtype=np.int64),
+                np.ascontiguousarray(self.flip, dtype=np.int64),
+                np.ascontiguousarray(self.ratios(restitution)))
+
+    def hinges_label(self, row: int, side: int) -> str:
+        """The hinges of row ``row`` on side ``side`` as ``"0i 3e 5i 7e"``."""
+        m = self.mechanisms[row]
+        if side < 0:
+            m = m.mirrored()
+        return " ".join(f"{j}{f.value[0]}" for j, f in zip(m.joints, m.faces))
+
+
+@lru_cache(maxsize=16)
+def _chain_rows(first: HingeMechanism, cap: int):
+    """The reachable set of the chain law from ``first`` (and its mirror): rows, next, flip,
+    c_T, validity, the law's post rates (see :class:`ImpactTable`)."""
+    from archquake.mechanism.impact_chain import chain_impact
+
+    rows = [first]
+    keys = {(first.joints, first.faces): 0}
+    nxt, flip, ct, validity, post_rate = [], [], [], [], []
+    i = 0
+    while i < len(rows):
+        sol = chain_impact(rows[i])
+        if sol.post is None:
+            nxt.append(i)
+            flip.append(-1)
+            ct.append(0.0)
+            post_rate.append(0.0)
+            validity.append(sol.validity)
+        else:
+            q, side = _canonical(sol.post)
+            key = (q.joints, q.faces)
+            if key not in keys and len(rows) < cap:
+                keys[key] = len(rows)
+                rows.append(q)
+            j = keys.get(key, -1)
+            nxt.append(j)
+            flip.append(side)
+            ct.append(sol.restitution_ct if j >= 0 else 0.0)
+            post_rate.append(sol.post_rate if j >= 0 else 0.0)
+            validity.append(sol.validity if j >= 0 else BEYOND_SET)
+        i += 1
+    return tuple(rows), nxt, flip, ct, validity, post_rate
+
+
+def impact_table(prepared: PreparedMechanism, cap: int = MAX_REACHABLE) -> ImpactTable:
+    """The :class:`ImpactTable` of a prepared mechanism under its impact law.
+
+    ``"paper"`` and ``"mirror"``: one row (the first mechanism), its impact onto its own mirror
+    image (``next = 0``, ``flip = -1``) at the law's c_v (:attr:`PreparedMechanism.restitution`).
+    ``"chain"``: start from the first mechanism, apply :func:`~archquake.mechanism.impact_chain.chain_impact`
+    to every row found (the mirror image of a row is the same row on the other side, since the
+    law commutes with the mirror), up to ``cap`` rows. The rate ratio is the one that gives the
+    post mechanism (packed phi) the law's c_T of the kinetic energy:
+    ``sqrt(c_T m_eff_i(0) / m_eff_j(0))``, which is the law's ``post_rate`` measured on the row's
+    own phi (a test holds the two equal).
+    """
+    law = prepared.impact.law
+    if law != "chain":
+        cv = prepared.restitution
+        one = np.array([0], dtype=np.int64)
+        return ImpactTable((prepared.mechanism,), prepared.packed[None, :].copy(), one,
+                           np.array([-1], dtype=np.int64), np.array([cv]),
+                           np.array([cv * cv]), (prepared.impact.validity,))
+    rows, nxt, flip, ct, validity, _rates = _chain_rows(prepared.mechanism, int(cap))
+    packed = np.empty((len(rows), PACKED_SIZE))
+    packed[0] = prepared.packed
+    for k in range(1, len(rows)):
+        packed[k] = pack_mechanism(rows[k])
+    meff = np.array([_meff0(p) for p in packed])
+    nxt_a = np.array(nxt, dtype=np.int64)
+    ct_a = np.maximum(np.array(ct, dtype=float), 0.0)
+    safe = np.where(nxt_a >= 0, nxt_a, np.arange(len(rows)))
+    ratio = np.where(nxt_a >= 0, np.sqrt(ct_a * meff / meff[safe]), 0.0)
+    return ImpactTable(rows, packed, nxt_a, np.array(flip, dtype=np.int64), ratio, ct_a,
+                       tuple(validity))
+
+
 @dataclass(frozen=True)
 class PreparedMechanism:
     """A mechanism packed for the kernels, with its impact solution (reusable across runs).
@@ -194,6 +385,26 @@ class PreparedMechanism:
         cv = check_restitution(restitution)
         return self.restitution if cv is None else cv
 
+    @cached_property
+    def table(self) -> ImpactTable:
+        """The mechanisms the time history may move on under the impact law, with the impact
+        table (:func:`impact_table`; computed once, on first use)."""
+        return impact_table(self)
+
+    @property
+    def follows_law(self) -> bool:
+        """True if the time history moves on the mechanism the law selects after every impact
+        it can reach (the whole reachable set is tabulated)."""
+        return self.table.complete
+
+    def member(self, row: int) -> PreparedMechanism:
+        """Row ``row`` of :attr:`table` as a prepared mechanism (its own impact under the law is
+        not re-solved: ``impact`` is the first mechanism's)."""
+        if row == 0:
+            return self
+        return PreparedMechanism(self.table.mechanisms[row], self.table.packed[row].copy(),
+                                 self.impact)
+
     def describes_impact(self, restitution: float | None = None) -> bool:
         """True if the impact law (with ``restitution`` prescribed or not) describes this arch's
         impacts (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`)."""
@@ -206,7 +417,7 @@ class PreparedMechanism:
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
         towards -x opens), or take a prepared mechanism. ``impact`` is the impact law
         (:data:`archquake.mechanism.impact.IMPACT_LAWS`); None: a prepared mechanism's own, or
-        "paper" (Eq. 4). A prepared mechanism under another law is re-solved for that law only
+        :data:`DEFAULT_IMPACT_LAW`. A prepared mechanism under another law is re-solved for that law only
         (the packed mechanism is kept)."""
         if impact is not None:
             check_impact_law(impact)
@@ -215,7 +426,7 @@ class PreparedMechanism:
             if impact is None or impact == prep.impact.law:
                 return prep
             return replace(prep, impact=solve_impact(prep.mechanism, impact))
-        impact = "paper" if impact is None else impact
+        impact = DEFAULT_IMPACT_LAW if impact is None else impact
         if isinstance(arch_or_mechanism, HingeMechanism):
             mech = arch_or_mechanism
             if mech.load_direction < 0:
@@ -229,4 +440,5 @@ class PreparedMechanism:
         return cls(mech, pack_mechanism(mech), solve_impact(mech, impact))
 
 
-__all__ = ["PreparedMechanism", "hinges_of", "pack_mechanism"]
+__all__ = ["BEYOND_SET", "DEFAULT_IMPACT_LAW", "MAX_REACHABLE", "ImpactTable", "PreparedMechanism",
+           "hinges_of", "impact_table", "pack_mechanism"]

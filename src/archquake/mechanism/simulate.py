@@ -2,9 +2,10 @@
 
 :func:`simulate` takes an arch (or a hinge mechanism) and any ground motion and returns a
 :class:`SimulationResult`. The hinges default to those of the equivalent static analysis
-(the paper's assumption); after each impact the arch continues as the mirror-image mechanism
-(hinges symmetric to the previous ones) with the rate given by the impact model (Eq. 4) or a
-prescribed coefficient of restitution.
+(the paper's assumption); after each impact the arch continues on the mechanism the impact law
+selects (the mirror image for Eq. 4 and "mirror"; the chain law's choice, from the reachable set
+tabulated in :attr:`~archquake.mechanism.prepared.PreparedMechanism.table`) with the law's rate
+or a prescribed coefficient of restitution.
 
 Outcomes
 --------
@@ -23,7 +24,8 @@ Outcomes
     says which).
 ``indeterminate``
     One of the two above was computed, but only through an impact the impact law does not
-    describe (:func:`archquake.outcome.qualify`); ``computed_outcome`` keeps what was computed.
+    describe (:func:`archquake.outcome.qualify`, with the validity of each impact before the
+    verdict); ``computed_outcome`` keeps what was computed.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism import _kernels as K
+from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, qualify
 
@@ -52,6 +55,7 @@ class FinalState(str, Enum):
     MOVING = "moving"  # still rocking below the crest at t_end
     COLLAPSED = "collapsed"
     STALLED = "stalled"  # max_impacts reached after the excitation (impacts accumulating)
+    UNRESOLVED = "unresolved"  # an impact's post mechanism is beyond the tabulated set
 
 
 #: Most impacts a run may record (SolverOptions.max_impacts).
@@ -70,7 +74,8 @@ LOCKED_SAMPLES = 100_000
 _OUTCOMES = {K.OUTCOME_NO_HINGING: Outcome.NO_HINGING, K.OUTCOME_SURVIVES: Outcome.SURVIVES,
              K.OUTCOME_COLLAPSE: Outcome.COLLAPSE}
 _FINALS = {K.FINAL_REST: FinalState.REST, K.FINAL_MOVING: FinalState.MOVING,
-           K.FINAL_COLLAPSED: FinalState.COLLAPSED, K.FINAL_STALLED: FinalState.STALLED}
+           K.FINAL_COLLAPSED: FinalState.COLLAPSED, K.FINAL_STALLED: FinalState.STALLED,
+           K.FINAL_UNRESOLVED: FinalState.UNRESOLVED}
 
 
 @dataclass(frozen=True)
@@ -118,11 +123,13 @@ class SolverOptions:
 @dataclass(frozen=True)
 class History:
     """Sampled time history (shape (N,) each): t (s), phi (rad), phi_dot (rad/s), side
-    (0 locked, +1 the first mechanism, -1 its mirror image), ground acceleration (m/s^2).
+    (0 locked, +1 the row mechanism, -1 its mirror image), ground acceleration (m/s^2), and the
+    row of :attr:`~archquake.mechanism.prepared.PreparedMechanism.table` that is open
+    (``mechanism_row``; always 0 under Eq. 4 and "mirror").
 
     ``phi`` is the rotation of the open mechanism's first link (the paper's theta0 - theta,
-    or theta'0 - theta' after an odd number of impacts); ``signed_rotation`` = side * phi
-    tells the two mechanisms apart on a plot. ``phi_ddot`` (rad/s^2, Eq. 2) is given for the
+    or theta'0 - theta' on the mirror image); ``signed_rotation`` = side * phi
+    tells a mechanism from its mirror on a plot. ``phi_ddot`` (rad/s^2, Eq. 2) is given for the
     states at requested times (:attr:`SimulationResult.evaluated`), None for the sampled history.
     """
 
@@ -132,6 +139,7 @@ class History:
     side: np.ndarray
     ground_acceleration: np.ndarray
     phi_ddot: np.ndarray | None = None
+    mechanism_row: np.ndarray | None = None
 
     @property
     def signed_rotation(self) -> np.ndarray:
@@ -143,7 +151,45 @@ class History:
                "side": self.side, "ground_acceleration_m_s2": self.ground_acceleration}
         if self.phi_ddot is not None:
             out["phi_ddot_rad_s2"] = self.phi_ddot
+        if self.mechanism_row is not None:
+            out["mechanism_row"] = self.mechanism_row
         return out
+
+
+@dataclass(frozen=True)
+class MechanismEvent:
+    """One change of the open mechanism in a time history.
+
+    Attributes
+    ----------
+    time_s : float
+    hinges : str
+        The mechanism that opens (``"0i 3e 5i 7e"``: joint and face of A, B, C, D), or, for a
+        ``rest`` and an unresolved impact, the one the law selected.
+    kind : str
+        ``onset`` (hinging starts from rest), ``impact`` (the arch continues on ``hinges``),
+        ``rest`` (the impact left too little motion: the arch locks) or ``unresolved`` (the law's
+        post-impact mechanism is beyond the tabulated set: the history stops).
+    validity : str
+        The impact's validity under the law (onsets: ``""``).
+    described : bool
+        The law describes this impact (onsets: True).
+    row : int
+        Row of the mechanism table (-1 beyond it); ``side`` +1 the row, -1 its mirror image.
+    """
+
+    time_s: float
+    hinges: str
+    kind: str
+    validity: str
+    described: bool
+    row: int
+    side: int
+
+    def to_dict(self) -> dict:
+        return {"time_s": self.time_s, "hinges": self.hinges, "kind": self.kind,
+                "validity": self.validity, "described": self.described, "row": self.row,
+                "side": self.side}
 
 
 @dataclass(frozen=True)
@@ -185,17 +231,20 @@ class SimulationResult:
     impact_validity : str
         The law's validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
     impact_followed : bool
-        True if the time history moves on the mechanism the law selects after an impact. The
-        kernel carries a mechanism and its mirror only: under ``"chain"``, where the selected
-        mechanism is not the mirror, the history continues on the mirror with the chain law's
-        energy ratio (c_v = sqrt(c_T)), and this is False.
+        True if the time history moves on the mechanism the law selects after every impact (the
+        law's reachable set is tabulated whole, :attr:`PreparedMechanism.table`); False if an
+        impact could leave the tabulated set (such an impact stops the history, ``unresolved``).
+    mechanisms : tuple of MechanismEvent
+        The sequence of mechanisms: every onset and impact with the hinges that open, its kind
+        and the impact's validity.
     computed_outcome : Outcome
         What the model computed with the impact law as stated (no_hinging, survives, collapse).
     restitution_prescribed : bool
         True if ``restitution_cv`` was prescribed (``simulate(..., restitution=...)``).
     impact_described : bool
-        True if the impact law describes this arch's impacts
-        (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`).
+        True if the impact law describes every impact of this history (per impact: the validity
+        of its row's impact, :meth:`~archquake.mechanism.impact.ImpactSolution.describes`; with
+        no impact, whether it describes the first mechanism's).
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
     collapse_acceleration_g : float
@@ -241,6 +290,7 @@ class SimulationResult:
     computed_outcome: Outcome | None = None
     impact_described: bool = True
     restitution_prescribed: bool = False
+    mechanisms: tuple = ()
 
     @property
     def half_cycles(self) -> int:
@@ -277,6 +327,7 @@ class SimulationResult:
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
             "hinges": [h.to_dict() for h in self.mechanism.hinges],
+            "mechanisms": [e.to_dict() for e in self.mechanisms],
             "solver": {("t_end_s" if k == "t_end" else k): v for k, v in self.stats.items()},
         }
         if include_history and self.history is not None:
@@ -285,26 +336,34 @@ class SimulationResult:
 
 
 def _record_tail(prepared: PreparedMechanism, kind: int,
-                 params: np.ndarray) -> tuple[np.ndarray, float]:
+                 params: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """For a sampled record: ``int_{t_i}^{end} |x_g''| dt`` from each sample (m/s, exact for
-    the linear interpolation, sign changes included) and the potential/g at the toggle, for the
-    no-return collapse criterion (:func:`archquake.mechanism._kernels.no_return`). Empty (the
-    criterion off) for the pulses, or if the potential does not decrease from the crest to the
-    toggle (sampled at 257 points), which the criterion's bound assumes."""
+    the linear interpolation, sign changes included) and, per row of the mechanism table, the
+    potential/g at the toggle, for the no-return collapse criterion
+    (:func:`archquake.mechanism._kernels.no_return`). The tail is empty (the criterion off) for
+    the pulses; a row's toggle value is nan (the criterion off on that row) if the potential
+    does not decrease from its crest to its toggle (sampled at 257 points), which the
+    criterion's bound assumes."""
     from archquake.ground.base import KIND_SAMPLED
-    from archquake.mechanism.kinematics import potential
+    from archquake.mechanism.kinematics import PHI_CRIT, PHI_TOGGLE, potential
 
-    empty = (np.empty(0), 0.0)
+    rows = prepared.table.packed
+    v_toggle = np.full(rows.shape[0], np.nan)
     if kind != KIND_SAMPLED:
-        return empty
-    packed = prepared.packed
-    crest, toggle = prepared.critical_rotation, prepared.toggle_rotation
-    if not (math.isfinite(crest) and math.isfinite(toggle) and toggle > crest):
-        return empty
-    phis = np.linspace(crest, crest + (toggle - crest) * (1.0 - 1e-9), 257)
-    pot = np.array([potential(packed, float(p)) for p in phis])
-    if not (np.all(np.isfinite(pot)) and np.all(np.diff(pot) <= 0.0)):
-        return empty
+        return np.empty(0), v_toggle
+    for r, packed in enumerate(rows):
+        crest, toggle = float(packed[PHI_CRIT]), float(packed[PHI_TOGGLE])
+        if not (math.isfinite(crest) and math.isfinite(toggle) and toggle > crest):
+            continue
+        phis = np.linspace(crest, crest + (toggle - crest) * (1.0 - 1e-9), 257)
+        pot = np.array([potential(packed, float(p)) for p in phis])
+        if not (np.all(np.isfinite(pot)) and np.all(np.diff(pot) <= 0.0)):
+            continue
+        # the last sample sits 1e-9 of the range short of the toggle: lower it by far more than
+        # the potential can still drop there (the bound needs a lower bound of the potential)
+        v_toggle[r] = float(pot[-1] - 1e-6 * (pot[0] - pot[-1]))
+    if not np.any(np.isfinite(v_toggle)):
+        return np.empty(0), v_toggle
     x = np.abs(params[2:])
     dt = float(params[1])
     signed = params[2:]
@@ -315,10 +374,31 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
                      0.5 * dt * (lo * lo + hi * hi) / den)
     tail = np.zeros(x.size)
     tail[:-1] = np.cumsum(piece[::-1])[::-1]
-    # the last sample sits 1e-9 of the range short of the toggle: lower it by far more than
-    # the potential can still drop there (the bound needs a lower bound of the potential)
-    v_toggle = float(pot[-1] - 1e-6 * (pot[0] - pot[-1]))
     return np.ascontiguousarray(tail), v_toggle
+
+
+def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: np.ndarray,
+                     restitution: float | None = None) -> tuple[MechanismEvent, ...]:
+    """The sequence of mechanisms of a run from the kernel's impacts (the
+    :data:`~archquake.mechanism._kernels.IMPACT_COLUMNS`) and onsets (time, side), in time
+    order."""
+    table = prepared.table
+    described = table.described(prepared.impact.law, restitution)
+    events = []
+    for t, side in onsets:
+        events.append((float(t), 0, MechanismEvent(float(t), table.hinges_label(0, int(side)),
+                                                    "onset", "", True, 0, int(side))))
+    for row in impacts:
+        t, pre, post, side, locked = float(row[0]), int(row[3]), int(row[4]), int(row[5]), row[6]
+        if post < 0:
+            kind, hinges = "unresolved", ""
+        else:
+            kind = "rest" if locked else "impact"
+            hinges = table.hinges_label(post, side)
+        events.append((t, 1, MechanismEvent(t, hinges, kind, table.validity[pre],
+                                            bool(described[pre]), post, side)))
+    events.sort(key=lambda e: (e[0], e[1]))
+    return tuple(e[2] for e in events)
 
 
 def simulate(
@@ -343,11 +423,14 @@ def simulate(
         Any archquake ground motion (step impulse, sine pulse, record).
     restitution : float, optional
         Prescribed c_v in [0, 1] instead of the impact law's (the paper allows either; 0 is
-        perfectly plastic); outside it is refused.
+        perfectly plastic); outside it is refused. It replaces the energy, not the mechanism:
+        the post-impact mechanism is still the law's, with c_v^2 of the kinetic energy before
+        the impact (for the mirror image, the rate is c_v times the closing rate).
     impact : {"paper", "chain", "mirror"}, optional
         Impact law (:mod:`archquake.mechanism.impact`): "paper" (Eq. 4), "chain" (the chain
-        law, :mod:`archquake.mechanism.impact_chain`; see ``SimulationResult.impact_followed``)
-        or "mirror". None: a PreparedMechanism's own law, else "paper".
+        law, :mod:`archquake.mechanism.impact_chain`, followed over its reachable set of
+        mechanisms; see ``SimulationResult.mechanisms``) or "mirror". None: a
+        PreparedMechanism's own law, else :data:`~archquake.mechanism.prepared.DEFAULT_IMPACT_LAW`.
     t_end : float, optional
         End of the analysis, s. Default: the end of the excitation plus 60 sqrt(R/g).
     initial_rate : float, optional
@@ -385,6 +468,7 @@ def simulate(
     require_positive("g", g, "m/s^2")
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution_for(restitution)
+    mechs, nxt, flip, ratio = prepared.table.kernel_arrays(check_restitution(restitution))
     initial_rate = require_finite("initial_rate", initial_rate, "rad/s")
     if initial_rate < 0:
         raise InvalidParameterError(f"initial_rate must be >= 0 rad/s, got {initial_rate:g}")
@@ -427,16 +511,17 @@ def simulate(
     tail, v_toggle = _record_tail(prepared, kind, params)
     reruns = 0
     while True:
-        hist = np.zeros((cap, 5))
-        impacts = np.zeros((n_imp_cap, 3))
+        hist = np.zeros((cap, K.HIST_COLUMNS))
+        impacts = np.zeros((n_imp_cap, K.IMPACT_COLUMNS))
         peaks = np.zeros(n_imp_cap + 1)
-        counters = np.zeros(9)
-        eval_out = np.zeros((requested.size, 5))
+        counters = np.zeros(10)
+        onsets = np.zeros((n_imp_cap + 1, 2))
+        eval_out = np.zeros((requested.size, K.HIST_COLUMNS))
         outcome, final, collapse_half, n_eval = K.simulate_kernel_eval(
-            prepared.packed, kind, params, g, cv, float(t_end), options.rtol, options.atol,
+            mechs, nxt, flip, ratio, kind, params, g, float(t_end), options.rtol, options.atol,
             options.rest_rotation, n_imp_cap, float(dt_out), hist, impacts, peaks, counters,
-            float(initial_rate), requested, eval_out, float(dt_lock), MAX_HISTORY_SAMPLES,
-            tail, v_toggle,
+            onsets, float(initial_rate), requested, eval_out, float(dt_lock),
+            MAX_HISTORY_SAMPLES, tail, v_toggle,
         )
         if counters[8]:
             raise InvalidParameterError(
@@ -454,19 +539,28 @@ def simulate(
     history = None
     if dt_out != 0:
         h = hist[:n_hist]
-        history = History(*(h[:, i].copy() for i in range(5)))
+        history = History(h[:, 0].copy(), h[:, 1].copy(), h[:, 2].copy(), h[:, 3].copy(),
+                          h[:, 4].copy(), mechanism_row=h[:, 5].astype(int))
     evaluated = None
     if t_eval is not None:
         e = eval_out[:int(n_eval)]
         evaluated = History(requested[:int(n_eval)].copy(), e[:, 0].copy(), e[:, 1].copy(),
-                            e[:, 3].astype(int), e[:, 4].copy(), phi_ddot=e[:, 2].copy())
+                            e[:, 3].astype(int), e[:, 4].copy(), phi_ddot=e[:, 2].copy(),
+                            mechanism_row=e[:, 5].astype(int))
     onset = counters[6]
     ctime = counters[7]
     computed = _OUTCOMES[int(outcome)]
-    described = prepared.describes_impact(restitution)
+    n_on = min(int(counters[9]), onsets.shape[0])
+    events = mechanism_events(prepared, impacts[:n_imp], onsets[:n_on],
+                              check_restitution(restitution))
+    # every recorded impact precedes the verdict (a collapse ends the run)
+    impact_events = [e for e in events if e.kind != "onset"]
+    described = (all(e.described for e in impact_events) if impact_events
+                 else prepared.describes_impact(restitution))
     return SimulationResult(
         outcome=qualify(computed, collapse_half_cycle=int(collapse_half), impacts=n_imp,
                         impact_described=described),
+        mechanisms=events,
         computed_outcome=computed,
         impact_described=described,
         restitution_prescribed=restitution is not None,
@@ -484,9 +578,7 @@ def simulate(
         impact_admissible=bool(model_cv >= 0.0),
         impact_law=prepared.impact.law,
         impact_validity=prepared.impact.validity,
-        impact_followed=bool(prepared.impact.law != "chain" or prepared.impact.post is None
-                             or (prepared.impact.chain is not None
-                                 and prepared.impact.chain.is_mirror)),
+        impact_followed=prepared.follows_law,
         mechanism=mech,
         collapse_acceleration_g=prepared.collapse_acceleration_g,
         critical_rotation=prepared.critical_rotation,
@@ -501,4 +593,5 @@ def simulate(
     )
 
 
-__all__ = ["FinalState", "History", "Outcome", "SimulationResult", "SolverOptions", "simulate"]
+__all__ = ["FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
+           "SolverOptions", "mechanism_events", "simulate"]

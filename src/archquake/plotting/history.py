@@ -18,9 +18,11 @@ def plot_history(result, ax=None, *, label: str | None = None, color: str | None
                  marks: bool = True):
     """Rotation of the open mechanism against time, as in the paper's Figure 4(b)-(d).
 
-    The curve is ``side * phi``: positive while the first mechanism is open, negative while its
-    mirror image is (after an odd number of impacts). Impacts are marked with dots, the collapse
-    with a cross.
+    The curve is ``side * phi``: positive while a row mechanism of the impact law's table is
+    open, negative while its mirror image is (under Eq. 4, after an odd number of impacts).
+    Impacts are marked with dots, the collapse with a cross; where the law moves on to another
+    mechanism than the mirror image (the chain law), each impact is labelled with the hinges of
+    the mechanism that opens (``"0e 2i 5e 7i"``).
 
     Parameters
     ----------
@@ -45,6 +47,12 @@ def plot_history(result, ax=None, *, label: str | None = None, color: str | None
         if result.impact_times.size:
             ax.plot(result.impact_times, np.zeros_like(result.impact_times), "o", ms=4,
                     color=line.get_color(), label=None)
+            events = [e for e in getattr(result, "mechanisms", ()) if e.kind != "onset"]
+            if any(e.row > 0 for e in events):
+                for e in events[:12]:
+                    ax.annotate(e.hinges or "?", (e.time_s, 0.0), textcoords="offset points",
+                                xytext=(2, 4), fontsize=6, rotation=60,
+                                color=line.get_color())
         if result.collapse_time is not None:
             i = np.searchsorted(h.t, result.collapse_time) - 1
             ax.plot([result.collapse_time], [h.signed_rotation[max(i, 0)]], "x", ms=8,
@@ -149,6 +157,7 @@ def animate_history(prepared, result, path: str | Path, *, fps: int = 20, t_end:
         Factor on the rotations for visibility (1 = true scale).
     """
     from archquake.mechanism.configuration import hinge_points, voussoir_positions
+    from archquake.mechanism.prepared import PreparedMechanism
 
     h = result.history
     if h is None or h.t.size == 0:
@@ -158,6 +167,7 @@ def animate_history(prepared, result, path: str | Path, *, fps: int = 20, t_end:
     times = np.linspace(0.0, t_last, n_frames)
     idx = np.clip(np.searchsorted(h.t, times), 0, h.t.size - 1)
     arch = prepared.mechanism.arch
+    lawful = PreparedMechanism.build(prepared, result.impact_law)  # the result's table
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     span = arch.extrados_radius * 1.15
     y0 = min(arch.springing_y, 0.0) - 0.15 * arch.radius
@@ -167,8 +177,12 @@ def animate_history(prepared, result, path: str | Path, *, fps: int = 20, t_end:
         k = idx[i]
         side = int(h.side[k])
         phi = float(h.phi[k]) * exaggerate
-        pos = voussoir_positions(prepared, phi, side)
-        hinges = hinge_points(prepared, phi, side) if side != 0 else None
+        # the mechanism open at this sample: a row of the impact law's table
+        member = prepared
+        if side != 0 and h.mechanism_row is not None and int(h.mechanism_row[k]) > 0:
+            member = lawful.member(int(h.mechanism_row[k]))
+        pos = voussoir_positions(member, phi, side)
+        hinges = hinge_points(member, phi, side) if side != 0 else None
         plot_arch(arch, ax, voussoir_positions=pos, hinges=hinges, show_ghost=True)
         ax.set_xlim(-span, span)
         ax.set_ylim(y0, arch.extrados_radius * 1.1)

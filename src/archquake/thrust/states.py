@@ -380,7 +380,9 @@ def states(
         else:
             xg = _ground_before(motion, t, tau)
         phi = max(float(ev.phi[k]), 0.0) if side != 0 else 0.0
-        out[i] = state_at(prepared, t, phi, float(ev.phi_dot[k]), side, xg, g=g)
+        # the mechanism open at t: a row of the impact law's table (row 0 under Eq. 4)
+        row = int(ev.mechanism_row[k]) if ev.mechanism_row is not None and side != 0 else 0
+        out[i] = state_at(prepared.member(row), t, phi, float(ev.phi_dot[k]), side, xg, g=g)
     return out  # type: ignore[return-value]
 
 
