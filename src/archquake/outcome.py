@@ -58,7 +58,9 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
     If the verdict depends on an impact and the law does not describe the impacts
     (:meth:`archquake.mechanism.impact.ImpactSolution.describes`: Eq. 4 creating energy or
     giving c_v < 0; the chain law's response outside the four-hinge model), the verdict is
-    ``indeterminate``; otherwise it stands.
+    ``indeterminate``; otherwise it stands. Describedness is per impact: the caller passes
+    whether *every impact before the verdict* is described (each impact has the validity of
+    the mechanism that closed, :attr:`archquake.mechanism.prepared.PreparedMechanism.table`).
 
     Parameters
     ----------
@@ -69,6 +71,7 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
     impacts : int
         Impacts computed before the verdict (before the collapse, or in the whole run).
     impact_described : bool
+        Every impact before the verdict is described by the law.
 
     Examples
     --------

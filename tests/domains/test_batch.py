@@ -106,3 +106,22 @@ def test_batch_equals_scalar_where_verdicts_are_indeterminate():
             assert o is Outcome.COLLAPSE
         if h >= 2:
             assert o is Outcome.INDETERMINATE
+
+
+@pytest.mark.parametrize("early", [True, False])
+def test_batch_equals_scalar_under_the_followed_chain_law(early):
+    """The chain law followed over its reachable set (Oppenheim: 2 rows; the semicircle
+    n = 15: 10 rows, its first impact 'outside'): the batch (table stack, least crest barrier
+    over the rows, per-impact validity) and simulate agree case by case."""
+    import math
+
+    from archquake.geometry import Arch
+
+    for arch, a, d in [(Arch(10.0, 1.5, math.radians(157.5), 7), [1.0, 1.0, 1.0, 0.6, 1.0],
+                        [0.44, 0.27, 0.20, 0.35, 0.30]),
+                       (Arch(5.0, 0.6, math.pi, 15), [0.1, 0.15, 0.15, 0.15, 0.3],
+                        [0.2, 0.1, 0.15, 0.3, 0.3])]:
+        fast = evaluate_pulses(arch, "step", a, d, impact="chain", early=early)
+        slow = evaluate_pulses_scalar(arch, "step", a, d, impact="chain")
+        np.testing.assert_array_equal(fast.outcome, slow.outcome)
+        np.testing.assert_array_equal(fast.collapse_half_cycle, slow.collapse_half_cycle)

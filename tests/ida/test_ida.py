@@ -133,6 +133,29 @@ def test_batch_evaluator_is_simulate_case_by_case(records):
     assert outcomes == {"no_hinging", "survives", "collapse"}
 
 
+def test_batch_evaluator_is_simulate_under_the_followed_chain_law(records):
+    """The chain law's two mechanisms on Oppenheim's arch: outcome, collapse half cycle and the
+    largest peak (free rocking over the table after the early decision) as simulate's."""
+    from archquake.sweeps import CaseOptions
+
+    prepared = PreparedMechanism.build(OPPENHEIM.build(), "chain")
+    assert prepared.table.size == 2
+    opts = CaseOptions(impact="chain")
+    cases = [Case(OPPENHEIM, ExcitationSpec("record", motion=r, scale=s), options=opts)
+             for r in records for s in (1.3, 2.0, 3.0, 4.5)]
+    batch = evaluate_cases(cases)
+    early = 0
+    for case, got in zip(cases, batch, strict=True):
+        ref = simulate(prepared, case.excitation.build(), options=SolverOptions(output_interval=0))
+        assert got["outcome"] == ref.outcome.value
+        assert got["collapse_half_cycle"] == ref.collapse_half_cycle
+        if ref.outcome.value == "survives":
+            early += got["kernel_runs"] == 1
+            assert got["peak_rotation_max_rad"] == pytest.approx(ref.peak_rotation.max(),
+                                                                  rel=1e-7, abs=1e-12)
+    assert early >= 1  # the early decision was taken (and its peak checked)
+
+
 def test_prescribed_restitution_reaches_the_batch(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build())
     from archquake.sweeps import CaseOptions

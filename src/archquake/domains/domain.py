@@ -52,6 +52,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
+from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 from archquake.outcome import Outcome
@@ -190,8 +191,9 @@ class FailureDomain:
     impact_validity : str
         Its validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
     impact_described : bool
-        True if the law (with the prescribed c_v, if any) describes this arch's impacts. If
-        False, every verdict reached after an impact is indeterminate
+        True if the law (with the prescribed c_v, if any) describes this arch's impacts (every
+        row of its mechanism table, :attr:`PreparedMechanism.table`: a boundary may come from
+        any of them). If False, every verdict reached after an impact is indeterminate
         (:func:`archquake.outcome.qualify`): lambda and the first-half-cycle boundary stand, and
         ``collapse_g`` where it collapses after an impact is the law's computed boundary, not a
         certain one (:attr:`collapse_verdict`).
@@ -525,8 +527,10 @@ def failure_domain(
         g=g,
         impact_law=prepared.impact.law,
         impact_validity=prepared.impact.validity,
-        # another model's outcomes (the DEM) carry their own impacts
-        impact_described=evaluate is not None or prepared.describes_impact(restitution),
+        # another model's outcomes (the DEM) carry their own impacts; the law's: every impact
+        # the arch can have (each row of its table) is described
+        impact_described=evaluate is not None or bool(np.all(prepared.table.described(
+            prepared.impact.law, check_restitution(restitution)))),
         restitution_prescribed=restitution is not None,
     )
 
