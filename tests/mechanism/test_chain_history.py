@@ -61,11 +61,14 @@ def test_energy_across_every_impact_is_the_laws(arch, a, tp):
     meff = table.meff0()
     impacts = [e for e in r.mechanisms if e.kind != "onset"]
     assert len(impacts) == r.impact_times.size >= 2
+    law: dict[int, float] = {}  # the law's c_T of each row's impact, solved on first use
     pre = 0
     for e, (before, after) in zip(impacts, r.impact_rates):
         if e.row < 0:
             break
-        law_ct = chain_impact(table.mechanisms[pre]).restitution_ct
+        if pre not in law:
+            law[pre] = chain_impact(table.mechanisms[pre], exact=False).restitution_ct
+        law_ct = law[pre]
         t_before = 0.5 * meff[pre] * before**2
         t_after = 0.5 * meff[e.row] * after**2
         if e.kind == "impact":
@@ -170,3 +173,64 @@ def test_per_impact_validity_decides_the_verdict():
     assert r.outcome is Outcome.INDETERMINATE
     first = simulate(prep, StepImpulse.from_g(0.15, 0.30))
     assert first.outcome is Outcome.COLLAPSE and first.collapse_half_cycle == 1
+
+
+def test_an_impact_beyond_the_table_stops_the_history_flagged():
+    """The table capped at 3 rows (semicircle n = 16: 8 reachable): the impact whose post
+    mechanism would be the 4th is recorded 'unresolved' (beyond_set), the history stops there and
+    the verdict is indeterminate; up to it the history is the full table's."""
+    from archquake.mechanism.prepared import impact_table
+    from archquake.mechanism.simulate import FinalState
+
+    arch = Arch(5.0, 0.6, math.pi, 16)
+    full = PreparedMechanism.build(arch, "chain")
+    capped = PreparedMechanism.build(arch, "chain")
+    capped.__dict__["table"] = impact_table(capped, cap=3)  # the cached property, capped
+    assert full.table.size == 8 and capped.table.size == 3 and not capped.follows_law
+    motion = StepImpulse.from_g(0.15, 0.15)
+    r_full = simulate(full, motion)
+    r = simulate(capped, motion)
+    assert not r.impact_followed and r.final_state is FinalState.UNRESOLVED
+    last = r.mechanisms[-1]
+    assert last.kind == "unresolved" and last.validity == "beyond_set" and not last.described
+    assert r.outcome is Outcome.INDETERMINATE and r.computed_outcome is Outcome.SURVIVES
+    n = r.impact_times.size
+    assert 1 <= n < r_full.impact_times.size
+    assert np.array_equal(r.impact_times, r_full.impact_times[:n])
+
+
+def test_prescribed_restitution_keeps_the_laws_mechanisms():
+    """restitution = 0.9 under the chain law: the same mechanisms as the law's, and every impact
+    keeps exactly 0.81 of the kinetic energy (1e-12)."""
+    prep = PreparedMechanism.build(OPPENHEIM, "chain")
+    law = simulate(prep, StepImpulse.from_g(1.0, 0.20))
+    r = simulate(prep, StepImpulse.from_g(1.0, 0.20), restitution=0.9)
+    assert r.restitution_prescribed and r.impact_times.size >= 2
+    meff = prep.table.meff0()
+    rows = [e.row for e in r.mechanisms if e.kind == "impact"]
+    assert rows[:2] == [1, 1]
+    pre = 0
+    for row, (before, after) in zip(rows, r.impact_rates):
+        ratio = (meff[row] * after**2) / (meff[pre] * before**2)
+        assert ratio == pytest.approx(0.81, rel=1e-12)
+        pre = row
+    assert [e.hinges for e in r.mechanisms[:3]] == [e.hinges for e in law.mechanisms[:3]]
+
+
+def test_run_plot_and_animation_under_the_chain_law(tmp_path, capsys):
+    """archquake run --impact chain prints the sequence of mechanisms; the plot labels the
+    impacts and the animation draws the open row."""
+    from archquake.cli.main import main
+    from archquake.plotting.history import animate_history
+
+    plot, gif = tmp_path / "r.png", tmp_path / "r.gif"
+    assert main(["run", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.20",
+                 "--impact", "chain", "--plot", str(plot)]) == 0
+    out = capsys.readouterr().out
+    assert "impact     0e 2i 5e 7i (near_four_hinge)" in out
+    assert plot.stat().st_size > 10_000
+    prep = PreparedMechanism.build(OPPENHEIM, "chain")
+    r = simulate(prep, StepImpulse.from_g(1.0, 0.20))
+    assert set(np.unique(r.history.mechanism_row)) == {0, 1}
+    animate_history(prep, r, gif, frames=6, t_end=2.0)  # frames on rows 0 and 1
+    assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
