@@ -212,9 +212,11 @@ class SimulationResult:
     impact_rates : ndarray, (k, 2)
         phi-dot just before (negative, closing) and just after (opening) each impact, rad/s.
     peak_rotation : ndarray, (half cycles,), rad
-        Largest phi in each half cycle.
+        Largest phi in each half cycle (the open mechanism's own phi: under the chain law
+        successive half cycles may be different mechanisms, ``mechanisms``).
     restitution_cv : float
-        c_v used at the impacts (from Eq. 4, or prescribed).
+        c_v used at the impacts (from Eq. 4, or prescribed); under the chain law, that of the
+        first mechanism's impact (sqrt of its c_T; each row's is in ``PreparedMechanism.table``).
     restitution_ct : float
         c_T = c_v^2.
     energy_gain : bool
