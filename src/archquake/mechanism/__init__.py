@@ -1,10 +1,11 @@
 """The arch in motion: four-link kinematics, equation of motion, impact and time histories."""
 
 from archquake.mechanism.impact import ImpactSolution, solve_impact
-from archquake.mechanism.prepared import PreparedMechanism, hinges_of
+from archquake.mechanism.prepared import ImpactTable, PreparedMechanism, hinges_of
 from archquake.mechanism.simulate import (
     FinalState,
     History,
+    MechanismEvent,
     Outcome,
     SimulationResult,
     SolverOptions,
@@ -15,6 +16,8 @@ __all__ = [
     "FinalState",
     "History",
     "ImpactSolution",
+    "ImpactTable",
+    "MechanismEvent",
     "Outcome",
     "PreparedMechanism",
     "SimulationResult",
