@@ -59,6 +59,7 @@ VALIDITY_MEANING = {
     "at_rest": "the impact stops the arch (perfectly plastic)",
     "outside": "the impact law does not describe this arch's impacts",
     "not_four_hinge": "the impact response is not a four-hinge mechanism",
+    "beyond_set": "the impact's post mechanism is beyond the mechanisms tabulated for the history",
 }
 
 #: The chain laws' validities under which the impact is described (:meth:`ImpactSolution.describes`).
