@@ -159,6 +159,25 @@ def test_a_round_is_one_task_per_worker():
     assert round_chunk_size(1, None, 4) == 1
 
 
+def test_the_analytical_ida_runs_in_process_by_default(tmp_path, monkeypatch):
+    # the compiled batch spreads a round over the cores itself: no process pool unless asked
+    # (executor or workers); each round is one task for the in-process executor
+    import archquake.sweeps.runner as runner
+
+    seen = []
+    real = runner.run_sweep
+
+    def spy(cases, store, **kwargs):
+        seen.append((type(kwargs["executor"]).__name__, kwargs["chunk_size"], len(cases)))
+        return real(cases, store, **kwargs)
+
+    monkeypatch.setattr(runner, "run_sweep", spy)
+    with ResultStore(tmp_path / "d.sqlite") as store:
+        incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga", store,
+                                     ceiling=1.0, precision=0.2, fill=0.5)
+    assert seen and all(kind == "SerialExecutor" and chunk == n for kind, chunk, n in seen)
+
+
 def test_prescribed_restitution_reaches_the_batch(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build())
     from archquake.sweeps import CaseOptions
