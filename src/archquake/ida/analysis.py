@@ -36,7 +36,15 @@ from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
 from archquake.outcome import Outcome
-from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationKind, ExcitationSpec, Model
+from archquake.sweeps.cases import (
+    ArchSpec,
+    Case,
+    CaseOptions,
+    ExcitationKind,
+    ExcitationSpec,
+    Model,
+    motion_digest,
+)
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
 
 #: Default ceiling: the level at which the suite's median record has this PGA, g.
@@ -373,9 +381,12 @@ def incremental_dynamic_analysis(
         start = min(float(s), float(ceiling))
         hf.append(HuntFill(start, float(ceiling), precision, fill, hunt_step, hunt_growth))
 
+    digests = [motion_digest(m) for m in motions]  # each record's id part, hashed once
+
     def case_of(i: int, level: float) -> Case:
         factor = (level / im0[i]) ** (1.0 / k)
-        return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i], scale=float(factor)),
+        return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i],
+                                         scale=float(factor), file_sha256=digests[i]),
                     model, options)
 
     runs: list[dict[float, Case]] = [{} for _ in motions]
