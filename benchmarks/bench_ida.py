@@ -75,7 +75,7 @@ def main() -> None:
 
     per_outcome: dict[str, float] = defaultdict(float)
     count: dict[str, int] = defaultdict(int)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     mismatches = 0
     opts = SolverOptions(output_interval=0.0)
     for case, b in zip(cases, batch, strict=True):
@@ -84,9 +84,12 @@ def main() -> None:
         per_outcome[r.outcome.value] += time.perf_counter() - t1
         count[r.outcome.value] += 1
         mismatches += r.outcome.value != b["outcome"]
-    t_loop = time.perf_counter() - t0
+    t_loop, c_loop = time.perf_counter() - t0, time.process_time() - c0
     print(f"same {n} cases one by one through simulate: {t_loop:.2f} s "
-          f"({t_loop / n * 1e3:.2f} ms per run)")
+          f"({t_loop / n * 1e3:.2f} ms per run; {c_loop:.2f} s of CPU)")
+    if t_loop > 1.1 * c_loop:
+        print("  (the serial loop got less than 90 % of a core: other jobs share the machine, "
+              "so the ratios below are unreliable)")
     print("simulate time by outcome: " + ", ".join(
         f"{k} {count[k]} runs {per_outcome[k]:.2f} s ({per_outcome[k] / count[k] * 1e3:.2f} ms "
         f"per run)" for k in sorted(count)))
