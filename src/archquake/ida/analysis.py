@@ -333,9 +333,9 @@ def incremental_dynamic_analysis(
         analytical model: with neither ``executor`` nor ``workers`` it runs in this process
         (:class:`~archquake.sweeps.SerialExecutor`: the compiled batch already spreads a round
         over all cores with numba's threads; a pool of processes, each with as many threads,
-        was 2.3x slower on Oppenheim's arch under the near-field pulse set, started afresh
-        every round), and its default chunk is a round's share per worker (one compiled call
-        per worker and round, :func:`round_chunk_size`).
+        started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
+        pulse set, docs/earthquakes.md), and its default chunk is a round's share per worker
+        (one compiled call per worker and round, :func:`round_chunk_size`).
     progress : callable, optional
         ``progress(stored, total_so_far, round)`` after every stored batch.
 
