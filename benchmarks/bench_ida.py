@@ -7,19 +7,26 @@ batch (:func:`archquake.ida.batch.evaluate_cases`, numba ``prange`` over the cas
 stopped 10 sqrt(R/g) after the record when energy proves survival); serial executor, so the only
 parallelism is numba's threads. The plain loop calls ``simulate`` (prepared mechanism reused,
 no history) on exactly the scaled records the IDA ran. Also printed: the batch alone on the same
-cases (no store, no rounds) and the time per outcome. Needs the FEMA suites
-(``pip install 'archquake[records]'``). Run:
+cases (no store, no rounds), on all of numba's threads and on one (what the threads bring), and
+simulate's time per outcome. Needs the FEMA suites (``pip install 'archquake[records]'``). Run:
 
     .venv/bin/python benchmarks/bench_ida.py
+
+The whole picture on one thread (the IDA too): ``NUMBA_NUM_THREADS=1 .venv/bin/python
+benchmarks/bench_ida.py``. The machine should be otherwise idle: the ratio is a ratio of wall
+times.
 """
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
 import time
 from collections import defaultdict
 from pathlib import Path
+
+import numba
 
 from archquake.ground.suites import load_suite
 from archquake.ida import incremental_dynamic_analysis
@@ -55,10 +62,20 @@ def main() -> None:
     t0 = time.perf_counter()
     batch = evaluate_cases(cases)
     t_batch = time.perf_counter() - t0
+    threads = numba.get_num_threads()
+    t_batch1 = math.nan
+    if threads > 1:  # the same batch on one thread: what the threads bring
+        numba.set_num_threads(1)
+        try:
+            t0 = time.perf_counter()
+            evaluate_cases(cases)
+            t_batch1 = time.perf_counter() - t0
+        finally:
+            numba.set_num_threads(threads)
 
     per_outcome: dict[str, float] = defaultdict(float)
     count: dict[str, int] = defaultdict(int)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     mismatches = 0
     opts = SolverOptions(output_interval=0.0)
     for case, b in zip(cases, batch, strict=True):
@@ -67,13 +84,23 @@ def main() -> None:
         per_outcome[r.outcome.value] += time.perf_counter() - t1
         count[r.outcome.value] += 1
         mismatches += r.outcome.value != b["outcome"]
-    t_loop = time.perf_counter() - t0
+    t_loop, c_loop = time.perf_counter() - t0, time.process_time() - c0
     print(f"same {n} cases one by one through simulate: {t_loop:.2f} s "
-          f"({t_loop / n * 1e3:.2f} ms per run)")
-    print(f"same cases in one batch call (no store, no rounds): {t_batch:.2f} s")
+          f"({t_loop / n * 1e3:.2f} ms per run; {c_loop:.2f} s of CPU)")
+    if t_loop > 1.1 * c_loop:
+        print("  (the serial loop got less than 90 % of a core: other jobs share the machine, "
+              "so the ratios below are unreliable)")
     print("simulate time by outcome: " + ", ".join(
-        f"{k} {count[k]} runs {per_outcome[k]:.2f} s" for k in sorted(count)))
+        f"{k} {count[k]} runs {per_outcome[k]:.2f} s ({per_outcome[k] / count[k] * 1e3:.2f} ms "
+        f"per run)" for k in sorted(count)))
+    print(f"same cases in one batch call (no store, no rounds): {t_batch:.2f} s on {threads} "
+          f"numba thread(s)" + ("" if math.isnan(t_batch1) else f", {t_batch1:.2f} s on 1 "
+                                f"(threads bring {t_batch1 / t_batch:.2f}x)"))
     print(f"outcomes differing between the batch and simulate: {mismatches}")
+    if not math.isnan(t_batch1):
+        print(f"decomposition: simulate loop / 1-thread batch {t_loop / t_batch1:.2f}x (per-call "
+              f"overhead and the batch's early decision) x threads {t_batch1 / t_batch:.2f}x x "
+              f"store and rounds {t_batch / t_ida:.2f}x")
     print(f"ratio simulate loop / IDA: {t_loop / t_ida:.2f}x "
           f"(batch alone: {t_loop / t_batch:.2f}x; target >= 5x)")
 

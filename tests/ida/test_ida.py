@@ -156,6 +156,51 @@ def test_batch_evaluator_is_simulate_under_the_followed_chain_law(records):
     assert early >= 1  # the early decision was taken (and its peak checked)
 
 
+def test_cases_are_dealt_to_the_threads_in_turn():
+    # Oracle: numba's static schedule, one contiguous block per thread, the first blocks one
+    # longer (n = 7 on 2 threads: 4 + 3); each block must then hold every T-th case.
+    from archquake.ida.batch import thread_order
+
+    assert thread_order(7, 2) == [0, 2, 4, 6, 1, 3, 5]
+    for n, t in ((28, 2), (29, 4), (3, 8), (1, 1), (0, 2)):
+        order = thread_order(n, t)
+        assert sorted(order) == list(range(n))
+        size = -(-n // t) if n else 0
+        if n >= t:
+            assert order[:size] == list(range(0, n, t))
+
+
+def test_a_round_is_one_task_per_worker():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from archquake.ida.analysis import round_chunk_size
+
+    assert round_chunk_size(262, SerialExecutor(), None) == 262
+    with ThreadPoolExecutor(3) as pool:
+        assert round_chunk_size(262, pool, None) == 88
+    assert round_chunk_size(262, None, 2) == 131
+    assert round_chunk_size(1, None, 4) == 1
+
+
+def test_the_analytical_ida_runs_in_process_by_default(tmp_path, monkeypatch):
+    # the compiled batch spreads a round over the cores itself: no process pool unless asked
+    # (executor or workers); each round is one task for the in-process executor
+    import archquake.sweeps.runner as runner
+
+    seen = []
+    real = runner.run_sweep
+
+    def spy(cases, store, **kwargs):
+        seen.append((type(kwargs["executor"]).__name__, kwargs["chunk_size"], len(cases)))
+        return real(cases, store, **kwargs)
+
+    monkeypatch.setattr(runner, "run_sweep", spy)
+    with ResultStore(tmp_path / "d.sqlite") as store:
+        incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga", store,
+                                     ceiling=1.0, precision=0.2, fill=0.5)
+    assert seen and all(kind == "SerialExecutor" and chunk == n for kind, chunk, n in seen)
+
+
 def test_prescribed_restitution_reaches_the_batch(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build())
     from archquake.sweeps import CaseOptions

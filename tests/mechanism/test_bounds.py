@@ -213,3 +213,24 @@ def test_step_impulse_shows_its_unit():
     assert StepImpulse.from_g(1.0, 0.2).magnitude == pytest.approx(G)
     assert "m/s^2" in StepImpulse.__doc__ and "from_g" in StepImpulse.__doc__
     assert "m/s^2" in repr(SinePulse(1.0, 0.2)) and "g" in repr(SinePulse(1.0, 0.2))
+
+
+@pytest.mark.parametrize("arch", [OPPENHEIM, Arch(5.0, 0.6, math.pi, 9)])
+def test_the_toggle_potential_of_the_no_return_bound_is_a_tight_lower_bound(arch):
+    # Oracle: the potential evaluated where the kernel stops at the toggle (phi_toggle (1 -
+    # 1e-9): no integrated state goes further; at the toggle itself the potential has a
+    # square-root drop). The no-return criterion needs a lower bound of the potential past the
+    # crest; it is computed once per mechanism (cached by the packed mechanism's bytes), so a
+    # second arch must get its own value.
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.kinematics import potential
+    from archquake.mechanism.simulate import _record_tail
+
+    prep = PreparedMechanism.build(arch)
+    kind, params = _quiet_tail_record(0.01).kernel_spec()
+    tail, v_toggle = _record_tail(prep, kind, params)
+    assert tail.size == params.size - 2 and tail[0] > 0 and tail[-1] == 0.0
+    at_toggle = potential(prep.packed, prep.toggle_rotation * (1.0 - 1e-9))
+    drop = potential(prep.packed, prep.critical_rotation) - at_toggle
+    assert drop > 0
+    assert v_toggle <= at_toggle and at_toggle - v_toggle <= 2e-6 * drop

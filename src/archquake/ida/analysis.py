@@ -36,7 +36,15 @@ from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
 from archquake.outcome import Outcome
-from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationKind, ExcitationSpec, Model
+from archquake.sweeps.cases import (
+    ArchSpec,
+    Case,
+    CaseOptions,
+    ExcitationKind,
+    ExcitationSpec,
+    Model,
+    motion_digest,
+)
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
 
 #: Default ceiling: the level at which the suite's median record has this PGA, g.
@@ -321,7 +329,13 @@ def incremental_dynamic_analysis(
         Prescribed restitution and impact law (analytical only), end time, gravity (default: none, the
         model's own, standard gravity).
     executor, workers, chunk_size
-        As :func:`archquake.sweeps.run_sweep` (default: a local process pool).
+        As :func:`archquake.sweeps.run_sweep` (default: a local process pool), except for the
+        analytical model: with neither ``executor`` nor ``workers`` it runs in this process
+        (:class:`~archquake.sweeps.SerialExecutor`: the compiled batch already spreads a round
+        over all cores with numba's threads; a pool of processes, each with as many threads,
+        started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
+        pulse set, docs/earthquakes.md), and its default chunk is a round's share per worker
+        (one compiled call per worker and round, :func:`round_chunk_size`).
     progress : callable, optional
         ``progress(stored, total_so_far, round)`` after every stored batch.
 
@@ -331,11 +345,13 @@ def incremental_dynamic_analysis(
     """
     from archquake.ida.batch import evaluate_cases
     from archquake.sweeps.evaluate import _prepared
-    from archquake.sweeps.runner import run_sweep
+    from archquake.sweeps.runner import SerialExecutor, run_sweep
 
     measure = parse_im(im)
     options = CaseOptions() if options is None else options
     model = Model(getattr(model, "value", model))
+    if model is Model.ANALYTICAL and executor is None and workers is None:
+        executor = SerialExecutor()
     if not motions:
         raise InvalidParameterError("the suite holds no records")
     names = [getattr(m, "name", f"motion{i}") for i, m in enumerate(motions)]
@@ -365,9 +381,12 @@ def incremental_dynamic_analysis(
         start = min(float(s), float(ceiling))
         hf.append(HuntFill(start, float(ceiling), precision, fill, hunt_step, hunt_growth))
 
+    digests = [motion_digest(m) for m in motions]  # each record's id part, hashed once
+
     def case_of(i: int, level: float) -> Case:
         factor = (level / im0[i]) ** (1.0 / k)
-        return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i], scale=float(factor)),
+        return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i],
+                                         scale=float(factor), file_sha256=digests[i]),
                     model, options)
 
     runs: list[dict[float, Case]] = [{} for _ in motions]
@@ -391,7 +410,9 @@ def incremental_dynamic_analysis(
         report = run_sweep(
             new_cases, store,
             evaluate=None, evaluate_batch=evaluate_cases if model is Model.ANALYTICAL else None,
-            executor=executor, workers=workers, chunk_size=chunk_size,
+            executor=executor, workers=workers,
+            chunk_size=(round_chunk_size(len(new_cases), executor, workers)
+                        if chunk_size is None and model is Model.ANALYTICAL else chunk_size),
             progress=None if progress is None else _round_progress(
                 progress, rounds, total_so_far, len(new_cases)))
         computed += report.computed
@@ -428,6 +449,22 @@ def incremental_dynamic_analysis(
                      store=str(store.path), motions=tuple(motions))
 
 
+def round_chunk_size(cases: int, executor: Executor | None, workers: int | None) -> int:
+    """Cases per task of one round of the analytical model: the round split evenly over the
+    workers (one task for an in-process executor).
+
+    Each task is one call of the compiled batch, which spreads its cases over numba's threads
+    itself; smaller tasks (the sweep's default, eight per worker) only leave threads idle at the
+    end of each call: Oppenheim's arch under the near-field pulse set ran 101 calls of 1 to 33
+    cases in 14 rounds, and its kernel time on 2 threads was 2.6 s where one call per round
+    takes 2.3 s (``benchmarks/bench_ida.py``, docs/earthquakes.md)."""
+    from archquake.sweeps.runner import executor_workers, usable_cores
+
+    if workers is None:
+        workers = executor_workers(executor) or usable_cores()
+    return max(1, math.ceil(cases / max(1, int(workers))))
+
+
 def _round_progress(progress, rounds: int, total: int, new: int):
     """The sweep's ``progress(done, total)`` of one round as the analysis's
     ``progress(stored, total_so_far, round)``."""
@@ -443,4 +480,5 @@ def _peak(outputs: dict) -> float:
     return float(max(peaks))
 
 
-__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "incremental_dynamic_analysis"]
+__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "incremental_dynamic_analysis",
+           "round_chunk_size"]

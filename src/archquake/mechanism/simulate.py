@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from enum import Enum
+from functools import lru_cache
 
 import numpy as np
 
@@ -347,23 +348,15 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
     does not decrease from its crest to its toggle (sampled at 257 points), which the
     criterion's bound assumes."""
     from archquake.ground.base import KIND_SAMPLED
-    from archquake.mechanism.kinematics import PHI_CRIT, PHI_TOGGLE, potential
 
     rows = prepared.table.packed
     v_toggle = np.full(rows.shape[0], np.nan)
     if kind != KIND_SAMPLED:
         return np.empty(0), v_toggle
     for r, packed in enumerate(rows):
-        crest, toggle = float(packed[PHI_CRIT]), float(packed[PHI_TOGGLE])
-        if not (math.isfinite(crest) and math.isfinite(toggle) and toggle > crest):
-            continue
-        phis = np.linspace(crest, crest + (toggle - crest) * (1.0 - 1e-9), 257)
-        pot = np.array([potential(packed, float(p)) for p in phis])
-        if not (np.all(np.isfinite(pot)) and np.all(np.diff(pot) <= 0.0)):
-            continue
-        # the last sample sits 1e-9 of the range short of the toggle: lower it by far more than
-        # the potential can still drop there (the bound needs a lower bound of the potential)
-        v_toggle[r] = float(pot[-1] - 1e-6 * (pot[0] - pot[-1]))
+        value = _toggle_potential(np.ascontiguousarray(packed).tobytes())
+        if value is not None:
+            v_toggle[r] = value
     if not np.any(np.isfinite(v_toggle)):
         return np.empty(0), v_toggle
     x = np.abs(params[2:])
@@ -377,6 +370,29 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
     tail = np.zeros(x.size)
     tail[:-1] = np.cumsum(piece[::-1])[::-1]
     return np.ascontiguousarray(tail), v_toggle
+
+
+@lru_cache(maxsize=64)
+def _toggle_potential(packed: bytes) -> float | None:
+    """Potential/g at the toggle (lowered, see below) of the packed mechanism given by its
+    bytes, or None if the potential does not decrease from the crest to the toggle (sampled at
+    257 points) or the two are not finite and ordered: the no-return criterion is then off.
+
+    It depends on the mechanism only, so it is computed once per mechanism (the 257 potentials
+    are plain Python, 2 ms: a plain loop of ``simulate`` over a suite paid it on every call)."""
+    from archquake.mechanism.kinematics import PHI_CRIT, PHI_TOGGLE, potential
+
+    mech = np.frombuffer(packed, dtype=np.float64)
+    crest, toggle = float(mech[PHI_CRIT]), float(mech[PHI_TOGGLE])
+    if not (math.isfinite(crest) and math.isfinite(toggle) and toggle > crest):
+        return None
+    phis = np.linspace(crest, crest + (toggle - crest) * (1.0 - 1e-9), 257)
+    pot = np.array([potential(mech, float(p)) for p in phis])
+    if not (np.all(np.isfinite(pot)) and np.all(np.diff(pot) <= 0.0)):
+        return None
+    # the last sample sits 1e-9 of the range short of the toggle: lower it by far more than
+    # the potential can still drop there (the bound needs a lower bound of the potential)
+    return float(pot[-1] - 1e-6 * (pot[0] - pot[-1]))
 
 
 def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: np.ndarray,

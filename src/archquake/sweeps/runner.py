@@ -222,7 +222,7 @@ def run_sweep(
 
     own = executor is None
     if workers is None:
-        workers = _executor_workers(executor) or usable_cores()
+        workers = executor_workers(executor) or usable_cores()
     workers = max(1, int(workers))
     if own:
         workers = cap_workers(workers, len(pending))[0]
@@ -371,7 +371,9 @@ def _chunks(cases: Sequence[Case], size: int) -> Iterator[list[Case]]:
         yield list(cases[start:start + size])
 
 
-def _executor_workers(executor: Executor | None) -> int | None:
+def executor_workers(executor: Executor | None) -> int | None:
+    """Parallel workers of an executor (1 for :class:`SerialExecutor`, a pool's processes, a
+    Dask cluster's threads), None if unknown or no executor."""
     if executor is None:
         return None
     if isinstance(executor, SerialExecutor):
@@ -443,6 +445,7 @@ __all__ = [
     "cap_workers",
     "evaluate_batch_chunk",
     "evaluate_chunk",
+    "executor_workers",
     "open_executor",
     "process_pool",
     "run_sweep",
