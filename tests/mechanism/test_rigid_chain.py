@@ -258,3 +258,23 @@ def test_critical_step_duration_on_oppenheim():
 
     assert not step_collapses("rigid", OPPENHEIM, 1.0, 0.2586)
     assert step_collapses("rigid", OPPENHEIM, 1.0, 0.2606)
+
+
+@pytest.mark.parametrize("a_g, slides", [(0.2, False), (0.5, True)])
+def test_coulomb_block_slides_as_a_particle(a_g, slides):
+    """A squat block (b 2 m, h 0.4 m: it would rock only above 5 g) on a base with mu = 0.3,
+    ground acceleration a for 0.5 s: below mu g it sticks (slip < 1e-9 m); above, it slides with
+    the relative acceleration (a - mu g) of a particle on a rough plane, displacement
+    (a - mu g) T^2 / 2 to 1e-3."""
+    from archquake.compare.migration import RectangularPulse
+
+    mu, t_end = 0.3, 0.5
+    run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(a_g * G, t_end),
+                         duration=t_end, time_step=1e-4, friction=mu)
+    res = run.result
+    rel = res.positions[-1, 1, 0] - res.base_displacement[-1]
+    if not slides:
+        assert abs(rel) < 1e-9
+    else:
+        assert -rel == pytest.approx(0.5 * (a_g - mu) * G * t_end**2, rel=1e-3)
+    assert abs(res.positions[-1, 1, 2]) < 1e-9  # no rocking

@@ -11,7 +11,12 @@ ground; base bodies fixed in the ground's frame):
 3. v_free = v_k + h M^-1 f(t_m), f = (-m x_g'', -m g, 0);
 4. v_{k+1} = argmin 1/2 ||v - v_free||_M over {H_N v >= 0, H_T v = 0}: projected Gauss-Seidel on
    the contact impulses p (p_N >= 0, p_T free), v = v_free + M^-1 H^T p, warm-started from the
-   previous step's impulses (perfectly plastic: e = 0);
+   previous step's impulses (perfectly plastic: e = 0). With a finite friction coefficient mu,
+   each joint's tangential impulse is clamped to |p_T| <= mu (p_N0 + p_N1) (the current normal
+   impulses of its corners): a fixed point of the sweep then satisfies Coulomb's law in 2D
+   (stick with |p_T| < mu p_N, or slip opposite to p_T at the bound), which is no longer a
+   projection (Coulomb's law has no potential), so neither uniqueness nor convergence is
+   guaranteed; the sweep count and residual are reported;
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
 Everything is per unit depth of nothing: SI units, masses kg, inertias kg m^2, impulses N s.
@@ -90,9 +95,12 @@ def _row(q, body, px, py, dx, dy, sign, out):
 
 
 @nb.njit(cache=True)
-def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter):
+def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter,
+            mu):
     """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
     contacts (module docstring, step 4).
+
+    ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
 
     Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
     N s; sweeps taken; final residual m/s)."""
@@ -132,6 +140,7 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
     v = v_free.copy()
     p = np.zeros(nrows)
     diag = np.zeros(nrows)
+    pn_joint = np.zeros(nj)
     for r in range(nrows):
         j = rows_j[r]
         a = ja[j]
@@ -145,6 +154,10 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
         p[r] = p_warm[j, rows_k[r]]
         if rows_k[r] < 2 and p[r] < 0.0:
             p[r] = 0.0
+        if rows_k[r] < 2:
+            pn_joint[j] += p[r]
+        elif mu > 0.0:
+            p[r] = min(max(p[r], -mu * pn_joint[j]), mu * pn_joint[j])
         if p[r] != 0.0:
             _apply(v, a, b, ja_rows[r], jb_rows[r], p[r], inv_m, inv_i)
     sweeps = 0
@@ -162,8 +175,13 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
             if b >= 0:
                 w += jb_rows[r, 0] * v[b, 0] + jb_rows[r, 1] * v[b, 1] + jb_rows[r, 2] * v[b, 2]
             new = p[r] - w / diag[r]
-            if rows_k[r] < 2 and new < 0.0:
-                new = 0.0
+            if rows_k[r] < 2:
+                if new < 0.0:
+                    new = 0.0
+                pn_joint[j] += new - p[r]
+            elif mu > 0.0:
+                bound = mu * pn_joint[j]
+                new = min(max(new, -bound), bound)
             dp = new - p[r]
             if dp != 0.0:
                 _apply(v, a, b, ja_rows[r], jb_rows[r], dp, inv_m, inv_i)
@@ -193,7 +211,7 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 @nb.njit(cache=True)
 def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, gap_tol, tol,
-        max_iter, out_every, out_q, out_v, out_diag, diag):
+        max_iter, mu, out_every, out_q, out_v, out_diag, diag):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
     m/s^2), writing q, v, diagnostics after every ``out_every`` steps into row ``k // out_every``
     of ``out_*``. ``q``, ``v``, ``p_warm``, ``diag`` (running D_* values) are updated in place.
@@ -210,7 +228,7 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
             vf[i, 0] -= h * acc[k]
             vf[i, 1] -= h * g
         vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                       gap_tol, p_warm, tol, max_iter)
+                                       gap_tol, p_warm, tol, max_iter, mu)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0

@@ -13,7 +13,7 @@ may open at either corner has all of these motions at once, and needs no choice 
 * each joint has two corner contacts (intrados, extrados) with a unilateral normal constraint
   (gap >= 0, compressive impulse), and while either corner is in contact, no sliding (tangential
   relative velocity zero; the friction demand |p_T| / p_N is recorded and reported, to be read
-  against mu = 0.8);
+  against mu = 0.8), or optionally Coulomb friction (``friction=mu``);
 * Moreau-Jean time stepping at velocity level (:mod:`archquake.mechanism._rigid_kernels`): each
   step's velocity is the kinetic-metric projection of the unconstrained velocity onto the cone of
   admissible velocities of the contacts that are closed at mid-step, i.e. perfectly plastic
@@ -156,7 +156,7 @@ class RigidModel:
         vn, imp, _, _ = RK.project(q, np.asarray(v, float), 1.0 / self.mass, 1.0 / self.inertia,
                                    self.ja, self.jb, gaps, nrm, tan, pts,
                                    GAP_TOLERANCE * self.assembly.reference_length,
-                                   np.zeros((len(self.ja), 3)), tol, max_sweeps)
+                                   np.zeros((len(self.ja), 3)), tol, max_sweeps, 0.0)
         return vn, imp
 
 
@@ -195,7 +195,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    output_interval: float = 5e-4, settings: DemSettings | None = None,
                    initial: tuple[np.ndarray, np.ndarray] | None = None,
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
-                   solver_tolerance: float = SOLVER_TOLERANCE) -> RigidRun:
+                   solver_tolerance: float = SOLVER_TOLERANCE,
+                   friction: float | None = None) -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -217,6 +218,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         The run is checked for collapse every ``chunk`` s.
     solver_tolerance : float
         Gauss-Seidel tolerance, a fraction of sqrt(g L) (:data:`SOLVER_TOLERANCE`).
+    friction : float, optional
+        Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
+        assumption. With mu the step is no longer a projection (``_rigid_kernels`` docstring).
     """
     import time as _time
 
@@ -226,6 +230,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         arch_or_assembly)
     asm = model.assembly
     settings = DemSettings() if settings is None else settings
+    mu = 0.0 if friction is None else float(friction)
+    if friction is not None and not (mu > 0 and math.isfinite(mu)):
+        raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
@@ -272,7 +279,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         ov = np.zeros_like(oq)
         od = np.zeros((n_out, RK.N_DIAG))
         w = RK.run(q, v, p_warm, model.mass, model.inertia, model.ja, model.jb, model.arm_a,
-                   model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS,
+                   model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS, mu,
                    out_every, oq, ov, od, diag)
         worst = max(worst, int(w))
         if not np.all(np.isfinite(q)):
