@@ -10,16 +10,16 @@ ground; base bodies fixed in the ground's frame):
    relative velocity zero, at the active corner, or at the mid-point of both);
 3. v_free = v_k + h M^-1 f(t_m), f = (-m x_g'', -m g, 0);
 4. v_{k+1} = argmin 1/2 ||v - v_free||_M over {H_N v >= 0, H_T v = 0}: projected Gauss-Seidel on
-   the contact impulses p (p_N >= 0, p_T free), v = v_free + M^-1 H^T p, warm-started from the
-   previous step's impulses (perfectly plastic: e = 0). With a finite friction coefficient mu,
-   each joint's tangential impulse is clamped to |p_T| <= mu (p_N0 + p_N1) (the current normal
-   impulses of its corners): a fixed point of the sweep then satisfies Coulomb's law in 2D
-   (stick with |p_T| < mu p_N, or slip opposite to p_T at the bound), which is no longer a
-   projection (Coulomb's law has no potential), so neither uniqueness nor convergence is
-   guaranteed; the sweep count and residual are reported;
+   the contact impulses p (p_N >= 0, p_T free), v = v_free + M^-1 H^T p, over-relaxed
+   (:data:`RELAX`), warm-started from the previous step's impulses (perfectly plastic: e = 0).
+   With a finite friction coefficient mu, each joint's tangential impulse is clamped to
+   |p_T| <= mu (p_N0 + p_N1), the current normal impulses of its corners: a fixed point of the
+   sweep then satisfies Coulomb's law in 2D (stick with |p_T| < mu p_N, or slip opposite to p_T
+   at the bound). That is no longer a projection (Coulomb's law has no potential), so neither
+   uniqueness nor convergence is guaranteed; the sweep count and residual are reported;
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
-Everything is per unit depth of nothing: SI units, masses kg, inertias kg m^2, impulses N s.
+SI units throughout: masses kg, inertias kg m^2, impulses N s.
 """
 
 from __future__ import annotations
@@ -33,10 +33,16 @@ import numpy as np
 D_DISSIPATED = 0  # J, cumulated energy removed by the contact projections
 D_INPUT = 1  # J, cumulated work of the inertial load -m x_g'' on the relative motion
 D_PENETRATION = 2  # m, largest penetration (negative gap) since the last sample
-D_FRICTION = 3  # -, largest |p_T| / p_N over joints with p_N > FRICTION_FLOOR since the last sample
+D_FRICTION = 3  # -, largest |p_T| / p_N of a joint (p_N > 1e-12 h g max m) since the last sample
 D_ITERATIONS = 4  # -, most Gauss-Seidel sweeps of a step since the last sample
-D_RESIDUAL = 5  # m/s, largest final complementarity residual since the last sample
+D_RESIDUAL = 5  # m/s, largest velocity correction of a step's last sweep since the last sample
 N_DIAG = 6
+
+#: Over-relaxation of the Gauss-Seidel sweep (projected SOR; converges for 0 < RELAX < 2 on the
+#: positive semi-definite Delassus matrix). 1.3 halves the sweeps on Oppenheim's arch (280 -> 145
+#: at worst, 1.9 -> 1.1 s per 4 s history) and changes the energy kept over its half cycle by
+#: 2e-5.
+RELAX = 1.3
 
 
 @nb.njit(cache=True)
@@ -174,7 +180,7 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
                 w += ja_rows[r, 0] * v[a, 0] + ja_rows[r, 1] * v[a, 1] + ja_rows[r, 2] * v[a, 2]
             if b >= 0:
                 w += jb_rows[r, 0] * v[b, 0] + jb_rows[r, 1] * v[b, 1] + jb_rows[r, 2] * v[b, 2]
-            new = p[r] - w / diag[r]
+            new = p[r] - RELAX * w / diag[r]
             if rows_k[r] < 2:
                 if new < 0.0:
                     new = 0.0
