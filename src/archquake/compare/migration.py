@@ -92,7 +92,7 @@ class DemHalfCycle:
 
 def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float = STANDARD_GRAVITY
                    ) -> DemHalfCycle:
-    """Run the DEM (the paper's stiffness and damping, mu = 0.8: ``DemSettings()``) through the
+    """Run the DEM (the paper's stiffness and damping, no sliding: ``DemSettings()``) through the
     first impact after the comparison's pulse (:func:`archquake.compare.impacts.rocking_pulse`),
     measuring energy as :mod:`archquake.compare.impacts` does."""
     from archquake.compare.impacts import rocking_pulse

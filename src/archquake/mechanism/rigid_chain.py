@@ -56,7 +56,7 @@ DEFAULT_TIME_STEP = 1.0e-4
 #: A corner is in contact when its gap is below this fraction of the assembly's reference length.
 GAP_TOLERANCE = 1.0e-9
 #: Gauss-Seidel stops when a sweep changes no velocity by more than this times sqrt(g L), L the
-#: reference length (or after ``MAX_SWEEPS``). 1e-9 runs 3.4 times faster and changes the energy
+#: reference length (or after ``MAX_SWEEPS``). 1e-9 runs 2 times faster and changes the energy
 #: kept over Oppenheim's half cycle by < 1e-4, but mirror symmetry then holds to 1e-4 t only
 #: (1e-6 t at this default) and the slow onset agrees with Eq. 2 to 3e-5 (1e-6).
 SOLVER_TOLERANCE = 1.0e-11
