@@ -92,11 +92,10 @@ class DemHalfCycle:
 
 def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float = STANDARD_GRAVITY
                    ) -> DemHalfCycle:
-    """Run the DEM (the paper's stiffness and damping, mu = 0.8: ``DemSettings()``) through the
+    """Run the DEM (the paper's stiffness and damping, no sliding: ``DemSettings()``) through the
     first impact after the comparison's pulse (:func:`archquake.compare.impacts.rocking_pulse`),
     measuring energy as :mod:`archquake.compare.impacts` does."""
-    from archquake.compare.impacts import WIDE_WINDOW, rocking_pulse
-    from archquake.compare.snapshots import dem_hinges
+    from archquake.compare.impacts import rocking_pulse
     from archquake.dem import simulate_dem
     from archquake.dem.settings import DemSettings
 
@@ -105,6 +104,18 @@ def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float 
     settings = settings.with_(duration=t_imp * 1.5 + 0.1, output_interval=5e-4,
                               stop_at_collapse=True)
     res = simulate_dem(arch, pulse, settings, g=g)
+    return half_cycle_of(res, tp, t_imp, window=window)
+
+
+def half_cycle_of(res, tp: float, t_imp: float, *, window: float = 0.01) -> DemHalfCycle:
+    """The :class:`DemHalfCycle` measures of a recorded run ``res`` (a
+    :class:`archquake.dem.DemResult`, from the DEM or from the rigid chain,
+    :mod:`archquake.mechanism.rigid_chain`) under the comparison's pulse of duration ``tp`` s,
+    ``t_imp`` s being the fixed-hinge model's first impact (the end of the hinge sequence when
+    the run has none)."""
+    from archquake.compare.impacts import WIDE_WINDOW
+    from archquake.compare.snapshots import dem_hinges
+
     ti = res.first_impact_time
     e = res.kinetic + res.potential + res.strain
     e_rest = float(res.potential[0] + res.strain[0])
@@ -141,5 +152,6 @@ __all__ = [
     "RectangularPulse",
     "dem_half_cycle",
     "fixed_hinge_kept",
+    "half_cycle_of",
     "migrating_half_cycle",
 ]

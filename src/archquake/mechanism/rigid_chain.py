@@ -1,0 +1,331 @@
+"""The rigid limit of the distinct-element model: rigid blocks with unilateral, plastic, no-slip
+joint contacts, any number of open hinges (issue 16).
+
+Why this model. The four-link mechanism (Eq. 2) moves with one degree of freedom and its hinges
+fixed; the migrating reference (:mod:`archquake.mechanism.migration`) switches between one-degree
+mechanisms and has to re-express the configuration at each switch. The DEM shows five-hinge
+phases of 0.1-0.4 s and joints closing one after another. A chain of rigid blocks whose joints
+may open at either corner has all of these motions at once, and needs no choice of mechanism:
+
+* each block (every voussoir, :class:`archquake.dem.assembly.Assembly`, the DEM's own
+  description, so both models read the same blocks, masses and joints) is a rigid body
+  (x, y, theta), in the frame of the ground (inertial load -m x_g'');
+* each joint has two corner contacts (intrados, extrados) with a unilateral normal constraint
+  (gap >= 0, compressive impulse), and while either corner is in contact, no sliding (tangential
+  relative velocity zero; the friction demand |p_T| / p_N is recorded and reported, to be read
+  against mu = 0.8), or optionally Coulomb friction (``friction=mu``);
+* Moreau-Jean time stepping at velocity level (:mod:`archquake.mechanism._rigid_kernels`): each
+  step's velocity is the kinetic-metric projection of the unconstrained velocity onto the cone of
+  admissible velocities of the contacts that are closed at mid-step, i.e. perfectly plastic
+  impacts (e = 0), Moreau's sweeping process. Hinges open anywhere (a contact whose impulse would
+  be tensile separates), migrate, two or more degrees of freedom move at once, closures are
+  staggered or simultaneous as the geometry makes them; for a simultaneous closure at phi = 0
+  the step is exactly the chain law's cone projection
+  (:func:`archquake.mechanism.impact_chain.cone_projection`; test).
+
+Why time stepping and not events: the number of possible contact states is 3^(n+1), the set of
+active contacts changes during a half cycle tens of times, and closures accumulate (a closing
+joint can reopen its neighbour at once); Moreau-Jean needs no event location and is robust to
+accumulation, at first order in h. The convergence in h is measured (docs/mechanism.md).
+
+Energies are relative to the ground. The results are a :class:`archquake.dem.DemResult` built
+by the DEM's own post-processing (:meth:`DemResult.from_samples`), so impacts, hinges, collapse
+criteria and the rotation measure are read exactly as in the DEM; in it, ``strain`` is zero and
+the ``damping`` column holds the energy removed by the contact projections (the plastic impacts,
+and the scheme's O(h) loss in persistent contacts), not Rayleigh damping.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.dem.assembly import Assembly, build_arch_assembly
+from archquake.dem.result import DemResult, collapse_parameters, crown_height
+from archquake.dem.settings import DemSettings
+from archquake.errors import InvalidParameterError
+from archquake.geometry.chain import VoussoirChain
+from archquake.mechanism import _rigid_kernels as RK
+
+#: Default time step, s (convergence in docs/mechanism.md: halving it changes the energy kept
+#: over Oppenheim's first half cycle by < 0.01).
+DEFAULT_TIME_STEP = 1.0e-4
+#: A corner is in contact when its gap is below this fraction of the assembly's reference length.
+GAP_TOLERANCE = 1.0e-9
+#: Gauss-Seidel stops when a sweep changes no velocity by more than this times sqrt(g L), L the
+#: reference length (or after ``MAX_SWEEPS``). 1e-9 runs 2 times faster and changes the energy
+#: kept over Oppenheim's half cycle by < 1e-4, but mirror symmetry then holds to 1e-4 t only
+#: (1e-6 t at this default) and the slow onset agrees with Eq. 2 to 3e-5 (1e-6).
+SOLVER_TOLERANCE = 1.0e-11
+MAX_SWEEPS = 5000
+#: Sub-samples per step for the step's mean ground acceleration.
+ACC_SAMPLES = 16
+
+
+@dataclass(frozen=True)
+class RigidModel:
+    """An :class:`Assembly` packed for the stepper: free bodies and joint corners.
+
+    ``body`` maps assembly block -> free-body index (-1 for base blocks); for joint j,
+    ``ja[j]``/``jb[j]`` are the free bodies on its ``left``/``right`` side (-1: the base),
+    ``arm_a[j, c]``/``arm_b[j, c]`` corner c's position relative to that body's centroid in the
+    undisplaced assembly (for a base side, the corner itself), m; ``n0[j]`` the joint normal
+    from left into right, ``t0[j]`` the direction from corner 0 to corner 1."""
+
+    assembly: Assembly
+    body: np.ndarray
+    free_blocks: np.ndarray
+    mass: np.ndarray
+    inertia: np.ndarray
+    centroids: np.ndarray
+    ja: np.ndarray
+    jb: np.ndarray
+    arm_a: np.ndarray
+    arm_b: np.ndarray
+    n0: np.ndarray
+    t0: np.ndarray
+
+    @classmethod
+    def build(cls, arch_or_assembly: VoussoirChain | Assembly) -> RigidModel:
+        asm = (build_arch_assembly(arch_or_assembly)
+               if isinstance(arch_or_assembly, VoussoirChain) else arch_or_assembly)
+        if not isinstance(asm, Assembly):
+            raise InvalidParameterError(
+                f"the rigid model needs an arch or an Assembly, got {type(asm).__name__}")
+        base = np.asarray(asm.base, dtype=bool)
+        free_blocks = np.flatnonzero(~base)
+        body = np.full(len(base), -1, dtype=np.int64)
+        body[free_blocks] = np.arange(free_blocks.size)
+        cents = np.asarray(asm.centroids, dtype=float)
+        nj = len(asm.joints)
+        ja = np.zeros(nj, np.int64)
+        jb = np.zeros(nj, np.int64)
+        arm_a = np.zeros((nj, 2, 2))
+        arm_b = np.zeros((nj, 2, 2))
+        n0 = np.zeros((nj, 2))
+        t0 = np.zeros((nj, 2))
+        for j, joint in enumerate(asm.joints):
+            p = np.asarray(joint.points, dtype=float)
+            tan = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
+            nrm = np.array([tan[1], -tan[0]])
+            if np.dot(cents[joint.right] - cents[joint.left], nrm) < 0:  # as joint_kinematics
+                nrm = -nrm
+            n0[j], t0[j] = nrm, tan
+            ja[j], jb[j] = body[joint.left], body[joint.right]
+            arm_a[j] = p - (cents[joint.left] if ja[j] >= 0 else 0.0)
+            arm_b[j] = p - (cents[joint.right] if jb[j] >= 0 else 0.0)
+        return cls(asm, body, free_blocks, np.asarray(asm.masses, float)[free_blocks].copy(),
+                   np.asarray(asm.inertias, float)[free_blocks].copy(), cents[free_blocks].copy(),
+                   ja, jb, arm_a, arm_b, n0, t0)
+
+    @property
+    def n_bodies(self) -> int:
+        return int(self.free_blocks.size)
+
+    def rest(self) -> tuple[np.ndarray, np.ndarray]:
+        """The undisplaced configuration and zero velocity, (nb, 3) each."""
+        q = np.zeros((self.n_bodies, 3))
+        q[:, :2] = self.centroids
+        return q, np.zeros_like(q)
+
+    def gaps(self, q: np.ndarray) -> np.ndarray:
+        """Corner gaps (nj, 2), m, of the configuration ``q`` (nb, 3), positive open."""
+        return RK.geometry(np.asarray(q, float), self.ja, self.jb, self.arm_a, self.arm_b,
+                           self.n0, self.t0)[0]
+
+    def kinetic_energy(self, v: np.ndarray) -> float:
+        """J, of the velocities ``v`` (nb, 3)."""
+        return 0.5 * float(self.mass @ (v[:, 0] ** 2 + v[:, 1] ** 2) + self.inertia @ v[:, 2] ** 2)
+
+    def potential_energy(self, q: np.ndarray, g: float = STANDARD_GRAVITY) -> float:
+        """J, relative to the undisplaced configuration."""
+        return float(g * self.mass @ (q[:, 1] - self.centroids[:, 1]))
+
+    def project(self, q: np.ndarray, v: np.ndarray, *, tol: float | None = None,
+                max_sweeps: int = 100_000) -> tuple[np.ndarray, np.ndarray]:
+        """One contact projection at configuration ``q`` of the velocity ``v`` (no time step:
+        an impact): the velocities after it (nb, 3) and the joint impulses (nj, 3), N s."""
+        q = np.asarray(q, float)
+        gaps, nrm, tan, pts = RK.geometry(q, self.ja, self.jb, self.arm_a, self.arm_b, self.n0,
+                                          self.t0)
+        scale = max(float(np.max(np.abs(v))), 1e-300)
+        tol = 1e-14 * scale if tol is None else tol
+        vn, imp, _, _ = RK.project(q, np.asarray(v, float), 1.0 / self.mass, 1.0 / self.inertia,
+                                   self.ja, self.jb, gaps, nrm, tan, pts,
+                                   GAP_TOLERANCE * self.assembly.reference_length,
+                                   np.zeros((len(self.ja), 3)), tol, max_sweeps, 0.0)
+        return vn, imp
+
+
+@dataclass(frozen=True)
+class RigidRun:
+    """A rigid-chain history.
+
+    ``result``: the samples as a :class:`DemResult` (module docstring); ``time_step`` s;
+    ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
+    ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
+    ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
+    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping.
+    """
+
+    result: DemResult
+    time_step: float
+    max_penetration_m: float
+    friction_demand: np.ndarray
+    max_sweeps: int
+    residual: float
+    wall_s: float
+
+    @property
+    def max_friction_demand(self) -> float:
+        return float(self.friction_demand.max(initial=0.0))
+
+
+def _mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
+    sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
+    t = t0 + h * (np.arange(n)[:, None] + sub[None, :])
+    return np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(n, ACC_SAMPLES).mean(1)
+
+
+def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, motion, *,
+                   duration: float = 3.0, time_step: float = DEFAULT_TIME_STEP,
+                   output_interval: float = 5e-4, settings: DemSettings | None = None,
+                   initial: tuple[np.ndarray, np.ndarray] | None = None,
+                   g: float = STANDARD_GRAVITY, chunk: float = 0.05,
+                   solver_tolerance: float = SOLVER_TOLERANCE,
+                   friction: float | None = None) -> RigidRun:
+    """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
+
+    Parameters
+    ----------
+    arch_or_assembly : VoussoirChain, Assembly or RigidModel
+        An arch is built with :func:`archquake.dem.assembly.build_arch_assembly` (every
+        voussoir a block), as the DEM does.
+    motion : GroundMotion
+    duration, time_step, output_interval : float
+        s. The output interval is rounded to a whole number of steps.
+    settings : DemSettings, optional
+        Only its thresholds are read (``hinge_opening``, the collapse criteria,
+        ``stop_at_collapse``), so that the results are classified as the DEM's are.
+    initial : (q, v), optional
+        Initial configuration and velocity, (nb, 3) each (default: rest, undisplaced).
+    g : float
+        Gravity, m/s^2.
+    chunk : float
+        The run is checked for collapse every ``chunk`` s.
+    solver_tolerance : float
+        Gauss-Seidel tolerance, a fraction of sqrt(g L) (:data:`SOLVER_TOLERANCE`).
+    friction : float, optional
+        Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
+        assumption. With mu the step is no longer a projection (``_rigid_kernels`` docstring).
+    """
+    import time as _time
+
+    from archquake.dem import _kernels as DK
+
+    model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
+        arch_or_assembly)
+    asm = model.assembly
+    settings = DemSettings() if settings is None else settings
+    mu = 0.0 if friction is None else float(friction)
+    if friction is not None and not (mu > 0 and math.isfinite(mu)):
+        raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
+    h = float(time_step)
+    if not (h > 0 and math.isfinite(h)):
+        raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    out_every = max(1, int(round(output_interval / h)))
+    n_total = int(math.ceil(duration / h - 1e-9))
+    per_chunk = max(out_every, int(round(chunk / h)) // out_every * out_every)
+    q, v = model.rest() if initial is None else (np.array(initial[0], float),
+                                                  np.array(initial[1], float))
+    p_warm = np.zeros((len(model.ja), 3))
+    diag = np.zeros(RK.N_DIAG)
+    lref = asm.reference_length
+    tol = float(solver_tolerance) * math.sqrt(g * lref)
+    gap_tol = GAP_TOLERANCE * lref
+    free = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)
+    cents_all = np.asarray(asm.centroids, float)
+    cpar = collapse_parameters(asm, settings, math.nan)
+    times, qs, vs, ds = [0.0], [q.copy()], [v.copy()], [diag.copy()]
+    ug, vg = [0.0], [0.0]
+    u_cur = v_cur = 0.0
+    step = 0
+    worst = 0
+    t_wall = _time.perf_counter()
+
+    def absolute(qk, vk, u, w):
+        st = np.zeros((len(free), 6))
+        st[:, :2] = cents_all
+        st[:, 0] += u
+        st[:, 3] = w
+        st[model.free_blocks, :3] = qk
+        st[model.free_blocks, 0] += u
+        st[model.free_blocks, 3:] = vk
+        st[model.free_blocks, 3] += w
+        return st
+
+    cpar[DK.C_CROWN_Y0] = crown_height(asm, absolute(q, v, 0.0, 0.0)[None, :, :3])[0]
+    collapsed = False
+    while step < n_total and not collapsed:
+        n = min(per_chunk, n_total - step)
+        n -= n % out_every if n >= out_every else 0
+        n = max(n, 1)
+        acc = _mean_acceleration(motion, step * h, h, n)
+        n_out = n // out_every
+        oq = np.zeros((n_out, model.n_bodies, 3))
+        ov = np.zeros_like(oq)
+        od = np.zeros((n_out, RK.N_DIAG))
+        w = RK.run(q, v, p_warm, model.mass, model.inertia, model.ja, model.jb, model.arm_a,
+                   model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS, mu,
+                   out_every, oq, ov, od, diag)
+        worst = max(worst, int(w))
+        if not np.all(np.isfinite(q)):
+            from archquake.errors import SolverError
+
+            raise SolverError("the rigid-chain state became non-finite")
+        # the ground's velocity and displacement (trapezoid on the step means: exact for them)
+        vg_steps = v_cur + h * np.cumsum(acc)
+        ug_steps = u_cur + h * np.cumsum(0.5 * (np.concatenate([[v_cur], vg_steps[:-1]])
+                                                 + vg_steps))
+        for r in range(n_out):
+            k = (r + 1) * out_every - 1
+            times.append((step + k + 1) * h)
+            qs.append(oq[r])
+            vs.append(ov[r])
+            ds.append(od[r])
+            ug.append(float(ug_steps[k]))
+            vg.append(float(vg_steps[k]))
+        u_cur, v_cur = float(ug_steps[-1]), float(vg_steps[-1])
+        step += n
+        if settings.stop_at_collapse and n_out:
+            collapsed = bool(DK.collapsed(absolute(qs[-1], vs[-1], ug[-1], vg[-1]), free, cpar))
+    wall = _time.perf_counter() - t_wall
+    t = np.array(times)
+    qa = np.array(qs)
+    va = np.array(vs)
+    da = np.array(ds)
+    states = np.array([absolute(a, b, u, w_) for a, b, u, w_ in zip(qa, va, ug, vg)])
+    kin = 0.5 * ((va[:, :, 0] ** 2 + va[:, :, 1] ** 2) @ model.mass + va[:, :, 2] ** 2 @ model.inertia)
+    pot = g * (qa[:, :, 1] - model.centroids[None, :, 1]) @ model.mass
+    energies = np.zeros((len(t), 8))
+    energies[:, 0] = kin
+    energies[:, 1] = pot
+    energies[:, 3] = da[:, RK.D_DISSIPATED]
+    energies[:, 5] = da[:, RK.D_INPUT]
+    energies[:, 6] = ug
+    energies[:, 7] = vg
+    motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
+        motion, "name", motion))}
+    res = DemResult.from_samples(asm, settings.with_(duration=duration, time_step=h,
+                                                     output_interval=out_every * h),
+                                 motion_d, g, h, math.nan, step, 0, t, states, energies)
+    return RigidRun(result=res, time_step=h,
+                    max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
+                    friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
+                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall)
+
+
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]
