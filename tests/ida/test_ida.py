@@ -339,3 +339,22 @@ def test_ceiling_default_is_the_median_record_at_5_g(tmp_path, records):
                                            fill=2.0, executor=SerialExecutor())
     assert res.ceiling == pytest.approx(5.0, rel=1e-12)
     assert math.isfinite(res.records[0].first_collapse_level)
+
+
+def test_worker_processes_after_a_threaded_kernel_in_this_process(tmp_path):
+    """Regression: an IDA in this process runs numba's threaded batch (OpenMP), after which an
+    IDA on 2 worker processes used to die ("fork() called from a process already using GNU
+    OpenMP", BrokenProcessPool): forked workers cannot run a threaded kernel. The pool's workers
+    are no longer forked from this process. Oracle: the same analysis run in this process."""
+    import numba
+
+    def ida(name, **kwargs):
+        with ResultStore(tmp_path / f"{name}.sqlite") as store:
+            res = incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga",
+                                               store, ceiling=2.0, precision=0.05, fill=0.2,
+                                               **kwargs)
+        return [(i.lower_edge, i.upper_edge) for i in res.records[0].collapse_intervals]
+
+    here = ida("here", executor=SerialExecutor())
+    assert numba.threading_layer()  # raises ValueError if no threaded kernel has run
+    assert ida("pool", workers=2) == here

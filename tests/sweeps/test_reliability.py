@@ -13,6 +13,7 @@ import json
 import math
 import os
 import signal
+import sqlite3
 import subprocess
 import sys
 import time
@@ -127,17 +128,35 @@ sys.exit(cli_main.main(["sweep", {study!r}, "--store", {store!r}, "--workers", "
 """
 
 
-def _children(pid: int) -> set[int]:
-    out = set()
+def _descendants(pid: int) -> set[int]:
+    """Every process below ``pid`` (a fork server's workers are its grandchildren)."""
+    parent_of = {}
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit():
             try:
                 fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
             except OSError:
                 continue
-            if int(fields[1]) == pid:
-                out.add(int(entry.name))
+            parent_of[int(entry.name)] = int(fields[1])
+    out: set[int] = set()
+    frontier = {pid}
+    while frontier:
+        frontier = {p for p, pp in parent_of.items() if pp in frontier} - out
+        out |= frontier
     return out
+
+
+def _rows(store: Path) -> int:
+    try:
+        db = sqlite3.connect(f"file:{store}?mode=ro", uri=True)
+    except sqlite3.Error:  # not created yet
+        return 0
+    try:
+        return db.execute("SELECT COUNT(*) FROM results").fetchone()[0]
+    except sqlite3.Error:  # no table yet
+        return 0
+    finally:
+        db.close()
 
 
 def _alive(pid: int) -> bool:
@@ -151,21 +170,21 @@ def _alive(pid: int) -> bool:
 @pytest.mark.skipif(not Path("/proc").is_dir() or usable_cores() < 2, reason="needs /proc and 2 cores")
 def test_worker_processes_end_with_a_killed_sweep(tmp_path):
     """SIGKILL on `archquake sweep` (which cannot clean up) still ends its worker processes
-    within seconds, so none keeps computing or holds the terminal's pipes."""
+    (every process below it: a fork server's workers are its grandchildren) within seconds, so
+    none keeps computing or holds the terminal's pipes."""
     study = tmp_path / "s.toml"
     study.write_text(SMALL_STUDY.replace("num = 4", "num = 40"))  # 240 cases of 50 ms
     store = tmp_path / "s.sqlite"
     proc = subprocess.Popen([sys.executable, "-c", DRIVER.format(here=str(HERE), study=str(study),
                                                                  store=str(store))],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    workers: set[int] = set()
     try:
         deadline = time.monotonic() + 60
-        workers: set[int] = set()
-        while time.monotonic() < deadline and len(workers) < 2:
-            workers = _children(proc.pid)
+        while time.monotonic() < deadline and not _rows(store):  # workers are computing
             time.sleep(0.05)
-        assert len(workers) >= 2, "the sweep did not start its worker processes"
-        time.sleep(0.3)
+        workers = _descendants(proc.pid)
+        assert _rows(store) and len(workers) >= 2, "the sweep did not start its worker processes"
         proc.kill()
         proc.wait(timeout=10)
         deadline = time.monotonic() + 10
@@ -175,5 +194,6 @@ def test_worker_processes_end_with_a_killed_sweep(tmp_path):
     finally:
         if proc.poll() is None:
             proc.kill()
-        for w in _children(proc.pid):
-            os.kill(w, signal.SIGKILL)
+        for w in _descendants(proc.pid) | workers:
+            if _alive(w):
+                os.kill(w, signal.SIGKILL)

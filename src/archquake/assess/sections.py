@@ -127,22 +127,17 @@ def _num(x) -> float | None:
 
 @contextmanager
 def process_pool(workers: int) -> Iterator[Any]:
-    """A process pool started by ``spawn``, whose workers end with this process
-    (:func:`archquake.sweeps.runner.process_pool`'s watch). Not ``fork``: by the time the records
-    run, this process has run the domains' threaded kernels, and a forked child of a process
-    that used an OpenMP/TBB thread pool can crash in its own parallel code.
+    """The sweeps' process pool (:func:`archquake.sweeps.runner.process_pool`: not started by
+    ``fork``, since by the time the records run this process has run the domains' threaded
+    kernels; workers end with this process), with workers ignoring SIGINT (a Ctrl-C reaches
+    the whole process group; this process alone turns it into one line and exit status 130).
 
-    The workers ignore SIGINT (a Ctrl-C reaches the whole process group; this process alone
-    turns it into one line and exit status 130), and an exception here, a KeyboardInterrupt
-    included, cancels the queued work and ends the workers at once instead of waiting for
-    them: what they finished is already in the result store, from which a rerun resumes."""
-    import multiprocessing
-    import os
-    from concurrent.futures import ProcessPoolExecutor
+    An exception here, a KeyboardInterrupt included, cancels the queued work and ends the
+    workers at once instead of waiting for them: what they finished is already in the result
+    store, from which a rerun resumes."""
+    from archquake.sweeps.runner import process_pool as sweeps_pool
 
-    pool = ProcessPoolExecutor(max_workers=workers,
-                               mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_quiet_worker, initargs=(os.getpid(),))
+    pool = sweeps_pool(workers, ignore_sigint=True)
     try:
         yield pool
     except BaseException:
@@ -151,16 +146,6 @@ def process_pool(workers: int) -> Iterator[Any]:
         pool.shutdown(wait=False, cancel_futures=True)
         raise
     pool.shutdown(wait=True)
-
-
-def _quiet_worker(parent: int) -> None:
-    """Worker initializer: ignore SIGINT, end when ``parent`` ends."""
-    import signal
-
-    from archquake.sweeps.runner import _watch_parent
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _watch_parent(parent)
 
 
 def workers() -> int:

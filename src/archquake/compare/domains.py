@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 import os
 import time
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -28,6 +28,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.outcome import Outcome
+from archquake.sweeps.runner import process_pool
 
 #: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
 #: magnitudes (geometric from lambda), 4 fine ones between the boundaries, brackets of 0.01 g.
@@ -228,7 +229,7 @@ def dem_failure_domain(
         if n < 1:
             raise InvalidParameterError(f"workers must be >= 1, got {n}")
         if n > 1:
-            own = executor = ProcessPoolExecutor(max_workers=n)
+            own = executor = process_pool(n)
     else:
         n = getattr(executor, "_max_workers", 0) or 0
     try:
@@ -316,7 +317,7 @@ def compare_domains(
     if pool is None and (workers is None or workers > 1):
         n = workers if workers is not None else min(_cores(), max(1, 2 * len(np.atleast_1d(durations))))
         if n > 1:
-            own = pool = ProcessPoolExecutor(max_workers=n)
+            own = pool = process_pool(n)
     try:
         kw = dict(settings=settings, dem_settings=dem_settings, g=g, executor=pool,
                   workers=1 if pool is None else None)

@@ -16,6 +16,7 @@ harmless in any case.
 from __future__ import annotations
 
 import math
+import multiprocessing
 import os
 import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
@@ -347,19 +348,84 @@ def cap_workers(requested: int | None, pending: int) -> tuple[int, str | None]:
     return capped, f"using {capped} worker process{'es' * (capped != 1)} ({why}), not {requested}"
 
 
-def process_pool(workers: int) -> ProcessPoolExecutor:
-    """A process pool whose workers end when this process ends, however it ends (even by
-    SIGKILL): each worker watches its parent and exits once it is gone, so that no orphan keeps
-    running or holds the terminal's pipes (``archquake sweep ... | tee`` then ends)."""
-    return ProcessPoolExecutor(max_workers=workers, initializer=_watch_parent,
-                               initargs=(os.getpid(),))
+#: How local worker processes start: never ``fork``. A process that has run a threaded numba
+#: kernel (``prange``: the domains, the IDA's batch) holds an OpenMP/TBB thread pool, and a
+#: forked child of it that runs one in turn is killed ("fork() called from a process already
+#: using GNU OpenMP"). ``forkserver`` forks the workers from a clean server process started
+#: once per process (benchmarks/bench_pool.py measures the start-up of each method); ``spawn``
+#: where there is no forkserver (Windows, macOS without it).
+START_METHOD = ("forkserver" if "forkserver" in multiprocessing.get_all_start_methods()
+                else "spawn")
+#: Modules the fork server imports once, so that its workers start with them loaded (the
+#: analytical model and the sweep machinery; importing starts no thread). ``__main__`` is the
+#: multiprocessing default, kept.
+FORKSERVER_PRELOAD = ("__main__", "archquake.sweeps.runner", "archquake.sweeps.evaluate",
+                      "archquake.mechanism")
+
+
+def process_pool(workers: int, *, ignore_sigint: bool = False,
+                 start_method: str | None = None) -> ProcessPoolExecutor:
+    """A process pool whose workers start safely after threaded kernels and end when this
+    process ends, however it ends (even by SIGKILL).
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes.
+    ignore_sigint : bool
+        Workers ignore SIGINT: a Ctrl-C reaches the whole process group and only this process
+        should turn it into one line (``archquake assess``). Default: workers take it as
+        ``KeyboardInterrupt``, as Python processes do.
+    start_method : str, optional
+        ``"forkserver"`` or ``"spawn"`` (default :data:`START_METHOD`); ``"fork"`` is accepted
+        for measurements only (benchmarks/bench_pool.py): it is unsafe after a threaded kernel.
+
+    Each worker watches this process and exits once it is gone, so that no orphan keeps
+    running or holds the terminal's pipes (``archquake sweep ... | tee`` then ends).
+
+    As with any pool not started by ``fork``, a script creating one must guard its work with
+    ``if __name__ == "__main__":`` (workers import the main module), and the case function must
+    be importable (not defined in an interactive session). With ``forkserver`` this sets the
+    process's fork-server preload to :data:`FORKSERVER_PRELOAD` before the server starts.
+    """
+    context = multiprocessing.get_context(start_method or START_METHOD)
+    if isinstance(context, multiprocessing.context.ForkServerContext):
+        # no effect once this process's fork server runs (it starts with the first pool)
+        context.set_forkserver_preload(list(FORKSERVER_PRELOAD))
+    return ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                               initializer=_start_worker, initargs=(os.getpid(), ignore_sigint))
+
+
+def _start_worker(parent: int, ignore_sigint: bool) -> None:
+    """Worker initializer: optionally ignore SIGINT, and end when ``parent`` ends."""
+    if ignore_sigint:
+        import signal
+
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _watch_parent(parent)
 
 
 def _watch_parent(parent: int) -> None:
+    """Exit this worker once ``parent`` (the process that made the pool) is gone: its own parent
+    changes (a spawned worker's parent is ``parent``; a forkserver worker's is the server,
+    which exits when ``parent`` does), or ``parent`` no longer exists."""
     import threading
 
+    own = os.getppid()
+
+    def gone() -> bool:
+        if os.getppid() != own:
+            return True
+        try:
+            os.kill(parent, 0)
+        except ProcessLookupError:
+            return True
+        except PermissionError:  # the pid now belongs to another user's process
+            return True
+        return False
+
     def watch() -> None:
-        while os.getppid() == parent:
+        while not gone():
             time.sleep(0.5)
         os._exit(1)
 
