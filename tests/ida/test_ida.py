@@ -314,6 +314,39 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
     assert again["computed_now"] == 0 and again["records"] == out["records"]
 
 
+@pytest.mark.parametrize("extra, pool", [([], False), (["--workers", "2"], True),
+                                         (["--model", "dem"], True)])
+def test_cli_executor_follows_the_library_default(tmp_path, monkeypatch, extra, pool):
+    """The analytical model with no --workers/--scheduler runs as the library's default (in
+    this process: no executor passed, no pool opened); --workers and the DEM open the pool.
+    Oracle: the executor the analysis receives (a spy stops before any run)."""
+    import archquake.ida
+    import archquake.sweeps
+    from archquake.cli.main import main
+
+    seen = []
+
+    def spy(*args, executor=None, workers=None, **kwargs):
+        seen.append((executor, workers))
+        raise KeyboardInterrupt  # stop here: the CLI reports it as an interruption
+
+    opened = []
+    real = archquake.sweeps.open_executor
+
+    def open_spy(**kwargs):
+        opened.append(kwargs)
+        return real(**kwargs)
+
+    monkeypatch.setattr(archquake.ida, "incremental_dynamic_analysis", spy)
+    monkeypatch.setattr(archquake.sweeps, "open_executor", open_spy)
+    assert main(["ida", "--records", "near-field-pulse", "--no-progress", *extra,
+                 "--store", str(tmp_path / "s.sqlite")]) == 130
+    ((executor, workers),) = seen
+    assert bool(opened) == pool and (executor is not None) == pool
+    if not pool:
+        assert workers is None
+
+
 @pytest.mark.parametrize("extra, needle", [
     (["--im", "sa"], "--im"),
     (["--precision", "0"], "--precision"),
