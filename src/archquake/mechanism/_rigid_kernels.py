@@ -248,7 +248,7 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
     return v, imp, sweeps, change
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _coupling(r, s, rows_j, ja, jb, ja_rows, jb_rows, inv_m, inv_i):
     """Delassus entry W[r, s] = H_r M^-1 H_s^T (m/s per N s); scalar indexing only (no
     views: this is the inner loop of the assembly)."""
@@ -276,7 +276,7 @@ def _coupling(r, s, rows_j, ja, jb, ja_rows, jb_rows, inv_m, inv_i):
     return w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i):
     """v += M^-1 H_r^T dp (scalar indexing)."""
     j = rows_j[r]
@@ -292,7 +292,7 @@ def _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i):
         v[b, 2] += jb_rows[r, 2] * dp * inv_i[b]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows):
     j = rows_j[r]
     a = ja[j]
@@ -305,7 +305,7 @@ def _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows):
     return w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _envelope_solve(w_mat, first, n, rhs, out):
     """Solve L L^T x = rhs with ``w_mat`` holding the envelope Cholesky factor L (rows i,
     columns first[i]..i) in its lower triangle; ``out`` (n,)."""
