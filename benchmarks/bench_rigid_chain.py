@@ -1,10 +1,13 @@
 """Benchmark: the rigid-block chain (issue 16, `mechanism.rigid_chain`) against the four-link
 kernel (`simulate`) on the same 4 s history as bench_history.py (Oppenheim's arch, a = 1.0 g,
-t_p = 0.20 s), and against the DEM (`simulate_dem`, the paper's stiffness), measured in the same
-run. The rigid chain is compiled (numba) already; the numbers say what a batched domain would
-cost with it.
+t_p = 0.20 s), and its exact active-set contact solve (``solver="direct"``, the default)
+against the plain projected Gauss-Seidel stepper (``solver="pgs"``), both measured in this
+run, at the three time steps of the convergence table; then the semicircle of the
+migration table (R 5 m, t 0.9 m, n 15: 16 joints, where Gauss-Seidel is slowest) over its
+first 1.5 s; then the DEM (`simulate_dem`, the paper's stiffness) on Oppenheim's history.
+Both rigid solvers are compiled (numba) before timing.
 
-Run: .venv/bin/python benchmarks/bench_rigid_chain.py
+Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_rigid_chain.py  (about a minute)
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ from archquake.dem.settings import DemSettings
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-from archquake.mechanism.rigid_chain import simulate_rigid
+from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
 
 
 def best_of(fn, repeat: int, number: int) -> float:
@@ -30,27 +33,57 @@ def best_of(fn, repeat: int, number: int) -> float:
     return best
 
 
+def stepping(model, motion, duration, h, solver, repeat=2):
+    """Best wall time of the stepping alone (``RigidRun.wall_s``) and of the whole call, s."""
+    best_step = best_call = math.inf
+    run = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        run = simulate_rigid(model, motion, duration=duration, time_step=h,
+                             output_interval=5e-3, solver=solver)
+        best_call = min(best_call, time.perf_counter() - t0)
+        best_step = min(best_step, run.wall_s)
+    return best_step, best_call, run
+
+
 def main() -> dict:
     arch = Arch(10.0, 1.5, math.radians(157.5), 7)
     prepared = PreparedMechanism.build(arch)
     motion = StepImpulse.from_g(1.0, 0.20)
     quiet = SolverOptions(output_interval=0.0)
     simulate(prepared, motion, t_end=4.0)
-    simulate_rigid(arch, motion, duration=0.05)  # compile / load the cache
+    model = RigidModel.build(arch)
+    for solver in ("direct", "pgs"):  # compile / load the cache
+        simulate_rigid(model, motion, duration=0.05, solver=solver)
     four = best_of(lambda: simulate(prepared, motion, t_end=4.0, options=quiet), 3, 50)
     out = {"four_link_s": four}
     print("one 4 s history, Oppenheim's arch, step a = 1.0 g, t_p = 0.20 s")
-    print(f"  four-link kernel (simulate)        {four * 1e3:9.3f} ms")
-    for h, tol in ((2e-4, 1e-11), (1e-4, 1e-11), (5e-5, 1e-11), (1e-4, 1e-9)):
-        rigid = best_of(lambda h=h, tol=tol: simulate_rigid(
-            arch, motion, duration=4.0, time_step=h, output_interval=5e-3,
-            solver_tolerance=tol), 1, 2)
-        out[f"rigid_{h:g}_{tol:g}_s"] = rigid
-        print(f"  rigid chain, h = {h:g} s, tol {tol:g}  {rigid * 1e3:9.1f} ms  "
-              f"({rigid / four:6.0f} x)")
+    print(f"  four-link kernel (simulate)              {four * 1e3:9.3f} ms")
+    print("  rigid chain: stepping (whole call), ratio to the four-link kernel; direct / plain")
+    for h in (2e-4, 1e-4, 5e-5):
+        row = {}
+        for solver in ("pgs", "direct"):
+            s, c, run = stepping(model, motion, 4.0, h, solver)
+            row[solver] = s
+            out[f"rigid_{solver}_{h:g}_s"] = s
+            print(f"  h = {h:g} s, {solver:6s}  {s * 1e3:8.1f} ms ({c * 1e3:8.1f} ms)  "
+                  f"{s / four:7.0f} x four-link, {run.max_sweeps:4d} sweeps/solves at worst")
+        print(f"  h = {h:g} s: direct is {row['pgs'] / row['direct']:5.2f} times faster "
+              "than the plain Gauss-Seidel stepper")
+    semi = RigidModel.build(Arch(5.0, 0.9, math.radians(180.0), 15))
+    pulse = StepImpulse.from_g(0.5, 0.20)
+    for solver in ("pgs", "direct"):
+        simulate_rigid(semi, pulse, duration=0.05, solver=solver)
+    sp = stepping(semi, pulse, 1.5, 1e-4, "pgs", repeat=1)[0]
+    sd = stepping(semi, pulse, 1.5, 1e-4, "direct", repeat=1)[0]
+    out.update(semi_pgs_s=sp, semi_direct_s=sd)
+    print("semicircle R 5 m, t 0.9 m, n 15, step 0.5 g, t_p 0.20 s, 1.5 s at h = 1e-4 s:")
+    print(f"  pgs {sp * 1e3:8.1f} ms, direct {sd * 1e3:8.1f} ms: {sp / sd:5.1f} times faster")
     dem = best_of(lambda: simulate_dem(arch, motion, DemSettings().with_(duration=4.0)), 1, 1)
     out["dem_s"] = dem
-    print(f"  DEM, paper's stiffness             {dem * 1e3:9.1f} ms  ({dem / four:8.0f} x)")
+    print(f"DEM on Oppenheim's history, paper's stiffness {dem * 1e3:9.1f} ms "
+          f"({dem / four:8.0f} x four-link, {dem / out['rigid_direct_0.0001_s']:5.1f} x the "
+          "direct rigid chain at 1e-4 s)")
     return out
 
 

@@ -16,7 +16,12 @@ ground; base bodies fixed in the ground's frame):
    |p_T| <= mu (p_N0 + p_N1), the current normal impulses of its corners: a fixed point of the
    sweep then satisfies Coulomb's law in 2D (stick with |p_T| < mu p_N, or slip opposite to p_T
    at the bound). That is no longer a projection (Coulomb's law has no potential), so neither
-   uniqueness nor convergence is guaranteed; the sweep count and residual are reported;
+   uniqueness nor convergence is guaranteed; the sweep count and residual are reported.
+   Without friction, :func:`run`'s default solver (``METHOD_DIRECT``, :func:`project_direct`)
+   solves the same projection exactly on a guessed active set (the contacts that pushed at
+   the previous step): one banded Cholesky of the Delassus matrix per step, Gauss-Seidel only
+   when the guess fails (at most 129 of the 40 000 steps of Oppenheim's 4 s history); it
+   returns the converged Gauss-Seidel's velocities (docs/mechanism.md, "Speed of the rigid chain");
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
 SI units throughout: masses kg, inertias kg m^2, impulses N s.
@@ -43,6 +48,17 @@ N_DIAG = 6
 #: at worst, 1.9 -> 1.1 s per 4 s history) and changes the energy kept over its half cycle by
 #: 2e-5.
 RELAX = 1.3
+
+#: Contact solvers of :func:`run`: the plain projected Gauss-Seidel (:func:`project`, the
+#: reference) and the exact solve on a guessed active set (:func:`project_direct`).
+METHOD_PGS = 0
+METHOD_DIRECT = 1
+#: :func:`project_direct`: regularisation of the (singular) Delassus matrix, relative to its
+#: largest diagonal entry; refinement solves per active set; active sets tried before
+#: Gauss-Seidel.
+EPS_REG = 1.0e-10
+REFINEMENTS = 6
+ACTIVE_SET_ITERATIONS = 6
 
 
 @nb.njit(cache=True)
@@ -101,15 +117,10 @@ def _row(q, body, px, py, dx, dy, sign, out):
 
 
 @nb.njit(cache=True)
-def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter,
-            mu):
-    """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
-    contacts (module docstring, step 4).
-
-    ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
-
-    Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
-    N s; sweeps taken; final residual m/s)."""
+def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol):
+    """The rows of the active contacts, in joint order (per joint: normal at corner 0, normal at
+    corner 1, tangential): (nrows, rows_j, rows_k, ja_rows, jb_rows, diag), ``diag[r]`` the
+    Delassus diagonal (m/s per N s)."""
     nj = ja.shape[0]
     nrows = 0
     rows_j = np.zeros(3 * nj, np.int64)
@@ -143,10 +154,7 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
             _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, tmp)
             jb_rows[nrows] = tmp
             nrows += 1
-    v = v_free.copy()
-    p = np.zeros(nrows)
     diag = np.zeros(nrows)
-    pn_joint = np.zeros(nj)
     for r in range(nrows):
         j = rows_j[r]
         a = ja[j]
@@ -157,15 +165,19 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
         if b >= 0:
             d += (jb_rows[r, 0] ** 2 + jb_rows[r, 1] ** 2) * inv_m[b] + jb_rows[r, 2] ** 2 * inv_i[b]
         diag[r] = d
-        p[r] = p_warm[j, rows_k[r]]
-        if rows_k[r] < 2 and p[r] < 0.0:
-            p[r] = 0.0
+    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag
+
+
+@nb.njit(cache=True)
+def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv_i, tol,
+         max_iter, mu):
+    """Projected over-relaxed Gauss-Seidel from the impulses ``p`` (nrows,), already applied to
+    ``v``; both updated in place. Returns (sweeps, residual m/s)."""
+    nj = ja.shape[0]
+    pn_joint = np.zeros(nj)
+    for r in range(nrows):
         if rows_k[r] < 2:
-            pn_joint[j] += p[r]
-        elif mu > 0.0:
-            p[r] = min(max(p[r], -mu * pn_joint[j]), mu * pn_joint[j])
-        if p[r] != 0.0:
-            _apply(v, a, b, ja_rows[r], jb_rows[r], p[r], inv_m, inv_i)
+            pn_joint[rows_j[r]] += p[r]
     sweeps = 0
     change = 0.0
     for it in range(max_iter):
@@ -197,10 +209,290 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
                     change = dv
         if change <= tol:
             break
+    return sweeps, change
+
+
+@nb.njit(cache=True)
+def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter,
+            mu):
+    """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
+    contacts (module docstring, step 4), by projected Gauss-Seidel alone (the plain stepper,
+    ``method = 0`` of :func:`run`).
+
+    ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
+
+    Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
+    N s; sweeps taken; final residual m/s)."""
+    nj = ja.shape[0]
+    nrows, rows_j, rows_k, ja_rows, jb_rows, diag = _rows(q, inv_m, inv_i, ja, jb, gaps, nrm,
+                                                          tan, pts, gap_tol)
+    v = v_free.copy()
+    p = np.zeros(nrows)
+    pn_joint = np.zeros(nj)
+    for r in range(nrows):
+        j = rows_j[r]
+        p[r] = p_warm[j, rows_k[r]]
+        if rows_k[r] < 2 and p[r] < 0.0:
+            p[r] = 0.0
+        if rows_k[r] < 2:
+            pn_joint[j] += p[r]
+        elif mu > 0.0:
+            p[r] = min(max(p[r], -mu * pn_joint[j]), mu * pn_joint[j])
+        if p[r] != 0.0:
+            _apply(v, ja[j], jb[j], ja_rows[r], jb_rows[r], p[r], inv_m, inv_i)
+    sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
+                          inv_i, tol, max_iter, mu)
     imp = np.zeros((nj, 3))
     for r in range(nrows):
         imp[rows_j[r], rows_k[r]] = p[r]
     return v, imp, sweeps, change
+
+
+@nb.njit(cache=True, inline="always")
+def _coupling(r, s, rows_j, ja, jb, ja_rows, jb_rows, inv_m, inv_i):
+    """Delassus entry W[r, s] = H_r M^-1 H_s^T (m/s per N s); scalar indexing only (no
+    views: this is the inner loop of the assembly)."""
+    jr = rows_j[r]
+    js = rows_j[s]
+    w = 0.0
+    for side_r in range(2):
+        br = ja[jr] if side_r == 0 else jb[jr]
+        if br < 0:
+            continue
+        for side_s in range(2):
+            bs = ja[js] if side_s == 0 else jb[js]
+            if bs != br:
+                continue
+            if side_r == 0:
+                h0, h1, h2 = ja_rows[r, 0], ja_rows[r, 1], ja_rows[r, 2]
+            else:
+                h0, h1, h2 = jb_rows[r, 0], jb_rows[r, 1], jb_rows[r, 2]
+            if side_s == 0:
+                w += (h0 * ja_rows[s, 0] + h1 * ja_rows[s, 1]) * inv_m[br] \
+                    + h2 * ja_rows[s, 2] * inv_i[br]
+            else:
+                w += (h0 * jb_rows[s, 0] + h1 * jb_rows[s, 1]) * inv_m[br] \
+                    + h2 * jb_rows[s, 2] * inv_i[br]
+    return w
+
+
+@nb.njit(cache=True, inline="always")
+def _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i):
+    """v += M^-1 H_r^T dp (scalar indexing)."""
+    j = rows_j[r]
+    a = ja[j]
+    b = jb[j]
+    if a >= 0:
+        v[a, 0] += ja_rows[r, 0] * dp * inv_m[a]
+        v[a, 1] += ja_rows[r, 1] * dp * inv_m[a]
+        v[a, 2] += ja_rows[r, 2] * dp * inv_i[a]
+    if b >= 0:
+        v[b, 0] += jb_rows[r, 0] * dp * inv_m[b]
+        v[b, 1] += jb_rows[r, 1] * dp * inv_m[b]
+        v[b, 2] += jb_rows[r, 2] * dp * inv_i[b]
+
+
+@nb.njit(cache=True, inline="always")
+def _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows):
+    j = rows_j[r]
+    a = ja[j]
+    b = jb[j]
+    w = 0.0
+    if a >= 0:
+        w += ja_rows[r, 0] * v[a, 0] + ja_rows[r, 1] * v[a, 1] + ja_rows[r, 2] * v[a, 2]
+    if b >= 0:
+        w += jb_rows[r, 0] * v[b, 0] + jb_rows[r, 1] * v[b, 1] + jb_rows[r, 2] * v[b, 2]
+    return w
+
+
+@nb.njit(cache=True, inline="always")
+def _envelope_solve(w_mat, first, n, rhs, out):
+    """Solve L L^T x = rhs with ``w_mat`` holding the envelope Cholesky factor L (rows i,
+    columns first[i]..i) in its lower triangle; ``out`` (n,)."""
+    for i in range(n):
+        s = rhs[i]
+        for k in range(first[i], i):
+            s -= w_mat[i, k] * out[k]
+        out[i] = s / w_mat[i, i]
+    for i in range(n - 1, -1, -1):
+        out[i] /= w_mat[i, i]
+        xi = out[i]
+        for k in range(first[i], i):
+            out[k] -= w_mat[i, k] * xi
+
+
+@nb.njit(cache=True)
+def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
+                   max_iter, mu):
+    """The same contact step as :func:`project` (``mu <= 0`` only), solved exactly on a guessed
+    active set, Gauss-Seidel only when the guess fails.
+
+    The equality set S holds every tangential row and the normal rows whose impulse was
+    positive at the previous step. On S the velocity is the exact kinetic-metric projection of
+    v_free onto {H_S v = 0}: W_SS d = -H_S v_w, W = H M^-1 H^T the Delassus matrix (banded: a
+    joint couples only its two bodies; envelope Cholesky), v_w the velocity after the previous
+    impulses. W_SS is singular when the closed chain is statically indeterminate; it is
+    regularised by ``EPS_REG`` times its largest diagonal and refined until the equality residual
+    is below ``tol`` (m/s), which gives of all the impulses that satisfy the equalities the
+    one nearest to the previous step's (the redundant part of the impulses follows the warm
+    start, the velocity is unique). The result is accepted when it satisfies the cone's
+    conditions to ``tol``: normal impulses in S >= -tol / W_rr, normal rows outside S separating
+    (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
+    to ``ACTIVE_SET_ITERATIONS`` times, and then projected Gauss-Seidel (:func:`_pgs`) finishes
+    from the last impulses. Returns as :func:`project`; the count is the number of factorised
+    active sets plus any Gauss-Seidel sweeps."""
+    nj = ja.shape[0]
+    nrows, rows_j, rows_k, ja_rows, jb_rows, diag = _rows(q, inv_m, inv_i, ja, jb, gaps, nrm,
+                                                          tan, pts, gap_tol)
+    imp = np.zeros((nj, 3))
+    if nrows == 0:
+        return v_free.copy(), imp, 0, 0.0
+    in_s = np.zeros(nrows, np.bool_)
+    pw = np.zeros(nrows)
+    for r in range(nrows):
+        pw[r] = p_warm[rows_j[r], rows_k[r]]
+        in_s[r] = rows_k[r] == 2 or pw[r] > 0.0
+    idx = np.zeros(nrows, np.int64)
+    first = np.zeros(nrows, np.int64)
+    w_mat = np.zeros((nrows, nrows))
+    rhs = np.zeros(nrows)
+    d = np.zeros(nrows)
+    p = np.zeros(nrows)
+    v = v_free.copy()
+    nbody = inv_m.shape[0]
+    cnt = np.zeros(nbody, np.int64)
+    lst_i = np.zeros((nbody, nrows), np.int64)
+    lst_side = np.zeros((nbody, nrows), np.int64)
+    solves = 0
+    accepted = False
+    for _ in range(ACTIVE_SET_ITERATIONS):
+        solves += 1
+        # v_w and p: the previous impulses on S
+        v[:, :] = v_free
+        for r in range(nrows):
+            p[r] = pw[r] if in_s[r] else 0.0
+            if p[r] != 0.0:
+                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
+        n = 0
+        for r in range(nrows):
+            if in_s[r]:
+                idx[n] = r
+                n += 1
+        if n > 0:
+            # W_SS + eps I in the envelope, factorised in place (lower triangle)
+            dmax = 0.0
+            for i in range(n):
+                if diag[idx[i]] > dmax:
+                    dmax = diag[idx[i]]
+            eps = EPS_REG * dmax
+            for i in range(n):
+                first[i] = i
+                for k in range(i + 1):
+                    w_mat[i, k] = 0.0
+            # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
+            for c in range(nbody):
+                cnt[c] = 0
+            for i in range(n):
+                r = idx[i]
+                j = rows_j[r]
+                if ja[j] >= 0:
+                    c = ja[j]
+                    lst_i[c, cnt[c]] = i
+                    lst_side[c, cnt[c]] = 0
+                    cnt[c] += 1
+                if jb[j] >= 0:
+                    c = jb[j]
+                    lst_i[c, cnt[c]] = i
+                    lst_side[c, cnt[c]] = 1
+                    cnt[c] += 1
+            for c in range(nbody):
+                for u in range(cnt[c]):
+                    i = lst_i[c, u]
+                    r = idx[i]
+                    if lst_side[c, u] == 0:
+                        h0, h1, h2 = ja_rows[r, 0], ja_rows[r, 1], ja_rows[r, 2]
+                    else:
+                        h0, h1, h2 = jb_rows[r, 0], jb_rows[r, 1], jb_rows[r, 2]
+                    for u2 in range(cnt[c]):
+                        k = lst_i[c, u2]
+                        if k > i:
+                            continue
+                        s2 = idx[k]
+                        if lst_side[c, u2] == 0:
+                            g0, g1, g2 = ja_rows[s2, 0], ja_rows[s2, 1], ja_rows[s2, 2]
+                        else:
+                            g0, g1, g2 = jb_rows[s2, 0], jb_rows[s2, 1], jb_rows[s2, 2]
+                        w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
+                        if k < first[i]:
+                            first[i] = k
+            for i in range(n):
+                w_mat[i, i] += eps
+            ok = True
+            for i in range(n):
+                for k in range(first[i], i + 1):
+                    s = w_mat[i, k]
+                    lo = first[i] if first[i] > first[k] else first[k]
+                    for m in range(lo, k):
+                        s -= w_mat[i, m] * w_mat[k, m]
+                    if k == i:
+                        if s <= 0.0:
+                            ok = False
+                            break
+                        w_mat[i, i] = math.sqrt(s)
+                    else:
+                        w_mat[i, k] = s / w_mat[k, k]
+                if not ok:
+                    break
+            if not ok:
+                break
+            # refine: the equality residual -H_S v, m/s, solved for the impulse increment
+            converged = False
+            for _ref in range(REFINEMENTS):
+                big = 0.0
+                for i in range(n):
+                    rhs[i] = -_row_velocity(v, idx[i], rows_j, ja, jb, ja_rows, jb_rows)
+                    if abs(rhs[i]) > big:
+                        big = abs(rhs[i])
+                if big <= tol:
+                    converged = True
+                    break
+                _envelope_solve(w_mat, first, n, rhs, d)
+                for i in range(n):
+                    r = idx[i]
+                    p[r] += d[i]
+                    _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, d[i], inv_m, inv_i)
+            if not converged:
+                break
+        # the cone's conditions
+        changed = False
+        for r in range(nrows):
+            if rows_k[r] == 2:
+                continue
+            if in_s[r]:
+                if p[r] < -tol / diag[r]:
+                    in_s[r] = False
+                    changed = True
+            elif _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows) < -tol:
+                in_s[r] = True
+                changed = True
+        if not changed:
+            accepted = True
+            break
+    sweeps = 0
+    change = 0.0
+    if not accepted:
+        for r in range(nrows):
+            if rows_k[r] < 2 and p[r] < 0.0:
+                p[r] = 0.0
+        v[:, :] = v_free
+        for r in range(nrows):
+            if p[r] != 0.0:
+                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
+        sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
+                              inv_i, tol, max_iter, mu)
+    for r in range(nrows):
+        imp[rows_j[r], rows_k[r]] = p[r]
+    return v, imp, solves + sweeps, change
 
 
 @nb.njit(cache=True)
@@ -217,7 +509,7 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 @nb.njit(cache=True)
 def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, gap_tol, tol,
-        max_iter, mu, out_every, out_q, out_v, out_diag, diag):
+        max_iter, mu, out_every, out_q, out_v, out_diag, diag, method=METHOD_PGS):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
     m/s^2), writing q, v, diagnostics after every ``out_every`` steps into row ``k // out_every``
     of ``out_*``. ``q``, ``v``, ``p_warm``, ``diag`` (running D_* values) are updated in place.
@@ -233,8 +525,12 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
         for i in range(nb_):
             vf[i, 0] -= h * acc[k]
             vf[i, 1] -= h * g
-        vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                       gap_tol, p_warm, tol, max_iter, mu)
+        if method == METHOD_DIRECT and mu <= 0.0:
+            vn, imp, sweeps, res = project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan,
+                                                  pts, gap_tol, p_warm, tol, max_iter, mu)
+        else:
+            vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
+                                           gap_tol, p_warm, tol, max_iter, mu)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0

@@ -196,7 +196,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    initial: tuple[np.ndarray, np.ndarray] | None = None,
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
-                   friction: float | None = None) -> RigidRun:
+                   friction: float | None = None, solver: str = "direct") -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -221,6 +221,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     friction : float, optional
         Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
         assumption. With mu the step is no longer a projection (``_rigid_kernels`` docstring).
+    solver : {"direct", "pgs"}
+        The contact step's solver: "direct" (default) solves the guessed active set exactly and
+        falls back to Gauss-Seidel when the guess fails (``_rigid_kernels.project_direct``);
+        "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction`` the step
+        is always Gauss-Seidel.
     """
     import time as _time
 
@@ -233,6 +238,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     mu = 0.0 if friction is None else float(friction)
     if friction is not None and not (mu > 0 and math.isfinite(mu)):
         raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
+    methods = {"direct": RK.METHOD_DIRECT, "pgs": RK.METHOD_PGS}
+    if solver not in methods:
+        raise InvalidParameterError(f"solver must be 'direct' or 'pgs', got {solver!r}")
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
@@ -280,7 +288,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         od = np.zeros((n_out, RK.N_DIAG))
         w = RK.run(q, v, p_warm, model.mass, model.inertia, model.ja, model.jb, model.arm_a,
                    model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS, mu,
-                   out_every, oq, ov, od, diag)
+                   out_every, oq, ov, od, diag, methods[solver])
         worst = max(worst, int(w))
         if not np.all(np.isfinite(q)):
             from archquake.errors import SolverError
