@@ -38,13 +38,16 @@ def _pair(text: str) -> tuple[float, float]:
     return a, b
 
 
-def refuse_dem_options(args: argparse.Namespace) -> None:
+def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -> None:
     """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
-    ``--dem-assembly`` defaults to every voussoir."""
+    ``--dem-assembly`` defaults to every voussoir. ``friction_too=False`` leaves ``--friction``
+    to the caller (``--hinges moving``: the rigid chain's Coulomb joints)."""
     refuse_unless({"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
-                   "--friction": args.friction, "--damping": args.damping,
-                   "--rayleigh": args.rayleigh}, args.model == "dem",
+                   "--damping": args.damping, "--rayleigh": args.rayleigh}, args.model == "dem",
                   "to the distinct-element model: add --model dem, or leave it out")
+    if friction_too:
+        refuse_unless({"--friction": args.friction}, args.model == "dem",
+                      "to the block models: add --model dem or --hinges moving, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen
         args.dem_assembly = "voussoirs"
 

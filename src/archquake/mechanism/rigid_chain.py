@@ -168,7 +168,8 @@ class RigidRun:
     ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
     ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
-    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping.
+    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
+    ``friction``: the joints' Coulomb coefficient, None for no sliding.
     """
 
     result: DemResult
@@ -178,10 +179,30 @@ class RigidRun:
     max_sweeps: int
     residual: float
     wall_s: float
+    friction: float | None = None
 
     @property
     def max_friction_demand(self) -> float:
         return float(self.friction_demand.max(initial=0.0))
+
+    @property
+    def outcome(self):
+        """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
+        return self.result.outcome
+
+    def to_dict(self) -> dict:
+        """Summary for JSON: ``DemResult.to_dict()`` (the keys of
+        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid_chain"``, then the
+        stepper's own diagnostics under ``rigid``."""
+        out = self.result.to_dict()
+        out["model"] = "rigid_chain"
+        out["hinges_model"] = "moving"
+        out["friction_coefficient"] = self.friction
+        out["rigid"] = {"time_step_s": self.time_step,
+                        "max_penetration_m": self.max_penetration_m,
+                        "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
+                        "wall_s": self.wall_s}
+        return out
 
 
 def _mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
@@ -325,7 +346,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     return RigidRun(result=res, time_step=h,
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
-                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall)
+                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall,
+                    friction=friction)
 
 
 __all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]

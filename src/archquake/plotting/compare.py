@@ -20,10 +20,11 @@ _DEM_STYLE = {"hinges": ("--", "tab:blue", "DEM, arch cut at the hinges"),
               "voussoirs": ("-.", "tab:red", "DEM, every voussoir a block")}
 
 
-def save_dem_rotation(result, path: str | Path) -> Path:
-    """The DEM rotation history alone (``archquake run --model dem --plot``)."""
+def save_dem_rotation(result, path: str | Path, *, label: str | None = None) -> Path:
+    """The rotation history of a block model alone (``archquake run --model dem --plot``, and
+    ``--hinges moving``, whose rigid chain returns the same result)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
-    plot_dem_rotation(result, ax, label=f"DEM ({result.assembly.name})")
+    plot_dem_rotation(result, ax, label=label or f"DEM ({result.assembly.name})")
     return save(fig, path, dpi=120)
 
 
