@@ -42,10 +42,26 @@ def test_fixed_hinges_is_the_default(capsys):
     assert a["model"] == b["model"] == "analytical" and a == b
 
 
-def test_moving_hinges_text_output(capsys):
-    assert main(["run", "--hinges", "moving", *FIG4A, "--t-end", "2.0"]) == 0
+def test_moving_hinges_text_output_and_files(capsys, tmp_path):
+    """Text like ``run``'s, with the hinge sets; the rotation plot (with the hinge sets below
+    it) and the animation (hinges marked) of the DEM, reused."""
+    plot, gif = tmp_path / "r.png", tmp_path / "r.gif"
+    assert main(["run", "--hinges", "moving", *FIG4A, "--t-end", "1.6", "--plot", str(plot),
+                 "--animate", str(gif)]) == 0
     text = capsys.readouterr().out
     assert "hinges moving: chain of rigid blocks" in text and "collapse in half cycle 1" in text
+    assert "hinge sets" in text and "onset" in text
+    assert plot.stat().st_size > 10_000 and gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+
+
+def test_hinge_sets_in_json(capsys):
+    """Every hinge set with its time and degrees of freedom, keyed as the fixed-hinge model's
+    ``mechanisms``; under Figure 4(a)'s pulse the arch opens 0i 2e 5i 7e (the DEM's too)."""
+    out = _json(capsys, "--hinges", "moving", *FIG4A, "--t-end", "1.0")
+    sets = out["mechanisms"]
+    assert sets[0]["kind"] == "onset"
+    assert all(e["degrees_of_freedom"] == max(len(e["hinges"].split()) - 3, 0) for e in sets)
+    assert "0i 2e 5i 7e" in [e["hinges"] for e in sets]
 
 
 @pytest.mark.parametrize("extra, named", [

@@ -87,6 +87,13 @@ def _print_text(out: dict) -> None:
     if imp:
         more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
         print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
+    events = out["mechanisms"]
+    for k, e in enumerate(events[:10]):
+        print(f"{'hinge sets' if k == 0 else '':<19} t = {e['time_s']:.3f} s  {e['kind']:<7} "
+              f"{e['hinges'] or '(all joints closed)'}"
+              + (f"  ({e['degrees_of_freedom']} dof)" if e["hinges"] else ""))
+    if len(events) > 10:
+        print(f"{'':<19} ... {len(events) - 10} more (--json lists them all)")
     peaks = out["peak_rotation_rad"]
     if peaks:
         print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
