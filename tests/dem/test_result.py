@@ -120,3 +120,14 @@ def test_production_code_does_not_import_the_reference_kernel():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_dem_run_cut_short_while_rocking_is_indeterminate(arch):
+    """The DEM's verdict follows the block models' rule: Figure 4's 0.20 s step at 1.0 g, run
+    for DemSettings()'s default 3 s, ends rocking (impacts up to the end): not 'survives' but
+    'indeterminate', with the reason; final_state says 'moving'."""
+    res = simulate_dem(arch, StepImpulse.from_g(1.0, 0.20), DemSettings(output_interval=2e-3))
+    assert res.collapse_time is None and res.impact_times.size >= 3
+    assert res.outcome is Outcome.INDETERMINATE
+    d = res.to_dict()
+    assert d["final_state"] == "moving" and "still moving" in d["verdict"]

@@ -9,13 +9,16 @@ are unique.
 
 import math
 
+import numpy as np
 import pytest
 
 from archquake import Arch
 from archquake.compare.migration import RectangularPulse
 from archquake.constants import STANDARD_GRAVITY as G
+from archquake.dem.result import rest_threshold, settled
 from archquake.ground import StepImpulse
 from archquake.mechanism.rigid_chain import simulate_rigid
+from archquake.outcome import Outcome
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
@@ -64,3 +67,50 @@ def test_hinge_sets_are_mirror_symmetric(mirrored_runs):
         (e.time_s, e.hinges, e.kind) for e in b]
     assert max(e.degrees_of_freedom for e in a) >= 2  # a five-hinge phase
     assert len(a) >= 4
+
+
+# ----------------------------------------------------------------------------- verdict
+@pytest.fixture(scope="module")
+def rocking_cut_short():
+    """Figure 4's 0.20 s step at 1.0 g: rocking with impacts at 0.64, 1.73, 2.46, 2.90 s...;
+    cut at 3 s, while the arch still rocks."""
+    return simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.20), duration=3.0,
+                          output_interval=1e-3)
+
+
+def test_a_run_cut_short_while_rocking_is_not_survival(rocking_cut_short):
+    """The verdict: 'survives' only at rest after the excitation; cut while rocking, the rigid
+    chain reports 'indeterminate' with the reason."""
+    res = rocking_cut_short.result
+    assert res.impact_times.size >= 4 and res.collapse_time is None
+    assert res.outcome is Outcome.INDETERMINATE and res.final_state == "moving"
+    out = rocking_cut_short.to_dict()
+    assert out["outcome"] == "indeterminate" and "still moving" in out["verdict"]
+
+
+def test_until_rest_extends_the_run_to_a_verdict():
+    """With ``until_rest`` the same run goes on until the arch is at rest (kinetic energy below
+    1e-6 W L over sqrt(L/g)), and then it survives; the extension stops there, well before
+    the cap."""
+    run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.20), duration=3.0,
+                         output_interval=1e-3, until_rest=30.0)
+    res = run.result
+    assert res.outcome is Outcome.SURVIVES and res.final_state == "rest"
+    assert 3.5 < res.end_time < 8.0
+    k_max, window = rest_threshold(res.assembly, res.g)
+    assert res.kinetic[res.times >= res.end_time - window].max() <= k_max
+    assert res.kinetic[res.times < 3.0].max() > 1e4 * k_max  # it did rock
+
+
+def test_settled_needs_the_whole_window_after_the_excitation(rocking_cut_short):
+    """The rule itself: a still window that starts before the excitation ends, or is shorter
+    than sqrt(L/g), is not rest; a zero of the kinetic energy at a reversal is not rest."""
+    res = rocking_cut_short.result
+    k_max, window = rest_threshold(res.assembly, res.g)
+    t = np.linspace(0.0, 2.0 * window, 101)
+    still = np.zeros_like(t)
+    assert settled(res.assembly, res.g, t, still, excitation_end=0.5 * window)
+    assert not settled(res.assembly, res.g, t, still, excitation_end=1.5 * window)
+    assert not settled(res.assembly, res.g, t[:40], still[:40], excitation_end=None)
+    reversal = np.abs(np.sin(2 * np.pi * t / window)) * 1e3 * k_max  # zero at instants only
+    assert not settled(res.assembly, res.g, t, reversal, excitation_end=0.0)

@@ -42,12 +42,12 @@ def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -
     """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
     ``--dem-assembly`` defaults to every voussoir. ``friction_too=False`` leaves ``--friction``
     to the caller (``--hinges moving``: the rigid chain's Coulomb joints)."""
-    refuse_unless({"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
-                   "--damping": args.damping, "--rayleigh": args.rayleigh}, args.model == "dem",
-                  "to the distinct-element model: add --model dem, or leave it out")
-    if friction_too:
-        refuse_unless({"--friction": args.friction}, args.model == "dem",
-                      "to the block models: add --model dem or --hinges moving, or leave it out")
+    given = {"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
+             "--friction": args.friction if friction_too else None, "--damping": args.damping,
+             "--rayleigh": args.rayleigh}
+    refuse_unless(given, args.model == "dem",
+                  "to the distinct-element model (--friction also to --hinges moving): add "
+                  "--model dem, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen
         args.dem_assembly = "voussoirs"
 
@@ -165,7 +165,7 @@ def _print_text(out: dict, result) -> None:
                 f"{out['collapse_time_s']:.3f} s (DEM criterion: crown fallen by t or a block "
                 "below the springings)")
     else:
-        what = out["outcome"]
+        what = f"{out['outcome']}: {out['verdict']}"
     print(f"outcome             {what}")
     if out["onset_time_s"] is not None:
         print(f"hinging from        {out['onset_time_s']:.3f} s")

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 
 from archquake.cli.common import check_range, print_json
+from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
@@ -36,7 +37,17 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         raise InvalidParameterError(
             f"{given} is {duration:g} s; with --hinges moving it must be <= {DEM_T_END_MAX_S:g} s "
             "(the rigid chain steps 1e-4 s): give a shorter --t-end")
-    result = simulate_rigid(arch, motion, duration=duration, friction=args.friction)
+    # the default runs to the end of the excitation + 5 sqrt(R/g) and, if the arch is still
+    # moving then, on until it is at rest, up to the fixed-hinge model's default end (end of
+    # the excitation + 60 sqrt(R/g)); a given --t-end is run as given
+    until_rest = None
+    if args.t_end is None:
+        from archquake.domains._kernels import default_t_end
+
+        until_rest = min(float(default_t_end(motion.duration, arch.radius, STANDARD_GRAVITY)),
+                         DEM_T_END_MAX_S)
+    result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
+                            until_rest=until_rest)
     res = result.result
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
@@ -79,7 +90,7 @@ def _print_text(out: dict) -> None:
                 f"{out['collapse_time_s']:.3f} s (crown fallen by t or a block below the "
                 "springings)")
     else:
-        what = out["outcome"]
+        what = f"{out['outcome']}: {out['verdict']}"
     print(f"outcome             {what}")
     if out["onset_time_s"] is not None:
         print(f"hinging from        {out['onset_time_s']:.3f} s")

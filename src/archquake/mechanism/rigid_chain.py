@@ -44,7 +44,7 @@ import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
-from archquake.dem.result import DemResult, collapse_parameters, crown_height
+from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
@@ -205,6 +205,19 @@ class RigidRun:
         return out
 
 
+def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool:
+    """The samples so far end at rest (:func:`archquake.dem.result.settled`)."""
+    from archquake.dem.result import rest_threshold, settled
+
+    window = rest_threshold(model.assembly, g)[1]
+    k = len(times)
+    while k > 1 and times[k - 1] > times[-1] - window:
+        k -= 1
+    kin = [model.kinetic_energy(v) for v in vs[k - 1:]]
+    return settled(model.assembly, g, np.array(times[k - 1:]), np.array(kin),
+                   excitation_end(motion))
+
+
 def _mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
     t = t0 + h * (np.arange(n)[:, None] + sub[None, :])
@@ -217,7 +230,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    initial: tuple[np.ndarray, np.ndarray] | None = None,
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
-                   friction: float | None = None) -> RigidRun:
+                   friction: float | None = None,
+                   until_rest: float | None = None) -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -242,6 +256,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     friction : float, optional
         Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
         assumption. With mu the step is no longer a projection (``_rigid_kernels`` docstring).
+    until_rest : float, optional
+        s: if the arch has neither collapsed nor come to rest (:func:`archquake.dem.result.settled`)
+        by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
+        reached. Without it (default) the run ends at ``duration``; the verdict is
+        ``indeterminate`` if the arch is still moving then.
     """
     import time as _time
 
@@ -290,8 +309,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
 
     cpar[DK.C_CROWN_Y0] = crown_height(asm, absolute(q, v, 0.0, 0.0)[None, :, :3])[0]
     collapsed = False
-    while step < n_total and not collapsed:
-        n = min(per_chunk, n_total - step)
+    n_cap = n_total if until_rest is None else max(n_total, int(math.ceil(until_rest / h - 1e-9)))
+    while step < n_cap and not collapsed:
+        if step >= n_total and _at_rest(model, g, times, vs, motion):
+            break
+        n = min(per_chunk, n_cap - step)
         n -= n % out_every if n >= out_every else 0
         n = max(n, 1)
         acc = _mean_acceleration(motion, step * h, h, n)
@@ -342,7 +364,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         motion, "name", motion))}
     res = DemResult.from_samples(asm, settings.with_(duration=duration, time_step=h,
                                                      output_interval=out_every * h),
-                                 motion_d, g, h, math.nan, step, 0, t, states, energies)
+                                 motion_d, g, h, math.nan, step, 0, t, states, energies,
+                                 excitation_end=excitation_end(motion))
     return RigidRun(result=res, time_step=h,
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
