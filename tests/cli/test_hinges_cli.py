@@ -62,6 +62,8 @@ def test_hinge_sets_in_json(capsys):
     assert sets[0]["kind"] == "onset"
     assert all(e["degrees_of_freedom"] == max(len(e["hinges"].split()) - 3, 0) for e in sets)
     assert "0i 2e 5i 7e" in [e["hinges"] for e in sets]
+    jf = out["joint_forces"]  # the mechanism's own thrust line and friction demand
+    assert 0.0 < jf["max_friction_demand"] < 1.0 and "rule" in jf
 
 
 @pytest.mark.parametrize("extra, named", [

@@ -114,3 +114,73 @@ def test_settled_needs_the_whole_window_after_the_excitation(rocking_cut_short):
     assert not settled(res.assembly, res.g, t[:40], still[:40], excitation_end=None)
     reversal = np.abs(np.sin(2 * np.pi * t / window)) * 1e3 * k_max  # zero at instants only
     assert not settled(res.assembly, res.g, t, reversal, excitation_end=0.0)
+
+
+# ----------------------------------------------------------------------------- joint forces
+def test_forces_of_the_four_link_phase_are_its_statics(four_hinge_run):
+    """While the arch moves on the four-hinge mechanism its joint forces are determinate, and
+    the rigid chain's (corner impulses / h) equal the four-link mechanism's
+    (`thrust.states.state_at` at Eq. 2's exact state: an independent statics solve): normal
+    force, line of thrust, friction demand at every joint."""
+    from archquake.mechanism import SolverOptions, simulate
+    from archquake.mechanism.prepared import PreparedMechanism
+    from archquake.thrust.states import state_at
+
+    motion = four_hinge_run.motion
+    times = np.array([0.12, 0.15, 0.18])
+    ref = simulate(OPPENHEIM, motion, t_eval=times, t_end=0.25,
+                   options=SolverOptions(output_interval=0.0)).evaluated
+    prep = PreparedMechanism.build(OPPENHEIM)
+    f = four_hinge_run.joint_forces
+    for i, t in enumerate(times):
+        s = state_at(prep, t, float(ref.phi[i]), float(ref.phi_dot[i]), int(ref.side[i]),
+                     float(motion.acceleration(t)))
+        k = int(np.argmin(np.abs(f.times - t)))
+        assert abs(f.times[k] - t) < 1e-9 and f.unique[k] and not f.impulsive[k]
+        n_ref = s.forces.normal
+        assert np.max(np.abs(f.normal[k] - n_ref)) < 1e-5 * n_ref.max()
+        assert np.max(np.abs(f.eccentricity[k] - s.forces.eccentricity)) < 1e-5 * f.half_depth.max()
+        assert np.max(np.abs(f.friction_demand[k] - s.friction_demand)) < 1e-4
+
+
+def test_at_rest_the_forces_are_indeterminate_but_in_equilibrium():
+    """Below lambda (0.30 g step, lambda = 0.37 g) the closed arch is three times statically
+    indeterminate: one distribution of many, so none is reported (the thrust line at rest is
+    not the rigid chain's to choose: `thrust.states` picks the least-friction one). What is
+    determinate holds: the springings carry the weight and the ground's inertia force."""
+    motion = StepImpulse.from_g(0.30, 0.2)
+    run = simulate_rigid(OPPENHEIM, motion, duration=0.3, output_interval=1e-2)
+    assert run.result.outcome is Outcome.NO_HINGING
+    f = run.joint_forces
+    assert not f.unique.any() and run.to_dict()["joint_forces"]["max_friction_demand"] is None
+    model = run.result.assembly
+    n0, t0 = [], []
+    for jt in (model.joints[0], model.joints[-1]):
+        p = np.asarray(jt.points, float)
+        tan = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
+        nrm = np.array([tan[1], -tan[0]])
+        if np.dot(model.centroids[jt.right] - model.centroids[jt.left], nrm) < 0:
+            nrm = -nrm
+        n0.append(nrm)
+        t0.append(tan)
+    for k in (5, 15, 25):  # during the pulse (0.30 g towards -x) and after it
+        on_arch = (f.normal[k, 0] * n0[0] + f.shear[k, 0] * t0[0]
+                   - f.normal[k, -1] * n0[1] - f.shear[k, -1] * t0[1])
+        a_g = float(np.mean(motion.acceleration(f.times[k] + run.time_step * (np.arange(16) + 0.5) / 16)))
+        assert on_arch[1] == pytest.approx(f.weight, rel=1e-6)
+        assert on_arch[0] == pytest.approx(f.weight / G * a_g, abs=1e-6 * f.weight)
+
+
+def test_closure_spikes_are_not_reported_as_demand(rocking_cut_short):
+    """Under Figure 4(d)'s pulse the stepper's |p_T| / p_N reaches 6 at isolated closure steps
+    (impacts); the reported demand leaves out impulsive and indeterminate samples and nearly
+    unloaded joints, and is what the swing needs: below 1 (0.84 measured), its 99th
+    percentile 0.55."""
+    run = rocking_cut_short
+    f = run.joint_forces
+    assert run.max_friction_demand > 2.9
+    s = run.to_dict()["joint_forces"]
+    assert s["impulsive_samples"] > 0
+    assert 0.5 < s["max_friction_demand"] < 1.0
+    assert np.nanpercentile(f.friction_demand, 99) < 0.6
+    assert 0.9 < s["max_relative_eccentricity_closed"] < 1.0

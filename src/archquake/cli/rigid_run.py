@@ -109,6 +109,12 @@ def _print_text(out: dict) -> None:
     if peaks:
         print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
               + (" ..." if len(peaks) > 6 else ""))
+    jf = out.get("joint_forces")
+    if jf and jf["max_friction_demand"] is not None:
+        print(f"friction demand     max |V|/N = {jf['max_friction_demand']:.3f} at joint "
+              f"{jf['max_friction_demand_joint']}, t = {jf['max_friction_demand_time_s']:.3f} s "
+              f"({jf['indeterminate_samples']} indeterminate and {jf['impulsive_samples']} impact "
+              f"samples of {jf['samples']} left out)")
     print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated at the "
           f"contacts {out['dissipated_damping_J']:.4g} J")
 

@@ -38,7 +38,8 @@ and the scheme's O(h) loss in persistent contacts), not Rayleigh damping.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -61,6 +62,8 @@ GAP_TOLERANCE = 1.0e-9
 #: (1e-6 t at this default) and the slow onset agrees with Eq. 2 to 3e-5 (1e-6).
 SOLVER_TOLERANCE = 1.0e-11
 MAX_SWEEPS = 5000
+#: Most samples at which ``RigidRun.joint_forces`` evaluates the forces (strided evenly).
+FORCE_SAMPLES = 4000
 #: Sub-samples per step for the step's mean ground acceleration.
 ACC_SAMPLES = 16
 
@@ -169,7 +172,8 @@ class RigidRun:
     ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
     correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
-    ``friction``: the joints' Coulomb coefficient, None for no sliding.
+    ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
+    motion it was run with.
     """
 
     result: DemResult
@@ -180,10 +184,23 @@ class RigidRun:
     residual: float
     wall_s: float
     friction: float | None = None
+    motion: object = field(default=None, repr=False, compare=False)
 
     @property
     def max_friction_demand(self) -> float:
         return float(self.friction_demand.max(initial=0.0))
+
+    @cached_property
+    def joint_forces(self):
+        """The joint forces, line of thrust and friction demand at the recorded samples (at most
+        ``FORCE_SAMPLES`` of them, evenly strided):
+        :func:`archquake.mechanism.rigid_forces.joint_forces`, with its reporting rule."""
+        from archquake.mechanism.rigid_forces import joint_forces
+
+        if self.motion is None:
+            raise InvalidParameterError("this run does not know its ground motion")
+        every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
+        return joint_forces(self, self.motion, every=every)
 
     @property
     def outcome(self):
@@ -198,6 +215,8 @@ class RigidRun:
         out["model"] = "rigid_chain"
         out["hinges_model"] = "moving"
         out["friction_coefficient"] = self.friction
+        if self.motion is not None:
+            out["joint_forces"] = self.joint_forces.summary()
         out["rigid"] = {"time_step_s": self.time_step,
                         "max_penetration_m": self.max_penetration_m,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
@@ -370,7 +389,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
                     residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall,
-                    friction=friction)
+                    friction=friction, motion=motion)
 
 
 __all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]
