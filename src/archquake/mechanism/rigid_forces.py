@@ -140,10 +140,10 @@ def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i) -> np
     nb = q.shape[0]
     rows = []
 
-    def entry(row, body, px, py, d, sign):
+    def entry(row, body, p, d, sign):
         if body < 0:
             return
-        rx, ry = px - q[body, 0], py - q[body, 1]
+        rx, ry = p[0] - q[body, 0], p[1] - q[body, 1]
         row[3 * body] += sign * d[0] * inv_sqrt_m[body]
         row[3 * body + 1] += sign * d[1] * inv_sqrt_m[body]
         row[3 * body + 2] += sign * (rx * d[1] - ry * d[0]) * inv_sqrt_i[body]
@@ -153,16 +153,16 @@ def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i) -> np
         for c in range(2):
             if act[c]:
                 r = np.zeros(3 * nb)
-                entry(r, ja[j], *pts[j, c, 0], nrm[j], -1.0)
-                entry(r, jb[j], *pts[j, c, 1], nrm[j], 1.0)
+                entry(r, ja[j], pts[j, c, 0], nrm[j], -1.0)
+                entry(r, jb[j], pts[j, c, 1], nrm[j], 1.0)
                 rows.append(r)
         if act[0] or act[1]:
             w = 0.5 if (act[0] and act[1]) else (1.0 if act[0] else 0.0)
             pa = w * pts[j, 0, 0] + (1 - w) * pts[j, 1, 0]
             pb = w * pts[j, 0, 1] + (1 - w) * pts[j, 1, 1]
             r = np.zeros(3 * nb)
-            entry(r, ja[j], *pa, tan[j], -1.0)
-            entry(r, jb[j], *pb, tan[j], 1.0)
+            entry(r, ja[j], pa, tan[j], -1.0)
+            entry(r, jb[j], pb, tan[j], 1.0)
             rows.append(r)
     return np.array(rows).reshape(len(rows), 3 * nb)
 
