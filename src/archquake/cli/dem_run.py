@@ -55,7 +55,8 @@ def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -
 def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
     """The distinct-element options of ``archquake run`` (used with ``--model dem``)."""
     grp = parser.add_argument_group("distinct-element model (with --model dem; --t-end sets the "
-                                    "simulated time, default end of excitation + 5 sqrt(R/g); "
+                                    "simulated time, default end of excitation + 5 sqrt(R/g), "
+                                    "rerun with 10 then 20 sqrt(R/g) while the arch still moves; "
                                     "--history writes the DEM's rotation, energies and base motion)")
     grp.add_argument("--dem-assembly", choices=("voussoirs", "hinges"), default=None,
                      help="DEM blocks: every voussoir (default) or the arch cut only at the "
@@ -126,7 +127,12 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             "(the explicit DEM needs millions of steps): give a shorter --t-end")
     settings = settings_from_args(args, duration)
     assembly = dem_assembly(arch, args.dem_assembly)
-    result = simulate_dem(assembly, motion, settings)
+    if args.t_end is None:  # the default runs until a verdict (rest or collapse), or the cap
+        from archquake.compare import dem_to_verdict
+
+        result = dem_to_verdict(assembly, motion, settings, radius=arch.radius)
+    else:
+        result = simulate_dem(assembly, motion, settings)
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
 
