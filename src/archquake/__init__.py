@@ -17,7 +17,9 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 >>> simulate(arch, StepImpulse.from_g(1.0, 0.27)).outcome.value  # paper Figure 4(c)
 'collapse'
 
-``Arch``, ``limit_analysis``, ``simulate``, ``simulate_dem``, ``failure_domain``,
+``Arch``, ``limit_analysis``, ``simulate`` (the paper's model: hinges fixed between impacts),
+``simulate_rigid`` (hinges that move: the chain of rigid blocks, issue 16), ``simulate_dem``,
+``failure_domain``,
 ``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, the error classes,
 the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
 in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
@@ -58,6 +60,7 @@ _LAZY: dict[str, str] = {
     "simulate": "archquake.mechanism",
     "Outcome": "archquake.outcome",
     "simulate_dem": "archquake.dem",
+    "simulate_rigid": "archquake.mechanism.rigid_chain",
     "failure_domain": "archquake.domains",
     "StepImpulse": "archquake.ground",
     "SinePulse": "archquake.ground",
@@ -72,6 +75,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.ground import Record, SinePulse, StepImpulse, read_record
     from archquake.limit import limit_analysis
     from archquake.mechanism import simulate
+    from archquake.mechanism.rigid_chain import simulate_rigid
     from archquake.outcome import Outcome
 
 
@@ -113,4 +117,5 @@ __all__ = [
     "read_record",
     "simulate",
     "simulate_dem",
+    "simulate_rigid",
 ]

@@ -23,8 +23,10 @@ class Outcome(str, Enum):
         No joint opened: the arch moved rigidly with the ground (the ground acceleration never
         exceeded the static collapse acceleration in either direction).
     ``survives``
-        Hinges opened, and the arch did not collapse (it came to rest, or was still rocking
-        at the end of the run).
+        Hinges opened, and the arch did not collapse (the analytical model: it came to rest, or
+        was still rocking at the end of the run, ``final_state`` says which; the block models,
+        the DEM and the rigid chain: it came to rest after the excitation,
+        :func:`archquake.dem.result.settled`).
     ``collapse``
         The arch collapsed (each model states its criterion: the analytical model when the
         mechanism passes the crest of its potential energy after the excitation or reaches
@@ -33,7 +35,8 @@ class Outcome(str, Enum):
     ``indeterminate``
         The analytical model reached a verdict only through an impact its impact law cannot
         describe (:func:`qualify` states the rule): neither collapse nor survival is claimed.
-        The distinct-element model never returns it.
+        A block model (DEM, rigid chain) returns it when hinges opened and the run ended with
+        the arch still moving (``final_state`` ``moving``): run longer to decide.
     """
 
     NO_HINGING = "no_hinging"
@@ -92,9 +95,9 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
 #: (what ``archquake run --json`` prints and a sweep stores as ``out.<key>``); each model adds
 #: its own after them.
 #:
-#: ``model``: ``'analytical'`` or ``'dem'``; ``outcome``: an :class:`Outcome` value;
+#: ``model``: ``'analytical'``, ``'dem'`` or ``'rigid_chain'``; ``outcome``: an :class:`Outcome` value;
 #: ``final_state``: how the run ended (analytical: rest, moving, collapsed, stalled; the
-#: distinct-element model runs for a fixed time and reports ``collapsed`` or None);
+#: block models: collapsed, rest or moving);
 #: ``collapse_half_cycle``: 1 = before the first impact, 2 = after it, ... (None: no collapse);
 #: ``collapse_time_s``, ``onset_time_s`` (hinging starts): s or None; ``impact_times_s``: s,
 #: before the collapse; ``peak_rotation_rad``: the largest rotation of each half cycle, rad;

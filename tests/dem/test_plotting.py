@@ -19,4 +19,5 @@ def test_snapshot_rotation_and_animation(tmp_path):
     assert plot_dem_rotation(res).lines
     path = animate_dem(res, tmp_path / "arch.gif", fps=5)
     assert path.stat().st_size > 0
-    assert res.to_dict()["outcome"] == "survives"
+    # cut at 0.3 s while rocking: not 'survives' (the block models' verdict needs rest)
+    assert res.to_dict()["outcome"] == "indeterminate"

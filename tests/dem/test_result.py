@@ -120,3 +120,30 @@ def test_production_code_does_not_import_the_reference_kernel():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_dem_run_cut_short_while_rocking_is_indeterminate(arch):
+    """The DEM's verdict follows the block models' rule: Figure 4's 0.20 s step at 1.0 g, run
+    for DemSettings()'s default 3 s, ends rocking (impacts up to the end): not 'survives' but
+    'indeterminate', with the reason; final_state says 'moving'."""
+    res = simulate_dem(arch, StepImpulse.from_g(1.0, 0.20), DemSettings(output_interval=2e-3))
+    assert res.collapse_time is None and res.impact_times.size >= 3
+    assert res.outcome is Outcome.INDETERMINATE
+    d = res.to_dict()
+    assert d["final_state"] == "moving" and "still moving" in d["verdict"]
+
+
+def test_dem_default_run_goes_on_to_a_verdict(capsys):
+    """``archquake run --model dem`` without --t-end: Figure 4(d)'s pulse on the seven
+    voussoirs still rocks at the default end (excitation + 5 sqrt(R/g) = 5.65 s; last impact
+    4.9 s), so the DEM is rerun with 10 sqrt(R/g) (10.7 s) and is then at rest: 'survives'
+    (compare.dem_to_verdict; sweeps and IDA use it too)."""
+    import json
+
+    from archquake.cli.main import main
+
+    assert main(["run", "--model", "dem", "--pulse", "step", "--magnitude", "1.0",
+                 "--duration", "0.20", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["outcome"] == "survives" and out["final_state"] == "rest"
+    assert 10.0 < out["end_time_s"] < 11.0

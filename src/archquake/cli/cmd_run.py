@@ -24,6 +24,7 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     ANIMATION_SUFFIXES,
     CSV_SUFFIXES,
+    HINGE_MODELS,
     T_END_RANGE_S,
 )
 
@@ -45,7 +46,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
                         "default: end of the excitation + 60 sqrt(R/g))")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
-                   help="analytical four-link model (default) or the distinct-element model")
+                   help="analytical model (default) or the distinct-element model")
+    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
+                   help="analytical model only: 'fixed' (default), the paper's four-link "
+                        "mechanism, hinges fixed between impacts (fast: domains and IDA use it); "
+                        "'moving', the chain of rigid blocks, hinges open, migrate and close "
+                        "anywhere (issue 16; ~1 s per 4 s simulated, like the DEM); see "
+                        "docs/mechanism.md")
     from archquake.cli.dem_run import add_dem_arguments
 
     add_dem_arguments(p)
@@ -63,10 +70,19 @@ def run(args: argparse.Namespace) -> int:
 
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    refuse_dem_options(args)
+    if args.model == "dem" and args.hinges is not None:
+        raise InvalidParameterError(
+            f"--hinges {args.hinges} applies only to the analytical model (the DEM's hinges "
+            "always move): leave --hinges out with --model dem")
+    moving = args.hinges == "moving"
+    refuse_dem_options(args, friction_too=not moving)
     impact = impact_from_args(args)
     if args.model == "dem":
         return _run_dem(args, arch, motion)
+    if moving:
+        from archquake.cli import rigid_run
+
+        return rigid_run.run(args, arch, motion)
     from archquake.mechanism import PreparedMechanism, simulate
 
     prepared = PreparedMechanism.build(arch, impact["impact"])

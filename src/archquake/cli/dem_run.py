@@ -38,13 +38,16 @@ def _pair(text: str) -> tuple[float, float]:
     return a, b
 
 
-def refuse_dem_options(args: argparse.Namespace) -> None:
+def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -> None:
     """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
-    ``--dem-assembly`` defaults to every voussoir."""
-    refuse_unless({"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
-                   "--friction": args.friction, "--damping": args.damping,
-                   "--rayleigh": args.rayleigh}, args.model == "dem",
-                  "to the distinct-element model: add --model dem, or leave it out")
+    ``--dem-assembly`` defaults to every voussoir. ``friction_too=False`` leaves ``--friction``
+    to the caller (``--hinges moving``: the rigid chain's Coulomb joints)."""
+    given = {"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
+             "--friction": args.friction if friction_too else None, "--damping": args.damping,
+             "--rayleigh": args.rayleigh}
+    refuse_unless(given, args.model == "dem",
+                  "to the distinct-element model (--friction also to --hinges moving): add "
+                  "--model dem, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen
         args.dem_assembly = "voussoirs"
 
@@ -52,7 +55,8 @@ def refuse_dem_options(args: argparse.Namespace) -> None:
 def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
     """The distinct-element options of ``archquake run`` (used with ``--model dem``)."""
     grp = parser.add_argument_group("distinct-element model (with --model dem; --t-end sets the "
-                                    "simulated time, default end of excitation + 5 sqrt(R/g); "
+                                    "simulated time, default end of excitation + 5 sqrt(R/g), "
+                                    "rerun with 10 then 20 sqrt(R/g) while the arch still moves; "
                                     "--history writes the DEM's rotation, energies and base motion)")
     grp.add_argument("--dem-assembly", choices=("voussoirs", "hinges"), default=None,
                      help="DEM blocks: every voussoir (default) or the arch cut only at the "
@@ -123,7 +127,12 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             "(the explicit DEM needs millions of steps): give a shorter --t-end")
     settings = settings_from_args(args, duration)
     assembly = dem_assembly(arch, args.dem_assembly)
-    result = simulate_dem(assembly, motion, settings)
+    if args.t_end is None:  # the default runs until a verdict (rest or collapse), or the cap
+        from archquake.compare import dem_to_verdict
+
+        result = dem_to_verdict(assembly, motion, settings, radius=arch.radius)
+    else:
+        result = simulate_dem(assembly, motion, settings)
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
 
@@ -162,7 +171,7 @@ def _print_text(out: dict, result) -> None:
                 f"{out['collapse_time_s']:.3f} s (DEM criterion: crown fallen by t or a block "
                 "below the springings)")
     else:
-        what = out["outcome"]
+        what = f"{out['outcome']}: {out['verdict']}"
     print(f"outcome             {what}")
     if out["onset_time_s"] is not None:
         print(f"hinging from        {out['onset_time_s']:.3f} s")

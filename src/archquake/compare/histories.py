@@ -51,6 +51,38 @@ def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFA
     return float(motion.duration) + tail * math.sqrt(arch.radius / g)
 
 
+#: Tails (sqrt(R/g)) tried in turn by :func:`dem_to_verdict` while the DEM ends still moving.
+VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
+
+
+def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
+                   radius: float | None = None, tails=VERDICT_TAILS,
+                   g: float = STANDARD_GRAVITY):
+    """The DEM run long enough for a verdict: for the end of the excitation plus each of
+    ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
+    never hinged, or is at rest: :func:`archquake.dem.result.settled`); the last run is returned
+    (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
+    resumed, so each try reruns from the start: a run that needs the second tail costs about
+    three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
+
+    ``radius``: R, m (default: the arch's; required for an Assembly)."""
+    from archquake.dem import DemSettings, simulate_dem
+    from archquake.outcome import Outcome
+    from archquake.ranges import DEM_T_END_MAX_S
+
+    r = float(radius if radius is not None else arch_or_assembly.radius)
+    base = DemSettings() if settings is None else settings
+    result = None
+    for tail in tails:
+        duration = float(motion.duration) + float(tail) * math.sqrt(r / g)
+        if result is not None and duration > DEM_T_END_MAX_S:
+            break
+        result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)
+        if result.outcome is not Outcome.INDETERMINATE:
+            break
+    return result
+
+
 # ----------------------------------------------------------------------------- comparison
 @dataclass(frozen=True)
 class HistoryComparison:
@@ -240,6 +272,7 @@ __all__ = [
     "VOUSSOIRS",
     "compare_history",
     "default_dem_duration",
+    "dem_to_verdict",
     "dem_assembly",
     "figure4_comparisons",
     "first_half_cycle_difference",

@@ -24,26 +24,12 @@ if TYPE_CHECKING:
 
 
 def dem_hinges(result, time: float, *, relative: float = 0.1) -> list[tuple[int, str]]:
-    """(joint, face) of the DEM hinges at the recorded sample nearest ``time`` (s).
+    """(joint, face) of the DEM hinges at the recorded sample nearest ``time`` (s): the block
+    models' one rule, :func:`archquake.dem.result.open_hinges` (a tenth of the widest
+    opening)."""
+    from archquake.dem.result import open_hinges
 
-    A joint is a hinge when its wider end is open by more than ``relative`` times the widest
-    opening of any joint at that instant (and by more than ``settings.hinge_opening`` t); its
-    face is the other, more closed, end. The relative threshold keeps the four-or-so working
-    hinges and drops the sub-millimetre gaps that the rocking blocks open at other joints
-    (at t = 0.5 s of Figure 9: 76 and 99 mm at the working hinges, < 5 mm elsewhere but one).
-    """
-    k = int(np.argmin(np.abs(result.times - time)))
-    opening = result.joint_opening[k]
-    widest = opening.max(axis=1)
-    floor = max(result.settings.hinge_opening * result.assembly.reference_length,
-                relative * float(widest.max(initial=0.0)))
-    joints = result.assembly.meta.get("cut_joints", list(range(len(opening))))
-    out = []
-    for j, joint in enumerate(result.assembly.joints):
-        if widest[j] > floor:
-            closed = int(np.argmin(opening[j]))
-            out.append((int(joints[j]), joint.faces[closed]))
-    return out
+    return open_hinges(result, time, relative=relative)
 
 
 def joint_displacements(result, time: float) -> dict[str, np.ndarray]:

@@ -29,7 +29,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.dem import _kernels as K
 from archquake.dem._kernels import Packed
 from archquake.dem.assembly import Assembly, build_arch_assembly
-from archquake.dem.result import DemResult, collapse_parameters, crown_height
+from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
@@ -362,6 +362,7 @@ def simulate_dem(
         assembly, settings,
         motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(motion)}, g,
         dt, omega, taken, settle_steps, out.times[:k], out.states[:k], out.energies[:k],
+        excitation_end=excitation_end(motion),
     )
 
 

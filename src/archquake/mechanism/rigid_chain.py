@@ -38,13 +38,14 @@ and the scheme's O(h) loss in persistent contacts), not Rayleigh damping.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
-from archquake.dem.result import DemResult, collapse_parameters, crown_height
+from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
@@ -61,6 +62,8 @@ GAP_TOLERANCE = 1.0e-9
 #: (1e-6 t at this default) and the slow onset agrees with Eq. 2 to 3e-5 (1e-6).
 SOLVER_TOLERANCE = 1.0e-11
 MAX_SWEEPS = 5000
+#: Most samples at which ``RigidRun.joint_forces`` evaluates the forces (strided evenly).
+FORCE_SAMPLES = 4000
 #: Sub-samples per step for the step's mean ground acceleration.
 ACC_SAMPLES = 16
 
@@ -168,7 +171,9 @@ class RigidRun:
     ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
     ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
-    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping.
+    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
+    ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
+    motion it was run with.
     """
 
     result: DemResult
@@ -178,10 +183,58 @@ class RigidRun:
     max_sweeps: int
     residual: float
     wall_s: float
+    friction: float | None = None
+    motion: object = field(default=None, repr=False, compare=False)
 
     @property
     def max_friction_demand(self) -> float:
         return float(self.friction_demand.max(initial=0.0))
+
+    @cached_property
+    def joint_forces(self):
+        """The joint forces, line of thrust and friction demand at the recorded samples (at most
+        ``FORCE_SAMPLES`` of them, evenly strided):
+        :func:`archquake.mechanism.rigid_forces.joint_forces`, with its reporting rule."""
+        from archquake.mechanism.rigid_forces import joint_forces
+
+        if self.motion is None:
+            raise InvalidParameterError("this run does not know its ground motion")
+        every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
+        return joint_forces(self, self.motion, every=every)
+
+    @property
+    def outcome(self):
+        """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
+        return self.result.outcome
+
+    def to_dict(self) -> dict:
+        """Summary for JSON: ``DemResult.to_dict()`` (the keys of
+        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid_chain"``, then the
+        stepper's own diagnostics under ``rigid``."""
+        out = self.result.to_dict()
+        out["model"] = "rigid_chain"
+        out["hinges_model"] = "moving"
+        out["friction_coefficient"] = self.friction
+        if self.motion is not None:
+            out["joint_forces"] = self.joint_forces.summary()
+        out["rigid"] = {"time_step_s": self.time_step,
+                        "max_penetration_m": self.max_penetration_m,
+                        "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
+                        "wall_s": self.wall_s}
+        return out
+
+
+def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool:
+    """The samples so far end at rest (:func:`archquake.dem.result.settled`)."""
+    from archquake.dem.result import rest_threshold, settled
+
+    window = rest_threshold(model.assembly, g)[1]
+    k = len(times)
+    while k > 1 and times[k - 1] > times[-1] - window:
+        k -= 1
+    kin = [model.kinetic_energy(v) for v in vs[k - 1:]]
+    return settled(model.assembly, g, np.array(times[k - 1:]), np.array(kin),
+                   excitation_end(motion))
 
 
 def _mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
@@ -196,7 +249,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    initial: tuple[np.ndarray, np.ndarray] | None = None,
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
-                   friction: float | None = None, solver: str = "direct") -> RigidRun:
+                   friction: float | None = None, solver: str = "direct",
+                   until_rest: float | None = None) -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -226,6 +280,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         falls back to Gauss-Seidel when the guess fails (``_rigid_kernels.project_direct``);
         "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction`` the step
         is always Gauss-Seidel.
+    until_rest : float, optional
+        s: if the arch has neither collapsed nor come to rest (:func:`archquake.dem.result.settled`)
+        by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
+        reached. Without it (default) the run ends at ``duration``; the verdict is
+        ``indeterminate`` if the arch is still moving then.
     """
     import time as _time
 
@@ -277,8 +336,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
 
     cpar[DK.C_CROWN_Y0] = crown_height(asm, absolute(q, v, 0.0, 0.0)[None, :, :3])[0]
     collapsed = False
-    while step < n_total and not collapsed:
-        n = min(per_chunk, n_total - step)
+    n_cap = n_total if until_rest is None else max(n_total, int(math.ceil(until_rest / h - 1e-9)))
+    while step < n_cap and not collapsed:
+        if step >= n_total and _at_rest(model, g, times, vs, motion):
+            break
+        n = min(per_chunk, n_cap - step)
         n -= n % out_every if n >= out_every else 0
         n = max(n, 1)
         acc = _mean_acceleration(motion, step * h, h, n)
@@ -329,11 +391,13 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         motion, "name", motion))}
     res = DemResult.from_samples(asm, settings.with_(duration=duration, time_step=h,
                                                      output_interval=out_every * h),
-                                 motion_d, g, h, math.nan, step, 0, t, states, energies)
+                                 motion_d, g, h, math.nan, step, 0, t, states, energies,
+                                 excitation_end=excitation_end(motion))
     return RigidRun(result=res, time_step=h,
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
-                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall)
+                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall,
+                    friction=friction, motion=motion)
 
 
 __all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]

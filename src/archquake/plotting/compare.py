@@ -20,11 +20,35 @@ _DEM_STYLE = {"hinges": ("--", "tab:blue", "DEM, arch cut at the hinges"),
               "voussoirs": ("-.", "tab:red", "DEM, every voussoir a block")}
 
 
-def save_dem_rotation(result, path: str | Path) -> Path:
-    """The DEM rotation history alone (``archquake run --model dem --plot``)."""
-    fig, ax = plt.subplots(figsize=(6.4, 3.4))
-    plot_dem_rotation(result, ax, label=f"DEM ({result.assembly.name})")
+def save_dem_rotation(result, path: str | Path, *, label: str | None = None) -> Path:
+    """The rotation history of a block model alone (``archquake run --model dem --plot``, and
+    ``--hinges moving``, whose rigid chain returns the same result)."""
+    fig, (ax, strip) = plt.subplots(2, 1, figsize=(6.4, 4.6), sharex=True,
+                                    gridspec_kw={"height_ratios": [3, 1]})
+    plot_dem_rotation(result, ax, label=label or f"DEM ({result.assembly.name})")
+    ax.set_xlabel("")
+    plot_hinge_sets(result, strip)
     return save(fig, path, dpi=120)
+
+
+def plot_hinge_sets(result, ax, *, labels: int = 12):
+    """The number of open hinges of a block model against time (a step line), each change of
+    the hinge set marked and, when there are at most ``labels`` changes, labelled with its
+    hinges (``DemResult.hinge_sets``)."""
+    sets = result.hinge_sets()
+    end = result.end_time
+    if sets:
+        t = [e.time_s for e in sets] + [end]
+        n = [len(e.hinges.split()) for e in sets]
+        ax.step(t, n + n[-1:], where="post", color="0.2", lw=1.0)
+        if len(sets) <= labels:
+            for e, ni in zip(sets, n):
+                ax.annotate(e.hinges or "closed", (e.time_s, ni), fontsize=6, rotation=60,
+                            xytext=(2, 2), textcoords="offset points")
+    ax.set_ylabel("hinges")
+    ax.set_xlabel("time (s)")
+    ax.set_xlim(0.0, max(end, 1e-9))
+    return ax
 
 
 def plot_history_comparison(comparisons: Sequence, ax=None, *, t_end: float | None = None):
@@ -178,6 +202,7 @@ __all__ = [
     "figure4_comparison",
     "figure9_comparison",
     "plot_domain_comparison",
+    "plot_hinge_sets",
     "plot_history_comparison",
     "save_dem_rotation",
 ]

@@ -85,7 +85,10 @@ def plot_dem_snapshot(result, time: float, ax=None, *, arrows: bool = True,
     ax.autoscale_view()
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"t = {result.times[k]:.2f} s")
+    from archquake.dem.result import hinge_label, open_hinges
+
+    ax.set_title(f"t = {result.times[k]:.2f} s   {hinge_label(open_hinges(result, result.times[k]))}",
+                 fontsize=9)
     return ax
 
 

@@ -9,9 +9,9 @@ Models:
 - ``analytical``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
   impacts), summarised by ``result.to_dict(include_history=False)``;
 - ``dem``: :func:`archquake.dem.simulate_dem` on the arch with every voussoir a block, the
-  paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: the end
-  of the excitation + 5 sqrt(R/g), :func:`archquake.compare.default_dem_duration`), summarised
-  by ``result.to_dict()``.
+  paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: until a
+  verdict, the end of the excitation + 5, then 10, then 20 sqrt(R/g) while the arch still moves,
+  :func:`archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
   ``restitution`` and ``impact`` do not apply to it (a case giving one is refused).
 
 Both summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
@@ -93,6 +93,10 @@ def evaluate_case(case: Case) -> dict[str, Any]:
             raise InvalidParameterError(f"{key} applies to the analytical model only; the DEM's "
                                         "impacts follow from its contacts and damping")
     arch = case.arch.build()
+    if case.options.t_end_s is None:  # run until a verdict (rest or collapse), or the cap
+        from archquake.compare import dem_to_verdict
+
+        return dem_to_verdict(arch, motion, g=case.options.g).to_dict()
     duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
     result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
     return result.to_dict()

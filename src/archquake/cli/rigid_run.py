@@ -1,0 +1,122 @@
+"""``archquake run --hinges moving``: one history of the chain of rigid blocks (issue 16).
+
+The model is :func:`archquake.mechanism.rigid_chain.simulate_rigid`: every voussoir a rigid
+block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,
+migrating and closing anywhere. Its output is ``RigidRun.to_dict()``: the keys every model
+shares (:data:`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
+run is read by the DEM's own code) and the rigid stepper's.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from archquake.cli.common import check_range, print_json
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
+
+
+def run(args: argparse.Namespace, arch, motion) -> int:
+    """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
+    from archquake.compare import default_dem_duration
+    from archquake.mechanism.rigid_chain import simulate_rigid
+
+    for option, value in (("--impact", getattr(args, "impact", None)),
+                          ("--restitution", args.restitution)):
+        if value is not None:
+            raise InvalidParameterError(
+                f"{option} applies to --hinges fixed only; with --hinges moving the impacts "
+                "follow from the blocks' contacts (perfectly plastic, no choice of law)")
+    if args.friction is not None:
+        check_range("--friction", args.friction, *FRICTION_RANGE)
+    duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
+    if duration > DEM_T_END_MAX_S:
+        given = ("--t-end" if args.t_end is not None
+                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
+        raise InvalidParameterError(
+            f"{given} is {duration:g} s; with --hinges moving it must be <= {DEM_T_END_MAX_S:g} s "
+            "(the rigid chain steps 1e-4 s): give a shorter --t-end")
+    # the default runs to the end of the excitation + 5 sqrt(R/g) and, if the arch is still
+    # moving then, on until it is at rest, up to the fixed-hinge model's default end (end of
+    # the excitation + 60 sqrt(R/g)); a given --t-end is run as given
+    until_rest = None
+    if args.t_end is None:
+        from archquake.domains._kernels import default_t_end
+
+        until_rest = min(float(default_t_end(motion.duration, arch.radius, STANDARD_GRAVITY)),
+                         DEM_T_END_MAX_S)
+    result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
+                            until_rest=until_rest)
+    res = result.result
+    if args.plot:
+        from archquake.plotting.compare import save_dem_rotation
+
+        save_dem_rotation(res, args.plot, label="rigid chain (hinges moving)")
+    if args.animate:
+        from archquake.plotting.dem import animate_dem
+
+        animate_dem(res, args.animate, fps=15)
+    if args.history:
+        from archquake.cli.dem_run import _write_history
+
+        _write_history(res, args.history)
+    out = result.to_dict()
+    out["arch"] = arch.describe()
+    out["excitation"] = motion.to_dict()
+    if args.json:
+        print_json(out)
+        return 0
+    _print_text(out)
+    for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
+        if path:
+            print(f"{what}: {path}")
+    return 0
+
+
+def _print_text(out: dict) -> None:
+    from archquake.cli.dem_run import _label_of
+
+    rig = out["rigid"]
+    print(f"excitation          {_label_of(out)}")
+    print(f"model               hinges moving: chain of rigid blocks ({out['assembly']['name']}), "
+          "plastic contacts, "
+          + ("no sliding" if out["friction_coefficient"] is None
+             else f"Coulomb friction mu = {out['friction_coefficient']:g}"))
+    print(f"time step           {rig['time_step_s']:.3g} s, {out['end_time_s']:.2f} s simulated "
+          f"({rig['wall_s']:.1f} s wall)")
+    if out["collapse_half_cycle"]:
+        what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = "
+                f"{out['collapse_time_s']:.3f} s (crown fallen by t or a block below the "
+                "springings)")
+    else:
+        what = f"{out['outcome']}: {out['verdict']}"
+    print(f"outcome             {what}")
+    if out["onset_time_s"] is not None:
+        print(f"hinging from        {out['onset_time_s']:.3f} s")
+    imp = out["impact_times_s"]
+    if imp:
+        more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
+        print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
+    events = out["mechanisms"]
+    for k, e in enumerate(events[:10]):
+        print(f"{'hinge sets' if k == 0 else '':<19} t = {e['time_s']:.3f} s  {e['kind']:<7} "
+              f"{e['hinges'] or '(all joints closed)'}"
+              + (f"  ({e['degrees_of_freedom']} dof)" if e["hinges"] else ""))
+    if len(events) > 10:
+        print(f"{'':<19} ... {len(events) - 10} more (--json lists them all)")
+    peaks = out["peak_rotation_rad"]
+    if peaks:
+        print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
+              + (" ..." if len(peaks) > 6 else ""))
+    jf = out.get("joint_forces")
+    if jf and jf["max_friction_demand"] is not None:
+        print(f"friction demand     max |V|/N = {jf['max_friction_demand']:.3f} at joint "
+              f"{jf['max_friction_demand_joint']}, t = {jf['max_friction_demand_time_s']:.3f} s "
+              f"({jf['indeterminate_samples']} indeterminate and {jf['impulsive_samples']} impact "
+              f"samples of {jf['samples']} left out)")
+    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated at the "
+          f"contacts {out['dissipated_damping_J']:.4g} J")
+
+
+__all__ = ["run"]

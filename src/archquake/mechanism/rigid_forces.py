@@ -1,0 +1,246 @@
+"""Joint forces of the rigid chain (:mod:`archquake.mechanism.rigid_chain`): the line of thrust
+and the friction demand of the mechanism in use (issue 16, Build 5).
+
+At a recorded sample (q, v) the stepper's next step is repeated (the same contact projection,
+:func:`archquake.mechanism._rigid_kernels.project`, at the mid-step configuration, warm-started
+from the previous sample's impulses) and each joint's corner impulses over the step, divided by
+the time step h, are its forces: N = (p_0 + p_1) / h (compressive), V = p_T / h. Where the
+resultant crosses the joint line follows from the two corner forces alone (the tangential one
+acts along the joint): e = (p_1 - p_0) / (p_0 + p_1) * d / 2 from the joint's mid-point,
+positive towards corner 1 (the extrados of an arch), d the joint's depth; |e| = d/2 at a hinge.
+
+**When the forces are unique.** The impulses are unique exactly when the active contact rows
+(every closed corner's normal, one no-slip row per touching joint) are linearly independent:
+then H^T p = M (v - v_free) has one solution. That holds while the arch moves on a mechanism
+(four or more hinges: 3n - 1 rows or fewer for n blocks) or as a three-hinged arch (3n rows,
+independent), and fails whenever a closed part is statically indeterminate: the arch at rest
+(3(n + 1) rows for 3n velocities), and every closure that locks a joint while the rest is
+closed. There Gauss-Seidel returns one distribution of many, so its |V| / N (the 2.9-14.5 the
+rigid-limit study found at isolated closure steps, docs/mechanism.md) bounds nothing.
+
+**Impacts.** A closure that meets a determinate part (a cantilever of locked blocks, a
+three-hinged arch) has a unique impulse, but it is an impact, not a force: its corner impulses
+over h grow as 1/h, and their ratio is the impact's, not a friction demand (the Coulomb option,
+``simulate_rigid(..., friction=mu)``, is the model that answers what friction does there). A
+sample is *impulsive* when some block's velocity changes over the step by more than
+``IMPULSIVE`` h (g + |x_g''|) (its centroid speed plus L times its rotation rate), an
+acceleration no finite force of the motion gives.
+
+**Nearly unloaded joints.** The Moreau step's impulses at a hinge fluctuate from step to step
+(the hinge corner's gap crosses the contact tolerance), and at a joint carrying almost nothing
+|V| / N is dominated by that: single samples with N a hundredth of its neighbours' and
+|V| / N of 16-65 (t/R = 0.19; the semicircle n = 15). Below ``N_MIN`` W (W the weight of the
+free blocks) a joint's |V| / N is not reported.
+
+**The rule.** A joint's line of thrust (``eccentricity``) and friction demand are reported at a
+sample only where the forces are unique, the sample is not impulsive and the joint carries
+N >= ``N_MIN`` W; elsewhere they are NaN, and the summary counts the samples left out. The rank
+test: the smallest singular value of the active rows (each scaled to unit norm, in the
+mass-scaled velocities) above ``RANK_TOLERANCE`` times the largest.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from archquake.mechanism import _rigid_kernels as RK
+
+#: A sample is impulsive when a block's velocity changes over the step by more than this many
+#: h (g + |x_g''|) (module docstring).
+IMPULSIVE = 10.0
+#: Least normal force, as a fraction of the free blocks' weight, at which |V| / N is reported.
+N_MIN = 0.01
+#: Rows are independent when their smallest singular value (rows scaled to unit norm, columns
+#: to the bodies' mass and inertia) exceeds this.
+RANK_TOLERANCE = 1.0e-8
+
+
+@dataclass(frozen=True)
+class JointForceHistory:
+    """Forces at every joint of a rigid-chain run, at its recorded samples.
+
+    Attributes
+    ----------
+    times : ndarray (nt,)
+        s.
+    normal, shear : ndarray (nt, nj)
+        N: compressive normal force, tangential force (along corner 0 -> 1).
+    eccentricity : ndarray (nt, nj)
+        m: where the resultant crosses the joint line, from its mid-point, positive towards
+        corner 1 (the extrados); NaN where the joint carries no force. Read it where
+        ``reported`` (the rule, module docstring).
+    half_depth : ndarray (nj,)
+        m.
+    unique : ndarray (nt,) bool
+        The active contacts are independent: the forces are unique (module docstring).
+    impulsive : ndarray (nt,) bool
+        A block's velocity jumps over the step (an impact, module docstring).
+    weight : float
+        N, of the free blocks.
+    """
+
+    times: np.ndarray
+    normal: np.ndarray
+    shear: np.ndarray
+    eccentricity: np.ndarray
+    half_depth: np.ndarray
+    unique: np.ndarray
+    impulsive: np.ndarray
+    weight: float
+
+    @property
+    def reported(self) -> np.ndarray:
+        """(nt, nj) bool: the rule of the module docstring."""
+        return ((self.unique & ~self.impulsive)[:, None]
+                & (self.normal >= N_MIN * self.weight))
+
+    @property
+    def relative_eccentricity(self) -> np.ndarray:
+        """e / (d/2), (nt, nj), where ``reported`` (NaN elsewhere): +-1 at a hinge (the rigid
+        corners carry no resultant outside the section)."""
+        return np.where(self.reported, self.eccentricity / self.half_depth[None, :], np.nan)
+
+    @property
+    def friction_demand(self) -> np.ndarray:
+        """|V| / N, (nt, nj); NaN where not reported (no force, or not unique)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = np.abs(self.shear) / self.normal
+        return np.where(self.reported, out, np.nan)
+
+    def summary(self) -> dict:
+        """For JSON: the largest friction demand over the reported samples, where and when; the
+        largest |e| / (d/2) at a closed joint (both corners loaded: how near the line of thrust
+        comes to opening a new hinge; at a hinge it is 1); how many samples were left out."""
+        fd = self.friction_demand
+        rel = np.abs(self.relative_eccentricity)
+        out: dict = {"samples": int(self.unique.size),
+                     "indeterminate_samples": int((~self.unique).sum()),
+                     "impulsive_samples": int((self.unique & self.impulsive).sum())}
+        if np.any(np.isfinite(fd)):
+            k, j = np.unravel_index(int(np.nanargmax(fd)), fd.shape)
+            out.update(max_friction_demand=float(fd[k, j]), max_friction_demand_time_s=float(
+                self.times[k]), max_friction_demand_joint=int(j))
+            closed = np.where(rel < 1.0 - 1e-9, rel, np.nan)  # both corners loaded: no hinge
+            out["max_relative_eccentricity_closed"] = (float(np.nanmax(closed))
+                                                       if np.any(np.isfinite(closed)) else None)
+        else:
+            out.update(max_friction_demand=None, max_friction_demand_time_s=None,
+                       max_friction_demand_joint=None, max_relative_eccentricity_closed=None)
+        out["rule"] = (f"reported where the joint forces are unique (not at rest, not at "
+                       f"closures locking an indeterminate part), the step is not an impact "
+                       f"(no velocity jump above {IMPULSIVE:g} h (g + |a_g|)) and the joint "
+                       f"carries N >= {N_MIN:g} W")
+        return out
+
+
+def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i) -> np.ndarray:
+    """The active rows (as the kernel builds them), in the mass-scaled velocities."""
+    nb = q.shape[0]
+    rows = []
+
+    def entry(row, body, p, d, sign):
+        if body < 0:
+            return
+        rx, ry = p[0] - q[body, 0], p[1] - q[body, 1]
+        row[3 * body] += sign * d[0] * inv_sqrt_m[body]
+        row[3 * body + 1] += sign * d[1] * inv_sqrt_m[body]
+        row[3 * body + 2] += sign * (rx * d[1] - ry * d[0]) * inv_sqrt_i[body]
+
+    for j in range(len(ja)):
+        act = gaps[j] <= gap_tol
+        for c in range(2):
+            if act[c]:
+                r = np.zeros(3 * nb)
+                entry(r, ja[j], pts[j, c, 0], nrm[j], -1.0)
+                entry(r, jb[j], pts[j, c, 1], nrm[j], 1.0)
+                rows.append(r)
+        if act[0] or act[1]:
+            w = 0.5 if (act[0] and act[1]) else (1.0 if act[0] else 0.0)
+            pa = w * pts[j, 0, 0] + (1 - w) * pts[j, 1, 0]
+            pb = w * pts[j, 0, 1] + (1 - w) * pts[j, 1, 1]
+            r = np.zeros(3 * nb)
+            entry(r, ja[j], pa, tan[j], -1.0)
+            entry(r, jb[j], pb, tan[j], 1.0)
+            rows.append(r)
+    return np.array(rows).reshape(len(rows), 3 * nb)
+
+
+def _independent(h: np.ndarray) -> bool:
+    if h.shape[0] == 0:
+        return True
+    if h.shape[0] > h.shape[1]:
+        return False
+    h = h / np.linalg.norm(h, axis=1, keepdims=True)
+    s = np.linalg.svd(h, compute_uv=False)
+    return bool(s[-1] > RANK_TOLERANCE * s[0])
+
+
+def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> JointForceHistory:
+    """The joint forces of ``run`` (a :class:`~archquake.mechanism.rigid_chain.RigidRun`) at its
+    recorded samples, under the ``motion`` it was run with (module docstring).
+
+    Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
+    recorded samples. Cost: one contact projection per sample used."""
+    from archquake.mechanism.rigid_chain import (
+        GAP_TOLERANCE,
+        MAX_SWEEPS,
+        SOLVER_TOLERANCE,
+        RigidModel,
+        _mean_acceleration,
+    )
+
+    res = run.result
+    g = res.g if g is None else float(g)
+    model = RigidModel.build(res.assembly)
+    h = run.time_step
+    lref = res.assembly.reference_length
+    gap_tol = GAP_TOLERANCE * lref
+    tol = SOLVER_TOLERANCE * np.sqrt(g * lref)
+    mu = 0.0 if run.friction is None else float(run.friction)
+    inv_m, inv_i = 1.0 / model.mass, 1.0 / model.inertia
+    isq_m, isq_i = np.sqrt(inv_m), np.sqrt(inv_i)
+    fb = model.free_blocks
+    picks = np.arange(0, res.times.size, max(1, int(every)))
+    nt, nj = picks.size, len(model.ja)
+    normal = np.zeros((nt, nj))
+    shear = np.zeros((nt, nj))
+    ecc = np.full((nt, nj), np.nan)
+    unique = np.zeros(nt, dtype=bool)
+    impulsive = np.zeros(nt, dtype=bool)
+    times = res.times[picks]
+    acc = np.array([_mean_acceleration(motion, float(t), h, 1)[0] for t in times])
+    depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
+                      for jt in res.assembly.joints])
+    p_warm = np.zeros((nj, 3))
+    for k, i in enumerate(picks):
+        q = res.positions[i, fb, :].copy()
+        v = res.velocities[i, fb, :].copy()
+        q[:, 0] -= res.base_displacement[i]
+        v[:, 0] -= res.base_velocity[i]
+        qm = q + 0.5 * h * v
+        gaps, nrm, tan, pts = RK.geometry(qm, model.ja, model.jb, model.arm_a, model.arm_b,
+                                          model.n0, model.t0)
+        vf = v.copy()
+        vf[:, 0] -= h * acc[k]
+        vf[:, 1] -= h * g
+        vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan, pts,
+                                  gap_tol, p_warm, tol, MAX_SWEEPS, mu)
+        p_warm = imp
+        dv = vn - v
+        jump = float(np.max(np.hypot(dv[:, 0], dv[:, 1]) + np.abs(dv[:, 2]) * lref))
+        impulsive[k] = jump > IMPULSIVE * h * (g + abs(acc[k]))
+        normal[k] = (imp[:, 0] + imp[:, 1]) / h
+        shear[k] = imp[:, 2] / h
+        unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts, gap_tol,
+                                       isq_m, isq_i))
+        pn = imp[:, 0] + imp[:, 1]
+        ok = pn > 0.0
+        ecc[k, ok] = (imp[ok, 1] - imp[ok, 0]) / pn[ok] * 0.5 * depth[ok]
+    return JointForceHistory(times=times.copy(), normal=normal, shear=shear, eccentricity=ecc,
+                             half_depth=0.5 * depth, unique=unique, impulsive=impulsive,
+                             weight=float(g * model.mass.sum()))
+
+
+__all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces"]
