@@ -156,9 +156,14 @@ def _print_text(result, motion, g: float) -> None:
             if result.collapse_half_cycle else f" ({result.final_state.value})")
     if result.outcome is computed:
         print(f"outcome             {result.outcome.value}{when}")
-    else:
+    elif not result.impact_described:
         print(f"outcome             {result.outcome.value}: the model computed {computed.value}{when}, "
               "but only through an impact its law does not describe (see --impact, --restitution)")
+    else:
+        print(f"outcome             {result.outcome.value}: the model computed {computed.value}{when}, "
+              "but the run ended before that could be shown (see --t-end)")
+    if result.verdict_reason:
+        print(f"verdict             {result.verdict_reason}")
     if result.impact_times.size:
         shown = ", ".join(f"{t:.3f}" for t in result.impact_times[:6])
         more = f" ... ({result.impact_times.size} in all)" if result.impact_times.size > 6 else ""
