@@ -44,7 +44,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_impact_arguments(p)
     p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
-                        "default: end of the excitation + 60 sqrt(R/g))")
+                        "default: end of the excitation + 60 sqrt(R/g)); a run it cuts before "
+                        "the survival is shown is indeterminate, with the reason")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical model (default) or the distinct-element model")
     p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
