@@ -23,9 +23,10 @@ class Outcome(str, Enum):
         No joint opened: the arch moved rigidly with the ground (the ground acceleration never
         exceeded the static collapse acceleration in either direction).
     ``survives``
-        Hinges opened, and the arch did not collapse (the analytical model: it came to rest, or
-        was still rocking at the end of the run, ``final_state`` says which; the block models,
-        the DEM and the rigid chain: it came to rest after the excitation,
+        Hinges opened, and the arch did not collapse, and it is shown that it will not (the
+        analytical model, :func:`conclude`: it came to rest after the excitation, or after the
+        excitation its energy fell below every crest barrier; the block models, the DEM and
+        the rigid chain: it came to rest after the excitation,
         :func:`archquake.dem.result.settled`).
     ``collapse``
         The arch collapsed (each model states its criterion: the analytical model when the
@@ -34,7 +35,9 @@ class Outcome(str, Enum):
         below the springings or turned too far).
     ``indeterminate``
         The analytical model reached a verdict only through an impact its impact law cannot
-        describe (:func:`qualify` states the rule): neither collapse nor survival is claimed.
+        describe (:func:`qualify` states the rule), or its run ended before the survival could be
+        shown (:func:`conclude`: ``t_end`` before the end of the excitation, or the arch still
+        rocking with energy enough to reach a crest): neither collapse nor survival is claimed.
         A block model (DEM, rigid chain) returns it when hinges opened and the run ended with
         the arch still moving (``final_state`` ``moving``): run longer to decide.
     """
@@ -91,6 +94,95 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
     return Outcome.INDETERMINATE if impacts > 0 else outcome
 
 
+def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_end_s: float,
+             below_barrier: bool, energy_fraction: float | None = None) -> tuple[Outcome, str]:
+    """The analytical model's verdict as it may be stated, given how its run ended, with the
+    reason in one sentence.
+
+    The rule (docs/mechanism.md, "Time history: events, collapse, rest"): ``collapse`` stands
+    (the mechanism passed its crest after the excitation, or reached its toggle). Otherwise the
+    arch is only shown to be safe if nothing can still happen:
+
+    * the run ended before the excitation did (``t_end_s < excitation_end_s``): the rest of it
+      may still open hinges or bring collapse, so ``no_hinging`` and ``survives`` are
+      ``indeterminate``;
+    * ``no_hinging`` over the whole excitation stands;
+    * ``survives`` stands when the arch came to rest after the excitation (``final_state``
+      ``rest``: an impact left too little motion for another half cycle), or, still rocking at
+      ``t_end`` (``moving``) or locked by ``max_impacts`` (``stalled``), when it is provably
+      unable to reach a crest again (``below_barrier``: an impact after the excitation left
+      ``1/2 m_eff(0) phi'^2`` below the least crest barrier ``g [V(phi_crit) - V(0)]`` of the
+      mechanism table and no row's impact gains energy,
+      :func:`archquake.mechanism._kernels.table_energies`); else it is ``indeterminate``.
+      ``unresolved`` (an impact left the tabulated mechanisms) is never shown safe here
+      (:func:`qualify` makes it indeterminate through the impact's validity as well).
+
+    Apply :func:`qualify` to the result for the impacts the law does not describe.
+
+    Parameters
+    ----------
+    outcome : Outcome
+        What the model computed (no_hinging, survives, collapse).
+    final_state : str
+        How the run ended: ``rest``, ``moving``, ``stalled``, ``collapsed``, ``unresolved``
+        (a rest reached only because ``max_impacts`` locked the arch is ``stalled``).
+    t_end_s, excitation_end_s : float
+        End of the run and of the excitation, s.
+    below_barrier : bool
+        The barrier proof above holds.
+    energy_fraction : float, optional
+        The kinetic energy the last impact after the excitation left, as a fraction of the
+        least crest barrier (for the reason; None: no such impact or the proof does not apply).
+
+    Returns
+    -------
+    (Outcome, str)
+        The verdict and its reason.
+
+    Examples
+    --------
+    >>> conclude(Outcome.SURVIVES, final_state="moving", t_end_s=2.0, excitation_end_s=0.8,
+    ...          below_barrier=False)[0].value
+    'indeterminate'
+    >>> conclude(Outcome.SURVIVES, final_state="rest", t_end_s=9.0, excitation_end_s=0.8,
+    ...          below_barrier=False)[0].value
+    'survives'
+    """
+    outcome = Outcome(outcome)
+    if outcome is Outcome.COLLAPSE:
+        return outcome, ("the mechanism passed the crest of its potential energy after the "
+                         "excitation (or could no longer be brought back), or reached its toggle")
+    if outcome is Outcome.INDETERMINATE:
+        return outcome, "indeterminate as computed"
+    if t_end_s < excitation_end_s:
+        return Outcome.INDETERMINATE, (
+            f"the run ended at t_end = {t_end_s:.4g} s, before the excitation ended at "
+            f"{excitation_end_s:.4g} s: the rest of it may still open hinges or bring collapse; "
+            "run to the end of the excitation or beyond (the default t_end) to decide")
+    if outcome is Outcome.NO_HINGING:
+        return outcome, "no hinge opened: the ground acceleration never exceeded lambda g"
+    if final_state == "rest":
+        return outcome, ("at rest after the excitation: an impact left too little motion for "
+                         "another half cycle")
+    if final_state in ("moving", "stalled") and below_barrier:
+        share = "" if energy_fraction is None else f" ({energy_fraction:.3g} of it)"
+        return outcome, (
+            f"{'still rocking at t_end' if final_state == 'moving' else 'stopped by max_impacts'}"
+            f", but the last impact, after the excitation, left a kinetic energy below the least "
+            f"crest barrier g [V(phi_crit) - V(0)] of the mechanisms{share}, and no impact "
+            "gains energy: the arch cannot reach a crest again")
+    if final_state == "moving":
+        return Outcome.INDETERMINATE, (
+            f"still rocking at t_end = {t_end_s:.4g} s, and no impact after the excitation has "
+            "shown its energy below every crest barrier: run longer (a larger t_end) to decide")
+    if final_state == "stalled":
+        return Outcome.INDETERMINATE, (
+            "stopped by max_impacts, and no impact after the excitation has shown its energy "
+            "below every crest barrier: raise max_impacts to decide")
+    return Outcome.INDETERMINATE, (
+        "an impact left the tabulated mechanisms and the history stopped there")
+
+
 #: The keys that every model's ``result.to_dict()`` carries, with the same meaning and units
 #: (what ``archquake run --json`` prints and a sweep stores as ``out.<key>``); each model adds
 #: its own after them.
@@ -107,4 +199,4 @@ RESULT_KEYS = ("model", "outcome", "final_state", "collapse_half_cycle", "collap
                "g_m_s2")
 
 
-__all__ = ["Outcome", "RESULT_KEYS", "qualify"]
+__all__ = ["Outcome", "RESULT_KEYS", "conclude", "qualify"]

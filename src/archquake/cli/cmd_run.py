@@ -44,7 +44,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_impact_arguments(p)
     p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
-                        "default: end of the excitation + 60 sqrt(R/g))")
+                        "default: end of the excitation + 60 sqrt(R/g)); a run it cuts before "
+                        "the survival is shown is indeterminate, with the reason")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical model (default) or the distinct-element model")
     p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
@@ -156,9 +157,14 @@ def _print_text(result, motion, g: float) -> None:
             if result.collapse_half_cycle else f" ({result.final_state.value})")
     if result.outcome is computed:
         print(f"outcome             {result.outcome.value}{when}")
-    else:
+    elif not result.impact_described:
         print(f"outcome             {result.outcome.value}: the model computed {computed.value}{when}, "
               "but only through an impact its law does not describe (see --impact, --restitution)")
+    else:
+        print(f"outcome             {result.outcome.value}: the model computed {computed.value}{when}, "
+              "but the run ended before that could be shown (see --t-end)")
+    if result.verdict_reason:
+        print(f"verdict             {result.verdict_reason}")
     if result.impact_times.size:
         shown = ", ".join(f"{t:.3f}" for t in result.impact_times[:6])
         more = f" ... ({result.impact_times.size} in all)" if result.impact_times.size > 6 else ""

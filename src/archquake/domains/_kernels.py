@@ -23,8 +23,10 @@ the full run's) and accepts the answer when the trajectory up to the cap already
   kinetic energy at phi = 0, the undisplaced configuration common to every row) is conserved
   within each half cycle (Eq. 2 with x_g'' = 0) and never grows at an impact, and a half cycle
   on any row r reaches that row's crest only with at least its barrier, which is at least the
-  least one: it can never reach a crest again and survives. A row the law's impacts leave
-  (``next < 0``) stops the run and is flagged, so no motion outside the table is assumed.
+  least one: it can never reach a crest again and survives (the barrier:
+  :func:`archquake.mechanism._kernels.table_energies`, which
+  :func:`archquake.mechanism.simulate` uses for the same proof at its ``t_end``). A row the
+  law's impacts leave (``next < 0``) stops the run and is flagged, so no motion outside the table is assumed.
   The verdict it states must not hide an undescribed impact still to come: an early survival
   is accepted only if every row's impact is described, or an undescribed impact has already
   happened (the survival is then indeterminate whatever follows).
@@ -42,6 +44,7 @@ import numba as nb
 import numpy as np
 
 from archquake.mechanism._kernels import (
+    ENERGY_MARGIN,
     HIST_COLUMNS,
     IMPACT_COLUMNS,
     OUTCOME_COLLAPSE,
@@ -49,12 +52,10 @@ from archquake.mechanism._kernels import (
     OUTCOME_SURVIVES,
     excitation_end,
     simulate_kernel,
+    table_energies,
 )
-from archquake.mechanism.kinematics import PHI_CRIT, eom_terms, potential
 from archquake.outcome import Outcome
 
-#: Relative safety margin on the energy barrier below which an early "survives" is accepted.
-ENERGY_MARGIN = 1e-6
 #: First cap on impacts when deciding early.
 FIRST_IMPACT_CAP = 4
 
@@ -104,21 +105,6 @@ def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_
                                                                             undescribed)
                     break
         cap = min(8 * cap, max_impacts)
-
-
-@nb.njit(cache=True, nogil=True)
-def table_energies(mechs, g):
-    """m_eff(0) of each row, kg m^2, and the least crest barrier over the rows,
-    ``min_r g [V_r(phi_crit,r) - V_r(0)]``, J."""
-    m = mechs.shape[0]
-    meff0 = np.empty(m)
-    barrier = math.inf
-    for r in range(m):
-        _ok, me, _dm, _gg, _hh = eom_terms(mechs[r], 0.0)
-        meff0[r] = me
-        b = g * (potential(mechs[r], mechs[r, PHI_CRIT]) - potential(mechs[r], 0.0))
-        barrier = min(barrier, b)
-    return meff0, barrier
 
 
 @nb.njit(cache=True, parallel=True)

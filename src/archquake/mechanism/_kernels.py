@@ -434,7 +434,8 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                 i_ev += 1
             if s_on == 0:
                 t = t_on
-                final = FINAL_REST
+                if final != FINAL_STALLED:  # locked by max_impacts after the excitation
+                    final = FINAL_REST
                 break
             t = t_on
             side = s_on
@@ -703,3 +704,32 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
         counters[8] = 1.0
     counters[9] = n_on
     return outcome, final, collapse_half, i_ev
+
+
+#: Relative safety margin on the energy barrier below which "cannot reach a crest again" is
+#: accepted (:func:`table_energies`).
+ENERGY_MARGIN = 1e-6
+
+
+@nb.njit(cache=True, nogil=True)
+def table_energies(mechs, g):
+    """m_eff(0) of each row, kg m^2, and the least crest barrier over the rows,
+    ``min_r g [V_r(phi_crit,r) - V_r(0)]``, J.
+
+    Free rocking (no ground motion) keeps the energy ``1/2 m_eff(0) phi'^2`` of the undisplaced
+    configuration phi = 0 (common to every row) within a half cycle and loses energy at every
+    impact whose c_T <= 1; a half cycle on row r reaches its crest only with at least its
+    barrier. So an impact after the excitation that leaves ``1/2 m_eff(0) phi'^2`` below the
+    least barrier, on a table whose rows all have c_T <= 1, proves that no crest is reached
+    again: the proof of the batches' early decision (:mod:`archquake.domains._kernels`) and of
+    :func:`archquake.mechanism.simulate`'s survival of a run cut while still rocking.
+    """
+    m = mechs.shape[0]
+    meff0 = np.empty(m)
+    barrier = math.inf
+    for r in range(m):
+        _ok, me, _dm, _gg, _hh = eom_terms(mechs[r], 0.0)
+        meff0[r] = me
+        b = g * (potential(mechs[r], mechs[r, PHI_CRIT]) - potential(mechs[r], 0.0))
+        barrier = min(barrier, b)
+    return meff0, barrier

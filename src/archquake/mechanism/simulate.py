@@ -19,13 +19,23 @@ Outcomes
     return), or, at any time, the linkage reached its toggle position. The collapse time is the
     first such instant; the half cycle counts the mechanisms opened so far (1 = before any impact).
 ``survives``
-    Anything else: the arch came to rest (the next half cycle's peak rotation would be below
-    ``rest_rotation``), or was still rocking below the crest at ``t_end`` (``final_state``
-    says which).
+    Hinges opened, no collapse, and the run shows that none can come
+    (:func:`archquake.outcome.conclude`): the arch came to rest after the excitation (an impact
+    left a rate whose next half cycle would peak below ``rest_rotation``; ``final_state``
+    ``rest``), or it was still rocking at ``t_end`` (``moving``) or stopped by ``max_impacts``
+    (``stalled``) but its last impact, after the excitation, left a kinetic energy
+    ``1/2 m_eff(0) phi'^2`` below the least crest barrier ``g [V(phi_crit) - V(0)]`` over the
+    rows of the mechanism table, with every row's c_T <= 1 (free rocking then never reaches a
+    crest: the proof of the domain and IDA batches, with their
+    :func:`~archquake.mechanism._kernels.table_energies`).
 ``indeterminate``
-    One of the two above was computed, but only through an impact the impact law does not
-    describe (:func:`archquake.outcome.qualify`, with the validity of each impact before the
-    verdict); ``computed_outcome`` keeps what was computed.
+    The run ended before the survival (or the absence of hinging) could be shown: ``t_end``
+    before the end of the excitation, or still rocking (stalled) without that proof; or a
+    verdict was computed only through an impact the impact law does not describe
+    (:func:`archquake.outcome.qualify`, with the validity of each impact before the verdict).
+    ``computed_outcome`` keeps what was computed, ``verdict_reason`` (JSON ``verdict``) says why.
+    With the default ``t_end`` (the end of the excitation plus 60 sqrt(R/g)) a described run
+    nearly always ends at rest.
 """
 
 from __future__ import annotations
@@ -46,7 +56,7 @@ from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism import _kernels as K
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
-from archquake.outcome import Outcome, qualify
+from archquake.outcome import Outcome, conclude, qualify
 
 
 class FinalState(str, Enum):
@@ -200,8 +210,10 @@ class SimulationResult:
     Attributes
     ----------
     outcome : Outcome
-        The verdict as it may be stated: ``computed_outcome``, or ``indeterminate`` where that
-        depends on an impact the law does not describe (:func:`archquake.outcome.qualify`).
+        The verdict as it may be stated: ``computed_outcome``, or ``indeterminate`` where the
+        run ended before the survival could be shown (:func:`archquake.outcome.conclude`) or the
+        verdict depends on an impact the law does not describe
+        (:func:`archquake.outcome.qualify`); ``verdict_reason`` says why.
     final_state : FinalState
     collapse_half_cycle : int or None
         1 = collapse before any impact, 2 = after the first impact, ... (the computed collapse,
@@ -242,6 +254,9 @@ class SimulationResult:
         and the impact's validity.
     computed_outcome : Outcome
         What the model computed with the impact law as stated (no_hinging, survives, collapse).
+    verdict_reason : str
+        Why ``outcome`` is what it is, in one sentence (:func:`archquake.outcome.conclude`,
+        then :func:`~archquake.outcome.qualify`); the JSON key ``verdict``, as the block models'.
     restitution_prescribed : bool
         True if ``restitution_cv`` was prescribed (``simulate(..., restitution=...)``).
     impact_described : bool
@@ -294,6 +309,7 @@ class SimulationResult:
     impact_described: bool = True
     restitution_prescribed: bool = False
     mechanisms: tuple = ()
+    verdict_reason: str = ""
 
     @property
     def half_cycles(self) -> int:
@@ -326,6 +342,7 @@ class SimulationResult:
             "restitution_prescribed": self.restitution_prescribed,
             "computed_outcome": (self.outcome if self.computed_outcome is None
                                  else self.computed_outcome).value,
+            "verdict": self.verdict_reason,
             "collapse_acceleration_g": self.collapse_acceleration_g,
             "critical_rotation_rad": self.critical_rotation,
             "toggle_rotation_rad": self.toggle_rotation,
@@ -417,6 +434,35 @@ def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: n
                                             bool(described[pre]), post, side)))
     events.sort(key=lambda e: (e[0], e[1]))
     return tuple(e[2] for e in events)
+
+
+def _below_barrier(prepared: PreparedMechanism, mechs: np.ndarray, impacts: np.ndarray,
+                   n_all: int, n_cap: int, excitation: float, restitution: float | None,
+                   g: float) -> tuple[bool, float | None]:
+    """Whether the run's last impact proves that the arch can never reach a crest again, and
+    the kinetic energy it left as a fraction of the least crest barrier (None: no proof applies).
+
+    The batches' proof (:func:`archquake.mechanism._kernels.table_energies`): the last impact
+    came at or after the end of the excitation, onto a row of the table, every row's impact
+    keeps ``c_T <= 1`` of the energy, and ``1/2 m_eff(0) phi'^2`` after it is below
+    ``(1 - ENERGY_MARGIN)`` of the least barrier. As in the batches, a table with a row whose
+    impact the law does not describe is accepted only once such an impact has happened (the
+    verdict is then indeterminate anyway): an undescribed impact may still come."""
+    if n_all < 1 or n_all > n_cap:
+        return False, None
+    t_imp, rate, row = float(impacts[n_all - 1, 0]), float(impacts[n_all - 1, 2]), \
+        int(impacts[n_all - 1, 4])
+    table = prepared.table
+    if t_imp < excitation or row < 0 or float(np.max(table.restitution_cts(restitution))) > 1.0:
+        return False, None
+    undescribed = ~table.described(prepared.impact.law, restitution)
+    if np.any(undescribed) and not np.any(undescribed[impacts[:n_all, 3].astype(int)]):
+        return False, None
+    meff0, barrier = K.table_energies(mechs, g)
+    if not (math.isfinite(barrier) and barrier > 0.0):
+        return False, None
+    fraction = 0.5 * float(meff0[row]) * rate * rate / float(barrier)
+    return fraction < 1.0 - K.ENERGY_MARGIN, fraction
 
 
 def simulate(
@@ -575,14 +621,29 @@ def simulate(
     impact_events = [e for e in events if e.kind != "onset"]
     described = (all(e.described for e in impact_events) if impact_events
                  else prepared.describes_impact(restitution))
+    final_state = _FINALS[int(final)]
+    n_all = int(counters[1])
+    below, fraction = _below_barrier(prepared, mechs, impacts, n_all, n_imp_cap, excitation,
+                                      check_restitution(restitution), g)
+    ended = final_state.value
+    if final_state is FinalState.REST and n_all >= n_imp_cap:
+        ended = FinalState.STALLED.value  # locked by max_impacts, not by the rest criterion
+    settled, reason = conclude(computed, final_state=ended, t_end_s=float(t_end),
+                               excitation_end_s=excitation, below_barrier=below,
+                               energy_fraction=fraction)
+    verdict = qualify(settled, collapse_half_cycle=int(collapse_half), impacts=n_imp,
+                      impact_described=described)
+    if verdict is not settled:
+        reason = ("the verdict depends on an impact its law does not describe "
+                  f"(see impact, restitution); as computed: {reason}")
     return SimulationResult(
-        outcome=qualify(computed, collapse_half_cycle=int(collapse_half), impacts=n_imp,
-                        impact_described=described),
+        outcome=verdict,
+        verdict_reason=reason,
         mechanisms=events,
         computed_outcome=computed,
         impact_described=described,
         restitution_prescribed=restitution is not None,
-        final_state=_FINALS[int(final)],
+        final_state=final_state,
         collapse_half_cycle=int(collapse_half) if computed is Outcome.COLLAPSE else None,
         collapse_time=float(ctime) if math.isfinite(ctime) else None,
         onset_time=float(onset) if math.isfinite(onset) else None,
