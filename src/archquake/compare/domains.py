@@ -313,7 +313,9 @@ class DomainComparison:
         return rows
 
     def to_dict(self) -> dict:
+        block = next((d.model for d in (self.first, self.governing) if d is not None), None)
         return {"label": self.label, "arch": self.analytical.arch.describe(),
+                "block_model": block,  # the rows' and dem_* entries' model: dem or rigid
                 "pulse": self.analytical.family.value, "rows": self.rows(),
                 "analytical": self.analytical.to_dict(),
                 "dem_first_half_cycle": self.first.to_dict() if self.first else None,
