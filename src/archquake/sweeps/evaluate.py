@@ -95,7 +95,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     from archquake.compare import default_dem_duration
     from archquake.dem import DemSettings
 
-    who = "the DEM's" if case.model is Model.DEM else "the rigid chain's (hinges moving)"
+    who = "the DEM's" if case.model is Model.DEM else "the rigid chain's"
     for key in ("restitution", "impact"):
         if getattr(case.options, key) is not None:
             raise InvalidParameterError(f"{key} applies to the analytical model with hinges fixed "
