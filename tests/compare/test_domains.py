@@ -15,6 +15,7 @@ from archquake.compare import DemPulseEvaluator, dem_failure_domain, three_vouss
 from archquake.compare.domains import DOMAIN_TAIL
 from archquake.dem import DemSettings, simulate_dem
 from archquake.domains import DomainSettings, PulseFamily, failure_domain
+from archquake.errors import InvalidParameterError
 from archquake.ground import StepImpulse
 
 #: A coarse search: 4 coarse magnitudes from lambda to 1.2 g, no fine scan, 0.04 g brackets.
@@ -86,3 +87,22 @@ def test_dem_domains_figure6_oppenheim(oppenheim):
             assert abs(r["relative"]) < 0.03
         else:
             assert r["dem_g"] >= r["analytical_g"] - 0.02
+
+
+def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):
+    """The same search with the rigid chain (``model='rigid'``, hinges moving) on the arch cut
+    at the analytical hinges, t_p = 0.6 s: the four rigid links are the fixed-hinge mechanism
+    before any impact, so the analytical first-half-cycle boundary (0.681 g) must lie inside
+    the rigid bracket widened by 1 % (measured 0.3-0.8 % apart at 0.01 g on t_p = 0.3-0.8 s:
+    docs/mechanism.md). All runs are rigid: the domain records its model."""
+    tp = 0.6
+    dd = dem_failure_domain(oppenheim, "step", [tp], assembly="hinges", settings=COARSE,
+                            workers=1, model="rigid")
+    assert dd.model == "rigid" and dd.to_dict()["model"] == "rigid"
+    dom = dd.domain
+    above, below = float(dom.first_half_cycle_g[0]), float(dom.first_half_cycle_below_g[0])
+    assert math.isfinite(above) and above - below <= COARSE.precision_g + 1e-12
+    analytical = float(failure_domain(oppenheim, "step", [tp]).first_half_cycle_g[0])
+    assert 0.99 * below <= analytical <= 1.01 * above
+    with pytest.raises(InvalidParameterError, match="model must be one of dem, rigid"):
+        dem_failure_domain(oppenheim, "step", [tp], model="analytical", workers=1)

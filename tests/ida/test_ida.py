@@ -391,3 +391,36 @@ def test_worker_processes_after_a_threaded_kernel_in_this_process(tmp_path):
     here = ida("here", executor=SerialExecutor())
     assert numba.threading_layer()  # raises ValueError if no threaded kernel has run
     assert ida("pool", workers=2) == here
+
+
+def test_rigid_model_ida_brackets_its_own_threshold(tmp_path):
+    """An IDA with the rigid chain (hinges moving) of the step pulse t_p = 0.3 s (one-record
+    suite, 10 % precision) against the rigid chain's own collapse threshold found by bisection
+    with ``simulate_rigid`` (0.04 g; the window of ``run --hinges moving``: the end of the pulse
+    + 5 sqrt(R/g), on until rest up to + 60 sqrt(R/g); ``indeterminate`` counted with collapse,
+    as the IDA counts it): the two brackets overlap. All runs are rigid cases."""
+    from archquake.compare import default_dem_duration
+    from archquake.ida.analysis import COUNTED_AS_COLLAPSE
+    from archquake.mechanism.rigid_chain import simulate_rigid
+
+    arch = OPPENHEIM.build()
+
+    def collapses(a_g: float) -> bool:
+        m = StepImpulse.from_g(a_g, 0.3)
+        cap = m.duration + 60 * math.sqrt(arch.radius / 9.80665)
+        run = simulate_rigid(arch, m, duration=default_dem_duration(arch, m), until_rest=cap)
+        return run.outcome in COUNTED_AS_COLLAPSE
+
+    lo, hi = 0.5, 1.0
+    assert not collapses(lo) and collapses(hi)
+    while hi - lo > 0.04:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if collapses(mid) else (mid, hi)
+    with ResultStore(tmp_path / "rigid.sqlite") as store:
+        res = incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga",
+                                           store, ceiling=1.0, precision=0.1, fill=1.0,
+                                           model="rigid", executor=SerialExecutor())
+        rows = store.rows()
+    assert {r["model"] for r in rows} == {"rigid"}
+    first = res.records[0].first_collapse
+    assert first.below < hi and first.low > lo

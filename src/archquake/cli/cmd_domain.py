@@ -24,6 +24,7 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     CSV_SUFFIXES,
     DEM_T_END_MAX_S,
+    HINGE_MODELS,
     MAGNITUDE_RANGE_G,
     PRECISION_RANGE_G,
     SCAN_RANGE,
@@ -67,8 +68,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "1st-half-cycle boundary on the arch cut at the analytical hinges, its "
                         "governing boundary with every voussoir a block (paper Figures 6, 11); "
                         "one DEM time history per point, ~1-2 min per duration on 2 cores")
+    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
+                   help="analytical model only, as in archquake run: 'fixed' (default), the "
+                        "four-link mechanism's domain; 'moving', the chain of rigid blocks' "
+                        "domain beside it, searched as --model dem's (the DEM's rigid limit; "
+                        "~0.2-1 s a point)")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), default=None, metavar="N",
-                   help="with --model dem: worker processes for the DEM runs (default: all cores)")
+                   help="with --model dem or --hinges moving: worker processes for the block "
+                        "model's runs (default: all cores)")
     add_impact_arguments(p)
     add_output_arguments(p)
     p.add_argument("--csv", type=output_file(*CSV_SUFFIXES), metavar="FILE",
@@ -78,16 +85,21 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from archquake.domains import DomainSettings, failure_domain
+    from archquake.sweeps.cases import Model, model_of
 
     arch = arch_from_args(args)
-    refuse_unless({"--workers": args.workers}, args.model == "dem",
-                  "with --model dem (the analytical domain runs in this process); leave it out")
+    model = model_of(args.model, args.hinges, model_name="--model", hinges_name="--hinges")
+    refuse_unless({"--workers": args.workers}, model is not Model.ANALYTICAL,
+                  "with --model dem or --hinges moving (the fixed-hinge domain runs in this "
+                  "process); leave it out")
     impact = impact_from_args(args)
-    if args.model == "dem":
+    if model is not Model.ANALYTICAL:
         if any(v is not None for v in impact.values()):
-            raise InvalidParameterError("--restitution and --impact apply to the analytical model "
-                                        "only; the DEM's impacts follow from its contacts and damping")
-        return _run_dem(args, arch)
+            raise InvalidParameterError(
+                "--restitution and --impact apply to the analytical model with --hinges fixed "
+                f"only; the {'DEM' if model is Model.DEM else 'rigid chain'}'s impacts follow "
+                "from its contacts")
+        return _run_dem(args, arch, model.value)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
     args.scan = 60 if args.scan is None else args.scan
@@ -157,9 +169,10 @@ def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
             f"--precision must be below --max-magnitude ({ceiling:g} g), got {precision:g} g")
 
 
-def _run_dem(args: argparse.Namespace, arch) -> int:
+def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     """``--model dem``: the distinct-element failure domain beside the analytical one (paper
-    Figures 6 and 11), through :func:`archquake.compare.compare_domains`."""
+    Figures 6 and 11), through :func:`archquake.compare.compare_domains`; ``--hinges moving``
+    (``model`` 'rigid'): the rigid chain's, searched the same way on the same assemblies."""
     import csv
 
     from archquake.compare import DEM_DOMAIN_SETTINGS, compare_domains
@@ -170,11 +183,13 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
     _check_search(arch, scan, precision, ceiling)
+    flag = "--model dem" if model == "dem" else "--hinges moving"
+    who = "DEM" if model == "dem" else "rigid"
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
     if lobes * float(max(durations)) > DEM_T_END_MAX_S:
         raise InvalidParameterError(
-            f"--durations up to {float(max(durations)):g} s make DEM runs longer than "
-            f"{DEM_T_END_MAX_S:g} s of simulated time; with --model dem keep them <= "
+            f"--durations up to {float(max(durations)):g} s make {who} runs longer than "
+            f"{DEM_T_END_MAX_S:g} s of simulated time; with {flag} keep them <= "
             f"{DEM_T_END_MAX_S / lobes:g} s")
     settings = DomainSettings(max_magnitude_g=ceiling, coarse_points=scan,
                               scan_reference_g=DEM_DOMAIN_SETTINGS.scan_reference_g,
@@ -188,12 +203,14 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
         workers, note = cap_workers(workers, 2 * len(durations))
         if note is not None:
             print(f"archquake: --workers: {note}", file=sys.stderr)
-    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers)
+    comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers,
+                           model=model)
     rows = comp.rows()
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["boundary", "assembly", "duration_s", "analytical_g", "dem_g", "relative"])
+            w.writerow(["boundary", "assembly", "duration_s", "analytical_g", f"{model}_g",
+                        "relative"])
             for r in rows:
                 w.writerow([r["boundary"], r["assembly"], f"{r['duration_s']:.6g}",
                             *("" if r[k] is None else f"{r[k]:.4f}"
@@ -207,14 +224,15 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
         return 0
     an = comp.analytical
     sym = an.family.duration_symbol
-    print(f"failure domain, {an.family.value} pulse, analytical and distinct-element; arch "
+    print(f"failure domain, {an.family.value} pulse, analytical (hinges fixed) and "
+          + ("distinct-element" if model == "dem" else "rigid chain (hinges moving)") + "; arch "
           f"R = {arch.radius:g} m, t/R = {arch.thickness_ratio:.3f}, embrace "
           f"{math.degrees(arch.embrace):g} deg, {arch.voussoirs} voussoirs")
-    print(f"DEM search: {scan} + {settings.fine_points} magnitudes, brackets {precision:g} g; "
+    print(f"{who} search: {scan} + {settings.fine_points} magnitudes, brackets {precision:g} g; "
           f"analytical brackets {an.settings.precision_g:g} g; no hinging below "
           f"{an.no_hinging_g[0]:.3f} g")
-    print(f"{sym + ' [s]':>9} {'1st: anal.':>10} {'DEM hinges':>10} {'gov.: anal.':>11} "
-          f"{'DEM vouss.':>10}  (g)")
+    print(f"{sym + ' [s]':>9} {'1st: anal.':>10} {who + ' hinges':>12} {'gov.: anal.':>11} "
+          f"{who + ' vouss.':>12}  (g)")
 
     def fmt(x, width):
         return f"{x:{width}.3f}" if x is not None and math.isfinite(x) else f"{'-':>{width}}"
@@ -222,14 +240,14 @@ def _run_dem(args: argparse.Namespace, arch) -> int:
     for i, d in enumerate(an.durations):
         f = comp.first.boundary_g[i] if comp.first else None
         g = comp.governing.boundary_g[i] if comp.governing else None
-        print(f"{d:9.4g} {fmt(an.first_half_cycle_g[i], 10)} {fmt(f, 10)} "
-              f"{fmt(an.collapse_g[i], 11)} {fmt(g, 10)}")
+        print(f"{d:9.4g} {fmt(an.first_half_cycle_g[i], 10)} {fmt(f, 12)} "
+              f"{fmt(an.collapse_g[i], 11)} {fmt(g, 12)}")
     for dd in (comp.first, comp.governing):
         if dd is not None:
-            print(f"DEM {dd.assembly}: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")
+            print(f"{who} {dd.assembly}: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")
     bands = [b for dd in (comp.first, comp.governing) if dd for b in dd.domain.non_monotonic_bands]
     if bands:
-        print("DEM non-monotonic bands: " + "; ".join(
+        print(f"{who} non-monotonic bands: " + "; ".join(
             f"{sym} = {b.duration:.3g} s {b.criterion} {b.lower_g:.3f}-{b.upper_g:.3f} g" for b in bands))
     for f in (args.csv, args.plot):
         if f:

@@ -25,6 +25,7 @@ from archquake.cli.common import (
     whole,
 )
 from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.ranges import HINGE_MODELS
 
 #: Measures whose first-collapse dispersion is compared (besides the one of the analysis).
 DISPERSION_IMS = ("pga", "pgv", "sa:0.2", "sa:0.5", "sa:1.0", "arias", "cav")
@@ -60,6 +61,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="largest relative gap between levels run (default 0.10)")
     p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
                    help="analytical rocking mechanism (default) or the DEM")
+    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
+                   help="analytical model only, as in archquake run: 'fixed' (default), the "
+                        "four-link mechanism; 'moving', the chain of rigid blocks (the DEM's rigid "
+                        "limit, ~0.2 s a run, a process per core)")
     add_impact_arguments(p)
     p.add_argument("--store", type=Path, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
@@ -89,12 +94,17 @@ def _check(args: argparse.Namespace) -> None:
     if args.ceiling is not None and not args.ceiling > 0:
         raise InvalidParameterError(f"--ceiling must be > 0 (in the measure's unit), got "
                                     f"{args.ceiling:g}")
+    from archquake.sweeps.cases import Model
+
     impact = impact_from_args(args)
-    if args.model == "dem":
+    model = _model(args)
+    if model is not Model.ANALYTICAL:
         for option, value in (("--restitution", impact["restitution"]), ("--impact", impact["impact"])):
             if value is not None:
-                raise InvalidParameterError(f"{option} applies to the analytical model only "
-                                            "(the DEM's impacts follow from its contacts)")
+                raise InvalidParameterError(
+                    f"{option} applies to the analytical model with --hinges fixed only (the "
+                    f"{'DEM' if model is Model.DEM else 'rigid chain'}'s impacts follow from its "
+                    "contacts)")
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
     if args.bootstrap < 0:
@@ -105,6 +115,14 @@ def _check(args: argparse.Namespace) -> None:
     if args.plot is not None and args.plot.suffix.lower() not in (".png", ".pdf", ".svg"):
         raise InvalidParameterError(f"--plot file must end in .png, .pdf or .svg, got "
                                     f"{args.plot.name!r}")
+
+
+def _model(args: argparse.Namespace):
+    """The :class:`~archquake.sweeps.Model` of --model and --hinges (the words of archquake
+    run)."""
+    from archquake.sweeps.cases import model_of
+
+    return model_of(args.model, args.hinges, model_name="--model", hinges_name="--hinges")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -134,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
             with _executor(args) as (executor, n):
                 result = incremental_dynamic_analysis(
                     spec, suite.records, im, store, ceiling=args.ceiling,
-                    precision=args.precision, fill=args.fill, model=args.model,
+                    precision=args.precision, fill=args.fill, model=_model(args),
                     options=options, executor=executor, workers=n, progress=bar)
         except KeyboardInterrupt:
             bar.close()
@@ -238,9 +256,9 @@ def _executor(args: argparse.Namespace) -> AbstractContextManager[tuple[Any, int
     --workers nor --scheduler is given (this process, the compiled batch on numba's threads:
     2.62 s against 3.10 s through a pool, docs/earthquakes.md), else the executor the options
     ask for (the DEM's runs are one process each: a pool of all cores by default)."""
-    from archquake.sweeps import open_executor
+    from archquake.sweeps import Model, open_executor
 
-    if args.model == "analytical" and args.workers is None and args.scheduler is None:
+    if _model(args) is Model.ANALYTICAL and args.workers is None and args.scheduler is None:
         return nullcontext((None, None))
     return open_executor(workers=args.workers, scheduler=args.scheduler)
 

@@ -50,7 +50,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="analytical model (default) or the distinct-element model")
     p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
                    help="analytical model only: 'fixed' (default), the paper's four-link "
-                        "mechanism, hinges fixed between impacts (fast: domains and IDA use it); "
+                        "mechanism, hinges fixed between impacts (fast: the default of domain, "
+                        "ida and sweep); "
                         "'moving', the chain of rigid blocks, hinges open, migrate and close "
                         "anywhere (issue 16; ~1 s per 4 s simulated, like the DEM); see "
                         "docs/mechanism.md")

@@ -12,7 +12,6 @@ from __future__ import annotations
 import argparse
 
 from archquake.cli.common import check_range, print_json
-from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
@@ -37,17 +36,12 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         raise InvalidParameterError(
             f"{given} is {duration:g} s; with --hinges moving it must be <= {DEM_T_END_MAX_S:g} s "
             "(the rigid chain steps 1e-4 s): give a shorter --t-end")
-    # the default runs to the end of the excitation + 5 sqrt(R/g) and, if the arch is still
-    # moving then, on until it is at rest, up to the fixed-hinge model's default end (end of
-    # the excitation + 60 sqrt(R/g)); a given --t-end is run as given
-    until_rest = None
-    if args.t_end is None:
-        from archquake.domains._kernels import default_t_end
+    if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
+        from archquake.compare import rigid_to_verdict
 
-        until_rest = min(float(default_t_end(motion.duration, arch.radius, STANDARD_GRAVITY)),
-                         DEM_T_END_MAX_S)
-    result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
-                            until_rest=until_rest)
+        result = rigid_to_verdict(arch, motion, friction=args.friction)
+    else:  # a given --t-end is run as given
+        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction)
     res = result.result
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation

@@ -21,6 +21,7 @@ from archquake.compare.histories import (
     dem_to_verdict,
     figure4_comparisons,
     first_half_cycle_difference,
+    rigid_to_verdict,
     three_voussoir_assembly,
 )
 from archquake.compare.snapshots import (
@@ -61,6 +62,7 @@ __all__ = [
     "compare_history",
     "default_dem_duration",
     "dem_to_verdict",
+    "rigid_to_verdict",
     "dem_assembly",
     "figure4_comparisons",
     "first_half_cycle_difference",

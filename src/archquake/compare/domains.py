@@ -1,5 +1,8 @@
-"""Failure domains of the distinct-element model, found by the analytical domain search
-(:func:`archquake.domains.failure_domain`) with a DEM evaluation plugged in (paper Figures 6, 11).
+"""Failure domains of the block models, found by the analytical domain search
+(:func:`archquake.domains.failure_domain`) with a block model's evaluation plugged in: the
+distinct-element model (``model='dem'``, paper Figures 6, 11) or the chain of rigid blocks
+(``model='rigid'``, hinges moving: the DEM's rigid limit, issue 16), on the same assemblies
+with the same tail and the same search.
 
 As in the paper, the DEM's first-half-cycle boundary comes from the arch cut at the analytical
 hinges (``assembly='hinges'``, the three-voussoir arch: no impacts, the same mechanism), and its
@@ -36,6 +39,9 @@ DEM_DOMAIN_SETTINGS = DomainSettings(max_magnitude_g=2.0, scan_reference_g=2.0, 
                                      fine_points=4,
                                      precision_g=0.01, early=False)
 
+#: The block models a domain may be searched with: the DEM and the rigid chain.
+BLOCK_MODELS = ("dem", "rigid")
+
 #: Seconds simulated after the end of the pulse, in sqrt(R/g), in a domain run. The DEM declares
 #: collapse when the crown has fallen by t, which comes ~1 s (Oppenheim's arch) after the
 #: analytical crest; near a boundary the arch lingers at the crest, so the tail is generous.
@@ -43,16 +49,26 @@ DOMAIN_TAIL = 6.0
 
 
 def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
-             first_only: bool, g: float, governing_only: bool = False) -> tuple[Outcome, int]:
-    """One DEM run: (outcome, collapse half cycle or 0). Module-level: picklable.
+             first_only: bool, g: float, governing_only: bool = False,
+             model: str = "dem") -> tuple[Outcome, int]:
+    """One run of the block model ``model`` ('dem' or 'rigid'): (outcome, collapse half cycle
+    or 0). Module-level: picklable. Both run the pulse plus ``tail_s``; the rigid chain reads
+    only the DEM settings' thresholds (hinge opening, collapse criteria), as it always does.
 
     With ``first_only`` a collapse after the first impact counts as a survival; with
     ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the search
     brackets no first-half-cycle boundary."""
-    from archquake.dem import simulate_dem
-
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
-    res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s), g=g)
+    if model == "rigid":
+        from archquake.mechanism.rigid_chain import simulate_rigid
+
+        res = simulate_rigid(assembly, motion, duration=motion.duration + tail_s,
+                             settings=settings, g=g).result
+    else:
+        from archquake.dem import simulate_dem
+
+        res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s),
+                           g=g)
     if res.outcome is Outcome.COLLAPSE:
         half = int(res.collapse_half_cycle or 0)
         if first_only and half != 1:
@@ -63,8 +79,8 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
 
 @dataclass
 class DemPulseEvaluator:
-    """``evaluate(magnitudes_g, durations) -> PulseOutcomes`` of a DEM assembly, for
-    :func:`~archquake.domains.failure_domain`'s ``evaluate``.
+    """``evaluate(magnitudes_g, durations) -> PulseOutcomes`` of a block assembly under the DEM
+    or the rigid chain, for :func:`~archquake.domains.failure_domain`'s ``evaluate``.
 
     Parameters
     ----------
@@ -83,6 +99,8 @@ class DemPulseEvaluator:
     governing_only : bool
         Report collapses without their half cycle (0), so that the domain search brackets
         only the governing boundary (see :func:`dem_failure_domain`).
+    model : {'dem', 'rigid'}
+        The block model run (:data:`BLOCK_MODELS`).
 
     Notes
     -----
@@ -98,6 +116,7 @@ class DemPulseEvaluator:
     executor: Executor | None = None
     g: float = STANDARD_GRAVITY
     governing_only: bool = False
+    model: str = "dem"
     runs: int = 0
     seconds: float = 0.0
     _memo: dict = field(default_factory=dict, repr=False)
@@ -110,7 +129,7 @@ class DemPulseEvaluator:
         t0 = time.perf_counter()
         if todo:
             args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
-                     self.first_only, self.g, self.governing_only) for a, d in todo]
+                     self.first_only, self.g, self.governing_only, self.model) for a, d in todo]
             if self.executor is None:
                 results = [_outcome(*a) for a in args]
             else:
@@ -125,7 +144,7 @@ class DemPulseEvaluator:
 
 @dataclass(frozen=True)
 class DemDomain:
-    """A DEM failure domain and how it was found.
+    """A block model's failure domain and how it was found.
 
     Attributes
     ----------
@@ -136,10 +155,12 @@ class DemDomain:
     first_only : bool
         Only first-half-cycle collapses counted (then ``collapse_g`` = ``first_half_cycle_g``).
     runs : int
-        DEM time histories run.
+        Time histories run.
     seconds : float
         Wall time, s.
     workers : int
+    model : str
+        'dem' or 'rigid' (:data:`BLOCK_MODELS`).
     """
 
     domain: FailureDomain = field(repr=False)
@@ -150,6 +171,7 @@ class DemDomain:
     workers: int
     dem_settings: dict = field(repr=False, default_factory=dict)
     governing_only: bool = False
+    model: str = "dem"
 
     @property
     def boundary_g(self) -> np.ndarray:
@@ -157,7 +179,7 @@ class DemDomain:
         return self.domain.first_half_cycle_g if self.first_only else self.domain.collapse_g
 
     def to_dict(self) -> dict:
-        return {"assembly": self.assembly, "first_half_cycle_only": self.first_only,
+        return {"model": self.model, "assembly": self.assembly, "first_half_cycle_only": self.first_only,
                 "governing_only": self.governing_only, "runs": self.runs, "seconds": self.seconds,
                 "workers": self.workers,
                 "search": self.domain.settings.to_dict(), "dem_settings": self.dem_settings,
@@ -178,8 +200,10 @@ def dem_failure_domain(
     executor: Executor | None = None,
     g: float = STANDARD_GRAVITY,
     governing_only: bool = False,
+    model: str = "dem",
 ) -> DemDomain:
-    """The failure domain of the DEM arch through the analytical domain search.
+    """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
+    through the analytical domain search.
 
     Parameters
     ----------
@@ -208,6 +232,10 @@ def dem_failure_domain(
         half cycle, so the runs that would bracket this assembly's own first-half-cycle boundary
         are saved (the paper takes that boundary from the three-voussoir arch). The domain's
         ``first_half_cycle_g`` is then NaN and ``collapse_half_cycle`` 0: not searched.
+    model : {'dem', 'rigid'}
+        The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
+        chain of rigid blocks (:func:`archquake.mechanism.rigid_chain.simulate_rigid`; only
+        the thresholds of ``dem_settings`` are read), each run for the pulse plus ``tail``.
 
     Returns
     -------
@@ -217,6 +245,8 @@ def dem_failure_domain(
 
     if not isinstance(arch, VoussoirChain):
         raise InvalidParameterError(f"dem_failure_domain needs an Arch, got {type(arch).__name__}")
+    if model not in BLOCK_MODELS:
+        raise InvalidParameterError(f"model must be one of {', '.join(BLOCK_MODELS)}, got {model!r}")
     fam = PulseFamily.parse(family)
     first_only = (assembly == HINGES) if first_only is None else bool(first_only)
     asm = dem_assembly(arch, assembly)
@@ -235,13 +265,13 @@ def dem_failure_domain(
     try:
         tail_s = tail * math.sqrt(arch.radius / g)
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
-                               governing_only and not first_only)
+                               governing_only and not first_only, model)
         dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
     finally:
         if own is not None:
             own.shutdown()
     return DemDomain(dom, assembly, first_only, ev.runs, time.perf_counter() - t0, max(n, 1),
-                     dst.to_dict(), ev.governing_only)
+                     dst.to_dict(), ev.governing_only, model)
 
 
 def _cores() -> int:
@@ -283,7 +313,9 @@ class DomainComparison:
         return rows
 
     def to_dict(self) -> dict:
+        block = next((d.model for d in (self.first, self.governing) if d is not None), None)
         return {"label": self.label, "arch": self.analytical.arch.describe(),
+                "block_model": block,  # the rows' and dem_* entries' model: dem or rigid
                 "pulse": self.analytical.family.value, "rows": self.rows(),
                 "analytical": self.analytical.to_dict(),
                 "dem_first_half_cycle": self.first.to_dict() if self.first else None,
@@ -307,10 +339,12 @@ def compare_domains(
     executor: Executor | None = None,
     label: str = "",
     g: float = STANDARD_GRAVITY,
+    model: str = "dem",
 ) -> DomainComparison:
     """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
-    of the voussoir arch (``governing``), both at ``settings`` (0.01 g)."""
+    of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
+    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`)."""
     an = failure_domain(arch, family, durations, g=g)
     pool = executor
     own = None
@@ -320,7 +354,7 @@ def compare_domains(
             own = pool = process_pool(n)
     try:
         kw = dict(settings=settings, dem_settings=dem_settings, g=g, executor=pool,
-                  workers=1 if pool is None else None)
+                  workers=1 if pool is None else None, model=model)
         f = dem_failure_domain(arch, family, durations, assembly=HINGES, **kw) if first else None
         gov = dem_failure_domain(arch, family, durations, assembly=VOUSSOIRS, **kw) if governing else None
     finally:
@@ -330,6 +364,7 @@ def compare_domains(
 
 
 __all__ = [
+    "BLOCK_MODELS",
     "DEM_DOMAIN_SETTINGS",
     "DOMAIN_TAIL",
     "DemDomain",

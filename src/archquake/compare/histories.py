@@ -83,6 +83,52 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     return result
 
 
+def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
+                     g: float = STANDARD_GRAVITY, settings=None):
+    """The rigid chain (:func:`archquake.mechanism.rigid_chain.simulate_rigid`) run to a
+    verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
+    the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
+    model's default end (the end of the excitation + 60 sqrt(R/g)) or
+    ``ranges.DEM_T_END_MAX_S``, whichever comes first. The rigid chain resumes where it
+    stopped (unlike the DEM, :func:`dem_to_verdict`), so a long tail costs only its own steps.
+
+    The default window of ``archquake run --hinges moving``, sweeps and the rigid IDA.
+
+    Parameters
+    ----------
+    arch : Arch
+    motion : GroundMotion
+        Ground acceleration, m/s^2.
+    friction : float, optional
+        Coulomb coefficient of every joint; None: no sliding.
+    g : float
+        m/s^2.
+    settings : DemSettings, optional
+        Thresholds of the verdict (default ``DemSettings()``).
+
+    Returns
+    -------
+    RigidRun
+
+    Raises
+    ------
+    InvalidParameterError
+        If that first window exceeds ``ranges.DEM_T_END_MAX_S`` (the chain steps 1e-4 s).
+    """
+    from archquake.domains._kernels import default_t_end
+    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.ranges import DEM_T_END_MAX_S
+
+    d = default_dem_duration(arch, motion, g=g)
+    if d > DEM_T_END_MAX_S:
+        raise InvalidParameterError(
+            f"the rigid chain's run of {d:g} s is longer than {DEM_T_END_MAX_S:g} s (it steps "
+            "1e-4 s): shorten the excitation or give an end time")
+    cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
+    return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+                          settings=settings)
+
+
 # ----------------------------------------------------------------------------- comparison
 @dataclass(frozen=True)
 class HistoryComparison:

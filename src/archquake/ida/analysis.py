@@ -10,8 +10,8 @@ An interrupted analysis rerun with the same store replays the rounds from the st
 only what is missing.
 
 The analytical model goes through one compiled batch call per round and chunk
-(:func:`archquake.ida.batch.evaluate_cases`); the DEM (``model="dem"``) through
-:func:`archquake.sweeps.evaluate_case` case by case.
+(:func:`archquake.ida.batch.evaluate_cases`); the DEM (``model="dem"``) and the rigid chain
+(``model="rigid"``, hinges moving) through :func:`archquake.sweeps.evaluate_case` case by case.
 
 Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
 m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
@@ -324,7 +324,9 @@ def incremental_dynamic_analysis(
     precision, fill, hunt_step, hunt_growth : float
         See :class:`archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
         transition within 2 % of the IM).
-    model : {'analytical', 'dem'}
+    model : {'analytical', 'rigid', 'dem'}
+        :class:`archquake.sweeps.Model` (``rigid``: the chain of rigid blocks, hinges moving;
+        users name it as ``run`` does, :func:`archquake.sweeps.model_of`).
     options : CaseOptions, optional
         Prescribed restitution and impact law (analytical only), end time, gravity (default: none, the
         model's own, standard gravity).

@@ -207,15 +207,16 @@ class RigidRun:
         """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
         return self.result.outcome
 
-    def to_dict(self) -> dict:
+    def to_dict(self, *, joint_forces: bool = True) -> dict:
         """Summary for JSON: ``DemResult.to_dict()`` (the keys of
         :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid_chain"``, then the
-        stepper's own diagnostics under ``rigid``."""
+        stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
+        forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
         out = self.result.to_dict()
         out["model"] = "rigid_chain"
         out["hinges_model"] = "moving"
         out["friction_coefficient"] = self.friction
-        if self.motion is not None:
+        if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
         out["rigid"] = {"time_step_s": self.time_step,
                         "max_penetration_m": self.max_penetration_m,

@@ -14,6 +14,7 @@ from archquake.sweeps.cases import (
     ExcitationKind,
     ExcitationSpec,
     Model,
+    model_of,
 )
 from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
 from archquake.sweeps.runner import (
@@ -34,6 +35,7 @@ __all__ = [
     "ExcitationKind",
     "ExcitationSpec",
     "Model",
+    "model_of",
     "ModelUnavailableError",
     "ResultStore",
     "SerialExecutor",

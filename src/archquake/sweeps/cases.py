@@ -40,7 +40,13 @@ from archquake.geometry.arch import (
     Arch,
 )
 from archquake.geometry.chain import VoussoirChain
-from archquake.ranges import MAGNITUDE_RANGE_G, PULSE_TIME_RANGE_S, SCALE_RANGE, T_END_RANGE_S
+from archquake.ranges import (
+    HINGE_MODELS,
+    MAGNITUDE_RANGE_G,
+    PULSE_TIME_RANGE_S,
+    SCALE_RANGE,
+    T_END_RANGE_S,
+)
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
 CASE_SCHEMA = 1
@@ -57,10 +63,45 @@ class ExcitationKind(StrEnum):
 
 
 class Model(StrEnum):
-    """The model a case is evaluated with."""
+    """The model a case is evaluated with: the four-link mechanism with hinges fixed between
+    impacts (``analytical``), the chain of rigid blocks with hinges moving (``rigid``, issue 16)
+    or the distinct-element model (``dem``). Users name them as ``archquake run`` does
+    (:func:`model_of`): ``model`` analytical or dem, and for the analytical model ``hinges``
+    fixed (default) or moving."""
 
     ANALYTICAL = "analytical"
     DEM = "dem"
+    RIGID = "rigid"
+
+
+def model_of(model: str = "analytical", hinges: str | None = None, *, model_name: str = "model",
+             hinges_name: str = "hinges") -> Model:
+    """The :class:`Model` a user means by ``model`` (analytical or dem) and ``hinges`` (fixed or
+    moving, the analytical model only), the words of ``archquake run --model --hinges``.
+
+    ``model_name`` and ``hinges_name`` are the option or key as the user typed it, for the
+    one-line error (``--model``, ``study.hinges``...).
+
+    Examples
+    --------
+    >>> model_of("analytical", "moving").value
+    'rigid'
+    >>> model_of("dem").value
+    'dem'
+    """
+    if model not in (Model.ANALYTICAL.value, Model.DEM.value):
+        hint = (f" (the rigid chain is {model_name} analytical with {hinges_name} moving)"
+                if model == Model.RIGID.value else "")
+        raise InvalidParameterError(f"{model_name} must be analytical or dem, got {model!r}{hint}")
+    if hinges is None:
+        return Model(model)
+    if hinges not in HINGE_MODELS:
+        raise InvalidParameterError(f"{hinges_name} must be fixed or moving, got {hinges!r}")
+    if model == Model.DEM.value:
+        raise InvalidParameterError(
+            f"{hinges_name} {hinges} applies only to the analytical model (the DEM's hinges "
+            f"always move): leave {hinges_name} out with {model_name} dem")
+    return Model.RIGID if hinges == "moving" else Model.ANALYTICAL
 
 
 #: Units a record file's accelerations may be given in (PEER .AT2 files are always in g).
@@ -610,6 +651,7 @@ __all__ = [
     "ExcitationSpec",
     "INPUT_COLUMNS",
     "Model",
+    "model_of",
     "RECORD_UNITS",
     "canonical_json",
     "file_digest",

@@ -12,9 +12,15 @@ Models:
   paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: until a
   verdict, the end of the excitation + 5, then 10, then 20 sqrt(R/g) while the arch still moves,
   :func:`archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
-  ``restitution`` and ``impact`` do not apply to it (a case giving one is refused).
+  ``restitution`` and ``impact`` do not apply to it (a case giving one is refused);
+- ``rigid``: :func:`archquake.mechanism.rigid_chain.simulate_rigid`, the chain of rigid blocks
+  (hinges moving, the DEM's rigid limit), for ``t_end_s`` (default: until a verdict, the end of
+  the excitation + 5 sqrt(R/g), then on while the arch moves up to the end of the excitation
+  + 60 sqrt(R/g), :func:`archquake.compare.rigid_to_verdict`), summarised by
+  ``RigidRun.to_dict()`` without its joint forces. ``restitution`` and ``impact`` are refused
+  as for the DEM (its impacts follow from the blocks' plastic contacts).
 
-Both summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
+All summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
 collapse_half_cycle, collapse_time_s, impact_times_s, peak_rotation_rad, ...), so a store
 holding both models has one column per quantity.
 """
@@ -33,6 +39,7 @@ from archquake.sweeps.cases import ArchSpec, Case, Model
 MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
     Model.ANALYTICAL: ("archquake.mechanism", "simulate"),
     Model.DEM: ("archquake.dem", "simulate_dem"),
+    Model.RIGID: ("archquake.mechanism.rigid_chain", "simulate_rigid"),
 }
 
 
@@ -84,15 +91,24 @@ def evaluate_case(case: Case) -> dict[str, Any]:
                           t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
                           g=case.options.g)
         return result.to_dict(include_history=False)
-    # the DEM's impacts follow from its contacts and damping: no coefficient of restitution
+    # the block models' impacts follow from their contacts: no coefficient of restitution
     from archquake.compare import default_dem_duration
     from archquake.dem import DemSettings
 
+    who = "the DEM's" if case.model is Model.DEM else "the rigid chain's"
     for key in ("restitution", "impact"):
         if getattr(case.options, key) is not None:
-            raise InvalidParameterError(f"{key} applies to the analytical model only; the DEM's "
-                                        "impacts follow from its contacts and damping")
+            raise InvalidParameterError(f"{key} applies to the analytical model with hinges fixed "
+                                        f"only; {who} impacts follow from its contacts")
     arch = case.arch.build()
+    if case.model is Model.RIGID:
+        if case.options.t_end_s is None:  # to a verdict, as run --hinges moving
+            from archquake.compare import rigid_to_verdict
+
+            run = rigid_to_verdict(arch, motion, g=case.options.g)
+        else:
+            run = simulate(arch, motion, duration=case.options.t_end_s, g=case.options.g)
+        return run.to_dict(joint_forces=False)  # a store holds no histories' forces
     if case.options.t_end_s is None:  # run until a verdict (rest or collapse), or the cap
         from archquake.compare import dem_to_verdict
 

@@ -5,6 +5,9 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     [study]
     name = "scale"                      # required; default store is <name>.sqlite beside the file
     model = "analytical"                # optional: "analytical" (default) or "dem"
+    hinges = "fixed"                    # optional, analytical only: "fixed" (default, the
+                                        # four-link mechanism) or "moving" (the chain of rigid
+                                        # blocks; stored as model "rigid"), as in archquake run
 
     [arches]                            # each axis: a number, a list, or {start, stop, num}
     radius = [1, 5, 10, 20]             # m (circular arch: radius, thickness_ratio, embrace_deg)
@@ -56,11 +59,12 @@ from archquake.sweeps.cases import (
     ExcitationKind,
     ExcitationSpec,
     Model,
+    model_of,
 )
 
 _AXIS = "a number, a list of numbers, or {start, stop, num}"
 _TABLES = ("study", "arches", "excitation", "options")
-_STUDY_KEYS = {"name": True, "model": False}
+_STUDY_KEYS = {"name": True, "model": False, "hinges": False}
 _ARCH_KEYS = {"radius": False, "thickness_ratio": False, "embrace_deg": False, "voussoirs": True,
               "depth": False, "density": False, "shape": False, "span": False, "rise": False,
               "thickness": False, "joints": False, "pier_height": False, "pier_width": False,
@@ -157,11 +161,11 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
     name = study["name"]
     if not isinstance(name, str) or not name.strip() or any(c in name for c in "/\\"):
         p.fail("study.name", f"must be a non-empty string without slashes, got {name!r}")
-    model_text = study.get("model", Model.ANALYTICAL.value)
-    try:
-        model = Model(model_text)
-    except ValueError:
-        p.fail("study.model", f"must be one of {[m.value for m in Model]}, got {model_text!r}")
+    try:  # the words of archquake run: model analytical|dem, hinges fixed|moving
+        model = model_of(study.get("model", Model.ANALYTICAL.value), study.get("hinges"),
+                         model_name="study.model", hinges_name="study.hinges")
+    except InvalidParameterError as exc:
+        raise StudyFileError(f"{p.source}: {exc}") from None
 
     arches_table = p.table(data, "arches", required=True)
     # a block file (a surveyed arch) replaces the shape, voussoirs included
