@@ -133,17 +133,30 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         result = dem_to_verdict(assembly, motion, settings, radius=arch.radius)
     else:
         result = simulate_dem(assembly, motion, settings)
+    return emit_block_run(args, arch, motion, result, result.to_dict(),
+                          lambda out: _print_text(out, result))
+
+
+def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
+                   print_text, label: str | None = None) -> int:
+    """The output of a block-model run (the DEM, or the rigid chain read by the DEM's own
+    post-processing, ``result`` a :class:`~archquake.dem.DemResult`): the ``--plot``,
+    ``--animate`` and ``--history`` files, then ``out`` (the run's ``to_dict()``, completed with
+    the arch and the excitation) as JSON with ``--json``, else ``print_text(out)`` and the files
+    written. Returns the exit status."""
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
 
-        save_dem_rotation(result, args.plot)
+        if label is None:
+            save_dem_rotation(result, args.plot)
+        else:
+            save_dem_rotation(result, args.plot, label=label)
     if args.animate:
         from archquake.plotting.dem import animate_dem
 
         animate_dem(result, args.animate, fps=15)
     if args.history:
         _write_history(result, args.history)
-    out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
     if args.json:
@@ -151,7 +164,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
 
         print_json(out)
         return 0
-    _print_text(out, result)
+    print_text(out)
     for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
         if path:
             print(f"{what}: {path}")

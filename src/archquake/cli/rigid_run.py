@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from archquake.cli.common import check_range, print_json
+from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
 from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
@@ -42,30 +42,10 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         result = rigid_to_verdict(arch, motion, friction=args.friction)
     else:  # a given --t-end is run as given
         result = simulate_rigid(arch, motion, duration=duration, friction=args.friction)
-    res = result.result
-    if args.plot:
-        from archquake.plotting.compare import save_dem_rotation
+    from archquake.cli.dem_run import emit_block_run
 
-        save_dem_rotation(res, args.plot, label="rigid chain (hinges moving)")
-    if args.animate:
-        from archquake.plotting.dem import animate_dem
-
-        animate_dem(res, args.animate, fps=15)
-    if args.history:
-        from archquake.cli.dem_run import _write_history
-
-        _write_history(res, args.history)
-    out = result.to_dict()
-    out["arch"] = arch.describe()
-    out["excitation"] = motion.to_dict()
-    if args.json:
-        print_json(out)
-        return 0
-    _print_text(out)
-    for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
-        if path:
-            print(f"{what}: {path}")
-    return 0
+    return emit_block_run(args, arch, motion, result.result, result.to_dict(), _print_text,
+                          label="rigid chain (hinges moving)")
 
 
 def _print_text(out: dict) -> None:
