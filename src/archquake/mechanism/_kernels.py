@@ -275,6 +275,24 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
 
 
 @nb.njit(cache=True, nogil=True)
+def _row_terms(mechs, row, use_tail, v_toggle):
+    """What the kernel keeps of the mechanism row it moves on (taken once per half cycle, when
+    the row changes): the packed row, its crest and toggle rotations (rad), m_eff at phi = 0,
+    kappa2 = the sum of the link masses (|H| <= sqrt(kappa2 m_eff), Cauchy-Schwarz, for
+    :func:`no_return`), the potential/g at the crest (kg m; 0 without a record tail) and whether
+    the no-return criterion applies on this row."""
+    mech = mechs[row]
+    phi_crit = mech[PHI_CRIT]
+    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
+    kappa2 = 0.0
+    for k in range(3):
+        kappa2 += mech[LINK0 + 4 * k]
+    v_crest = potential(mech, phi_crit) if use_tail else 0.0
+    row_tail = use_tail and math.isfinite(v_toggle[row])
+    return mech, phi_crit, mech[PHI_TOGGLE], meff0, kappa2, v_crest, row_tail
+
+
+@nb.njit(cache=True, nogil=True)
 def simulate_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
                     rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters, onsets,
                     initial_rate=0.0):
@@ -346,11 +364,10 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
     """
     t_exc = excitation_end(kind, params)
     row = 0
-    mech = mechs[row]
+    use_tail = tail.shape[0] > 0
+    mech, phi_crit, phi_toggle, meff0, kappa2, v_crest, row_tail = _row_terms(
+        mechs, row, use_tail, v_toggle)
     atol_v = atol_phi * math.sqrt(g / mech[LENGTH])
-    phi_crit = mech[PHI_CRIT]
-    phi_toggle = mech[PHI_TOGGLE]
-    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
     n_on = 0
     n_hist = 0
     cap = hist.shape[0]
@@ -370,12 +387,6 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
     v = 0.0
     t_out = 0.0
     overflow = False
-    use_tail = tail.shape[0] > 0
-    kappa2 = 0.0  # sum of the link masses: |H| <= sqrt(kappa2 m_eff) (Cauchy-Schwarz)
-    for k in range(3):
-        kappa2 += mech[LINK0 + 4 * k]
-    v_crest = potential(mech, phi_crit) if use_tail else 0.0
-    row_tail = use_tail and math.isfinite(v_toggle[row])
     i_ev = 0
     n_eval = t_eval.shape[0]
     tau = math.sqrt(mech[LENGTH] / g)
@@ -615,15 +626,8 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                     break
                 if nrow != row:  # the post mechanism's row, once per half cycle
                     row = nrow
-                    mech = mechs[row]
-                    phi_crit = mech[PHI_CRIT]
-                    phi_toggle = mech[PHI_TOGGLE]
-                    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
-                    kappa2 = 0.0
-                    for k in range(3):
-                        kappa2 += mech[LINK0 + 4 * k]
-                    v_crest = potential(mech, phi_crit) if use_tail else 0.0
-                    row_tail = use_tail and math.isfinite(v_toggle[row])
+                    (mech, phi_crit, phi_toggle, meff0, kappa2, v_crest,
+                     row_tail) = _row_terms(mechs, row, use_tail, v_toggle)
                 # peak rotation of the coming half cycle on a linear potential g G0 phi
                 peak_next = 0.5 * meff0 * v_after * v_after / (g * mech[G0])
                 if peak_next < rest_rotation or n_imp >= max_impacts:
@@ -660,15 +664,8 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                     n_hist += 1
                 if side == 0 and row != 0:  # locked: the next onset opens row 0 (or its mirror)
                     row = 0
-                    mech = mechs[row]
-                    phi_crit = mech[PHI_CRIT]
-                    phi_toggle = mech[PHI_TOGGLE]
-                    _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
-                    kappa2 = 0.0
-                    for k in range(3):
-                        kappa2 += mech[LINK0 + 4 * k]
-                    v_crest = potential(mech, phi_crit) if use_tail else 0.0
-                    row_tail = use_tail and math.isfinite(v_toggle[row])
+                    (mech, phi_crit, phi_toggle, meff0, kappa2, v_crest,
+                     row_tail) = _row_terms(mechs, row, use_tail, v_toggle)
                 continue
             # collapse
             s = s_ev
