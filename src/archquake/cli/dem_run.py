@@ -179,9 +179,21 @@ def _print_text(out: dict, result) -> None:
           f"{s['rayleigh_alpha_1_s']:.3g} 1/s, beta = {s['rayleigh_beta_s']:.3g} s")
     print(f"time step           {result.time_step:.3g} s, {result.n_steps} steps, "
           f"{out['end_time_s']:.2f} s simulated")
+    print_block_verdict(out, "DEM criterion: ")
+    peaks = out["peak_rotation_rad"]
+    if peaks:
+        print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
+              + (" ..." if len(peaks) > 6 else ""))
+    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated: damping "
+          f"{out['dissipated_damping_J']:.4g} J, friction {out['dissipated_friction_J']:.4g} J")
+
+
+def print_block_verdict(out: dict, criterion: str = "") -> None:
+    """The outcome, onset and impact lines of a block model's text output (the DEM's, or the
+    rigid chain's read by the DEM's post-processing); ``criterion`` prefixes the collapse rule."""
     if out["collapse_half_cycle"]:
         what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = "
-                f"{out['collapse_time_s']:.3f} s (DEM criterion: crown fallen by t or a block "
+                f"{out['collapse_time_s']:.3f} s ({criterion}crown fallen by t or a block "
                 "below the springings)")
     else:
         what = f"{out['outcome']}: {out['verdict']}"
@@ -192,12 +204,6 @@ def _print_text(out: dict, result) -> None:
     if imp:
         more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
         print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
-    peaks = out["peak_rotation_rad"]
-    if peaks:
-        print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
-              + (" ..." if len(peaks) > 6 else ""))
-    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated: damping "
-          f"{out['dissipated_damping_J']:.4g} J, friction {out['dissipated_friction_J']:.4g} J")
 
 
 def _label_of(out: dict) -> str:

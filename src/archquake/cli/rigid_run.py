@@ -59,19 +59,9 @@ def _print_text(out: dict) -> None:
              else f"Coulomb friction mu = {out['friction_coefficient']:g}"))
     print(f"time step           {rig['time_step_s']:.3g} s, {out['end_time_s']:.2f} s simulated "
           f"({rig['wall_s']:.1f} s wall)")
-    if out["collapse_half_cycle"]:
-        what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = "
-                f"{out['collapse_time_s']:.3f} s (crown fallen by t or a block below the "
-                "springings)")
-    else:
-        what = f"{out['outcome']}: {out['verdict']}"
-    print(f"outcome             {what}")
-    if out["onset_time_s"] is not None:
-        print(f"hinging from        {out['onset_time_s']:.3f} s")
-    imp = out["impact_times_s"]
-    if imp:
-        more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
-        print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
+    from archquake.cli.dem_run import print_block_verdict
+
+    print_block_verdict(out)
     events = out["mechanisms"]
     for k, e in enumerate(events[:10]):
         print(f"{'hinge sets' if k == 0 else '':<19} t = {e['time_s']:.3f} s  {e['kind']:<7} "
