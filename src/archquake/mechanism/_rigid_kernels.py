@@ -187,11 +187,7 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
             j = rows_j[r]
             a = ja[j]
             b = jb[j]
-            w = 0.0
-            if a >= 0:
-                w += ja_rows[r, 0] * v[a, 0] + ja_rows[r, 1] * v[a, 1] + ja_rows[r, 2] * v[a, 2]
-            if b >= 0:
-                w += jb_rows[r, 0] * v[b, 0] + jb_rows[r, 1] * v[b, 1] + jb_rows[r, 2] * v[b, 2]
+            w = _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows)
             new = p[r] - RELAX * w / diag[r]
             if rows_k[r] < 2:
                 if new < 0.0:
