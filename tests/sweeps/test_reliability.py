@@ -27,7 +27,7 @@ from sweep_fake_model import SMALL_STUDY
 from archquake.errors import StudyFileError
 from archquake.sweeps import load_study
 from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationSpec, canonical_json
-from archquake.sweeps.runner import cap_workers, usable_cores
+from archquake.sweeps.runner import cap_workers, threads_per_worker, usable_cores
 from archquake.sweeps.study import MAX_CASES
 
 HERE = Path(__file__).parent
@@ -197,3 +197,32 @@ def test_worker_processes_end_with_a_killed_sweep(tmp_path):
         for w in _descendants(proc.pid) | workers:
             if _alive(w):
                 os.kill(w, signal.SIGKILL)
+
+
+def test_threads_per_worker_share_the_cores():
+    """Oracle: the arithmetic of the cap, workers x threads <= cores with at least one each."""
+    for cores in (1, 2, 3, 8, 64):
+        for workers in (1, 2, 3, 5, 100):
+            t = threads_per_worker(workers, cores=cores)
+            assert t >= 1 and (workers * t <= cores or t == 1)
+            assert workers * (t + 1) > cores  # the largest such share
+    assert threads_per_worker(1) == usable_cores()
+
+
+@pytest.mark.skipif(usable_cores() < 2, reason="needs 2 cores (one core: 1 thread either way)")
+def test_pool_workers_run_numba_on_their_share_of_the_cores():
+    """A pool of 2 workers: each worker's numba thread count (read inside the worker, in the
+    thread that runs its tasks) is at most half the usable cores, not numba's default of all of
+    them (which the parent keeps); oracle: numba.get_num_threads in the worker."""
+    import numba
+
+    from archquake.sweeps.runner import process_pool
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("NUMBA_NUM_THREADS < 2: 1 thread per worker either way")
+    pool = process_pool(2)
+    try:
+        inside = {pool.submit(numba.get_num_threads).result(timeout=120) for _ in range(4)}
+    finally:
+        pool.shutdown(wait=True)
+    assert 1 <= min(inside) and max(inside) <= max(1, usable_cores() // 2)

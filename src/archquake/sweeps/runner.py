@@ -380,8 +380,10 @@ def process_pool(workers: int, *, ignore_sigint: bool = False,
         ``"forkserver"`` or ``"spawn"`` (default :data:`START_METHOD`); ``"fork"`` is accepted
         for measurements only (benchmarks/bench_pool.py): it is unsafe after a threaded kernel.
 
-    Each worker watches this process and exits once it is gone, so that no orphan keeps
-    running or holds the terminal's pipes (``archquake sweep ... | tee`` then ends).
+    Each worker runs numba's threaded kernels on its share of the cores
+    (:func:`threads_per_worker`: ``workers x threads <= cores``, not ``workers x cores``), and
+    watches this process and exits once it is gone, so that no orphan keeps running or holds
+    the terminal's pipes (``archquake sweep ... | tee`` then ends).
 
     As with any pool not started by ``fork``, a script creating one must guard its work with
     ``if __name__ == "__main__":`` (workers import the main module), and the case function must
@@ -393,11 +395,32 @@ def process_pool(workers: int, *, ignore_sigint: bool = False,
         # no effect once this process's fork server runs (it starts with the first pool)
         context.set_forkserver_preload(list(FORKSERVER_PRELOAD))
     return ProcessPoolExecutor(max_workers=workers, mp_context=context,
-                               initializer=_start_worker, initargs=(os.getpid(), ignore_sigint))
+                               initializer=_start_worker,
+                               initargs=(os.getpid(), ignore_sigint, int(workers)))
 
 
-def _start_worker(parent: int, ignore_sigint: bool) -> None:
-    """Worker initializer: optionally ignore SIGINT, and end when ``parent`` ends."""
+def threads_per_worker(workers: int, cores: int | None = None) -> int:
+    """numba threads each of ``workers`` processes may run so that together they use at most
+    ``cores`` (default :func:`usable_cores`), at least one each.
+
+    Without the cap every worker's threaded kernels (``prange``: the domains, the IDA's batch)
+    start numba's default of one thread per core, ``workers x cores`` threads on ``cores``.
+
+    >>> threads_per_worker(2, cores=8), threads_per_worker(3, cores=8), threads_per_worker(4, cores=2)
+    (4, 2, 1)
+    """
+    return max(1, (usable_cores() if cores is None else int(cores)) // max(1, int(workers)))
+
+
+def _start_worker(parent: int, ignore_sigint: bool, workers: int = 1) -> None:
+    """Worker initializer: cap numba's threads at this worker's share of the cores
+    (:func:`threads_per_worker`, never above numba's own ``NUMBA_NUM_THREADS``), optionally
+    ignore SIGINT, and end when ``parent`` ends."""
+    import numba
+
+    # per thread in numba: set here, in the thread that runs the pool's tasks (a fresh worker's
+    # count is numba's maximum, NUMBA_NUM_THREADS, which set_num_threads may not exceed)
+    numba.set_num_threads(min(threads_per_worker(workers), numba.get_num_threads()))
     if ignore_sigint:
         import signal
 
@@ -515,5 +538,6 @@ __all__ = [
     "open_executor",
     "process_pool",
     "run_sweep",
+    "threads_per_worker",
     "usable_cores",
 ]
