@@ -125,3 +125,34 @@ def test_batch_equals_scalar_under_the_followed_chain_law(early):
         slow = evaluate_pulses_scalar(arch, "step", a, d, impact="chain")
         np.testing.assert_array_equal(fast.outcome, slow.outcome)
         np.testing.assert_array_equal(fast.collapse_half_cycle, slow.collapse_half_cycle)
+
+
+@pytest.mark.parametrize("early", [True, False])
+def test_batch_states_a_run_locked_by_max_impacts_as_simulate_does(oppenheim_prepared, early):
+    """max_impacts = 1 on Oppenheim's arch under Eq. 4 (step impulses of 1.0 g, t_p = 0.27,
+    0.20 s; 0.4 g, t_p = 0.1 s). Oracle: simulate, case by case, whose rule
+    (outcome.conclude) is checked here on its final states: t_p = 0.27 s impacts at 0.861 s,
+    after the excitation (0.81 s), with more energy than the crest barrier (the full run
+    collapses in half cycle 2, paper Figure 4c), so the run locked at that impact is
+    ``stalled`` and indeterminate, not a survival; t_p = 0.20 s impacts at 0.601 s (after
+    0.60 s) below the barrier: ``stalled`` but shown to survive; 0.4 g reaches the cap during
+    the excitation and ends at rest: ``stalled`` by the cap, indeterminate."""
+    from archquake.domains import PulseFamily
+    from archquake.mechanism import SolverOptions
+
+    a, d = np.array([1.0, 1.0, 0.4]), np.array([0.27, 0.20, 0.10])
+    options = SolverOptions(max_impacts=1)
+    fast = evaluate_pulses(oppenheim_prepared, "step", a, d, options=options, early=early)
+    slow = evaluate_pulses_scalar(oppenheim_prepared, "step", a, d, options=options)
+    np.testing.assert_array_equal(fast.outcome, slow.outcome)
+    np.testing.assert_array_equal(fast.collapse_half_cycle, slow.collapse_half_cycle)
+    assert slow.outcome.tolist() == [Outcome.INDETERMINATE, Outcome.SURVIVES,
+                                     Outcome.INDETERMINATE]
+    runs = [simulate(oppenheim_prepared, PulseFamily.STEP.motion(ai, di),
+                     options=SolverOptions(max_impacts=1, output_interval=0.0))
+            for ai, di in zip(a, d, strict=True)]
+    assert [r.final_state.value for r in runs] == ["stalled", "stalled", "rest"]
+    assert [r.impact_times[0] > 3 * di for r, di in zip(runs, d, strict=True)] == [True, True,
+                                                                                   False]
+    full = evaluate_pulses_scalar(oppenheim_prepared, "step", a[:1], d[:1])
+    assert full.outcome.tolist() == [Outcome.COLLAPSE] and full.collapse_half_cycle[0] == 2

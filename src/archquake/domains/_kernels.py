@@ -16,7 +16,7 @@ the full run's) and accepts the answer when the trajectory up to the cap already
 
 * the case ended with fewer impacts than the cap (no hinging, rest, or a collapse): it is the
   full run;
-* an impact at or after the end of the excitation left a kinetic energy
+* its last impact, at or after the end of the excitation, left a kinetic energy
   ``1/2 m_eff(0) phi'^2`` (of the post-impact row) below ``(1 - margin)`` times the least
   potential barrier ``g [V_r(phi_crit,r) - V_r(0)]`` over the rows r of the table, and no row's
   impact gains energy (``c_T <= 1``): from then on the arch rocks freely, its total energy (the
@@ -25,14 +25,19 @@ the full run's) and accepts the answer when the trajectory up to the cap already
   on any row r reaches that row's crest only with at least its barrier, which is at least the
   least one: it can never reach a crest again and survives (the barrier:
   :func:`archquake.mechanism._kernels.table_energies`, which
-  :func:`archquake.mechanism.simulate` uses for the same proof at its ``t_end``). A row the
+  :func:`archquake.mechanism.simulate` uses for the same proof at its ``t_end``; the test
+  itself: :func:`archquake.mechanism._kernels.last_impact_energy`). A row the
   law's impacts leave (``next < 0``) stops the run and is flagged, so no motion outside the table is assumed.
   The verdict it states must not hide an undescribed impact still to come: an early survival
   is accepted only if every row's impact is described, or an undescribed impact has already
   happened (the survival is then indeterminate whatever follows).
 
 Otherwise the case is run again with an eight times larger cap, up to the full
-``max_impacts``. ``early=False`` runs every case in full. A test holds both modes to
+``max_impacts``. ``early=False`` runs every case in full. Each case returns how its deciding
+run ended and its last impact's energy, from which the caller states the verdict by
+:func:`archquake.mechanism.simulate`'s own rule
+(:func:`~archquake.mechanism.simulate.conclude_run`: a run locked by ``max_impacts``, or cut by
+``t_end`` while rocking, survives only with that proof). A test holds both modes to
 :func:`~archquake.mechanism.simulate` point by point.
 """
 
@@ -51,6 +56,7 @@ from archquake.mechanism._kernels import (
     OUTCOME_NO_HINGING,
     OUTCOME_SURVIVES,
     excitation_end,
+    last_impact_energy,
     simulate_kernel,
     table_energies,
 )
@@ -73,44 +79,42 @@ def undescribed_seen(impacts, n_imp, undescribed):
 @nb.njit(cache=True, nogil=True)
 def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
               max_impacts, early, barrier, meff0, undescribed, ct_max):
-    """One case; returns (outcome, collapse_half_cycle, impacts, runs, undescribed impact seen)."""
+    """One case; returns (outcome, collapse_half_cycle, impacts, runs, undescribed impact seen,
+    final state code, energy fraction of the last impact) of the deciding run: what
+    :func:`archquake.mechanism.simulate.conclude_run` states the verdict from, as for
+    :func:`~archquake.mechanism.simulate` (the fraction: :func:`last_impact_energy`, NaN where
+    its proof does not apply).
+
+    An early run locked at its cap is accepted when the proof holds at its last impact (the
+    energy never grows after the excitation, so this accepts whenever it holds at an earlier
+    impact after the excitation); it is then reported ``stalled`` with that fraction (below
+    ``1 - ENERGY_MARGIN``), which states ``survives``, as the full run would."""
     hist = np.zeros((1, HIST_COLUMNS))
     t_exc = excitation_end(kind, params)
     cap = min(FIRST_IMPACT_CAP, max_impacts) if early else max_impacts
-    any_undescribed = False
-    for r in range(undescribed.shape[0]):
-        any_undescribed = any_undescribed or undescribed[r]
     runs = 0
     while True:
         impacts = np.zeros((cap, IMPACT_COLUMNS))
         peaks = np.zeros(cap + 1)
         counters = np.zeros(10)
         onsets = np.zeros((cap + 1, 2))
-        outcome, _final, half = simulate_kernel(
+        outcome, final, half = simulate_kernel(
             mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation, cap,
             0.0, hist, impacts, peaks, counters, onsets)
         runs += 1
         n_imp = int(counters[1])
-        if cap >= max_impacts or n_imp < cap:
-            return outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp, undescribed)
-        if outcome == OUTCOME_SURVIVES and ct_max <= 1.0:
-            for k in range(cap):
-                if impacts[k, 0] >= t_exc:
-                    v = impacts[k, 2]
-                    row = int(impacts[k, 4])
-                    seen = undescribed_seen(impacts, k + 1, undescribed)
-                    if (row >= 0 and (seen or not any_undescribed)
-                            and 0.5 * meff0[row] * v * v < (1.0 - ENERGY_MARGIN) * barrier):
-                        return outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp,
-                                                                            undescribed)
-                    break
+        fraction = last_impact_energy(impacts, n_imp, t_exc, meff0, barrier, ct_max, undescribed)
+        if (cap >= max_impacts or n_imp < cap
+                or (outcome == OUTCOME_SURVIVES and fraction < 1.0 - ENERGY_MARGIN)):
+            return (outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp, undescribed),
+                    final, fraction)
         cap = min(8 * cap, max_impacts)
 
 
 @nb.njit(cache=True, parallel=True)
 def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
                  max_impacts, early, undescribed, ct_max, outcome, half, n_impacts, runs,
-                 unseen):
+                 unseen, final, fraction):
     """Run ``params.shape[0]`` cases in parallel.
 
     Parameters
@@ -126,18 +130,23 @@ def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, re
     outcome, half, n_impacts, runs : (n,) int64 out: outcome code, collapse half cycle (0 if
         none), impacts in the deciding run, kernel runs used
     unseen : (n,) bool out: an undescribed impact happened before the verdict
+    final : (n,) int64 out: how the deciding run ended (the kernel's ``FINAL_*`` code)
+    fraction : (n,) float64 out: its last impact's energy over the least crest barrier, NaN
+        where the proof does not apply (:func:`last_impact_energy`)
     """
     n = params.shape[0]
     meff0, barrier = table_energies(mechs, g)
     for i in nb.prange(n):
-        o, h, m, r, u = _run_case(mechs, nxt, flip, ratio, kind, params[i], g, t_end[i], rtol,
-                                  atol, rest_rotation, max_impacts, early, barrier, meff0,
-                                  undescribed, ct_max)
+        o, h, m, r, u, f, e = _run_case(mechs, nxt, flip, ratio, kind, params[i], g, t_end[i],
+                                        rtol, atol, rest_rotation, max_impacts, early, barrier,
+                                        meff0, undescribed, ct_max)
         outcome[i] = o
         half[i] = h if o == OUTCOME_COLLAPSE else 0
         n_impacts[i] = m
         runs[i] = r
         unseen[i] = u
+        final[i] = f
+        fraction[i] = e
 
 
 #: The kernel's outcome codes as :class:`~archquake.outcome.Outcome` values.

@@ -22,7 +22,7 @@ from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
-from archquake.mechanism.simulate import SolverOptions, simulate
+from archquake.mechanism.simulate import SolverOptions, conclude_run, simulate
 from archquake.outcome import Outcome, qualify
 
 
@@ -211,15 +211,23 @@ def evaluate_pulses(
     n_imp = np.zeros(n, dtype=np.int64)
     runs = np.zeros(n, dtype=np.int64)
     unseen = np.zeros(n, dtype=np.bool_)
+    final = np.zeros(n, dtype=np.int64)
+    fraction = np.full(n, np.nan)
     if n:
         batch_kernel(mechs, nxt, flip, ratio, fam.kind, params, float(g), t_end, options.rtol,
                      options.atol, options.rest_rotation, int(options.max_impacts), bool(early),
                      np.ascontiguousarray(undescribed), ct_max, outcome, half, n_imp, runs,
-                     unseen)
+                     unseen, final, fraction)
     verdict = np.empty(n, dtype=object)
     for i, o in enumerate(decode(outcome)):
+        # how the run ended (locked by max_impacts, cut by t_end): simulate's own rule
+        settled, _reason = conclude_run(o, int(final[i]), impacts=int(n_imp[i]),
+                                        max_impacts=int(options.max_impacts),
+                                        t_end=float(t_end[i]), excitation_end=float(t_exc[i]),
+                                        energy_fraction=float(fraction[i]))
         # per impact: the verdict depends on the impacts before it (all those recorded)
-        verdict[i] = qualify(o, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
+        verdict[i] = qualify(settled, collapse_half_cycle=int(half[i]),
+                             impacts=min(int(n_imp[i]), int(options.max_impacts)),
                              impact_described=not bool(unseen[i]))
     return PulseOutcomes(a, d, verdict, half, runs)
 

@@ -730,3 +730,37 @@ def table_energies(mechs, g):
         b = g * (potential(mechs[r], mechs[r, PHI_CRIT]) - potential(mechs[r], 0.0))
         barrier = min(barrier, b)
     return meff0, barrier
+
+
+@nb.njit(cache=True, nogil=True)
+def last_impact_energy(impacts, n_all, t_exc, meff0, barrier, ct_max, undescribed):
+    """The kinetic energy ``1/2 m_eff(0) phi'^2`` the run's last impact left, as a fraction of
+    the least crest barrier (:func:`table_energies`), where the free-rocking proof applies to
+    it; NaN where it does not.
+
+    It applies when the last impact is recorded (``1 <= n_all <= impacts.shape[0]``: the run did
+    not go on past its cap), came at or after the end of the excitation ``t_exc``, onto a row of
+    the table (``impacts[k, 4] >= 0``), every row's impact keeps ``c_T <= 1`` (``ct_max``), and
+    the barrier is positive; and, for a table with a row whose impact the law does not describe
+    (``undescribed``), once such an impact has happened (the verdict is then indeterminate
+    anyway: before that, an undescribed impact may still come). A fraction below
+    ``1 - ENERGY_MARGIN`` proves that the arch never reaches a crest again.
+    """
+    if n_all < 1 or n_all > impacts.shape[0]:
+        return math.nan
+    k = n_all - 1
+    row = int(impacts[k, 4])
+    if impacts[k, 0] < t_exc or row < 0 or ct_max > 1.0:
+        return math.nan
+    if not (math.isfinite(barrier) and barrier > 0.0):
+        return math.nan
+    some = False
+    seen = False
+    for r in range(undescribed.shape[0]):
+        some = some or undescribed[r]
+    for j in range(n_all):
+        seen = seen or undescribed[int(impacts[j, 3])]
+    if some and not seen:
+        return math.nan
+    rate = impacts[k, 2]
+    return 0.5 * meff0[row] * rate * rate / barrier

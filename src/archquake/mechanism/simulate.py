@@ -436,33 +436,63 @@ def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: n
     return tuple(e[2] for e in events)
 
 
-def _below_barrier(prepared: PreparedMechanism, mechs: np.ndarray, impacts: np.ndarray,
-                   n_all: int, n_cap: int, excitation: float, restitution: float | None,
-                   g: float) -> tuple[bool, float | None]:
-    """Whether the run's last impact proves that the arch can never reach a crest again, and
-    the kinetic energy it left as a fraction of the least crest barrier (None: no proof applies).
-
-    The batches' proof (:func:`archquake.mechanism._kernels.table_energies`): the last impact
-    came at or after the end of the excitation, onto a row of the table, every row's impact
-    keeps ``c_T <= 1`` of the energy, and ``1/2 m_eff(0) phi'^2`` after it is below
-    ``(1 - ENERGY_MARGIN)`` of the least barrier. As in the batches, a table with a row whose
-    impact the law does not describe is accepted only once such an impact has happened (the
-    verdict is then indeterminate anyway): an undescribed impact may still come."""
-    if n_all < 1 or n_all > n_cap:
-        return False, None
-    t_imp, rate, row = float(impacts[n_all - 1, 0]), float(impacts[n_all - 1, 2]), \
-        int(impacts[n_all - 1, 4])
+def last_impact_fraction(prepared: PreparedMechanism, mechs: np.ndarray, impacts: np.ndarray,
+                         n_all: int, excitation: float, restitution: float | None,
+                         g: float) -> float:
+    """The kinetic energy the run's last impact left, as a fraction of the least crest barrier,
+    where the free-rocking proof applies to it (NaN where not): the batches' proof,
+    :func:`archquake.mechanism._kernels.last_impact_energy`, with the table's energies, c_T and
+    described rows for ``restitution`` (prescribed c_v or None)."""
     table = prepared.table
-    if t_imp < excitation or row < 0 or float(np.max(table.restitution_cts(restitution))) > 1.0:
-        return False, None
-    undescribed = ~table.described(prepared.impact.law, restitution)
-    if np.any(undescribed) and not np.any(undescribed[impacts[:n_all, 3].astype(int)]):
-        return False, None
     meff0, barrier = K.table_energies(mechs, g)
-    if not (math.isfinite(barrier) and barrier > 0.0):
-        return False, None
-    fraction = 0.5 * float(meff0[row]) * rate * rate / float(barrier)
-    return fraction < 1.0 - K.ENERGY_MARGIN, fraction
+    undescribed = np.ascontiguousarray(~table.described(prepared.impact.law, restitution))
+    ct_max = float(np.max(table.restitution_cts(restitution)))
+    return float(K.last_impact_energy(impacts, int(n_all), float(excitation), meff0,
+                                      float(barrier), ct_max, undescribed))
+
+
+def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, max_impacts: int,
+                 t_end: float, excitation_end: float, energy_fraction: float
+                 ) -> tuple[Outcome, str]:
+    """The verdict of a compiled run, with its reason, from how it ended: the one rule of
+    :func:`simulate` and of the batches (:func:`archquake.domains.evaluate_pulses`).
+
+    A run that ended at rest with ``impacts >= max_impacts`` was locked by the cap, not by the
+    rest criterion, and counts as ``stalled``; the last impact's ``energy_fraction`` (of the
+    least crest barrier, NaN where the proof does not apply: :func:`last_impact_fraction`)
+    proves survival when below ``1 - ENERGY_MARGIN``; then
+    :func:`archquake.outcome.conclude`. Apply :func:`~archquake.outcome.qualify` to the result.
+
+    Parameters
+    ----------
+    computed : Outcome
+        The kernel's outcome (no_hinging, survives, collapse).
+    final : FinalState or int
+        How the run ended (or the kernel's ``FINAL_*`` code).
+    impacts : int
+        Impacts the run had (counted past the cap), and ``max_impacts`` its cap.
+    t_end, excitation_end : float
+        End of the run and of the excitation, s.
+    energy_fraction : float
+        As above (NaN: no proof).
+
+    Examples
+    --------
+    >>> conclude_run(Outcome.SURVIVES, FinalState.REST, impacts=3, max_impacts=3, t_end=9.0,
+    ...              excitation_end=0.6, energy_fraction=math.nan)[0].value
+    'indeterminate'
+    >>> conclude_run(Outcome.SURVIVES, FinalState.REST, impacts=2, max_impacts=3, t_end=9.0,
+    ...              excitation_end=0.6, energy_fraction=math.nan)[0].value
+    'survives'
+    """
+    state = final if isinstance(final, FinalState) else _FINALS[int(final)]
+    if state is FinalState.REST and impacts >= max_impacts:
+        state = FinalState.STALLED  # locked by max_impacts, not by the rest criterion
+    proof = math.isfinite(energy_fraction)
+    return conclude(Outcome(computed), final_state=state.value, t_end_s=float(t_end),
+                    excitation_end_s=float(excitation_end),
+                    below_barrier=proof and energy_fraction < 1.0 - K.ENERGY_MARGIN,
+                    energy_fraction=float(energy_fraction) if proof else None)
 
 
 def simulate(
@@ -623,14 +653,11 @@ def simulate(
                  else prepared.describes_impact(restitution))
     final_state = _FINALS[int(final)]
     n_all = int(counters[1])
-    below, fraction = _below_barrier(prepared, mechs, impacts, n_all, n_imp_cap, excitation,
-                                      check_restitution(restitution), g)
-    ended = final_state.value
-    if final_state is FinalState.REST and n_all >= n_imp_cap:
-        ended = FinalState.STALLED.value  # locked by max_impacts, not by the rest criterion
-    settled, reason = conclude(computed, final_state=ended, t_end_s=float(t_end),
-                               excitation_end_s=excitation, below_barrier=below,
-                               energy_fraction=fraction)
+    fraction = last_impact_fraction(prepared, mechs, impacts, n_all, excitation,
+                                    check_restitution(restitution), g)
+    settled, reason = conclude_run(computed, final_state, impacts=n_all, max_impacts=n_imp_cap,
+                                   t_end=float(t_end), excitation_end=excitation,
+                                   energy_fraction=fraction)
     verdict = qualify(settled, collapse_half_cycle=int(collapse_half), impacts=n_imp,
                       impact_described=described)
     if verdict is not settled:
@@ -673,4 +700,5 @@ def simulate(
 
 
 __all__ = ["FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
-           "SolverOptions", "mechanism_events", "simulate"]
+           "SolverOptions", "conclude_run", "last_impact_fraction", "mechanism_events",
+           "simulate"]
