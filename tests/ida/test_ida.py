@@ -156,6 +156,28 @@ def test_batch_evaluator_is_simulate_under_the_followed_chain_law(records):
     assert early >= 1  # the early decision was taken (and its peak checked)
 
 
+@pytest.mark.parametrize("early", [True, False])
+def test_batch_evaluator_states_a_cut_run_as_simulate_does(early):
+    """Runs cut by the case's t_end (Oppenheim's arch, Eq. 4, step impulses; the excitation
+    ends at 3 t_p). Oracle: evaluate_case (simulate) case by case, whose rule (outcome.conclude)
+    is pinned here: cut before the excitation ends (t_end 0.3 s), nothing is shown
+    (indeterminate, also for 0.3 g, which has not yet hinged); 1.0 g, t_p = 0.27 s cut at 1.5 s
+    rocks with more energy than the crest barrier (its full run collapses in half cycle 2,
+    paper Figure 4c): indeterminate, not a survival; 1.0 g, t_p = 0.20 s to the default end
+    survives."""
+    from archquake.sweeps import CaseOptions
+    from archquake.sweeps.evaluate import evaluate_case
+
+    specs = [(0.3, 1.0, 0.20), (0.3, 0.3, 0.20), (1.5, 1.0, 0.27), (None, 1.0, 0.27),
+             (None, 1.0, 0.20)]
+    cases = [Case(OPPENHEIM, ExcitationSpec("step", magnitude_g=a, duration_s=d),
+                  options=CaseOptions(t_end_s=t)) for t, a, d in specs]
+    got = [r["outcome"] for r in evaluate_cases(cases, early=early)]
+    ref = [evaluate_case(c)["outcome"] for c in cases]
+    assert got == ref == ["indeterminate", "indeterminate", "indeterminate", "collapse",
+                          "survives"]
+
+
 def test_cases_are_dealt_to_the_threads_in_turn():
     # Oracle: numba's static schedule, one contiguous block per thread, the first blocks one
     # longer (n = 7 on 2 threads: 4 + 3); each block must then hold every T-th case.

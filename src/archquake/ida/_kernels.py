@@ -40,6 +40,7 @@ from archquake.mechanism._kernels import (
     OUTCOME_COLLAPSE,
     OUTCOME_SURVIVES,
     excitation_end,
+    last_impact_energy,
     simulate_kernel,
 )
 from archquake.mechanism.kinematics import PHI_CRIT, potential
@@ -91,7 +92,12 @@ def free_rocking_peak(mechs, nxt, ratio, meff0, g, row, rate):
 def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol,
              rest_rotation, max_impacts, early, barrier, meff0, undescribed, ct_max):
     """One case; returns (outcome, collapse_half_cycle, impacts, runs, peak rotation rad,
-    undescribed impact seen).
+    undescribed impact seen, final state code, energy fraction): the last two are what
+    :func:`archquake.mechanism.simulate.conclude_run` states the verdict from, as for
+    :func:`~archquake.mechanism.simulate` (the deciding run's end and its last impact's energy
+    over the least crest barrier, :func:`~archquake.mechanism._kernels.last_impact_energy`,
+    NaN where the proof does not apply; an early survival: ``moving`` with the energy of the
+    impact that proved it).
 
     With ``early``, the case first runs to ``min(t_end, end of excitation + window)`` (the
     trajectory up to then is exactly the full run's: the end time only stops the integration).
@@ -127,8 +133,10 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
         for k in range(min(n_half, peaks.shape[0])):
             peak = max(peak, peaks[k])
         if t_stop >= t_end or final != FINAL_MOVING:
-            return outcome, half, n_imp, runs, peak, undescribed_seen(impacts, n_imp,
-                                                                      undescribed)
+            return (outcome, half, n_imp, runs, peak, undescribed_seen(impacts, n_imp,
+                                                                       undescribed),
+                    final, last_impact_energy(impacts, n_imp, t_exc, meff0, barrier, ct_max,
+                                              undescribed))
         if outcome == OUTCOME_SURVIVES and ct_max <= 1.0:
             for k in range(min(n_imp, max_impacts)):
                 if impacts[k, 0] >= t_exc:
@@ -143,7 +151,8 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
                         for j in range(k + 1):
                             peak = max(peak, peaks[j])
                         peak = max(peak, free_rocking_peak(mechs, nxt, ratio, meff0, g, row, v))
-                        return outcome, half, n_imp, runs, peak, seen
+                        return (outcome, half, n_imp, runs, peak, seen, final,
+                                0.5 * meff0[row] * v * v / barrier)
                     break
         t_stop = t_end
 
@@ -151,7 +160,7 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
 @nb.njit(cache=True, parallel=True)
 def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window, rtol, atol,
                  rest_rotation, max_impacts, early, undescribed, ct_max, outcome, half,
-                 n_impacts, runs, peak, unseen):
+                 n_impacts, runs, peak, unseen, final, fraction):
     """Run ``kinds.shape[0]`` cases in parallel.
 
     Parameters
@@ -169,20 +178,24 @@ def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window
     ct_max : the largest kinetic-energy ratio of the rows' impacts
     outcome, half, n_impacts, runs : (n,) int64 out;  peak : (n,) float64 out, rad
     unseen : (n,) bool out: an undescribed impact happened before the verdict
+    final : (n,) int64 out, fraction : (n,) float64 out: see :func:`run_case`
     """
     n = kinds.shape[0]
     meff0, barrier = table_energies(mechs, g)
     for i in nb.prange(n):
         params = flat[offsets[i]:offsets[i + 1]]
-        o, h, m, r, p, u = run_case(mechs, nxt, flip, ratio, kinds[i], params, g, t_end[i],
-                                    window, rtol, atol, rest_rotation, max_impacts, early,
-                                    barrier, meff0, undescribed, ct_max)
+        o, h, m, r, p, u, f, e = run_case(mechs, nxt, flip, ratio, kinds[i], params, g,
+                                          t_end[i], window, rtol, atol, rest_rotation,
+                                          max_impacts, early, barrier, meff0, undescribed,
+                                          ct_max)
         outcome[i] = o
         half[i] = h if o == OUTCOME_COLLAPSE else 0
         n_impacts[i] = m
         runs[i] = r
         peak[i] = p
         unseen[i] = u
+        final[i] = f
+        fraction[i] = e
 
 
 __all__ = ["PEAK_BISECTIONS", "WINDOW_TAU", "batch_kernel", "free_peak", "free_rocking_peak",

@@ -74,6 +74,7 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
     from archquake.ida._kernels import WINDOW_TAU, batch_kernel
     from archquake.mechanism import SolverOptions
     from archquake.mechanism._kernels import excitation_end
+    from archquake.mechanism.simulate import conclude_run
 
     g = options.g
     solver = SolverOptions()
@@ -108,12 +109,14 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
     runs = np.zeros(n, dtype=np.int64)
     peak = np.zeros(n)
     unseen = np.zeros(n, dtype=np.bool_)
+    final = np.zeros(n, dtype=np.int64)
+    fraction = np.full(n, np.nan)
     if n:
         window = WINDOW_TAU * math.sqrt(prepared.mechanism.arch.radius / g)
         batch_kernel(mechs, nxt, flip, ratio, kinds_a, flat, offsets, float(g), t_end,
                      window, solver.rtol, solver.atol, solver.rest_rotation,
                      int(solver.max_impacts), bool(early), undescribed, ct_max, outcome, half,
-                     n_imp, runs, peak, unseen)
+                     n_imp, runs, peak, unseen, final, fraction)
 
     static_g = prepared.collapse_acceleration_g
     phi_crit = prepared.critical_rotation
@@ -122,7 +125,13 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
         # per impact: those before the verdict (none: whether the law describes the first's)
         described = (not bool(unseen[i])) if n_imp[i] else prepared.describes_impact(
             options.restitution)
-        verdict = qualify(computed, collapse_half_cycle=int(half[i]), impacts=int(n_imp[i]),
+        # how the run ended (cut by t_end, locked by max_impacts): simulate's own rule
+        settled, _reason = conclude_run(computed, int(final[i]), impacts=int(n_imp[i]),
+                                        max_impacts=int(solver.max_impacts),
+                                        t_end=float(t_end[i]), excitation_end=float(t_exc[i]),
+                                        energy_fraction=float(fraction[i]))
+        verdict = qualify(settled, collapse_half_cycle=int(half[i]),
+                          impacts=min(int(n_imp[i]), int(solver.max_impacts)),
                           impact_described=described)
         results.append({
             "outcome": verdict.value,
