@@ -438,6 +438,16 @@ def collapsed(state, free, cpar):
 
 
 @nb.njit(cache=True)
+def first_collapsed(states, free, cpar):
+    """Index of the first recorded configuration (nt, nb, >= 3) meeting a collapse criterion
+    (:func:`collapsed`), -1 if none does."""
+    for k in range(states.shape[0]):
+        if collapsed(states[k], free, cpar):
+            return k
+    return -1
+
+
+@nb.njit(cache=True)
 def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     """Advance from global step ``span.step0`` until ``span.n_steps`` (global), recording every
     ``span.out_every`` steps into ``out``. Returns (next global step, status): STATUS_DONE,
