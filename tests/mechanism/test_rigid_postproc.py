@@ -19,17 +19,21 @@ import pytest
 
 from archquake import Arch
 from archquake.dem import _kernels as K
+from archquake.dem.assembly import build_arch_assembly
 from archquake.dem.result import (
     HingeSet,
     _hinges_at,
     carry,
     collapse_parameters,
+    collapse_time,
     crossings,
     crown_height,
     hinge_label,
+    joint_kinematics,
     rest_threshold,
     settled,
 )
+from archquake.dem.settings import DemSettings
 from archquake.ground import StepImpulse
 from archquake.mechanism import rigid_chain as RC
 from archquake.outcome import Outcome
@@ -191,6 +195,36 @@ def test_vectorised_post_processing_is_mains(monkeypatch, motion, duration, outc
         assert impacts.size >= 2
     assert res.hinge_sets() == _hinge_sets(res)
     assert len(res.hinge_sets()) >= 2
+
+
+@pytest.mark.parametrize("arch", [OPPENHEIM, Arch(5.0, 0.9, math.radians(180.0), 15)])
+def test_compiled_joint_kinematics_and_collapse_match_the_per_joint_code(arch):
+    """Blocks displaced by up to 0.1 m and turned by up to 0.6 rad at random (joints open,
+    overlap, slide; some samples meet a collapse criterion), and the undisplaced assembly,
+    whose openings are +-0 (the sign of zero as main's ``np.sum`` gives it)."""
+    asm = build_arch_assembly(arch)
+    rng = np.random.default_rng(3)
+    nt, nb = 400, len(asm.base)
+    pos = np.zeros((nt, nb, 3))
+    pos[:, :, :2] = asm.centroids
+    scale = np.geomspace(1e-6, 1.0, nt)[:, None]
+    pos[:, :, :2] += 0.1 * scale[:, :, None] * rng.uniform(-1, 1, size=(nt, nb, 2))
+    pos[:, :, 2] = 0.6 * scale * rng.uniform(-1, 1, size=(nt, nb))
+    pos[0, :, 2] = 0.0
+    pos[0, :, :2] = asm.centroids
+    opening, slip = joint_kinematics(asm, pos)
+    want_opening, want_slip = _joint_kinematics(asm, pos)
+    np.testing.assert_allclose(opening, want_opening, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(slip, want_slip, rtol=0, atol=1e-12)
+    assert np.array_equal(np.signbit(opening[0]), np.signbit(want_opening[0]))
+    t = np.arange(nt) * 1e-3
+    settings = DemSettings()
+    assert collapse_time(asm, settings, t, pos) is None
+    pos[-30:, asm.crown_block, 2] = 2.0  # turned past collapse_rotation
+    pos[-20:, :, 1] -= 2.0 * asm.reference_length  # the crown has fallen
+    assert collapse_time(asm, settings, t, pos) == _collapse_time(asm, settings, t, pos) == t[-30]
+    pos[-30:, asm.crown_block, 2] = 0.0
+    assert collapse_time(asm, settings, t, pos) == _collapse_time(asm, settings, t, pos) == t[-20]
 
 
 def test_crossings_match_the_per_sample_loop():

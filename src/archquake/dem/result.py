@@ -77,38 +77,22 @@ def _joint_frames(assembly: Assembly) -> tuple[np.ndarray, ...]:
     return left, right, nrm0, tan0, local_left, local_right
 
 
-def _pair_sum(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a + b as ``np.sum`` over the pair gives it (-0.0 + -0.0 is +0.0 there), so that the
-    vectorised kinematics reproduce the per-joint sums bit for bit."""
-    return a + b + 0.0
-
-
 def joint_kinematics(assembly: Assembly, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m.
 
     Each end's gap is the right block's copy of the end point minus the left block's
     (:func:`carry`), resolved on the joint's normal and tangent turned with the left block;
-    the slip is the tangential gap at the more closed end. All joints at once."""
+    the slip is the tangential gap at the more closed end. One compiled loop,
+    :func:`archquake.dem._kernels.joint_openings`, over every sample and joint."""
     nt = pos.shape[0]
     nj = len(assembly.joints)
-    if nj == 0:
-        return np.zeros((nt, 0, 2)), np.zeros((nt, 0))
-    left, right, nrm0, tan0, local_left, local_right = _joint_frames(assembly)
-    cos, sin = np.cos(pos[:, :, 2]), np.sin(pos[:, :, 2])
-    c, s, cr, sr = cos[:, left], sin[:, left], cos[:, right], sin[:, right]
-    xl, yl, xr, yr = pos[:, left, 0], pos[:, left, 1], pos[:, right, 0], pos[:, right, 1]
-    nx, ny = c * nrm0[:, 0] - s * nrm0[:, 1], s * nrm0[:, 0] + c * nrm0[:, 1]
-    tx, ty = c * tan0[:, 0] - s * tan0[:, 1], s * tan0[:, 0] + c * tan0[:, 1]
-    opening = np.empty((nt, nj, 2))
-    tang = np.empty((nt, nj, 2))
-    for end in range(2):
-        la, lb = local_left[:, end], local_right[:, end]
-        gx = (xr + cr * lb[:, 0] - sr * lb[:, 1]) - (xl + c * la[:, 0] - s * la[:, 1])
-        gy = (yr + sr * lb[:, 0] + cr * lb[:, 1]) - (yl + s * la[:, 0] + c * la[:, 1])
-        opening[:, :, end] = _pair_sum(gx * nx, gy * ny)
-        tang[:, :, end] = _pair_sum(gx * tx, gy * ty)
-    closed_end = np.argmin(opening, axis=2)
-    slip = np.take_along_axis(tang, closed_end[:, :, None], axis=2)[:, :, 0]
+    opening = np.zeros((nt, nj, 2))
+    slip = np.zeros((nt, nj))
+    if nj and nt:
+        left, right, nrm0, tan0, local_left, local_right = _joint_frames(assembly)
+        theta = pos[:, :, 2]
+        K.joint_openings(np.ascontiguousarray(pos, dtype=float), np.cos(theta), np.sin(theta),
+                         left, right, nrm0, tan0, local_left, local_right, opening, slip)
     return opening, slip
 
 
