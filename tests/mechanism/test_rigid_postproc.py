@@ -1,13 +1,13 @@
 """The rigid chain's post-processing, vectorised (the samples -> DemResult path that any stepper
 of the model calls, ``rigid_chain._samples_to_result``), gives what the per-sample code did.
 
-Oracle: the per-sample and per-joint code of main before the vectorisation, kept below
-verbatim as plain references (``_absolute``, ``_joint_kinematics``, ``_collapse_time``,
-``_crossings``, ``_hinge_sets``, ``_at_rest``), run on the very samples a history hands to
-``_samples_to_result``. The vectorised code performs the same floating-point operations in the
-same order, so arrays are compared exactly, except the joint kinematics (trigonometry of a
-strided or a gathered array: 1e-12 m, against openings of 1e-4..1e-1 m); discrete results
-(outcome, onset sample, number of impacts, hinge labels) must agree exactly.
+Oracle: the per-sample and per-joint code of main before the vectorisation, kept verbatim as
+plain references in :mod:`archquake.dem._result_reference` (test and benchmark only), run on
+the very samples a history hands to ``_samples_to_result``. The new code performs the same
+floating-point operations in the same order, so arrays are compared exactly, except the
+joint kinematics (a compiled loop: 1e-12 m, against openings of 1e-4..1e-1 m; measured
+bit-identical here); discrete results (outcome, onset sample, number of impacts, hinge
+labels) must agree exactly.
 """
 
 from __future__ import annotations
@@ -18,126 +18,15 @@ import numpy as np
 import pytest
 
 from archquake import Arch
-from archquake.dem import _kernels as K
+from archquake.dem import _result_reference as REF
 from archquake.dem.assembly import build_arch_assembly
-from archquake.dem.result import (
-    HingeSet,
-    _hinges_at,
-    carry,
-    collapse_parameters,
-    collapse_time,
-    crossings,
-    crown_height,
-    hinge_label,
-    joint_kinematics,
-    rest_threshold,
-    settled,
-)
+from archquake.dem.result import collapse_time, crossings, joint_kinematics
 from archquake.dem.settings import DemSettings
 from archquake.ground import StepImpulse
 from archquake.mechanism import rigid_chain as RC
 from archquake.outcome import Outcome
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
-
-
-# ----------------------------------------------------------------------- main's code, verbatim
-def _absolute(model, qk, vk, u, w):
-    free = (~np.asarray(model.assembly.base, dtype=bool)).astype(np.int64)
-    st = np.zeros((len(free), 6))
-    st[:, :2] = np.asarray(model.assembly.centroids, float)
-    st[:, 0] += u
-    st[:, 3] = w
-    st[model.free_blocks, :3] = qk
-    st[model.free_blocks, 0] += u
-    st[model.free_blocks, 3:] = vk
-    st[model.free_blocks, 3] += w
-    return st
-
-
-def _joint_kinematics(assembly, pos):
-    nt = pos.shape[0]
-    nj = len(assembly.joints)
-    opening = np.zeros((nt, nj, 2))
-    slip = np.zeros((nt, nj))
-    for j, joint in enumerate(assembly.joints):
-        p0, p1 = joint.points
-        tan0 = (p1 - p0) / np.linalg.norm(p1 - p0)
-        nrm0 = np.array([tan0[1], -tan0[0]])
-        if np.dot(assembly.centroids[joint.right] - assembly.centroids[joint.left], nrm0) < 0:
-            nrm0 = -nrm0
-        th = pos[:, joint.left, 2]
-        c, s = np.cos(th), np.sin(th)
-        nrm = np.column_stack([c * nrm0[0] - s * nrm0[1], s * nrm0[0] + c * nrm0[1]])
-        tan = np.column_stack([c * tan0[0] - s * tan0[1], s * tan0[0] + c * tan0[1]])
-        tang = np.zeros((nt, 2))
-        for end in range(2):
-            gap = carry(assembly, pos, joint.right, joint.points[end]) - carry(
-                assembly, pos, joint.left, joint.points[end])
-            opening[:, j, end] = np.sum(gap * nrm, axis=1)
-            tang[:, end] = np.sum(gap * tan, axis=1)
-        closed_end = np.argmin(opening[:, j, :], axis=1)
-        slip[:, j] = tang[np.arange(nt), closed_end]
-    return opening, slip
-
-
-def _collapse_time(assembly, settings, t, pos):
-    if len(t) == 0:
-        return None
-    cpar = collapse_parameters(assembly, settings, float(crown_height(assembly, pos[:1])[0]))
-    free = (~np.asarray(assembly.base)).astype(np.int64)
-    for k in range(len(t)):
-        if K.collapsed(pos[k], free, cpar):
-            return float(t[k])
-    return None
-
-
-def _crossings(t, rot, threshold, stop=None):
-    stop = len(t) if stop is None else stop
-    out = []
-    armed_sign = 0.0
-    for k in range(stop):
-        r = rot[k]
-        if armed_sign == 0.0:
-            if abs(r) > threshold:
-                armed_sign = math.copysign(1.0, r)
-            continue
-        if armed_sign * r <= 0.0 and k > 0:
-            r0 = rot[k - 1]
-            frac = r0 / (r0 - r) if r0 != r else 1.0
-            out.append(float(t[k - 1] + frac * (t[k] - t[k - 1])))
-            armed_sign = 0.0
-            if abs(r) > threshold:
-                armed_sign = math.copysign(1.0, r)
-    return np.array(out)
-
-
-def _hinge_sets(result, every=0.005, relative=0.1):
-    t = result.times
-    dt = float(np.median(np.diff(t))) if t.size > 1 else every
-    stride = max(1, int(round(every / dt))) if dt > 0 else 1
-    end = t.size if result.collapse_time is None else int(np.searchsorted(t, result.collapse_time)) + 1
-    out = []
-    last = ""
-    for k in range(0, min(end, t.size), stride):
-        h = _hinges_at(result.assembly, result.settings, result.joint_opening[k], relative)
-        label = hinge_label(h)
-        if label == last:
-            continue
-        kind = "rest" if not label else ("onset" if not last else "change")
-        out.append(HingeSet(round(float(t[k]), 9), label, max(len(h) - 3, 0), kind))
-        last = label
-    return tuple(out)
-
-
-def _at_rest(model, g, times, vs, motion):
-    window = rest_threshold(model.assembly, g)[1]
-    k = len(times)
-    while k > 1 and times[k - 1] > times[-1] - window:
-        k -= 1
-    kin = [model.kinetic_energy(v) for v in vs[k - 1:]]
-    return settled(model.assembly, g, np.array(times[k - 1:]), np.array(kin),
-                   float(motion.duration))
 
 
 # ----------------------------------------------------------------------- the histories
@@ -164,7 +53,7 @@ def test_vectorised_post_processing_is_mains(monkeypatch, motion, duration, outc
     res, model = run.result, s["model"]
     assert res.outcome is outcome
     # states and energies: as main's per-sample closure and sums built them
-    states = np.array([_absolute(model, a, b, u, w) for a, b, u, w in zip(
+    states = np.array([REF.absolute(model, a, b, u, w) for a, b, u, w in zip(
         s["q"], s["v"], s["ground_displacement"], s["ground_velocity"])])
     assert np.array_equal(res.times, s["times"])
     assert np.array_equal(res.positions, states[:, :, :3])
@@ -180,20 +69,20 @@ def test_vectorised_post_processing_is_mains(monkeypatch, motion, duration, outc
     assert np.array_equal(res.base_velocity, s["ground_velocity"])
     # the joint kinematics, the onset, the collapse, the impacts, the hinge sets
     asm = model.assembly
-    opening, slip = _joint_kinematics(asm, states[:, :, :3])
+    opening, slip = REF.joint_kinematics(asm, states[:, :, :3])
     np.testing.assert_allclose(res.joint_opening, opening, rtol=0, atol=1e-12)
     np.testing.assert_allclose(res.joint_slip, slip, rtol=0, atol=1e-12)
     thr = res.settings.hinge_opening * asm.reference_length
     assert res.onset_time == float(res.times[np.argmax(np.any(opening > thr, axis=(1, 2)))])
-    assert res.collapse_time == _collapse_time(asm, res.settings, res.times, states[:, :, :3])
+    assert res.collapse_time == REF.collapse_time(asm, res.settings, res.times, states[:, :, :3])
     stop = len(res.times) if res.collapse_time is None else int(
         np.searchsorted(res.times, res.collapse_time))
-    impacts = _crossings(res.times, res.rotation, res.settings.hinge_opening, stop)
+    impacts = REF.crossings(res.times, res.rotation, res.settings.hinge_opening, stop)
     assert impacts.size == res.impact_times.size
     np.testing.assert_allclose(res.impact_times, impacts, rtol=0, atol=1e-12)
     if outcome is not Outcome.COLLAPSE:
         assert impacts.size >= 2
-    assert res.hinge_sets() == _hinge_sets(res)
+    assert res.hinge_sets() == REF.hinge_sets(res)
     assert len(res.hinge_sets()) >= 2
 
 
@@ -213,7 +102,7 @@ def test_compiled_joint_kinematics_and_collapse_match_the_per_joint_code(arch):
     pos[0, :, 2] = 0.0
     pos[0, :, :2] = asm.centroids
     opening, slip = joint_kinematics(asm, pos)
-    want_opening, want_slip = _joint_kinematics(asm, pos)
+    want_opening, want_slip = REF.joint_kinematics(asm, pos)
     np.testing.assert_allclose(opening, want_opening, rtol=0, atol=1e-12)
     np.testing.assert_allclose(slip, want_slip, rtol=0, atol=1e-12)
     assert np.array_equal(np.signbit(opening[0]), np.signbit(want_opening[0]))
@@ -222,9 +111,9 @@ def test_compiled_joint_kinematics_and_collapse_match_the_per_joint_code(arch):
     assert collapse_time(asm, settings, t, pos) is None
     pos[-30:, asm.crown_block, 2] = 2.0  # turned past collapse_rotation
     pos[-20:, :, 1] -= 2.0 * asm.reference_length  # the crown has fallen
-    assert collapse_time(asm, settings, t, pos) == _collapse_time(asm, settings, t, pos) == t[-30]
+    assert collapse_time(asm, settings, t, pos) == REF.collapse_time(asm, settings, t, pos) == t[-30]
     pos[-30:, asm.crown_block, 2] = 0.0
-    assert collapse_time(asm, settings, t, pos) == _collapse_time(asm, settings, t, pos) == t[-20]
+    assert collapse_time(asm, settings, t, pos) == REF.collapse_time(asm, settings, t, pos) == t[-20]
 
 
 def test_crossings_match_the_per_sample_loop():
@@ -239,7 +128,7 @@ def test_crossings_match_the_per_sample_loop():
         rot[rng.random(n) < 0.02] = threshold * rng.choice([-1.0, 1.0])
         t = np.cumsum(rng.uniform(1e-4, 1e-3, size=n))
         stop = None if trial % 3 else int(rng.integers(0, n + 1))
-        got, want = crossings(t, rot, threshold, stop), _crossings(t, rot, threshold, stop)
+        got, want = crossings(t, rot, threshold, stop), REF.crossings(t, rot, threshold, stop)
         assert got.shape == want.shape and np.array_equal(got, want)
     assert crossings(np.arange(5.0), np.array([0.0, 2.0, -2.0, 2.0, -2.0]), 1.0).size == 3
 
@@ -258,7 +147,7 @@ def test_rest_check_on_chunks_is_the_per_sample_check():
             edges = list(range(1, end, size)) + [end]
             chunks_t = [t[:1]] + [t[a:b] for a, b in zip(edges[:-1], edges[1:])]
             chunks_v = [v[:1]] + [v[a:b] for a, b in zip(edges[:-1], edges[1:])]
-            want = _at_rest(model, g, list(t[:end]), list(v[:end]), motion)
+            want = REF.at_rest(model, g, list(t[:end]), list(v[:end]), motion)
             assert RC._at_rest(model, g, chunks_t, chunks_v, motion) == want
             answers.add(want)
     assert answers == {True, False}
