@@ -13,6 +13,8 @@ labels) must agree exactly.
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -151,3 +153,20 @@ def test_rest_check_on_chunks_is_the_per_sample_check():
             assert RC._at_rest(model, g, chunks_t, chunks_v, motion) == want
             answers.add(want)
     assert answers == {True, False}
+
+
+def test_production_code_does_not_import_the_plain_reference():
+    """dem/_result_reference.py is test and benchmark only: a rigid run to its summary does not
+    load it."""
+    code = (
+        "import sys, math\n"
+        "from archquake import Arch\n"
+        "from archquake.ground import StepImpulse\n"
+        "from archquake.mechanism.rigid_chain import simulate_rigid\n"
+        "run = simulate_rigid(Arch(10.0, 1.5, math.radians(157.5), 7), StepImpulse.from_g(1.0, 0.2),"
+        " duration=0.3)\n"
+        "run.to_dict(joint_forces=False)\n"
+        "print('archquake.dem._result_reference' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
