@@ -12,6 +12,7 @@ labels) must agree exactly.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import subprocess
 import sys
@@ -21,8 +22,8 @@ import pytest
 
 from archquake import Arch
 from archquake.dem import _result_reference as REF
-from archquake.dem.assembly import build_arch_assembly
-from archquake.dem.result import collapse_time, crossings, joint_kinematics
+from archquake.dem.assembly import block_on_base, build_arch_assembly
+from archquake.dem.result import collapse_time, crossings, joint_kinematics, mirror_link
 from archquake.dem.settings import DemSettings
 from archquake.ground import StepImpulse
 from archquake.mechanism import rigid_chain as RC
@@ -116,6 +117,26 @@ def test_compiled_joint_kinematics_and_collapse_match_the_per_joint_code(arch):
     assert collapse_time(asm, settings, t, pos) == REF.collapse_time(asm, settings, t, pos) == t[-30]
     pos[-30:, asm.crown_block, 2] = 0.0
     assert collapse_time(asm, settings, t, pos) == REF.collapse_time(asm, settings, t, pos) == t[-20]
+
+
+def test_mirror_link_matches_the_per_pair_loop():
+    """Mirror-symmetric assemblies (two arches, a block on its base) give the same mirrored
+    chord; the three-voussoir cut of Oppenheim's arch (blocks of 3, 2 and 2 voussoirs) and an
+    arch with one voussoir's mass changed have no mirror image (None)."""
+    symmetric = [build_arch_assembly(OPPENHEIM), block_on_base(0.4, 2.0),
+                 build_arch_assembly(Arch(5.0, 0.9, math.radians(180.0), 15))]
+    asm = symmetric[0]
+    masses = np.array(asm.masses, dtype=float)
+    masses[2] *= 1.01
+    broken = [build_arch_assembly(OPPENHEIM, cut_joints=(0, 3, 5, 7)),
+              dataclasses.replace(asm, masses=masses)]
+    for assembly in symmetric + broken:
+        got, want = mirror_link(assembly), REF.mirror_link(assembly)
+        assert (got is None) == (want is None) == any(assembly is b for b in broken)
+        if got is not None:
+            assert (got.block_a, got.block_b, got.sign) == (want.block_a, want.block_b, want.sign)
+            assert np.array_equal(got.point_a, want.point_a)
+            assert np.array_equal(got.point_b, want.point_b)
 
 
 def test_crossings_match_the_per_sample_loop():

@@ -1,9 +1,8 @@
-"""Plain references of the block models' post-processing: main's per-sample and per-joint
-code before it was vectorised (the rigid chain's ``absolute`` closure and rest check,
-:func:`~archquake.dem.result.joint_kinematics`, :func:`~archquake.dem.result.collapse_time`,
-:func:`~archquake.dem.result.crossings`, :func:`~archquake.dem.result.hinge_sets`), kept
-verbatim. Test and benchmark only: no production code imports it
-(tests/mechanism/test_rigid_postproc.py holds the fast code to it, and
+"""Plain references of the block models' post-processing: main's per-sample, per-joint and
+per-pair code before it was vectorised (the rigid chain's ``absolute`` closure and rest check;
+:mod:`archquake.dem.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
+``hinge_sets`` and ``mirror_link``), kept verbatim. Test and benchmark only: no production
+code imports it (tests/mechanism/test_rigid_postproc.py holds the fast code to it, and
 benchmarks/bench_rigid_postproc.py measures against it).
 """
 
@@ -14,6 +13,7 @@ import math
 import numpy as np
 
 from archquake.dem import _kernels as K
+from archquake.dem.assembly import RotationLink
 from archquake.dem.result import (
     HingeSet,
     _hinges_at,
@@ -130,3 +130,26 @@ def at_rest(model, g, times, vs, motion):
     kin = [model.kinetic_energy(v) for v in vs[k - 1:]]
     return settled(model.assembly, g, np.array(times[k - 1:]), np.array(kin),
                    excitation_end(motion))
+
+
+def mirror_link(assembly, *, rtol=1e-9):
+    """The mirror image of ``assembly.rotation_link``, or None: one pair of blocks at a time."""
+    polys = assembly.polygons
+    tol = rtol * max(float(np.max(np.abs(p))) for p in polys)
+    image = {}
+    for i, p in enumerate(polys):
+        q = p * np.array([-1.0, 1.0])
+        for j, pj in enumerate(polys):
+            if (pj.shape == q.shape and bool(assembly.base[i]) == bool(assembly.base[j])
+                    and float(np.max(np.min(np.hypot(*(q[:, None, :] - pj[None, :, :]).T), axis=0)))
+                    <= tol
+                    and (assembly.base[i] or math.isclose(float(assembly.masses[i]),
+                                                          float(assembly.masses[j]), rel_tol=1e-9))):
+                image[i] = j
+                break
+        else:
+            return None
+    link = assembly.rotation_link
+    flip = np.array([-1.0, 1.0])
+    return RotationLink(image[link.block_a], np.asarray(link.point_a) * flip,
+                        image[link.block_b], np.asarray(link.point_b) * flip, link.sign)

@@ -117,15 +117,21 @@ def mirror_link(assembly: Assembly, *, rtol: float = 1e-9) -> RotationLink | Non
     """
     polys = assembly.polygons
     tol = rtol * max(float(np.max(np.abs(p))) for p in polys)
+    base = [bool(b) for b in assembly.base]
+    masses = [float(m) for m in assembly.masses]
+    groups: dict[tuple, list[int]] = {}  # blocks by polygon shape, in order
+    for j, pj in enumerate(polys):
+        groups.setdefault(pj.shape, []).append(j)
+    stacks = {shape: np.stack([polys[j] for j in js]) for shape, js in groups.items()}
     image = {}
     for i, p in enumerate(polys):
         q = p * np.array([-1.0, 1.0])
-        for j, pj in enumerate(polys):
-            if (pj.shape == q.shape and bool(assembly.base[i]) == bool(assembly.base[j])
-                    and float(np.max(np.min(np.hypot(*(q[:, None, :] - pj[None, :, :]).T), axis=0)))
-                    <= tol
-                    and (assembly.base[i] or math.isclose(float(assembly.masses[i]),
-                                                          float(assembly.masses[j]), rel_tol=1e-9))):
+        # for each candidate: the farthest of q's vertices from the candidate's nearest vertex
+        d = q[None, :, None, :] - stacks[q.shape][:, None, :, :]
+        far = np.max(np.min(np.hypot(d[..., 0], d[..., 1]), axis=2), axis=1)
+        for j, dist in zip(groups[q.shape], far):
+            if (base[i] == base[j] and float(dist) <= tol
+                    and (base[i] or math.isclose(masses[i], masses[j], rel_tol=1e-9))):
                 image[i] = j
                 break
         else:
