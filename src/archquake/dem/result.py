@@ -52,31 +52,47 @@ def carry(assembly: Assembly, pos: np.ndarray, block: int, point) -> np.ndarray:
     )
 
 
+def _joint_frames(assembly: Assembly) -> tuple[np.ndarray, ...]:
+    """Per recorded joint: left and right blocks (nj,), the normal and the tangent of the
+    undisplaced joint (nj, 2), and each end's position relative to the left and to the right
+    block's centroid (nj, 2 ends, 2), m. The normal points from left into right."""
+    nj = len(assembly.joints)
+    left = np.zeros(nj, dtype=np.int64)
+    right = np.zeros(nj, dtype=np.int64)
+    nrm0 = np.zeros((nj, 2))
+    tan0 = np.zeros((nj, 2))
+    local_left = np.zeros((nj, 2, 2))
+    local_right = np.zeros((nj, 2, 2))
+    for j, joint in enumerate(assembly.joints):
+        p0, p1 = joint.points
+        tan = (p1 - p0) / np.linalg.norm(p1 - p0)
+        nrm = np.array([tan[1], -tan[0]])
+        if np.dot(assembly.centroids[joint.right] - assembly.centroids[joint.left], nrm) < 0:
+            nrm = -nrm
+        left[j], right[j], nrm0[j], tan0[j] = joint.left, joint.right, nrm, tan
+        for end in range(2):
+            point = np.asarray(joint.points[end], dtype=float)
+            local_left[j, end] = point - assembly.centroids[joint.left]
+            local_right[j, end] = point - assembly.centroids[joint.right]
+    return left, right, nrm0, tan0, local_left, local_right
+
+
 def joint_kinematics(assembly: Assembly, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m."""
+    """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m.
+
+    Each end's gap is the right block's copy of the end point minus the left block's
+    (:func:`carry`), resolved on the joint's normal and tangent turned with the left block;
+    the slip is the tangential gap at the more closed end. One compiled loop,
+    :func:`archquake.dem._kernels.joint_openings`, over every sample and joint."""
     nt = pos.shape[0]
     nj = len(assembly.joints)
     opening = np.zeros((nt, nj, 2))
     slip = np.zeros((nt, nj))
-    for j, joint in enumerate(assembly.joints):
-        p0, p1 = joint.points
-        tan0 = (p1 - p0) / np.linalg.norm(p1 - p0)
-        nrm0 = np.array([tan0[1], -tan0[0]])
-        if np.dot(assembly.centroids[joint.right] - assembly.centroids[joint.left], nrm0) < 0:
-            nrm0 = -nrm0
-        th = pos[:, joint.left, 2]
-        c, s = np.cos(th), np.sin(th)
-        nrm = np.column_stack([c * nrm0[0] - s * nrm0[1], s * nrm0[0] + c * nrm0[1]])
-        tan = np.column_stack([c * tan0[0] - s * tan0[1], s * tan0[0] + c * tan0[1]])
-        tang = np.zeros((nt, 2))
-        for end in range(2):
-            gap = carry(assembly, pos, joint.right, joint.points[end]) - carry(
-                assembly, pos, joint.left, joint.points[end]
-            )
-            opening[:, j, end] = np.sum(gap * nrm, axis=1)
-            tang[:, end] = np.sum(gap * tan, axis=1)
-        closed_end = np.argmin(opening[:, j, :], axis=1)
-        slip[:, j] = tang[np.arange(nt), closed_end]
+    if nj and nt:
+        left, right, nrm0, tan0, local_left, local_right = _joint_frames(assembly)
+        theta = pos[:, :, 2]
+        K.joint_openings(np.ascontiguousarray(pos, dtype=float), np.cos(theta), np.sin(theta),
+                         left, right, nrm0, tan0, local_left, local_right, opening, slip)
     return opening, slip
 
 
@@ -101,15 +117,21 @@ def mirror_link(assembly: Assembly, *, rtol: float = 1e-9) -> RotationLink | Non
     """
     polys = assembly.polygons
     tol = rtol * max(float(np.max(np.abs(p))) for p in polys)
+    base = [bool(b) for b in assembly.base]
+    masses = [float(m) for m in assembly.masses]
+    groups: dict[tuple, list[int]] = {}  # blocks by polygon shape, in order
+    for j, pj in enumerate(polys):
+        groups.setdefault(pj.shape, []).append(j)
+    stacks = {shape: np.stack([polys[j] for j in js]) for shape, js in groups.items()}
     image = {}
     for i, p in enumerate(polys):
         q = p * np.array([-1.0, 1.0])
-        for j, pj in enumerate(polys):
-            if (pj.shape == q.shape and bool(assembly.base[i]) == bool(assembly.base[j])
-                    and float(np.max(np.min(np.hypot(*(q[:, None, :] - pj[None, :, :]).T), axis=0)))
-                    <= tol
-                    and (assembly.base[i] or math.isclose(float(assembly.masses[i]),
-                                                          float(assembly.masses[j]), rel_tol=1e-9))):
+        # for each candidate: the farthest of q's vertices from the candidate's nearest vertex
+        d = q[None, :, None, :] - stacks[q.shape][:, None, :, :]
+        far = np.max(np.min(np.hypot(d[..., 0], d[..., 1]), axis=2), axis=1)
+        for j, dist in zip(groups[q.shape], far):
+            if (base[i] == base[j] and float(dist) <= tol
+                    and (base[i] or math.isclose(masses[i], masses[j], rel_tol=1e-9))):
                 image[i] = j
                 break
         else:
@@ -187,33 +209,45 @@ def collapse_time(assembly: Assembly, settings: DemSettings, t: np.ndarray, pos:
         return None
     cpar = collapse_parameters(assembly, settings, float(crown_height(assembly, pos[:1])[0]))
     free = (~np.asarray(assembly.base)).astype(np.int64)
-    for k in range(len(t)):
-        if K.collapsed(pos[k], free, cpar):
-            return float(t[k])
-    return None
+    k = K.first_collapsed(np.ascontiguousarray(pos[:, :, :3], dtype=float), free, cpar)
+    return float(t[k]) if k >= 0 else None
 
 
 # --------------------------------------------------------------------------- half cycles
 def crossings(t: np.ndarray, rot: np.ndarray, threshold: float, stop: int | None = None
               ) -> np.ndarray:
     """Times (s) at which ``rot`` changes sign, each after it exceeded ``threshold`` on the
-    current side, among the first ``stop`` samples: the DEM's impacts (module docstring)."""
+    current side, among the first ``stop`` samples: the DEM's impacts (module docstring).
+
+    Armed at the first sample beyond the threshold, a crossing is the next sample on the other
+    side (or at zero); the time is interpolated linearly between it and the sample before, and
+    the next arming is that sample itself if it is beyond the threshold, else the next one that
+    is. Each step is a search in the sorted indices of the samples beyond the threshold and of
+    those <= 0 and >= 0, so the cost grows with the crossings, not with the samples."""
     stop = len(t) if stop is None else stop
-    out = []
-    armed_sign = 0.0
-    for k in range(stop):
-        r = rot[k]
-        if armed_sign == 0.0:
-            if abs(r) > threshold:
-                armed_sign = math.copysign(1.0, r)
-            continue
-        if armed_sign * r <= 0.0 and k > 0:
-            r0 = rot[k - 1]
-            frac = r0 / (r0 - r) if r0 != r else 1.0
+    r = np.asarray(rot[:stop], dtype=float)
+    beyond = np.flatnonzero(np.abs(r) > threshold)
+    side = {1.0: np.flatnonzero(r <= 0.0), -1.0: np.flatnonzero(r >= 0.0)}
+    out: list[float] = []
+    k = -1  # the last sample looked at
+    while True:
+        i = int(np.searchsorted(beyond, k, side="right"))
+        if i == beyond.size:
+            break
+        armed = beyond[i]
+        while True:
+            sign = math.copysign(1.0, r[armed])
+            other = side[sign]
+            i = int(np.searchsorted(other, armed, side="right"))
+            if i == other.size:
+                return np.array(out)
+            k = int(other[i])
+            r0, r1 = rot[k - 1], rot[k]
+            frac = r0 / (r0 - r1) if r0 != r1 else 1.0
             out.append(float(t[k - 1] + frac * (t[k] - t[k - 1])))
-            armed_sign = 0.0
-            if abs(r) > threshold:
-                armed_sign = math.copysign(1.0, r)
+            if not abs(r1) > threshold:
+                break
+            armed = k
     return np.array(out)
 
 
@@ -351,15 +385,31 @@ def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
     dt = float(np.median(np.diff(t))) if t.size > 1 else every
     stride = max(1, int(round(every / dt))) if dt > 0 else 1
     end = t.size if result.collapse_time is None else int(np.searchsorted(t, result.collapse_time)) + 1
+    ks = np.arange(0, min(end, t.size), stride)
+    if ks.size == 0:
+        return ()
+    # the hinges of every read sample at once (as _hinges_at); a label is written only where
+    # the open joints or their closed ends change from the sample read before
+    opening = result.joint_opening[ks]
+    widest = opening.max(axis=2)
+    top = relative * widest.max(axis=1, initial=0.0)
+    thr = result.settings.hinge_opening * result.assembly.reference_length
+    floor = np.where(top > thr, top, thr)
+    hinge = widest > floor[:, None]
+    closed = np.where(hinge, np.argmin(opening, axis=2), -1)
+    changed = np.ones(ks.size, dtype=bool)
+    changed[1:] = np.any(closed[1:] != closed[:-1], axis=1)
+    joints = result.assembly.meta.get("cut_joints", list(range(opening.shape[1])))
+    faces = [joint.faces for joint in result.assembly.joints]
     out: list[HingeSet] = []
     last = ""
-    for k in range(0, min(end, t.size), stride):
-        h = _hinges_at(result.assembly, result.settings, result.joint_opening[k], relative)
+    for r in np.flatnonzero(changed):
+        h = [(int(joints[j]), faces[j][closed[r, j]]) for j in np.flatnonzero(hinge[r])]
         label = hinge_label(h)
         if label == last:
             continue
         kind = "rest" if not label else ("onset" if not last else "change")
-        out.append(HingeSet(round(float(t[k]), 9), label, max(len(h) - 3, 0), kind))
+        out.append(HingeSet(round(float(t[ks[r]]), 9), label, max(len(h) - 3, 0), kind))
         last = label
     return tuple(out)
 

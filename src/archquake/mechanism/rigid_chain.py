@@ -29,10 +29,12 @@ joint can reopen its neighbour at once); Moreau-Jean needs no event location and
 accumulation, at first order in h. The convergence in h is measured (docs/mechanism.md).
 
 Energies are relative to the ground. The results are a :class:`archquake.dem.DemResult` built
-by the DEM's own post-processing (:meth:`DemResult.from_samples`), so impacts, hinges, collapse
-criteria and the rotation measure are read exactly as in the DEM; in it, ``strain`` is zero and
-the ``damping`` column holds the energy removed by the contact projections (the plastic impacts,
-and the scheme's O(h) loss in persistent contacts), not Rayleigh damping.
+by the DEM's own post-processing (:meth:`DemResult.from_samples`, through
+:func:`_samples_to_result`, which any stepper of this model hands its samples to), so impacts,
+hinges, collapse criteria and the rotation measure are read exactly as in the DEM; in it,
+``strain`` is zero and the ``damping`` column holds the energy removed by the contact
+projections (the plastic impacts, and the scheme's O(h) loss in persistent contacts), not
+Rayleigh damping.
 """
 
 from __future__ import annotations
@@ -226,16 +228,22 @@ class RigidRun:
 
 
 def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool:
-    """The samples so far end at rest (:func:`archquake.dem.result.settled`)."""
+    """The samples so far end at rest (:func:`archquake.dem.result.settled`). ``times`` and
+    ``vs`` are the recorded chunks, (n,) and (n, nb, 3) each; only the last window's are read."""
     from archquake.dem.result import rest_threshold, settled
 
     window = rest_threshold(model.assembly, g)[1]
-    k = len(times)
-    while k > 1 and times[k - 1] > times[-1] - window:
+    t_last = float(times[-1][-1])
+    first = len(times) - 1  # the chunks from this one on hold the window and the sample before
+    while first > 0 and not times[first][0] <= t_last - window:
+        first -= 1
+    t = np.concatenate(times[first:])
+    v = np.concatenate(vs[first:])
+    k = len(t)
+    while k > 1 and t[k - 1] > t_last - window:
         k -= 1
-    kin = [model.kinetic_energy(v) for v in vs[k - 1:]]
-    return settled(model.assembly, g, np.array(times[k - 1:]), np.array(kin),
-                   excitation_end(motion))
+    kin = [model.kinetic_energy(vk) for vk in v[k - 1:]]
+    return settled(model.assembly, g, t[k - 1:], np.array(kin), excitation_end(motion))
 
 
 def _mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
@@ -315,27 +323,18 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     tol = float(solver_tolerance) * math.sqrt(g * lref)
     gap_tol = GAP_TOLERANCE * lref
     free = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)
-    cents_all = np.asarray(asm.centroids, float)
     cpar = collapse_parameters(asm, settings, math.nan)
-    times, qs, vs, ds = [0.0], [q.copy()], [v.copy()], [diag.copy()]
-    ug, vg = [0.0], [0.0]
+    # the samples, one array per chunk (the first chunk: the initial state)
+    times: list[np.ndarray] = [np.zeros(1)]
+    qs, vs, ds = [q[None].copy()], [v[None].copy()], [diag[None].copy()]
+    ug: list[np.ndarray] = [np.zeros(1)]
+    vg: list[np.ndarray] = [np.zeros(1)]
     u_cur = v_cur = 0.0
     step = 0
     worst = 0
     t_wall = _time.perf_counter()
-
-    def absolute(qk, vk, u, w):
-        st = np.zeros((len(free), 6))
-        st[:, :2] = cents_all
-        st[:, 0] += u
-        st[:, 3] = w
-        st[model.free_blocks, :3] = qk
-        st[model.free_blocks, 0] += u
-        st[model.free_blocks, 3:] = vk
-        st[model.free_blocks, 3] += w
-        return st
-
-    cpar[DK.C_CROWN_Y0] = crown_height(asm, absolute(q, v, 0.0, 0.0)[None, :, :3])[0]
+    cpar[DK.C_CROWN_Y0] = crown_height(asm, absolute_states(model, q[None], v[None], np.zeros(1),
+                                                            np.zeros(1))[:, :, :3])[0]
     collapsed = False
     n_cap = n_total if until_rest is None else max(n_total, int(math.ceil(until_rest / h - 1e-9)))
     while step < n_cap and not collapsed:
@@ -361,39 +360,27 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         vg_steps = v_cur + h * np.cumsum(acc)
         ug_steps = u_cur + h * np.cumsum(0.5 * (np.concatenate([[v_cur], vg_steps[:-1]])
                                                  + vg_steps))
-        for r in range(n_out):
-            k = (r + 1) * out_every - 1
+        if n_out:
+            k = (np.arange(n_out) + 1) * out_every - 1  # the recorded steps of the chunk
             times.append((step + k + 1) * h)
-            qs.append(oq[r])
-            vs.append(ov[r])
-            ds.append(od[r])
-            ug.append(float(ug_steps[k]))
-            vg.append(float(vg_steps[k]))
+            qs.append(oq)
+            vs.append(ov)
+            ds.append(od)
+            ug.append(ug_steps[k])
+            vg.append(vg_steps[k])
         u_cur, v_cur = float(ug_steps[-1]), float(vg_steps[-1])
         step += n
         if settings.stop_at_collapse and n_out:
-            collapsed = bool(DK.collapsed(absolute(qs[-1], vs[-1], ug[-1], vg[-1]), free, cpar))
+            last = absolute_states(model, oq[-1:], ov[-1:], ug[-1][-1:], vg[-1][-1:])[0]
+            collapsed = bool(DK.collapsed(last, free, cpar))
     wall = _time.perf_counter() - t_wall
-    t = np.array(times)
-    qa = np.array(qs)
-    va = np.array(vs)
-    da = np.array(ds)
-    states = np.array([absolute(a, b, u, w_) for a, b, u, w_ in zip(qa, va, ug, vg)])
-    kin = 0.5 * ((va[:, :, 0] ** 2 + va[:, :, 1] ** 2) @ model.mass + va[:, :, 2] ** 2 @ model.inertia)
-    pot = g * (qa[:, :, 1] - model.centroids[None, :, 1]) @ model.mass
-    energies = np.zeros((len(t), 8))
-    energies[:, 0] = kin
-    energies[:, 1] = pot
-    energies[:, 3] = da[:, RK.D_DISSIPATED]
-    energies[:, 5] = da[:, RK.D_INPUT]
-    energies[:, 6] = ug
-    energies[:, 7] = vg
-    motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
-        motion, "name", motion))}
-    res = DemResult.from_samples(asm, settings.with_(duration=duration, time_step=h,
-                                                     output_interval=out_every * h),
-                                 motion_d, g, h, math.nan, step, 0, t, states, energies,
-                                 excitation_end=excitation_end(motion))
+    da = np.concatenate(ds)
+    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
+                             output_interval=out_every * h, n_steps=step,
+                             times=np.concatenate(times), q=np.concatenate(qs),
+                             v=np.concatenate(vs), dissipated=da[:, RK.D_DISSIPATED],
+                             input_work=da[:, RK.D_INPUT], ground_displacement=np.concatenate(ug),
+                             ground_velocity=np.concatenate(vg))
     return RigidRun(result=res, time_step=h,
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
@@ -401,4 +388,84 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     friction=friction, motion=motion)
 
 
-__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]
+def absolute_states(model: RigidModel, q: np.ndarray, v: np.ndarray,
+                    ground_displacement: np.ndarray, ground_velocity: np.ndarray) -> np.ndarray:
+    """The DEM's recorded states of every block of the assembly (base blocks included) in the
+    absolute frame, (nt, n_blocks, 6): x, y (m), theta (rad), vx, vy (m/s), omega (rad/s).
+
+    Parameters
+    ----------
+    model : RigidModel
+    q, v : ndarray (nt, nb, 3)
+        The free bodies' configurations and velocities relative to the ground: x, y (m),
+        theta (rad); vx, vy (m/s), omega (rad/s).
+    ground_displacement, ground_velocity : ndarray (nt,)
+        x_g (m) and x_g' (m/s): added to every block's x and vx (the base blocks move with
+        the ground, at their undisplaced centroids).
+    """
+    u = np.asarray(ground_displacement, dtype=float)[:, None]
+    w = np.asarray(ground_velocity, dtype=float)[:, None]
+    blocks = model.free_blocks
+    st = np.zeros((q.shape[0], len(model.assembly.base), 6))
+    st[:, :, :2] = model.assembly.centroids
+    st[:, :, 0] += u
+    st[:, :, 3] = w
+    st[:, blocks, :3] = q
+    st[:, blocks, 0] += u
+    st[:, blocks, 3:] = v
+    st[:, blocks, 3] += w
+    return st
+
+
+def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: float,
+                       time_step: float, duration: float, output_interval: float, n_steps: int,
+                       times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
+                       input_work: np.ndarray, ground_displacement: np.ndarray,
+                       ground_velocity: np.ndarray) -> DemResult:
+    """The recorded samples of a rigid-chain run as a :class:`DemResult` (the DEM's
+    post-processing, :meth:`DemResult.from_samples`; module docstring): what any stepper of
+    this model hands back.
+
+    Parameters
+    ----------
+    model : RigidModel
+    motion : GroundMotion
+        Recorded by its ``to_dict()``; its ``duration`` is the end of the excitation.
+    settings : DemSettings
+        The thresholds of the verdict; recorded with ``duration``, ``time_step`` and
+        ``output_interval`` (s) replaced.
+    g : float
+        m/s^2.
+    n_steps : int
+        Steps taken.
+    times : ndarray (nt,)
+        s, from the start of the ground motion.
+    q, v : ndarray (nt, nb, 3)
+        Configurations and velocities of the free bodies relative to the ground
+        (:func:`absolute_states`).
+    dissipated, input_work : ndarray (nt,)
+        J: energy removed by the contact step (the ``damping`` column) and work of the
+        inertial load, since t = 0.
+    ground_displacement, ground_velocity : ndarray (nt,)
+        The ground's x_g (m) and x_g' (m/s).
+    """
+    states = absolute_states(model, q, v, ground_displacement, ground_velocity)
+    kin = 0.5 * ((v[:, :, 0] ** 2 + v[:, :, 1] ** 2) @ model.mass + v[:, :, 2] ** 2 @ model.inertia)
+    pot = g * (q[:, :, 1] - model.centroids[None, :, 1]) @ model.mass
+    energies = np.zeros((len(times), 8))
+    energies[:, 0] = kin
+    energies[:, 1] = pot
+    energies[:, 3] = dissipated
+    energies[:, 5] = input_work
+    energies[:, 6] = ground_displacement
+    energies[:, 7] = ground_velocity
+    motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
+        motion, "name", motion))}
+    return DemResult.from_samples(model.assembly,
+                                  settings.with_(duration=duration, time_step=time_step,
+                                                 output_interval=output_interval),
+                                  motion_d, g, time_step, math.nan, n_steps, 0, times, states,
+                                  energies, excitation_end=excitation_end(motion))
+
+
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "absolute_states", "simulate_rigid"]
