@@ -46,10 +46,12 @@ def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: floa
 
 def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
                    settings=None, time_step: float | None = None, tail: float = 4.0,
-                   solver_tolerance: float | None = None, g: float = STANDARD_GRAVITY) -> bool:
+                   solver_tolerance: float | None = None, solver: str = "direct",
+                   g: float = STANDARD_GRAVITY) -> bool:
     """Whether ``model`` ("dem" or "rigid") collapses under StepImpulse(magnitude_g, tp),
     run for 3 t_p + ``tail`` s (the DEM's collapses in the second half cycle come 3.6-4.7 s
-    after the start on Oppenheim's arch: its default 3 s duration misses them)."""
+    after the start on Oppenheim's arch: its default 3 s duration misses them). ``solver``:
+    the rigid chain's (:func:`~archquake.mechanism.rigid_chain.simulate_rigid`)."""
     from archquake.ground import StepImpulse
 
     motion = StepImpulse.from_g(magnitude_g, tp, g=g)
@@ -65,7 +67,7 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
     run = simulate_rigid(arch, motion, duration=3 * tp + tail, output_interval=2e-3,
                          time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g,
                          solver_tolerance=(SOLVER_TOLERANCE if solver_tolerance is None
-                                           else solver_tolerance))
+                                           else solver_tolerance), solver=solver)
     return run.result.outcome.value == "collapse"
 
 

@@ -175,7 +175,10 @@ class RigidRun:
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
     correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
     ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
-    motion it was run with.
+    motion it was run with; ``events``: with ``solver="events"``, the event integrator's
+    record (:func:`archquake.mechanism.rigid_events.run_events`: counters, the event log, the
+    times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
+    adaptive).
     """
 
     result: DemResult
@@ -187,6 +190,7 @@ class RigidRun:
     wall_s: float
     friction: float | None = None
     motion: object = field(default=None, repr=False, compare=False)
+    events: dict | None = field(default=None, repr=False, compare=False)
 
     @property
     def max_friction_demand(self) -> float:
@@ -220,7 +224,8 @@ class RigidRun:
         out["friction_coefficient"] = self.friction
         if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
-        out["rigid"] = {"time_step_s": self.time_step,
+        out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
+                        "time_step_s": self.time_step,
                         "max_penetration_m": self.max_penetration_m,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
                         "wall_s": self.wall_s}
@@ -284,11 +289,13 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     friction : float, optional
         Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
         assumption. With mu the step is no longer a projection (``_rigid_kernels`` docstring).
-    solver : {"direct", "pgs"}
+    solver : {"direct", "pgs", "events"}
         The contact step's solver: "direct" (default) solves the guessed active set exactly and
         falls back to Gauss-Seidel when the guess fails (``_rigid_kernels.project_direct``);
         "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction`` the step
-        is always Gauss-Seidel.
+        is always Gauss-Seidel. "events": the same model integrated from contact event to
+        contact event (:mod:`archquake.mechanism.rigid_events`; no friction, from rest;
+        ``time_step`` and ``chunk`` are not used).
     until_rest : float, optional
         s: if the arch has neither collapsed nor come to rest (:func:`archquake.dem.result.settled`)
         by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
@@ -307,8 +314,16 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     if friction is not None and not (mu > 0 and math.isfinite(mu)):
         raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
     methods = {"direct": RK.METHOD_DIRECT, "pgs": RK.METHOD_PGS}
+    if solver == "events":
+        if friction is not None or initial is not None:
+            raise InvalidParameterError(
+                "solver='events' runs the no-slip chain from rest: leave friction and initial "
+                "unset, or use solver='direct'")
+        return _simulate_events(model, motion, settings, duration=duration,
+                                output_interval=output_interval, g=g, until_rest=until_rest)
     if solver not in methods:
-        raise InvalidParameterError(f"solver must be 'direct' or 'pgs', got {solver!r}")
+        raise InvalidParameterError(
+            f"solver must be 'direct', 'pgs' or 'events', got {solver!r}")
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
@@ -386,6 +401,33 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
                     residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall,
                     friction=friction, motion=motion)
+
+
+def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
+                     output_interval: float, g: float, until_rest: float | None) -> RigidRun:
+    """``simulate_rigid(..., solver="events")``: :func:`~archquake.mechanism.rigid_events.
+    run_events` and the same post-processing as the time stepper's."""
+    from archquake.mechanism.rigid_events import EventModel, ground_kinematics, run_events
+
+    em = EventModel.of(model)
+    raw = run_events(em, motion, duration=duration, output_interval=output_interval, g=g,
+                     settings=settings, until_rest=until_rest)
+    q0, v0 = model.rest()
+    times = np.r_[0.0, raw["times"]]
+    q = np.concatenate([q0[None], raw["q"]])
+    v = np.concatenate([v0[None], raw["v"]])
+    e = np.vstack([np.zeros((1, raw["e"].shape[1])), raw["e"]])
+    ug, vg = ground_kinematics(motion, times)
+    # the settings record a finite step: the output interval (the integrator's own is adaptive)
+    res = _samples_to_result(model, motion, settings, g=g, time_step=output_interval,
+                             duration=duration, output_interval=output_interval,
+                             n_steps=int(raw["counters"][0]), times=times, q=q, v=v,
+                             dissipated=e[:, 2], input_work=e[:, 3], ground_displacement=ug,
+                             ground_velocity=vg)
+    return RigidRun(result=res, time_step=math.nan, max_penetration_m=raw["max_drift_m"],
+                    friction_demand=e[:, 4].copy(), max_sweeps=int(raw["counters"][9]),
+                    residual=0.0, wall_s=raw["wall_s"], friction=None, motion=motion,
+                    events=raw)
 
 
 def absolute_states(model: RigidModel, q: np.ndarray, v: np.ndarray,

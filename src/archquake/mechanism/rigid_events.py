@@ -1,0 +1,311 @@
+"""The rigid-block chain integrated from event to event (issue 16): ``simulate_rigid(...,
+solver="events")``.
+
+The model is :mod:`archquake.mechanism.rigid_chain`'s (rigid voussoirs, plastic no-slip corner
+contacts, any number of hinges); only the integration differs. Between contact changes the arch
+moves with K - 3 degrees of freedom (K hinges), an ODE in the hinges' relative rotations
+integrated to a tolerance; closures (plastic impacts, the same cone projection as the time
+stepper's), openings (a corner force of a locked joint reaching zero) and the onset are located
+as events (:mod:`archquake.mechanism._event_kernels`). Energy between events is conserved to
+the integrator's tolerance, instead of the stepper's O(h) loss in persistent contact.
+
+What the event integrator does not model (a hinge in tension, a joint separating, chattering
+contacts) it hands to the time stepper at that instant, which finishes the run; the run says so
+(``RigidRun.events["fallback_at_s"]``).
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from archquake.constants import STANDARD_GRAVITY
+from archquake.errors import InvalidParameterError
+from archquake.mechanism import _event_kernels as EK
+from archquake.mechanism import _rigid_kernels as RK
+
+#: Relative and absolute (rad, rad/s) tolerances of the Dormand-Prince steps. With these and
+#: ``MAX_STEP`` the energy between closures of free rocking is constant to 5e-9 of itself
+#: (Oppenheim's arch; at 1e-10 / 0.02 it is 4e-7, mostly the samples' cubic interpolation).
+EVENT_RTOL = 1.0e-12
+EVENT_ATOL = 1.0e-14
+#: Longest step, in units of sqrt(L/g) (L the assembly's reference length): bounds how far a
+#: contact force can dip below zero and back unseen (each step is also checked at its middle)
+#: and the samples' interpolation error.
+MAX_STEP = 0.005
+#: How long the time stepper runs when the event integrator hands over, in sqrt(L/g) (then the
+#: event integrator resumes from the stepper's state).
+FALLBACK_WINDOW = 0.02
+
+WHY = {EK.WHY_NONE: "", EK.WHY_TENSILE_HINGE: "a hinge's reaction became tensile (flight)",
+       EK.WHY_SEPARATION: "a joint separated (its pivot moved away)",
+       EK.WHY_WRONG_WAY: "an opening hinge turned the wrong way",
+       EK.WHY_CHATTER: f"more than {EK.CHATTER_EVENTS} contact events within "
+                       f"{EK.CHATTER_WINDOW * 1e3:g} ms",
+       EK.WHY_SINGULAR: "the mechanism's equations became singular",
+       EK.WHY_TOO_MANY_HINGES: f"more than {EK.MAX_HINGES} hinges"}
+
+
+_MODELS: dict[int, EventModel] = {}
+
+
+@dataclass(frozen=True)
+class EventModel:
+    """A :class:`~archquake.mechanism.rigid_chain.RigidModel` laid out for the event integrator:
+    blocks in chain order (joint j between blocks j - 1 and j, the springings -1), prefix sums
+    of the blocks' mass properties, the joints' undisplaced corners ``p0`` (nj, 2, 2), normals,
+    tangents, half-widths ``hw`` (m) and ``sg`` = t x n (+-1)."""
+
+    rigid: object
+    X0: np.ndarray
+    mb: np.ndarray
+    ib: np.ndarray
+    S0: np.ndarray
+    S1: np.ndarray
+    S2: np.ndarray
+    p0: np.ndarray
+    n0: np.ndarray
+    t0: np.ndarray
+    hw: np.ndarray
+    sg: np.ndarray
+
+    @classmethod
+    def build(cls, rigid) -> EventModel:
+        n = rigid.n_bodies
+        if not (np.array_equal(rigid.ja, np.arange(-1, n))
+                and np.array_equal(rigid.jb, np.r_[np.arange(n), -1])):
+            raise InvalidParameterError(
+                "the event integrator needs a single chain of blocks between two springings "
+                "(use solver='direct')")
+        X0 = np.asarray(rigid.centroids, float)
+        mb = np.asarray(rigid.mass, float)
+        ib = np.asarray(rigid.inertia, float)
+        S0 = np.r_[0.0, np.cumsum(mb)]
+        S1 = np.vstack([np.zeros(2), np.cumsum(mb[:, None] * X0, axis=0)])
+        S2 = np.r_[0.0, np.cumsum(mb * (X0 ** 2).sum(1) + ib)]
+        p0 = np.asarray(rigid.arm_b, float).copy()
+        for j in range(n):
+            p0[j] += X0[j]
+        n0 = np.asarray(rigid.n0, float)
+        t0 = np.asarray(rigid.t0, float)
+        hw = 0.5 * np.linalg.norm(p0[:, 1] - p0[:, 0], axis=1)
+        sg = np.sign(t0[:, 0] * n0[:, 1] - t0[:, 1] * n0[:, 0])
+        return cls(rigid, X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg)
+
+    @classmethod
+    def of(cls, rigid) -> EventModel:
+        """:meth:`build`, memoised on the rigid model (its onset thresholds are computed once)."""
+        key = id(rigid)
+        hit = _MODELS.get(key)
+        if hit is not None and hit.rigid is rigid:
+            return hit
+        em = cls.build(rigid)
+        if len(_MODELS) > 64:
+            _MODELS.clear()
+        _MODELS[key] = em
+        return em
+
+    @property
+    def lref(self) -> float:
+        return float(self.rigid.assembly.reference_length)
+
+    def _moves(self, ax_g: float) -> bool:
+        """Whether the locked arch starts to move under x_g'' = ax_g (in g, g = 1): the Gauss
+        projection of the free acceleration opens four or more hinges."""
+        r = self.rigid
+        n = r.n_bodies
+        q, _ = r.rest()
+        a = np.zeros((n, 3))
+        a[:, 0] = -ax_g
+        a[:, 1] = -1.0
+        gaps, nrm, tan, pts = RK.geometry(q, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0)
+        acc, _, _, _ = RK.project_direct(q, a, 1.0 / self.mb, 1.0 / self.ib, r.ja, r.jb, gaps,
+                                         nrm, tan, pts, 1e-9 * self.lref,
+                                         np.zeros((n + 1, 3)), 1e-13 * math.sqrt(self.lref),
+                                         100_000, 0.0)
+        jh = np.zeros(n + 1, np.int64)
+        k, _ = EK.modes_after_projection(q, acc, np.zeros(n + 1), self.sg, r.ja, r.jb, r.arm_a,
+                                         r.arm_b, nrm, 1e-7, 1e-7 * (1 + abs(ax_g)), jh,
+                                         jh.copy(), np.zeros(n + 1), 1e-9 / self.lref)
+        return k >= 4
+
+    @cached_property
+    def onset_g(self) -> tuple[float, float]:
+        """(lambda_+, lambda_-): the ground accelerations, in g, towards +x and -x at which the
+        locked arch starts to move (the no-slip rigid chain's collapse multipliers), by
+        bisection on the Gauss projection to 1e-12; inf above 20 g."""
+        out = []
+        for sgn in (1.0, -1.0):
+            lo, hi = 0.0, 20.0
+            if not self._moves(sgn * hi):
+                out.append(math.inf)
+                continue
+            while hi - lo > 1e-12 * hi:
+                mid = 0.5 * (lo + hi)
+                if self._moves(sgn * mid):
+                    hi = mid
+                else:
+                    lo = mid
+            out.append(hi)
+        return out[0], out[1]
+
+
+def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """Ground displacement (m) and velocity (m/s) at ``times`` (s, from 0): the trapezoid rule
+    on a grid of ``step`` s (exact for the piecewise-constant pulses on their breakpoints)."""
+    t_end = float(times[-1])
+    n = max(2, int(math.ceil(t_end / step)) + 1)
+    grid = np.linspace(0.0, t_end, n)
+    a = np.asarray(motion.acceleration(grid), float)
+    vg = np.r_[0.0, np.cumsum(0.5 * (a[1:] + a[:-1]) * np.diff(grid))]
+    ug = np.r_[0.0, np.cumsum(0.5 * (vg[1:] + vg[:-1]) * np.diff(grid))]
+    return np.interp(times, grid, ug), np.interp(times, grid, vg)
+
+
+def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, dt_out: float,
+                    out_q, out_v, out_e, written: int, diag, g: float, state_all, free, cpar,
+                    stop_at_collapse: bool) -> tuple[int, float, bool]:
+    """Run the time stepper (:func:`archquake.mechanism._rigid_kernels.run`, direct solve, its
+    default step) from (q, v) at t0 to the first output time at least ``window`` s later,
+    writing the samples it passes; (q, v) become its end state. Returns (samples written, end
+    time, collapsed)."""
+    from archquake.dem import _kernels as DK
+    from archquake.mechanism.rigid_chain import (
+        DEFAULT_TIME_STEP,
+        GAP_TOLERANCE,
+        MAX_SWEEPS,
+        SOLVER_TOLERANCE,
+        _mean_acceleration,
+    )
+
+    r = model.rigid
+    lref = model.lref
+    cap = out_q.shape[0]
+    tol = SOLVER_TOLERANCE * math.sqrt(g * lref)
+    p_warm = np.zeros((len(r.ja), 3))
+    k_first = written + 1  # the next sample, at k_first dt_out >= t0
+    k_last = min(cap, int(math.ceil((t0 + window) / dt_out - 1e-9)))
+    t = t0
+    collapsed = False
+    for k in range(k_first, k_last + 1):
+        t_k = k * dt_out
+        ns = max(1, int(math.ceil((t_k - t) / DEFAULT_TIME_STEP - 1e-9)))
+        h = (t_k - t) / ns
+        dg = np.zeros(RK.N_DIAG)
+        oq = np.zeros((1, r.n_bodies, 3))
+        ov = np.zeros_like(oq)
+        od = np.zeros((1, RK.N_DIAG))
+        if h > 0.0:
+            acc = _mean_acceleration(motion, t, h, ns)
+            RK.run(q, v, p_warm, r.mass, r.inertia, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0,
+                   acc, h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0, ns, oq, ov, od, dg,
+                   RK.METHOD_DIRECT)
+        diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
+        diag[EK.E_INPUT] += dg[RK.D_INPUT]
+        i = k - 1
+        out_q[i] = q
+        out_v[i] = v
+        out_e[i, 0] = r.kinetic_energy(v)
+        out_e[i, 1] = r.potential_energy(q, g)
+        out_e[i, 2] = diag[EK.E_DISSIPATED]
+        out_e[i, 3] = diag[EK.E_INPUT]
+        out_e[i, 4] = 0.0
+        state_all[r.free_blocks, :3] = q
+        written = k
+        t = t_k
+        if stop_at_collapse and DK.collapsed(state_all, free, cpar):
+            collapsed = True
+            break
+    return written, t, collapsed
+
+
+def run_events(model: EventModel, motion, *, duration: float, output_interval: float,
+               g: float = STANDARD_GRAVITY, settings=None, until_rest: float | None = None,
+               rtol: float = EVENT_RTOL, atol: float = EVENT_ATOL,
+               max_step: float = MAX_STEP, fallback_window: float = FALLBACK_WINDOW) -> dict:
+    """Run the event integrator from rest; returns the raw samples and diagnostics (times (nt,),
+    q, v (nt, nb, 3), energies (nt, 5): kinetic, potential, dissipated, input J, friction
+    demand; ``status``, ``t`` reached; ``windows_s``: the times at which the time stepper took
+    over for ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
+    counters and the event log)."""
+    from archquake.dem import _kernels as DK
+    from archquake.dem.result import collapse_parameters, crown_height, excitation_end
+    from archquake.dem.settings import DemSettings
+
+    r = model.rigid
+    asm = r.assembly
+    settings = DemSettings() if settings is None else settings
+    n = r.n_bodies
+    lref = model.lref
+    kind, gp = motion.kernel_spec()
+    t_exc = excitation_end(motion)
+    t_exc = math.inf if t_exc is None else float(t_exc)
+    lam_p, lam_n = model.onset_g
+    t_cap = duration if until_rest is None else max(duration, float(until_rest))
+    n_out = int(math.floor(t_cap / output_interval + 1e-9))
+    out_q = np.zeros((n_out, n, 3))
+    out_v = np.zeros((n_out, n, 3))
+    out_e = np.zeros((n_out, 5))
+    st = np.zeros(1 + 2 * EK.MAX_HINGES, np.int64)
+    y = np.zeros(2 * EK.MAX_HINGES + 1)
+    tt = np.zeros(1)
+    free = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)
+    state_all = np.zeros((len(free), 6))
+    state_all[:, :2] = np.asarray(asm.centroids, float)
+    cpar = collapse_parameters(asm, settings, math.nan)
+    cpar[DK.C_CROWN_Y0] = crown_height(asm, state_all[None, :, :3])[0]
+    counters = np.zeros(EK.N_COUNTERS, np.int64)
+    diag = np.zeros(EK.N_E)
+    fq = np.zeros((n, 3))
+    fv = np.zeros((n, 3))
+    log = np.zeros((100_000, 4))
+    h_max = max_step * math.sqrt(lref / g)
+    whys: list[int] = []
+    written = 0
+    windows: list[float] = []
+    wall = _time.perf_counter()
+    t_stop = duration
+    resume = False
+    while True:
+        status, why, written = EK.run(
+            model.X0, model.mb, model.ib, model.S0, model.S1, model.S2, model.p0, model.n0,
+            model.t0, model.hw, model.sg, r.ja, r.jb, r.arm_a, r.arm_b, lref, kind, gp, g,
+            min(t_stop, n_out * output_interval + 1e-12), t_exc, lam_p * g, lam_n * g, st, y, tt,
+            rtol, atol, h_max, output_interval, out_q, out_v, out_e, written, state_all,
+            r.free_blocks, free, cpar, bool(settings.stop_at_collapse), counters, diag, fq, fv,
+            log, resume)
+        resume = False
+        if status == EK.STATUS_FALLBACK:
+            windows.append(float(tt[0]))
+            whys.append(int(why))
+            written, t_w, collapsed = _stepper_window(
+                model, motion, fq, fv, float(tt[0]), fallback_window * math.sqrt(lref / g),
+                output_interval, out_q, out_v, out_e, written, diag, g, state_all, free, cpar,
+                bool(settings.stop_at_collapse))
+            if collapsed:
+                status = EK.STATUS_COLLAPSE
+                break
+            if written >= n_out or t_w >= min(t_stop, n_out * output_interval) - 1e-12:
+                status = EK.STATUS_DONE
+                break
+            tt[0] = t_w
+            resume = True
+            continue
+        if status != EK.STATUS_DONE or until_rest is None or t_stop >= t_cap - 1e-12:
+            break
+        t_stop = min(t_cap, t_stop + 0.05)  # go on until rest, as the stepper does
+    wall = _time.perf_counter() - wall
+    times = output_interval * np.arange(1, written + 1)
+    return {"times": times, "q": out_q[:written], "v": out_v[:written], "e": out_e[:written],
+            "status": int(status), "t": float(tt[0]), "windows_s": windows, "window_why": whys,
+            "counters": counters.copy(), "log": log[:counters[EK.N_LOG]].copy(),
+            "max_drift_m": float(diag[EK.E_MAX_DRIFT]),
+            "wall_s": wall}
+
+
+__all__ = ["EVENT_ATOL", "EVENT_RTOL", "EventModel", "MAX_STEP", "ground_kinematics", "run_events"]
