@@ -85,9 +85,10 @@ def test_energy_between_closures_is_conserved(opp):
 
 def test_energy_balance_and_verdict_agree_with_the_stepper(opp):
     """Kinetic + potential + dissipated = work of the inertial load (measured: to 6e-8 of it,
-    through 187 closures with no hand-over to the stepper; the closure's projection after every
-    step and the snap of a closing hinge to zero are not counted), and the collapse (t_p = 0.27 s at 1.0 g, above the threshold
-    0.2586-0.2606 s) at the stepper's time within 10 ms."""
+    through 187 closures with no hand-over to the stepper; the closure's projection after
+    every step and the snap of a closing hinge to zero are not counted), and the collapse
+    (t_p = 0.27 s at 1.0 g, above the threshold 0.2586-0.2606 s) at the stepper's time within
+    10 ms."""
     motion = StepImpulse.from_g(1.0, 0.27)
     model = RigidModel.build(OPPENHEIM)
     ev = simulate_rigid(model, motion, duration=4.5, solver="events")

@@ -20,6 +20,7 @@ import math
 import time as _time
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +28,9 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.mechanism import _event_kernels as EK
 from archquake.mechanism import _rigid_kernels as RK
+
+if TYPE_CHECKING:
+    from archquake.mechanism.rigid_chain import RigidModel
 
 #: Relative and absolute (rad, rad/s) tolerances of the Dormand-Prince steps. With these and
 #: ``MAX_STEP`` the energy between closures of free rocking is constant to 5e-9 of itself
@@ -60,7 +64,7 @@ class EventModel:
     of the blocks' mass properties, the joints' undisplaced corners ``p0`` (nj, 2, 2), normals,
     tangents, half-widths ``hw`` (m) and ``sg`` = t x n (+-1)."""
 
-    rigid: object
+    rigid: RigidModel
     X0: np.ndarray
     mb: np.ndarray
     ib: np.ndarray
@@ -74,7 +78,7 @@ class EventModel:
     sg: np.ndarray
 
     @classmethod
-    def build(cls, rigid) -> EventModel:
+    def build(cls, rigid: RigidModel) -> EventModel:
         n = rigid.n_bodies
         if not (np.array_equal(rigid.ja, np.arange(-1, n))
                 and np.array_equal(rigid.jb, np.r_[np.arange(n), -1])):
@@ -97,7 +101,7 @@ class EventModel:
         return cls(rigid, X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg)
 
     @classmethod
-    def of(cls, rigid) -> EventModel:
+    def of(cls, rigid: RigidModel) -> EventModel:
         """:meth:`build`, memoised on the rigid model (its onset thresholds are computed once)."""
         key = id(rigid)
         hit = _MODELS.get(key)
