@@ -4,8 +4,11 @@ t_p = 0.20 s), and its exact active-set contact solve (``solver="direct"``, the 
 against the plain projected Gauss-Seidel stepper (``solver="pgs"``), both measured in this
 run, at the three time steps of the convergence table; then the semicircle of the
 migration table (R 5 m, t 0.9 m, n 15: 16 joints, where Gauss-Seidel is slowest) over its
-first 1.5 s; then the DEM (`simulate_dem`, the paper's stiffness) on Oppenheim's history.
-Both rigid solvers are compiled (numba) before timing.
+first 1.5 s; then the event-driven integration of the same model (``solver="events"``,
+`mechanism.rigid_events`) against the direct stepper on these histories and on three 4.5 s
+histories around Oppenheim's critical step duration, with the number of joint closures
+each had to resolve; then the DEM (`simulate_dem`, the paper's stiffness) on Oppenheim's
+history. All rigid solvers are compiled (numba) before timing.
 
 Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_rigid_chain.py  (about a minute)
 """
@@ -79,6 +82,24 @@ def main() -> dict:
     out.update(semi_pgs_s=sp, semi_direct_s=sd)
     print("semicircle R 5 m, t 0.9 m, n 15, step 0.5 g, t_p 0.20 s, 1.5 s at h = 1e-4 s:")
     print(f"  pgs {sp * 1e3:8.1f} ms, direct {sd * 1e3:8.1f} ms: {sp / sd:5.1f} times faster")
+    print("event-driven rigid chain (solver='events') against the direct stepper (h = 1e-4 s):")
+    cases = [("Oppenheim 1.0 g, t_p 0.20 s, 4 s", model, motion, 4.0),
+             ("semicircle n 15, 0.5 g, t_p 0.20 s, 1.5 s", semi, pulse, 1.5)]
+    cases += [(f"Oppenheim 1.0 g, t_p {tp:.3f} s, 4.5 s", model, StepImpulse.from_g(1.0, tp), 4.5)
+              for tp in (0.25, 0.262, 0.27)]
+    simulate_rigid(model, motion, duration=0.05, solver="events")
+    for name, mdl, mot, dur in cases:
+        se, ce, run = stepping(mdl, mot, dur, 1e-4, "events")
+        sd = stepping(mdl, mot, dur, 1e-4, "direct", repeat=1)[0]
+        closures = int(run.events["counters"][3])
+        key = name.split(",")[0].split()[0].lower() + "_" + name.split("t_p ")[1].split()[0]
+        out[f"events_{key}_s"] = se
+        out[f"events_{key}_closures"] = closures
+        print(f"  {name:42s} events {se * 1e3:7.1f} ms ({ce * 1e3:7.1f} ms whole call), direct "
+              f"{sd * 1e3:7.1f} ms: {sd / se:5.2f} x faster; {closures:5d} closures "
+              f"({se / max(closures, 1) * 1e6:6.1f} us each), "
+              f"{len(run.events['windows_s']):3d} hand-overs to the stepper; {se / four:6.0f} x "
+              "four-link")
     dem = best_of(lambda: simulate_dem(arch, motion, DemSettings().with_(duration=4.0)), 1, 1)
     out["dem_s"] = dem
     print(f"DEM on Oppenheim's history, paper's stiffness {dem * 1e3:9.1f} ms "

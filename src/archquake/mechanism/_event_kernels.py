@@ -103,6 +103,9 @@ N_E = 4
 #: ``ZENO_WINDOW`` sqrt(L/g), stays closed (the accumulation point of the sequence).
 ZENO_CLOSURES = 3
 ZENO_WINDOW = 0.01
+#: Active sets the exact impact solve may try before Gauss-Seidel (its guess: every touching
+#: corner pushes, and an impact releases many of them).
+IMPACT_ACTIVE_SETS = 30
 #: Resuming from block positions: a joint open by more than RESUME_GAP L is a hinge; a closed
 #: joint whose corners move at more than RESUME_SPEED sqrt(g L) relative to each other too.
 RESUME_GAP = 1.0e-7
@@ -1228,7 +1231,8 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 # the tensile ones)
                 vn, imp, nsolve, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm,
                                                        tan, pts, gap_tol, p_guess,
-                                                       1e-13 * max(vscale, 1e-300), 100000, 0.0)
+                                                       1e-11 * math.sqrt(g * lref), 100000, 0.0,
+                                                       IMPACT_ACTIVE_SETS)
                 counters[N_SOLVES] += nsolve
                 K2, ok = modes_after_projection(qf, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm,
                                                 1e-8, 1e-7 * max(vscale, 1e-300), jh2, ch2,

@@ -319,7 +319,7 @@ def _envelope_solve(w_mat, first, n, rhs, out):
 
 @nb.njit(cache=True)
 def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
-                   max_iter, mu):
+                   max_iter, mu, max_sets=ACTIVE_SET_ITERATIONS):
     """The same contact step as :func:`project` (``mu <= 0`` only), solved exactly on a guessed
     active set, Gauss-Seidel only when the guess fails.
 
@@ -334,7 +334,8 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     start, the velocity is unique). The result is accepted when it satisfies the cone's
     conditions to ``tol``: normal impulses in S >= -tol / W_rr, normal rows outside S separating
     (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
-    to ``ACTIVE_SET_ITERATIONS`` times, and then projected Gauss-Seidel (:func:`_pgs`) finishes
+    to ``max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
+    (:func:`_pgs`) finishes
     from the last impulses. Returns as :func:`project`; the count is the number of factorised
     active sets plus any Gauss-Seidel sweeps."""
     nj = ja.shape[0]
@@ -361,7 +362,7 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     lst_side = np.zeros((nbody, nrows), np.int64)
     solves = 0
     accepted = False
-    for _ in range(ACTIVE_SET_ITERATIONS):
+    for _ in range(max_sets):
         solves += 1
         # v_w and p: the previous impulses on S
         v[:, :] = v_free
