@@ -61,11 +61,13 @@ def test_event_times_are_the_time_steppers(opp):
 
 def test_energy_between_closures_is_conserved(opp):
     """Free rocking after a pulse: between two closures (openings of joints included) the
-    kinetic plus potential energy is constant to 1e-8 of itself."""
+    kinetic plus potential energy is constant to 1e-8 of the energy the free motion started
+    with (at the end of the pulse; measured 1e-9 to 2e-9 on this run)."""
     motion = StepImpulse.from_g(0.45, 0.15)
     out = run_events(opp, motion, duration=2.5, output_interval=5e-4)
     log, t, e = out["log"], out["times"], out["e"]
     energy = e[:, 0] + e[:, 1]
+    scale = energy[np.searchsorted(t, 3 * 0.15)]
     lossy = np.sort(np.r_[log[np.isin(log[:, 1], (1, 5, 6)), 0], out["windows_s"]])
     window = FALLBACK_WINDOW * math.sqrt(OPPENHEIM.thickness / G) + 2e-3
     checked = 0
@@ -79,7 +81,7 @@ def test_energy_between_closures_is_conserved(opp):
             continue
         checked += 1
         seg = energy[sel]
-        assert (seg.max() - seg.min()) <= 1e-8 * seg.max()
+        assert (seg.max() - seg.min()) <= 1e-8 * scale
     assert checked > 20
 
 
