@@ -31,16 +31,18 @@ def scaled_contact(stiffness: float = 1.0, damping: float = 1.0):
 
 
 def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: float = 0.01,
-                     g: float = STANDARD_GRAVITY):
+                     solver: str = "direct", g: float = STANDARD_GRAVITY):
     """The rigid chain through its first impact under the comparison's pulse
-    (:func:`archquake.compare.impacts.rocking_pulse`); returns (DemHalfCycle, RigidRun)."""
+    (:func:`archquake.compare.impacts.rocking_pulse`); returns (DemHalfCycle, RigidRun).
+    ``solver``: :func:`~archquake.mechanism.rigid_chain.simulate_rigid`'s."""
     from archquake.compare.impacts import rocking_pulse
     from archquake.compare.migration import half_cycle_of
     from archquake.mechanism.rigid_chain import DEFAULT_TIME_STEP, simulate_rigid
 
     pulse, tp, t_imp = rocking_pulse(arch, g=g)
     run = simulate_rigid(arch, pulse, duration=t_imp * 1.5 + 0.1,
-                         time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g)
+                         time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g,
+                         solver=solver)
     return half_cycle_of(run.result, tp, t_imp, window=window), run
 
 
