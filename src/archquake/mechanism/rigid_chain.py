@@ -225,10 +225,14 @@ class RigidRun:
         if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
         out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
-                        "time_step_s": self.time_step,
+                        "time_step_s": (None if self.events is not None else self.time_step),
                         "max_penetration_m": self.max_penetration_m,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
                         "wall_s": self.wall_s}
+        if self.events is not None:
+            from archquake.mechanism.rigid_events import events_summary
+
+            out["rigid"]["events"] = events_summary(self.events)
         return out
 
 

@@ -312,4 +312,17 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             "wall_s": wall}
 
 
-__all__ = ["EVENT_ATOL", "EVENT_RTOL", "EventModel", "MAX_STEP", "ground_kinematics", "run_events"]
+def events_summary(raw: dict) -> dict:
+    """The event integrator's record for JSON: counts of closures, openings, onsets and cut
+    accumulations, the times (s) and reasons the time stepper took over, the steps taken."""
+    c = raw["counters"]
+    return {"closures": int(c[EK.N_CLOSURES]), "openings": int(c[EK.N_OPENINGS]),
+            "onsets": int(c[EK.N_ONSETS]), "accumulations_cut": int(c[EK.N_ZENO]),
+            "steps": int(c[EK.N_STEPS]), "rejected_steps": int(c[EK.N_REJECTED]),
+            "handovers_s": [round(t, 6) for t in raw["windows_s"]],
+            "handover_reasons": [WHY[w] for w in raw["window_why"]],
+            "max_closure_drift_m": raw["max_drift_m"]}
+
+
+__all__ = ["EVENT_ATOL", "EVENT_RTOL", "EventModel", "MAX_STEP", "events_summary", "ground_kinematics",
+           "run_events"]
