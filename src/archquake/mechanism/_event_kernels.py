@@ -232,10 +232,25 @@ def _solve(A, r, m):
 
 
 @nb.njit(cache=True)
-def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws):
+def _link_accelerations(K, P, G, bdd, al, aG):
+    """The links' angular accelerations ``al`` and their centroids' accelerations (``aG``, which
+    holds their velocity-product part on entry)."""
+    al[0] = 0.0
+    for k in range(1, K + 1):
+        al[k] = al[k - 1] + bdd[k - 1]
+    for k in range(K + 1):
+        for i in range(k):
+            jx, jy = _jx(G[k, 0] - P[i, 0], G[k, 1] - P[i, 1])
+            aG[k, 0] += bdd[i] * jx
+            aG[k, 1] += bdd[i] * jy
+
+
+@nb.njit(cache=True)
+def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
     """Accelerations beta'' (``ws[11]``), the springing's wrench ``ws[12]`` and the kinematic
-    quantities in ``ws`` (:func:`workspace`) for load ``ax`` (x_g'', m/s^2). Returns False if
-    the KKT system is singular."""
+    quantities in ``ws`` (:func:`workspace`) for load ``ax`` (x_g'', m/s^2); ``closed``: the
+    chain ends on a springing (else its last link is free and mu = 0). Returns False if the
+    KKT system is singular."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
     kinematics(K, jh, ch, beta, bdot, p0, lg0, th, dd, P, vP, G, om, vG)
     # velocity-product part of each link centroid's acceleration (beta'' = 0)
@@ -250,7 +265,7 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws):
         aG[k, 1] = by
     aex = -ax
     aey = -g
-    m_ = K + 3
+    m_ = K + 3 if closed else K
     for i in range(m_):
         r[i] = 0.0
         for l_ in range(m_):
@@ -270,6 +285,16 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws):
                               + (G[k, 1] - P[i, 1]) * (G[k, 1] - P[l_, 1])) + li[k]
             A[i, l_] = s
             A[l_, i] = s
+    if not closed:
+        if not _solve(A, r, m_):
+            return False
+        for i in range(K):
+            bdd[i] = r[i]
+        mu[0] = 0.0
+        mu[1] = 0.0
+        mu[2] = 0.0
+        _link_accelerations(K, P, G, bdd, al, aG)
+        return True
     # closure: the last link's rotation and the velocity of its material point X = dd[K]
     xx = dd[K, 0]
     xy = dd[K, 1]
@@ -302,15 +327,7 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws):
     mu[0] = r[K]
     mu[1] = r[K + 1]
     mu[2] = r[K + 2]
-    # link accelerations
-    al[0] = 0.0
-    for k in range(1, K + 1):
-        al[k] = al[k - 1] + bdd[k - 1]
-    for k in range(K + 1):
-        for i in range(k):
-            jx, jy = _jx(G[k, 0] - P[i, 0], G[k, 1] - P[i, 1])
-            aG[k, 0] += bdd[i] * jx
-            aG[k, 1] += bdd[i] * jy
+    _link_accelerations(K, P, G, bdd, al, aG)
     return True
 
 
@@ -336,7 +353,8 @@ def _link_of(K, jh, b):
 @nb.njit(cache=True)
 def joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, ax, g, out):
     """Every joint's force from its left part on its right part, after :func:`dynamics`:
-    ``out[j] = (f0, f1, N, V)`` N, the corner normal forces of a locked joint (f0 + f1 = N) or,
+    ``out[j] = (f0, f1, N, V)`` (``out`` has a row per joint: n + 1 for a closed chain, n for
+    an open one) N, the corner normal forces of a locked joint (f0 + f1 = N) or,
     at a hinge, (nan, nan, N, V); V the shear."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
     fx = -mu[1]
@@ -347,8 +365,11 @@ def joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, ax, g, out):
     aex = -ax
     aey = -g
     hi = K - 1
+    nj = out.shape[0]
     for j in range(n, -1, -1):
-        if hi >= 0 and jh[hi] == j:
+        if j >= nj:
+            pass  # an open chain: no joint after the last block
+        elif hi >= 0 and jh[hi] == j:
             tm = 0.5 * (th[hi] + th[hi + 1])
             c = math.cos(tm)
             s = math.sin(tm)
@@ -404,7 +425,7 @@ def margins(K, jh, ch, forces, n, weight, skip):
     hk = -1
     fr = 0.0
     hi = 0
-    for j in range(n + 1):
+    for j in range(forces.shape[0]):
         nn = forces[j, 2]
         if nn > 1e-12 * weight:
             v = abs(forces[j, 3]) / nn
@@ -427,9 +448,9 @@ def margins(K, jh, ch, forces, n, weight, skip):
 
 
 @nb.njit(cache=True)
-def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot):
+def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed):
     """dy/dt for y = (beta, beta', W_in): False if singular."""
-    ok = dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, ax, g, ws)
+    ok = dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, ax, g, ws, closed)
     bdd = ws[11]
     vG = ws[6]
     for i in range(K):
@@ -457,7 +478,7 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0,
 
 @nb.njit(cache=True)
 def dopri_step(K, jh, ch, t, h, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytmp, y1, f1,
-               rtol, atol):
+               rtol, atol, closed):
     """One Dormand-Prince step from (t, y) with derivative f0: y1, f1 = f(t + h, y1); returns
     the error norm (<= 1 accepts), or inf if an evaluation was singular."""
     m = 2 * K + 1
@@ -466,26 +487,26 @@ def dopri_step(K, jh, ch, t, h, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytm
     for i in range(m):
         ytmp[i] = y[i] + h * _A21 * f0[i]
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C2 * h, t), g, ws,
-              k2)
+              k2, closed)
     for i in range(m):
         ytmp[i] = y[i] + h * (_A31 * f0[i] + _A32 * k2[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C3 * h, t), g, ws,
-              k3)
+              k3, closed)
     for i in range(m):
         ytmp[i] = y[i] + h * (_A41 * f0[i] + _A42 * k2[i] + _A43 * k3[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C4 * h, t), g, ws,
-              k4)
+              k4, closed)
     for i in range(m):
         ytmp[i] = y[i] + h * (_A51 * f0[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C5 * h, t), g, ws,
-              k5)
+              k5, closed)
     for i in range(m):
         ytmp[i] = y[i] + h * (_A61 * f0[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i]
                               + _A65 * k5[i])
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, k6)
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, k6, closed)
     for i in range(m):
         y1[i] = y[i] + h * (_B1 * f0[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-    ok &= rhs(K, jh, ch, y1, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, f1)
+    ok &= rhs(K, jh, ch, y1, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, f1, closed)
     if not ok:
         return math.inf
     err = 0.0
@@ -510,10 +531,12 @@ def hermite(y0, f0, y1, f1, t0, h, t, m, out):
 
 
 @nb.njit(cache=True)
-def project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref):
+def project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed):
     """Newton (minimum-norm) correction of the hinge rotations y[:K] (except ``pinned`` ones)
     back onto the closure (last link at rest in place), then of the rates y[K:2K] onto its
-    tangent space; returns the position correction's size, m."""
+    tangent space; returns the position correction's size, m (0 for an open chain)."""
+    if not closed:
+        return 0.0
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
     total = 0.0
     for _ in range(8):
@@ -654,13 +677,13 @@ def modes_after_projection(q, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm, rel_tol
 
 
 @nb.njit(cache=True)
-def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n):
+def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n, closed):
     """Rates y[K:2K] of the hinge set (jh, ch) nearest, in the kinetic-energy metric, to the
     block velocities ``vn`` (n, 3) (at the configuration y[:K]): the normal equations
     M beta' = J^T M_b vn under the closure C beta' = 0. Returns False if singular."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, th, dd, P, vP, G, om, vG)
-    m_ = K + 3
+    m_ = K + 3 if closed else K
     for i in range(m_):
         r[i] = 0.0
         for l_ in range(m_):
@@ -686,7 +709,7 @@ def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n):
             r[i] += mb[b] * (vn[b, 0] * jx + vn[b, 1] * jy) + ib[b] * vn[b, 2]
     xx = dd[K, 0]
     xy = dd[K, 1]
-    for i in range(K):
+    for i in range(K if closed else 0):
         jx, jy = _jx(xx - P[i, 0], xy - P[i, 1])
         A[K, i] = 1.0
         A[K + 1, i] = jx
@@ -919,21 +942,24 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
     lg0 = np.zeros((MX + 1, 2))
     li = np.zeros(MX + 1)
     lstart = np.zeros(MX + 2, np.int64)
-    forces = np.zeros((n + 1, 4))
-    skip = np.zeros(n + 1, np.bool_)
+    nj = ja.shape[0]
+    closed = nj == n + 1
+    kmin = 4 if closed else 1  # fewest hinges of a mechanism
+    forces = np.zeros((nj, 4))
+    skip = np.zeros(nj, np.bool_)
     pinned = np.zeros(MX, np.bool_)
-    beta_j = np.zeros(n + 1)
-    rates = np.zeros(n + 1)
-    z_last = np.full(n + 1, -math.inf)
-    z_dt = np.full(n + 1, math.inf)
-    z_cnt = np.zeros(n + 1, np.int64)
-    jh2 = np.zeros(n + 1, np.int64)
-    ch2 = np.zeros(n + 1, np.int64)
+    beta_j = np.zeros(nj)
+    rates = np.zeros(nj)
+    z_last = np.full(nj, -math.inf)
+    z_dt = np.full(nj, math.inf)
+    z_cnt = np.zeros(nj, np.int64)
+    jh2 = np.zeros(nj, np.int64)
+    ch2 = np.zeros(nj, np.int64)
     qf = np.zeros((n, 3))
     vf = np.zeros((n, 3))
     inv_m = 1.0 / mb
     inv_i = 1.0 / ib
-    p_guess = np.ones((n + 1, 3))
+    p_guess = np.ones((nj, 3))
     weight = g * S0[n]
     ftol = 1e-9
     ang_tol = 1e-13
@@ -949,7 +975,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
         for b in range(n):
             kin0 += 0.5 * (mb[b] * (fv[b, 0] ** 2 + fv[b, 1] ** 2) + ib[b] * fv[b, 2] ** 2)
         K = 0
-        for j in range(n + 1):
+        for j in range(nj):
             tha = 0.0 if ja[j] < 0 else fq[ja[j], 2]
             thb = 0.0 if jb[j] < 0 else fq[jb[j], 2]
             wa = 0.0 if ja[j] < 0 else fv[ja[j], 2]
@@ -973,16 +999,18 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
             y[K + i] = 0.0
         y[2 * K] = diag[E_INPUT]
         link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
-        if K < 4:
+        if K < kmin:
             K = 0
             y[0] = diag[E_INPUT]
             link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
             diag[E_DISSIPATED] += kin0
         else:
             pinned[:K] = False
-            project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref)
-            metric_projection(K, jh, ch, y, fv, p0, lm, lg0, li, X0, mb, ib, ws, n)
-            project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref)
+            project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
+            metric_projection(K, jh, ch, y, fv, p0, lm, lg0, li, X0, mb, ib, ws, n, closed)
+            project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
+            kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2], ws[3],
+                       ws[4], ws[5], ws[6])
             kin1, _ = energies(K, ws, lm, lg0, li, g)
             diag[E_DISSIPATED] += kin0 - kin1
         _log(log, counters, t, 6, -1, K)
@@ -1012,7 +1040,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 vf[b, 2] = 0.0
             gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
             acc, imp, _, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                               gap_tol, np.zeros((n + 1, 3)),
+                                               gap_tol, np.zeros((nj, 3)),
                                                1e-13 * math.sqrt(g * lref), 100000, 0.0)
             beta_j[:] = 0.0
             K2, ok = modes_after_projection(qf, acc, beta_j, sg, ja, jb, arm_a, arm_b, nrm, 1e-7,
@@ -1025,7 +1053,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(0, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
                                                   counters, WHY_SEPARATION), written
-            if K2 < 4:
+            if K2 < kmin:
                 t += 1e-9  # no motion after all (at the threshold): keep scanning
                 continue
             win = y[0]
@@ -1043,7 +1071,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
         else:
             # ------------------------------------------------------------ one step
             ax0 = ground_in_piece(kind, gp, t, t)
-            if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0):
+            if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed):
                 tt[0] = t
                 st[0] = K
                 diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
@@ -1054,7 +1082,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 bp = next_breakpoint(kind, gp, t)
                 hh = min(h, h_max, bp - t, t_end - t)
                 err = dopri_step(K, jh, ch, t, hh, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks,
-                                 ytmp, y1, f1, rtol, atol)
+                                 ytmp, y1, f1, rtol, atol, closed)
                 counters[N_EVALS] += 6
                 if err <= 1.0:
                     break
@@ -1099,7 +1127,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 tm = t + 0.5 * hh
                 hermite(y, f0, y1, f1, t, hh, tm, 2 * K + 1, ytmp)
                 dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li,
-                         ground_in_piece(kind, gp, tm, t), g, ws)
+                         ground_in_piece(kind, gp, tm, t), g, ws, closed)
                 joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg,
                              ground_in_piece(kind, gp, tm, t), g, forces)
                 lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
@@ -1115,7 +1143,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                     mid = 0.5 * (a_ + b_)
                     hermite(y, f0, y1, f1, t, hh, mid, 2 * K + 1, ytmp)
                     axm = ground_in_piece(kind, gp, mid, t)
-                    dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li, axm, g, ws)
+                    dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li, axm, g, ws, closed)
                     joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axm, g,
                                  forces)
                     lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
@@ -1137,7 +1165,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                     y[i] = y1[i]
                 t = t1
                 pinned[:K] = False
-                d = project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref)
+                d = project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
                 if d > diag[E_MAX_DRIFT]:
                     diag[E_MAX_DRIFT] = d
                 counters[N_STEPS] += 1
@@ -1152,7 +1180,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
             if t_ev > t:
                 he = t_ev - t
                 dopri_step(K, jh, ch, t, he, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytmp,
-                           y1, f1, rtol, atol)
+                           y1, f1, rtol, atol, closed)
                 counters[N_EVALS] += 6
                 written, col = _emit(t_ev, written, cap, dt_out, y, f0, y1, f1, t, he, K, jh,
                                      ch, p0, lg0, lm, li, X0, ws, n, g, diag, out_q, out_v,
@@ -1178,7 +1206,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
             if ev_kind == 2:
                 # which margin: recompute at the event
                 axe = ground_in_piece(kind, gp, t, t_step)
-                dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axe, g, ws)
+                dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axe, g, ws, closed)
                 joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axe, g, forces)
                 lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
                 if ho < lo:
@@ -1213,11 +1241,11 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                     if _phi(y, i, ch, sg, jh) * 2.0 * hw[jh[i]] < gap_tol:
                         y[i] = 0.0
                         pinned[i] = True
-                if K - 1 <= 3:
+                if K - 1 < kmin:
                     for i in range(K):
                         y[i] = 0.0
                         pinned[i] = True
-                project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref)
+                project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
                 to_full(K, jh, ch, y, p0, lg0, X0, ws, n, qf, vf)
                 kin0, _ = energies(K, ws, lm, lg0, li, g)
                 beta_j[:] = 0.0
@@ -1282,19 +1310,21 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 y[2 * K] = win
                 link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
                 kin1 = 0.0
-                if K >= 3:
+                if K >= kmin - 1 and K > 0:
                     if not metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws,
-                                             n):
+                                             n, closed):
                         tt[0] = t
                         st[0] = K
                         diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                         return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq,
                                                           fv, counters, WHY_SINGULAR), written
                     pinned[:K] = False
-                    project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref)
+                    project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
+                    kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2],
+                               ws[3], ws[4], ws[5], ws[6])
                     kin1, _ = energies(K, ws, lm, lg0, li, g)
                 diag[E_DISSIPATED] += kin0 - kin1
-                if K < 3 or (not displaced and (kin1 == 0.0 or (
+                if K == 0 or K < kmin - 1 or (not displaced and (kin1 == 0.0 or (
                         t >= t_exc_end and kin1 < 1e-12 * weight * lref))):
                     _log(log, counters, t, 5, jclose, 0)
                     K = 0
@@ -1303,9 +1333,9 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                     continue
                 _log(log, counters, t, 1, jclose, K)
         # ---------------------------------------------------------------- consistency
-        for _ in range(2 * (n + 1)):
+        for _ in range(2 * nj):
             axc = ground_in_piece(kind, gp, t, t)
-            if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, g, ws):
+            if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, g, ws, closed):
                 tt[0] = t
                 st[0] = K
                 diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]

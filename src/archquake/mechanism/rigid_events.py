@@ -60,7 +60,8 @@ _MODELS: dict[int, EventModel] = {}
 @dataclass(frozen=True)
 class EventModel:
     """A :class:`~archquake.mechanism.rigid_chain.RigidModel` laid out for the event integrator:
-    blocks in chain order (joint j between blocks j - 1 and j, the springings -1), prefix sums
+    blocks in chain order (joint j between blocks j - 1 and j, the springings -1; a chain whose
+    last block is free, such as a block on its base, has no joint n), prefix sums
     of the blocks' mass properties, the joints' undisplaced corners ``p0`` (nj, 2, 2), normals,
     tangents, half-widths ``hw`` (m) and ``sg`` = t x n (+-1)."""
 
@@ -80,11 +81,14 @@ class EventModel:
     @classmethod
     def build(cls, rigid: RigidModel) -> EventModel:
         n = rigid.n_bodies
-        if not (np.array_equal(rigid.ja, np.arange(-1, n))
-                and np.array_equal(rigid.jb, np.r_[np.arange(n), -1])):
+        closed = (np.array_equal(rigid.ja, np.arange(-1, n))
+                  and np.array_equal(rigid.jb, np.r_[np.arange(n), -1]))
+        open_ = (np.array_equal(rigid.ja, np.arange(-1, n - 1))
+                 and np.array_equal(rigid.jb, np.arange(n)))
+        if not (closed or open_):
             raise InvalidParameterError(
-                "the event integrator needs a single chain of blocks between two springings "
-                "(use solver='direct')")
+                "the event integrator needs a single chain of blocks from a base, ending on a "
+                "second springing or free (use solver='direct')")
         X0 = np.asarray(rigid.centroids, float)
         mb = np.asarray(rigid.mass, float)
         ib = np.asarray(rigid.inertia, float)
@@ -92,7 +96,7 @@ class EventModel:
         S1 = np.vstack([np.zeros(2), np.cumsum(mb[:, None] * X0, axis=0)])
         S2 = np.r_[0.0, np.cumsum(mb * (X0 ** 2).sum(1) + ib)]
         p0 = np.asarray(rigid.arm_b, float).copy()
-        for j in range(n):
+        for j in range(min(n, len(p0))):
             p0[j] += X0[j]
         n0 = np.asarray(rigid.n0, float)
         t0 = np.asarray(rigid.t0, float)
@@ -114,6 +118,11 @@ class EventModel:
         return em
 
     @property
+    def closed(self) -> bool:
+        """The chain ends on a second springing (an arch), not free (a block on its base)."""
+        return len(self.rigid.ja) == self.rigid.n_bodies + 1
+
+    @property
     def lref(self) -> float:
         return float(self.rigid.assembly.reference_length)
 
@@ -129,13 +138,14 @@ class EventModel:
         gaps, nrm, tan, pts = RK.geometry(q, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0)
         acc, _, _, _ = RK.project_direct(q, a, 1.0 / self.mb, 1.0 / self.ib, r.ja, r.jb, gaps,
                                          nrm, tan, pts, 1e-9 * self.lref,
-                                         np.zeros((n + 1, 3)), 1e-13 * math.sqrt(self.lref),
+                                         np.zeros((len(r.ja), 3)), 1e-13 * math.sqrt(self.lref),
                                          100_000, 0.0)
-        jh = np.zeros(n + 1, np.int64)
-        k, _ = EK.modes_after_projection(q, acc, np.zeros(n + 1), self.sg, r.ja, r.jb, r.arm_a,
+        nj = len(r.ja)
+        jh = np.zeros(nj, np.int64)
+        k, _ = EK.modes_after_projection(q, acc, np.zeros(nj), self.sg, r.ja, r.jb, r.arm_a,
                                          r.arm_b, nrm, 1e-7, 1e-7 * (1 + abs(ax_g)), jh,
-                                         jh.copy(), np.zeros(n + 1), 1e-9 / self.lref)
-        return k >= 4
+                                         jh.copy(), np.zeros(nj), 1e-9 / self.lref)
+        return k >= (4 if self.closed else 1)
 
     @cached_property
     def onset_g(self) -> tuple[float, float]:
@@ -231,8 +241,11 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
 def run_events(model: EventModel, motion, *, duration: float, output_interval: float,
                g: float = STANDARD_GRAVITY, settings=None, until_rest: float | None = None,
                rtol: float = EVENT_RTOL, atol: float = EVENT_ATOL,
-               max_step: float = MAX_STEP, fallback_window: float = FALLBACK_WINDOW) -> dict:
-    """Run the event integrator from rest; returns the raw samples and diagnostics (times (nt,),
+               max_step: float = MAX_STEP, fallback_window: float = FALLBACK_WINDOW,
+               initial: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
+    """Run the event integrator from rest, or from ``initial`` = (q, v) (nb, 3) each, a
+    configuration of the model (joints closed or turning about a corner; read as after a
+    hand-over: ``_event_kernels.RESUME_GAP``); returns the raw samples and diagnostics (times (nt,),
     q, v (nt, nb, 3), energies (nt, 5): kinetic, potential, dissipated, input J, friction
     demand; ``status``, ``t`` reached; ``windows_s``: the times at which the time stepper took
     over for ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
@@ -274,7 +287,10 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     windows: list[float] = []
     wall = _time.perf_counter()
     t_stop = duration
-    resume = False
+    resume = initial is not None
+    if initial is not None:
+        fq[:] = np.asarray(initial[0], float)
+        fv[:] = np.asarray(initial[1], float)
     while True:
         status, why, written = EK.run(
             model.X0, model.mb, model.ib, model.S0, model.S1, model.S2, model.p0, model.n0,
