@@ -12,7 +12,8 @@ counter-clockwise), joint j turning about corner 0 when ``beta_j sg_j > 0`` and 
 gap). Between events the set of hinges (K of them, joint ``jh[k]``, pivot ``ch[k]``) is fixed,
 the blocks between two consecutive hinges form one rigid link, and the chain closes on the
 right springing: three holonomic constraints (rotation and position of the last link), so the
-motion has K - 3 degrees of freedom (1 for four hinges, 2 for five).
+motion has K - 3 degrees of freedom (1 for four hinges, 2 for five). A chain whose last block
+is free (a block on its base: no joint n) has no closure, K degrees of freedom and mu = 0.
 
 **Equations.** Link k (after hinges 0..k-1) turns by Theta_k = sum beta_i and a point X on it
 moves with v = sum_{i<k} beta_i' J (X - P_i) (P_i the current pivots, J the rotation by +90
