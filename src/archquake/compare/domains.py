@@ -50,9 +50,10 @@ DOMAIN_TAIL = 6.0
 
 def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
              first_only: bool, g: float, governing_only: bool = False,
-             model: str = "dem") -> tuple[Outcome, int]:
-    """One run of the block model ``model`` ('dem' or 'rigid'): (outcome, collapse half cycle
-    or 0). Module-level: picklable. Both run the pulse plus ``tail_s``; the rigid chain reads
+             model: str = "dem", solver: str = "direct") -> tuple[Outcome, int]:
+    """One run of the block model ``model`` ('dem' or 'rigid', the latter integrated by
+    ``solver``, :func:`~archquake.mechanism.rigid_chain.simulate_rigid`'s): (outcome, collapse
+    half cycle or 0). Module-level: picklable. Both run the pulse plus ``tail_s``; the rigid chain reads
     only the DEM settings' thresholds (hinge opening, collapse criteria), as it always does.
 
     With ``first_only`` a collapse after the first impact counts as a survival; with
@@ -63,7 +64,7 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
         from archquake.mechanism.rigid_chain import simulate_rigid
 
         res = simulate_rigid(assembly, motion, duration=motion.duration + tail_s,
-                             settings=settings, g=g).result
+                             settings=settings, g=g, solver=solver).result
     else:
         from archquake.dem import simulate_dem
 
@@ -101,6 +102,8 @@ class DemPulseEvaluator:
         only the governing boundary (see :func:`dem_failure_domain`).
     model : {'dem', 'rigid'}
         The block model run (:data:`BLOCK_MODELS`).
+    solver : {'direct', 'events'}
+        How the rigid chain is integrated (``simulate_rigid``'s ``solver``).
 
     Notes
     -----
@@ -117,6 +120,7 @@ class DemPulseEvaluator:
     g: float = STANDARD_GRAVITY
     governing_only: bool = False
     model: str = "dem"
+    solver: str = "direct"
     runs: int = 0
     seconds: float = 0.0
     _memo: dict = field(default_factory=dict, repr=False)
@@ -129,7 +133,8 @@ class DemPulseEvaluator:
         t0 = time.perf_counter()
         if todo:
             args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
-                     self.first_only, self.g, self.governing_only, self.model) for a, d in todo]
+                     self.first_only, self.g, self.governing_only, self.model, self.solver)
+                    for a, d in todo]
             if self.executor is None:
                 results = [_outcome(*a) for a in args]
             else:
@@ -201,6 +206,7 @@ def dem_failure_domain(
     g: float = STANDARD_GRAVITY,
     governing_only: bool = False,
     model: str = "dem",
+    solver: str = "direct",
 ) -> DemDomain:
     """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
     through the analytical domain search.
@@ -232,6 +238,8 @@ def dem_failure_domain(
         half cycle, so the runs that would bracket this assembly's own first-half-cycle boundary
         are saved (the paper takes that boundary from the three-voussoir arch). The domain's
         ``first_half_cycle_g`` is then NaN and ``collapse_half_cycle`` 0: not searched.
+    solver : {'direct', 'events'}
+        With ``model='rigid'``: how the chain is integrated (``simulate_rigid``'s ``solver``).
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
         chain of rigid blocks (:func:`archquake.mechanism.rigid_chain.simulate_rigid`; only
@@ -247,6 +255,8 @@ def dem_failure_domain(
         raise InvalidParameterError(f"dem_failure_domain needs an Arch, got {type(arch).__name__}")
     if model not in BLOCK_MODELS:
         raise InvalidParameterError(f"model must be one of {', '.join(BLOCK_MODELS)}, got {model!r}")
+    if solver not in ("direct", "events"):
+        raise InvalidParameterError(f"solver must be 'direct' or 'events', got {solver!r}")
     fam = PulseFamily.parse(family)
     first_only = (assembly == HINGES) if first_only is None else bool(first_only)
     asm = dem_assembly(arch, assembly)
@@ -265,7 +275,7 @@ def dem_failure_domain(
     try:
         tail_s = tail * math.sqrt(arch.radius / g)
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
-                               governing_only and not first_only, model)
+                               governing_only and not first_only, model, solver)
         dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
     finally:
         if own is not None:
