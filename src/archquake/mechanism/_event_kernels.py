@@ -1107,12 +1107,20 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 s = sg[jh[i]] * (1.0 - 2.0 * ch[i])
                 phi0 = s * y[i]
                 dphi0 = s * y[K + i]
-                if phi0 <= ang_tol and dphi0 <= 1e-12:
-                    if s * y1[i] < -ang_tol:
+                if phi0 <= ang_tol:
+                    if dphi0 < -1e-12:
+                        # closed and closing already (a rate the last projection left): the
+                        # impact is now
                         t_ev = t
-                        ev_kind = 3  # relock: the new hinge turns the wrong way
+                        ev_kind = 1
                         ev_i = i
-                    continue
+                        break
+                    if dphi0 <= 1e-12:
+                        if s * y1[i] < -ang_tol:
+                            t_ev = t
+                            ev_kind = 3  # relock: the new hinge turns the wrong way
+                            ev_i = i
+                        continue
                 tc = _first_root_cubic(y, f0, y1, f1, t, hh, i, s)
                 if tc < t_ev:
                     t_ev = tc

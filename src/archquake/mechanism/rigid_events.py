@@ -324,7 +324,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     return {"times": times, "q": out_q[:written], "v": out_v[:written], "e": out_e[:written],
             "status": int(status), "t": float(tt[0]), "windows_s": windows, "window_why": whys,
             "counters": counters.copy(), "log": log[:counters[EK.N_LOG]].copy(),
-            "max_drift_m": float(diag[EK.E_MAX_DRIFT]),
+            "max_drift_m": float(diag[EK.E_MAX_DRIFT]), "state": (st.copy(), y.copy()),
             "wall_s": wall}
 
 
