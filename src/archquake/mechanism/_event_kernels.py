@@ -46,7 +46,8 @@ ends on them:
 What this integrator does not model, it reports and stops (``STATUS_FALLBACK``), and the driver
 continues with the time stepper: a hinge whose reaction becomes tensile (flight), a joint that
 separates at an impact, an opening whose hinge turns the wrong way, or more than
-``CHATTER_EVENTS`` events within ``CHATTER_WINDOW`` s.
+``CHATTER_EVENTS`` events within ``CHATTER_WINDOW`` s. It resumes from the stepper's state
+only once no joint is open on both corners (the flight is over).
 
 SI units throughout.
 """
@@ -111,6 +112,9 @@ IMPACT_ACTIVE_SETS = 30
 #: joint whose corners move at more than RESUME_SPEED sqrt(g L) relative to each other too.
 RESUME_GAP = 1.0e-7
 RESUME_SPEED = 1.0e-6
+#: ... and a joint whose corners are both open by more than RESUME_SEPARATION L has separated
+#: (flight; the stepper's contact drift is below 2e-7 L): the time stepper goes on.
+RESUME_SEPARATION = 1.0e-6
 #: Events within this window (s) ...
 CHATTER_WINDOW = 1.0e-3
 #: ... more than this many: fallback.
@@ -921,9 +925,11 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
     (``counters[N_LOG]`` rows written). With ``resume`` the state is first read from the block
     positions and velocities ``fq``, ``fv`` (the time stepper's, after a fallback window):
     a joint open by more than ``RESUME_GAP`` L, or closed but turning (its corner speed above
-    ``RESUME_SPEED`` sqrt(g L)), is a hinge; the rotations are projected on the closure and
-    the velocities on the hinge set's in the kinetic-energy metric (the energy that removes is
-    counted as dissipated); ``diag[E_INPUT]`` carries the input work.
+    ``RESUME_SPEED`` sqrt(g L)), is a hinge (a joint open on both corners by more than
+    ``RESUME_SEPARATION`` L: still in flight, returns ``STATUS_FALLBACK`` at once); the
+    rotations are projected on the closure and the velocities on the hinge set's in the
+    kinetic-energy metric (the energy that removes is counted as dissipated);
+    ``diag[E_INPUT]`` carries the input work.
     Returns (status, reason, samples written)."""
     n = X0.shape[0]
     MX = MAX_HINGES
@@ -972,6 +978,11 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
     h = min(h_max, 1e-3)
     if resume:
         gaps, nrm, tan, pts = RK.geometry(fq, ja, jb, arm_a, arm_b, n0, t0)
+        for j in range(n + 1):
+            if min(gaps[j, 0], gaps[j, 1]) > RESUME_SEPARATION * lref:
+                # still in flight: no hinge set holds this state (resuming would snap the
+                # joint shut); the time stepper goes on from it
+                return STATUS_FALLBACK, WHY_SEPARATION, written
         kin0 = 0.0
         for b in range(n):
             kin0 += 0.5 * (mb[b] * (fv[b, 0] ** 2 + fv[b, 1] ** 2) + ib[b] * fv[b, 2] ** 2)

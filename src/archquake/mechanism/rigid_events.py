@@ -251,7 +251,12 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     over for ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
     counters and the event log)."""
     from archquake.dem import _kernels as DK
-    from archquake.dem.result import collapse_parameters, crown_height, excitation_end
+    from archquake.dem.result import (
+        collapse_parameters,
+        crown_height,
+        excitation_end,
+        settled,
+    )
     from archquake.dem.settings import DemSettings
 
     r = model.rigid
@@ -310,15 +315,26 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             if collapsed:
                 status = EK.STATUS_COLLAPSE
                 break
-            if written >= n_out or t_w >= min(t_stop, n_out * output_interval) - 1e-12:
+            if written >= n_out:
                 status = EK.STATUS_DONE
                 break
+            if t_w >= t_stop - 1e-12:
+                if until_rest is None or t_stop >= t_cap - 1e-12:
+                    status = EK.STATUS_DONE
+                    break
+                t_stop = min(t_cap, t_w + 0.05)  # a window ran past t_stop: go on until rest
             tt[0] = t_w
             resume = True
             continue
-        if status != EK.STATUS_DONE or until_rest is None or t_stop >= t_cap - 1e-12:
+        if (status not in (EK.STATUS_DONE, EK.STATUS_REST) or until_rest is None
+                or t_stop >= t_cap - 1e-12):
             break
-        t_stop = min(t_cap, t_stop + 0.05)  # go on until rest, as the stepper does
+        # go on until rest, as the stepper does: until the samples end with a rest window (a
+        # locked arch too: STATUS_REST at t_stop does not yet make the window)
+        if written and settled(asm, g, output_interval * np.arange(1, written + 1),
+                               out_e[:written, 0], excitation_end(motion)):
+            break
+        t_stop = min(t_cap, t_stop + 0.05)
     wall = _time.perf_counter() - wall
     times = output_interval * np.arange(1, written + 1)
     return {"times": times, "q": out_q[:written], "v": out_v[:written], "e": out_e[:written],
