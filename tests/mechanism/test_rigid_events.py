@@ -101,6 +101,8 @@ def test_energy_balance_and_verdict_agree_with_the_stepper(opp):
     st = simulate_rigid(model, motion, duration=4.5)
     assert ev.outcome.value == st.outcome.value == "collapse"
     assert ev.result.collapse_time == pytest.approx(st.result.collapse_time, abs=0.01)
+    forces = ev.to_dict()["joint_forces"]
+    assert forces is not None and forces["max_friction_demand"] is not None
     summary = ev.to_dict()["rigid"]
     assert summary["solver"] == "events" and summary["time_step_s"] is None
     assert summary["events"]["closures"] == int(ev.events["counters"][EK.N_CLOSURES]) > 100

@@ -182,8 +182,11 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     recorded samples, under the ``motion`` it was run with (module docstring).
 
     Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
-    recorded samples. Cost: one contact projection per sample used."""
+    recorded samples. Cost: one contact projection per sample used. A run of the event
+    integrator (``solver="events"``, no time step of its own) is probed with the stepper's
+    default step."""
     from archquake.mechanism.rigid_chain import (
+        DEFAULT_TIME_STEP,
         GAP_TOLERANCE,
         MAX_SWEEPS,
         SOLVER_TOLERANCE,
@@ -194,7 +197,7 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     res = run.result
     g = res.g if g is None else float(g)
     model = RigidModel.build(res.assembly)
-    h = run.time_step
+    h = run.time_step if np.isfinite(run.time_step) else DEFAULT_TIME_STEP
     lref = res.assembly.reference_length
     gap_tol = GAP_TOLERANCE * lref
     tol = SOLVER_TOLERANCE * np.sqrt(g * lref)
