@@ -13,7 +13,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 from archquake import Arch
 from archquake.constants import STANDARD_GRAVITY as G
@@ -47,20 +46,9 @@ def _rocking_block(h: float, b: float = 0.4, height: float = 2.0):
     q[0, :2] = pivot + [c * d[0] - s * d[1], s * d[0] + c * d[1]]
     q[0, 2] = -th0
     mass = float(m.mass[0])
-    i_o = float(m.inertia[0]) + mass * radius**2
-
-    def quarter(th):
-        """Exact time from rest at tilt th to tilt 0 (energy quadrature, theta = th - w^2)."""
-        def f(w):
-            drop = math.cos(alpha - th) - math.cos(alpha - th + w * w)
-            return 2 * w / math.sqrt(2 * mass * G * radius * drop / i_o)
-        return quad(f, 0.0, math.sqrt(th), limit=200)[0]
-
     r = housner.restitution(b, height)
     e0 = mass * G * radius * (math.cos(alpha - th0) - math.cos(alpha))
-    th1 = alpha - math.acos(math.cos(alpha) + r * r * (math.cos(alpha - th0) - math.cos(alpha)))
-    t1 = quarter(th0)
-    t2 = t1 + 2 * quarter(th1)
+    (t1, t2), (th1, _) = housner.free_rocking(b, height, th0, 2, g=G)
     run = simulate_rigid(asm, REST, duration=t2 + 0.1, time_step=h, output_interval=h,
                          initial=(q, v))
     return run, dict(t1=t1, t2=t2, r=r, th1=th1, e0=e0)

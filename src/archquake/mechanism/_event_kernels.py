@@ -61,6 +61,7 @@ import numpy as np
 
 from archquake.dem._kernels import collapsed
 from archquake.ground._kernel import ground_in_piece, next_breakpoint
+from archquake.mechanism import _kernels as DP  # the Dormand-Prince 5(4) tableau
 from archquake.mechanism import _rigid_kernels as RK
 
 #: Most hinges a mode may have.
@@ -468,19 +469,6 @@ def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed):
     return ok
 
 
-# Dormand-Prince 5(4)
-_C2, _C3, _C4, _C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
-_A21 = 1.0 / 5.0
-_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
-_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
-_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-_A61, _A62, _A63, _A64, _A65 = (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
-                                -5103.0 / 18656.0)
-_B1, _B3, _B4, _B5, _B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
-_E1, _E3, _E4, _E5, _E6, _E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0,
-                                -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0)
-
-
 @nb.njit(cache=True)
 def dopri_step(K, jh, ch, t, h, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytmp, y1, f1,
                rtol, atol, closed):
@@ -490,34 +478,34 @@ def dopri_step(K, jh, ch, t, h, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytm
     k2, k3, k4, k5, k6 = ks[0], ks[1], ks[2], ks[3], ks[4]
     ok = True
     for i in range(m):
-        ytmp[i] = y[i] + h * _A21 * f0[i]
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C2 * h, t), g, ws,
+        ytmp[i] = y[i] + h * DP.A21 * f0[i]
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C2 * h, t), g, ws,
               k2, closed)
     for i in range(m):
-        ytmp[i] = y[i] + h * (_A31 * f0[i] + _A32 * k2[i])
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C3 * h, t), g, ws,
+        ytmp[i] = y[i] + h * (DP.A31 * f0[i] + DP.A32 * k2[i])
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C3 * h, t), g, ws,
               k3, closed)
     for i in range(m):
-        ytmp[i] = y[i] + h * (_A41 * f0[i] + _A42 * k2[i] + _A43 * k3[i])
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C4 * h, t), g, ws,
+        ytmp[i] = y[i] + h * (DP.A41 * f0[i] + DP.A42 * k2[i] + DP.A43 * k3[i])
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C4 * h, t), g, ws,
               k4, closed)
     for i in range(m):
-        ytmp[i] = y[i] + h * (_A51 * f0[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + _C5 * h, t), g, ws,
+        ytmp[i] = y[i] + h * (DP.A51 * f0[i] + DP.A52 * k2[i] + DP.A53 * k3[i] + DP.A54 * k4[i])
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C5 * h, t), g, ws,
               k5, closed)
     for i in range(m):
-        ytmp[i] = y[i] + h * (_A61 * f0[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i]
-                              + _A65 * k5[i])
+        ytmp[i] = y[i] + h * (DP.A61 * f0[i] + DP.A62 * k2[i] + DP.A63 * k3[i] + DP.A64 * k4[i]
+                              + DP.A65 * k5[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, k6, closed)
     for i in range(m):
-        y1[i] = y[i] + h * (_B1 * f0[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
+        y1[i] = y[i] + h * (DP.B1 * f0[i] + DP.B3 * k3[i] + DP.B4 * k4[i] + DP.B5 * k5[i] + DP.B6 * k6[i])
     ok &= rhs(K, jh, ch, y1, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, f1, closed)
     if not ok:
         return math.inf
     err = 0.0
     for i in range(2 * K):
-        e = h * (_E1 * f0[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i]
-                 + _E7 * f1[i])
+        e = h * (DP.E1 * f0[i] + DP.E3 * k3[i] + DP.E4 * k4[i] + DP.E5 * k5[i] + DP.E6 * k6[i]
+                 + DP.E7 * f1[i])
         sc = atol + rtol * max(abs(y[i]), abs(y1[i]))
         err += (e / sc) ** 2
     return math.sqrt(err / max(1, 2 * K))
@@ -898,7 +886,18 @@ def _log(log, counters, t, kind, joint, K):
 
 
 @nb.njit(cache=True)
-def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, counters, why):
+def _save(t, K, y, tt, st, diag):
+    """Record where the run stops: time, hinge count, the input work carried in y."""
+    tt[0] = t
+    st[0] = K
+    diag[E_INPUT] = y[2 * K] if K > 0 else y[0]
+
+
+@nb.njit(cache=True)
+def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, why, t, tt, st, diag):
+    """Stop for a hand-over to the time stepper (:func:`_save`): the block positions and
+    velocities of the reduced state into ``fq``, ``fv``; returns ``why``."""
+    _save(t, K, y, tt, st, diag)
     if K == 0:
         for b in range(n):
             fq[b, 0] = X0[b, 0]
@@ -1060,11 +1059,8 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                                             1e-9 * g / lref)
             counters[N_ONSETS] += 1
             if not ok or K2 > MX:
-                tt[0] = t
-                st[0] = 0
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(0, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_SEPARATION), written
+                                                  WHY_SEPARATION, t, tt, st, diag), written
             if K2 < kmin:
                 t += 1e-9  # no motion after all (at the threshold): keep scanning
                 continue
@@ -1084,11 +1080,8 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
             # ------------------------------------------------------------ one step
             ax0 = ground_in_piece(kind, gp, t, t)
             if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed):
-                tt[0] = t
-                st[0] = K
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_SINGULAR), written
+                                                  WHY_SINGULAR, t, tt, st, diag), written
             counters[N_EVALS] += 1
             while True:
                 bp = next_breakpoint(kind, gp, t)
@@ -1099,11 +1092,8 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 if err <= 1.0:
                     break
                 if not math.isfinite(err) or hh < 1e-12:
-                    tt[0] = t
-                    st[0] = K
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                     return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      counters, WHY_SINGULAR), written
+                                                      WHY_SINGULAR, t, tt, st, diag), written
                 h = hh * max(0.2, 0.9 * err ** -0.2)
                 counters[N_REJECTED] += 1
             fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
@@ -1191,9 +1181,7 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 counters[N_STEPS] += 1
                 h = h_next
                 if col:
-                    tt[0] = t
-                    st[0] = K
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
+                    _save(t, K, y, tt, st, diag)
                     return STATUS_COLLAPSE, WHY_NONE, written
                 continue
             # -------- reach the event
@@ -1209,19 +1197,14 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                     y[i] = y1[i]
                 t = t_ev
                 if col:
-                    tt[0] = t
-                    st[0] = K
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
+                    _save(t, K, y, tt, st, diag)
                     return STATUS_COLLAPSE, WHY_NONE, written
             # chatter guard
             ev_ring[ev_pos % CHATTER_EVENTS] = t
             ev_pos += 1
             if ev_pos >= CHATTER_EVENTS and t - ev_ring[ev_pos % CHATTER_EVENTS] < CHATTER_WINDOW:
-                tt[0] = t
-                st[0] = K
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_CHATTER), written
+                                                  WHY_CHATTER, t, tt, st, diag), written
             h = min(h_next, 1e-3)
             if ev_kind == 2:
                 # which margin: recompute at the event
@@ -1230,17 +1213,11 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axe, g, forces)
                 lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
                 if ho < lo:
-                    tt[0] = t
-                    st[0] = K
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                     return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      counters, WHY_TENSILE_HINGE), written
+                                                      WHY_TENSILE_HINGE, t, tt, st, diag), written
                 if K + 1 > MX:
-                    tt[0] = t
-                    st[0] = K
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                     return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      counters, WHY_TOO_MANY_HINGES), written
+                                                      WHY_TOO_MANY_HINGES, t, tt, st, diag), written
                 K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
                 counters[N_OPENINGS] += 1
                 _log(log, counters, t, 2, lj, K)
@@ -1286,16 +1263,9 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                                                 1e-8, 1e-7 * max(vscale, 1e-300), jh2, ch2,
                                                 rates, 1e-12 * math.sqrt(g / lref))
                 if not ok or K2 > MX:
-                    tt[0] = t
-                    st[0] = K
-                    for b in range(n):
-                        fq[b, 0] = qf[b, 0]
-                        fq[b, 1] = qf[b, 1]
-                        fq[b, 2] = qf[b, 2]
-                        fv[b, 0] = vn[b, 0]
-                        fv[b, 1] = vn[b, 1]
-                        fv[b, 2] = vn[b, 2]
-                    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
+                    _save(t, K, y, tt, st, diag)
+                    fq[:, :] = qf
+                    fv[:, :] = vn  # the stepper takes over from the impact
                     return STATUS_FALLBACK, WHY_SEPARATION, written
                 # accumulation: the same joint closing again and again at shrinking intervals
                 # (it reopens from the impulse its neighbours transmit) stays closed from the
@@ -1333,11 +1303,8 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
                 if K >= kmin - 1 and K > 0:
                     if not metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws,
                                              n, closed):
-                        tt[0] = t
-                        st[0] = K
-                        diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
-                        return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq,
-                                                          fv, counters, WHY_SINGULAR), written
+                        return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
+                                                          WHY_SINGULAR, t, tt, st, diag), written
                     pinned[:K] = False
                     project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
                     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2],
@@ -1356,35 +1323,23 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
         for _ in range(2 * nj):
             axc = ground_in_piece(kind, gp, t, t)
             if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, g, ws, closed):
-                tt[0] = t
-                st[0] = K
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_SINGULAR), written
+                                                  WHY_SINGULAR, t, tt, st, diag), written
             joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axc, g, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if ho < -ftol:
-                tt[0] = t
-                st[0] = K
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_TENSILE_HINGE), written
+                                                  WHY_TENSILE_HINGE, t, tt, st, diag), written
             if lo >= -ftol:
                 break
             if K + 1 > MX:
-                tt[0] = t
-                st[0] = K
-                diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
                 return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  counters, WHY_TOO_MANY_HINGES), written
+                                                  WHY_TOO_MANY_HINGES, t, tt, st, diag), written
             K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
             counters[N_OPENINGS] += 1
             _log(log, counters, t, 2, lj, K)
             link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
-    tt[0] = t
-    st[0] = K
+    _save(t, K, y, tt, st, diag)
     if K == 0 and t >= t_exc_end:
-        diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
         return STATUS_REST, WHY_NONE, written
-    diag[E_INPUT] = y[2 * st[0]] if st[0] > 0 else y[0]
     return STATUS_DONE, WHY_NONE, written

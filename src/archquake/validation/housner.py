@@ -85,7 +85,47 @@ def rectangular_pulse_overturning(width: float, height: float, duration: float, 
     return g * alpha / (1.0 - math.exp(-p * duration))
 
 
+def fall_time(width: float, height: float, tilt: float, *, g: float = STANDARD_GRAVITY) -> float:
+    """Exact time, s, for the block released from rest at ``tilt`` (rad, 0 < tilt < alpha) to
+    fall back to upright, rocking on its corner: quadrature of the energy equation
+    ``I_O theta'^2 / 2 = m g R (cos(alpha - tilt) - cos(alpha - theta))`` (I_O = 4 m R^2 / 3),
+    written in w with theta = tilt - w^2 so that the integrand stays finite at the release."""
+    from scipy.integrate import quad
+
+    alpha = slenderness(width, height)
+    p2 = frequency_parameter(width, height, g=g) ** 2
+
+    def f(w: float) -> float:
+        drop = math.cos(alpha - tilt) - math.cos(alpha - tilt + w * w)
+        return 2.0 * w / math.sqrt(2.0 * p2 * drop)
+
+    return float(quad(f, 0.0, math.sqrt(tilt), limit=200, epsabs=1e-13, epsrel=1e-12)[0])
+
+
+def free_rocking(width: float, height: float, tilt: float, impacts: int = 2, *,
+                 g: float = STANDARD_GRAVITY) -> tuple[list[float], list[float]]:
+    """Free rocking released from rest at ``tilt`` (rad): the times of the first ``impacts``
+    impacts (s) and the tilt reached after each (rad). Between impacts the exact motion
+    (:func:`fall_time`, twice per half cycle after the first); at each impact the angular
+    velocity times :func:`restitution`, so the energy times r^2:
+    ``cos(alpha - tilt_k+1) = cos(alpha) + r^2 (cos(alpha - tilt_k) - cos(alpha))``."""
+    alpha = slenderness(width, height)
+    r = restitution(width, height)
+    times: list[float] = []
+    peaks: list[float] = []
+    t = fall_time(width, height, tilt, g=g)
+    th = tilt
+    for _ in range(impacts):
+        times.append(t)
+        th = alpha - math.acos(math.cos(alpha) + r * r * (math.cos(alpha - th) - math.cos(alpha)))
+        peaks.append(th)
+        t += 2.0 * fall_time(width, height, th, g=g)
+    return times, peaks
+
+
 __all__ = [
+    "fall_time",
+    "free_rocking",
     "frequency_parameter",
     "half_diagonal",
     "onset_acceleration",
