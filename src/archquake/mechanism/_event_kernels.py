@@ -252,6 +252,37 @@ def _link_accelerations(K, P, G, bdd, al, aG):
 
 
 @nb.njit(cache=True)
+def _kkt_matrix(K, P, G, dd, lm, li, A, r, closed):
+    """The KKT matrix of the links (after :func:`kinematics`): the generalised mass
+    M_il = sum_{k > max(i, l)} m_k (G_k - P_i).(G_k - P_l) + I_k in A[:K, :K] and, for a
+    closed chain, the closure's Jacobian C (the last link's rotation and the velocity of its
+    material point X = dd[K]) as [[M, -C^T], [C, 0]]; r zeroed. Returns the system's size."""
+    m_ = K + 3 if closed else K
+    for i in range(m_):
+        r[i] = 0.0
+        for l_ in range(m_):
+            A[i, l_] = 0.0
+    for i in range(K):
+        for l_ in range(i, K):
+            s = 0.0
+            for k in range(max(i, l_) + 1, K + 1):
+                s += lm[k] * ((G[k, 0] - P[i, 0]) * (G[k, 0] - P[l_, 0])
+                              + (G[k, 1] - P[i, 1]) * (G[k, 1] - P[l_, 1])) + li[k]
+            A[i, l_] = s
+            A[l_, i] = s
+    if closed:
+        for i in range(K):
+            jx, jy = _jx(dd[K, 0] - P[i, 0], dd[K, 1] - P[i, 1])
+            A[K, i] = 1.0
+            A[K + 1, i] = jx
+            A[K + 2, i] = jy
+            A[i, K] = -1.0
+            A[i, K + 1] = -jx
+            A[i, K + 2] = -jy
+    return m_
+
+
+@nb.njit(cache=True)
 def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
     """Accelerations beta'' (``ws[11]``), the springing's wrench ``ws[12]`` and the kinematic
     quantities in ``ws`` (:func:`workspace`) for load ``ax`` (x_g'', m/s^2); ``closed``: the
@@ -271,11 +302,7 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
         aG[k, 1] = by
     aex = -ax
     aey = -g
-    m_ = K + 3 if closed else K
-    for i in range(m_):
-        r[i] = 0.0
-        for l_ in range(m_):
-            A[i, l_] = 0.0
+    m_ = _kkt_matrix(K, P, G, dd, lm, li, A, r, closed)
     for i in range(K):
         qi = 0.0
         ci = 0.0
@@ -284,13 +311,6 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
             qi += lm[k] * (aex * jx + aey * jy)
             ci += lm[k] * (aG[k, 0] * jx + aG[k, 1] * jy)
         r[i] = qi - ci
-        for l_ in range(i, K):
-            s = 0.0
-            for k in range(max(i, l_) + 1, K + 1):
-                s += lm[k] * ((G[k, 0] - P[i, 0]) * (G[k, 0] - P[l_, 0])
-                              + (G[k, 1] - P[i, 1]) * (G[k, 1] - P[l_, 1])) + li[k]
-            A[i, l_] = s
-            A[l_, i] = s
     if not closed:
         if not _solve(A, r, m_):
             return False
@@ -301,7 +321,7 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
         mu[2] = 0.0
         _link_accelerations(K, P, G, bdd, al, aG)
         return True
-    # closure: the last link's rotation and the velocity of its material point X = dd[K]
+    # the closure's velocity-product terms: the last link's material point X = dd[K]
     xx = dd[K, 0]
     xy = dd[K, 1]
     vxx = 0.0
@@ -313,13 +333,6 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
     bcx = 0.0
     bcy = 0.0
     for i in range(K):
-        jx, jy = _jx(xx - P[i, 0], xy - P[i, 1])
-        A[K, i] = 1.0
-        A[K + 1, i] = jx
-        A[K + 2, i] = jy
-        A[i, K] = -1.0
-        A[i, K + 1] = -jx
-        A[i, K + 2] = -jy
         kx, ky = _jx(vxx - vP[i, 0], vxy - vP[i, 1])
         bcx += bdot[i] * kx
         bcy += bdot[i] * ky
@@ -676,19 +689,7 @@ def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n, clos
     M beta' = J^T M_b vn under the closure C beta' = 0. Returns False if singular."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, th, dd, P, vP, G, om, vG)
-    m_ = K + 3 if closed else K
-    for i in range(m_):
-        r[i] = 0.0
-        for l_ in range(m_):
-            A[i, l_] = 0.0
-    for i in range(K):
-        for l_ in range(i, K):
-            s = 0.0
-            for k in range(max(i, l_) + 1, K + 1):
-                s += lm[k] * ((G[k, 0] - P[i, 0]) * (G[k, 0] - P[l_, 0])
-                              + (G[k, 1] - P[i, 1]) * (G[k, 1] - P[l_, 1])) + li[k]
-            A[i, l_] = s
-            A[l_, i] = s
+    m_ = _kkt_matrix(K, P, G, dd, lm, li, A, r, closed)
     k = 0
     for b in range(n):
         while k < K and jh[k] <= b:
@@ -700,16 +701,6 @@ def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n, clos
         for i in range(k):
             jx, jy = _jx(bx - P[i, 0], by - P[i, 1])
             r[i] += mb[b] * (vn[b, 0] * jx + vn[b, 1] * jy) + ib[b] * vn[b, 2]
-    xx = dd[K, 0]
-    xy = dd[K, 1]
-    for i in range(K if closed else 0):
-        jx, jy = _jx(xx - P[i, 0], xy - P[i, 1])
-        A[K, i] = 1.0
-        A[K + 1, i] = jx
-        A[K + 2, i] = jy
-        A[i, K] = 1.0
-        A[i, K + 1] = jx
-        A[i, K + 2] = jy
     if not _solve(A, r, m_):
         return False
     for i in range(K):
