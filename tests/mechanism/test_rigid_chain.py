@@ -22,7 +22,6 @@ from archquake.ground.records import Record
 from archquake.mechanism.impact_chain import cone_projection, mechanism_field
 from archquake.mechanism.prepared import PreparedMechanism, hinges_of
 from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
-from archquake.validation import housner
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 REST = Record(np.array([0.0, 0.0]), 1.0)
@@ -33,30 +32,17 @@ def _label(hinges):
 
 
 # ----------------------------------------------------------------------------- rocking block
-def _rocking_block(h: float, b: float = 0.4, height: float = 2.0):
+def _rocking_block(h: float, released_block):
     """The block released from rest at half its slenderness, run through two impacts."""
-    asm = block_on_base(b, height)
-    m = RigidModel.build(asm)
-    alpha, radius = housner.slenderness(b, height), housner.half_diagonal(b, height)
-    th0 = 0.5 * alpha
-    q, v = m.rest()
-    pivot = np.array([0.5 * b, 0.0])
-    c, s = math.cos(-th0), math.sin(-th0)
-    d = m.centroids[0] - pivot
-    q[0, :2] = pivot + [c * d[0] - s * d[1], s * d[0] + c * d[1]]
-    q[0, 2] = -th0
-    mass = float(m.mass[0])
-    r = housner.restitution(b, height)
-    e0 = mass * G * radius * (math.cos(alpha - th0) - math.cos(alpha))
-    (t1, t2), (th1, _) = housner.free_rocking(b, height, th0, 2, g=G)
-    run = simulate_rigid(asm, REST, duration=t2 + 0.1, time_step=h, output_interval=h,
-                         initial=(q, v))
-    return run, dict(t1=t1, t2=t2, r=r, th1=th1, e0=e0)
+    model, initial, ref = released_block()
+    run = simulate_rigid(model, REST, duration=ref["t2"] + 0.1, time_step=h, output_interval=h,
+                         initial=initial)
+    return run, ref
 
 
 @pytest.fixture(scope="module")
-def block_run():
-    return _rocking_block(2.5e-5)
+def block_run(released_block):
+    return _rocking_block(2.5e-5, released_block)
 
 
 def test_rocking_block_reproduces_housner(block_run):

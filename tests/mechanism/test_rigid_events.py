@@ -140,37 +140,24 @@ def test_dynamic_similarity():
     np.testing.assert_allclose(tb, 2 * ta, rtol=1e-7)
 
 
-def test_rocking_block_reproduces_housner():
+def test_rocking_block_reproduces_housner(released_block):
     """A free-standing block (b 0.4 m, h 2 m, an open chain of one block) released from rest at
     half its slenderness: the first two impacts at the times of the exact quadrature of its
     equation of motion (1e-8 relative), the energy the first impact removes Housner's
     (1 - r^2) with r = 1 - 1.5 sin^2 alpha (1e-8), the energy conserved between them (1e-9),
     and its onset under a ground acceleration at b / h g."""
-    from archquake.dem.assembly import block_on_base
     from archquake.ground.records import Record
-    from archquake.validation import housner
 
     b, height = 0.4, 2.0
-    model = RigidModel.build(block_on_base(b, height))
+    model, initial, ref = released_block(b, height)
     em = EventModel.build(model)
     # measured 1.7e-8: the bisection stops where the projected rotation acceleration falls
     # below the test of motion (1e-9 g / L)
     assert em.onset_g[0] == pytest.approx(b / height, rel=1e-7)
     assert em.onset_g[1] == pytest.approx(b / height, rel=1e-7)
-    alpha, radius = housner.slenderness(b, height), housner.half_diagonal(b, height)
-    th0 = 0.5 * alpha
-    q, v = model.rest()
-    pivot = np.array([0.5 * b, 0.0])
-    c, s = math.cos(-th0), math.sin(-th0)
-    d = model.centroids[0] - pivot
-    q[0, :2] = pivot + [c * d[0] - s * d[1], s * d[0] + c * d[1]]
-    q[0, 2] = -th0
-    mass = float(model.mass[0])
-    r = housner.restitution(b, height)
-    e0 = mass * G * radius * (math.cos(alpha - th0) - math.cos(alpha))
-    (t1, t2), _ = housner.free_rocking(b, height, th0, 2, g=G)
+    t1, t2, r, e0 = ref["t1"], ref["t2"], ref["r"], ref["e0"]
     out = run_events(em, Record(np.array([0.0, 0.0]), 1.0), duration=t2 + 0.05,
-                     output_interval=1e-3, initial=(q, v))
+                     output_interval=1e-3, initial=initial)
     closures = out["log"][out["log"][:, 1] == 1]
     assert closures[0, 0] == pytest.approx(t1, rel=1e-8)
     assert closures[1, 0] == pytest.approx(t2, rel=1e-8)
