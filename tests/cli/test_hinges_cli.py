@@ -79,3 +79,31 @@ def test_meaningless_combinations_are_refused(capsys, extra, named):
     assert main(["run", *FIG4A, *extra]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and named in err[0]
+
+
+def test_moving_hinges_integrated_from_event_to_event(capsys):
+    """``--integrator events``: the same chain integrated from contact event to contact event
+    gives Figure 4(a)'s collapse in the first half cycle at the time steps' instant (1.508 s,
+    within 0.03 s), and its JSON lists every event from the onset on."""
+    out = _json(capsys, "--hinges", "moving", "--integrator", "events", *FIG4A, "--t-end", "2.0")
+    steps = _json(capsys, "--hinges", "moving", *FIG4A, "--t-end", "2.0")
+    assert out["outcome"] == steps["outcome"] == "collapse" and out["collapse_half_cycle"] == 1
+    assert abs(out["collapse_time_s"] - steps["collapse_time_s"]) < 0.03
+    rig = out["rigid"]
+    assert rig["solver"] == "events" and rig["time_step_s"] is None
+    log = rig["events"]["log"]
+    assert log[0]["kind"] == "onset" and log[0]["time_s"] == 0.0 and log[0]["hinges_after"] >= 4
+    assert main(["run", "--hinges", "moving", "--integrator", "events", *FIG4A,
+                 "--t-end", "2.0"]) == 0
+    assert "from event to event" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--integrator", "events"], "--integrator events applies only with --hinges moving"),
+    (["--hinges", "moving", "--integrator", "events", "--friction", "0.5"],
+     "--integrator events has no sliding"),
+])
+def test_integrator_refusals_are_one_line_exit_2(argv, message, capsys):
+    assert main(["run", *argv, *FIG4A]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err

@@ -53,8 +53,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "mechanism, hinges fixed between impacts (fast: the default of domain, "
                         "ida and sweep); "
                         "'moving', the chain of rigid blocks, hinges open, migrate and close "
-                        "anywhere (issue 16; ~1 s per 4 s simulated, like the DEM); see "
+                        "anywhere (issue 16; ~0.2 s per 4 s simulated); see "
                         "docs/mechanism.md")
+    p.add_argument("--integrator", choices=("steps", "events"), default=None,
+                   help="with --hinges moving: how the chain of rigid blocks is integrated: "
+                        "'steps' (default), Moreau-Jean time steps of 1e-4 s; 'events', from "
+                        "contact event to contact event (energy conserved between impacts, "
+                        "every hinge opening and closure located and listed; no --friction)")
     from archquake.cli.dem_run import add_dem_arguments
 
     add_dem_arguments(p)
@@ -77,6 +82,10 @@ def run(args: argparse.Namespace) -> int:
             f"--hinges {args.hinges} applies only to the analytical model (the DEM's hinges "
             "always move): leave --hinges out with --model dem")
     moving = args.hinges == "moving"
+    if args.integrator is not None and not moving:
+        raise InvalidParameterError(
+            f"--integrator {args.integrator} applies only with --hinges moving (the chain of "
+            "rigid blocks)")
     refuse_dem_options(args, friction_too=not moving)
     impact = impact_from_args(args)
     if args.model == "dem":

@@ -29,6 +29,10 @@ def run(args: argparse.Namespace, arch, motion) -> int:
                 "follow from the blocks' contacts (perfectly plastic, no choice of law)")
     if args.friction is not None:
         check_range("--friction", args.friction, *FRICTION_RANGE)
+    solver = "events" if getattr(args, "integrator", None) == "events" else "direct"
+    if solver == "events" and args.friction is not None:
+        raise InvalidParameterError(
+            "--integrator events has no sliding: leave --friction out, or use --integrator steps")
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
     if duration > DEM_T_END_MAX_S:
         given = ("--t-end" if args.t_end is not None
@@ -39,9 +43,10 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
-        result = rigid_to_verdict(arch, motion, friction=args.friction)
+        result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
     else:  # a given --t-end is run as given
-        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction)
+        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
+                                solver=solver)
     from archquake.cli.dem_run import emit_block_run
 
     return emit_block_run(args, arch, motion, result.result, result.to_dict(), _print_text,
@@ -57,8 +62,14 @@ def _print_text(out: dict) -> None:
           "plastic contacts, "
           + ("no sliding" if out["friction_coefficient"] is None
              else f"Coulomb friction mu = {out['friction_coefficient']:g}"))
-    print(f"time step           {rig['time_step_s']:.3g} s, {out['end_time_s']:.2f} s simulated "
-          f"({rig['wall_s']:.1f} s wall)")
+    if rig["solver"] == "events":
+        ev = rig["events"]
+        print(f"integrator          from event to event: {ev['closures']} closures, "
+              f"{ev['openings']} openings, {len(ev['handovers_s'])} hand-overs to time steps; "
+              f"{out['end_time_s']:.2f} s simulated ({rig['wall_s']:.2f} s wall)")
+    else:
+        print(f"time step           {rig['time_step_s']:.3g} s, {out['end_time_s']:.2f} s "
+              f"simulated ({rig['wall_s']:.1f} s wall)")
     from archquake.cli.dem_run import print_block_verdict
 
     print_block_verdict(out)

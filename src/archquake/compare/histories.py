@@ -84,7 +84,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
 
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
-                     g: float = STANDARD_GRAVITY, settings=None):
+                     g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct"):
     """The rigid chain (:func:`archquake.mechanism.rigid_chain.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
@@ -105,6 +105,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         m/s^2.
     settings : DemSettings, optional
         Thresholds of the verdict (default ``DemSettings()``).
+    solver : {"direct", "events"}
+        How the chain is integrated (:func:`~archquake.mechanism.rigid_chain.simulate_rigid`).
 
     Returns
     -------
@@ -126,7 +128,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
             "1e-4 s): shorten the excitation or give an end time")
     cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
     return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings)
+                          settings=settings, solver=solver)
 
 
 # ----------------------------------------------------------------------------- comparison

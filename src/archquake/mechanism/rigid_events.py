@@ -344,17 +344,25 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             "wall_s": wall}
 
 
+#: The event log's kinds (:func:`archquake.mechanism._event_kernels.run`).
+EVENT_KINDS = {1: "closure", 2: "opening", 3: "relock", 4: "onset", 5: "rest", 6: "resume"}
+
+
 def events_summary(raw: dict) -> dict:
     """The event integrator's record for JSON: counts of closures, openings, onsets and cut
-    accumulations, the times (s) and reasons the time stepper took over, the steps taken."""
+    accumulations, the times (s) and reasons the time stepper took over, the steps taken, and
+    the event log: every event with its time (s), kind (:data:`EVENT_KINDS`), joint (-1 for
+    none) and the number of hinges after it."""
     c = raw["counters"]
     return {"closures": int(c[EK.N_CLOSURES]), "openings": int(c[EK.N_OPENINGS]),
             "onsets": int(c[EK.N_ONSETS]), "accumulations_cut": int(c[EK.N_ZENO]),
             "steps": int(c[EK.N_STEPS]), "rejected_steps": int(c[EK.N_REJECTED]),
             "handovers_s": [round(t, 6) for t in raw["windows_s"]],
             "handover_reasons": [WHY[w] for w in raw["window_why"]],
-            "max_closure_drift_m": raw["max_drift_m"]}
+            "max_closure_drift_m": raw["max_drift_m"],
+            "log": [{"time_s": float(t), "kind": EVENT_KINDS.get(int(k), str(int(k))),
+                     "joint": int(j), "hinges_after": int(n)} for t, k, j, n in raw["log"]]}
 
 
-__all__ = ["EVENT_ATOL", "EVENT_RTOL", "EventModel", "MAX_STEP", "events_summary", "ground_kinematics",
-           "run_events"]
+__all__ = ["EVENT_ATOL", "EVENT_KINDS", "EVENT_RTOL", "EventModel", "MAX_STEP", "events_summary",
+           "ground_kinematics", "run_events"]
