@@ -6,10 +6,11 @@ ground; base bodies fixed in the ground's frame):
 1. q_m = q_k + h/2 v_k (mid-step configuration);
 2. at q_m, every joint's two corner gaps g_c = (P_b - P_a) . n, n the joint normal carried by
    the mean rotation of its two bodies (so the gap is mirror-symmetric); a corner is active when
-   g_c <= ``gap_tol``; a joint with an active corner carries its no-slip row (tangential
-   relative velocity zero, at the active corner, or at the mid-point of both);
+   g_c <= ``gap_tol``, or g_c <= ``hold_tol`` if it pushed at the previous step (the hold of
+   the position correction, below); a joint with an active corner carries its no-slip row
+   (tangential relative velocity zero, at the active corner, or at the mid-point of both);
 3. v_free = v_k + h M^-1 f(t_m), f = (-m x_g'', -m g, 0);
-4. v_{k+1} = argmin 1/2 ||v - v_free||_M over {H_N v >= 0, H_T v = 0}: projected Gauss-Seidel on
+4. v_{k+1} = argmin 1/2 ||v - v_free||_M over {H_N v >= b_N, H_T v = b_T}: projected Gauss-Seidel on
    the contact impulses p (p_N >= 0, p_T free), v = v_free + M^-1 H^T p, over-relaxed
    (:data:`RELAX`), warm-started from the previous step's impulses (perfectly plastic: e = 0).
    With a finite friction coefficient mu, each joint's tangential impulse is clamped to
@@ -23,6 +24,32 @@ ground; base bodies fixed in the ground's frame):
    when the guess fails (at most 129 of the 40 000 steps of Oppenheim's 4 s history); it
    returns the converged Gauss-Seidel's velocities (docs/mechanism.md, "Speed of the rigid chain");
 5. q_{k+1} = q_m + h/2 v_{k+1}.
+
+**Position-level correction** (:func:`run`'s ``correction``, on by default; :func:`project`
+and :func:`project_direct` without it unless asked, as the event integrator and the force
+probes call them). With b = 0 the scheme holds velocities only, and a pivot in persistent
+contact drifts: q is advanced linearly in theta, so a corner turning about its pivot at omega
+leaves it by about r omega^2 h^2 / 2 a step (7e-8 m on a parabolic arch at 3 lambda), past
+``gap_tol`` (1e-9 L): the corner dropped out with its joint's no-slip row and the block slid
+(33 mm in 0.29 s, docs/mechanism.md). The bounds (:func:`_targets`): b_N = -g_c / h on a
+corner open by g_c > 0 (pulled shut in one step; a penetration is not pushed out, which would
+throw the corner off at |g_c| / h: half the approach speed after an impact, a restitution the
+plastic model has not: it moved the energy kept over the half cycles of
+docs/mechanism.md by -0.022 to +0.037);
+b_T = -(s - s_0) / h, s the joint's tangential offset at its no-slip point and s_0 its value
+when the contact began (``slip_ref``, NaN while the joint is open: a flight's offset is the
+model's, not an error); and a corner that pushed stays active while g_c <= ``hold_tol``
+(larger than a step's drift), so that the correction can act on it.
+
+**Energy.** D_DISSIPATED stays the kinetic energy the projection removes, 1/2 (T_free - T_new)
+= 1/2 p^T W p - p^T b (complementarity p_r (H_r v - b_r) = 0), which with b != 0 is not all
+dissipation: -p^T b (D_CORRECTION) is the correction's work, positive when a pushing corner is
+pulled shut. It is kept in D_DISSIPATED because that is what closes the balance
+T + V + D_DISSIPATED - D_INPUT = const of the discrete scheme: the positions the correction
+moves change V by what the drift had changed it (measured: the balance error of Oppenheim's
+half cycle 0.0168 of the input with and without the correction; subtracting D_CORRECTION made
+it 1.6 when penetrations were pushed out). D_CORRECTION is reported to show its size (7 J of
+41.7 kJ on Oppenheim's half cycle).
 
 SI units throughout: masses kg, inertias kg m^2, impulses N s.
 """
@@ -41,7 +68,9 @@ D_PENETRATION = 2  # m, largest penetration (negative gap) since the last sample
 D_FRICTION = 3  # -, largest |p_T| / p_N of a joint (p_N > 1e-12 h g max m) since the last sample
 D_ITERATIONS = 4  # -, most Gauss-Seidel sweeps of a step since the last sample
 D_RESIDUAL = 5  # m/s, largest velocity correction of a step's last sweep since the last sample
-N_DIAG = 6
+D_CORRECTION = 6  # J, cumulated part of D_DISSIPATED that is the position correction's work,
+#: -p^T b (module docstring, "Energy")
+N_DIAG = 7
 
 #: Over-relaxation of the Gauss-Seidel sweep (projected SOR; converges for 0 < RELAX < 2 on the
 #: positive semi-definite Delassus matrix). 1.3 halves the sweeps on Oppenheim's arch (280 -> 145
@@ -117,20 +146,24 @@ def _row(q, body, px, py, dx, dy, sign, out):
 
 
 @nb.njit(cache=True)
-def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol):
+def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol):
     """The rows of the active contacts, in joint order (per joint: normal at corner 0, normal at
-    corner 1, tangential): (nrows, rows_j, rows_k, ja_rows, jb_rows, diag), ``diag[r]`` the
-    Delassus diagonal (m/s per N s)."""
+    corner 1, tangential): (nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset), ``diag[r]``
+    the Delassus diagonal (m/s per N s), ``offset[r]`` (tangential rows) the tangential offset
+    (P_b - P_a) . t of the row's point, m. A corner is active when its gap is <= ``gap_tol``, or <=
+    ``hold_tol`` (m) if it pushed at the previous step (``p_warm`` > 0; the position-level
+    correction's hold, :func:`run`)."""
     nj = ja.shape[0]
     nrows = 0
     rows_j = np.zeros(3 * nj, np.int64)
     rows_k = np.zeros(3 * nj, np.int64)
     ja_rows = np.zeros((3 * nj, 3))
     jb_rows = np.zeros((3 * nj, 3))
+    offset = np.zeros(3 * nj)
     tmp = np.zeros(3)
     for j in range(nj):
-        act0 = gaps[j, 0] <= gap_tol
-        act1 = gaps[j, 1] <= gap_tol
+        act0 = gaps[j, 0] <= gap_tol or (p_warm[j, 0] > 0.0 and gaps[j, 0] <= hold_tol)
+        act1 = gaps[j, 1] <= gap_tol or (p_warm[j, 1] > 0.0 and gaps[j, 1] <= hold_tol)
         for k in range(2):
             if (k == 0 and act0) or (k == 1 and act1):
                 rows_j[nrows] = j
@@ -149,6 +182,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol):
             by = wa * pts[j, 0, 1, 1] + (1.0 - wa) * pts[j, 1, 1, 1]
             rows_j[nrows] = j
             rows_k[nrows] = 2
+            offset[nrows] = (bx - ax) * tan[j, 0] + (by - ay) * tan[j, 1]
             _row(q, ja[j], ax, ay, tan[j, 0], tan[j, 1], -1.0, tmp)
             ja_rows[nrows] = tmp
             _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, tmp)
@@ -165,14 +199,60 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol):
         if b >= 0:
             d += (jb_rows[r, 0] ** 2 + jb_rows[r, 1] ** 2) * inv_m[b] + jb_rows[r, 2] ** 2 * inv_i[b]
         diag[r] = d
-    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag
+    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset
+
+
+@nb.njit(cache=True)
+def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
+    """The rows' bounds (nrows,), m/s, of the position-level correction (:func:`run`), all zero
+    when ``correction <= 0`` (s; the velocity-level cone alone).
+
+    Normal row of an active corner open by g_c > 0 (m): -g_c / ``correction`` (pulled shut in
+    one step; a penetration, g_c < 0, is not pushed out: that would throw the corner out at
+    |g_c| / h, a restitution the plastic model has not, docs/mechanism.md). Tangential row:
+    -(offset - ref) / ``correction``, ref = ``slip_ref[j]`` (m), the joint's tangential offset
+    when its contact began (recorded here, in place, when ``slip_ref[j]`` is NaN; set back to
+    NaN when the joint has no row). ``slip_ref`` None: tangential bounds zero."""
+    target = np.zeros(nrows)
+    if correction <= 0.0:
+        return target
+    for r in range(nrows):
+        if rows_k[r] < 2:
+            gap = gaps[rows_j[r], rows_k[r]]
+            if gap > 0.0:
+                target[r] = -gap / correction
+    if slip_ref is not None:
+        seen = np.zeros(slip_ref.shape[0], np.bool_)
+        for r in range(nrows):
+            if rows_k[r] == 2:
+                j = rows_j[r]
+                seen[j] = True
+                if math.isnan(slip_ref[j]):
+                    slip_ref[j] = offset[r]
+                target[r] = -(offset[r] - slip_ref[j]) / correction
+        for j in range(slip_ref.shape[0]):
+            if not seen[j]:
+                slip_ref[j] = math.nan
+    return target
+
+
+@nb.njit(cache=True)
+def _correction_work(nrows, p, target):
+    """-sum_r p_r target_r, J: the part of the kinetic energy a projection removes that is the
+    position-level correction's (impulses ``p`` N s, bounds ``target`` m/s; :func:`run`)."""
+    w = 0.0
+    for r in range(nrows):
+        w -= p[r] * target[r]
+    return w
 
 
 @nb.njit(cache=True)
 def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv_i, tol,
-         max_iter, mu):
+         max_iter, mu, target):
     """Projected over-relaxed Gauss-Seidel from the impulses ``p`` (nrows,), already applied to
-    ``v``; both updated in place. Returns (sweeps, residual m/s)."""
+    ``v``; both updated in place. ``target`` (nrows,), m/s: the rows' bounds, H_r v >= target[r]
+    (normal rows) or H_r v = target[r] (tangential rows, always 0) (:func:`_targets`). Returns
+    (sweeps, residual m/s)."""
     nj = ja.shape[0]
     pn_joint = np.zeros(nj)
     for r in range(nrows):
@@ -187,7 +267,7 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
             j = rows_j[r]
             a = ja[j]
             b = jb[j]
-            w = _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows)
+            w = _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows) - target[r]
             new = p[r] - RELAX * w / diag[r]
             if rows_k[r] < 2:
                 if new < 0.0:
@@ -210,18 +290,21 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
 
 @nb.njit(cache=True)
 def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter,
-            mu):
+            mu, correction=0.0, hold_tol=0.0, slip_ref=None, work=None):
     """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
     contacts (module docstring, step 4), by projected Gauss-Seidel alone (the plain stepper,
     ``method = 0`` of :func:`run`).
 
     ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
+    ``correction``: s, > 0 for the position-level correction of step 4 (the normal rows bound
+    H_n v >= -gap / ``correction``, :func:`_targets`); 0 (default): the cone H_n v >= 0.
 
     Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
     N s; sweeps taken; final residual m/s)."""
     nj = ja.shape[0]
-    nrows, rows_j, rows_k, ja_rows, jb_rows, diag = _rows(q, inv_m, inv_i, ja, jb, gaps, nrm,
-                                                          tan, pts, gap_tol)
+    nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset = _rows(
+        q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol)
+    target = _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref)
     v = v_free.copy()
     p = np.zeros(nrows)
     pn_joint = np.zeros(nj)
@@ -237,10 +320,12 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
         if p[r] != 0.0:
             _apply(v, ja[j], jb[j], ja_rows[r], jb_rows[r], p[r], inv_m, inv_i)
     sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
-                          inv_i, tol, max_iter, mu)
+                          inv_i, tol, max_iter, mu, target)
     imp = np.zeros((nj, 3))
     for r in range(nrows):
         imp[rows_j[r], rows_k[r]] = p[r]
+    if work is not None:
+        work[0] = _correction_work(nrows, p, target)
     return v, imp, sweeps, change
 
 
@@ -319,7 +404,8 @@ def _envelope_solve(w_mat, first, n, rhs, out):
 
 @nb.njit(cache=True)
 def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
-                   max_iter, mu, max_sets=ACTIVE_SET_ITERATIONS):
+                   max_iter, mu, max_sets=ACTIVE_SET_ITERATIONS, correction=0.0, hold_tol=0.0,
+                   slip_ref=None, work=None):
     """The same contact step as :func:`project` (``mu <= 0`` only), solved exactly on a guessed
     active set, Gauss-Seidel only when the guess fails.
 
@@ -336,13 +422,18 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
     to ``max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
     (:func:`_pgs`) finishes
-    from the last impulses. Returns as :func:`project`; the count is the number of factorised
-    active sets plus any Gauss-Seidel sweeps."""
+    from the last impulses. ``correction``: as :func:`project` (the equalities and the
+    separating test then read H_r v = target_r, H_r v >= target_r - tol). Returns as
+    :func:`project`; the count is the number of factorised active sets plus any Gauss-Seidel
+    sweeps."""
     nj = ja.shape[0]
-    nrows, rows_j, rows_k, ja_rows, jb_rows, diag = _rows(q, inv_m, inv_i, ja, jb, gaps, nrm,
-                                                          tan, pts, gap_tol)
+    nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset = _rows(
+        q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol)
     imp = np.zeros((nj, 3))
+    target = _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref)
     if nrows == 0:
+        if work is not None:
+            work[0] = 0.0
         return v_free.copy(), imp, 0, 0.0
     in_s = np.zeros(nrows, np.bool_)
     pw = np.zeros(nrows)
@@ -447,7 +538,8 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
             for _ref in range(REFINEMENTS):
                 big = 0.0
                 for i in range(n):
-                    rhs[i] = -_row_velocity(v, idx[i], rows_j, ja, jb, ja_rows, jb_rows)
+                    rhs[i] = target[idx[i]] - _row_velocity(v, idx[i], rows_j, ja, jb, ja_rows,
+                                                            jb_rows)
                     if abs(rhs[i]) > big:
                         big = abs(rhs[i])
                 if big <= tol:
@@ -469,7 +561,7 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
                 if p[r] < -tol / diag[r]:
                     in_s[r] = False
                     changed = True
-            elif _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows) < -tol:
+            elif _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows) < target[r] - tol:
                 in_s[r] = True
                 changed = True
         if not changed:
@@ -486,9 +578,11 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
             if p[r] != 0.0:
                 _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
         sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
-                              inv_i, tol, max_iter, mu)
+                              inv_i, tol, max_iter, mu, target)
     for r in range(nrows):
         imp[rows_j[r], rows_k[r]] = p[r]
+    if work is not None:
+        work[0] = _correction_work(nrows, p, target)
     return v, imp, solves + sweeps, change
 
 
@@ -506,15 +600,23 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 @nb.njit(cache=True)
 def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, gap_tol, tol,
-        max_iter, mu, out_every, out_q, out_v, out_diag, diag, method=METHOD_PGS):
+        max_iter, mu, out_every, out_q, out_v, out_diag, diag, method=METHOD_PGS,
+        correction=True, hold_tol=0.0, slip_ref=None):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
     m/s^2), writing q, v, diagnostics after every ``out_every`` steps into row ``k // out_every``
     of ``out_*``. ``q``, ``v``, ``p_warm``, ``diag`` (running D_* values) are updated in place.
+    ``correction``: the position-level correction (module docstring), with the hold
+    ``hold_tol`` (m) and ``slip_ref`` (nj,), m, the joints' tangential offsets when their
+    contact began (NaN: open; updated in place; None: no tangential correction); False: the
+    velocity-level scheme alone (the event integrator's stepping windows).
     Returns the number of sweeps of the worst step."""
     nb_ = mass.shape[0]
     inv_m = 1.0 / mass
     inv_i = 1.0 / inertia
     worst = 0
+    h_corr = h if correction else 0.0
+    hold = hold_tol if correction else 0.0
+    work = np.zeros(1)
     for k in range(acc.shape[0]):
         qm = q + 0.5 * h * v
         gaps, nrm, tan, pts = geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
@@ -524,10 +626,13 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
             vf[i, 1] -= h * g
         if method == METHOD_DIRECT and mu <= 0.0:
             vn, imp, sweeps, res = project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan,
-                                                  pts, gap_tol, p_warm, tol, max_iter, mu)
+                                                  pts, gap_tol, p_warm, tol, max_iter, mu,
+                                                  ACTIVE_SET_ITERATIONS, h_corr, hold, slip_ref,
+                                                  work)
         else:
             vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                           gap_tol, p_warm, tol, max_iter, mu)
+                                           gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
+                                           slip_ref, work)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0
@@ -536,6 +641,7 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
             t_new += mass[i] * (vn[i, 0] ** 2 + vn[i, 1] ** 2) + inertia[i] * vn[i, 2] ** 2
             w_in -= acc[k] * mass[i] * 0.5 * h * (v[i, 0] + vn[i, 0])
         diag[D_DISSIPATED] += 0.5 * (t_free - t_new)
+        diag[D_CORRECTION] += work[0]
         diag[D_INPUT] += w_in
         for j in range(ja.shape[0]):
             for c in range(2):

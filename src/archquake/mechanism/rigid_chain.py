@@ -17,10 +17,13 @@ may open at either corner has all of these motions at once, and needs no choice 
 * Moreau-Jean time stepping at velocity level (:mod:`archquake.mechanism._rigid_kernels`): each
   step's velocity is the kinetic-metric projection of the unconstrained velocity onto the cone of
   admissible velocities of the contacts that are closed at mid-step, i.e. perfectly plastic
-  impacts (e = 0), Moreau's sweeping process. Hinges open anywhere (a contact whose impulse would
-  be tensile separates), migrate, two or more degrees of freedom move at once, closures are
-  staggered or simultaneous as the geometry makes them; for a simultaneous closure at phi = 0
-  the step is exactly the chain law's cone projection
+  impacts (e = 0), Moreau's sweeping process, with a position-level correction: an open
+  contact corner's row closes its gap within the step (a penetration is not pushed out), its
+  joint's no-slip row undoes the slip since the contact began, and a corner that pushed stays in contact within ``HOLD_TOLERANCE`` (without it a
+  pivot's drift, second order in h, opened it and the block slid). Hinges open anywhere (a
+  contact whose impulse would be tensile separates), migrate, two or more degrees of freedom
+  move at once, closures are staggered or simultaneous as the geometry makes them; for a
+  simultaneous closure at phi = 0 the step is exactly the chain law's cone projection
   (:func:`archquake.mechanism.impact_chain.cone_projection`; test).
 
 Why time stepping and not events: the number of possible contact states is 3^(n+1), the set of
@@ -33,8 +36,8 @@ by the DEM's own post-processing (:meth:`DemResult.from_samples`, through
 :func:`_samples_to_result`, which any stepper of this model hands its samples to), so impacts,
 hinges, collapse criteria and the rotation measure are read exactly as in the DEM; in it,
 ``strain`` is zero and the ``damping`` column holds the energy removed by the contact
-projections (the plastic impacts, and the scheme's O(h) loss in persistent contacts), not
-Rayleigh damping.
+projections (the plastic impacts, the scheme's O(h) loss in persistent contacts, and the
+position correction's work, ``RigidRun.correction_work``), not Rayleigh damping.
 """
 
 from __future__ import annotations
@@ -58,6 +61,11 @@ from archquake.mechanism import _rigid_kernels as RK
 DEFAULT_TIME_STEP = 1.0e-4
 #: A corner is in contact when its gap is below this fraction of the assembly's reference length.
 GAP_TOLERANCE = 1.0e-9
+#: The stepper's position-level correction (``_rigid_kernels.run``): a corner that pushed at the
+#: previous step stays in contact while its gap is below this fraction of the reference length
+#: (it must exceed a step's drift, r omega^2 h^2 / 2: 7e-8 m on the parabolic arch of
+#: docs/mechanism.md), and every contact's normal row is bound to close its gap in one step.
+HOLD_TOLERANCE = 1.0e-6
 #: Gauss-Seidel stops when a sweep changes no velocity by more than this times sqrt(g L), L the
 #: reference length (or after ``MAX_SWEEPS``). 1e-9 runs 2 times faster and changes the energy
 #: kept over Oppenheim's half cycle by < 1e-4, but mirror symmetry then holds to 1e-4 t only
@@ -171,6 +179,10 @@ class RigidRun:
 
     ``result``: the samples as a :class:`DemResult` (module docstring); ``time_step`` s;
     ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
+    ``correction_work``: J, the part of the ``damping`` column (the kinetic energy the contact
+    projections removed) that is the work of the position-level correction
+    (``_rigid_kernels.D_CORRECTION``; 0 for the event integrator, whose own time steps leave it
+    out);
     ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
     correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
@@ -190,6 +202,7 @@ class RigidRun:
     wall_s: float
     friction: float | None = None
     motion: object = field(default=None, repr=False, compare=False)
+    correction_work: float = 0.0
     events: dict | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -227,6 +240,7 @@ class RigidRun:
         out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
                         "time_step_s": (None if self.events is not None else self.time_step),
                         "max_penetration_m": self.max_penetration_m,
+                        "correction_work_j": self.correction_work,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
                         "wall_s": self.wall_s}
         if self.events is not None:
@@ -337,6 +351,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     q, v = model.rest() if initial is None else (np.array(initial[0], float),
                                                   np.array(initial[1], float))
     p_warm = np.zeros((len(model.ja), 3))
+    slip_ref = np.full(len(model.ja), np.nan)  # the joints' tangential offsets at contact, m
     diag = np.zeros(RK.N_DIAG)
     lref = asm.reference_length
     tol = float(solver_tolerance) * math.sqrt(g * lref)
@@ -369,7 +384,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         od = np.zeros((n_out, RK.N_DIAG))
         w = RK.run(q, v, p_warm, model.mass, model.inertia, model.ja, model.jb, model.arm_a,
                    model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS, mu,
-                   out_every, oq, ov, od, diag, methods[solver])
+                   out_every, oq, ov, od, diag, methods[solver], True, HOLD_TOLERANCE * lref,
+                   slip_ref)
         worst = max(worst, int(w))
         if not np.all(np.isfinite(q)):
             from archquake.errors import SolverError
@@ -404,7 +420,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=worst,
                     residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=wall,
-                    friction=friction, motion=motion)
+                    friction=friction, motion=motion,
+                    correction_work=float(da[-1, RK.D_CORRECTION]))
 
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,

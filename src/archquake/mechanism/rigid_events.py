@@ -218,7 +218,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
             acc = _mean_acceleration(motion, t, h, ns)
             RK.run(q, v, p_warm, r.mass, r.inertia, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0,
                    acc, h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0, ns, oq, ov, od, dg,
-                   RK.METHOD_DIRECT)
+                   RK.METHOD_DIRECT, False)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
         i = k - 1

@@ -135,8 +135,10 @@ class JointForceHistory:
         return out
 
 
-def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i) -> np.ndarray:
-    """The active rows (as the kernel builds them), in the mass-scaled velocities."""
+def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i, p_warm=None,
+          hold_tol=0.0) -> np.ndarray:
+    """The active rows (as the kernel builds them, its hold included: ``p_warm``, ``hold_tol``),
+    in the mass-scaled velocities."""
     nb = q.shape[0]
     rows = []
 
@@ -150,6 +152,8 @@ def _rows(q, ja, jb, gaps, nrm, tan, pts, gap_tol, inv_sqrt_m, inv_sqrt_i) -> np
 
     for j in range(len(ja)):
         act = gaps[j] <= gap_tol
+        if p_warm is not None:
+            act = act | ((p_warm[j, :2] > 0.0) & (gaps[j] <= hold_tol))
         for c in range(2):
             if act[c]:
                 r = np.zeros(3 * nb)
@@ -188,6 +192,7 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     from archquake.mechanism.rigid_chain import (
         DEFAULT_TIME_STEP,
         GAP_TOLERANCE,
+        HOLD_TOLERANCE,
         MAX_SWEEPS,
         SOLVER_TOLERANCE,
         RigidModel,
@@ -197,8 +202,12 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     res = run.result
     g = res.g if g is None else float(g)
     model = RigidModel.build(res.assembly)
-    h = run.time_step if np.isfinite(run.time_step) else DEFAULT_TIME_STEP
+    stepped = bool(np.isfinite(run.time_step))
+    h = run.time_step if stepped else DEFAULT_TIME_STEP
     lref = res.assembly.reference_length
+    # a stepper's run: its step, position-level correction included (the tangential part
+    # needs the run's contact history and is left out); an event run's: the plain cone
+    correction, hold = (h, HOLD_TOLERANCE * lref) if stepped else (0.0, 0.0)
     gap_tol = GAP_TOLERANCE * lref
     tol = SOLVER_TOLERANCE * np.sqrt(g * lref)
     mu = 0.0 if run.friction is None else float(run.friction)
@@ -229,15 +238,15 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
         vf[:, 0] -= h * acc[k]
         vf[:, 1] -= h * g
         vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan, pts,
-                                  gap_tol, p_warm, tol, MAX_SWEEPS, mu)
+                                  gap_tol, p_warm, tol, MAX_SWEEPS, mu, correction, hold)
+        unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts, gap_tol,
+                                       isq_m, isq_i, p_warm, hold))
         p_warm = imp
         dv = vn - v
         jump = float(np.max(np.hypot(dv[:, 0], dv[:, 1]) + np.abs(dv[:, 2]) * lref))
         impulsive[k] = jump > IMPULSIVE * h * (g + abs(acc[k]))
         normal[k] = (imp[:, 0] + imp[:, 1]) / h
         shear[k] = imp[:, 2] / h
-        unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts, gap_tol,
-                                       isq_m, isq_i))
         pn = imp[:, 0] + imp[:, 1]
         ok = pn > 0.0
         ecc[k, ok] = (imp[ok, 1] - imp[ok, 0]) / pn[ok] * 0.5 * depth[ok]
