@@ -19,8 +19,9 @@ may open at either corner has all of these motions at once, and needs no choice 
   admissible velocities of the contacts that are closed at mid-step, i.e. perfectly plastic
   impacts (e = 0), Moreau's sweeping process, with a position-level correction: an open
   contact corner's row closes its gap within the step (a penetration is not pushed out), its
-  joint's no-slip row undoes the slip since the contact began, and a corner that pushed stays in contact within ``HOLD_TOLERANCE`` (without it a
-  pivot's drift, second order in h, opened it and the block slid). Hinges open anywhere (a
+  joint's no-slip row undoes the slip since the contact began, and a corner that pushed stays
+  in contact within ``HOLD_TOLERANCE`` (without it a pivot's drift, second order in h, opened
+  it and the block slid). Hinges open anywhere (a
   contact whose impulse would be tensile separates), migrate, two or more degrees of freedom
   move at once, closures are staggered or simultaneous as the geometry makes them; for a
   simultaneous closure at phi = 0 the step is exactly the chain law's cone projection
