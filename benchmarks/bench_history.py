@@ -9,22 +9,13 @@ Run: .venv/bin/python benchmarks/bench_history.py
 from __future__ import annotations
 
 import math
-import time
+
+from timing import best_of  # benchmarks/timing.py
 
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
 from archquake.mechanism.reference import simulate_reference
-
-
-def best_of(fn, repeat: int, number: int) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
 
 
 def main() -> dict:

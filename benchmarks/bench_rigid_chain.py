@@ -18,22 +18,14 @@ from __future__ import annotations
 import math
 import time
 
+from timing import best_of  # benchmarks/timing.py
+
 from archquake.dem import simulate_dem
 from archquake.dem.settings import DemSettings
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
 from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
-
-
-def best_of(fn, repeat: int, number: int) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
 
 
 def stepping(model, motion, duration, h, solver, repeat=2):

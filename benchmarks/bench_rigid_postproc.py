@@ -13,6 +13,7 @@ import math
 import time
 
 import numpy as np
+from timing import best_of  # benchmarks/timing.py
 
 from archquake.compare import rigid_to_verdict
 from archquake.dem import _result_reference as REF
@@ -20,15 +21,6 @@ from archquake.dem import result as R
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import rigid_chain as RC
-
-
-def best_of(fn, repeat: int = 7) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def main() -> dict:

@@ -12,22 +12,13 @@ Run: .venv/bin/python benchmarks/bench_shapes.py
 from __future__ import annotations
 
 import math
-import time
+
+from timing import best_of  # benchmarks/timing.py
 
 from archquake.geometry import Arch, OnPiers, Piers, pointed
 from archquake.ground import StepImpulse
 from archquake.limit import limit_analysis
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-
-
-def best_of(fn, repeat: int, number: int) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
 
 
 def main() -> dict:
