@@ -245,11 +245,18 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
                initial: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
     """Run the event integrator from rest, or from ``initial`` = (q, v) (nb, 3) each, a
     configuration of the model (joints closed or turning about a corner; read as after a
-    hand-over: ``_event_kernels.RESUME_GAP``); returns the raw samples and diagnostics (times (nt,),
-    q, v (nt, nb, 3), energies (nt, 5): kinetic, potential, dissipated, input J, friction
-    demand; ``status``, ``t`` reached; ``windows_s``: the times at which the time stepper took
-    over for ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
-    counters and the event log)."""
+    hand-over: ``_event_kernels.RESUME_GAP``).
+
+    Returns
+    -------
+    dict
+        ``times`` (nt,) s; ``q``, ``v`` (nt, nb, 3); ``e`` (nt, 5): kinetic, potential,
+        dissipated, input work (J), friction demand; ``status`` (``_event_kernels.STATUS_*``)
+        and ``t`` (s) reached; ``windows_s``: the times at which the time stepper took over for
+        ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
+        ``counters`` and ``log`` (``_event_kernels.run``); ``max_drift_m``; ``state``: the final
+        (st, y) of the kernel; ``wall_s``.
+    """
     from archquake.dem import _kernels as DK
     from archquake.dem.result import (
         collapse_parameters,
