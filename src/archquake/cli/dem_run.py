@@ -33,6 +33,22 @@ DEFAULT_STIFFNESS = 1e12
 DEFAULT_RAYLEIGH = (6.28e-5, 1.59e-4)
 
 
+def block_duration(args, arch, motion, flag: str, why: str) -> float:
+    """The run's length for a block model (the DEM, the rigid chain), s: ``--t-end`` or the
+    default (end of the excitation + 5 sqrt(R/g)); over ``ranges.DEM_T_END_MAX_S`` it is refused
+    in one line naming the option, ``flag`` the model's option and ``why`` its cost."""
+    from archquake.compare import default_dem_duration
+
+    duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
+    if duration > DEM_T_END_MAX_S:
+        given = ("--t-end" if args.t_end is not None
+                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
+        raise InvalidParameterError(
+            f"{given} is {duration:g} s; with {flag} it must be <= {DEM_T_END_MAX_S:g} s "
+            f"({why}): give a shorter --t-end")
+    return duration
+
+
 def _pair(text: str) -> tuple[float, float]:
     a, b = comma_numbers(text, 2, "two numbers A,B")
     return a, b
@@ -109,7 +125,7 @@ def settings_from_args(args: argparse.Namespace, duration: float):
 
 def run(args: argparse.Namespace, arch, motion) -> int:
     """Run the DEM for ``arch`` under ``motion`` and print/plot/animate as the options say."""
-    from archquake.compare import default_dem_duration, dem_assembly
+    from archquake.compare import dem_assembly
     from archquake.dem import simulate_dem
 
     if getattr(args, "impact", None) is not None:
@@ -118,13 +134,8 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if args.restitution is not None:
         raise InvalidParameterError("--restitution applies to the analytical model only; the DEM's "
                                     "impacts follow from its contacts and damping (--damping)")
-    duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
-    if duration > DEM_T_END_MAX_S:
-        given = ("--t-end" if args.t_end is not None
-                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
-        raise InvalidParameterError(
-            f"{given} is {duration:g} s; with --model dem it must be <= {DEM_T_END_MAX_S:g} s "
-            "(the explicit DEM needs millions of steps): give a shorter --t-end")
+    duration = block_duration(args, arch, motion, "--model dem",
+                              "the explicit DEM needs millions of steps")
     settings = settings_from_args(args, duration)
     assembly = dem_assembly(arch, args.dem_assembly)
     if args.t_end is None:  # the default runs until a verdict (rest or collapse), or the cap

@@ -13,12 +13,11 @@ import argparse
 
 from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
-from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
+from archquake.ranges import FRICTION_RANGE
 
 
 def run(args: argparse.Namespace, arch, motion) -> int:
     """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
-    from archquake.compare import default_dem_duration
     from archquake.mechanism.rigid_chain import simulate_rigid
 
     for option, value in (("--impact", getattr(args, "impact", None)),
@@ -33,13 +32,10 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if solver == "events" and args.friction is not None:
         raise InvalidParameterError(
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
-    duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
-    if duration > DEM_T_END_MAX_S:
-        given = ("--t-end" if args.t_end is not None
-                 else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
-        raise InvalidParameterError(
-            f"{given} is {duration:g} s; with --hinges moving it must be <= {DEM_T_END_MAX_S:g} s "
-            "(the rigid chain steps 1e-4 s): give a shorter --t-end")
+    from archquake.cli.dem_run import block_duration
+
+    duration = block_duration(args, arch, motion, "--hinges moving",
+                              "the rigid chain steps 1e-4 s")
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
