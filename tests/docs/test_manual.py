@@ -10,8 +10,11 @@ How a page is read:
 - a ```` ```console ```` block holds commands, each on a line starting with ``$ ``; the lines after
   a command, up to the next command, are its output, compared with doctest's ELLIPSIS rule (a
   ``...`` stands for any text, so a page may elide timings or long tables but shows nothing the
-  command does not print). A command followed by no output lines is only required to succeed.
-- a ```` ```python ```` block is executed; the blocks of one page share one namespace.
+  command does not print). A command followed by no output lines is only required to succeed;
+  one whose output starts with ``archquake: error:`` must fail with exit status 2 and that line.
+- a ```` ```python ```` block is executed, a ```` ```pycon ```` block (``>>>`` prompts) is run as a
+  doctest (ELLIPSIS), so the values it shows are checked; the blocks of one page share one
+  namespace.
 - a block right after a paragraph starting with ``*Not run by the tests`` is skipped; the page
   says why in that paragraph (a visible marker, kept for long runs only).
 
@@ -156,9 +159,18 @@ def test_page_runs_as_written(page, tmp_path, monkeypatch):
     namespace: dict[str, object] = {"__name__": f"manual:{page}"}
     ran = 0
     for block in blocks_of(text):
-        if block.skipped or block.language not in ("console", "python"):
+        if block.skipped or block.language not in ("console", "python", "pycon"):
             continue
         where = f"{page}, line {block.line}"
+        if block.language == "pycon":
+            monkeypatch.chdir(tmp_path)
+            test = doctest.DocTestParser().get_doctest("\n".join(block.lines), namespace, where, page, block.line)
+            report = io.StringIO()
+            runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+            runner.run(test, out=report.write, clear_globs=False)
+            assert runner.failures == 0, f"{where}:\n{report.getvalue()}"
+            ran += 1
+            continue
         if block.language == "python":
             monkeypatch.chdir(tmp_path)
             exec(compile("\n".join(block.lines), where, "exec"), namespace)  # noqa: S102
@@ -166,7 +178,8 @@ def test_page_runs_as_written(page, tmp_path, monkeypatch):
             continue
         for command, want in commands_of(block):
             status, got = run_command(command, tmp_path)
-            assert status == 0, f"{where}: `{command}` exited {status}:\n{got}"
+            expected_status = 2 if want.startswith("archquake: error:") else 0
+            assert status == expected_status, f"{where}: `{command}` exited {status}:\n{got}"
             if want:
                 assert same_output(want, got), f"{where}: `{command}` printed\n{got}\nthe page shows\n{want}"
             ran += 1
