@@ -164,7 +164,8 @@ def test_page_runs_as_written(page, tmp_path, monkeypatch):
         where = f"{page}, line {block.line}"
         if block.language == "pycon":
             monkeypatch.chdir(tmp_path)
-            test = doctest.DocTestParser().get_doctest("\n".join(block.lines), namespace, where, page, block.line)
+            source = "\n".join(block.lines)
+            test = doctest.DocTestParser().get_doctest(source, namespace, where, page, block.line)
             report = io.StringIO()
             runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
             runner.run(test, out=report.write, clear_globs=False)
@@ -195,3 +196,22 @@ def test_manual_builds_strict(tmp_path):
     )
     assert done.returncode == 0, done.stdout[-4000:] + done.stderr[-4000:]
     assert (tmp_path / "site" / "api" / "archquake" / "index.html").exists()
+
+
+#: Words that belong to how the code was written, not to how it is used.
+PRIVATE_HISTORY = re.compile(r"\bissues? #?\d+|\b(?:next|this|previous|later) session\b", re.IGNORECASE)
+
+
+def test_no_issue_numbers_or_sessions_in_what_users_read():
+    """Docs, README, help texts and code comments speak to users: no tracker numbers, no
+    sessions. The pattern is checked on a line that has one, so the test can fail."""
+    assert PRIVATE_HISTORY.search("the chain of rigid blocks (issue 16)")
+    assert PRIVATE_HISTORY.search("design for the next session")
+    files = [ROOT / "README.md", *DOCS.rglob("*.md"), *(ROOT / "src").rglob("*.py")]
+    found = [
+        f"{path.relative_to(ROOT)}:{number}: {line.strip()}"
+        for path in files
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+        if PRIVATE_HISTORY.search(line)
+    ]
+    assert not found, "\n".join(found)

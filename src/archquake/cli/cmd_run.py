@@ -53,7 +53,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "mechanism, hinges fixed between impacts (fast: the default of domain, "
                         "ida and sweep); "
                         "'moving', the chain of rigid blocks, hinges open, migrate and close "
-                        "anywhere (issue 16; ~0.2 s per 4 s simulated); see "
+                        "anywhere (~0.2 s per 4 s simulated); see "
                         "docs/mechanism.md")
     p.add_argument("--integrator", choices=("steps", "events"), default=None,
                    help="with --hinges moving: how the chain of rigid blocks is integrated: "

@@ -1,4 +1,4 @@
-"""``archquake run --hinges moving``: one history of the chain of rigid blocks (issue 16).
+"""``archquake run --hinges moving``: one history of the chain of rigid blocks.
 
 The model is :func:`archquake.mechanism.rigid_chain.simulate_rigid`: every voussoir a rigid
 block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,

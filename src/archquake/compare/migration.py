@@ -1,4 +1,4 @@
-"""Hinge migration (issue 16): energy kept over the first half cycle and the hinge sequence,
+"""Hinge migration: energy kept over the first half cycle and the hinge sequence,
 fixed hinges (Eq. 4 and the chain law) against the migrating model and the DEM.
 
 The protocol is :mod:`archquake.compare.impacts`'s: one rectangular pulse towards -x of twice

@@ -1,7 +1,7 @@
 """Is the assumed mechanism admissible at this instant of the motion?
 
 A four-hinge mechanism moving as Eq. 2 says is a statically admissible state of the real arch
-only if the joint forces it needs can be carried by unilateral, frictional contact (issue 16):
+only if the joint forces it needs can be carried by unilateral, frictional contact:
 
 * at every **locked joint** (a joint that is not one of the four hinges) the line of thrust lies
   within the section and the joint is compressed: ``|M| <= h N`` (``h`` the half-width). The

@@ -1,4 +1,4 @@
-"""A reference time integrator of the rocking arch whose hinges move (issue 16).
+"""A reference time integrator of the rocking arch whose hinges move.
 
 Readable, not fast (scipy ``solve_ivp``, like :mod:`archquake.mechanism.reference`). Between
 events the arch moves on one four-hinge mechanism by its own Eq. 2 (the packed mechanism's

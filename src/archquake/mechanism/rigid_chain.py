@@ -1,5 +1,5 @@
 """The rigid limit of the distinct-element model: rigid blocks with unilateral, plastic, no-slip
-joint contacts, any number of open hinges (issue 16).
+joint contacts, any number of open hinges.
 
 Why this model. The four-link mechanism (Eq. 2) moves with one degree of freedom and its hinges
 fixed; the migrating reference (:mod:`archquake.mechanism.migration`) switches between one-degree

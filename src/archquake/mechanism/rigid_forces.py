@@ -1,5 +1,5 @@
 """Joint forces of the rigid chain (:mod:`archquake.mechanism.rigid_chain`): the line of thrust
-and the friction demand of the mechanism in use (issue 16, Build 5).
+and the friction demand of the mechanism in use.
 
 At a recorded sample (q, v) the stepper's next step is repeated (the same contact projection,
 :func:`archquake.mechanism._rigid_kernels.project`, at the mid-step configuration, warm-started

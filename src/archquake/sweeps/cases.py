@@ -64,7 +64,7 @@ class ExcitationKind(StrEnum):
 
 class Model(StrEnum):
     """The model a case is evaluated with: the four-link mechanism with hinges fixed between
-    impacts (``analytical``), the chain of rigid blocks with hinges moving (``rigid``, issue 16)
+    impacts (``analytical``), the chain of rigid blocks with hinges moving (``rigid``)
     or the distinct-element model (``dem``). Users name them as ``archquake run`` does
     (:func:`model_of`): ``model`` analytical or dem, and for the analytical model ``hinges``
     fixed (default) or moving."""
