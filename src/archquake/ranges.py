@@ -77,6 +77,8 @@ SPECTRUM_COMPONENTS = ("horizontal", "vertical")
 SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
 #: Periods of a spectrum, s (--periods): 0 (the PGA) to 20 s.
 SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
+#: Records in a selected set, and the per-event limit (--count, --max-per-event).
+SELECT_COUNT_RANGE = (1, 1000)
 #: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
 MAX_SPECTRUM_PERIODS = 10000
 
@@ -87,6 +89,7 @@ CSV_SUFFIXES = (".csv",)
 TABLE_SUFFIXES = (".csv", ".parquet")
 
 __all__ = [
+    "SELECT_COUNT_RANGE",
     "SITE_AG_RANGE_G",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",

@@ -142,7 +142,8 @@ class Selection:
                          f"at {worst[0]:g} s, lower bound {worst[2]:.2f})")
         if high:
             worst = max(high, key=lambda f: f[1] / f[3])
-            parts.append(f"above it at T = {_span(high)} s (worst {worst[1]:.2f} x target at "
+            where = "above it" if low else "above the band"
+            parts.append(f"{where} at T = {_span(high)} s (worst {worst[1]:.2f} x target at "
                          f"{worst[0]:g} s, upper bound {worst[3]:.2f})")
         return (f"no set of {len(self.indices)} records meets the band: the best mean is "
                 + "; ".join(parts))
