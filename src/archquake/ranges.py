@@ -26,6 +26,8 @@ DEM_T_END_MAX_S = 120.0
 RECORD_DT_RANGE_S = (1e-6, 1.0)
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
+#: Records in a selected set, and the per-event limit (--count, --max-per-event).
+SELECT_COUNT_RANGE = (1, 1000)
 #: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
 RESTITUTION_RANGE = (0.0, 1.0)
 #: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
@@ -77,8 +79,6 @@ SPECTRUM_COMPONENTS = ("horizontal", "vertical")
 SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
 #: Periods of a spectrum, s (--periods): 0 (the PGA) to 20 s.
 SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
-#: Records in a selected set, and the per-event limit (--count, --max-per-event).
-SELECT_COUNT_RANGE = (1, 1000)
 #: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
 MAX_SPECTRUM_PERIODS = 10000
 
@@ -89,7 +89,6 @@ CSV_SUFFIXES = (".csv",)
 TABLE_SUFFIXES = (".csv", ".parquet")
 
 __all__ = [
-    "SELECT_COUNT_RANGE",
     "SITE_AG_RANGE_G",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",
@@ -123,6 +122,7 @@ __all__ = [
     "RECORD_DT_RANGE_S",
     "RESTITUTION_RANGE",
     "SCALE_RANGE",
+    "SELECT_COUNT_RANGE",
     "SCAN_RANGE",
     "STIFFNESS_RANGE",
     "TABLE_SUFFIXES",
