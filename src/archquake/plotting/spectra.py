@@ -11,20 +11,14 @@ from pathlib import Path
 
 import numpy as np
 
-
-def _axes(ax, size=(6.4, 4.6)):
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        _, ax = plt.subplots(figsize=size)
-    return ax
+from archquake.plotting.figures import axes
 
 
 def plot_elastic_spectrum(spectrum, periods, *, damping: float = 0.05, ax=None,
                           displacement: bool = False, label: str | None = None):
     """A code's elastic spectrum (``archquake.codes.ElasticSpectrum``): S_e in g against T (s),
     or S_De in m with ``displacement``; the corner periods marked."""
-    ax = _axes(ax)
+    ax = axes(ax)
     t = np.asarray(periods, dtype=float)
     y = spectrum.sd(t, damping) if displacement else spectrum.sa(t, damping) / spectrum.g
     ax.plot(t, y, "k-", lw=1.8, label=label or f"{spectrum.label()}, {100 * damping:g} %")
@@ -58,7 +52,7 @@ def save_elastic_spectrum(spectrum, periods, path: str | Path, *, damping: float
 def plot_record_spectra(spectra, ax=None, *, title: str | None = None):
     """Each record's response spectrum (thin) and their mean (thick), Sa in g against T in s
     (``archquake.ground.response_spectra.RecordSpectra``)."""
-    ax = _axes(ax)
+    ax = axes(ax)
     t, g = spectra.periods_s, spectra.g
     for row in spectra.sa:
         ax.plot(t, row / g, "-", color="0.65", lw=0.6)
@@ -81,7 +75,7 @@ def plot_selection(selection, ax=None, *, target_label: str = "target",
                    title: str | None = None):
     """A selected set (``archquake.ground.selection.Selection``): each scaled spectrum, their
     mean, the target and the band the mean must stay in."""
-    ax = _axes(ax)
+    ax = axes(ax)
     t, g = selection.periods_s, selection.spectra.g
     for name, row, f in zip(selection.spectra.names, selection.spectra.sa,
                             selection.scale_factors):
