@@ -253,6 +253,8 @@ def test_hazard_interpolation_is_linear_in_log_log():
     (lambda: ntc2018_spectrum(ag_g=-0.1, f0=2.4, tc_star_s=0.3), r"ag_g must be in \(0, 3\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=1.8, tc_star_s=0.3), r"f0 must be in \[2.2, 4\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.0), r"tc_star_s must be in"),
+    (lambda: ntc2018_spectrum(ag_g=0.05, f0=2.4, tc_star_s=1.9),
+     r"tc_star_s must be in \[0.05, 0.8\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.3, soil="F"),
      r"soil must be one of A, B, C, D, E, got 'F'"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.3, topography="T5"), "topography"),
@@ -278,7 +280,7 @@ def test_bad_input_is_one_line_naming_the_argument(call, match):
 SITES = st.one_of(
     st.builds(lambda ag, f0, tc, soil, topo, comp: ntc2018_spectrum(
         ag_g=ag, f0=f0, tc_star_s=tc, soil=soil, topography=topo, component=comp),
-        st.floats(0.01, 3.0), st.floats(2.2, 4.0), st.floats(0.05, 2.0),
+        st.floats(0.01, 3.0), st.floats(2.2, 4.0), st.floats(0.05, 0.8),
         st.sampled_from("ABCDE"), st.sampled_from(["T1", "T2", "T3", "T4"]),
         st.sampled_from(["horizontal", "vertical"])),
     st.builds(lambda ag, typ, ground, imp, comp: ec8_spectrum(
@@ -307,3 +309,12 @@ def test_spectrum_is_continuous_and_peaks_on_the_plateau(spec, damping):
     tail = np.sort(t[t >= spec.TC])
     assert np.all(np.diff(spec.sa(tail, damping)) <= 1e-12 * plateau)
     assert spec.sa(0.0, damping)[0] == pytest.approx(spec.pga, rel=1e-12)
+
+
+@pytest.mark.parametrize("soil", ["A", "B", "C", "D", "E"])
+@pytest.mark.parametrize("tc_star", [0.05, 0.8])
+def test_the_range_of_tc_star_keeps_the_corners_ordered(soil, tc_star):
+    """At the ends of T_C*'s range and the smallest a_g, T_B < T_C < T_D = 1.6 s on every soil
+    (the range's upper bound is chosen for this)."""
+    spec = ntc2018_spectrum(ag_g=1e-6, f0=4.0, tc_star_s=tc_star, soil=soil)
+    assert spec.TB < spec.TC < spec.TD
