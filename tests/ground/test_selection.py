@@ -18,7 +18,8 @@ import pytest
 
 from archquake.codes import ec8_spectrum, ntc2018_spectrum
 from archquake.errors import InvalidParameterError
-from archquake.ground.response_spectra import RecordSpectra, period_grid
+from archquake.ground.periods import period_grid
+from archquake.ground.response_spectra import RecordSpectra
 from archquake.ground.selection import ec8_band, ntc_band, select_records
 
 G = 9.80665
