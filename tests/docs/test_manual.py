@@ -41,17 +41,18 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
 
-#: The pages whose commands and code are run: getting started, the guide by task and the pages
-#: on the models. Reference pages, the API and the research notes are built, not run.
+#: The pages whose commands and code are run: the README's tour, getting started, the guide by
+#: task and the pages on the models. Reference pages, the API and the research notes are built,
+#: not run.
 RUN_PAGES = (
-    "getting-started.md",
-    "guide/arch.md",
-    "guide/site.md",
-    "guide/records.md",
-    "guide/report.md",
-    "models/choosing.md",
-    "models/rigid.md",
-    "models/fourlink.md",
+    "README.md",
+    "docs/getting-started.md",
+    "docs/guide/arch.md",
+    "docs/guide/site.md",
+    "docs/guide/records.md",
+    "docs/guide/report.md",
+    "docs/models/rigid.md",
+    "docs/models/fourlink.md",
 )
 
 SKIP_MARK = "*Not run by the tests"
@@ -155,7 +156,7 @@ def test_page_runs_as_written(page, tmp_path, monkeypatch):
     """Every command of the page succeeds and prints what the page shows; every code block runs."""
     monkeypatch.setenv("MPLBACKEND", "Agg")
     shutil.copytree(ROOT / "examples", tmp_path / "examples")
-    text = (DOCS / page).read_text(encoding="utf-8")
+    text = (ROOT / page).read_text(encoding="utf-8")
     namespace: dict[str, object] = {"__name__": f"manual:{page}"}
     ran = 0
     for block in blocks_of(text):
