@@ -1,4 +1,4 @@
-"""docs/figures/migration_energy.png and the table of docs/mechanism.md "Hinges that move".
+"""docs/figures/migration_energy.png and the table of docs/notes/mechanism.md "Hinges that move".
 
 Run: PYTHONPATH=src python docs/figures/make_migration_energy.py  (about a minute: four DEM runs
 and eight migrating histories). Prints the table rows and the hinge sequences as JSON.
