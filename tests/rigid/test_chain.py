@@ -19,8 +19,9 @@ from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem.assembly import block_on_base, build_arch_assembly
 from archquake.ground import StepImpulse
 from archquake.ground.records import Record
+from archquake.limit import hinges_of
 from archquake.mechanism.impact_chain import cone_projection, mechanism_field
-from archquake.mechanism.prepared import PreparedMechanism, hinges_of
+from archquake.mechanism.prepared import PreparedMechanism
 from archquake.rigid import RigidModel, simulate_rigid
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)

@@ -115,7 +115,7 @@ class ImpactComparison:
 def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
     """(pre-impact hinges, {law: summary}, exact c_T, exact response's hinges) for ``pre``
     (default: the arch's own first mechanism)."""
-    from archquake.mechanism import hinges_of
+    from archquake.limit import hinges_of
     from archquake.mechanism.impact import IMPACT_LAWS, solve_impact
 
     pre = hinges_of(arch) if pre is None else pre
