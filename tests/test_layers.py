@@ -35,7 +35,8 @@ ROOT = Path(archquake.__file__).parent
 #: - foundation: constants, errors and the helpers every layer uses (units, ranges, argument
 #:   validation, JSON, the kernel cache, the outcome vocabulary, the Dormand-Prince tableau,
 #:   process pools); they import nothing above them;
-#: - geometry (the arch) -> ground (motions) -> limit (statics of the arch) -> validation (closed
+#: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
+#:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
 #: - the three models, each on what is below: mechanism (the paper's four-link model), dem, and
 #:   rigid (built on the DEM's blocks and post-processing);
@@ -51,6 +52,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
      "_dopri", "parallel"),
     ("geometry",),
     ("ground",),
+    ("codes",),
     ("limit",),
     ("validation",),
     ("mechanism",),
