@@ -34,7 +34,7 @@ accumulation, at first order in h. The convergence in h is measured (docs/mechan
 
 Energies are relative to the ground. The results are a :class:`archquake.dem.DemResult` built
 by the DEM's own post-processing (:meth:`DemResult.from_samples`, through
-:func:`_samples_to_result`, which any stepper of this model hands its samples to), so impacts,
+:func:`archquake.rigid.run._samples_to_result`, which any integrator's samples go to), so impacts,
 hinges, collapse criteria and the rotation measure are read exactly as in the DEM; in it,
 ``strain`` is zero and the ``damping`` column holds the energy removed by the contact
 projections (the plastic impacts, the scheme's O(h) loss in persistent contacts, and the
