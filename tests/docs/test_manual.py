@@ -216,3 +216,18 @@ def test_no_issue_numbers_or_sessions_in_what_users_read():
         if PRIVATE_HISTORY.search(line)
     ]
     assert not found, "\n".join(found)
+
+
+def test_every_page_the_code_names_exists():
+    """Help texts, docstrings and the README send readers to ``docs/...md``: each such page must
+    exist (the manual's pages move; a test made up here shows the check can fail)."""
+    pattern = re.compile(r"\bdocs/[\w./-]+?\.md\b")
+    assert pattern.findall("see docs/no-such-page.md") == ["docs/no-such-page.md"]
+    files = [ROOT / "README.md", *(ROOT / "src").rglob("*.py")]
+    missing = sorted(
+        f"{path.relative_to(ROOT)}: {name}"
+        for path in files
+        for name in pattern.findall(path.read_text(encoding="utf-8"))
+        if not (ROOT / name).exists()
+    )
+    assert not missing, "\n".join(missing)

@@ -54,7 +54,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "ida and sweep); "
                         "'moving', the chain of rigid blocks, hinges open, migrate and close "
                         "anywhere (~0.2 s per 4 s simulated); see "
-                        "docs/mechanism.md")
+                        "docs/models/rigid.md")
     p.add_argument("--integrator", choices=("steps", "events"), default=None,
                    help="with --hinges moving: how the chain of rigid blocks is integrated: "
                         "'steps' (default), Moreau-Jean time steps of 1e-4 s; 'events', from "

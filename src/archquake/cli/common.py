@@ -455,7 +455,7 @@ def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--impact", choices=IMPACT_LAWS, default=None,
                    help="impact law: 'paper' (the paper's Eq. 4, default), 'chain' (chain of "
                         "rigid voussoirs: maximum restitution, never creates energy) or 'mirror' "
-                        "(chain law, mirror mechanism forced); see docs/mechanism.md")
+                        "(chain law, mirror mechanism forced); see docs/models/fourlink.md")
 
 
 def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
