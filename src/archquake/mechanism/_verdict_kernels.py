@@ -158,7 +158,7 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
     k = 0
     t = 0.0
     while k < n_steps:
-        t = (k + 1) * h
+        t = k * h  # the state's time
         resting = pristine or (t - t_still > par[P_REST_WINDOW])
         if skip and resting:
             lim_p = safe_pos if pristine else margin * safe_pos
@@ -166,7 +166,6 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
             if suffix_pos[k] < lim_p and suffix_neg[k] < lim_n:
                 # at rest, and nothing left can move it: the verdict is reached
                 rest_proven = 1
-                t = k * h
                 final = 1
                 break
             if -lim_n < acc[k] < lim_p:
@@ -177,8 +176,10 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
                         v[i, 2] = 0.0
                 skipped += 1
                 k += 1
+                t = k * h
                 continue
         # one Moreau-Jean step, as _rigid_kernels.run (method direct, correction on)
+        t = (k + 1) * h
         pristine = False
         computed += 1
         qm = q + 0.5 * h * v
