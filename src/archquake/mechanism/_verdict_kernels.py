@@ -70,7 +70,8 @@ O_FINAL = 10  # 0 moving, 1 rest, 2 collapsed
 O_REST_PROVEN = 11  # 1: ended at rest with the remaining ground motion inside the safe domain
 O_FIRST_IMPACT_0 = 12  # s, the first sign change of the rotation measure, link 0 (NaN: none)
 O_FIRST_IMPACT_1 = 13  # the same, link 1
-O_LONGEST_0 = 14  # s, the longest time between two consecutive sign changes, link 0 (0: none)
+O_LONGEST_0 = 14  # s, the longest time between two consecutive sign changes, or from the last
+#: one to the collapse, link 0 (0: none)
 O_LONGEST_1 = 15  # the same, link 1
 N_OUT = 16
 
@@ -216,6 +217,10 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
             outcome = OUTCOME_COLLAPSE
             final = 2
             t_collapse = t
+            # the collapsing half cycle, from the last impact, counts among the half cycles
+            for ell in range(2):
+                if not math.isnan(last_impact[ell]) and t - last_impact[ell] > longest[ell]:
+                    longest[ell] = t - last_impact[ell]
             break
         cb = int(cpar[DK.C_CROWN_BLOCK])
         if cb >= 0:
