@@ -15,6 +15,7 @@ from archquake.ground import StepImpulse
 from archquake.ground.records import Record
 from archquake.mechanism.rigid_chain import simulate_rigid
 from archquake.mechanism.rigid_verdict import (
+    GUARD_LENGTHENING,
     STEP_FACTOR,
     rigid_model,
     rigid_verdict,
@@ -105,7 +106,7 @@ def test_guard_makes_a_threshold_case_indeterminate():
     at_h = rigid_verdict(OPPENHEIM, motion, guard=False)
     at_half = rigid_verdict(OPPENHEIM, motion, guard=False, time_step=0.5 * h)
     assert at_h.outcome is Outcome.SURVIVES and at_half.outcome is Outcome.COLLAPSE
-    assert at_h.lengthening > 2.5  # the rule that triggers the guard
+    assert at_h.lengthening > GUARD_LENGTHENING  # the rule that triggers the guard
     v = rigid_verdict(OPPENHEIM, motion)
     assert v.outcome is Outcome.INDETERMINATE and v.guard_ran
     assert v.guard_outcome is Outcome.COLLAPSE
@@ -119,7 +120,7 @@ def test_guard_stays_off_far_from_a_threshold():
     vs = rigid_verdicts(OPPENHEIM, [StepImpulse.from_g(1.0, 0.20), StepImpulse.from_g(1.0, 0.44)])
     assert [v.outcome for v in vs] == [Outcome.SURVIVES, Outcome.COLLAPSE]
     assert not any(v.guard_ran for v in vs)
-    assert vs[0].lengthening < 2.5
+    assert vs[0].lengthening < GUARD_LENGTHENING
 
 
 def _quiet_start(strong: np.ndarray, seed: int = 1) -> Record:
