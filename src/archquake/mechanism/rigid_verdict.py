@@ -28,7 +28,7 @@ import os
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 
@@ -44,7 +44,6 @@ from archquake.dem.result import (
 )
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.mechanism import _verdict_kernels as VK
 from archquake.mechanism.rigid_chain import (
@@ -380,10 +379,10 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     motions : sequence of GroundMotion
         Ground accelerations, m/s^2.
     duration : float or sequence, optional
-        s, the run's window for each motion (default: :func:`rigid_to_verdict
-        <archquake.compare.histories.rigid_to_verdict>`'s longest, the end of the excitation
-        + 60 sqrt(R/g); + 60 s for an assembly). The run stops earlier at collapse or at
-        proven rest, so a long window costs only when the arch keeps moving.
+        s, the run's window for each motion (default: the end of the excitation
+        + :data:`WINDOW_TAIL` sqrt(R/g), at most ``ranges.DEM_T_END_MAX_S``; required for an
+        assembly). The run stops earlier at collapse or at proven rest, so a long window costs
+        only while the arch keeps moving.
     until_rest : float or sequence, optional
         s: go on past ``duration`` while the arch moves, up to this time.
     time_step : float, optional
@@ -466,22 +465,25 @@ def _per_motion(value, n: int, name: str) -> list:
     return out
 
 
+#: The default window after the end of the excitation, in sqrt(R/g): the four-link model's
+#: default end (``simulate``), the longest window of ``rigid_to_verdict``.
+WINDOW_TAIL = 60.0
+
+
 def _default_window(arch_or_model, motion, g: float) -> float:
-    """The default run window, s: :func:`archquake.compare.histories.rigid_to_verdict`'s
-    longest (the end of the excitation + 60 sqrt(R/g), at most ``ranges.DEM_T_END_MAX_S``,
-    and at least + 5 sqrt(R/g)); the run stops earlier at collapse or proven rest."""
+    """The default run window, s: the end of the excitation + :data:`WINDOW_TAIL` sqrt(R/g),
+    at most ``ranges.DEM_T_END_MAX_S`` (the block models' cap); the run stops earlier at
+    collapse or proven rest."""
+    from archquake.ranges import DEM_T_END_MAX_S
+
     end = excitation_end(motion)
     if end is None:
         raise InvalidParameterError("give duration: the ground motion does not say when it ends")
-    if not isinstance(arch_or_model, VoussoirChain):
-        return end + 60.0
-    from archquake.compare.histories import default_dem_duration
-    from archquake.domains._kernels import default_t_end
-    from archquake.ranges import DEM_T_END_MAX_S
-
-    d = float(default_dem_duration(cast(Arch, arch_or_model), motion, g=g))
-    cap = min(float(default_t_end(np.asarray(end), arch_or_model.radius, g)), DEM_T_END_MAX_S)
-    return max(d, cap)
+    radius = getattr(arch_or_model, "radius", None)
+    if radius is None:
+        raise InvalidParameterError("give duration: a block assembly has no radius to scale "
+                                    "the default window by")
+    return min(end + WINDOW_TAIL * math.sqrt(float(radius) / g), max(DEM_T_END_MAX_S, end))
 
 
 def rigid_verdict(arch_or_model: VoussoirChain | Assembly | RigidModel, motion, *,
