@@ -183,17 +183,10 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
         t = (k + 1) * h
         pristine = False
         computed += 1
-        qm = q + 0.5 * h * v
-        gaps, nrm, tan, pts = RK.geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
-        vf = v.copy()
-        for i in range(nb_):
-            vf[i, 0] -= h * acc[k]
-            vf[i, 1] -= h * g
-        vn, imp, sweeps, res = RK.project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan,
-                                                 pts, par[P_GAP_TOL], p_warm, par[P_TOL],
-                                                 int(par[P_MAX_ITER]), 0.0,
-                                                 RK.ACTIVE_SET_ITERATIONS, h, hold, slip_ref,
-                                                 work)
+        qm, gaps, vf, vn, imp, sweeps, res = RK.advance(
+            q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc[k], h, g,
+            par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0, RK.METHOD_DIRECT, h, hold,
+            slip_ref, work)
         if sweeps > worst:
             worst = sweeps
         for j in range(nj):
