@@ -1,4 +1,4 @@
-"""Benchmark: the rigid chain's verdict path (`mechanism.rigid_verdict`) against plain references
+"""Benchmark: the rigid chain's verdict path (`rigid.verdict`) against plain references
 measured in the same run.
 
 1. One 4 s history of Oppenheim's arch (R 10 m, t 1.5 m, 157.5 deg, 7 voussoirs; step 1.0 g,
@@ -29,8 +29,8 @@ from archquake.compare.domains import dem_failure_domain
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-from archquake.mechanism.rigid_chain import simulate_rigid
-from archquake.mechanism.rigid_verdict import rigid_verdict, verdict_time_step
+from archquake.rigid import simulate_rigid
+from archquake.rigid.verdict import rigid_verdict, verdict_time_step
 
 SAMPLE = int(os.environ.get("BENCH_REFERENCE_SAMPLE", "4"))
 

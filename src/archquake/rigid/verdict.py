@@ -11,7 +11,7 @@ and many histories in one compiled, threaded call.
   result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
   at most 0.2 % between the default step and a quarter of it (docs/mechanism.md).
-* **Fast** (:mod:`archquake.mechanism._verdict_kernels`): the whole history is one compiled
+* **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps at rest under a ground acceleration inside the safe domain are skipped; the run
   stops at collapse or once rest is proven; no samples are recorded and no
   :class:`~archquake.dem.DemResult` is built.
@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -32,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+import archquake.rigid._verdict_kernels as VK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly
 from archquake.dem.result import (
@@ -45,16 +45,16 @@ from archquake.dem.result import (
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
-from archquake.mechanism import _verdict_kernels as VK
-from archquake.mechanism.rigid_chain import (
+from archquake.outcome import Outcome
+from archquake.parallel import usable_cores
+from archquake.rigid.model import (
     GAP_TOLERANCE,
     HOLD_TOLERANCE,
     MAX_SWEEPS,
     SOLVER_TOLERANCE,
     RigidModel,
-    _mean_acceleration,
+    mean_acceleration,
 )
-from archquake.outcome import Outcome
 
 #: The verdict's step, in sqrt(L / g) (L the reference length): 1.0e-3 s on Oppenheim's arch
 #: (L = 1.5 m). Measured in docs/mechanism.md, "The rigid chain's step".
@@ -116,7 +116,7 @@ def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
 
 @dataclass(frozen=True)
 class _Packed:
-    """A model's arrays for :func:`~archquake.mechanism._verdict_kernels.verdict_run`."""
+    """A model's arrays for :func:`~archquake.rigid._verdict_kernels.verdict_run`."""
 
     arrays: tuple
     safe_pos: float  # m/s^2 per g
@@ -140,7 +140,7 @@ def _packed(model: RigidModel, settings: DemSettings) -> _Packed:
 
 
 def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
-    from archquake.mechanism.rigid_events import EventModel
+    from archquake.rigid.events import EventModel
 
     asm = model.assembly
     nblocks = len(asm.base)
@@ -260,7 +260,7 @@ def _suffix_max(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _steps_of(motion, h: float, duration: float, until_rest: float | None
               ) -> tuple[np.ndarray, float]:
     n = int(math.ceil(max(duration, until_rest or 0.0) / h - 1e-9))
-    acc = _mean_acceleration(motion, 0.0, h, n)
+    acc = mean_acceleration(motion, 0.0, h, n)
     end = excitation_end(motion)
     return acc, (float(n * h) if end is None else end)
 
@@ -353,14 +353,11 @@ def _run_jobs(packed: _Packed, jobs: Sequence[_Job], threads: int) -> np.ndarray
 
 
 def _threads(threads: int | None) -> int:
-    if threads is not None:
-        if int(threads) < 1:
-            raise InvalidParameterError(f"threads must be >= 1, got {threads!r}")
-        return int(threads)
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - not Linux
-        return max(1, os.cpu_count() or 1)
+    if threads is None:
+        return usable_cores()
+    if int(threads) < 1:
+        raise InvalidParameterError(f"threads must be >= 1, got {threads!r}")
+    return int(threads)
 
 
 def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions: Sequence,
@@ -396,7 +393,7 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     skip_at_rest : bool
         Skip steps at rest and stop at proven rest (exact; False only to check that).
     solver_tolerance : float
-        As :func:`~archquake.mechanism.rigid_chain.simulate_rigid`'s.
+        As :func:`~archquake.rigid.simulate_rigid`'s.
     threads : int, optional
         Threads (default: the cores this process may use).
 

@@ -1,4 +1,4 @@
-"""The rigid chain's verdict path (:mod:`archquake.mechanism.rigid_verdict`): the same verdict
+"""The rigid chain's verdict path (:mod:`archquake.rigid.verdict`): the same verdict
 as the recorded run, at a step chosen for the verdict, guarded near a threshold, with exact
 shortcuts (skip at rest, early stops) and batches equal to single runs."""
 
@@ -13,8 +13,9 @@ from archquake.constants import STANDARD_GRAVITY as G
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.ground.records import Record
-from archquake.mechanism.rigid_chain import simulate_rigid
-from archquake.mechanism.rigid_verdict import (
+from archquake.outcome import Outcome
+from archquake.rigid import simulate_rigid
+from archquake.rigid.verdict import (
     GUARD_LENGTHENING,
     STEP_FACTOR,
     rigid_model,
@@ -22,7 +23,6 @@ from archquake.mechanism.rigid_verdict import (
     rigid_verdicts,
     verdict_time_step,
 )
-from archquake.outcome import Outcome
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 THIN = Arch(10.0, 1.1, math.radians(157.5), 7)  # t/R = 0.11

@@ -1,11 +1,11 @@
 """Compiled verdict-only run of the rigid chain (numba): the Moreau-Jean step of
-:func:`archquake.mechanism._rigid_kernels.run` (the same step, bit for bit, through
+:func:`archquake.rigid._step_kernels.run` (the same step, bit for bit, through
 ``project_direct``), with the verdict of :meth:`archquake.dem.result.DemResult.from_samples`
 read on the fly instead of from recorded samples, and three shortcuts that do not change it:
 
 * **skip at rest**: while the chain is at rest and the step's mean ground acceleration lies
   inside the safe domain (-lambda_- g, lambda_+ g) (the no-slip chain's onset multipliers,
-  :attr:`archquake.mechanism.rigid_events.EventModel.onset_g`), the exact solution does not
+  :attr:`archquake.rigid.events.EventModel.onset_g`), the exact solution does not
   move, so the step is not computed. "At rest" is the untouched initial state (q, v exactly
   the rest state: the skip is exact), or, after a motion, the rest of
   :func:`archquake.dem.result.settled` (kinetic energy below ``REST_KINETIC`` W L for a rest
@@ -33,8 +33,8 @@ import math
 import numba as nb
 import numpy as np
 
+import archquake.rigid._step_kernels as RK
 from archquake.dem import _kernels as DK
-from archquake.mechanism import _rigid_kernels as RK
 
 #: Parameters, ``par`` (float64).
 P_H = 0  # s, time step
