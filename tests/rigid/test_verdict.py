@@ -46,6 +46,8 @@ def test_verdict_is_the_recorded_runs(tp, outcome, half):
     if half is not None:
         assert v.collapse_time_s == pytest.approx(r.collapse_time, abs=1e-9)
     assert v.impacts == r.impact_times.size
+    assert v.final_state == r.final_state
+    assert v.to_dict()["model"] == "rigid_chain"
     assert abs(v.onset_time_s - r.onset_time) <= 1.5 * h  # mid-step gaps against samples
 
 

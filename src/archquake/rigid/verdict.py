@@ -194,6 +194,8 @@ class RigidVerdict:
         Steps computed, and skipped at rest (of the first run).
     rest_proven : bool
         The run stopped at rest with the rest of the ground motion inside the safe domain.
+    final_state : str
+        How the run at the verdict's step ended: ``collapsed``, ``rest`` or ``moving``.
     """
 
     outcome: Outcome
@@ -211,12 +213,17 @@ class RigidVerdict:
     steps: int
     skipped_steps: int
     rest_proven: bool
+    final_state: str
 
     def to_dict(self) -> dict:
-        """Summary for JSON (units in the keys)."""
-        return {"outcome": self.outcome.value, "verdict_reason": self.reason,
+        """Summary for JSON (units in the keys): the keys of
+        :data:`archquake.outcome.RESULT_KEYS` it knows first (``model`` ``"rigid_chain"``),
+        then the verdict path's own."""
+        return {"model": "rigid_chain", "outcome": self.outcome.value,
+                "final_state": self.final_state,
                 "collapse_half_cycle": self.collapse_half_cycle,
                 "collapse_time_s": self.collapse_time_s, "onset_time_s": self.onset_time_s,
+                "verdict_reason": self.reason,
                 "end_time_s": self.end_time_s, "time_step_s": self.time_step_s,
                 "guard_ran": self.guard_ran,
                 "guard_outcome": None if self.guard_outcome is None else self.guard_outcome.value,
@@ -450,7 +457,8 @@ def _verdict(d: dict, d2: dict | None, h: float) -> RigidVerdict:
         onset_time_s=d["onset"], end_time_s=d["t_end"], time_step_s=h,
         guard_ran=d2 is not None, guard_outcome=None if d2 is None else d2["outcome"],
         peak_crown_drop=d["peak_drop"], lengthening=d["lengthening"], impacts=d["impacts"], steps=d["steps"],
-        skipped_steps=d["skipped"], rest_proven=d["rest_proven"])
+        skipped_steps=d["skipped"], rest_proven=d["rest_proven"],
+        final_state=("moving", "rest", "collapsed")[d["final"]])
 
 
 def _per_motion(value, n: int, name: str) -> list:
