@@ -107,7 +107,7 @@ def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
 
     >>> import math
     >>> from archquake.geometry import Arch
-    >>> round(verdict_time_step(Arch(10.0, 1.5, math.radians(157.5), 7)), 6)
+    >>> round(verdict_time_step(Arch(10.0, 1.5, math.radians(157.5), 7)), 5)
     0.001
     """
     model = rigid_model(arch_or_model)
