@@ -187,7 +187,7 @@ def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_e
 #: (what ``archquake run --json`` prints and a sweep stores as ``out.<key>``); each model adds
 #: its own after them.
 #:
-#: ``model``: ``'analytical'``, ``'dem'`` or ``'rigid_chain'``; ``outcome``: an :class:`Outcome` value;
+#: ``model``: ``'rigid'``, ``'fourlink'`` or ``'dem'`` (as ``--model`` names them); ``outcome``: an :class:`Outcome` value;
 #: ``final_state``: how the run ended (analytical: rest, moving, collapsed, stalled; the
 #: block models: collapsed, rest or moving);
 #: ``collapse_half_cycle``: 1 = before the first impact, 2 = after it, ... (None: no collapse);
