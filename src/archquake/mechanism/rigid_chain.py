@@ -229,9 +229,10 @@ class RigidRun:
 
     def to_dict(self, *, joint_forces: bool = True) -> dict:
         """Summary for JSON: ``DemResult.to_dict()`` (the keys of
-        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model`` names it), then the
-        stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
-        forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
+        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model``
+        names it), then the stepper's own diagnostics under ``rigid``. ``joint_forces=False``
+        leaves out the joint forces' summary (a post-processing
+        that costs more than the run: sweeps skip it)."""
         out = self.result.to_dict()
         out["model"] = "rigid"
         out["friction_coefficient"] = self.friction
