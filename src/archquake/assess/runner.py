@@ -45,6 +45,7 @@ class Assessment:
     def to_dict(self) -> dict:
         return to_jsonable({
             "archquake_version": __version__,
+            "model": self.config.model,
             "input": self.config.canonical(),
             "source": self.config.source,
             "quick": self.quick,
