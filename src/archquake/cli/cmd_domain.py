@@ -110,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
 
         save_domain(dom, args.plot)
     if args.json:
-        print_json({"model": model.value, **dom.to_dict()})
+        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict()})
         return 0
     sym = dom.family.duration_symbol
     print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "

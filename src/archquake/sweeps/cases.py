@@ -76,6 +76,14 @@ class Model(StrEnum):
 #: The model every command and API function uses unless told otherwise.
 DEFAULT_MODEL = Model.RIGID
 
+#: The word a model's case ids hash, where it differs from its name (the four-link model was
+#: ``analytical`` when stores were first written: their ids stay valid).
+_ID_WORDS = {Model.FOURLINK: "analytical"}
+
+
+def _id_word(model: Model) -> str:
+    return _ID_WORDS.get(model, model.value)
+
 #: The words of earlier versions and what they are now (for a one-line pointer).
 _RETIRED = {"analytical": "fourlink (hinges fixed) or rigid (hinges moving, the default)",
             "rigid_chain": "rigid"}
@@ -553,8 +561,11 @@ class Case:
         _set(self, "model", model_of(self.model))
 
     def canonical(self) -> dict[str, Any]:
-        """The inputs that define the case (what its id hashes), as plain JSON values."""
-        return {"schema": CASE_SCHEMA, "model": self.model.value, "arch": self.arch.canonical(),
+        """The inputs that define the case (what its id hashes), as plain JSON values. The
+        four-link model is hashed under its earlier word, ``analytical`` (:data:`_ID_WORDS`),
+        so stores written before it was named ``fourlink`` resume."""
+        return {"schema": CASE_SCHEMA, "model": _id_word(self.model),
+                "arch": self.arch.canonical(),
                 "excitation": self.excitation.canonical(), "options": self.options.canonical()}
 
     @property
@@ -565,7 +576,7 @@ class Case:
         million cases then costs one concatenation and one hash per case."""
         return (f'{{"arch":{self.arch.canonical_json},'
                 f'"excitation":{self.excitation.canonical_json},'
-                f'"model":{json.dumps(self.model.value)},'
+                f'"model":{json.dumps(_id_word(self.model))},'
                 f'"options":{self.options.canonical_json},"schema":{json.dumps(CASE_SCHEMA)}}}')
 
     @cached_property
