@@ -156,6 +156,6 @@ def test_record_time_step_outside_its_range_is_one_line(capsys, tmp_path):
 def test_friction_under_a_pulse_that_opens_every_joint_at_once_is_one_line(capsys):
     """3 g on a 5-voussoir arch: the four-link mechanism would need tension from t = 0, so there
     is no instant to take a friction demand from (was: argmax of an empty sequence)."""
-    assert main(["friction", "--pulse", "step", "--magnitude", "3", "--duration", "0.1",
-                 "--voussoirs", "5"]) == 2
+    assert main(["friction", "--model", "fourlink", "--pulse", "step", "--magnitude", "3",
+                 "--duration", "0.1", "--voussoirs", "5"]) == 2
     assert "loses contact" in one_line(capsys)

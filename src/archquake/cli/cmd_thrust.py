@@ -107,6 +107,11 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     from archquake.mechanism.rigid_chain import simulate_rigid
 
     run = simulate_rigid(arch, motion, duration=max(max(args.times), 1e-3) + 1e-3)
+    collapse = run.result.collapse_time
+    if collapse is not None and max(args.times) > collapse:
+        raise InvalidParameterError(
+            f"--times must be before the collapse at t = {collapse:.3f} s, got "
+            f"{max(args.times):g} s")
     forces = run.joint_forces
     snaps = [forces.state_at(t) for t in args.times]
     if args.json:
@@ -115,12 +120,12 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
                     "collapse_time_s": run.result.collapse_time, "states": snaps})
         return 0
     print(f"{motion.name} (chain of rigid voussoirs; the line of thrust as e / (d/2) per joint, "
-          "+-1 at a hinge)")
-    print("   t (s)  hinges at joints     line of thrust, joints 0..n          max friction |V|/N")
+          "+-1 at a face: an open hinge, or one about to open)")
+    print("   t (s)  thrust at a face     line of thrust, joints 0..n          max friction |V|/N")
     for s in snaps:
         line = " ".join("  . " if e is None else f"{e:+.1f}" for e in s["relative_eccentricity"])
         fd = s["max_friction_demand"]
-        print(f"{s['sample_time_s']:8.3f}  {','.join(map(str, s['hinge_joints'])) or '-':<19} "
+        print(f"{s['sample_time_s']:8.3f}  {','.join(map(str, s['face_joints'])) or '-':<19} "
               f"{line:<36} "
               + ("-" if fd is None else f"{fd:.3f} (joint {s['max_friction_demand_joint']})"))
     if run.result.collapse_time is not None:
