@@ -656,6 +656,7 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     from archquake.ground.pulses import SinePulse, StepImpulse
     from archquake.mechanism.rigid_chain import DEFAULT_TIME_STEP
 
+    assert ctx.site is not None  # called only with a site PGA
     site = float(ctx.site)
     cases: list[tuple[str, Any]] = []
     pulses = ctx.prior["pulses"]
@@ -837,11 +838,11 @@ def verdict(config, prior: dict) -> dict:
         parts.append(text + ".")
     steps = val.get("step_sensitivity", [])
     if steps:
-        same = sum(r["half_step"] == r["default_step"] for r in steps)
-        slid = sum(r["friction"] == r["default_step"] for r in steps)
+        n_same = sum(r["half_step"] == r["default_step"] for r in steps)
+        n_slid = sum(r["friction"] == r["default_step"] for r in steps)
         parts.append(f"The chain of rigid voussoirs decides the verdicts (no coefficient of "
-                     f"restitution): at the site PGA, {same} of {len(steps)} verdicts are the "
-                     f"same at half the time step and {slid} of {len(steps)} with Coulomb "
+                     f"restitution): at the site PGA, {n_same} of {len(steps)} verdicts are the "
+                     f"same at half the time step and {n_slid} of {len(steps)} with Coulomb "
                      f"joints (mu = {config.friction:g}).")
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"

@@ -130,9 +130,11 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
             f"the rigid chain's run of {d:g} s is longer than {DEM_T_END_MAX_S:g} s (it steps "
             "1e-4 s): shorten the excitation or give an end time")
     cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
-    step = {} if time_step is None else {"time_step": time_step}
+    if time_step is None:
+        return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+                              settings=settings, solver=solver)
     return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings, solver=solver, **step)
+                          settings=settings, solver=solver, time_step=time_step)
 
 
 # ----------------------------------------------------------------------------- comparison
