@@ -1,6 +1,6 @@
 """CLI: 'archquake thrust' and 'archquake friction' (JSON keys, figure, one-line errors), under
 the four-link model (--model fourlink: the paper's numbers) and the default rigid chain (its
-joint forces, :mod:`archquake.mechanism.rigid_forces`)."""
+joint forces, :mod:`archquake.rigid.forces`)."""
 
 from __future__ import annotations
 

@@ -95,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     """``--model rigid``: the friction demand of the chain of rigid voussoirs' joint forces
-    (:mod:`archquake.mechanism.rigid_forces`, with its reporting rule), run to a verdict."""
+    (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict."""
     import numpy as np
 
     from archquake.compare import rigid_to_verdict

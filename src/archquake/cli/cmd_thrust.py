@@ -103,8 +103,8 @@ def run(args: argparse.Namespace) -> int:
 def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     """``--model rigid``: the chain of rigid voussoirs run to the last time asked (or its
     collapse), its joints at the recorded sample nearest each time
-    (:meth:`archquake.mechanism.rigid_forces.JointForceHistory.state_at`)."""
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    (:meth:`archquake.rigid.forces.JointForceHistory.state_at`)."""
+    from archquake.rigid import simulate_rigid
 
     run = simulate_rigid(arch, motion, duration=max(max(args.times), 1e-3) + 1e-3)
     collapse = run.result.collapse_time

@@ -391,7 +391,8 @@ def failure_domain(
     if evaluate is not None and isinstance(arch, VoussoirChain):
         # another model's outcomes carry their own impacts: only the hinges and lambda of the
         # equivalent static analysis are read (an asymmetric arch has no four-link impact law)
-        from archquake.mechanism.prepared import hinges_of, pack_mechanism
+        from archquake.limit import hinges_of
+        from archquake.mechanism.prepared import pack_mechanism
 
         mech0 = hinges_of(arch)
         packed = pack_mechanism(mech0)
