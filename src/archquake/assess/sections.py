@@ -246,18 +246,16 @@ def _domain_data(d, site: float | None) -> dict:
 def pulse_domains(ctx: Context, cv: float | None) -> dict:
     """Step and sine failure domains (FailureDomain objects) of the configuration's model: the
     rigid chain's governing boundary (every voussoir a block, searched by
-    :func:`archquake.compare.dem_failure_domain` with ``model='rigid'`` on a process pool), or
-    the four-link model's at restitution ``cv``."""
-    if ctx.config.model == "rigid":
+    :func:`archquake.compare.dem_failure_domain` with ``model='rigid'``: batches of
+    :func:`archquake.rigid.verdict.rigid_verdicts`, threaded), or the four-link model's at
+    restitution ``cv``."""
+    if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
         from archquake.compare import dem_failure_domain
 
-        n = workers()
-        with interruptible_pool(n) as pool:
-            return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
-                                            settings=ctx.mode.rigid_domain_settings,
-                                            governing_only=True, model="rigid",
-                                            executor=pool).domain
-                    for fam in ("step", "sine")}
+        return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
+                                        settings=ctx.mode.rigid_domain_settings,
+                                        governing_only=True, model="rigid").domain
+                for fam in ("step", "sine")}
     from archquake.domains import failure_domain
 
     prep = prepared_mechanism(ctx.arch, ctx.config.impact)
