@@ -39,6 +39,7 @@ COMMANDS: tuple[str, ...] = (
     "reproduce",
     "assess",
     "demo",
+    "warm",
 )
 
 #: The line each command shows in ``archquake --help``, by module name (the command's name is
@@ -58,6 +59,7 @@ SUMMARIES: dict[str, str] = {
     "demo": "reproduce Oppenheim's arch: figures and a short report",
     "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
     "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",
+    "warm": "compile the numerical kernels once (after installing), so that no command waits",
 }
 
 
