@@ -18,6 +18,8 @@ T_END_RANGE_S = (0.01, 1e4)
 #: The analytical model's hinges (``archquake run --hinges``): ``fixed``, the paper's four-link
 #: mechanism between impacts (the default); ``moving``, the chain of rigid blocks (issue 16).
 HINGE_MODELS = ("fixed", "moving")
+#: The four-link model's impact laws (``--impact``; :mod:`archquake.mechanism.impact`).
+IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
 #: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.
 DEM_T_END_MAX_S = 120.0
@@ -60,6 +62,7 @@ __all__ = [
     "DAMPING_RATIO_RANGE_PERCENT",
     "DEM_T_END_MAX_S",
     "HINGE_MODELS",
+    "IMPACT_LAWS",
     "FIGURE_SUFFIXES",
     "FRICTION_RANGE",
     "MAGNITUDE_RANGE_G",

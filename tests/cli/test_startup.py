@@ -52,6 +52,13 @@ def test_importing_the_command_line_imports_no_numerics():
     assert "archquake.cli.main" in modules and _heavy(modules) == []
 
 
+@pytest.mark.parametrize("command", ["run", "domain", "friction", "thrust", "ida", "sweep", "warm"])
+def test_the_help_of_a_command_that_runs_kernels_imports_none(command):
+    code, modules = _modules_after([command, "--help"])
+    assert code == 0
+    assert _heavy(modules) == []
+
+
 def test_static_analysis_imports_no_numba():
     """The equivalent static analysis is linear programming: no kernel, so no numba."""
     code, modules = _modules_after(["static", "--json"])

@@ -445,7 +445,7 @@ def describe_arch(arch) -> str:
 def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     """--restitution and --impact: the impact of the analytical model (every command that runs a
     time history; :func:`impact_from_args` reads them)."""
-    from archquake.mechanism.impact import IMPACT_LAWS
+    from archquake.ranges import IMPACT_LAWS
 
     g = parser.add_argument_group("impact (analytical model)")
     g.add_argument("--restitution", type=number, default=None, metavar="CV",
