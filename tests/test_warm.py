@@ -113,6 +113,7 @@ COMMANDS = [
      "--t-end", "0.05", "--json"],
     ["domain", "--durations", "0.3", "--scan", "4", "--json"],
     ["friction", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
+    ["records", "fema-p695-far-field", "--json"],
 ]
 
 

@@ -89,10 +89,12 @@ def _ida() -> None:
 
 
 def _measures() -> None:
-    """Intensity measures and response spectra (``archquake record``, ``records``, ``ida``)."""
+    """Intensity measures and response spectra (``archquake record``, ``records``, ``spectrum``,
+    ``ida``): of a record (its read-only samples) and of a pulse (samples made for it)."""
     from archquake.ground.measures import intensity_measures
 
     intensity_measures(_record(), periods=(0.5, 1.0))
+    intensity_measures(_step(), periods=(0.5, 1.0))
 
 
 def _rigid_steps() -> None:
