@@ -4,8 +4,10 @@
 Each name is imported from its module on first use (PEP 562), so that a command that needs one
 function (the rigid chain's run to a verdict) does not import the studies of the others."""
 
-import importlib
-from typing import TYPE_CHECKING, Any
+import sys
+from typing import TYPE_CHECKING
+
+from archquake._lazy import attach
 
 #: Every public name -> the module that defines it.
 _LAZY: dict[str, str] = {
@@ -78,18 +80,8 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     )
 
 
-def __getattr__(name: str) -> Any:
-    """Import a public name on first access and keep it in the module's namespace."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'archquake.compare' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
 
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
 
 __all__ = [
     "DEM_DOMAIN_SETTINGS",

@@ -5,9 +5,10 @@ The intensity measures (:mod:`archquake.ground.measures`, which compiles a numba
 imported on first use (PEP 562), so that a command that only builds a motion does not import
 numba."""
 
-import importlib
-from typing import TYPE_CHECKING, Any
+import sys
+from typing import TYPE_CHECKING
 
+from archquake._lazy import attach
 from archquake.ground.base import GroundMotion
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.ground.records import (
@@ -39,18 +40,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     )
 
 
-def __getattr__(name: str) -> Any:
-    """Import a lazy name on first access and keep it in the module's namespace."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'archquake.ground' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
 
 
 __all__ = [
