@@ -118,7 +118,8 @@ def main() -> None:
         "archquake run (empty cache, no warm-up)"]
     for name in order:
         wall, cpu, n = medians[name]
-        print(f"  {name:<{width}}  {n:>2}  {wall:8.3f} {wall / ref_wall:6.1f}  {cpu:8.3f} {cpu / ref_cpu:6.1f}")
+        print(f"  {name:<{width}}  {n:>2}  {wall:8.3f} {wall / ref_wall:6.1f}  "
+              f"{cpu:8.3f} {cpu / ref_cpu:6.1f}")
     print("first run after the warm-up against a warm run (the first must not compile):")
     for model in MODELS:
         first, warm = medians[f"{model} (first after warm)"], medians[f"{model} (warm)"]

@@ -31,8 +31,8 @@ KERNEL_MODULES: tuple[str, ...] = (
     "archquake.ground._kernel",
     "archquake.ground.measures",
     "archquake.mechanism._kernels",
-    "archquake.mechanism._rigid_kernels",
-    "archquake.mechanism._event_kernels",
+    "archquake.rigid._step_kernels",
+    "archquake.rigid._event_kernels",
     "archquake.domains._kernels",
     "archquake.ida._kernels",
     "archquake.dem._kernels",
@@ -99,7 +99,7 @@ def _measures() -> None:
 
 def _rigid_steps() -> None:
     """The chain of rigid blocks, time-stepped (``archquake run --hinges moving``)."""
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.rigid import simulate_rigid
 
     simulate_rigid(_arch(), _step(), duration=0.05).to_dict()  # with the joint forces
     simulate_rigid(_arch(), _step(), duration=0.02, friction=0.6)
@@ -107,7 +107,7 @@ def _rigid_steps() -> None:
 
 def _rigid_events() -> None:
     """The chain of rigid blocks, event-driven (``--hinges moving --integrator events``)."""
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.rigid import simulate_rigid
 
     simulate_rigid(_arch(), _step(), duration=0.05, solver="events").to_dict()
 
