@@ -112,6 +112,7 @@ COMMANDS = [
     ["run", "--model", "dem", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27",
      "--t-end", "0.05", "--json"],
     ["domain", "--durations", "0.3", "--scan", "4", "--json"],
+    ["domain", "--hinges", "moving", "--durations", "0.3", "--scan", "4", "--json"],
     ["friction", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
     ["records", "fema-p695-far-field", "--json"],
 ]

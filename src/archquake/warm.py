@@ -33,6 +33,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "archquake.mechanism._kernels",
     "archquake.rigid._step_kernels",
     "archquake.rigid._event_kernels",
+    "archquake.rigid._verdict_kernels",
     "archquake.domains._kernels",
     "archquake.ida._kernels",
     "archquake.dem._kernels",
@@ -112,6 +113,13 @@ def _rigid_events() -> None:
     simulate_rigid(_arch(), _step(), duration=0.05, solver="events").to_dict()
 
 
+def _rigid_verdicts() -> None:
+    """The rigid chain's verdicts in batches (``domain --hinges moving``, sweeps, the rigid IDA)."""
+    from archquake.rigid import rigid_verdicts
+
+    rigid_verdicts(_arch(), [_step(), _record()], duration=0.05, threads=2)
+
+
 def _dem() -> None:
     """The distinct-element model (``archquake run --model dem``)."""
     from archquake.dem import DemSettings, simulate_dem
@@ -127,6 +135,7 @@ WORKLOADS: dict[str, Callable[[], None]] = {
     "measures": _measures,
     "rigid": _rigid_steps,
     "events": _rigid_events,
+    "verdicts": _rigid_verdicts,
     "dem": _dem,
 }
 
