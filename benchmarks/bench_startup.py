@@ -12,7 +12,7 @@ processes (default 3), but for the rows that can happen once only:
 - ``import archquake`` and ``archquake --version``: what a script or a shell loop pays;
 - ``archquake warm`` into a new, empty ``NUMBA_CACHE_DIR`` (once: what ``make demo`` pays after
   the install);
-- for each model (today's default ``run``, ``run --hinges moving``, ``run --model dem``): its
+- for each model (the default ``run``, the rigid chain; ``--model fourlink``; ``--model dem``): its
   first run after the warm-up (once: the first process to load the kernels from the cache) and
   its later runs in the same cache, and the ratio of the two (the first must not compile);
 - ``archquake run`` with an empty cache and no warm-up (once), for comparison.
@@ -37,7 +37,7 @@ from pathlib import Path
 PULSE = ["--pulse", "step", "--magnitude", "1.0", "--duration", "0.27", "--json"]
 MODELS = {
     "archquake run": ["run", *PULSE],
-    "archquake run --hinges moving": ["run", "--hinges", "moving", *PULSE],
+    "archquake run --model fourlink": ["run", "--model", "fourlink", *PULSE],
     "archquake run --model dem": ["run", "--model", "dem", *PULSE],
 }
 ONE_KERNEL = ("from archquake.ground import StepImpulse\n"

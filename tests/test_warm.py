@@ -101,19 +101,20 @@ def test_a_workload_compiles_once_then_loads(tmp_path):
 
 #: Commands a user runs first, each on a short problem: after ``archquake warm`` none may compile.
 COMMANDS = [
-    ["run", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
-    ["run", "--pulse", "sine", "--magnitude", "1.0", "--period", "0.5", "--json"],
-    ["run", "--hinges", "moving", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27",
+    ["run", "--model", "fourlink", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
+    ["run", "--model", "fourlink", "--pulse", "sine", "--magnitude", "1.0", "--period", "0.5",
+     "--json"],
+    ["run", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27",
      "--t-end", "0.3", "--json"],
-    ["run", "--hinges", "moving", "--integrator", "events", "--pulse", "step", "--magnitude",
+    ["run", "--integrator", "events", "--pulse", "step", "--magnitude",
      "1.0", "--duration", "0.27", "--t-end", "0.3"],
-    ["run", "--hinges", "moving", "--friction", "0.6", "--pulse", "step", "--magnitude", "1.0",
+    ["run", "--friction", "0.6", "--pulse", "step", "--magnitude", "1.0",
      "--duration", "0.27", "--t-end", "0.1"],
     ["run", "--model", "dem", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27",
      "--t-end", "0.05", "--json"],
-    ["domain", "--durations", "0.3", "--scan", "4", "--json"],
-    ["domain", "--hinges", "moving", "--durations", "0.3", "--scan", "4", "--json"],
-    ["friction", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
+    ["domain", "--model", "fourlink", "--durations", "0.3", "--scan", "4", "--json"],
+    ["domain", "--model", "rigid", "--durations", "0.3", "--scan", "4", "--json"],
+    ["friction", "--model", "fourlink", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"],
     ["records", "fema-p695-far-field", "--json"],
 ]
 

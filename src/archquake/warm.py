@@ -65,7 +65,7 @@ def _step():
 
 
 def _four_link() -> None:
-    """The four-link mechanism (``archquake run``, ``friction``, ``thrust``, ``static``)."""
+    """The four-link mechanism (``--model fourlink``)."""
     from archquake.mechanism import PreparedMechanism, simulate
 
     prepared = PreparedMechanism.build(_arch(), None)
@@ -99,7 +99,7 @@ def _measures() -> None:
 
 
 def _rigid_steps() -> None:
-    """The chain of rigid blocks, time-stepped (``archquake run --hinges moving``)."""
+    """The chain of rigid blocks, time-stepped (``archquake run``, the default model)."""
     from archquake.rigid import simulate_rigid
 
     simulate_rigid(_arch(), _step(), duration=0.05).to_dict()  # with the joint forces
@@ -107,14 +107,14 @@ def _rigid_steps() -> None:
 
 
 def _rigid_events() -> None:
-    """The chain of rigid blocks, event-driven (``--hinges moving --integrator events``)."""
+    """The chain of rigid blocks, event-driven (``run --integrator events``)."""
     from archquake.rigid import simulate_rigid
 
     simulate_rigid(_arch(), _step(), duration=0.05, solver="events").to_dict()
 
 
 def _rigid_verdicts() -> None:
-    """The rigid chain's verdicts in batches (``domain --hinges moving``, sweeps, the rigid IDA)."""
+    """The rigid chain's verdicts in batches (``domain``, sweeps, the IDA)."""
     from archquake.rigid import rigid_verdicts
 
     rigid_verdicts(_arch(), [_step(), _record()], duration=0.05, threads=2)
