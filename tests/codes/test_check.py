@@ -196,3 +196,11 @@ def test_2009_linear_slv_by_hand(curve, spectrum):
         ag_g = (1.4 - math.sqrt(1.96 - 4 * 0.96 * target)) / (2 * 0.96)
     assert res.check("SLV", "linear").capacity_ag_g == pytest.approx(ag_g, rel=1e-9)
     assert res.check("SLV", "linear").capacity == pytest.approx(2 * 0.1 * G / FC, rel=1e-12)
+
+
+def test_governing_check_per_limit_state(result):
+    # the nonlinear check governs SLV (0.167 g beats the linear 0.123 g here); SLD is linear
+    gov = {c.limit_state: c for c in result.governing}
+    assert set(gov) == {"SLD", "SLV", "SLC"}
+    assert gov["SLV"].method == "nonlinear" and gov["SLD"].method == "linear"
+    assert result.passes is all(c.passes for c in gov.values())

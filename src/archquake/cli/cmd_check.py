@@ -194,15 +194,16 @@ def format_result(result, arch, source: str) -> str:
         f"  d0 = {curve.d0_m:.4f} m (alpha = 0 at rotation {curve.phi0_rad:.4f} rad; control "
         "point: centre of mass of the moving voussoirs, C8.7.1.4)",
     ]
+    governing = result.governing
     for c in result.checks:
-        lines.append(c.verdict())
+        lines.append(c.verdict() + ("" if c in governing else "  (not governing)"))
         if c.quantity == "displacement":
             lines.append(f"    d capacity {c.capacity:.4f} m, demand at the site {c.demand:.4f} m "
                          f"at T = {c.period_s:.3f} s, damping {c.damping:.0%}")
         else:
             lines.append(f"    a capacity {c.capacity / g:.4f} g, demand at the site "
                          f"{c.demand / g:.4f} g")
-    worst = min(result.checks, key=lambda c: c.ratio)
+    worst = min(governing, key=lambda c: c.ratio)
     ratio = "inf" if math.isinf(worst.ratio) else f"{worst.ratio:.3f}"
     lines.append(f"verdict: {'passes' if result.passes else 'FAILS'} "
                  f"(least ratio {ratio}, {worst.limit_state} {worst.method})")

@@ -322,8 +322,20 @@ class CodeCheck:
         return self.curve.a0_star(self.confidence_factor)
 
     @property
+    def governing(self) -> tuple[LimitStateCheck, ...]:
+        """One check per limit state: the nonlinear (displacement) check where there is one,
+        the code's more accurate route, else the linear one (C8.7.1.2.1.7 is the simplified
+        alternative when only alpha0 is known)."""
+        out: dict[str, LimitStateCheck] = {}
+        for c in self.checks:
+            if c.limit_state not in out or c.method == "nonlinear":
+                out[c.limit_state] = c
+        return tuple(out.values())
+
+    @property
     def passes(self) -> bool:
-        return all(c.passes for c in self.checks)
+        """True if every limit state's governing check passes."""
+        return all(c.passes for c in self.governing)
 
     def check(self, limit_state: str, method: str) -> LimitStateCheck:
         for c in self.checks:
@@ -346,7 +358,8 @@ class CodeCheck:
             "a0_star_m_s2": self.a0_star,
             "d0_m": self.curve.d0_m,
             "passes": self.passes,
-            "limit_states": [c.to_dict() for c in self.checks],
+            "limit_states": [{**c.to_dict(), "governing": c in self.governing}
+                             for c in self.checks],
             "spectra": {k: s.to_dict() for k, s in self.spectra.items()},
             "capacity_curve": self.curve.to_dict(),
         }
