@@ -24,9 +24,6 @@ from archquake.ranges import (
     NTC_USE_CLASSES,
 )
 
-#: The limit states the check reports (NTC 2018 Tab. 3.2.I).
-LIMIT_STATES = ("SLD", "SLV", "SLC")
-
 
 def _hazard_point(text: str) -> tuple[float, float, float, float]:
     values = comma_numbers(text, 4, "TR,AG,F0,TCSTAR (years, g, -, s)")
@@ -107,6 +104,7 @@ def _position(args: argparse.Namespace):
 
 def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
     """The spectra by limit state the options describe, and a line saying where they come from."""
+    from archquake.codes.check import limit_state_spectra
     from archquake.codes.spectra import NTCHazard, return_period_years
 
     if args.hazard is None:
@@ -118,7 +116,7 @@ def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
                 "the site is needed: --code ntc2018 --ag G --f0 F --tc-star S [--soil X], "
                 "--code ec8 --ag G, or --code ntc2018 --hazard TR,AG,F0,TCSTAR (two or more)")
         spectrum = spectrum_from_args(args)
-        return ({state: spectrum for state in LIMIT_STATES},
+        return ({state: spectrum for state in ("SLD", "SLV", "SLC")},
                 f"one spectrum for every limit state: {spectrum.label()}")
     if args.code != "ntc2018":
         raise InvalidParameterError("--hazard needs --code ntc2018 (the NTC hazard grid)")
@@ -130,18 +128,14 @@ def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
     hazard = NTCHazard(args.hazard)
     life = 50.0 if args.nominal_life is None else args.nominal_life
     use = args.use_class or "II"
-    site = {"soil": args.soil or "A", "topography": args.topography or "T1",
-            "component": args.component}
-    spectra = {}
-    lines = []
-    for state in LIMIT_STATES:
-        t_r = return_period_years(state, life, use)
-        try:
-            spectra[state] = hazard.spectrum(t_r, **site)
-        except InvalidParameterError as exc:
-            raise InvalidParameterError(
-                f"--hazard: {state} needs the return period {t_r:.0f} years ({exc})") from None
-        lines.append(f"{state} T_R {t_r:.0f} y a_g {spectra[state].ag / spectra[state].g:.4f} g")
+    try:
+        spectra = limit_state_spectra(hazard, nominal_life_years=life, use_class=use,
+                                      soil=args.soil or "A", topography=args.topography or "T1",
+                                      component=args.component)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"--hazard: {exc}") from None
+    lines = [f"{state} T_R {return_period_years(state, life, use):.0f} y a_g "
+             f"{spectrum.ag / spectrum.g:.4f} g" for state, spectrum in spectra.items()]
     return spectra, f"NTC hazard, V_N {life:g} y, class {use}: " + "; ".join(lines)
 
 

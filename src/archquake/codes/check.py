@@ -44,7 +44,7 @@ from scipy.optimize import brentq
 
 from archquake._validate import require_positive, require_range
 from archquake.codes.kinematic import CapacityCurve
-from archquake.codes.spectra import ElasticSpectrum
+from archquake.codes.spectra import ElasticSpectrum, NTCHazard, return_period_years
 from archquake.errors import InvalidParameterError
 
 #: Behaviour factor of the linear SLV check "in the absence of more accurate evaluations"
@@ -436,6 +436,45 @@ def _nonlinear_2009(curve: CapacityCurve, spectrum: ElasticSpectrum, fc: float) 
                            demand(spectrum), period, 0.05, formulas)
 
 
+#: The limit states of the check (NTC 2018 Tab. 3.2.I).
+LIMIT_STATES = ("SLD", "SLV", "SLC")
+
+
+def limit_state_spectra(hazard: NTCHazard, *, nominal_life_years: float = 50.0,
+                        use_class: str = "II", **site) -> dict[str, ElasticSpectrum]:
+    """The site's NTC 2018 spectra at each limit state's return period (eq. 3.2.0).
+
+    Parameters
+    ----------
+    hazard : NTCHazard
+        The site's (T_R, a_g, F0, T_C*) points, spanning the return periods asked for.
+    nominal_life_years : float
+        V_N, years.
+    use_class : {'I', 'II', 'III', 'IV'}
+    **site
+        :func:`~archquake.codes.spectra.ntc2018_spectrum`'s other keywords (soil, topography).
+
+    Returns
+    -------
+    dict of str to ElasticSpectrum
+        'SLD', 'SLV', 'SLC'.
+
+    Raises
+    ------
+    InvalidParameterError
+        A return period outside the hazard's points (one line naming the limit state).
+    """
+    out = {}
+    for state in LIMIT_STATES:
+        t_r = return_period_years(state, nominal_life_years, use_class)
+        try:
+            out[state] = hazard.spectrum(t_r, **site)
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(
+                f"{state} needs the return period {t_r:.0f} years ({exc})") from None
+    return out
+
+
 def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum], *,
                     knowledge: KnowledgeLevel | str = KnowledgeLevel.LC1,
                     procedure: Procedure | str = Procedure.CIRC2019,
@@ -508,6 +547,8 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
 
 __all__ = [
     "BEHAVIOUR_FACTOR",
+    "LIMIT_STATES",
+    "limit_state_spectra",
     "NONLINEAR",
     "CodeCheck",
     "KnowledgeLevel",
