@@ -39,6 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from archquake.assess.site import SITE_KEYS, SiteConfig, parse_site
 from archquake.errors import ArchquakeError, StudyFileError
 
 #: Keys of [arch]: the study files' arch keys (one home: archquake.sweeps.study) and friction.
@@ -47,7 +48,8 @@ ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "
              "blocks", "friction")
 SEISMIC_KEYS = ("site_pga_g", "suite", "units")
 OPTION_KEYS = ("impact", "restitution", "dem")
-TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS}
+TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS,
+          "site": SITE_KEYS}
 _WORDS = ("shape", "joints")
 _INTEGERS = ("voussoirs", "pier_courses")
 
@@ -76,6 +78,9 @@ class AssessConfig:
         Run the distinct-element check.
     source : str
         The file read (for messages).
+    site : SiteConfig or None
+        The ``[site]`` table (:mod:`archquake.assess.site`): the code check's site, knowledge
+        level and position.
     """
 
     arch: Any
@@ -87,6 +92,7 @@ class AssessConfig:
     restitution: float | None
     dem: bool
     source: str = "assessment"
+    site: SiteConfig | None = None
 
     def canonical(self) -> dict:
         """Everything that determines the results (the cache key's input)."""
@@ -94,7 +100,8 @@ class AssessConfig:
                 "site_pga_g": self.site_pga_g,
                 "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
                 "units": self.units, "impact": self.impact, "restitution": self.restitution,
-                "dem": self.dem}
+                "dem": self.dem,
+                "site": None if self.site is None else self.site.canonical()}
 
     @property
     def digest(self) -> str:
@@ -209,8 +216,9 @@ def parse_config(data: dict, *, source: str = "assessment",
         if units not in UNITS:
             raise _fail(source, "[seismic] units", f"must be one of {list(UNITS)}, got {units!r}")
     suite = _suite(source, seismic.get("suite"), base_dir)
-    if site is None and suite is None:
-        raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set)")
+    if site is None and suite is None and "site" not in data:
+        raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set), "
+                                         "or a [site] table")
 
     options = data.get("options", {})
     from archquake.mechanism.impact import IMPACT_LAWS
@@ -227,7 +235,9 @@ def parse_config(data: dict, *, source: str = "assessment",
     dem = options.get("dem", True)
     if not isinstance(dem, bool):
         raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
-    return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source)
+    site_table = None if "site" not in data else parse_site(data["site"], source=source)
+    return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
+                        site_table)
 
 
 def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:
