@@ -26,6 +26,8 @@ DEM_T_END_MAX_S = 120.0
 RECORD_DT_RANGE_S = (1e-6, 1.0)
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
+#: Records in a selected set, and the per-event limit (--count, --max-per-event).
+SELECT_COUNT_RANGE = (1, 1000)
 #: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
 RESTITUTION_RANGE = (0.0, 1.0)
 #: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
@@ -126,6 +128,7 @@ __all__ = [
     "RECORD_DT_RANGE_S",
     "RESTITUTION_RANGE",
     "SCALE_RANGE",
+    "SELECT_COUNT_RANGE",
     "SCAN_RANGE",
     "STIFFNESS_RANGE",
     "TABLE_SUFFIXES",

@@ -6,18 +6,45 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from archquake.cli.common import add_output_arguments, number, print_json, record_from_args
+from archquake.cli.common import (
+    add_output_arguments,
+    number,
+    print_json,
+    record_from_args,
+    refuse_unless,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
 from archquake.ground.records import UNITS, baseline_corrected, resampled
+from archquake.ground.response_spectra import DEFAULT_PERIOD_GRID_S, period_grid, record_spectra
 
 #: Sa periods printed unless --periods says otherwise, s.
 DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
 
 
+#: Step of ``--periods START:STOP`` when none is given, s.
+DEFAULT_PERIOD_STEP_S = 0.05
+
+
 def periods_list(text: str) -> tuple[float, ...]:
-    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1'."""
+    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1', or a grid
+    START:STOP:STEP (s; STOP included), e.g. '0:4:0.02'; START:STOP steps by 0.05 s."""
+    if ":" in text:
+        parts = text.replace(" ", "").split(":")
+        try:
+            if len(parts) not in (2, 3):
+                raise ValueError
+            values = [float(x) for x in parts]
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"expected START:STOP:STEP in s (e.g. 0:4:0.02) or periods separated by commas, "
+                f"got {text!r}") from None
+        step = values[2] if len(values) == 3 else DEFAULT_PERIOD_STEP_S
+        try:
+            return tuple(float(t) for t in period_grid(values[0], values[1], step))
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(f"{exc} (in {text!r})") from None
     out = []
     for tok in (t for t in text.replace(" ", "").split(",") if t):
         try:
@@ -65,15 +92,22 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "acceleration, fitted to the velocity (default: none)")
     p.add_argument("--resample", type=number, metavar="DT",
                    help="resample to this time step, s (> 0; anti-aliased polyphase filter)")
-    p.add_argument("--periods", type=periods_list, metavar="T,T,...", default=DEFAULT_PERIODS,
-                   help="periods of Sa(T), s, comma-separated (default "
-                        f"{','.join(f'{t:g}' for t in DEFAULT_PERIODS)})")
-    add_output_arguments(p, plot=False)
+    p.add_argument("--periods", type=periods_list, metavar="T,T,...",
+                   help="periods of Sa(T), s: comma-separated or a grid START:STOP:STEP (default "
+                        f"{','.join(f'{t:g}' for t in DEFAULT_PERIODS)}; with --spectrum "
+                        f"{':'.join(f'{t:g}' for t in DEFAULT_PERIOD_GRID_S)})")
+    p.add_argument("--spectrum", action="store_true",
+                   help="print the 5 %%-damped response spectrum Sa (g) over --periods as a table "
+                        "(and draw it with --plot)")
+    add_output_arguments(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     g = STANDARD_GRAVITY
+    refuse_unless({"--plot": args.plot}, args.spectrum, "with --spectrum")
+    if args.periods is None:
+        args.periods = period_grid(*DEFAULT_PERIOD_GRID_S) if args.spectrum else DEFAULT_PERIODS
     record = record_from_args(args.file, args.units, args.scale, g=g, dt=args.dt)
     if args.baseline is not None:
         if not 0 <= args.baseline <= 5:
@@ -85,6 +119,8 @@ def run(args: argparse.Namespace) -> int:
             raise InvalidParameterError(f"--resample must be a time step > 0 s, got "
                                         f"{args.resample:g}")
         record = resampled(record, args.resample)
+    if args.spectrum:
+        return _spectrum(record, args, g)
     ims = intensity_measures(record, periods=args.periods, g=g)
     summary = record.to_dict(g=g)
     is_text = args.file.suffix.lower() in (".csv", ".txt")
@@ -128,3 +164,30 @@ def run(args: argparse.Namespace) -> int:
                      f"({100 * DEFAULT_DAMPING:g} % damping)")
     print("\n".join(lines))
     return 0
+
+
+def _spectrum(record, args: argparse.Namespace, g: float) -> int:
+    """``--spectrum``: the record's response spectrum as a table, JSON or a figure."""
+    spectra = record_spectra([record], args.periods, g=g)
+    if args.plot is not None:
+        from archquake.plotting.spectra import save_record_spectra
+
+        save_record_spectra(spectra, args.plot, title=record.name)
+    if args.json:
+        print_json({"record": record.name, "file": str(record.source), "scale": record.scale,
+                    "damping_ratio": spectra.damping, "periods_s": spectra.periods_s,
+                    "sa_g": spectra.sa[0] / g, "g_m_s2": g,
+                    "plot": str(args.plot) if args.plot else None})
+        return 0
+    print(f"{record.name}: response spectrum, {100 * spectra.damping:g} % damping")
+    print_spectrum_table(spectra.periods_s, {"Sa g": spectra.sa[0] / g})
+    if args.plot is not None:
+        print(f"plot: {args.plot}")
+    return 0
+
+
+def print_spectrum_table(periods, columns: dict) -> None:
+    """Periods (s) down the first column, one column per entry of ``columns`` (name -> values)."""
+    print(f"{'T s':>7s}" + "".join(f" {name:>9s}" for name in columns))
+    for i, t in enumerate(periods):
+        print(f"{t:7.3f}" + "".join(f" {float(v[i]):9.4f}" for v in columns.values()))

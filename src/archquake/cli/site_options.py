@@ -76,7 +76,7 @@ def spectrum_from_args(args: argparse.Namespace):
     from archquake.codes.spectra import ec8_spectrum, ntc2018_spectrum
 
     if args.code is None:
-        refuse_unless(_all_site_options(args), False, "with --code ntc2018 or --code ec8")
+        refuse_unless(site_options_given(args), False, "with --code ntc2018 or --code ec8")
         return None
     if args.ag is None:
         raise InvalidParameterError(f"--code {args.code} needs --ag G (a_g in g)")
@@ -100,10 +100,12 @@ def spectrum_from_args(args: argparse.Namespace):
                         component=args.component)
 
 
-def _all_site_options(args: argparse.Namespace) -> dict[str, object]:
+def site_options_given(args: argparse.Namespace) -> dict[str, object]:
+    """The site options besides ``--code`` and ``--component`` by name as typed (None: not
+    given), for :func:`archquake.cli.common.refuse_unless`."""
     return {"--ag": args.ag, "--f0": args.f0, "--tc-star": args.tc_star, "--soil": args.soil,
             "--topography": args.topography, "--type": args.spectrum_type,
             "--ground": args.ground, "--importance": args.importance}
 
 
-__all__ = ["SITE_CODES", "add_site_options", "spectrum_from_args"]
+__all__ = ["SITE_CODES", "add_site_options", "site_options_given", "spectrum_from_args"]
