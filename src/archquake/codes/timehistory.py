@@ -189,5 +189,101 @@ def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str
     return TimeHistoryCheck(limit_state, d_limit, curve.d0_m, tuple(responses))
 
 
-__all__ = ["MIN_RECORDS", "RecordResponse", "TimeHistoryCheck", "chain_displacement",
-           "time_history_check"]
+@dataclass(frozen=True)
+class TimeHistoryCapacity:
+    """The capacity a_g of the time-history route: the least a_g (records scaled with it) at
+    which the check of C8.7.1.2.1.9 fails, found by bracketing and bisection.
+
+    Attributes
+    ----------
+    limit_state : {'SLV', 'SLC'}
+    capacity_ag_g : float
+        g (the midpoint of the last bracket).
+    bracket_g : (float, float)
+        The last a_g that passed and the first that failed, g.
+    levels : tuple of TimeHistoryCheck
+        Every level run, with its a_g in ``ag_g``.
+    ag_g : tuple of float
+        The a_g of each level, g.
+    """
+
+    limit_state: str
+    capacity_ag_g: float
+    bracket_g: tuple[float, float]
+    levels: tuple[TimeHistoryCheck, ...]
+    ag_g: tuple[float, ...]
+
+    def to_dict(self) -> dict:
+        return {"limit_state": self.limit_state, "capacity_ag_g": self.capacity_ag_g,
+                "bracket_g": list(self.bracket_g),
+                "levels": [dict(c.to_dict(), ag_g=a) for c, a in zip(self.levels, self.ag_g)]}
+
+
+def time_history_capacity(curve: CapacityCurve, records: Sequence, site_ag_g: float,
+                          start_ag_g: float, limit_state: str = "SLV", *,
+                          bisections: int = 3, growth: float = 1.5, max_ag_g: float = 5.0,
+                          run: Callable | None = None,
+                          progress: Callable[[str], None] | None = None) -> TimeHistoryCapacity:
+    """The least a_g at which the time-history check fails, the records scaled in proportion.
+
+    Parameters
+    ----------
+    curve : CapacityCurve
+    records : sequence of GroundMotion
+        Selected and scaled to the site's spectrum at ``site_ag_g``.
+    site_ag_g : float
+        The a_g the records are scaled to, g.
+    start_ag_g : float
+        First a_g tried (e.g. the static route's capacity), g.
+    limit_state : {'SLV', 'SLC'}
+    bisections : int
+        Halvings of the bracket once found (the capacity is then known to within
+        (growth - 1) / 2^bisections of itself).
+    growth : float
+        Factor between the levels while bracketing.
+    max_ag_g : float
+        Highest a_g tried, g (the capacity is reported as inf beyond it).
+    run, progress : callable, optional
+        As in :func:`time_history_check`; ``progress`` is told each level's verdict.
+    """
+    levels: list[TimeHistoryCheck] = []
+    ags: list[float] = []
+
+    def check(ag: float) -> bool:
+        scaled = [m.scaled(ag / site_ag_g) for m in records]
+        res = time_history_check(curve, scaled, limit_state, run=run)
+        levels.append(res)
+        ags.append(ag)
+        if progress:
+            progress(f"a_g {ag:.4f} g: {res.verdict()}")
+        return res.passes
+
+    lo, hi = 0.0, float(start_ag_g)
+    if check(hi):
+        lo = hi
+        hi = lo * growth
+        while hi <= max_ag_g and check(hi):
+            lo, hi = hi, hi * growth
+        if hi > max_ag_g:
+            return TimeHistoryCapacity(limit_state, math.inf, (lo, math.inf), tuple(levels),
+                                       tuple(ags))
+    else:
+        hi_fail = hi
+        lo = hi / growth
+        while not check(lo):
+            hi_fail, lo = lo, lo / growth
+            if lo < 1e-3 * start_ag_g:
+                return TimeHistoryCapacity(limit_state, 0.0, (0.0, hi_fail), tuple(levels),
+                                           tuple(ags))
+        hi = hi_fail
+    for _ in range(bisections):
+        mid = 0.5 * (lo + hi)
+        if check(mid):
+            lo = mid
+        else:
+            hi = mid
+    return TimeHistoryCapacity(limit_state, 0.5 * (lo + hi), (lo, hi), tuple(levels), tuple(ags))
+
+
+__all__ = ["MIN_RECORDS", "RecordResponse", "TimeHistoryCapacity", "TimeHistoryCheck",
+           "chain_displacement", "time_history_capacity", "time_history_check"]
