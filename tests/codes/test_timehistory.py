@@ -14,7 +14,11 @@ import numpy as np
 import pytest
 
 from archquake.codes.kinematic import capacity_curve
-from archquake.codes.timehistory import chain_displacement, time_history_check
+from archquake.codes.timehistory import (
+    chain_displacement,
+    time_history_capacity,
+    time_history_check,
+)
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
@@ -54,3 +58,41 @@ def test_fewer_than_seven_records_refused(three):
     _, curve = three
     with pytest.raises(InvalidParameterError, match="at least 7 records"):
         time_history_check(curve, [StepImpulse.from_g(0.1, 0.1)] * 6)
+
+
+def test_capacity_brackets_the_four_link_threshold(three):
+    """Seven identical step pulses: the capacity a_g of the time-history route must bracket the
+    amplitude at which the four-link model's largest half-cycle displacement (its own
+    integration and impact law; on three voussoirs the chain moves as the four links) reaches
+    d_SLV = 0.4 d0. Identical records give identical runs, so each level is run once."""
+    from archquake.compare import rigid_to_verdict
+    from archquake.mechanism import PreparedMechanism, simulate
+
+    arch, curve = three
+    tp = 0.25
+    prep = PreparedMechanism.build(arch)
+
+    def four_link_peak_d(a_g):
+        r = simulate(prep, StepImpulse.from_g(a_g, tp), t_end=6.0)
+        return max((curve.displacement(min(p, curve.phi0_rad)) for p in r.peak_rotation),
+                   default=0.0)
+
+    lo, hi = 0.5, 1.5
+    target = 0.4 * curve.d0_m
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if four_link_peak_d(mid) < target else (lo, mid)
+    threshold = 0.5 * (lo + hi)
+
+    runs = {}
+
+    def run_once(a, motion):
+        key = round(float(motion.magnitude), 12)
+        if key not in runs:
+            runs[key] = rigid_to_verdict(a, motion).result
+        return runs[key]
+
+    cap = time_history_capacity(curve, [StepImpulse.from_g(1.0, tp)] * 7, 1.0, 0.8, "SLV",
+                                bisections=2, run=run_once)
+    assert cap.bracket_g[0] <= threshold <= cap.bracket_g[1]
+    assert cap.bracket_g[1] - cap.bracket_g[0] <= 0.1 + 1e-12
