@@ -1,4 +1,5 @@
-"""NTC 2018 and EN 1998-1 elastic spectra against the code formulas written out by hand.
+"""NTC 2018 and EN 1998-1 elastic spectra against the code formulas written out by hand, and
+their invariants (continuity at the corners, the plateau) over the whole parameter space.
 
 Oracle: each branch of the code's equations evaluated in closed form here, at the corner periods
 and between them (NTC 2018 eqs. 3.2.2-3.2.12, Tab. 3.2.IV-VII; EN 1998-1 eqs. 3.2-3.12, Tab.
@@ -12,6 +13,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from archquake.codes import (
     NTCHazard,
@@ -250,6 +253,8 @@ def test_hazard_interpolation_is_linear_in_log_log():
     (lambda: ntc2018_spectrum(ag_g=-0.1, f0=2.4, tc_star_s=0.3), r"ag_g must be in \(0, 3\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=1.8, tc_star_s=0.3), r"f0 must be in \[2.2, 4\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.0), r"tc_star_s must be in"),
+    (lambda: ntc2018_spectrum(ag_g=0.05, f0=2.4, tc_star_s=1.9),
+     r"tc_star_s must be in \[0.05, 0.8\]"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.3, soil="F"),
      r"soil must be one of A, B, C, D, E, got 'F'"),
     (lambda: ntc2018_spectrum(ag_g=0.1, f0=2.4, tc_star_s=0.3, topography="T5"), "topography"),
@@ -267,3 +272,49 @@ def test_bad_input_is_one_line_naming_the_argument(call, match):
     with pytest.raises(InvalidParameterError, match=match) as info:
         call()
     assert "\n" not in str(info.value)
+
+
+# ---------------------------------------------------------------------------------------------
+# invariants over the whole parameter space
+# ---------------------------------------------------------------------------------------------
+SITES = st.one_of(
+    st.builds(lambda ag, f0, tc, soil, topo, comp: ntc2018_spectrum(
+        ag_g=ag, f0=f0, tc_star_s=tc, soil=soil, topography=topo, component=comp),
+        st.floats(0.01, 3.0), st.floats(2.2, 4.0), st.floats(0.05, 0.8),
+        st.sampled_from("ABCDE"), st.sampled_from(["T1", "T2", "T3", "T4"]),
+        st.sampled_from(["horizontal", "vertical"])),
+    st.builds(lambda ag, typ, ground, imp, comp: ec8_spectrum(
+        ag_g=ag, spectrum_type=typ, ground=ground, importance=imp, component=comp),
+        st.floats(0.01, 3.0), st.sampled_from([1, 2]), st.sampled_from("ABCDE"),
+        st.floats(0.5, 2.0), st.sampled_from(["horizontal", "vertical"])),
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(SITES, st.floats(0.0, 0.5))
+def test_spectrum_is_continuous_and_peaks_on_the_plateau(spec, damping):
+    """Both codes' S_e is continuous at T_B, T_C, T_D (the branches meet), goes from the PGA to
+    the plateau a_g S eta F0 and never exceeds the larger of the two, and falls beyond T_C. (The
+    NTC vertical spectrum's F_v = 1.35 F0 sqrt(a_g/g) is below 1 where a_g < 0.088 g for
+    F0 = 2.5: there eq. 3.2.8 falls from the PGA, as written.)"""
+    eps = 1e-9
+    for corner in (spec.TB, spec.TC, spec.TD):
+        left, right = spec.sa([corner * (1 - eps), corner], damping)
+        assert left == pytest.approx(right, rel=1e-6)
+    plateau = spec.pga * damping_factor(damping) * spec.F0
+    t = np.concatenate([np.linspace(0.0, 3 * spec.TD, 400), [spec.TB, spec.TC]])
+    sa = spec.sa(t, damping)
+    assert sa.max() == pytest.approx(max(plateau, spec.pga), rel=1e-12)
+    assert spec.sa((spec.TB + spec.TC) / 2, damping)[0] == pytest.approx(plateau, rel=1e-12)
+    tail = np.sort(t[t >= spec.TC])
+    assert np.all(np.diff(spec.sa(tail, damping)) <= 1e-12 * plateau)
+    assert spec.sa(0.0, damping)[0] == pytest.approx(spec.pga, rel=1e-12)
+
+
+@pytest.mark.parametrize("soil", ["A", "B", "C", "D", "E"])
+@pytest.mark.parametrize("tc_star", [0.05, 0.8])
+def test_the_range_of_tc_star_keeps_the_corners_ordered(soil, tc_star):
+    """At the ends of T_C*'s range and the smallest a_g, T_B < T_C < T_D = 1.6 s on every soil
+    (the range's upper bound is chosen for this)."""
+    spec = ntc2018_spectrum(ag_g=1e-6, f0=4.0, tc_star_s=tc_star, soil=soil)
+    assert spec.TB < spec.TC < spec.TD

@@ -20,8 +20,9 @@ import pytest
 
 from archquake.errors import InvalidParameterError
 from archquake.ground import Record, read_record
+from archquake.ground.periods import period_grid
 from archquake.ground.records import resampled
-from archquake.ground.response_spectra import period_grid, record_spectra
+from archquake.ground.response_spectra import record_spectra
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,8 @@ import pytest
 
 from archquake.codes import ec8_spectrum, ntc2018_spectrum
 from archquake.errors import InvalidParameterError
-from archquake.ground.response_spectra import RecordSpectra, period_grid
+from archquake.ground.periods import period_grid
+from archquake.ground.response_spectra import RecordSpectra
 from archquake.ground.selection import ec8_band, ntc_band, select_records
 
 G = 9.80665
@@ -132,3 +133,27 @@ def test_callable_target_and_bad_input():
                           cands.recordings, np.r_[np.full(5, 0.5), np.full(5, np.inf)])
     with pytest.raises(InvalidParameterError, match="only 5 of 10 records are usable"):
         select_records(short, spec.sa, count=7)
+
+
+def test_selected_suite_holds_the_scaled_records(tmp_path):
+    """The suite of the chosen records: each one the candidate times its factor (its spectrum
+    scales linearly: checked on the records' values)."""
+    from archquake.ground import Record
+    from archquake.ground.response_spectra import record_spectra
+    from archquake.ground.selection import selected_suite
+    from archquake.ground.suites import Suite
+
+    t = np.arange(0.0, 4.0, 0.01)
+    rng = np.random.default_rng(0)
+    records = tuple(Record(np.sin(2 * np.pi * t / rng.uniform(0.2, 1.0)) * rng.uniform(1, 4), 0.01,
+                           name=f"s{i}") for i in range(8))
+    suite = Suite("sines", records)
+    spectra = record_spectra(suite, [0.2, 0.5, 1.0])
+    spec, _ = TARGETS["ntc B 0.25 g"]
+    sel = select_records(spectra, spec.sa, count=3, scale_range=(0.1, 10.0), restarts=2)
+    chosen = selected_suite(suite, sel)
+    assert len(chosen) == 3
+    for rec, i, f in zip(chosen, sel.indices, sel.scale_factors):
+        np.testing.assert_allclose(rec.accelerations, f * suite[i].accelerations, rtol=1e-15)
+    with pytest.raises(InvalidParameterError, match="was not made from suite"):
+        selected_suite(Suite("other", records[::-1]), sel)

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 from archquake.codes import ec8_spectrum, ntc2018_spectrum
-from archquake.ground.response_spectra import period_grid, record_spectra
+from archquake.ground.periods import period_grid
+from archquake.ground.response_spectra import record_spectra
 from archquake.ground.selection import ec8_band, ntc_band, select_records
 from archquake.ground.suites import fema_available, load_suite
 

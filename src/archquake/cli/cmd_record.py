@@ -9,6 +9,7 @@ from pathlib import Path
 from archquake.cli.common import (
     add_output_arguments,
     number,
+    periods_list,
     print_json,
     record_from_args,
     refuse_unless,
@@ -16,47 +17,12 @@ from archquake.cli.common import (
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
+from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
 from archquake.ground.records import UNITS, baseline_corrected, resampled
-from archquake.ground.response_spectra import DEFAULT_PERIOD_GRID_S, period_grid, record_spectra
+from archquake.ground.response_spectra import record_spectra
 
 #: Sa periods printed unless --periods says otherwise, s.
 DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
-
-
-#: Step of ``--periods START:STOP`` when none is given, s.
-DEFAULT_PERIOD_STEP_S = 0.05
-
-
-def periods_list(text: str) -> tuple[float, ...]:
-    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1', or a grid
-    START:STOP:STEP (s; STOP included), e.g. '0:4:0.02'; START:STOP steps by 0.05 s."""
-    if ":" in text:
-        parts = text.replace(" ", "").split(":")
-        try:
-            if len(parts) not in (2, 3):
-                raise ValueError
-            values = [float(x) for x in parts]
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"expected START:STOP:STEP in s (e.g. 0:4:0.02) or periods separated by commas, "
-                f"got {text!r}") from None
-        step = values[2] if len(values) == 3 else DEFAULT_PERIOD_STEP_S
-        try:
-            return tuple(float(t) for t in period_grid(values[0], values[1], step))
-        except InvalidParameterError as exc:
-            raise argparse.ArgumentTypeError(f"{exc} (in {text!r})") from None
-    out = []
-    for tok in (t for t in text.replace(" ", "").split(",") if t):
-        try:
-            value = float(tok)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
-            ) from None
-        if not (value >= 0 and value < float("inf")):
-            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
-        out.append(value)
-    return tuple(out)
 
 
 def add_record_file_arguments(p: argparse.ArgumentParser) -> None:

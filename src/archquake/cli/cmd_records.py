@@ -5,14 +5,11 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from archquake.cli.cmd_record import (
-    add_record_file_arguments,
-    periods_list,
-    print_spectrum_table,
-)
+from archquake.cli.cmd_record import add_record_file_arguments, print_spectrum_table
 from archquake.cli.common import (
     add_output_arguments,
     comma_numbers,
+    periods_list,
     print_json,
     ranged_whole,
     refuse_unless,
@@ -21,7 +18,8 @@ from archquake.cli.site_options import add_site_options, site_options_given, spe
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import intensity_measures
-from archquake.ground.response_spectra import DEFAULT_PERIOD_GRID_S, period_grid, record_spectra
+from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
+from archquake.ground.response_spectra import record_spectra
 from archquake.ground.selection import (
     DEFAULT_COUNT,
     DEFAULT_MAX_PER_EVENT,

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from archquake.cli.cmd_record import periods_list
-from archquake.cli.common import add_output_arguments, print_json, ranged
+from archquake.cli.common import add_output_arguments, periods_list, print_json, ranged
 from archquake.cli.site_options import add_site_options, spectrum_from_args
 from archquake.ranges import DAMPING_RATIO_RANGE_PERCENT
 
@@ -38,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from archquake.ground.response_spectra import period_grid
+    from archquake.ground.periods import period_grid
 
     spectrum = spectrum_from_args(args)
     damping = args.damping / 100.0

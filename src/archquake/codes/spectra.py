@@ -344,7 +344,7 @@ def ntc2018_spectrum(*, ag_g: float, f0: float, tc_star_s: float, soil: str = "A
     f0 : float
         F0, the plateau amplification on rock, in [2.2, 4.0] (the code's minimum is 2.2).
     tc_star_s : float
-        T_C*, s, in [0.05, 2.0].
+        T_C*, s, in [0.05, 0.8].
     soil : {'A', 'B', 'C', 'D', 'E'}
         Subsoil category (Tab. 3.2.II).
     topography : {'T1', 'T2', 'T3', 'T4'}

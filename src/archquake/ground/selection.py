@@ -42,6 +42,7 @@ import numpy as np
 from archquake._validate import require_int, require_positive
 from archquake.errors import InvalidParameterError
 from archquake.ground.response_spectra import RecordSpectra
+from archquake.ground.suites import Suite
 
 #: NTC 2018 §3.2.3.6: the mean spectrum within -10 % / +30 % of the target.
 NTC_BAND = (0.9, 1.3)
@@ -169,6 +170,28 @@ class Selection:
             "damping_ratio": self.spectra.damping,
             "g_m_s2": g,
         }
+
+
+def selected_suite(suite: Suite, selection: Selection) -> Suite:
+    """The chosen records of ``suite`` (the candidates ``selection`` was made from, in the same
+    order), each multiplied by its scale factor, as a suite for a time-history analysis.
+
+    Raises
+    ------
+    archquake.errors.InvalidParameterError
+        ``suite`` is not the one the selection was made from (names differ).
+    """
+    records = []
+    for i, factor, name in zip(selection.indices, selection.scale_factors,
+                               selection.spectra.names):
+        if i >= len(suite) or suite[i].name != name:
+            raise InvalidParameterError(
+                f"the selection was not made from suite {suite.name!r}: record {name!r} is not "
+                f"its record {i}")
+        records.append(suite[i].scaled(float(factor)))
+    return Suite(f"{suite.name}-selected", tuple(records),
+                 f"{len(records)} records of {suite.name} scaled to a target spectrum",
+                 suite.source, {**suite.metadata, "selected_from": suite.name})
 
 
 def select_records(
@@ -387,4 +410,5 @@ __all__ = [
     "ec8_band",
     "ntc_band",
     "select_records",
+    "selected_suite",
 ]
