@@ -22,7 +22,7 @@ import sys
 from collections.abc import Sequence
 
 from archquake import __version__
-from archquake.errors import ArchquakeError
+from archquake.errors import ArchquakeError, UsageError
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS: tuple[str, ...] = (
@@ -80,10 +80,6 @@ def _requested(argv: Sequence[str]) -> str | None:
         if not word.startswith("-"):
             return by_name.get(word)
     return None
-
-
-class UsageError(ArchquakeError):
-    """A malformed command line."""
 
 
 class OneLineParser(argparse.ArgumentParser):

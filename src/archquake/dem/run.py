@@ -25,8 +25,8 @@ import math
 
 import numpy as np
 
+import archquake.dem._kernels as K
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem import _kernels as K
 from archquake.dem._kernels import Packed
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end

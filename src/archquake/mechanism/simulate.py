@@ -47,13 +47,13 @@ from functools import lru_cache
 
 import numpy as np
 
+import archquake.mechanism._kernels as K
 from archquake._validate import require_finite, require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion, check_time_resolution
-from archquake.mechanism import _kernels as K
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
