@@ -11,8 +11,8 @@ import math
 
 from timing import best_of  # benchmarks/timing.py
 
-from archquake.codes.check import kinematic_check
-from archquake.codes.kinematic import capacity_curve
+from archquake.codecheck.check import kinematic_check
+from archquake.codecheck.kinematic import capacity_curve
 from archquake.codes.spectra import ntc2018_spectrum
 from archquake.geometry import Arch
 from archquake.limit import limit_analysis

@@ -28,10 +28,10 @@ import time
 import numpy as np
 
 from archquake._json import to_jsonable
-from archquake.codes.check import kinematic_check, limit_state_spectra
-from archquake.codes.kinematic import capacity_curve
+from archquake.codecheck.check import kinematic_check, limit_state_spectra
+from archquake.codecheck.kinematic import capacity_curve
+from archquake.codecheck.timehistory import time_history_capacity
 from archquake.codes.spectra import NTCHazard
-from archquake.codes.timehistory import time_history_capacity
 from archquake.geometry import Arch
 from archquake.ground.response_spectra import record_spectra
 from archquake.ground.selection import select_records

@@ -1,6 +1,6 @@
 """The assessment's [site] table and its "Code check" section.
 
-Oracles: the library's check (tests/codes/test_check.py holds it to the rocking block by hand)
+Oracles: the library's check (tests/codecheck/test_check.py holds it to the rocking block by hand)
 run on the same arch and spectra; every bad key as one line naming it."""
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ import pytest
 
 from archquake.assess.config import load_config, parse_config
 from archquake.assess.site import parse_site, report_code_check, section_code_check
-from archquake.codes.check import kinematic_check, limit_state_spectra
-from archquake.codes.kinematic import capacity_curve
+from archquake.codecheck.check import kinematic_check, limit_state_spectra
+from archquake.codecheck.kinematic import capacity_curve
 from archquake.codes.spectra import NTCHazard
 from archquake.errors import StudyFileError
 

@@ -2,7 +2,7 @@
 state in text and JSON, the hazard route, and every bad input as one line with exit status 2.
 
 Oracles: Oppenheim's collapse acceleration (paper p. 2126: 0.37 g) for alpha0, and the library's
-check (tests/codes/test_check.py holds it to the rocking block by hand)."""
+check (tests/codecheck/test_check.py holds it to the rocking block by hand)."""
 
 from __future__ import annotations
 

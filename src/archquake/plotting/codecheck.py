@@ -15,7 +15,7 @@ _COLOURS = {"SLD": "tab:green", "SLV": "tab:orange", "SLC": "tab:red"}
 
 
 def plot_code_check(result, ax=None):
-    """Draw a :class:`~archquake.codes.check.CodeCheck` into ``ax`` (a new figure if None).
+    """Draw a :class:`~archquake.codecheck.check.CodeCheck` into ``ax`` (a new figure if None).
 
     Accelerations in g, displacements in m. The demand spectra are the site's, at the damping
     each nonlinear check reads them with, up to the largest period read plus a margin.

@@ -13,8 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from archquake.codes.kinematic import capacity_curve
-from archquake.codes.timehistory import (
+from archquake.codecheck.kinematic import capacity_curve
+from archquake.codecheck.timehistory import (
     chain_displacement,
     time_history_capacity,
     time_history_check,
@@ -22,7 +22,7 @@ from archquake.codes.timehistory import (
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
-from archquake.mechanism.rigid_chain import simulate_rigid
+from archquake.rigid import simulate_rigid
 
 
 @pytest.fixture(scope="module")

@@ -1,7 +1,7 @@
 """The code check of a local mechanism by kinematic analysis (NTC 2018 §8.7.1, Circolare 2019
 C8.7.1.2.1; the superseded Circolare 2009 C8A.4 as an option).
 
-Given the mechanism's capacity curve (:func:`archquake.codes.kinematic.capacity_curve`), the
+Given the mechanism's capacity curve (:func:`archquake.codecheck.kinematic.capacity_curve`), the
 site's elastic spectra at the limit states (:mod:`archquake.codes.spectra`), the knowledge level
 (confidence factor FC) and where the mechanism sits (at the ground, or at height Z in a
 building), each limit state is checked as the code asks and reported as a **capacity a_g**: the
@@ -43,7 +43,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from archquake._validate import require_positive, require_range
-from archquake.codes.kinematic import CapacityCurve
+from archquake.codecheck.kinematic import CapacityCurve
 from archquake.codes.spectra import ElasticSpectrum, NTCHazard, return_period_years
 from archquake.errors import InvalidParameterError
 

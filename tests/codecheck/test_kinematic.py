@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from archquake.codes.kinematic import (
+from archquake.codecheck.kinematic import (
     ControlPoint,
     FourHingeMechanism,
     RockingBlock,

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from archquake.codes.check import NONLINEAR
-from archquake.codes.kinematic import CapacityCurve, FourHingeMechanism
+from archquake.codecheck.check import NONLINEAR
+from archquake.codecheck.kinematic import CapacityCurve, FourHingeMechanism
 from archquake.errors import InvalidParameterError
 
 #: The fewest records whose mean response the code lets one use (NTC 2018 §7.3.5).
@@ -155,7 +155,7 @@ def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str
     Parameters
     ----------
     curve : CapacityCurve
-        The arch's four-hinge mechanism's (:func:`~archquake.codes.kinematic.capacity_curve`).
+        The arch's four-hinge mechanism's (:func:`~archquake.codecheck.kinematic.capacity_curve`).
     records : sequence of GroundMotion
         At least :data:`MIN_RECORDS` ground motions (m/s^2), already selected and scaled to be
         compatible with the site's spectrum at ``limit_state``.

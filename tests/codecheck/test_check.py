@@ -13,14 +13,14 @@ import math
 import numpy as np
 import pytest
 
-from archquake.codes.check import (
+from archquake.codecheck.check import (
     KnowledgeLevel,
     Position,
     floor_spectrum,
     kinematic_check,
     peak_demand,
 )
-from archquake.codes.kinematic import RockingBlock, capacity_curve
+from archquake.codecheck.kinematic import RockingBlock, capacity_curve
 from archquake.codes.spectra import ntc2018_spectrum
 from archquake.errors import InvalidParameterError
 
