@@ -75,3 +75,12 @@ def test_site_alone_is_a_valid_seismic_input():
                                  "voussoirs": 15, "friction": 0.6},
                         "site": {"code": "ec8", "ag_g": 0.2, "ground": "B"}})
     assert cfg.site is not None and cfg.site.code == "ec8"
+
+
+def test_a_file_without_site_keeps_its_digest():
+    base = {"arch": {"radius": 5.0, "thickness_ratio": 0.12, "embrace_deg": 180,
+                     "voussoirs": 15, "friction": 0.6}, "seismic": {"site_pga_g": 0.15}}
+    plain = parse_config(base)
+    assert "site" not in plain.canonical()
+    with_site = parse_config({**base, "site": {"hazard": HAZARD, "soil": "B"}})
+    assert with_site.digest != plain.digest

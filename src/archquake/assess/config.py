@@ -95,13 +95,16 @@ class AssessConfig:
     site: SiteConfig | None = None
 
     def canonical(self) -> dict:
-        """Everything that determines the results (the cache key's input)."""
-        return {"arch": self.arch.canonical(), "friction": self.friction,
-                "site_pga_g": self.site_pga_g,
-                "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
-                "units": self.units, "impact": self.impact, "restitution": self.restitution,
-                "dem": self.dem,
-                "site": None if self.site is None else self.site.canonical()}
+        """Everything that determines the results (the cache key's input). The ``[site]``
+        table enters only when given, so a file without one keeps its digest."""
+        out = {"arch": self.arch.canonical(), "friction": self.friction,
+               "site_pga_g": self.site_pga_g,
+               "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
+               "units": self.units, "impact": self.impact, "restitution": self.restitution,
+               "dem": self.dem}
+        if self.site is not None:
+            out["site"] = self.site.canonical()
+        return out
 
     @property
     def digest(self) -> str:
