@@ -81,6 +81,10 @@ SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
 SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
 #: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
 MAX_SPECTRUM_PERIODS = 10000
+#: Height Z of a local mechanism's base and a building's height H, m; a building's period T1, s
+#: (the code check at height: C7.2.11).
+MECHANISM_HEIGHT_RANGE_M = (0.0, 1000.0)
+BUILDING_PERIOD_RANGE_S = (0.0, 10.0)
 
 #: Accepted suffixes by kind of output file.
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
@@ -89,6 +93,8 @@ CSV_SUFFIXES = (".csv",)
 TABLE_SUFFIXES = (".csv", ".parquet")
 
 __all__ = [
+    "BUILDING_PERIOD_RANGE_S",
+    "MECHANISM_HEIGHT_RANGE_M",
     "SITE_AG_RANGE_G",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",

@@ -27,6 +27,7 @@ from archquake.errors import ArchquakeError, UsageError
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS: tuple[str, ...] = (
     "static",
+    "check",
     "min_thickness",
     "run",
     "record",
@@ -48,6 +49,7 @@ COMMANDS: tuple[str, ...] = (
 #: equal, so that listing the commands imports none of them.
 SUMMARIES: dict[str, str] = {
     "static": "equivalent static analysis: collapse acceleration (g), hinges, friction demand",
+    "check": "code check of the arch's collapse mechanism (NTC 2018 §8.7.1 kinematic analysis)",
     "min_thickness": "minimum thickness ratio t/R of an arch under its own weight",
     "run": "time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
     "record": "check an accelerogram file (.AT2 or CSV): points, dt, PGA, PGV, Arias, Sa(T), ...",
