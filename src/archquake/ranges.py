@@ -9,6 +9,10 @@ thickness ratio, embrace, voussoirs) live with the Arch in :mod:`archquake.geome
 
 from __future__ import annotations
 
+#: Gravity g, m/s^2 (the keyword ``g=`` of every function): from a small moon's to a hundred
+#: times the Earth's. Outside it weights and the time scale sqrt(R/g) leave the range where
+#: the linear programme and the integrators are well conditioned (g = 1e308 overflows).
+GRAVITY_RANGE_MS2 = (1e-2, 1e3)
 #: Pulse magnitude and domain ceiling, g (--magnitude, --max-magnitude).
 MAGNITUDE_RANGE_G = (0.0, 1000.0)
 #: Pulse duration t_p and period T, s (--duration, --period, --durations).
@@ -24,6 +28,11 @@ DEM_T_END_MAX_S = 120.0
 #: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
 #: file is not an accelerogram.
 RECORD_DT_RANGE_S = (1e-6, 1.0)
+#: Longest record, s: the latest end of an analysis (T_END_RANGE_S).
+RECORD_DURATION_MAX_S = T_END_RANGE_S[1]
+#: Largest accelerogram file read, bytes: a 10,000 s record at 1 kHz is ~10^7 samples, ~200 MB
+#: of text; a larger "file" is not an accelerogram (and a device like /dev/zero never ends).
+RECORD_FILE_MAX_BYTES = 256 * 10**6
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
 #: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
@@ -62,6 +71,7 @@ __all__ = [
     "HINGE_MODELS",
     "FIGURE_SUFFIXES",
     "FRICTION_RANGE",
+    "GRAVITY_RANGE_MS2",
     "MAGNITUDE_RANGE_G",
     "MAX_DURATIONS",
     "MAX_TIMES",
@@ -70,6 +80,8 @@ __all__ = [
     "RAYLEIGH_ALPHA_RANGE",
     "RAYLEIGH_BETA_RANGE",
     "RECORD_DT_RANGE_S",
+    "RECORD_DURATION_MAX_S",
+    "RECORD_FILE_MAX_BYTES",
     "RESTITUTION_RANGE",
     "SCALE_RANGE",
     "SCAN_RANGE",

@@ -23,6 +23,7 @@ from archquake.geometry.arch import (
     MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_EMBRACE_DEG,
     MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
@@ -393,10 +394,10 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
             f"a circular arch needs {', '.join('--' + k for k in missing)}")
     radius, thickness, embrace, voussoirs = (values[k] for k in ("radius", "thickness", "embrace",
                                                                   "voussoirs"))
-    if not (0.0 < embrace <= MAX_EMBRACE_DEG):
+    if not (MIN_EMBRACE_DEG <= embrace <= MAX_EMBRACE_DEG):
         raise InvalidParameterError(
-            f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {embrace:g}"
-        )
+            f"--embrace must be in [{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees, "
+            f"got {embrace:g}")
     if voussoirs < 3 or voussoirs > MAX_VOUSSOIRS:
         raise InvalidParameterError(
             f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {voussoirs}"

@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 
+from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem import _kernels as K
 from archquake.dem._kernels import Packed
@@ -34,7 +35,7 @@ from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, check_motion
 
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
 MAX_STEPS = 200_000_000
@@ -296,7 +297,8 @@ def simulate_dem(
     settings = DemSettings() if settings is None else settings
     if not isinstance(settings, DemSettings):
         raise InvalidParameterError(f"settings must be a DemSettings, got {type(settings).__name__}")
-    kind, gparams = motion.kernel_spec()
+    g = require_gravity(g)
+    kind, gparams = check_motion(motion).kernel_spec()
     gparams = np.ascontiguousarray(gparams, dtype=float)
     omega = float("nan")
     if settings.time_step is None:

@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 import numba as nb
 import numpy as np
 
-from archquake._validate import require_finite, require_positive, require_range
+from archquake._validate import require_finite, require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 
@@ -150,7 +150,7 @@ class IntensityMeasure:
 
     def of(self, motion, *, g: float = STANDARD_GRAVITY) -> float:
         """Value of this measure for ``motion``, in :attr:`unit`."""
-        g = require_positive("g", g, "m/s^2")
+        g = require_gravity(g)
         t, a = _piecewise(motion)
         if self.name == "pga":
             return float(np.max(np.abs(a))) / g if a.size else 0.0
@@ -293,7 +293,7 @@ def intensity_measures(motion, *, periods: Iterable[float] = (),
     g : float
         m/s^2, to express PGA and Sa in g and in the Arias intensity.
     """
-    g = require_positive("g", g, "m/s^2")
+    g = require_gravity(g)
     damping = _damping(damping)
     periods = _periods(periods)
     t, a = _piecewise(motion)

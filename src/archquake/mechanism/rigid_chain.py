@@ -49,12 +49,14 @@ from functools import cached_property
 
 import numpy as np
 
+from archquake._validate import require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end
-from archquake.dem.settings import DemSettings
+from archquake.dem.settings import MAX_DURATION, DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import check_motion
 from archquake.mechanism import _rigid_kernels as RK
 
 #: Default time step, s (convergence in docs/mechanism.md: halving it changes the energy kept
@@ -325,7 +327,16 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
 
     from archquake.dem import _kernels as DK
 
-    model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
+    g = require_gravity(g)
+    check_motion(motion)
+    duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
+    output_interval = require_positive("output_interval", output_interval, "s")
+    chunk = require_positive("chunk", chunk, "s")
+    solver_tolerance = require_positive("solver_tolerance", solver_tolerance)
+    if until_rest is not None:
+        until_rest = require_range("until_rest", until_rest, 0.0, MAX_DURATION, "s",
+                                   high_open=False)
+        model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
         arch_or_assembly)
     asm = model.assembly
     settings = DemSettings() if settings is None else settings
