@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 import archquake as aq
@@ -31,7 +31,10 @@ from archquake.errors import ArchquakeError
 from archquake.limit import min_thickness, min_thickness_ratio
 from archquake.mechanism import SolverOptions
 
+#: No shrinking: the failure message already names the entry point and the junk arguments, and
+#: shrinking through ten calls per example costs minutes.
 QUICK = settings(max_examples=30, deadline=None, derandomize=True, database=None,
+                 phases=[Phase.explicit, Phase.generate],
                  suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 THOROUGH = settings(QUICK, max_examples=300, derandomize=False)
 

@@ -25,7 +25,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from archquake.errors import InvalidParameterError, InvalidTypeError
+from archquake.errors import InvalidParameterError
 
 KIND_STEP = 0
 KIND_SINE = 1
@@ -84,7 +84,7 @@ _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
 def check_motion(motion: object) -> GroundMotion:
     """``motion`` itself if it is a ground motion; else the one line that says what is."""
     if not isinstance(motion, GroundMotion):
-        raise InvalidTypeError(
+        raise InvalidParameterError(
             f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
             f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
             f"{type(motion).__name__}")

@@ -23,7 +23,7 @@ def _direction(value: object) -> int:
         raise InvalidParameterError(
             f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}"
         )
-    return int(value)
+    return 1 if value == 1 else -1
 
 
 def _magnitude(value: object, unit: str) -> float:

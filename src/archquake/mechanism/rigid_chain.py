@@ -330,13 +330,14 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     g = require_gravity(g)
     check_motion(motion)
     duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
-    output_interval = require_positive("output_interval", output_interval, "s")
-    chunk = require_positive("chunk", chunk, "s")
+    output_interval = require_range("output_interval", output_interval, 0.0, MAX_DURATION, "s",
+                                    high_open=False)
+    chunk = require_range("chunk", chunk, 0.0, MAX_DURATION, "s", high_open=False)
     solver_tolerance = require_positive("solver_tolerance", solver_tolerance)
     if until_rest is not None:
         until_rest = require_range("until_rest", until_rest, 0.0, MAX_DURATION, "s",
                                    high_open=False)
-        model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
+    model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
         arch_or_assembly)
     asm = model.assembly
     settings = DemSettings() if settings is None else settings
