@@ -25,6 +25,13 @@ HINGE_MODELS = ("fixed", "moving")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
 #: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.
 DEM_T_END_MAX_S = 120.0
+#: Most work of one distinct-element run: blocks x time steps (settling included). The stable
+#: step shrinks about as 1/blocks (Oppenheim's arch: 8.4e-7 s with 60 voussoirs, 2.3e-8 s with
+#: 2000), so the work grows as blocks^2: 2000 voussoirs for 0.1 s are 9e9 block-steps. Measured
+#: cost on one core: 1 to 5 us per block-step (7 to 200 blocks), so the bound is ~10-40 min.
+DEM_MAX_BLOCK_STEPS = 5e8
+#: The cost per block-step quoted in the refusal, s (the low end of the measured range).
+DEM_SECONDS_PER_BLOCK_STEP = 1e-6
 #: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
 #: file is not an accelerogram.
 RECORD_DT_RANGE_S = (1e-6, 1.0)
@@ -67,6 +74,8 @@ __all__ = [
     "CSV_SUFFIXES",
     "DAMPING_FREQUENCY_RANGE_HZ",
     "DAMPING_RATIO_RANGE_PERCENT",
+    "DEM_MAX_BLOCK_STEPS",
+    "DEM_SECONDS_PER_BLOCK_STEP",
     "DEM_T_END_MAX_S",
     "HINGE_MODELS",
     "FIGURE_SUFFIXES",

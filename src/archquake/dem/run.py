@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.sparse import coo_matrix
 
 from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
@@ -36,6 +37,7 @@ from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import GroundMotion, check_motion
+from archquake.ranges import DEM_MAX_BLOCK_STEPS, DEM_SECONDS_PER_BLOCK_STEP
 
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
 MAX_STEPS = 200_000_000
@@ -170,27 +172,38 @@ def stable_time_step(
     st = packed.state
     nb = st.shape[0]
     tangent = edir[:, :2]
-    stiff = np.zeros((3 * nb, 3 * nb))
+    # the stiffness as a sum of rank-one terms k w w^T, each w touching the 3 coordinates of at
+    # most two blocks: kept sparse (a dense (3 nb)^2 matrix built term by term cost minutes
+    # and a gigabyte for 2000 blocks), summed by scipy's COO -> CSR conversion
+    rows: list[np.ndarray] = []
+    cols: list[np.ndarray] = []
+    vals: list[np.ndarray] = []
     for s in act:
         v, a, b = packed.sl_i[s, :3]
         tx, ty = tangent[packed.sl_edge[s]]
         p = vw[v]
         for k, direction in ((packed.sl_f[s, K.F_KN], (ty, -tx)), (packed.sl_f[s, K.F_KS], (tx, ty))):
-            w = np.zeros(3 * nb)
+            idx, w = [], []
             for blk, sgn in ((a, 1.0), (b, -1.0)):
                 if not packed.free[blk]:
                     continue
                 r = p - st[blk, :2]
                 lever = r[0] * direction[1] - r[1] * direction[0]
                 sm, si = math.sqrt(packed.mass[blk]), math.sqrt(packed.inertia[blk])
-                w[3 * blk : 3 * blk + 3] = sgn * np.array(
-                    [direction[0] / sm, direction[1] / sm, lever / si]
-                )
-            stiff += k * np.outer(w, w)
+                idx.extend((3 * blk, 3 * blk + 1, 3 * blk + 2))
+                w.extend((sgn * direction[0] / sm, sgn * direction[1] / sm, sgn * lever / si))
+            if not idx:
+                continue
+            ii, ww = np.asarray(idx), np.asarray(w)
+            rows.append(np.repeat(ii, ii.size))
+            cols.append(np.tile(ii, ii.size))
+            vals.append(k * np.outer(ww, ww).ravel())
+    stiff = coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(3 * nb, 3 * nb)).tocsr()
     if nb <= 500:
-        lam = float(np.linalg.eigvalsh(stiff)[-1])
+        lam = float(np.linalg.eigvalsh(stiff.toarray())[-1])
     else:  # Gershgorin bound
-        lam = float(np.max(np.sum(np.abs(stiff), axis=1)))
+        lam = float(np.max(np.asarray(abs(stiff).sum(axis=1)).ravel()))
     omega = math.sqrt(lam)
     alpha, beta = settings.damping
     xi = alpha / (2 * omega) + beta * omega / 2
@@ -312,6 +325,15 @@ def simulate_dem(
             f"{n_steps + settle_steps} time steps of {dt:.3g} s exceed {MAX_STEPS}: shorten the "
             "duration or soften the contact stiffness"
         )
+    work = (n_steps + settle_steps) * assembly.n_blocks
+    if work > DEM_MAX_BLOCK_STEPS:
+        raise InvalidParameterError(
+            f"{assembly.n_blocks} blocks over {n_steps + settle_steps:,} time steps of "
+            f"{dt:.3g} s are {work:.3g} block-steps, more than {DEM_MAX_BLOCK_STEPS:.0e} (the "
+            f"explicit DEM's time step shrinks with the blocks: about "
+            f"{work * DEM_SECONDS_PER_BLOCK_STEP / 3600:.2g} h at "
+            f"{DEM_SECONDS_PER_BLOCK_STEP * 1e6:g} us per block-step): use fewer voussoirs or "
+            f"a shorter duration (now {settings.duration:g} s)")
     out_every = max(1, int(round(settings.output_interval / dt)))
     n_out = n_steps // out_every + 2
     out_bytes = n_out * (assembly.n_blocks * 6 + 9) * 8

@@ -145,12 +145,15 @@ class ResultStore:
     def _verify(self, where: str) -> None:
         """Refuse a damaged file (SQLite's quick_check) or one whose tables are not a sweep
         store's, in one line."""
-        problems = [row[0] for row in self._db.execute("PRAGMA quick_check")]
-        if problems != ["ok"]:
+        report = [str(row[0]) for row in self._db.execute("PRAGMA quick_check")]
+        if report != ["ok"]:
+            problems = [line.strip() for text in report for line in text.splitlines()
+                        if line.strip() and not line.startswith("***")]
+            first = problems[0][:100] if problems else "failed"
+            more = f"; {len(problems) - 1} more" if len(problems) > 1 else ""
             raise CorruptStoreError(
-                f"sweep store {where} is damaged (SQLite's integrity check: {problems[0]}"
-                f"{f'; {len(problems) - 1} more' if len(problems) > 1 else ''}); restore it "
-                "from a copy or use a new --store file")
+                f"sweep store {where} is damaged (SQLite's integrity check: {first}{more}); "
+                "restore it from a copy or use a new --store file")
         kinds = dict(self._db.execute(
             "SELECT name, type FROM sqlite_master WHERE name IN ('results', 'meta')").fetchall())
         if not kinds:
