@@ -29,6 +29,7 @@ from archquake.sweeps.runner import (
     CaseFunction,
     ClusterLostError,
     cap_workers,
+    check_scheduler,
 )
 
 
@@ -80,9 +81,8 @@ def run(args: argparse.Namespace) -> int:
     if not 0 < args.worker_wait <= 86400:
         raise InvalidParameterError(
             f"--worker-wait must be in (0, 86400] s, got {args.worker_wait:g}")
-    if args.scheduler is not None and "://" not in args.scheduler:
-        raise InvalidParameterError(
-            f"--scheduler must be an address like tcp://HOST:PORT, got {args.scheduler!r}")
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler, "--scheduler")
     if args.export is not None and args.export.suffix.lower() not in (".csv", ".parquet"):
         raise InvalidParameterError(
             f"--export file must end in .csv or .parquet, got {args.export.name!r}")

@@ -486,6 +486,33 @@ def usable_cores() -> int:
         return os.cpu_count() or 1
 
 
+#: Dask's transports an address may name.
+SCHEDULER_SCHEMES = ("tcp", "tls")
+
+
+def check_scheduler(address: object, name: str = "scheduler") -> str:
+    """A Dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``), checked before any
+    connection: scheme, host and a port in [1, 65535]; else one line naming ``name``."""
+    from urllib.parse import urlsplit
+
+    usage = f"{name} must be an address like tcp://HOST:PORT, got {address!r}"
+    if not isinstance(address, str) or any(c.isspace() or c == "\x00" for c in address):
+        raise InvalidParameterError(usage)
+    try:
+        parts = urlsplit(address)
+        port = parts.port
+    except ValueError:
+        raise InvalidParameterError(usage + " (the port must be a number from 1 to 65535)"
+                                    ) from None
+    if parts.scheme not in SCHEDULER_SCHEMES:
+        raise InvalidParameterError(
+            usage + f" (the scheme must be {' or '.join(SCHEDULER_SCHEMES)})")
+    if not parts.hostname or port is None or not 1 <= port <= 65535 or parts.path not in ("", "/") \
+            or parts.query or parts.fragment:
+        raise InvalidParameterError(usage)
+    return address
+
+
 @contextmanager
 def open_executor(*, workers: int | None = None, scheduler: str | None = None,
                   connect_timeout: float | None = None) -> Iterator[tuple[Executor, int]]:
@@ -500,10 +527,14 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
             from distributed import Client
         except ImportError:
             raise ArchquakeError("--scheduler needs Dask: pip install 'archquake[dask]'") from None
+        scheduler = check_scheduler(scheduler)
         try:
             client = Client(scheduler, timeout=connect_timeout or CONNECT_TIMEOUT)
-        except (OSError, TimeoutError) as exc:
-            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} ({exc}); start "
+        except Exception as exc:  # noqa: BLE001  (distributed raises OSError, TimeoutError and,
+            # for some unreachable hosts, errors of its own: every one means "not reached")
+            reason = " ".join(str(exc).split())[:120] or type(exc).__name__
+            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} within "
+                                 f"{connect_timeout or CONNECT_TIMEOUT:g} s ({reason}); start "
                                  "one with 'dask scheduler' or check the address") from None
         try:
             n = workers or max(1, sum(client.nthreads().values()))
