@@ -432,9 +432,10 @@ def _mean_period(motion, t: np.ndarray, a: np.ndarray) -> float:
     f = np.fft.rfftfreq(n, dt)
     lo, hi = MEAN_PERIOD_BAND_HZ
     band = (f >= lo) & (f <= hi)
-    c2 = c[band] ** 2
-    if not np.sum(c2) > 0:
+    peak = float(np.max(c[band], initial=0.0))
+    if not peak > 0:  # no motion in the band: Tm is undefined
         return math.nan
+    c2 = (c[band] / peak) ** 2  # Tm does not depend on the scale; a tiny one must not underflow
     return float(np.sum(c2 / f[band]) / np.sum(c2))
 
 
