@@ -21,6 +21,7 @@ from archquake.cli.common import (
     arch_from_args,
     impact_from_args,
     number,
+    path_argument,
     print_json,
     whole,
 )
@@ -66,7 +67,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "four-link mechanism; 'moving', the chain of rigid blocks (the DEM's rigid "
                         "limit, ~0.2 s a run, a process per core)")
     add_impact_arguments(p)
-    p.add_argument("--store", type=Path, metavar="FILE",
+    p.add_argument("--store", type=path_argument, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
                    help="local worker processes (default: the analytical model runs in "
@@ -78,9 +79,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="bootstrap resamples of the fragility fits (default 500; 0: none)")
     p.add_argument("--seed", type=whole, default=0, metavar="N",
                    help="seed of the bootstrap (default 0)")
-    p.add_argument("--plot", type=Path, metavar="FILE",
+    p.add_argument("--plot", type=path_argument, metavar="FILE",
                    help="draw the IDA and fragility curves to FILE (.png, .pdf or .svg)")
-    p.add_argument("--csv", type=Path, metavar="FILE", help="write every run to FILE (CSV)")
+    p.add_argument("--csv", type=path_argument, metavar="FILE", help="write every run to FILE (CSV)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     p.set_defaults(func=run)

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 
-from archquake.cli.common import add_output_arguments, number, print_json, record_from_args
+from archquake.cli.common import add_output_arguments, number, path_argument, print_json, record_from_args
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
@@ -65,7 +64,7 @@ def register(sub: argparse._SubParsersAction) -> None:
             f"{RECORD_FILE_MAX_BYTES / 1e6:.0f} MB."
         ),
     )
-    p.add_argument("file", type=Path, metavar="FILE",
+    p.add_argument("file", type=path_argument, metavar="FILE",
                    help="PEER .AT2 (values in g), .csv/.txt with two columns time (s), "
                         "acceleration, or one column of accelerations with --dt")
     add_record_file_arguments(p)

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from archquake.cli.common import (
     number,
     output_file,
+    path_argument,
     print_json,
     quiet_dask,
     ranged_whole,
@@ -51,7 +51,7 @@ def register(sub: argparse._SubParsersAction) -> None:
             "See docs/sweeps.md for the study schema."
         ),
     )
-    p.add_argument("study", type=Path, metavar="STUDY.toml", help="the study file")
+    p.add_argument("study", type=path_argument, metavar="STUDY.toml", help="the study file")
     p.add_argument("--store", type=output_file(create_parents=True), metavar="FILE",
                    help="SQLite store (default: <study name>.sqlite beside the study file)")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), metavar="N",
