@@ -183,7 +183,8 @@ def stable_time_step(
         tx, ty = tangent[packed.sl_edge[s]]
         p = vw[v]
         for k, direction in ((packed.sl_f[s, K.F_KN], (ty, -tx)), (packed.sl_f[s, K.F_KS], (tx, ty))):
-            idx, w = [], []
+            idx: list[int] = []
+            w: list[float] = []
             for blk, sgn in ((a, 1.0), (b, -1.0)):
                 if not packed.free[blk]:
                     continue
@@ -325,15 +326,6 @@ def simulate_dem(
             f"{n_steps + settle_steps} time steps of {dt:.3g} s exceed {MAX_STEPS}: shorten the "
             "duration or soften the contact stiffness"
         )
-    work = (n_steps + settle_steps) * assembly.n_blocks
-    if work > DEM_MAX_BLOCK_STEPS:
-        raise InvalidParameterError(
-            f"{assembly.n_blocks} blocks over {n_steps + settle_steps:,} time steps of "
-            f"{dt:.3g} s are {work:.3g} block-steps, more than {DEM_MAX_BLOCK_STEPS:.0e} (the "
-            f"explicit DEM's time step shrinks with the blocks: about "
-            f"{work * DEM_SECONDS_PER_BLOCK_STEP / 3600:.2g} h at "
-            f"{DEM_SECONDS_PER_BLOCK_STEP * 1e6:g} us per block-step): use fewer voussoirs or "
-            f"a shorter duration (now {settings.duration:g} s)")
     out_every = max(1, int(round(settings.output_interval / dt)))
     n_out = n_steps // out_every + 2
     out_bytes = n_out * (assembly.n_blocks * 6 + 9) * 8
@@ -344,6 +336,15 @@ def simulate_dem(
             f"output_interval (now {settings.output_interval:g} s) or shorten the duration "
             f"(now {settings.duration:g} s)"
         )
+    work = (n_steps + settle_steps) * assembly.n_blocks
+    if work > DEM_MAX_BLOCK_STEPS:
+        raise InvalidParameterError(
+            f"{assembly.n_blocks} blocks over {n_steps + settle_steps:,} time steps of "
+            f"{dt:.3g} s are {work:.3g} block-steps, more than {DEM_MAX_BLOCK_STEPS:.0e} (the "
+            f"explicit DEM's time step shrinks with the blocks: about "
+            f"{work * DEM_SECONDS_PER_BLOCK_STEP / 3600:.2g} h at "
+            f"{DEM_SECONDS_PER_BLOCK_STEP * 1e6:g} us per block-step): use fewer voussoirs or "
+            f"a shorter duration (now {settings.duration:g} s)")
     packed = pack(assembly)
     margin = 0.2 * float(packed.radius[packed.free == 1].min())
     packed = build_slots(packed, neighbour_pairs(packed, margin))
