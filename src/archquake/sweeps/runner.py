@@ -15,6 +15,7 @@ harmless in any case.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import multiprocessing
 import os
@@ -24,6 +25,7 @@ from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExe
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import partial
+from pathlib import Path
 from typing import Any
 
 from archquake.errors import ArchquakeError, InvalidParameterError
@@ -445,7 +447,12 @@ def _watch_parent(parent: int) -> None:
             return True
         except PermissionError:  # the pid now belongs to another user's process
             return True
-        return False
+        try:  # a parent that died but is not yet reaped (a zombie) still answers kill(pid, 0);
+            # its reader may be waiting for the pipe this worker holds before reaping it
+            state = Path(f"/proc/{parent}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except (OSError, IndexError):
+            return False  # no /proc (not Linux): the checks above stand
+        return state in ("Z", "X")
 
     def watch() -> None:
         while not gone():
@@ -552,8 +559,21 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
     pool = process_pool(n)
     try:
         yield pool, n
+    except BaseException:  # interrupted (Ctrl-C, SIGTERM) or failed: end the workers now
+        stop_workers(pool)
+        raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate ``pool``'s worker processes at once (SIGTERM), without waiting for the tasks
+    they run: what an interrupted command does before it exits, so that none keeps computing
+    or holds the terminal's pipes."""
+    processes = getattr(pool, "_processes", None) or {}  # the executor's own table of workers
+    for process in list(processes.values()):
+        with contextlib.suppress(Exception):
+            process.terminate()
 
 
 __all__ = [
