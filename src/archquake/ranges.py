@@ -42,6 +42,8 @@ RECORD_DURATION_MAX_S = T_END_RANGE_S[1]
 RECORD_FILE_MAX_BYTES = 256 * 10**6
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
+#: Records in a selected set, and the per-event limit (--count, --max-per-event).
+SELECT_COUNT_RANGE = (1, 1000)
 #: Prescribed coefficient of restitution c_v (--restitution): no impact creates energy.
 RESTITUTION_RANGE = (0.0, 1.0)
 #: DEM joint stiffness, Pa/m (--stiffness): the explicit time step ~ sqrt(m/k) stays resolvable.
@@ -63,6 +65,40 @@ MAX_TIMES = 1000
 #: to them with a line (archquake.sweeps.runner.cap_workers).
 WORKERS_RANGE = (1, 10**9)
 
+#: Site spectra (archquake.codes.spectra). Peak ground acceleration on type A ground a_g, g:
+#: above 0 and up to 3 g (the national hazard maps stay below 0.5 g; the kinematic check
+#: solves for a capacity a_g that may lie far above them).
+SITE_AG_RANGE_G = (0.0, 3.0)
+#: NTC 2018 F0, the plateau's amplification on rock: the code sets its minimum at 2.2 (§3.2.3.2.1);
+#: the hazard grid holds about 2.2-3.0, the upper bound 4.0 is ours and generous.
+NTC_F0_RANGE = (2.2, 4.0)
+#: NTC 2018 T_C*, s: the hazard grid holds about 0.15-0.6 s; bounds ours. Up to 0.8 s,
+#: T_C = C_C T_C* stays below T_D >= 1.6 s on every soil (at most 1.12 s, soil D).
+NTC_TC_STAR_RANGE_S = (0.05, 0.8)
+#: NTC 2018 subsoil categories (Tab. 3.2.II) and topographic categories (Tab. 3.2.III).
+NTC_SOILS = ("A", "B", "C", "D", "E")
+NTC_TOPOGRAPHIES = ("T1", "T2", "T3", "T4")
+#: NTC 2018 limit states (Tab. 3.2.I) and use classes (§2.4.2).
+NTC_LIMIT_STATES = ("SLO", "SLD", "SLV", "SLC")
+NTC_USE_CLASSES = ("I", "II", "III", "IV")
+#: NTC 2018 nominal life V_N, years (§2.4.1 lists 10, 50 and 100; any value in between is allowed).
+NOMINAL_LIFE_RANGE_YEARS = (1.0, 1000.0)
+#: EN 1998-1 ground types (Tab. 3.1; S1 and S2 need a site study and are not offered) and
+#: spectrum types (§3.2.2.2).
+EC8_GROUNDS = ("A", "B", "C", "D", "E")
+EC8_SPECTRUM_TYPES = (1, 2)
+#: EN 1998-1 importance factor gamma_I (§4.2.5: 0.8, 1.0, 1.2, 1.4 recommended); bounds ours.
+IMPORTANCE_RANGE = (0.5, 2.0)
+#: Components of a code spectrum.
+SPECTRUM_COMPONENTS = ("horizontal", "vertical")
+#: Viscous damping ratio of a spectrum (fraction of critical): eta = sqrt(10/(5+100 xi)) is
+#: floored at 0.55 from xi = 28.06 % on.
+SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
+#: Periods of a spectrum, s (--periods): 0 (the PGA) to 20 s.
+SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
+#: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
+MAX_SPECTRUM_PERIODS = 10000
+
 #: Accepted suffixes by kind of output file.
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 ANIMATION_SUFFIXES = (".gif",)
@@ -70,6 +106,21 @@ CSV_SUFFIXES = (".csv",)
 TABLE_SUFFIXES = (".csv", ".parquet")
 
 __all__ = [
+    "SITE_AG_RANGE_G",
+    "NTC_F0_RANGE",
+    "NTC_TC_STAR_RANGE_S",
+    "NTC_SOILS",
+    "NTC_TOPOGRAPHIES",
+    "NTC_LIMIT_STATES",
+    "NTC_USE_CLASSES",
+    "NOMINAL_LIFE_RANGE_YEARS",
+    "EC8_GROUNDS",
+    "EC8_SPECTRUM_TYPES",
+    "IMPORTANCE_RANGE",
+    "SPECTRUM_COMPONENTS",
+    "SPECTRUM_DAMPING_RANGE",
+    "SPECTRUM_PERIOD_RANGE_S",
+    "MAX_SPECTRUM_PERIODS",
     "ANIMATION_SUFFIXES",
     "CSV_SUFFIXES",
     "DAMPING_FREQUENCY_RANGE_HZ",
@@ -93,6 +144,7 @@ __all__ = [
     "RECORD_FILE_MAX_BYTES",
     "RESTITUTION_RANGE",
     "SCALE_RANGE",
+    "SELECT_COUNT_RANGE",
     "SCAN_RANGE",
     "STIFFNESS_RANGE",
     "TABLE_SUFFIXES",

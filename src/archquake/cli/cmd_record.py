@@ -6,11 +6,21 @@ from __future__ import annotations
 import argparse
 import math
 
-from archquake.cli.common import add_output_arguments, number, path_argument, print_json, record_from_args
+from archquake.cli.common import (
+    add_output_arguments,
+    number,
+    path_argument,
+    periods_list,
+    print_json,
+    record_from_args,
+    refuse_unless,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
+from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
 from archquake.ground.records import UNITS, baseline_corrected, resampled
+from archquake.ground.response_spectra import record_spectra
 from archquake.ranges import (
     RECORD_DT_RANGE_S,
     RECORD_DURATION_MAX_S,
@@ -20,22 +30,6 @@ from archquake.ranges import (
 
 #: Sa periods printed unless --periods says otherwise, s.
 DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
-
-
-def periods_list(text: str) -> tuple[float, ...]:
-    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1'."""
-    out = []
-    for tok in (t for t in text.replace(" ", "").split(",") if t):
-        try:
-            value = float(tok)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
-            ) from None
-        if not (value >= 0 and value < float("inf")):
-            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
-        out.append(value)
-    return tuple(out)
 
 
 def add_record_file_arguments(p: argparse.ArgumentParser) -> None:
@@ -76,15 +70,22 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "acceleration, fitted to the velocity (default: none)")
     p.add_argument("--resample", type=number, metavar="DT",
                    help="resample to this time step, s (> 0; anti-aliased polyphase filter)")
-    p.add_argument("--periods", type=periods_list, metavar="T,T,...", default=DEFAULT_PERIODS,
-                   help="periods of Sa(T), s, comma-separated (default "
-                        f"{','.join(f'{t:g}' for t in DEFAULT_PERIODS)})")
-    add_output_arguments(p, plot=False)
+    p.add_argument("--periods", type=periods_list, metavar="T,T,...",
+                   help="periods of Sa(T), s: comma-separated or a grid START:STOP:STEP (default "
+                        f"{','.join(f'{t:g}' for t in DEFAULT_PERIODS)}; with --spectrum "
+                        f"{':'.join(f'{t:g}' for t in DEFAULT_PERIOD_GRID_S)})")
+    p.add_argument("--spectrum", action="store_true",
+                   help="print the 5 %%-damped response spectrum Sa (g) over --periods as a table "
+                        "(and draw it with --plot)")
+    add_output_arguments(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     g = STANDARD_GRAVITY
+    refuse_unless({"--plot": args.plot}, args.spectrum, "with --spectrum")
+    if args.periods is None:
+        args.periods = period_grid(*DEFAULT_PERIOD_GRID_S) if args.spectrum else DEFAULT_PERIODS
     record = record_from_args(args.file, args.units, args.scale, g=g, dt=args.dt)
     if args.baseline is not None:
         if not 0 <= args.baseline <= 5:
@@ -96,6 +97,8 @@ def run(args: argparse.Namespace) -> int:
             raise InvalidParameterError(f"--resample must be a time step > 0 s, got "
                                         f"{args.resample:g}")
         record = resampled(record, args.resample)
+    if args.spectrum:
+        return _spectrum(record, args, g)
     ims = intensity_measures(record, periods=args.periods, g=g)
     summary = record.to_dict(g=g)
     is_text = args.file.suffix.lower() in (".csv", ".txt")
@@ -141,3 +144,30 @@ def run(args: argparse.Namespace) -> int:
                      f"({100 * DEFAULT_DAMPING:g} % damping)")
     print("\n".join(lines))
     return 0
+
+
+def _spectrum(record, args: argparse.Namespace, g: float) -> int:
+    """``--spectrum``: the record's response spectrum as a table, JSON or a figure."""
+    spectra = record_spectra([record], args.periods, g=g)
+    if args.plot is not None:
+        from archquake.plotting.spectra import save_record_spectra
+
+        save_record_spectra(spectra, args.plot, title=record.name)
+    if args.json:
+        print_json({"record": record.name, "file": str(record.source), "scale": record.scale,
+                    "damping_ratio": spectra.damping, "periods_s": spectra.periods_s,
+                    "sa_g": spectra.sa[0] / g, "g_m_s2": g,
+                    "plot": str(args.plot) if args.plot else None})
+        return 0
+    print(f"{record.name}: response spectrum, {100 * spectra.damping:g} % damping")
+    print_spectrum_table(spectra.periods_s, {"Sa g": spectra.sa[0] / g})
+    if args.plot is not None:
+        print(f"plot: {args.plot}")
+    return 0
+
+
+def print_spectrum_table(periods, columns: dict) -> None:
+    """Periods (s) down the first column, one column per entry of ``columns`` (name -> values)."""
+    print(f"{'T s':>7s}" + "".join(f" {name:>9s}" for name in columns))
+    for i, t in enumerate(periods):
+        print(f"{t:7.3f}" + "".join(f" {float(v[i]):9.4f}" for v in columns.values()))

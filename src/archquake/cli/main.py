@@ -32,6 +32,7 @@ COMMANDS: tuple[str, ...] = (
     "run",
     "record",
     "records",
+    "spectrum",
     "sweep",
     "ida",
     "thrust",
@@ -58,6 +59,7 @@ SUMMARIES: dict[str, str] = {
     "assess": "assess your own arch: statics, pulses, records, DEM check, validity, verdict",
     "demo": "reproduce Oppenheim's arch: figures and a short report",
     "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
+    "spectrum": "a site's elastic spectrum (NTC 2018, EN 1998-1): Sa (g) and Sd (m) against T (s)",
     "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",
 }
 

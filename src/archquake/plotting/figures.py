@@ -15,6 +15,14 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
 
 
+def axes(ax=None, size: tuple[float, float] = (6.4, 4.6)):
+    """``ax`` itself, or the axes of a new figure ``size`` inches wide and high when it is None:
+    the start of every plot function that takes an optional ``ax``."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=size)
+    return ax
+
+
 def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool = True) -> Path:
     """Write ``target``'s figure to ``path`` and close it.
 
@@ -45,4 +53,4 @@ def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool
     return path
 
 
-__all__ = ["save"]
+__all__ = ["axes", "save"]
