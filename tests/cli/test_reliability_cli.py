@@ -184,3 +184,16 @@ def test_a_dem_of_2000_voussoirs_is_refused(capsys):
     assert main(["run", "--model", "dem", "--voussoirs", "2000", "--t-end", "0.1", "--pulse",
                  "step", "--magnitude", "0.5", "--duration", "0.1"]) == 2
     assert "block-steps" in one_line(capsys)
+
+
+def test_a_long_friction_examination_off_a_terminal_prints_its_progress(capsys):
+    """Off a terminal the bar is not drawn; `friction --voussoirs 2000` ran past 60 s saying
+    nothing. A long examination now prints a line at each quarter, a short one stays quiet."""
+    from archquake.cli.cmd_friction import _progress_bar
+
+    for voussoirs, expected in ((1000, 5), (7, 0)):
+        with _progress_bar(voussoirs) as update:
+            for done in range(471):
+                update(done, 470)
+        lines = [line for line in capsys.readouterr().err.splitlines() if "instants" in line]
+        assert len(lines) == expected, lines
