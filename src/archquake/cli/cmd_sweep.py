@@ -125,6 +125,10 @@ def run(args: argparse.Namespace) -> int:
         bar.close()
         if args.export is not None:
             store.export(args.export)
+            if store.damaged:
+                print(f"archquake: --export: skipped {len(store.damaged)} damaged row"
+                      f"{'s' * (len(store.damaged) != 1)} of the store (their cases are "
+                      "computed again by the next run)", file=sys.stderr)
     summary = report.to_dict()
     summary["study"] = study.name
     if args.export is not None:
