@@ -1,7 +1,8 @@
 # archquake: the two commands a fresh machine needs.
 #   make demo   create .venv, install archquake, reproduce Oppenheim's arch into out/ and assess
 #               the example bridge (examples/bridge.toml, quick mode) into out/bridge/
-#   make test   create .venv, install archquake with its test dependencies, run the test suite
+#   make test   create .venv, install archquake with its test dependencies, run ruff, mypy
+#               (0 errors) and the test suite
 PYTHON ?= python3.11
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -32,6 +33,8 @@ test: $(STAMP_TEST)
 	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq >/dev/null && \
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null) || \
 		echo "note: chromium could not be installed; the report's browser test will skip"
+	$(BIN)/ruff check src tests benchmarks examples
+	$(BIN)/mypy src/archquake
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP_RUN)

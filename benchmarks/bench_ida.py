@@ -32,7 +32,8 @@ from archquake.ground.suites import load_suite
 from archquake.ida import incremental_dynamic_analysis
 from archquake.ida.batch import evaluate_cases
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, SerialExecutor
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore
 
 
 def main() -> None:

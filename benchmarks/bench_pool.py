@@ -44,8 +44,8 @@ def timed_sweep(cases, store, executor) -> tuple[float, float]:
 
 def child(method: str) -> None:
     """Run in a fresh process: print the JSON of the timings of ``method`` (or ``serial``)."""
+    from archquake.parallel import SerialExecutor, process_pool
     from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore
-    from archquake.sweeps.runner import SerialExecutor, process_pool
 
     arch = ArchSpec(10, 0.15, 157.5, 7)
     out: dict[str, float] = {}

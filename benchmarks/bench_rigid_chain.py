@@ -1,11 +1,11 @@
-"""Benchmark: the rigid-block chain (issue 16, `mechanism.rigid_chain`) against the four-link
+"""Benchmark: the rigid-block chain (issue 16, `rigid`) against the four-link
 kernel (`simulate`) on the same 4 s history as bench_history.py (Oppenheim's arch, a = 1.0 g,
 t_p = 0.20 s), and its exact active-set contact solve (``solver="direct"``, the default)
 against the plain projected Gauss-Seidel stepper (``solver="pgs"``), both measured in this
 run, at the three time steps of the convergence table; then the semicircle of the
 migration table (R 5 m, t 0.9 m, n 15: 16 joints, where Gauss-Seidel is slowest) over its
 first 1.5 s; then the event-driven integration of the same model (``solver="events"``,
-`mechanism.rigid_events`) against the direct stepper on these histories and on three 4.5 s
+`rigid.events`) against the direct stepper on these histories and on three 4.5 s
 histories around Oppenheim's critical step duration, with the number of joint closures
 each had to resolve; then the DEM (`simulate_dem`, the paper's stiffness) on Oppenheim's
 history. All rigid solvers are compiled (numba) before timing.
@@ -25,7 +25,7 @@ from archquake.dem.settings import DemSettings
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
+from archquake.rigid import RigidModel, simulate_rigid
 
 
 def stepping(model, motion, duration, h, solver, repeat=2):

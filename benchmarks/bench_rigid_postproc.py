@@ -20,7 +20,7 @@ from archquake.dem import _result_reference as REF
 from archquake.dem import result as R
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
-from archquake.mechanism import rigid_chain as RC
+from archquake.rigid import run as RC
 
 
 def main() -> dict:

@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, SerialExecutor, run_sweep
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, run_sweep
 
 
 def main(quick: bool = False) -> None:

@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from archquake import Arch
-from archquake.mechanism import hinges_of
+from archquake.limit import hinges_of
 from archquake.mechanism.impact import solve_impact
 
 ns = np.arange(9, 32)

@@ -1,7 +1,7 @@
 """docs/figures/rigid_energy.png and rigid_hinges.png (docs/mechanism.md, "The rigid limit").
 
 Energy from the end of the pulse through the first impact: the rigid-block chain
-(`mechanism.rigid_chain`, h = 1e-4 s) against the DEM at the paper's contact stiffness and at
+(`rigid`, h = 1e-4 s) against the DEM at the paper's contact stiffness and at
 ten times it, on the four arches of the migration table; and Oppenheim's open joints in both
 models, read by the same code (`compare.dem_hinges`).
 
@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from archquake import Arch  # noqa: E402
-from archquake.compare.migration import (  # noqa: E402
+from archquake.compare.impacts import (  # noqa: E402
     MIGRATION_GEOMETRIES,
     dem_half_cycle,
     fixed_hinge_kept,

@@ -60,7 +60,7 @@ _LAZY: dict[str, str] = {
     "simulate": "archquake.mechanism",
     "Outcome": "archquake.outcome",
     "simulate_dem": "archquake.dem",
-    "simulate_rigid": "archquake.mechanism.rigid_chain",
+    "simulate_rigid": "archquake.rigid",
     "failure_domain": "archquake.domains",
     "StepImpulse": "archquake.ground",
     "SinePulse": "archquake.ground",
@@ -74,9 +74,9 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.geometry import Arch, Face, Hinge, HingeMechanism
     from archquake.ground import Record, SinePulse, StepImpulse, read_record
     from archquake.limit import limit_analysis
-    from archquake.mechanism import simulate
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.mechanism.simulate import simulate
     from archquake.outcome import Outcome
+    from archquake.rigid import simulate_rigid
 
 
 def __getattr__(name: str) -> Any:

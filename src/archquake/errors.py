@@ -47,8 +47,19 @@ class SolverError(ArchquakeError, RuntimeError):
     """An integrator could not proceed (step size underflow, toggle reached unexpectedly)."""
 
 
+class UsageError(ArchquakeError):
+    """A malformed command line."""
+
+
+class ClusterLostError(ArchquakeError):
+    """The Dask scheduler went away, or the cluster had no worker for too long. Every case
+    that had completed is in the store; rerunning the same sweep resumes."""
+
+
 __all__ = [
     "ArchquakeError",
+    "ClusterLostError",
+    "UsageError",
     "InvalidParameterError",
     "InvalidTypeError",
     "CorruptStoreError",

@@ -62,7 +62,7 @@ SCAN_RANGE = (2, 1000)
 MAX_DURATIONS = 1000
 MAX_TIMES = 1000
 #: Worker processes a command may ask for; more than the usable cores (or the work) are capped
-#: to them with a line (archquake.sweeps.runner.cap_workers).
+#: to them with a line (archquake.parallel.cap_workers).
 WORKERS_RANGE = (1, 10**9)
 
 #: Site spectra (archquake.codes.spectra). Peak ground acceleration on type A ground a_g, g:

@@ -162,7 +162,8 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     from archquake.ground.suites import load_suite
     from archquake.ida import incremental_dynamic_analysis
     from archquake.ida.fragility import fit_first_collapse
-    from archquake.sweeps import CaseOptions, ResultStore, SerialExecutor
+    from archquake.parallel import SerialExecutor
+    from archquake.sweeps import CaseOptions, ResultStore
 
     _, res, out, _ = bridge
     va = res["sections"]["validity"]

@@ -137,7 +137,8 @@ def test_study_file_takes_a_block_file_and_stores_its_cases(tmp_path):
     """A study file's [arches] blocks (relative to the study file) builds the same ArchSpec as
     the assessment's, and its cases go through the sweep into the store (whose input columns
     have no radius for a block file: None, not a KeyError)."""
-    from archquake.sweeps import ResultStore, SerialExecutor, load_study, run_sweep
+    from archquake.parallel import SerialExecutor
+    from archquake.sweeps import ResultStore, load_study, run_sweep
 
     _write_blocks(tmp_path / "arch.json")
     study = tmp_path / "s.toml"

@@ -74,7 +74,7 @@ def test_a_scheduler_that_does_not_answer_is_one_line_within_the_timeout():
     """Nothing listens on a port just released (127.0.0.1 only: no packet leaves the machine);
     the connection is refused or times out, and either is one archquake line."""
     pytest.importorskip("distributed")
-    from archquake.sweeps import open_executor
+    from archquake.parallel import open_executor
 
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -1,5 +1,5 @@
 """The DEM accepts every arch the analytical model accepts: any number of voussoirs, hinges
-anywhere (issue 11). Its hinges come from archquake.mechanism.hinges_of.
+anywhere (issue 11). Its hinges come from archquake.limit.hinges_of.
 
 Oracles: the analytical mechanism (the blocks of the arch cut at the hinges are its links, with
 their exact mass properties), the equivalent static analysis (no hinge below lambda), and the
@@ -20,7 +20,8 @@ from archquake.dem.assembly import dem_assembly, three_voussoir_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
-from archquake.mechanism import PreparedMechanism, hinges_of
+from archquake.limit import hinges_of
+from archquake.mechanism import PreparedMechanism
 
 #: R = 5 m, t = 0.6 m, 180 deg, 15 voussoirs: hinges at joints (3, 7, 12, 15), A above the springing.
 SEMICIRCLE = Arch(5.0, 0.6, math.pi, 15)

@@ -22,7 +22,8 @@ from archquake.ground.measures import im_value
 from archquake.ida import HuntFill, incremental_dynamic_analysis, intervals, propose_levels
 from archquake.ida.batch import evaluate_cases
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
-from archquake.sweeps import Case, ExcitationSpec, ResultStore, SerialExecutor
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import Case, ExcitationSpec, ResultStore
 
 
 # ----------------------------------------------------------------------------- pure logic
@@ -343,7 +344,7 @@ def test_cli_executor_follows_the_library_default(tmp_path, monkeypatch, extra, 
     this process: no executor passed, no pool opened); --workers and the DEM open the pool.
     Oracle: the executor the analysis receives (a spy stops before any run)."""
     import archquake.ida
-    import archquake.sweeps
+    import archquake.parallel
     from archquake.cli.main import main
 
     seen = []
@@ -353,14 +354,14 @@ def test_cli_executor_follows_the_library_default(tmp_path, monkeypatch, extra, 
         raise KeyboardInterrupt  # stop here: the CLI reports it as an interruption
 
     opened = []
-    real = archquake.sweeps.open_executor
+    real = archquake.parallel.open_executor
 
     def open_spy(**kwargs):
         opened.append(kwargs)
         return real(**kwargs)
 
     monkeypatch.setattr(archquake.ida, "incremental_dynamic_analysis", spy)
-    monkeypatch.setattr(archquake.sweeps, "open_executor", open_spy)
+    monkeypatch.setattr(archquake.parallel, "open_executor", open_spy)
     assert main(["ida", "--records", "near-field-pulse", "--no-progress", *extra,
                  "--store", str(tmp_path / "s.sqlite")]) == 130
     ((executor, workers),) = seen
@@ -423,7 +424,7 @@ def test_rigid_model_ida_brackets_its_own_threshold(tmp_path):
     as the IDA counts it): the two brackets overlap. All runs are rigid cases."""
     from archquake.compare import default_dem_duration
     from archquake.ida.analysis import COUNTED_AS_COLLAPSE
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.rigid import simulate_rigid
 
     arch = OPPENHEIM.build()
 

@@ -20,8 +20,11 @@ from ida_inputs import OPPENHEIM  # noqa: E402
 from test_cluster import cluster  # noqa: E402, F401  (the fixture)
 
 from archquake.ida import incremental_dynamic_analysis  # noqa: E402
-from archquake.sweeps import ResultStore, SerialExecutor  # noqa: E402
-from archquake.sweeps.runner import open_executor  # noqa: E402
+from archquake.parallel import (
+    SerialExecutor,  # noqa: E402
+    open_executor,  # noqa: E402
+)
+from archquake.sweeps import ResultStore  # noqa: E402
 
 
 @pytest.mark.slow

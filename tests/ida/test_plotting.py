@@ -11,7 +11,8 @@ from ida_inputs import OPPENHEIM
 
 from archquake.ida import incremental_dynamic_analysis
 from archquake.ida.fragility import fragility_of
-from archquake.sweeps import ResultStore, SerialExecutor
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ResultStore
 
 
 @pytest.fixture(scope="module")

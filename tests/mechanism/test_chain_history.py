@@ -25,10 +25,11 @@ from scipy.integrate import solve_ivp
 
 from archquake import Arch
 from archquake.ground import StepImpulse
+from archquake.limit import hinges_of
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
 from archquake.mechanism.impact_chain import chain_impact, kinetic_energy, mechanism_field
 from archquake.mechanism.kinematics import acceleration
-from archquake.mechanism.prepared import hinges_of, pack_mechanism
+from archquake.mechanism.prepared import pack_mechanism
 from archquake.outcome import Outcome
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)

@@ -18,9 +18,9 @@ from hypothesis import strategies as st
 
 from archquake import Arch
 from archquake.errors import ArchquakeError
+from archquake.limit import hinges_of
 from archquake.limit.kinematic import MechanismSet, admissible_mechanisms
 from archquake.limit.static import stands
-from archquake.mechanism import hinges_of
 from archquake.mechanism.impact import solve_impact
 from archquake.mechanism.impact_chain import (
     _field_of,

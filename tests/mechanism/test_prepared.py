@@ -17,8 +17,8 @@ import pytest
 
 import archquake
 from archquake.geometry import Arch
-from archquake.limit import limit_analysis
-from archquake.mechanism import PreparedMechanism, hinges_of
+from archquake.limit import hinges_of, limit_analysis
+from archquake.mechanism import PreparedMechanism
 from archquake.mechanism.kinematics import eom_terms, fourbar
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)

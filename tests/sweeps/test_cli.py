@@ -66,7 +66,7 @@ def test_ctrl_c_stores_what_finished_and_exits_130(small_study_file, capsys, mon
 ])
 def test_bad_options_are_one_line(small_study_file, capsys, sweep_cli, extra, needle,
                                   monkeypatch):
-    monkeypatch.setattr("archquake.sweeps.runner.CONNECT_TIMEOUT", 1.0)  # nothing listens there
+    monkeypatch.setattr("archquake.parallel.CONNECT_TIMEOUT", 1.0)  # nothing listens there
     assert sweep_cli(["sweep", str(small_study_file), *extra]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and needle in err[0], err

@@ -24,7 +24,8 @@ import sweep_fake_model
 from test_runner import stored
 
 from archquake.cli import cmd_sweep
-from archquake.sweeps import ResultStore, SerialExecutor, run_sweep
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ResultStore, run_sweep
 
 pytest.importorskip("distributed")
 DASK = Path(sys.executable).parent / "dask"

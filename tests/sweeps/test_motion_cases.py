@@ -13,7 +13,8 @@ import pytest
 
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground import Record, StepImpulse
-from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, SerialExecutor, run_sweep
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ArchSpec, Case, ExcitationSpec, ResultStore, run_sweep
 from archquake.sweeps.store import TIMING_COLUMNS
 
 ARCH = ArchSpec(10, 0.15, 157.5, 7)

@@ -25,9 +25,9 @@ from hypothesis import strategies as st
 from sweep_fake_model import SMALL_STUDY
 
 from archquake.errors import StudyFileError
+from archquake.parallel import cap_workers, threads_per_worker, usable_cores
 from archquake.sweeps import load_study
 from archquake.sweeps.cases import ArchSpec, Case, CaseOptions, ExcitationSpec, canonical_json
-from archquake.sweeps.runner import cap_workers, threads_per_worker, usable_cores
 from archquake.sweeps.study import MAX_CASES
 
 HERE = Path(__file__).parent
@@ -216,7 +216,7 @@ def test_pool_workers_run_numba_on_their_share_of_the_cores():
     them (which the parent keeps); oracle: numba.get_num_threads in the worker."""
     import numba
 
-    from archquake.sweeps.runner import process_pool
+    from archquake.parallel import process_pool
 
     if numba.config.NUMBA_NUM_THREADS < 2:
         pytest.skip("NUMBA_NUM_THREADS < 2: 1 thread per worker either way")

@@ -1,6 +1,6 @@
 """The rigid chain (hinges moving) as a sweep model (issue 16).
 
-Oracles: :func:`archquake.mechanism.rigid_chain.simulate_rigid` called directly with the window
+Oracles: :func:`archquake.rigid.simulate_rigid` called directly with the window
 ``run --hinges moving`` documents (the end of the excitation + 5 sqrt(R/g), on until rest up to
 the end of the excitation + 60 sqrt(R/g)); the pinned id of an existing analytical case."""
 
@@ -13,7 +13,7 @@ import pytest
 from archquake.compare import default_dem_duration
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, StudyFileError
-from archquake.mechanism.rigid_chain import simulate_rigid
+from archquake.rigid import simulate_rigid
 from archquake.sweeps import (
     ArchSpec,
     Case,

@@ -15,7 +15,8 @@ from concurrent.futures import ProcessPoolExecutor
 import pytest
 from sweep_fake_model import CountingEvaluate, fake_evaluate, picky_evaluate
 
-from archquake.sweeps import ModelUnavailableError, ResultStore, SerialExecutor, run_sweep
+from archquake.parallel import SerialExecutor
+from archquake.sweeps import ModelUnavailableError, ResultStore, run_sweep
 from archquake.sweeps.runner import evaluate_chunk
 from archquake.sweeps.store import TIMING_COLUMNS
 

@@ -11,8 +11,7 @@ Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg`
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -20,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
+from archquake.parallel import interruptible_pool, usable_cores
 from archquake.reproduce.core import Figure, StudyResult
 
 #: The assumptions every verdict rests on.
@@ -125,32 +125,7 @@ def _num(x) -> float | None:
     return float(x) if x is not None and math.isfinite(float(x)) else None
 
 
-@contextmanager
-def process_pool(workers: int) -> Iterator[Any]:
-    """The sweeps' process pool (:func:`archquake.sweeps.runner.process_pool`: not started by
-    ``fork``, since by the time the records run this process has run the domains' threaded
-    kernels; workers end with this process), with workers ignoring SIGINT (a Ctrl-C reaches
-    the whole process group; this process alone turns it into one line and exit status 130).
-
-    An exception here, a KeyboardInterrupt included, cancels the queued work and ends the
-    workers at once instead of waiting for them: what they finished is already in the result
-    store, from which a rerun resumes."""
-    from archquake.sweeps.runner import process_pool as sweeps_pool
-
-    pool = sweeps_pool(workers, ignore_sigint=True)
-    try:
-        yield pool
-    except BaseException:
-        for proc in list((getattr(pool, "_processes", None) or {}).values()):
-            proc.terminate()
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown(wait=True)
-
-
 def workers() -> int:
-    from archquake.sweeps.runner import usable_cores
-
     return max(1, usable_cores())
 
 
@@ -345,7 +320,7 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
     n = workers()
-    with ResultStore(store_path) as store, process_pool(n) as executor:
+    with ResultStore(store_path) as store, interruptible_pool(n) as executor:
         res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                            executor=executor, workers=n, **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
@@ -466,7 +441,7 @@ def section_dem(ctx: Context) -> StudyResult:
     if len(jobs) <= 1:
         outcomes = [_dem_outcome(ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
     else:
-        with process_pool(min(workers(), len(jobs))) as pool:
+        with interruptible_pool(min(workers(), len(jobs))) as pool:
             futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
             outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}

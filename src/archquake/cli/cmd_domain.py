@@ -198,7 +198,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     if workers is not None:  # never more processes than cores or runs (a line says so)
         import sys
 
-        from archquake.sweeps.runner import cap_workers
+        from archquake.parallel import cap_workers
 
         workers, note = cap_workers(workers, 2 * len(durations))
         if note is not None:

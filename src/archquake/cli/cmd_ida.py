@@ -257,7 +257,8 @@ def _executor(args: argparse.Namespace) -> AbstractContextManager[tuple[Any, int
     --workers nor --scheduler is given (this process, the compiled batch on numba's threads:
     2.62 s against 3.10 s through a pool, docs/earthquakes.md), else the executor the options
     ask for (the DEM's runs are one process each: a pool of all cores by default)."""
-    from archquake.sweeps import Model, open_executor
+    from archquake.parallel import open_executor
+    from archquake.sweeps import Model
 
     if _model(args) is Model.ANALYTICAL and args.workers is None and args.scheduler is None:
         return nullcontext((None, None))

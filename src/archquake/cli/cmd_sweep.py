@@ -17,20 +17,15 @@ from archquake.cli.common import (
     quiet_dask,
     ranged_whole,
 )
-from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.errors import ArchquakeError, ClusterLostError, InvalidParameterError
+from archquake.parallel import cap_workers, check_scheduler, open_executor
 from archquake.ranges import (
     TABLE_SUFFIXES,
     WORKERS_RANGE,
 )
-from archquake.sweeps import ResultStore, load_study, model_function, open_executor, run_sweep
+from archquake.sweeps import ResultStore, load_study, model_function, run_sweep
 from archquake.sweeps.evaluate import evaluate_case
-from archquake.sweeps.runner import (
-    NO_WORKER_TIMEOUT,
-    CaseFunction,
-    ClusterLostError,
-    cap_workers,
-    check_scheduler,
-)
+from archquake.sweeps.runner import NO_WORKER_TIMEOUT, CaseFunction
 
 
 def case_function(model) -> CaseFunction:

@@ -23,7 +23,7 @@ import sys
 from collections.abc import Sequence
 
 from archquake import __version__
-from archquake.errors import ArchquakeError
+from archquake.errors import ArchquakeError, UsageError
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS: tuple[str, ...] = (
@@ -79,10 +79,6 @@ def _requested(argv: Sequence[str]) -> str | None:
         if not word.startswith("-"):
             return by_name.get(word)
     return None
-
-
-class UsageError(ArchquakeError):
-    """A malformed command line."""
 
 
 class OneLineParser(argparse.ArgumentParser):

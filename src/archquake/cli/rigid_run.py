@@ -1,6 +1,6 @@
 """``archquake run --hinges moving``: one history of the chain of rigid blocks (issue 16).
 
-The model is :func:`archquake.mechanism.rigid_chain.simulate_rigid`: every voussoir a rigid
+The model is :func:`archquake.rigid.simulate_rigid`: every voussoir a rigid
 block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,
 migrating and closing anywhere. Its output is ``RigidRun.to_dict()``: the keys every model
 shares (:data:`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
@@ -18,7 +18,7 @@ from archquake.ranges import FRICTION_RANGE
 
 def run(args: argparse.Namespace, arch, motion) -> int:
     """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
-    from archquake.mechanism.rigid_chain import simulate_rigid
+    from archquake.rigid import simulate_rigid
 
     for option, value in (("--impact", getattr(args, "impact", None)),
                           ("--restitution", args.restitution)):

@@ -17,7 +17,6 @@ pairs, i.e. parallel over durations and brackets).
 from __future__ import annotations
 
 import math
-import os
 import time
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
@@ -31,7 +30,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.outcome import Outcome
-from archquake.sweeps.runner import process_pool
+from archquake.parallel import process_pool, usable_cores
 
 #: Search settings of the DEM domains: ceiling 2 g (Figures 6 and 11 stop at 1.2-2 g), 8 coarse
 #: magnitudes (geometric from lambda), 4 fine ones between the boundaries, brackets of 0.01 g.
@@ -52,7 +51,7 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
              first_only: bool, g: float, governing_only: bool = False,
              model: str = "dem", solver: str = "direct") -> tuple[Outcome, int]:
     """One run of the block model ``model`` ('dem' or 'rigid', the latter integrated by
-    ``solver``, :func:`~archquake.mechanism.rigid_chain.simulate_rigid`'s): (outcome, collapse
+    ``solver``, :func:`~archquake.rigid.simulate_rigid`'s): (outcome, collapse
     half cycle or 0). Module-level: picklable. Both run the pulse plus ``tail_s``; the rigid chain reads
     only the DEM settings' thresholds (hinge opening, collapse criteria), as it always does.
 
@@ -61,7 +60,7 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
     brackets no first-half-cycle boundary."""
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
     if model == "rigid":
-        from archquake.mechanism.rigid_chain import simulate_rigid
+        from archquake.rigid import simulate_rigid
 
         res = simulate_rigid(assembly, motion, duration=motion.duration + tail_s,
                              settings=settings, g=g, solver=solver).result
@@ -242,7 +241,7 @@ def dem_failure_domain(
         With ``model='rigid'``: how the chain is integrated (``simulate_rigid``'s ``solver``).
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
-        chain of rigid blocks (:func:`archquake.mechanism.rigid_chain.simulate_rigid`; only
+        chain of rigid blocks (:func:`archquake.rigid.simulate_rigid`; only
         the thresholds of ``dem_settings`` are read), each run for the pulse plus ``tail``.
 
     Returns
@@ -265,7 +264,7 @@ def dem_failure_domain(
     t0 = time.perf_counter()
     own = None
     if executor is None:
-        n = workers if workers is not None else min(_cores(), max(1, 2 * n_dur))
+        n = workers if workers is not None else min(usable_cores(), max(1, 2 * n_dur))
         if n < 1:
             raise InvalidParameterError(f"workers must be >= 1, got {n}")
         if n > 1:
@@ -282,13 +281,6 @@ def dem_failure_domain(
             own.shutdown()
     return DemDomain(dom, assembly, first_only, ev.runs, time.perf_counter() - t0, max(n, 1),
                      dst.to_dict(), ev.governing_only, model)
-
-
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
 
 
 @dataclass(frozen=True)
@@ -359,7 +351,7 @@ def compare_domains(
     pool = executor
     own = None
     if pool is None and (workers is None or workers > 1):
-        n = workers if workers is not None else min(_cores(), max(1, 2 * len(np.atleast_1d(durations))))
+        n = workers if workers is not None else min(usable_cores(), max(1, 2 * len(np.atleast_1d(durations))))
         if n > 1:
             own = pool = process_pool(n)
     try:

@@ -85,7 +85,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct"):
-    """The rigid chain (:func:`archquake.mechanism.rigid_chain.simulate_rigid`) run to a
+    """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
     model's default end (the end of the excitation + 60 sqrt(R/g)) or
@@ -106,7 +106,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     settings : DemSettings, optional
         Thresholds of the verdict (default ``DemSettings()``).
     solver : {"direct", "events"}
-        How the chain is integrated (:func:`~archquake.mechanism.rigid_chain.simulate_rigid`).
+        How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
 
     Returns
     -------
@@ -118,8 +118,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         If that first window exceeds ``ranges.DEM_T_END_MAX_S`` (the chain steps 1e-4 s).
     """
     from archquake.domains._kernels import default_t_end
-    from archquake.mechanism.rigid_chain import simulate_rigid
     from archquake.ranges import DEM_T_END_MAX_S
+    from archquake.rigid import simulate_rigid
 
     d = default_dem_duration(arch, motion, g=g)
     if d > DEM_T_END_MAX_S:

@@ -115,7 +115,7 @@ class ImpactComparison:
 def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
     """(pre-impact hinges, {law: summary}, exact c_T, exact response's hinges) for ``pre``
     (default: the arch's own first mechanism)."""
-    from archquake.mechanism import hinges_of
+    from archquake.limit import hinges_of
     from archquake.mechanism.impact import IMPACT_LAWS, solve_impact
 
     pre = hinges_of(arch) if pre is None else pre
@@ -258,8 +258,95 @@ def hinge_table(rows: list[ImpactComparison]) -> str:
     return "\n".join(lines)
 
 
+#: (label, R m, t m, embrace deg, voussoirs) of the hinge-migration comparison: the energy kept
+#: over the first half cycle and the hinge sequence, fixed hinges (Eq. 4 and the chain law)
+#: against the DEM and the rigid chain (:mod:`archquake.compare.rigid`), under this module's
+#: pulse.
+MIGRATION_GEOMETRIES = (
+    ("Oppenheim", 10.0, 1.5, 157.5, 7),
+    ("t/R=0.13", 10.0, 1.3, 157.5, 7),
+    ("semicircle R=5 t=0.9 n=15", 5.0, 0.9, 180.0, 15),
+    ("t/R=0.19 (sym)", 10.0, 1.9, 157.5, 7),
+)
+
+
+@dataclass(frozen=True)
+class DemHalfCycle:
+    """The DEM through its first impact under the comparison's pulse.
+
+    ``kept`` = E(t_i + 10 ms) / E(t_p); ``kept_before`` = E(t_i - 10 ms) / E(t_p) (what the
+    swing itself lost); ``sequence``: (t s, open joints) each time the DEM's hinge set
+    (:func:`archquake.compare.dem_hinges`, sampled every 5 ms) changes, from t_p to t_i + 0.1 s.
+    """
+
+    pulse_duration_s: float
+    impact_time_s: float | None
+    kept: float | None
+    kept_before: float | None
+    kept_wide: float | None
+    sequence: tuple
+    t: np.ndarray
+    energy_fraction: np.ndarray
+    energy_error: float
+
+
+def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float = STANDARD_GRAVITY
+                   ) -> DemHalfCycle:
+    """Run the DEM (the paper's stiffness and damping, no sliding: ``DemSettings()``) through the
+    first impact after the comparison's pulse (:func:`rocking_pulse`),
+    measuring energy as :func:`analytical_impacts` does."""
+    from archquake.dem import simulate_dem
+    from archquake.dem.settings import DemSettings
+
+    pulse, tp, t_imp = rocking_pulse(arch, g=g)
+    settings = DemSettings() if settings is None else settings
+    settings = settings.with_(duration=t_imp * 1.5 + 0.1, output_interval=5e-4,
+                              stop_at_collapse=True)
+    res = simulate_dem(arch, pulse, settings, g=g)
+    return half_cycle_of(res, tp, t_imp, window=window)
+
+
+def half_cycle_of(res, tp: float, t_imp: float, *, window: float = 0.01) -> DemHalfCycle:
+    """The :class:`DemHalfCycle` measures of a recorded run ``res`` (a
+    :class:`archquake.dem.DemResult`, from the DEM or from the rigid chain,
+    :mod:`archquake.rigid`) under the comparison's pulse of duration ``tp`` s,
+    ``t_imp`` s being the fixed-hinge model's first impact (the end of the hinge sequence when
+    the run has none)."""
+    ti = res.first_impact_time
+    e = res.kinetic + res.potential + res.strain
+    e_rest = float(res.potential[0] + res.strain[0])
+
+    def at(t):
+        return float(np.interp(t, res.times, e)) - e_rest
+
+    e0 = at(tp)
+    seq: list[tuple[float, str]] = []
+    for t in np.arange(tp, min(float(res.times[-1]), (ti or t_imp) + 0.1), 0.005):
+        h = " ".join(f"{j}{f[0]}" for j, f in dem_hinges(res, t))
+        if not seq or seq[-1][1] != h:
+            seq.append((round(float(t), 4), h))
+    return DemHalfCycle(
+        pulse_duration_s=tp, impact_time_s=ti,
+        kept=None if ti is None else at(ti + window) / e0,
+        kept_before=None if ti is None else at(ti - window) / e0,
+        kept_wide=None if ti is None else at(ti + WIDE_WINDOW) / e0,
+        sequence=tuple(seq), t=res.times, energy_fraction=(e - e_rest) / e0,
+        energy_error=res.energy_error)
+
+
+def fixed_hinge_kept(arch: Arch) -> dict:
+    """c_T of Eq. 4 and of the chain law for the arch's limit-analysis mechanism."""
+    _, laws, _, _ = analytical_impacts(arch)
+    return {"paper": laws["paper"]["ct"], "chain": laws["chain"]["ct"]}
+
+
 __all__ = [
     "DEM_HINGES_AFTER",
+    "MIGRATION_GEOMETRIES",
+    "DemHalfCycle",
+    "dem_half_cycle",
+    "fixed_hinge_kept",
+    "half_cycle_of",
     "DEM_IMPACT_WINDOW",
     "WIDE_WINDOW",
     "IMPACT_GEOMETRIES",

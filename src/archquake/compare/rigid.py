@@ -1,8 +1,8 @@
 """The rigid limit (issue 16): the DEM's energy over a half cycle against its contact model, and
-the rigid-block chain (:mod:`archquake.mechanism.rigid_chain`) through the same protocol.
+the rigid-block chain (:mod:`archquake.rigid`) through the same protocol.
 
-Protocols are :mod:`archquake.compare.migration`'s (energy kept over the first half cycle,
-:func:`~archquake.compare.migration.half_cycle_of`) and the critical step-pulse duration at a
+Protocols are :mod:`archquake.compare.impacts`'s (energy kept over the first half cycle,
+:func:`~archquake.compare.impacts.half_cycle_of`) and the critical step-pulse duration at a
 given magnitude (Oppenheim's :class:`~archquake.ground.StepImpulse`, first collapsing t_p by
 bisection, which assumes survival below the threshold, as the DEM's 0.259-0.2625 s did).
 """
@@ -34,10 +34,9 @@ def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: floa
                      solver: str = "direct", g: float = STANDARD_GRAVITY):
     """The rigid chain through its first impact under the comparison's pulse
     (:func:`archquake.compare.impacts.rocking_pulse`); returns (DemHalfCycle, RigidRun).
-    ``solver``: :func:`~archquake.mechanism.rigid_chain.simulate_rigid`'s."""
-    from archquake.compare.impacts import rocking_pulse
-    from archquake.compare.migration import half_cycle_of
-    from archquake.mechanism.rigid_chain import DEFAULT_TIME_STEP, simulate_rigid
+    ``solver``: :func:`~archquake.rigid.simulate_rigid`'s."""
+    from archquake.compare.impacts import half_cycle_of, rocking_pulse
+    from archquake.rigid import DEFAULT_TIME_STEP, simulate_rigid
 
     pulse, tp, t_imp = rocking_pulse(arch, g=g)
     run = simulate_rigid(arch, pulse, duration=t_imp * 1.5 + 0.1,
@@ -53,7 +52,7 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
     """Whether ``model`` ("dem" or "rigid") collapses under StepImpulse(magnitude_g, tp),
     run for 3 t_p + ``tail`` s (the DEM's collapses in the second half cycle come 3.6-4.7 s
     after the start on Oppenheim's arch: its default 3 s duration misses them). ``solver``:
-    the rigid chain's (:func:`~archquake.mechanism.rigid_chain.simulate_rigid`)."""
+    the rigid chain's (:func:`~archquake.rigid.simulate_rigid`)."""
     from archquake.ground import StepImpulse
 
     motion = StepImpulse.from_g(magnitude_g, tp, g=g)
@@ -64,7 +63,8 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
         s = (DemSettings() if settings is None else settings).with_(
             duration=3 * tp + tail, output_interval=2e-3)
         return simulate_dem(arch, motion, s, g=g).outcome.value == "collapse"
-    from archquake.mechanism.rigid_chain import DEFAULT_TIME_STEP, SOLVER_TOLERANCE, simulate_rigid
+    from archquake.rigid import DEFAULT_TIME_STEP, simulate_rigid
+    from archquake.rigid.model import SOLVER_TOLERANCE
 
     run = simulate_rigid(arch, motion, duration=3 * tp + tail, output_interval=2e-3,
                          time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g,

@@ -2,7 +2,7 @@
 per-pair code before it was vectorised (the rigid chain's ``absolute`` closure and rest check;
 :mod:`archquake.dem.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
 ``hinge_sets`` and ``mirror_link``), kept verbatim. Test and benchmark only: no production
-code imports it (tests/mechanism/test_rigid_postproc.py holds the fast code to it, and
+code imports it (tests/rigid/test_postproc.py holds the fast code to it, and
 benchmarks/bench_rigid_postproc.py measures against it).
 """
 
@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from archquake.dem import _kernels as K
+import archquake.dem._kernels as K
 from archquake.dem.assembly import RotationLink
 from archquake.dem.result import (
     HingeSet,

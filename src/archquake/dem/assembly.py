@@ -1,7 +1,7 @@
 """Block assemblies for the distinct-element model: an arch on its abutments, a block on a base.
 
 The arch's hinges come from the one place that answers "which hinges does this arch have",
-:func:`archquake.mechanism.prepared.hinges_of` (the equivalent static analysis), so the DEM
+:func:`archquake.limit.hinges_of` (the equivalent static analysis), so the DEM
 accepts every arch the analytical model accepts: any number of voussoirs, hinges anywhere.
 
 An :class:`Assembly` is the frozen description the solver packs into arrays: convex contact
@@ -30,7 +30,7 @@ from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.geometry.polygon import polygon_mass_properties
-from archquake.mechanism.prepared import hinges_of
+from archquake.limit import hinges_of
 
 #: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
 #: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
@@ -194,7 +194,7 @@ def build_arch_assembly(
         only occur at the cut joints, and the hull adds no mass).
     mechanism : HingeMechanism, optional
         The analytical mechanism whose first link defines the rotation measure; default the
-        arch's hinges, :func:`archquake.mechanism.prepared.hinges_of` (the equivalent static
+        arch's hinges, :func:`archquake.limit.hinges_of` (the equivalent static
         analysis, any number of voussoirs). Its hinges A and B must be cut joints.
     hold_outside_hinges : bool
         If True, the voussoirs outside the mechanism's outer hinges (between a springing and a
@@ -307,7 +307,7 @@ def build_arch_assembly(
 
 
 def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
-    """The arch cut only at its hinges (:func:`archquake.mechanism.prepared.hinges_of`): the
+    """The arch cut only at its hinges (:func:`archquake.limit.hinges_of`): the
     paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
 
     The three moving blocks are the mechanism's links AB, BC and CD. Where a hinge A or D is

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from archquake.dem import _kernels as K
+import archquake.dem._kernels as K
 from archquake.dem.assembly import Assembly, RotationLink
 from archquake.dem.settings import DemSettings
 from archquake.outcome import Outcome

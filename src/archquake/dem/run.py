@@ -26,9 +26,9 @@ import math
 import numpy as np
 from scipy.sparse import coo_matrix
 
+import archquake.dem._kernels as K
 from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem import _kernels as K
 from archquake.dem._kernels import Packed
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end

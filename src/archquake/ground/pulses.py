@@ -182,4 +182,29 @@ class SinePulse:
                 "period_s": self.period, "direction": self.direction}
 
 
-__all__ = ["StepImpulse", "SinePulse"]
+@dataclass(frozen=True)
+class RectangularPulse:
+    """x_g'' = ``acceleration`` (m/s^2) for 0 <= t < ``pulse_duration`` (s), then 0: the exact
+    rectangle the DEM's sampled :func:`archquake.dem.studies.rectangular_pulse` approximates
+    (its fall takes t_p / 2000)."""
+
+    acceleration_m_s2: float
+    pulse_duration: float
+
+    @property
+    def duration(self) -> float:
+        return self.pulse_duration
+
+    def acceleration(self, t):
+        t = np.asarray(t, dtype=float)
+        return np.where((t >= 0) & (t < self.pulse_duration), self.acceleration_m_s2, 0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, self.pulse_duration])
+
+    def mirrored(self) -> RectangularPulse:
+        return RectangularPulse(-self.acceleration_m_s2, self.pulse_duration)
+
+
+
+__all__ = ["RectangularPulse", "StepImpulse", "SinePulse"]

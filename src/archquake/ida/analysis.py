@@ -333,7 +333,7 @@ def incremental_dynamic_analysis(
     executor, workers, chunk_size
         As :func:`archquake.sweeps.run_sweep` (default: a local process pool), except for the
         analytical model: with neither ``executor`` nor ``workers`` it runs in this process
-        (:class:`~archquake.sweeps.SerialExecutor`: the compiled batch already spreads a round
+        (:class:`~archquake.parallel.SerialExecutor`: the compiled batch already spreads a round
         over all cores with numba's threads; a pool of processes, each with as many threads,
         started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
         pulse set, docs/earthquakes.md), and its default chunk is a round's share per worker
@@ -346,8 +346,9 @@ def incremental_dynamic_analysis(
     IdaResult
     """
     from archquake.ida.batch import evaluate_cases
+    from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import _prepared
-    from archquake.sweeps.runner import SerialExecutor, run_sweep
+    from archquake.sweeps.runner import run_sweep
 
     measure = parse_im(im)
     options = CaseOptions() if options is None else options
@@ -460,7 +461,7 @@ def round_chunk_size(cases: int, executor: Executor | None, workers: int | None)
     end of each call: Oppenheim's arch under the near-field pulse set ran 101 calls of 1 to 33
     cases in 14 rounds, and its kernel time on 2 threads was 2.6 s where one call per round
     takes 2.3 s (``benchmarks/bench_ida.py``, docs/earthquakes.md)."""
-    from archquake.sweeps.runner import executor_workers, usable_cores
+    from archquake.parallel import executor_workers, usable_cores
 
     if workers is None:
         workers = executor_workers(executor) or usable_cores()

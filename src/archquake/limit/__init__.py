@@ -6,7 +6,13 @@ the line of thrust during motion reuses it, and so does the least-friction admis
 thrust of the locked arch (:func:`locked_joint_forces`).
 """
 
-from archquake.limit.analysis import LimitAnalysis, Method, collapse_joint_forces, limit_analysis
+from archquake.limit.analysis import (
+    LimitAnalysis,
+    Method,
+    collapse_joint_forces,
+    hinges_of,
+    limit_analysis,
+)
 from archquake.limit.kinematic import (
     MAX_KINEMATIC_VOUSSOIRS,
     kinematic_collapse,
@@ -30,6 +36,7 @@ from archquake.limit.thrust import (
 )
 
 __all__ = [
+    "hinges_of",
     "JointForces",
     "LimitAnalysis",
     "MAX_KINEMATIC_VOUSSOIRS",

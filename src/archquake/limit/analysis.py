@@ -258,8 +258,39 @@ def limit_analysis(
     )
 
 
+def hinges_of(arch: VoussoirChain) -> HingeMechanism:
+    """The hinges of ``arch``: those of the equivalent static analysis, oriented so that a ground
+    acceleration towards -x opens them (the paper's Figure 1).
+
+    Goes through :func:`archquake.limit.limit_analysis` (the line-of-thrust method), so arches of
+    any number of voussoirs are handled, hinges may sit anywhere (a hinge above a springing
+    leaves the voussoirs below it on the ground), and an arch too thin to stand raises
+    :class:`~archquake.errors.UnstableArchError` naming its minimum thickness.
+
+    Parameters
+    ----------
+    arch : VoussoirChain
+        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
+
+    Returns
+    -------
+    HingeMechanism
+        ``load_direction == +1``.
+
+    Examples
+    --------
+    >>> import math
+    >>> m = hinges_of(Arch(10.0, 1.5, math.radians(157.5), 7))
+    >>> m.joints, m.load_direction
+    ((0, 3, 5, 7), 1)
+    """
+    mech = limit_analysis(arch).mechanism
+    return mech if mech.load_direction > 0 else mech.mirrored()
+
+
 __all__ = [
     "LimitAnalysis",
+    "hinges_of",
     "Method",
     "collapse_joint_forces",
     "limit_analysis",

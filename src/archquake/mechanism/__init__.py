@@ -1,7 +1,7 @@
 """The arch in motion: four-link kinematics, equation of motion, impact and time histories."""
 
 from archquake.mechanism.impact import ImpactSolution, solve_impact
-from archquake.mechanism.prepared import ImpactTable, PreparedMechanism, hinges_of
+from archquake.mechanism.prepared import ImpactTable, PreparedMechanism
 from archquake.mechanism.simulate import (
     FinalState,
     History,
@@ -22,7 +22,6 @@ __all__ = [
     "PreparedMechanism",
     "SimulationResult",
     "SolverOptions",
-    "hinges_of",
     "simulate",
     "solve_impact",
 ]

@@ -32,6 +32,38 @@ import math
 import numba as nb
 import numpy as np
 
+from archquake._dopri import (  # the Dormand-Prince 5(4) tableau
+    A21,
+    A31,
+    A32,
+    A41,
+    A42,
+    A43,
+    A51,
+    A52,
+    A53,
+    A54,
+    A61,
+    A62,
+    A63,
+    A64,
+    A65,
+    B1,
+    B3,
+    B4,
+    B5,
+    B6,
+    C2,
+    C3,
+    C4,
+    C5,
+    E1,
+    E3,
+    E4,
+    E5,
+    E6,
+    E7,
+)
 from archquake.ground._kernel import ground_duration, ground_in_piece, next_breakpoint
 from archquake.ground.base import KIND_SAMPLED, KIND_STEP
 from archquake.mechanism.kinematics import (
@@ -63,19 +95,6 @@ FINAL_UNRESOLVED = 4
 IMPACT_COLUMNS = 7
 #: Columns of the history and of the requested states.
 HIST_COLUMNS = 6
-
-# Dormand-Prince 5(4) tableau
-C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
-A21 = 1.0 / 5.0
-A31, A32 = 3.0 / 40.0, 9.0 / 40.0
-A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
-A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-A61, A62, A63, A64, A65 = (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
-                           -5103.0 / 18656.0)
-B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
-E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
-                          22.0 / 525.0, -1.0 / 40.0)
-
 
 #: End of the excitation, s (kept under this name for the kernels that use it).
 excitation_end = ground_duration

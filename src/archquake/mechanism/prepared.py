@@ -1,6 +1,6 @@
 """The one place that prepares a mechanism from an arch.
 
-"Which hinges does this arch have" has one answer, :func:`hinges_of`: those of the equivalent
+"Which hinges does this arch have" has one answer, :func:`archquake.limit.hinges_of`: those of the equivalent
 static analysis (:func:`archquake.limit.limit_analysis`, the paper's assumption), oriented so that
 a ground acceleration towards -x opens them (the paper's Figure 1). :class:`PreparedMechanism`
 packs that mechanism for the compiled kernels (:func:`pack_mechanism`) with its impact solution
@@ -35,6 +35,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
+from archquake.limit.analysis import hinges_of
 from archquake.mechanism._kernels import linkage_limits_compiled
 from archquake.mechanism.impact import (
     ImpactSolution,
@@ -79,38 +80,6 @@ BEYOND_SET = "beyond_set"
 
 #: Samples of the crest/toggle search (:func:`archquake.mechanism.kinematics.linkage_limits`).
 _LIMIT_SAMPLES = 4000
-
-
-def hinges_of(arch: VoussoirChain) -> HingeMechanism:
-    """The hinges of ``arch``: those of the equivalent static analysis, oriented so that a ground
-    acceleration towards -x opens them (the paper's Figure 1).
-
-    Goes through :func:`archquake.limit.limit_analysis` (the line-of-thrust method), so arches of
-    any number of voussoirs are handled, hinges may sit anywhere (a hinge above a springing
-    leaves the voussoirs below it on the ground), and an arch too thin to stand raises
-    :class:`~archquake.errors.UnstableArchError` naming its minimum thickness.
-
-    Parameters
-    ----------
-    arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
-
-    Returns
-    -------
-    HingeMechanism
-        ``load_direction == +1``.
-
-    Examples
-    --------
-    >>> import math
-    >>> m = hinges_of(Arch(10.0, 1.5, math.radians(157.5), 7))
-    >>> m.joints, m.load_direction
-    ((0, 3, 5, 7), 1)
-    """
-    from archquake.limit import limit_analysis
-
-    mech = limit_analysis(arch).mechanism
-    return mech if mech.load_direction > 0 else mech.mirrored()
 
 
 def pack_mechanism(mech: HingeMechanism) -> np.ndarray:
@@ -452,4 +421,4 @@ class PreparedMechanism:
 
 
 __all__ = ["BEYOND_SET", "DEFAULT_IMPACT_LAW", "MAX_REACHABLE", "ImpactTable", "PreparedMechanism",
-           "hinges_of", "impact_table", "pack_mechanism"]
+           "impact_table", "pack_mechanism"]

@@ -47,6 +47,7 @@ from functools import lru_cache
 
 import numpy as np
 
+import archquake.mechanism._kernels as K
 from archquake._validate import (
     require_array,
     require_finite,
@@ -61,7 +62,6 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
 from archquake.ground.base import GroundMotion, check_motion, check_time_resolution
-from archquake.mechanism import _kernels as K
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify

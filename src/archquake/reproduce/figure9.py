@@ -21,7 +21,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     """Figure 9: the DEM's hinges (:func:`archquake.compare.compare_hinges`) against the
     analytical ones and the line of thrust."""
     from archquake.compare import compare_hinges, dem_hinges
-    from archquake.mechanism import hinges_of
+    from archquake.limit import hinges_of
     from archquake.plotting.compare import figure9_comparison
 
     hc = compare_hinges(arch, FIGURE9_TIMES)

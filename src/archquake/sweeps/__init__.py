@@ -17,13 +17,7 @@ from archquake.sweeps.cases import (
     model_of,
 )
 from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
-from archquake.sweeps.runner import (
-    SerialExecutor,
-    SweepReport,
-    evaluate_chunk,
-    open_executor,
-    run_sweep,
-)
+from archquake.sweeps.runner import SweepReport, evaluate_chunk, run_sweep
 from archquake.sweeps.store import CaseRecord, ResultStore
 from archquake.sweeps.study import Study, load_study, parse_study
 
@@ -38,14 +32,12 @@ __all__ = [
     "model_of",
     "ModelUnavailableError",
     "ResultStore",
-    "SerialExecutor",
     "Study",
     "SweepReport",
     "evaluate_case",
     "evaluate_chunk",
     "load_study",
     "model_function",
-    "open_executor",
     "parse_study",
     "run_sweep",
 ]

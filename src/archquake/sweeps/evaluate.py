@@ -13,7 +13,7 @@ Models:
   verdict, the end of the excitation + 5, then 10, then 20 sqrt(R/g) while the arch still moves,
   :func:`archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
   ``restitution`` and ``impact`` do not apply to it (a case giving one is refused);
-- ``rigid``: :func:`archquake.mechanism.rigid_chain.simulate_rigid`, the chain of rigid blocks
+- ``rigid``: :func:`archquake.rigid.simulate_rigid`, the chain of rigid blocks
   (hinges moving, the DEM's rigid limit), for ``t_end_s`` (default: until a verdict, the end of
   the excitation + 5 sqrt(R/g), then on while the arch moves up to the end of the excitation
   + 60 sqrt(R/g), :func:`archquake.compare.rigid_to_verdict`), summarised by
@@ -39,7 +39,7 @@ from archquake.sweeps.cases import ArchSpec, Case, Model
 MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
     Model.ANALYTICAL: ("archquake.mechanism", "simulate"),
     Model.DEM: ("archquake.dem", "simulate_dem"),
-    Model.RIGID: ("archquake.mechanism.rigid_chain", "simulate_rigid"),
+    Model.RIGID: ("archquake.rigid", "simulate_rigid"),
 }
 
 

@@ -2,7 +2,7 @@
 each batch as it completes and skipping what the store already holds.
 
 Design (the style notes' habit 11): the case function is pure (``Case -> dict``), the executor
-is injected (:class:`SerialExecutor`, a ``ProcessPoolExecutor``, or Dask's
+is injected (:class:`~archquake.parallel.SerialExecutor`, a ``ProcessPoolExecutor``, or Dask's
 ``Client(address).get_executor()``), and only the driving process writes the store. Cases
 travel in chunks (one task evaluates several cases) so that millisecond cases are not swamped
 by scheduling overhead; at most a few chunks per worker are in flight, so an interruption
@@ -15,20 +15,16 @@ harmless in any case.
 
 from __future__ import annotations
 
-import contextlib
 import math
-import multiprocessing
-import os
 import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
-from contextlib import contextmanager
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
 from dataclasses import dataclass, field
 from functools import partial
-from pathlib import Path
 from typing import Any
 
-from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.errors import ArchquakeError, ClusterLostError, InvalidParameterError
+from archquake.parallel import cap_workers, executor_workers, process_pool, usable_cores
 from archquake.sweeps.cases import Case
 from archquake.sweeps.evaluate import ModelUnavailableError
 from archquake.sweeps.store import STATUS_ERROR, STATUS_OK, CaseRecord, ResultStore, jsonable
@@ -43,19 +39,12 @@ Progress = Callable[[int, int], None]
 
 #: Largest chunk chosen automatically (cases per task).
 MAX_AUTO_CHUNK = 64
-#: Seconds to wait for a Dask scheduler to answer.
-CONNECT_TIMEOUT = 10.0
 #: Chunks per worker chosen automatically, so the last few tasks balance across workers.
 CHUNKS_PER_WORKER = 8
 #: Seconds a Dask sweep waits with no worker in the cluster before it gives up (rows kept).
 NO_WORKER_TIMEOUT = 60.0
 #: Seconds between checks of the cluster's health while no task completes.
 HEARTBEAT = 1.0
-
-
-class ClusterLostError(ArchquakeError):
-    """The Dask scheduler went away, or the cluster had no worker for too long. Every case
-    that had completed is in the store; rerunning the same sweep resumes."""
 
 
 @dataclass(frozen=True)
@@ -86,22 +75,6 @@ class SweepReport:
         return {"cases_total": self.total, "computed_now": self.computed,
                 "already_stored": self.already_stored, "outcomes": dict(self.outcomes),
                 "store": self.store}
-
-
-class SerialExecutor(Executor):
-    """Runs each task in the calling thread at submission (the executor for debugging, tests
-    and one-core machines). ``KeyboardInterrupt`` and other non-``Exception`` errors propagate
-    at once instead of being kept in the future."""
-
-    def submit(self, fn, /, *args, **kwargs) -> Future:
-        future: Future = Future()
-        try:
-            result = fn(*args, **kwargs)
-        except Exception as exc:
-            future.set_exception(exc)
-        else:
-            future.set_result(result)
-        return future
 
 
 def evaluate_chunk(evaluate: CaseFunction, cases: Sequence[Case]) -> list[CaseRecord]:
@@ -332,263 +305,16 @@ def _cluster_check(executor: Executor | None, no_worker_timeout: float
     return check
 
 
-def cap_workers(requested: int | None, pending: int) -> tuple[int, str | None]:
-    """Local worker processes for ``pending`` cases: at most the usable cores, and at most the
-    number of cases; with a note saying so when ``requested`` was more.
-
-    >>> cap_workers(3, 1)
-    (1, 'using 1 worker process (there is 1 case to compute), not 3')
-    """
-    cores = usable_cores()
-    n = cores if requested is None else int(requested)
-    capped = max(1, min(n, cores, pending if pending > 0 else 1))
-    if requested is None or capped >= requested:
-        return capped, None
-    why = (f"this machine has {cores} usable core{'s' * (cores != 1)}" if capped == cores
-           else f"there {'is' if pending == 1 else 'are'} {pending} case"
-                f"{'s' * (pending != 1)} to compute")
-    return capped, f"using {capped} worker process{'es' * (capped != 1)} ({why}), not {requested}"
-
-
-#: How local worker processes start: never ``fork``. A process that has run a threaded numba
-#: kernel (``prange``: the domains, the IDA's batch) holds an OpenMP/TBB thread pool, and a
-#: forked child of it that runs one in turn is killed ("fork() called from a process already
-#: using GNU OpenMP"). ``forkserver`` forks the workers from a clean server process started
-#: once per process (benchmarks/bench_pool.py measures the start-up of each method); ``spawn``
-#: where there is no forkserver (Windows, macOS without it).
-START_METHOD = ("forkserver" if "forkserver" in multiprocessing.get_all_start_methods()
-                else "spawn")
-#: Modules the fork server imports once, so that its workers start with them loaded (the
-#: analytical model and the sweep machinery; importing starts no thread). ``__main__`` is the
-#: multiprocessing default, kept.
-FORKSERVER_PRELOAD = ("__main__", "archquake.sweeps.runner", "archquake.sweeps.evaluate",
-                      "archquake.mechanism")
-
-
-def process_pool(workers: int, *, ignore_sigint: bool = False,
-                 start_method: str | None = None) -> ProcessPoolExecutor:
-    """A process pool whose workers start safely after threaded kernels and end when this
-    process ends, however it ends (even by SIGKILL).
-
-    Parameters
-    ----------
-    workers : int
-        Worker processes.
-    ignore_sigint : bool
-        Workers ignore SIGINT: a Ctrl-C reaches the whole process group and only this process
-        should turn it into one line (``archquake assess``). Default: workers take it as
-        ``KeyboardInterrupt``, as Python processes do.
-    start_method : str, optional
-        ``"forkserver"`` or ``"spawn"`` (default :data:`START_METHOD`); ``"fork"`` is accepted
-        for measurements only (benchmarks/bench_pool.py): it is unsafe after a threaded kernel.
-
-    Each worker runs numba's threaded kernels on its share of the cores
-    (:func:`threads_per_worker`: ``workers x threads <= cores``, not ``workers x cores``), and
-    watches this process and exits once it is gone, so that no orphan keeps running or holds
-    the terminal's pipes (``archquake sweep ... | tee`` then ends).
-
-    As with any pool not started by ``fork``, a script creating one must guard its work with
-    ``if __name__ == "__main__":`` (workers import the main module), and the case function must
-    be importable (not defined in an interactive session). With ``forkserver`` this sets the
-    process's fork-server preload to :data:`FORKSERVER_PRELOAD` before the server starts.
-    """
-    context = multiprocessing.get_context(start_method or START_METHOD)
-    if isinstance(context, multiprocessing.context.ForkServerContext):
-        # no effect once this process's fork server runs (it starts with the first pool)
-        context.set_forkserver_preload(list(FORKSERVER_PRELOAD))
-    return ProcessPoolExecutor(max_workers=workers, mp_context=context,
-                               initializer=_start_worker,
-                               initargs=(os.getpid(), ignore_sigint, int(workers)))
-
-
-def threads_per_worker(workers: int, cores: int | None = None) -> int:
-    """numba threads each of ``workers`` processes may run so that together they use at most
-    ``cores`` (default :func:`usable_cores`), at least one each.
-
-    Without the cap every worker's threaded kernels (``prange``: the domains, the IDA's batch)
-    start numba's default of one thread per core, ``workers x cores`` threads on ``cores``.
-
-    >>> threads_per_worker(2, cores=8), threads_per_worker(3, cores=8), threads_per_worker(4, cores=2)
-    (4, 2, 1)
-    """
-    return max(1, (usable_cores() if cores is None else int(cores)) // max(1, int(workers)))
-
-
-def _start_worker(parent: int, ignore_sigint: bool, workers: int = 1) -> None:
-    """Worker initializer: cap numba's threads at this worker's share of the cores
-    (:func:`threads_per_worker`, never above numba's own ``NUMBA_NUM_THREADS``), optionally
-    ignore SIGINT, and end when ``parent`` ends."""
-    import numba
-
-    # per thread in numba: set here, in the thread that runs the pool's tasks (a fresh worker's
-    # count is numba's maximum, NUMBA_NUM_THREADS, which set_num_threads may not exceed)
-    numba.set_num_threads(min(threads_per_worker(workers), numba.get_num_threads()))
-    if ignore_sigint:
-        import signal
-
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _watch_parent(parent)
-
-
-def _watch_parent(parent: int) -> None:
-    """Exit this worker once ``parent`` (the process that made the pool) is gone: its own parent
-    changes (a spawned worker's parent is ``parent``; a forkserver worker's is the server,
-    which exits when ``parent`` does), or ``parent`` no longer exists."""
-    import threading
-
-    own = os.getppid()
-
-    def gone() -> bool:
-        if os.getppid() != own:
-            return True
-        try:
-            os.kill(parent, 0)
-        except ProcessLookupError:
-            return True
-        except PermissionError:  # the pid now belongs to another user's process
-            return True
-        try:  # a parent that died but is not yet reaped (a zombie) still answers kill(pid, 0);
-            # its reader may be waiting for the pipe this worker holds before reaping it
-            state = Path(f"/proc/{parent}/stat").read_text().rsplit(")", 1)[1].split()[0]
-        except (OSError, IndexError):
-            return False  # no /proc (not Linux): the checks above stand
-        return state in ("Z", "X")
-
-    def watch() -> None:
-        while not gone():
-            time.sleep(0.5)
-        os._exit(1)
-
-    threading.Thread(target=watch, name="archquake-parent-watch", daemon=True).start()
-
-
 def _chunks(cases: Sequence[Case], size: int) -> Iterator[list[Case]]:
     for start in range(0, len(cases), size):
         yield list(cases[start:start + size])
 
 
-def executor_workers(executor: Executor | None) -> int | None:
-    """Parallel workers of an executor (1 for :class:`SerialExecutor`, a pool's processes, a
-    Dask cluster's threads), None if unknown or no executor."""
-    if executor is None:
-        return None
-    if isinstance(executor, SerialExecutor):
-        return 1
-    if isinstance(executor, ProcessPoolExecutor):
-        return executor._max_workers  # type: ignore[attr-defined]
-    client = getattr(executor, "_client", None)  # distributed.ClientExecutor
-    if client is not None:
-        try:
-            return max(1, sum(client.nthreads().values()))
-        except Exception:  # a scheduler that does not answer: fall back to the default
-            return None
-    return getattr(executor, "_max_workers", None)
-
-
-def usable_cores() -> int:
-    """Cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # not on Linux
-        return os.cpu_count() or 1
-
-
-#: Dask's transports an address may name.
-SCHEDULER_SCHEMES = ("tcp", "tls")
-
-
-def check_scheduler(address: object, name: str = "scheduler") -> str:
-    """A Dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``), checked before any
-    connection: scheme, host and a port in [1, 65535]; else one line naming ``name``."""
-    from urllib.parse import urlsplit
-
-    usage = f"{name} must be an address like tcp://HOST:PORT, got {address!r}"
-    if not isinstance(address, str) or any(c.isspace() or c == "\x00" for c in address):
-        raise InvalidParameterError(usage)
-    try:
-        parts = urlsplit(address)
-        port = parts.port
-    except ValueError:
-        raise InvalidParameterError(usage + " (the port must be a number from 1 to 65535)"
-                                    ) from None
-    if parts.scheme not in SCHEDULER_SCHEMES:
-        raise InvalidParameterError(
-            usage + f" (the scheme must be {' or '.join(SCHEDULER_SCHEMES)})")
-    if not parts.hostname or port is None or not 1 <= port <= 65535 or parts.path not in ("", "/") \
-            or parts.query or parts.fragment:
-        raise InvalidParameterError(usage)
-    return address
-
-
-@contextmanager
-def open_executor(*, workers: int | None = None, scheduler: str | None = None,
-                  connect_timeout: float | None = None) -> Iterator[tuple[Executor, int]]:
-    """The executor a command line asks for, and its worker count; closed on exit.
-
-    ``scheduler`` (``tcp://HOST:PORT``) connects to a running Dask scheduler; otherwise
-    ``workers == 1`` runs serially and anything else uses a local process pool (default: all
-    usable cores).
-    """
-    if scheduler is not None:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise ArchquakeError("--scheduler needs Dask: pip install 'archquake[dask]'") from None
-        scheduler = check_scheduler(scheduler)
-        try:
-            client = Client(scheduler, timeout=connect_timeout or CONNECT_TIMEOUT)
-        except Exception as exc:  # noqa: BLE001  (distributed raises OSError, TimeoutError and,
-            # for some unreachable hosts, errors of its own: every one means "not reached")
-            reason = " ".join(str(exc).split())[:120] or type(exc).__name__
-            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} within "
-                                 f"{connect_timeout or CONNECT_TIMEOUT:g} s ({reason}); start "
-                                 "one with 'dask scheduler' or check the address") from None
-        try:
-            n = workers or max(1, sum(client.nthreads().values()))
-            yield client.get_executor(pure=False), n
-        finally:
-            client.close()
-        return
-    n = workers or usable_cores()
-    if n < 1:
-        raise InvalidParameterError(f"workers must be >= 1, got {n}")
-    n = min(n, usable_cores())
-    if n == 1:
-        yield SerialExecutor(), 1
-        return
-    pool = process_pool(n)
-    try:
-        yield pool, n
-    except BaseException:  # interrupted (Ctrl-C, SIGTERM) or failed: end the workers now
-        stop_workers(pool)
-        raise
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
-
-
-def stop_workers(pool: ProcessPoolExecutor) -> None:
-    """Terminate ``pool``'s worker processes at once (SIGTERM), without waiting for the tasks
-    they run: what an interrupted command does before it exits, so that none keeps computing
-    or holds the terminal's pipes."""
-    processes = getattr(pool, "_processes", None) or {}  # the executor's own table of workers
-    for process in list(processes.values()):
-        with contextlib.suppress(Exception):
-            process.terminate()
-
-
 __all__ = [
     "BatchFunction",
     "CaseFunction",
-    "ClusterLostError",
-    "SerialExecutor",
     "SweepReport",
-    "cap_workers",
     "evaluate_batch_chunk",
     "evaluate_chunk",
-    "executor_workers",
-    "open_executor",
-    "process_pool",
     "run_sweep",
-    "threads_per_worker",
-    "usable_cores",
 ]

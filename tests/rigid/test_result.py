@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 from archquake import Arch
-from archquake.compare.migration import RectangularPulse
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem.result import rest_threshold, settled
 from archquake.ground import StepImpulse
-from archquake.mechanism.rigid_chain import simulate_rigid
+from archquake.ground.pulses import RectangularPulse
 from archquake.outcome import Outcome
+from archquake.rigid import simulate_rigid
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 

@@ -1,8 +1,8 @@
-"""Joint forces of the rigid chain (:mod:`archquake.mechanism.rigid_chain`): the line of thrust
+"""Joint forces of the rigid chain (:mod:`archquake.rigid`): the line of thrust
 and the friction demand of the mechanism in use (issue 16, Build 5).
 
 At a recorded sample (q, v) the stepper's next step is repeated (the same contact projection,
-:func:`archquake.mechanism._rigid_kernels.project`, at the mid-step configuration, warm-started
+:func:`archquake.rigid._step_kernels.project`, at the mid-step configuration, warm-started
 from the previous sample's impulses) and each joint's corner impulses over the step, divided by
 the time step h, are its forces: N = (p_0 + p_1) / h (compressive), V = p_T / h. Where the
 resultant crosses the joint line follows from the two corner forces alone (the tangential one
@@ -45,7 +45,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from archquake.mechanism import _rigid_kernels as RK
+import archquake.rigid._step_kernels as RK
+from archquake.rigid.model import (
+    DEFAULT_TIME_STEP,
+    GAP_TOLERANCE,
+    HOLD_TOLERANCE,
+    MAX_SWEEPS,
+    SOLVER_TOLERANCE,
+    RigidModel,
+    mean_acceleration,
+)
 
 #: A sample is impulsive when a block's velocity changes over the step by more than this many
 #: h (g + |x_g''|) (module docstring).
@@ -182,22 +191,13 @@ def _independent(h: np.ndarray) -> bool:
 
 
 def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> JointForceHistory:
-    """The joint forces of ``run`` (a :class:`~archquake.mechanism.rigid_chain.RigidRun`) at its
+    """The joint forces of ``run`` (a :class:`~archquake.rigid.run.RigidRun`) at its
     recorded samples, under the ``motion`` it was run with (module docstring).
 
     Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
     recorded samples. Cost: one contact projection per sample used. A run of the event
     integrator (``solver="events"``, no time step of its own) is probed with the stepper's
     default step."""
-    from archquake.mechanism.rigid_chain import (
-        DEFAULT_TIME_STEP,
-        GAP_TOLERANCE,
-        HOLD_TOLERANCE,
-        MAX_SWEEPS,
-        SOLVER_TOLERANCE,
-        RigidModel,
-        _mean_acceleration,
-    )
 
     res = run.result
     g = res.g if g is None else float(g)
@@ -222,7 +222,7 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     unique = np.zeros(nt, dtype=bool)
     impulsive = np.zeros(nt, dtype=bool)
     times = res.times[picks]
-    acc = np.array([_mean_acceleration(motion, float(t), h, 1)[0] for t in times])
+    acc = np.array([mean_acceleration(motion, float(t), h, 1)[0] for t in times])
     depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
                       for jt in res.assembly.joints])
     p_warm = np.zeros((nj, 3))

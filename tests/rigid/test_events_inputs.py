@@ -18,10 +18,10 @@ from archquake.constants import STANDARD_GRAVITY as G
 from archquake.geometry.shapes import shaped
 from archquake.ground import Record, SinePulse, StepImpulse
 from archquake.limit import limit_analysis
-from archquake.mechanism import _event_kernels as EK
-from archquake.mechanism import _rigid_kernels as RK
-from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
-from archquake.mechanism.rigid_events import EventModel
+from archquake.rigid import RigidModel, simulate_rigid
+from archquake.rigid import _event_kernels as EK
+from archquake.rigid import _step_kernels as RK
+from archquake.rigid.events import EventModel
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 SHAPES = {

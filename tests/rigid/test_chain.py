@@ -19,9 +19,10 @@ from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem.assembly import block_on_base, build_arch_assembly
 from archquake.ground import StepImpulse
 from archquake.ground.records import Record
+from archquake.limit import hinges_of
 from archquake.mechanism.impact_chain import cone_projection, mechanism_field
-from archquake.mechanism.prepared import PreparedMechanism, hinges_of
-from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
+from archquake.mechanism.prepared import PreparedMechanism
+from archquake.rigid import RigidModel, simulate_rigid
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 REST = Record(np.array([0.0, 0.0]), 1.0)
@@ -180,7 +181,7 @@ def test_mirror_symmetry():
     theta -> -theta) through the onset, a five-hinge phase and a migration (0.8 s), to 1e-6 of
     the thickness (the Gauss-Seidel sweep order is not symmetric: its tolerance is the
     limit)."""
-    from archquake.compare.migration import RectangularPulse
+    from archquake.ground.pulses import RectangularPulse
 
     pulse = RectangularPulse(-2.0 * 0.37 * G, 0.283)
     a = simulate_rigid(OPPENHEIM, pulse, duration=0.8, time_step=1e-4)
@@ -197,7 +198,7 @@ def test_a_pivot_in_persistent_contact_does_not_slip():
     (oracle: the model itself, and its event-driven integration, 1.3e-11 m here). Under a strong
     pulse (parabolic arch, 3 lambda, t_p 0.5 s) the pivot of joint 0 rotates fast enough that a
     step's second-order drift (7e-8 m open) passed the contact tolerance and the stepper slid
-    33 mm by 0.29 s; with the position-level correction and its hold (``_rigid_kernels.run``)
+    33 mm by 0.29 s; with the position-level correction and its hold (``_step_kernels.run``)
     the largest offset before 0.29 s is 2.3e-9 m (bound 1e-6 m, the size of one re-entry's
     slip before)."""
     from archquake.geometry.shapes import shaped
@@ -218,7 +219,7 @@ def test_direct_solve_is_the_converged_gauss_seidel():
     same projection) through the onset, a five-hinge phase and a migration (0.8 s): positions
     equal to 1e-10 of the thickness (measured 9e-13; Gauss-Seidel at the default tolerance
     differs from both by 2.3e-7)."""
-    from archquake.compare.migration import RectangularPulse
+    from archquake.ground.pulses import RectangularPulse
 
     pulse = RectangularPulse(-2.0 * 0.37 * G, 0.283)
     a = simulate_rigid(OPPENHEIM, pulse, duration=0.8, time_step=1e-4, solver="direct")
@@ -246,7 +247,7 @@ def test_dynamic_similarity():
     motion at twice the times (rotation measure to 1e-7 rad, energy fractions to 1e-7; the
     gap and solver tolerances are relative to the reference length, so the scheme itself is
     similar)."""
-    from archquake.compare.migration import RectangularPulse
+    from archquake.ground.pulses import RectangularPulse
 
     a = -2.0 * 0.37 * G
     small = simulate_rigid(OPPENHEIM, RectangularPulse(a, 0.283), duration=0.9, time_step=1e-4,
@@ -278,7 +279,7 @@ def test_coulomb_block_slides_as_a_particle(a_g, slides):
     ground acceleration a for 0.5 s: below mu g it sticks (slip < 1e-9 m); above, it slides with
     the relative acceleration (a - mu g) of a particle on a rough plane, displacement
     (a - mu g) T^2 / 2 to 1e-3."""
-    from archquake.compare.migration import RectangularPulse
+    from archquake.ground.pulses import RectangularPulse
 
     mu, t_end = 0.3, 0.5
     run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(a_g * G, t_end),

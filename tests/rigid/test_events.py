@@ -16,9 +16,9 @@ from archquake import Arch
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.ground import StepImpulse
 from archquake.limit import limit_analysis
-from archquake.mechanism import _event_kernels as EK
-from archquake.mechanism.rigid_chain import RigidModel, simulate_rigid
-from archquake.mechanism.rigid_events import FALLBACK_WINDOW, EventModel, run_events
+from archquake.rigid import RigidModel, simulate_rigid
+from archquake.rigid import _event_kernels as EK
+from archquake.rigid.events import FALLBACK_WINDOW, EventModel, run_events
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 

@@ -26,8 +26,9 @@ from archquake.dem.assembly import block_on_base, build_arch_assembly
 from archquake.dem.result import collapse_time, crossings, joint_kinematics, mirror_link
 from archquake.dem.settings import DemSettings
 from archquake.ground import StepImpulse
-from archquake.mechanism import rigid_chain as RC
 from archquake.outcome import Outcome
+from archquake.rigid import run as RC
+from archquake.rigid import steps as RS
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
@@ -171,7 +172,7 @@ def test_rest_check_on_chunks_is_the_per_sample_check():
             chunks_t = [t[:1]] + [t[a:b] for a, b in zip(edges[:-1], edges[1:])]
             chunks_v = [v[:1]] + [v[a:b] for a, b in zip(edges[:-1], edges[1:])]
             want = REF.at_rest(model, g, list(t[:end]), list(v[:end]), motion)
-            assert RC._at_rest(model, g, chunks_t, chunks_v, motion) == want
+            assert RS._at_rest(model, g, chunks_t, chunks_v, motion) == want
             answers.add(want)
     assert answers == {True, False}
 
@@ -183,7 +184,7 @@ def test_production_code_does_not_import_the_plain_reference():
         "import sys, math\n"
         "from archquake import Arch\n"
         "from archquake.ground import StepImpulse\n"
-        "from archquake.mechanism.rigid_chain import simulate_rigid\n"
+        "from archquake.rigid import simulate_rigid\n"
         "run = simulate_rigid(Arch(10.0, 1.5, math.radians(157.5), 7), StepImpulse.from_g(1.0, 0.2),"
         " duration=0.3)\n"
         "run.to_dict(joint_forces=False)\n"

@@ -1,6 +1,6 @@
 """Compiled event-driven integrator of the rigid-block chain (issue 16; numba).
 
-The same model as :mod:`archquake.mechanism._rigid_kernels` (rigid voussoirs, unilateral
+The same model as :mod:`archquake.rigid._step_kernels` (rigid voussoirs, unilateral
 plastic corner contacts, no sliding), integrated between contact changes as an ODE in the
 joints' relative rotations instead of by Moreau-Jean steps.
 
@@ -33,7 +33,7 @@ ends on them:
 
 * *closure*: a hinge's opening angle phi = +-beta returns to zero: a plastic impact, solved in
   full coordinates as the time stepper solves it, the kinetic-metric projection of the
-  velocities onto the cone of the contacts touching (:func:`_rigid_kernels.project_direct`);
+  velocities onto the cone of the contacts touching (:func:`_step_kernels.project_direct`);
   the joints whose relative rotation rate after it is nonzero are the new hinges;
 * *opening*: the normal force of a corner of a locked joint (from the joint's force and moment,
   by statics of the links right of it and the springing's wrench) reaches zero: the joint
@@ -59,10 +59,10 @@ import math
 import numba as nb
 import numpy as np
 
+import archquake._dopri as DP  # the Dormand-Prince 5(4) tableau
+import archquake.rigid._step_kernels as RK
 from archquake.dem._kernels import collapsed
 from archquake.ground._kernel import ground_in_piece, next_breakpoint
-from archquake.mechanism import _kernels as DP  # the Dormand-Prince 5(4) tableau
-from archquake.mechanism import _rigid_kernels as RK
 
 #: Most hinges a mode may have.
 MAX_HINGES = 24

@@ -1,12 +1,12 @@
 """The rigid-block chain integrated from event to event (issue 16): ``simulate_rigid(...,
 solver="events")``.
 
-The model is :mod:`archquake.mechanism.rigid_chain`'s (rigid voussoirs, plastic no-slip corner
+The model is :mod:`archquake.rigid`'s (rigid voussoirs, plastic no-slip corner
 contacts, any number of hinges); only the integration differs. Between contact changes the arch
 moves with K - 3 degrees of freedom (K hinges), an ODE in the hinges' relative rotations
 integrated to a tolerance; closures (plastic impacts, the same cone projection as the time
 stepper's), openings (a corner force of a locked joint reaching zero) and the onset are located
-as events (:mod:`archquake.mechanism._event_kernels`). Energy between events is conserved to
+as events (:mod:`archquake.rigid._event_kernels`). Energy between events is conserved to
 the integrator's tolerance, instead of the stepper's O(h) loss in persistent contact.
 
 What the event integrator does not model (a hinge in tension, a joint separating, chattering
@@ -20,17 +20,21 @@ import math
 import time as _time
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+import archquake.rigid._event_kernels as EK
+import archquake.rigid._step_kernels as RK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.mechanism import _event_kernels as EK
-from archquake.mechanism import _rigid_kernels as RK
-
-if TYPE_CHECKING:
-    from archquake.mechanism.rigid_chain import RigidModel
+from archquake.rigid.model import (
+    DEFAULT_TIME_STEP,
+    GAP_TOLERANCE,
+    MAX_SWEEPS,
+    SOLVER_TOLERANCE,
+    RigidModel,
+    mean_acceleration,
+)
 
 #: Relative and absolute (rad, rad/s) tolerances of the Dormand-Prince steps. With these and
 #: ``MAX_STEP`` the energy between closures of free rocking is constant to 5e-9 of itself
@@ -59,7 +63,7 @@ _MODELS: dict[int, EventModel] = {}
 
 @dataclass(frozen=True)
 class EventModel:
-    """A :class:`~archquake.mechanism.rigid_chain.RigidModel` laid out for the event integrator:
+    """A :class:`~archquake.rigid.model.RigidModel` laid out for the event integrator:
     blocks in chain order (joint j between blocks j - 1 and j, the springings -1; a chain whose
     last block is free, such as a block on its base, has no joint n), prefix sums
     of the blocks' mass properties, the joints' undisplaced corners ``p0`` (nj, 2, 2), normals,
@@ -184,18 +188,11 @@ def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
 def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, dt_out: float,
                     out_q, out_v, out_e, written: int, diag, g: float, state_all, free, cpar,
                     stop_at_collapse: bool) -> tuple[int, float, bool]:
-    """Run the time stepper (:func:`archquake.mechanism._rigid_kernels.run`, direct solve, its
+    """Run the time stepper (:func:`archquake.rigid._step_kernels.run`, direct solve, its
     default step) from (q, v) at t0 to the first output time at least ``window`` s later,
     writing the samples it passes; (q, v) become its end state. Returns (samples written, end
     time, collapsed)."""
-    from archquake.dem import _kernels as DK
-    from archquake.mechanism.rigid_chain import (
-        DEFAULT_TIME_STEP,
-        GAP_TOLERANCE,
-        MAX_SWEEPS,
-        SOLVER_TOLERANCE,
-        _mean_acceleration,
-    )
+    import archquake.dem._kernels as DK
 
     r = model.rigid
     lref = model.lref
@@ -215,7 +212,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
         ov = np.zeros_like(oq)
         od = np.zeros((1, RK.N_DIAG))
         if h > 0.0:
-            acc = _mean_acceleration(motion, t, h, ns)
+            acc = mean_acceleration(motion, t, h, ns)
             RK.run(q, v, p_warm, r.mass, r.inertia, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0,
                    acc, h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0, ns, oq, ov, od, dg,
                    RK.METHOD_DIRECT, False)
@@ -257,7 +254,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
         ``counters`` and ``log`` (``_event_kernels.run``); ``max_drift_m``; ``state``: the final
         (st, y) of the kernel; ``wall_s``.
     """
-    from archquake.dem import _kernels as DK
+    import archquake.dem._kernels as DK
     from archquake.dem.result import (
         collapse_parameters,
         crown_height,
@@ -351,7 +348,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             "wall_s": wall}
 
 
-#: The event log's kinds (:func:`archquake.mechanism._event_kernels.run`).
+#: The event log's kinds (:func:`archquake.rigid._event_kernels.run`).
 EVENT_KINDS = {1: "closure", 2: "opening", 3: "relock", 4: "onset", 5: "rest", 6: "resume"}
 
 

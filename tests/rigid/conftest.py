@@ -9,7 +9,7 @@ import pytest
 
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem.assembly import block_on_base
-from archquake.mechanism.rigid_chain import RigidModel
+from archquake.rigid import RigidModel
 from archquake.validation import housner
 
 

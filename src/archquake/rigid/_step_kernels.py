@@ -1,4 +1,4 @@
-"""Compiled Moreau-Jean stepper of :mod:`archquake.mechanism.rigid_chain` (numba).
+"""Compiled Moreau-Jean stepper of :mod:`archquake.rigid` (numba).
 
 One step, h, from (q_k, v_k) (per free body: x, y, theta and their rates, relative to the
 ground; base bodies fixed in the ground's frame):

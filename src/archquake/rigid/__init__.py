@@ -1,0 +1,14 @@
+"""The rigid-block chain: rigid voussoirs with unilateral, plastic, no-slip (or Coulomb) joint
+contacts and any number of open hinges, the rigid limit of the distinct-element model.
+
+:mod:`~archquake.rigid.model` packs an arch (or any block assembly, :mod:`archquake.dem`'s
+description) and holds the tolerances every integrator reads; two integrators read it: the
+Moreau-Jean time stepper (:mod:`~archquake.rigid.steps`) and the event integrator
+(:mod:`~archquake.rigid.events`); :mod:`~archquake.rigid.forces` recovers the joint forces of a
+run; :func:`simulate_rigid` (:mod:`~archquake.rigid.run`) drives either to a verdict.
+"""
+
+from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel, absolute_states
+from archquake.rigid.run import RigidRun, simulate_rigid
+
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "absolute_states", "simulate_rigid"]

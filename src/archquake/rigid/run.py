@@ -1,0 +1,286 @@
+"""Running the rigid-block chain (:mod:`archquake.rigid.model`) to a verdict: ``simulate_rigid``
+and its result, :class:`RigidRun`.
+
+The stepper (:mod:`archquake.rigid.steps`) and the event integrator
+(:mod:`archquake.rigid.events`) hand back their samples; here they become a
+:class:`archquake.dem.DemResult` by the DEM's own post-processing
+(:meth:`DemResult.from_samples`, through :func:`_samples_to_result`), so impacts, hinges,
+collapse criteria and the rotation measure are read exactly as in the DEM. In it, ``strain`` is
+zero and the ``damping`` column holds the energy removed by the contact projections (the
+plastic impacts, the scheme's O(h) loss in persistent contacts, and the position correction's
+work, ``RigidRun.correction_work``), not Rayleigh damping.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+import archquake.rigid._step_kernels as RK
+from archquake._validate import require_gravity, require_positive, require_range
+from archquake.constants import STANDARD_GRAVITY
+from archquake.dem.assembly import Assembly
+from archquake.dem.result import DemResult, excitation_end
+from archquake.dem.settings import MAX_DURATION, DemSettings
+from archquake.errors import InvalidParameterError
+from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import check_motion
+from archquake.rigid.events import EventModel, events_summary, ground_kinematics, run_events
+from archquake.rigid.forces import joint_forces as _joint_forces
+from archquake.rigid.model import (
+    DEFAULT_TIME_STEP,
+    FORCE_SAMPLES,
+    SOLVER_TOLERANCE,
+    RigidModel,
+    absolute_states,
+)
+from archquake.rigid.steps import METHODS, run_steps
+
+
+@dataclass(frozen=True)
+class RigidRun:
+    """A rigid-chain history.
+
+    ``result``: the samples as a :class:`DemResult` (module docstring); ``time_step`` s;
+    ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
+    ``correction_work``: J, the part of the ``damping`` column (the kinetic energy the contact
+    projections removed) that is the work of the position-level correction
+    (``_step_kernels.D_CORRECTION``; 0 for the event integrator, whose own time steps leave it
+    out);
+    ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
+    ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
+    correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
+    ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
+    motion it was run with; ``events``: with ``solver="events"``, the event integrator's
+    record (:func:`archquake.rigid.events.run_events`: counters, the event log, the
+    times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
+    adaptive).
+    """
+
+    result: DemResult
+    time_step: float
+    max_penetration_m: float
+    friction_demand: np.ndarray
+    max_sweeps: int
+    residual: float
+    wall_s: float
+    friction: float | None = None
+    motion: object = field(default=None, repr=False, compare=False)
+    correction_work: float = 0.0
+    events: dict | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def max_friction_demand(self) -> float:
+        return float(self.friction_demand.max(initial=0.0))
+
+    @cached_property
+    def joint_forces(self):
+        """The joint forces, line of thrust and friction demand at the recorded samples (at most
+        ``FORCE_SAMPLES`` of them, evenly strided):
+        :func:`archquake.rigid.forces.joint_forces`, with its reporting rule."""
+        if self.motion is None:
+            raise InvalidParameterError("this run does not know its ground motion")
+        every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
+        return _joint_forces(self, self.motion, every=every)
+
+    @property
+    def outcome(self):
+        """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
+        return self.result.outcome
+
+    def to_dict(self, *, joint_forces: bool = True) -> dict:
+        """Summary for JSON: ``DemResult.to_dict()`` (the keys of
+        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid_chain"``, then the
+        stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
+        forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
+        out = self.result.to_dict()
+        out["model"] = "rigid_chain"
+        out["hinges_model"] = "moving"
+        out["friction_coefficient"] = self.friction
+        if joint_forces and self.motion is not None:
+            out["joint_forces"] = self.joint_forces.summary()
+        out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
+                        "time_step_s": (None if self.events is not None else self.time_step),
+                        "max_penetration_m": self.max_penetration_m,
+                        "correction_work_j": self.correction_work,
+                        "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
+                        "wall_s": self.wall_s}
+        if self.events is not None:
+            out["rigid"]["events"] = events_summary(self.events)
+        return out
+
+
+def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, motion, *,
+                   duration: float = 3.0, time_step: float = DEFAULT_TIME_STEP,
+                   output_interval: float = 5e-4, settings: DemSettings | None = None,
+                   initial: tuple[np.ndarray, np.ndarray] | None = None,
+                   g: float = STANDARD_GRAVITY, chunk: float = 0.05,
+                   solver_tolerance: float = SOLVER_TOLERANCE,
+                   friction: float | None = None, solver: str = "direct",
+                   until_rest: float | None = None) -> RigidRun:
+    """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
+
+    Parameters
+    ----------
+    arch_or_assembly : VoussoirChain, Assembly or RigidModel
+        An arch is built with :func:`archquake.dem.assembly.build_arch_assembly` (every
+        voussoir a block), as the DEM does.
+    motion : GroundMotion
+    duration, time_step, output_interval : float
+        s. The output interval is rounded to a whole number of steps.
+    settings : DemSettings, optional
+        Only its thresholds are read (``hinge_opening``, the collapse criteria,
+        ``stop_at_collapse``), so that the results are classified as the DEM's are.
+    initial : (q, v), optional
+        Initial configuration and velocity, (nb, 3) each (default: rest, undisplaced).
+    g : float
+        Gravity, m/s^2.
+    chunk : float
+        The run is checked for collapse every ``chunk`` s.
+    solver_tolerance : float
+        Gauss-Seidel tolerance, a fraction of sqrt(g L) (:data:`SOLVER_TOLERANCE`).
+    friction : float, optional
+        Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
+        assumption. With mu the step is no longer a projection (``_step_kernels`` docstring).
+    solver : {"direct", "pgs", "events"}
+        The contact step's solver: "direct" (default) solves the guessed active set exactly and
+        falls back to Gauss-Seidel when the guess fails (``_step_kernels.project_direct``);
+        "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction`` the step
+        is always Gauss-Seidel. "events": the same model integrated from contact event to
+        contact event (:mod:`archquake.rigid.events`; no friction, from rest;
+        ``time_step`` and ``chunk`` are not used).
+    until_rest : float, optional
+        s: if the arch has neither collapsed nor come to rest (:func:`archquake.dem.result.settled`)
+        by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
+        reached. Without it (default) the run ends at ``duration``; the verdict is
+        ``indeterminate`` if the arch is still moving then.
+    """
+    g = require_gravity(g)
+    check_motion(motion)
+    duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
+    output_interval = require_range("output_interval", output_interval, 0.0, MAX_DURATION, "s",
+                                    high_open=False)
+    chunk = require_range("chunk", chunk, 0.0, MAX_DURATION, "s", high_open=False)
+    solver_tolerance = require_positive("solver_tolerance", solver_tolerance)
+    if until_rest is not None:
+        until_rest = require_range("until_rest", until_rest, 0.0, MAX_DURATION, "s",
+                                   high_open=False)
+    model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
+        arch_or_assembly)
+    settings = DemSettings() if settings is None else settings
+    mu = 0.0 if friction is None else float(friction)
+    if friction is not None and not (mu > 0 and math.isfinite(mu)):
+        raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
+    if solver == "events":
+        if friction is not None or initial is not None:
+            raise InvalidParameterError(
+                "solver='events' runs the no-slip chain from rest: leave friction and initial "
+                "unset, or use solver='direct'")
+        return _simulate_events(model, motion, settings, duration=duration,
+                                output_interval=output_interval, g=g, until_rest=until_rest)
+    if solver not in METHODS:
+        raise InvalidParameterError(
+            f"solver must be 'direct', 'pgs' or 'events', got {solver!r}")
+    h = float(time_step)
+    if not (h > 0 and math.isfinite(h)):
+        raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    s = run_steps(model, motion, settings, duration=duration, time_step=h,
+                  output_interval=output_interval, initial=initial, g=g, chunk=chunk,
+                  solver_tolerance=solver_tolerance, friction=mu, solver=solver,
+                  until_rest=until_rest)
+    da = s.diag
+    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
+                             output_interval=s.output_interval, n_steps=s.n_steps,
+                             times=s.times, q=s.q, v=s.v, dissipated=da[:, RK.D_DISSIPATED],
+                             input_work=da[:, RK.D_INPUT],
+                             ground_displacement=s.ground_displacement,
+                             ground_velocity=s.ground_velocity)
+    return RigidRun(result=res, time_step=h,
+                    max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
+                    friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=s.max_sweeps,
+                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=s.wall_s,
+                    friction=friction, motion=motion,
+                    correction_work=float(da[-1, RK.D_CORRECTION]))
+
+
+def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
+                     output_interval: float, g: float, until_rest: float | None) -> RigidRun:
+    """``simulate_rigid(..., solver="events")``: :func:`~archquake.rigid.events.
+    run_events` and the same post-processing as the time stepper's."""
+    em = EventModel.of(model)
+    raw = run_events(em, motion, duration=duration, output_interval=output_interval, g=g,
+                     settings=settings, until_rest=until_rest)
+    q0, v0 = model.rest()
+    times = np.r_[0.0, raw["times"]]
+    q = np.concatenate([q0[None], raw["q"]])
+    v = np.concatenate([v0[None], raw["v"]])
+    e = np.vstack([np.zeros((1, raw["e"].shape[1])), raw["e"]])
+    ug, vg = ground_kinematics(motion, times)
+    # the settings record a finite step: the output interval (the integrator's own is adaptive)
+    res = _samples_to_result(model, motion, settings, g=g, time_step=output_interval,
+                             duration=duration, output_interval=output_interval,
+                             n_steps=int(raw["counters"][0]), times=times, q=q, v=v,
+                             dissipated=e[:, 2], input_work=e[:, 3], ground_displacement=ug,
+                             ground_velocity=vg)
+    return RigidRun(result=res, time_step=math.nan, max_penetration_m=raw["max_drift_m"],
+                    friction_demand=e[:, 4].copy(), max_sweeps=int(raw["counters"][9]),
+                    residual=0.0, wall_s=raw["wall_s"], friction=None, motion=motion,
+                    events=raw)
+
+
+def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: float,
+                       time_step: float, duration: float, output_interval: float, n_steps: int,
+                       times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
+                       input_work: np.ndarray, ground_displacement: np.ndarray,
+                       ground_velocity: np.ndarray) -> DemResult:
+    """The recorded samples of a rigid-chain run as a :class:`DemResult` (the DEM's
+    post-processing, :meth:`DemResult.from_samples`; module docstring): what any stepper of
+    this model hands back.
+
+    Parameters
+    ----------
+    model : RigidModel
+    motion : GroundMotion
+        Recorded by its ``to_dict()``; its ``duration`` is the end of the excitation.
+    settings : DemSettings
+        The thresholds of the verdict; recorded with ``duration``, ``time_step`` and
+        ``output_interval`` (s) replaced.
+    g : float
+        m/s^2.
+    n_steps : int
+        Steps taken.
+    times : ndarray (nt,)
+        s, from the start of the ground motion.
+    q, v : ndarray (nt, nb, 3)
+        Configurations and velocities of the free bodies relative to the ground
+        (:func:`absolute_states`).
+    dissipated, input_work : ndarray (nt,)
+        J: energy removed by the contact step (the ``damping`` column) and work of the
+        inertial load, since t = 0.
+    ground_displacement, ground_velocity : ndarray (nt,)
+        The ground's x_g (m) and x_g' (m/s).
+    """
+    states = absolute_states(model, q, v, ground_displacement, ground_velocity)
+    kin = 0.5 * ((v[:, :, 0] ** 2 + v[:, :, 1] ** 2) @ model.mass + v[:, :, 2] ** 2 @ model.inertia)
+    pot = g * (q[:, :, 1] - model.centroids[None, :, 1]) @ model.mass
+    energies = np.zeros((len(times), 8))
+    energies[:, 0] = kin
+    energies[:, 1] = pot
+    energies[:, 3] = dissipated
+    energies[:, 5] = input_work
+    energies[:, 6] = ground_displacement
+    energies[:, 7] = ground_velocity
+    motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
+        motion, "name", motion))}
+    return DemResult.from_samples(model.assembly,
+                                  settings.with_(duration=duration, time_step=time_step,
+                                                 output_interval=output_interval),
+                                  motion_d, g, time_step, math.nan, n_steps, 0, times, states,
+                                  energies, excitation_end=excitation_end(motion))
+
+
+
+__all__ = ["RigidRun", "simulate_rigid"]

@@ -1,0 +1,244 @@
+"""The package's imports point one way: down the layers, with no cycle.
+
+Oracle: the source itself, parsed with ``ast`` (every ``import`` statement of every module,
+those inside functions and under ``if TYPE_CHECKING`` included), against the layer order
+written below. Three checks, each exact (a count that must be zero):
+
+* no cycle between subpackages (``archquake.X``, a package or a top-level module);
+* no cycle between modules;
+* no import up the layers.
+
+How an import is read. ``import a.b.c`` and ``from a.b import c`` where ``a.b.c`` is a module
+are edges to the module ``a.b.c``; ``from a.b import name`` (a function, a class) is an edge to
+``a.b`` (its module, or its package's ``__init__``). The parent packages that Python runs on
+the way (``a/__init__``) are not counted as imported: a package's ``__init__`` re-exports its
+modules, and counting it would make every module that imports a sibling part of a cycle.
+``from archquake import name`` resolves the root package's lazy public names (its ``_LAZY``
+table) to the modules that define them; its other names (``__version__``, ``errors``) need
+only the root's own top (errors, constants, the kernel cache). The root ``__init__`` itself,
+the public facade over everything, is not checked.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import archquake
+
+ROOT = Path(archquake.__file__).parent
+
+#: The layers, bottom first. A unit may import units of its own layer or below, never above.
+#: Why this order:
+#: - foundation: constants, errors and the helpers every layer uses (units, ranges, argument
+#:   validation, JSON, the kernel cache, the outcome vocabulary, the Dormand-Prince tableau,
+#:   process pools); they import nothing above them;
+#: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
+#:   only) -> limit (statics of the arch) -> validation (closed
+#:   forms and the paper's numbers, read by the DEM's post-processing);
+#: - the three models, each on what is below: mechanism (the paper's four-link model), dem, and
+#:   rigid (built on the DEM's blocks and post-processing);
+#: - thrust (the line of thrust in motion, from the four-link model), domains (failure domains
+#:   of the four-link model);
+#: - compare (the models against each other) -> sweeps (grids of cases of any model; its case
+#:   table reads compare's run-to-verdict policies) -> ida (incremental dynamic analysis through
+#:   sweeps);
+#: - plotting (figures of results) -> reproduce (the paper's studies, which draw figures) ->
+#:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("constants", "errors", "units", "ranges", "_validate", "_json", "_kernel_cache", "outcome",
+     "_dopri", "parallel"),
+    ("geometry",),
+    ("ground",),
+    ("codes",),
+    ("limit",),
+    ("validation",),
+    ("mechanism",),
+    ("dem",),
+    ("rigid",),
+    ("thrust",),
+    ("domains",),
+    ("compare",),
+    ("sweeps",),
+    ("ida",),
+    ("plotting",),
+    ("reproduce",),
+    ("assess",),
+    ("cli",),
+)
+#: Units of the root package's own top-level code (what ``from archquake import __version__``
+#: runs): they sit in the foundation.
+ROOT_TOP = "errors"
+
+
+def _module_name(path: Path, root: Path) -> str:
+    parts = list(path.relative_to(root.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def _modules(root: Path) -> dict[str, Path]:
+    return {_module_name(p, root): p for p in sorted(root.rglob("*.py"))}
+
+
+def _lazy_names(root: Path) -> dict[str, str]:
+    """The root package's ``_LAZY`` table: public name -> defining module."""
+    tree = ast.parse((root / "__init__.py").read_text(encoding="utf-8"))
+    for node in tree.body:
+        target = getattr(node, "target", None) or (node.targets[0] if isinstance(node, ast.Assign)
+                                                   else None)
+        if isinstance(target, ast.Name) and target.id == "_LAZY":
+            value = ast.literal_eval(node.value)
+            assert isinstance(value, dict)
+            return value
+    return {}
+
+
+def module_edges(root: Path = ROOT) -> set[tuple[str, str]]:
+    """(importer, imported) between the package's modules, as the module docstring reads them."""
+    modules = _modules(root)
+    pkg = root.name
+    lazy = _lazy_names(root)
+    edges: set[tuple[str, str]] = set()
+    for name, path in modules.items():
+        if name == pkg:
+            continue  # the facade
+        is_pkg = path.name == "__init__.py"
+        here = name.split(".") if is_pkg else name.split(".")[:-1]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            targets: list[str] = []
+            if isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    base = ".".join(here[: len(here) - node.level + 1] + ([base] if base else []))
+                for alias in node.names:
+                    sub = f"{base}.{alias.name}"
+                    if sub in modules:
+                        targets.append(sub)
+                    elif base == pkg:
+                        targets.append(lazy.get(alias.name, f"{pkg}.{ROOT_TOP}"))
+                    else:
+                        targets.append(base)
+            for t in targets:
+                while t and t not in modules:  # a name inside a module: the module
+                    t = t.rpartition(".")[0]
+                if t and t != name and t != pkg and t.split(".")[0] == pkg:
+                    edges.add((name, t))
+    return edges
+
+
+def unit_of(module: str) -> str:
+    """``archquake.X...`` -> ``X``."""
+    return module.split(".")[1]
+
+
+def unit_edges(root: Path = ROOT) -> set[tuple[str, str]]:
+    return {(unit_of(a), unit_of(b)) for a, b in module_edges(root) if unit_of(a) != unit_of(b)}
+
+
+def cycles(edges: set[tuple[str, str]]) -> list[list[str]]:
+    """The strongly connected components of more than one node (Tarjan, iterative)."""
+    adj: dict[str, list[str]] = {}
+    for a, b in sorted(edges):
+        adj.setdefault(a, []).append(b)
+        adj.setdefault(b, [])
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    out: list[list[str]] = []
+    counter = 0
+    for start in adj:
+        if start in index:
+            continue
+        work = [(start, 0)]
+        while work:
+            v, i = work.pop()
+            if i == 0:
+                index[v] = low[v] = counter
+                counter += 1
+                stack.append(v)
+                on.add(v)
+            if i < len(adj[v]):
+                work.append((v, i + 1))
+                w = adj[v][i]
+                if w not in index:
+                    work.append((w, 0))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            for w in adj[v]:
+                if w in on:
+                    low[v] = min(low[v], low[w])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(comp))
+    return out
+
+
+def layer_of() -> dict[str, int]:
+    return {unit: k for k, layer in enumerate(LAYERS) for unit in layer}
+
+
+def imports_up(root: Path = ROOT) -> list[str]:
+    """Module imports whose target's unit sits on a higher layer than the importer's."""
+    layer = layer_of()
+    return sorted(f"{a} -> {b}" for a, b in module_edges(root)
+                  if layer[unit_of(a)] < layer[unit_of(b)])
+
+
+def test_every_unit_has_a_layer():
+    units = {unit_of(m) for m in _modules(ROOT) if m != ROOT.name}
+    assert units - set(layer_of()) == set()
+    assert set(layer_of()) - units == set()
+
+
+def test_no_cycle_between_subpackages():
+    assert cycles(unit_edges()) == []
+
+
+def test_no_cycle_between_modules():
+    assert cycles(module_edges()) == []
+
+
+def test_no_import_up_the_layers():
+    assert imports_up() == []
+
+
+@pytest.mark.parametrize("edges, want", [
+    ({("a", "b"), ("b", "c")}, []),
+    ({("a", "b"), ("b", "c"), ("c", "a"), ("c", "d")}, [["a", "b", "c"]]),
+    ({("a", "b"), ("b", "a"), ("c", "d"), ("d", "c")}, [["a", "b"], ["c", "d"]]),
+])
+def test_cycles_finds_them(edges, want):
+    """The checker can fail: hand-made graphs with and without cycles."""
+    assert sorted(cycles(edges)) == want
+
+
+def test_the_reader_sees_function_level_imports(tmp_path):
+    """An import inside a function, and one up the layers, are seen (a package written here)."""
+    pkg = tmp_path / "archquake"
+    (pkg / "geometry").mkdir(parents=True)
+    (pkg / "cli").mkdir()
+    (pkg / "__init__.py").write_text("_LAZY = {}\n")
+    (pkg / "errors.py").write_text("")
+    (pkg / "geometry" / "__init__.py").write_text("")
+    (pkg / "geometry" / "arch.py").write_text("def f():\n    from archquake.cli import main\n")
+    (pkg / "cli" / "__init__.py").write_text("")
+    (pkg / "cli" / "main.py").write_text("from archquake.geometry.arch import f\n")
+    edges = module_edges(pkg)
+    assert ("archquake.geometry.arch", "archquake.cli.main") in edges
+    assert cycles(edges) == [["archquake.cli.main", "archquake.geometry.arch"]]
+    assert imports_up(pkg) == ["archquake.geometry.arch -> archquake.cli.main"]
