@@ -123,8 +123,10 @@ class Record:
             )
         acc.setflags(write=False)
         object.__setattr__(self, "accelerations", acc)
-        object.__setattr__(self, "dt", require_range("record time step dt", self.dt,
-                                                     *RECORD_DT_RANGE_S, "s", low_open=False,
+        # at most a file's largest time step; the least one a run can resolve depends on the
+        # arch (simulate's check_time_resolution), finer sampled pulses are built internally
+        object.__setattr__(self, "dt", require_range("record time step dt", self.dt, 0.0,
+                                                     RECORD_DT_RANGE_S[1], "s",
                                                      high_open=False))
         if self.duration > RECORD_DURATION_MAX_S:
             raise InvalidParameterError(
