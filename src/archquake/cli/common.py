@@ -460,7 +460,7 @@ MODEL_HELP = ("'rigid' (default), the chain of rigid voussoirs: hinges open, mig
               "anywhere, impacts follow from plastic contacts, no coefficient of restitution; "
               "'fourlink', the paper's four-link mechanism, hinges fixed between impacts, "
               "restitution from Eq. 4 or --restitution (fast); 'dem', the distinct-element "
-              "model (see docs/mechanism.md)")
+              "model (see docs/models/choosing.md)")
 
 
 def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] = (),
@@ -513,7 +513,7 @@ def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--impact", choices=IMPACT_LAWS, default=None,
                    help="impact law: 'paper' (the paper's Eq. 4, default), 'chain' (chain of "
                         "rigid voussoirs: maximum restitution, never creates energy) or 'mirror' "
-                        "(chain law, mirror mechanism forced); see docs/mechanism.md")
+                        "(chain law, mirror mechanism forced); see docs/models/fourlink.md")
 
 
 def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:

@@ -504,7 +504,7 @@ class DemResult:
                      excitation_end: float | None = None) -> DemResult:
         """Post-process the recorded samples of a run.
 
-        The verdict (docs/mechanism.md, "An honest verdict for the block models"):
+        The verdict (docs/notes/mechanism.md, "An honest verdict for the block models"):
         ``collapse`` at the first sample meeting a collapse criterion; ``no_hinging`` if no
         joint opened; ``survives`` only if the run ends at rest (:func:`settled`: kinetic
         energy below ``REST_KINETIC`` W L for ``REST_WINDOW`` sqrt(L/g) after the end of the

@@ -592,7 +592,7 @@ def simulate(
     require_positive("t_end", t_end, "s")
     dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
     n_imp_cap = int(options.max_impacts)
-    # history: sized by what happens, not by t_end (issue 15). While locked during the
+    # history: sized by what happens, not by t_end. While locked during the
     # excitation at most LOCKED_SAMPLES samples (then each stretch's end), none after it; while
     # moving one per dt_out. The buffer starts small; a run that wants more samples is rerun
     # with the exact size (deterministic: the same steps), up to MAX_HISTORY_SAMPLES.
