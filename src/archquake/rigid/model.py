@@ -44,6 +44,7 @@ position correction's work, ``RigidRun.correction_work``), not Rayleigh damping.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,6 +54,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
 
 #: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
 #: over Oppenheim's first half cycle by < 0.01).
@@ -212,3 +214,35 @@ def absolute_states(model: RigidModel, q: np.ndarray, v: np.ndarray,
 
 __all__ = ["ACC_SAMPLES", "DEFAULT_TIME_STEP", "FORCE_SAMPLES", "GAP_TOLERANCE", "HOLD_TOLERANCE",
            "MAX_SWEEPS", "SOLVER_TOLERANCE", "RigidModel", "absolute_states", "mean_acceleration"]
+
+
+def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 1) -> None:
+    """Refuse a run of the chain whose work exceeds :data:`archquake.ranges.RIGID_MAX_WORK`.
+
+    Parameters
+    ----------
+    n_bodies : int
+        Blocks of the chain (voussoirs, and piers where there are any).
+    duration : float
+        Simulated time of the run, s.
+    time_step : float
+        Its time step, s.
+    runs : int
+        Histories of this size in the call (a batch of verdicts counts each one).
+
+    Raises
+    ------
+    InvalidParameterError
+        With the estimate and what to change, before any step is taken.
+    """
+    steps = math.ceil(duration / time_step)
+    work = float(steps) * (n_bodies + 1) ** 3
+    if work > RIGID_MAX_WORK:
+        raise InvalidParameterError(
+            f"{n_bodies} blocks over {steps:,} time steps of {time_step:.3g} s are {work:.3g} "
+            f"units of work (steps x (blocks + 1)^3), more than {RIGID_MAX_WORK:.0e}: about "
+            f"{work * RIGID_SECONDS_PER_WORK / 60:.3g} min"
+            + (f" for each of {runs} histories" if runs > 1 else "")
+            + " (each step solves every joint's contacts together, so the cost grows as the "
+            "cube of the blocks): use fewer voussoirs or a shorter duration "
+            f"(now {duration:g} s)")

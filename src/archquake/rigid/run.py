@@ -36,6 +36,7 @@ from archquake.rigid.model import (
     SOLVER_TOLERANCE,
     RigidModel,
     absolute_states,
+    check_work,
 )
 from archquake.rigid.steps import METHODS, run_steps
 
@@ -187,6 +188,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest), h)
     s = run_steps(model, motion, settings, duration=duration, time_step=h,
                   output_interval=output_interval, initial=initial, g=g, chunk=chunk,
                   solver_tolerance=solver_tolerance, friction=mu, solver=solver,

@@ -53,6 +53,7 @@ from archquake.rigid.model import (
     MAX_SWEEPS,
     SOLVER_TOLERANCE,
     RigidModel,
+    check_work,
     mean_acceleration,
 )
 
@@ -410,7 +411,6 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     """
     model = rigid_model(arch_or_model)
     settings = DemSettings() if settings is None else settings
-    packed = _packed(model, settings)
     h = verdict_time_step(model, g=g) if time_step is None else float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
@@ -421,6 +421,9 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     for i, mo in enumerate(motions):
         if durs[i] is None:
             durs[i] = _default_window(arch_or_model, mo, g)
+    for i in range(n):
+        check_work(model.n_bodies, max(durs[i], rests[i] or 0.0), h, runs=n)
+    packed = _packed(model, settings)
     nthreads = _threads(threads)
 
     def jobs_at(step: float, which: Sequence[int]) -> list[_Job]:
