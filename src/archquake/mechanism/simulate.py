@@ -320,7 +320,7 @@ class SimulationResult:
         :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
         the analytical model's own."""
         out = {
-            "model": "analytical",
+            "model": "fourlink",
             "outcome": self.outcome.value,
             "final_state": self.final_state.value,
             "collapse_half_cycle": self.collapse_half_cycle,
