@@ -18,7 +18,7 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 'collapse'
 
 ``Arch``, ``limit_analysis``, ``simulate`` (the paper's model: hinges fixed between impacts),
-``simulate_rigid`` (hinges that move: the chain of rigid blocks, issue 16), ``simulate_dem``,
+``simulate_rigid`` (the chain of rigid voussoirs: hinges that move), ``simulate_dem``,
 ``failure_domain``,
 ``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, the error classes,
 the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
@@ -27,11 +27,12 @@ in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+import sys
+from typing import TYPE_CHECKING
 
 from archquake import errors
 from archquake._kernel_cache import ensure_cache_dir
+from archquake._lazy import attach
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import (
     ArchquakeError,
@@ -79,18 +80,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.rigid import simulate_rigid
 
 
-def __getattr__(name: str) -> Any:
-    """Import a lazy public name on first access and keep it in the module's namespace."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'archquake' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value  # later accesses skip this function
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
 
 
 __all__ = [

@@ -44,12 +44,11 @@ import numpy as np
 from archquake._validate import require_range
 from archquake.errors import InvalidParameterError
 from archquake.geometry.hinges import HingeMechanism
+from archquake.ranges import IMPACT_LAWS  # the laws' names (the command line reads them there)
 
 if TYPE_CHECKING:
     from archquake.mechanism.impact_chain import ChainImpact
 
-#: Names of the impact laws (see the module docstring).
-IMPACT_LAWS = ("paper", "chain", "mirror")
 
 #: One line of meaning for each validity (what ``archquake run`` prints and the plots show).
 VALIDITY_MEANING = {
@@ -82,7 +81,7 @@ def check_restitution(value: object, name: str = "restitution") -> float | None:
 
 def check_impact_law(law: object, name: str = "impact") -> str:
     """The one check of an impact law's name (:data:`IMPACT_LAWS`)."""
-    if law not in IMPACT_LAWS:
+    if not isinstance(law, str) or law not in IMPACT_LAWS:
         raise InvalidParameterError(f"{name} must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
     return str(law)
 
