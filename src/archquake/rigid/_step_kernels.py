@@ -109,6 +109,15 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
     nrm = np.zeros((nj, 2))
     tan = np.zeros((nj, 2))
     pts = np.zeros((nj, 2, 2, 2))
+    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts)
+    return gaps, nrm, tan, pts
+
+
+@nb.njit(cache=True)
+def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts):
+    """:func:`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
+    entry is overwritten)."""
+    nj = ja.shape[0]
     for j in range(nj):
         tha = 0.0 if ja[j] < 0 else q[ja[j], 2]
         thb = 0.0 if jb[j] < 0 else q[jb[j], 2]
@@ -127,7 +136,6 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
             pts[j, k, 1, 0] = bx
             pts[j, k, 1, 1] = by
             gaps[j, k] = (bx - ax) * nrm[j, 0] + (by - ay) * nrm[j, 1]
-    return gaps, nrm, tan, pts
 
 
 @nb.njit(cache=True)
@@ -154,13 +162,24 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
     ``hold_tol`` (m) if it pushed at the previous step (``p_warm`` > 0; the position-level
     correction's hold, :func:`run`)."""
     nj = ja.shape[0]
-    nrows = 0
     rows_j = np.zeros(3 * nj, np.int64)
     rows_k = np.zeros(3 * nj, np.int64)
     ja_rows = np.zeros((3 * nj, 3))
     jb_rows = np.zeros((3 * nj, 3))
     offset = np.zeros(3 * nj)
-    tmp = np.zeros(3)
+    diag_all = np.zeros(3 * nj)
+    nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
+                       rows_j, rows_k, ja_rows, jb_rows, diag_all, offset)
+    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag_all[:nrows].copy(), offset
+
+
+@nb.njit(cache=True)
+def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol, rows_j,
+               rows_k, ja_rows, jb_rows, diag, offset):
+    """:func:`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
+    set); returns ``nrows``."""
+    nj = ja.shape[0]
+    nrows = 0
     for j in range(nj):
         act0 = gaps[j, 0] <= gap_tol or (p_warm[j, 0] > 0.0 and gaps[j, 0] <= hold_tol)
         act1 = gaps[j, 1] <= gap_tol or (p_warm[j, 1] > 0.0 and gaps[j, 1] <= hold_tol)
@@ -168,10 +187,11 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
             if (k == 0 and act0) or (k == 1 and act1):
                 rows_j[nrows] = j
                 rows_k[nrows] = k
-                _row(q, ja[j], pts[j, k, 0, 0], pts[j, k, 0, 1], nrm[j, 0], nrm[j, 1], -1.0, tmp)
-                ja_rows[nrows] = tmp
-                _row(q, jb[j], pts[j, k, 1, 0], pts[j, k, 1, 1], nrm[j, 0], nrm[j, 1], 1.0, tmp)
-                jb_rows[nrows] = tmp
+                offset[nrows] = 0.0
+                _row(q, ja[j], pts[j, k, 0, 0], pts[j, k, 0, 1], nrm[j, 0], nrm[j, 1], -1.0,
+                     ja_rows[nrows])
+                _row(q, jb[j], pts[j, k, 1, 0], pts[j, k, 1, 1], nrm[j, 0], nrm[j, 1], 1.0,
+                     jb_rows[nrows])
                 nrows += 1
         if act0 or act1:
             # no slip at the active corner, or at the mid-point when both are active
@@ -183,12 +203,9 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
             rows_j[nrows] = j
             rows_k[nrows] = 2
             offset[nrows] = (bx - ax) * tan[j, 0] + (by - ay) * tan[j, 1]
-            _row(q, ja[j], ax, ay, tan[j, 0], tan[j, 1], -1.0, tmp)
-            ja_rows[nrows] = tmp
-            _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, tmp)
-            jb_rows[nrows] = tmp
+            _row(q, ja[j], ax, ay, tan[j, 0], tan[j, 1], -1.0, ja_rows[nrows])
+            _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, jb_rows[nrows])
             nrows += 1
-    diag = np.zeros(nrows)
     for r in range(nrows):
         j = rows_j[r]
         a = ja[j]
@@ -199,7 +216,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
         if b >= 0:
             d += (jb_rows[r, 0] ** 2 + jb_rows[r, 1] ** 2) * inv_m[b] + jb_rows[r, 2] ** 2 * inv_i[b]
         diag[r] = d
-    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset
+    return nrows
 
 
 @nb.njit(cache=True)
@@ -214,15 +231,27 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
     when its contact began (recorded here, in place, when ``slip_ref[j]`` is NaN; set back to
     NaN when the joint has no row). ``slip_ref`` None: tangential bounds zero."""
     target = np.zeros(nrows)
+    seen = np.zeros(0 if slip_ref is None else slip_ref.shape[0], np.bool_)
+    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen)
+    return target
+
+
+@nb.njit(cache=True)
+def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen):
+    """:func:`_targets` written into ``target`` (its first ``nrows`` entries), ``seen`` (nj,)
+    bool scratch."""
+    for r in range(nrows):
+        target[r] = 0.0
     if correction <= 0.0:
-        return target
+        return
     for r in range(nrows):
         if rows_k[r] < 2:
             gap = gaps[rows_j[r], rows_k[r]]
             if gap > 0.0:
                 target[r] = -gap / correction
     if slip_ref is not None:
-        seen = np.zeros(slip_ref.shape[0], np.bool_)
+        for j in range(slip_ref.shape[0]):
+            seen[j] = False
         for r in range(nrows):
             if rows_k[r] == 2:
                 j = rows_j[r]
@@ -233,7 +262,6 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
         for j in range(slip_ref.shape[0]):
             if not seen[j]:
                 slip_ref[j] = math.nan
-    return target
 
 
 @nb.njit(cache=True)
@@ -426,31 +454,81 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     separating test then read H_r v = target_r, H_r v >= target_r - tol). Returns as
     :func:`project`; the count is the number of factorised active sets plus any Gauss-Seidel
     sweeps."""
+    ws = workspace(inv_m.shape[0], ja.shape[0])
+    v = ws[W_VN]
+    imp = ws[W_IMP]
+    count, change = _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
+                                 p_warm, tol, max_iter, mu, max_sets, correction, hold_tol,
+                                 slip_ref, work, ws)
+    return v, imp, count, change
+
+
+#: Members of the tuple :func:`workspace` returns (arrays a step writes into, allocated once per
+#: run: the step itself allocates nothing).
+W_QM, W_VF, W_VN, W_IMP, W_GAPS, W_NRM, W_TAN, W_PTS = 0, 1, 2, 3, 4, 5, 6, 7
+W_ROWS_J, W_ROWS_K, W_JA_ROWS, W_JB_ROWS, W_DIAG, W_OFFSET, W_TARGET, W_SEEN = \
+    8, 9, 10, 11, 12, 13, 14, 15
+W_IN_S, W_PW, W_IDX, W_FIRST, W_MAT, W_RHS, W_D, W_P, W_CNT, W_LST_I, W_LST_SIDE = \
+    16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26
+
+
+@nb.njit(cache=True)
+def workspace(nbody, nj):
+    """The work arrays of one step of ``nbody`` free bodies and ``nj`` joints (members W_*):
+    allocated once, reused by every step (:func:`advance`)."""
+    nr = 3 * nj
+    return (np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nj, 3)),
+            np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2, 2, 2)),
+            np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, 3)),
+            np.zeros((nr, 3)), np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nj, np.bool_),
+            np.zeros(nr, np.bool_), np.zeros(nr), np.zeros(nr, np.int64),
+            np.zeros(nr, np.int64), np.zeros((nr, nr)), np.zeros(nr), np.zeros(nr),
+            np.zeros(nr), np.zeros(nbody, np.int64), np.zeros((nbody, nr), np.int64),
+            np.zeros((nbody, nr), np.int64))
+
+
+@nb.njit(cache=True)
+def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
+                 max_iter, mu, max_sets, correction, hold_tol, slip_ref, work, ws):
+    """:func:`project_direct` in the work arrays ``ws`` (:func:`workspace`): the velocity is
+    written into ``ws[W_VN]``, the impulses into ``ws[W_IMP]``; returns (count, residual)."""
     nj = ja.shape[0]
-    nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset = _rows(
-        q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol)
-    imp = np.zeros((nj, 3))
-    target = _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref)
+    v = ws[W_VN]
+    imp = ws[W_IMP]
+    rows_j = ws[W_ROWS_J]
+    rows_k = ws[W_ROWS_K]
+    ja_rows = ws[W_JA_ROWS]
+    jb_rows = ws[W_JB_ROWS]
+    diag = ws[W_DIAG]
+    offset = ws[W_OFFSET]
+    target = ws[W_TARGET]
+    in_s = ws[W_IN_S]
+    pw = ws[W_PW]
+    idx = ws[W_IDX]
+    first = ws[W_FIRST]
+    w_mat = ws[W_MAT]
+    rhs = ws[W_RHS]
+    d = ws[W_D]
+    p = ws[W_P]
+    cnt = ws[W_CNT]
+    lst_i = ws[W_LST_I]
+    lst_side = ws[W_LST_SIDE]
+    nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
+                       rows_j, rows_k, ja_rows, jb_rows, diag, offset)
+    for j in range(nj):
+        imp[j, 0] = 0.0
+        imp[j, 1] = 0.0
+        imp[j, 2] = 0.0
+    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, ws[W_SEEN])
+    v[:, :] = v_free
     if nrows == 0:
         if work is not None:
             work[0] = 0.0
-        return v_free.copy(), imp, 0, 0.0
-    in_s = np.zeros(nrows, np.bool_)
-    pw = np.zeros(nrows)
+        return 0, 0.0
     for r in range(nrows):
         pw[r] = p_warm[rows_j[r], rows_k[r]]
         in_s[r] = rows_k[r] == 2 or pw[r] > 0.0
-    idx = np.zeros(nrows, np.int64)
-    first = np.zeros(nrows, np.int64)
-    w_mat = np.zeros((nrows, nrows))
-    rhs = np.zeros(nrows)
-    d = np.zeros(nrows)
-    p = np.zeros(nrows)
-    v = v_free.copy()
     nbody = inv_m.shape[0]
-    cnt = np.zeros(nbody, np.int64)
-    lst_i = np.zeros((nbody, nrows), np.int64)
-    lst_side = np.zeros((nbody, nrows), np.int64)
     solves = 0
     accepted = False
     for _ in range(max_sets):
@@ -583,7 +661,7 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
         imp[rows_j[r], rows_k[r]] = p[r]
     if work is not None:
         work[0] = _correction_work(nrows, p, target)
-    return v, imp, solves + sweeps, change
+    return solves + sweeps, change
 
 
 @nb.njit(cache=True)
@@ -600,30 +678,40 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 @nb.njit(cache=True, nogil=True)
 def advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc_k, h, g, gap_tol,
-            tol, max_iter, mu, method, h_corr, hold, slip_ref, work):
+            tol, max_iter, mu, method, h_corr, hold, slip_ref, work, ws):
     """One Moreau-Jean step from (q, v) under the mean ground acceleration ``acc_k`` (m/s^2):
     steps 1-4 of the module docstring. ``h_corr`` (s, 0: none) and ``hold`` (m): the position
-    correction's; ``slip_ref`` and ``work`` as :func:`project`'s (updated in place). ``q``,
-    ``v`` and ``p_warm`` are not changed: the caller sets v = vn, q = qm + h/2 vn (step 5) and
-    the warm start. Returns (qm, gaps (nj, 2) at qm, v_free, vn, impulses (nj, 3), sweeps,
-    residual)."""
+    correction's; ``slip_ref`` and ``work`` as :func:`project`'s (updated in place); ``ws``: the
+    work arrays (:func:`workspace`, allocated once per run). ``q``, ``v`` and ``p_warm`` are not
+    changed: the caller sets v = vn, q = qm + h/2 vn (step 5) and the warm start. Returns
+    (qm, gaps (nj, 2) at qm, v_free, vn, impulses (nj, 3), sweeps, residual), the arrays
+    members of ``ws`` (overwritten by the next step)."""
     nb_ = q.shape[0]
-    qm = q + 0.5 * h * v
-    gaps, nrm, tan, pts = geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
-    vf = v.copy()
+    qm = ws[W_QM]
+    vf = ws[W_VF]
+    for i in range(nb_):
+        for c in range(3):
+            qm[i, c] = q[i, c] + 0.5 * h * v[i, c]
+    gaps = ws[W_GAPS]
+    nrm = ws[W_NRM]
+    tan = ws[W_TAN]
+    pts = ws[W_PTS]
+    geometry_into(qm, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts)
+    vf[:, :] = v
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
         vf[i, 1] -= h * g
     if method == METHOD_DIRECT and mu <= 0.0:
-        vn, imp, sweeps, res = project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                              gap_tol, p_warm, tol, max_iter, mu,
-                                              ACTIVE_SET_ITERATIONS, h_corr, hold, slip_ref,
-                                              work)
+        sweeps, res = _direct_into(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
+                                   p_warm, tol, max_iter, mu, ACTIVE_SET_ITERATIONS, h_corr,
+                                   hold, slip_ref, work, ws)
     else:
-        vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                       gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
-                                       slip_ref, work)
-    return qm, gaps, vf, vn, imp, sweeps, res
+        vn_, imp_, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
+                                         gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
+                                         slip_ref, work)
+        ws[W_VN][:, :] = vn_
+        ws[W_IMP][:, :] = imp_
+    return qm, gaps, vf, ws[W_VN], ws[W_IMP], sweeps, res
 
 
 @nb.njit(cache=True)
@@ -645,11 +733,13 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
     h_corr = h if correction else 0.0
     hold = hold_tol if correction else 0.0
     work = np.zeros(1)
+    ws = workspace(nb_, ja.shape[0])
+    m_max = mass.max()
     for k in range(acc.shape[0]):
         qm, gaps, vf, vn, imp, sweeps, res = advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a,
                                                      arm_b, n0, t0, acc[k], h, g, gap_tol, tol,
                                                      max_iter, mu, method, h_corr, hold,
-                                                     slip_ref, work)
+                                                     slip_ref, work, ws)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0
@@ -665,7 +755,7 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
                 if -gaps[j, c] > diag[D_PENETRATION]:
                     diag[D_PENETRATION] = -gaps[j, c]
             pn = imp[j, 0] + imp[j, 1]
-            if pn > 0.0 and pn > 1e-12 * h * g * (mass.max()):
+            if pn > 0.0 and pn > 1e-12 * h * g * m_max:
                 fr = abs(imp[j, 2]) / pn
                 if fr > diag[D_FRICTION]:
                     diag[D_FRICTION] = fr
@@ -678,8 +768,10 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
             diag[D_RESIDUAL] = res
         if sweeps > worst:
             worst = sweeps
-        v[:, :] = vn
-        q[:, :] = qm + 0.5 * h * vn
+        for i in range(nb_):
+            for c in range(3):
+                v[i, c] = vn[i, c]
+                q[i, c] = qm[i, c] + 0.5 * h * vn[i, c]
         if (k + 1) % out_every == 0:
             row = (k + 1) // out_every - 1
             out_q[row] = q

@@ -131,6 +131,7 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
     p_warm = np.zeros((nj, 3))
     slip_ref = np.full(nj, np.nan)
     work = np.zeros(1)
+    ws = RK.workspace(nb_, nj)
     hold = par[P_HOLD_TOL]
     # the rotation measure on both links: unwrapped angle, arming state
     rot0 = np.zeros(2)
@@ -186,7 +187,7 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
         qm, gaps, vf, vn, imp, sweeps, res = RK.advance(
             q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc[k], h, g,
             par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0, RK.METHOD_DIRECT, h, hold,
-            slip_ref, work)
+            slip_ref, work, ws)
         if sweeps > worst:
             worst = sweeps
         for j in range(nj):
@@ -195,8 +196,10 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
             p_warm[j, 2] = imp[j, 2]
             if onset < 0 and (gaps[j, 0] > par[P_OPEN] or gaps[j, 1] > par[P_OPEN]):
                 onset = k
-        v[:, :] = vn
-        q[:, :] = qm + 0.5 * h * vn
+        for i in range(nb_):
+            for c in range(3):
+                v[i, c] = vn[i, c]
+                q[i, c] = qm[i, c] + 0.5 * h * vn[i, c]
         kin = 0.0
         for i in range(nb_):
             kin += 0.5 * (mass[i] * (v[i, 0] ** 2 + v[i, 1] ** 2) + inertia[i] * v[i, 2] ** 2)
