@@ -43,7 +43,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from enum import Enum
-from functools import lru_cache
+from functools import cached_property, lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -57,6 +58,7 @@ from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
+from archquake.result import shared_columns, write_csv
 
 
 class FinalState(str, Enum):
@@ -314,6 +316,70 @@ class SimulationResult:
     @property
     def half_cycles(self) -> int:
         return int(self.peak_rotation.shape[0])
+
+    @property
+    def times(self) -> np.ndarray:
+        """The history's sample times, s (empty without a history: ``output_interval=0``)."""
+        return self.history.t if self.history is not None else np.zeros(0)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """phi signed by the side, rad (> 0 in the first mechanism, < 0 in its mirror image),
+        at :attr:`times`: :attr:`History.signed_rotation`."""
+        return self.history.signed_rotation if self.history is not None else np.zeros(0)
+
+    @cached_property
+    def _motion(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        from archquake.mechanism.configuration import crown_and_energies
+
+        h = self.history
+        if h is None:
+            return np.zeros((0, 2)), np.zeros(0), np.zeros(0)
+        prepared = PreparedMechanism.build(self.mechanism, self.impact_law)
+        return crown_and_energies(prepared, h.phi, h.phi_dot, h.side, h.mechanism_row, g=self.g)
+
+    @property
+    def crown_displacement(self) -> np.ndarray:
+        """(nt, 2): the crown point's displacement dx, dy relative to the ground at
+        :attr:`times`, m (:func:`archquake.mechanism.configuration.crown_and_energies`;
+        computed on first use)."""
+        return self._motion[0]
+
+    @property
+    def kinetic(self) -> np.ndarray:
+        """Kinetic energy relative to the ground, ``1/2 m_eff phi'^2``, at :attr:`times`, J."""
+        return self._motion[1]
+
+    @property
+    def potential(self) -> np.ndarray:
+        """Gravitational potential energy from the undisplaced arch at :attr:`times`, J."""
+        return self._motion[2]
+
+    @property
+    def hinge_events(self) -> tuple[MechanismEvent, ...]:
+        """The sequence of mechanisms (:attr:`mechanisms`), as
+        :attr:`archquake.result.ModelResult.hinge_events`."""
+        return tuple(self.mechanisms)
+
+    def to_table(self) -> dict[str, np.ndarray]:
+        """Columns for a tabular export (``pandas.DataFrame(result.to_table())``):
+        :data:`archquake.result.TABLE_COLUMNS`, then phi' (rad/s), the side, the ground
+        acceleration (m/s^2) and the mechanism's row. Empty columns without a history."""
+        out = shared_columns(self)
+        h = self.history
+        if h is None:
+            out.update(phi_dot_rad_s=np.zeros(0), side=np.zeros(0, dtype=int),
+                       ground_acceleration_m_s2=np.zeros(0))
+            return out
+        out.update(phi_dot_rad_s=h.phi_dot, side=np.asarray(h.side).astype(int),
+                   ground_acceleration_m_s2=h.ground_acceleration)
+        if h.mechanism_row is not None:
+            out["mechanism_row"] = h.mechanism_row
+        return out
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        return write_csv(self.to_table(), path)
 
     def to_dict(self, include_history: bool = False) -> dict:
         """Plain dict for JSON (the CLI's ``--json``, a sweep's stored row): the keys of
