@@ -11,7 +11,6 @@ from archquake.compare.domains import (
 )
 from archquake.compare.histories import (
     ASSEMBLIES,
-    FIGURE4_DURATIONS,
     HINGES,
     VOUSSOIRS,
     HistoryComparison,
@@ -55,7 +54,6 @@ __all__ = [
     "joint_displacements",
     "reduced_damping_snapshot",
     "ASSEMBLIES",
-    "FIGURE4_DURATIONS",
     "HINGES",
     "VOUSSOIRS",
     "HistoryComparison",

@@ -5,7 +5,6 @@ from archquake.domains.batch import (
     PulseFamily,
     PulseOutcomes,
     evaluate_pulses,
-    evaluate_pulses_scalar,
 )
 from archquake.domains.domain import (
     COLLAPSE,
@@ -41,7 +40,6 @@ __all__ = [
     "StudyCase",
     "compare_scaling",
     "evaluate_pulses",
-    "evaluate_pulses_scalar",
     "failure_domain",
     "geometry_study",
     "oppenheim_arch",

@@ -187,7 +187,8 @@ def evaluate_pulses(
     >>> [int(h) for h in r.collapse_half_cycle], [o.value for o in r.outcome]
     ([1, 2, 0], ['collapse', 'collapse', 'survives'])
     """
-    from archquake.domains._kernels import batch_kernel, decode, default_t_end
+    from archquake.domains._kernels import batch_kernel, decode
+    from archquake.mechanism.simulate import default_t_end
 
     prepared = PreparedMechanism.build(arch, impact)
     prescribed = check_restitution(restitution)

@@ -561,6 +561,34 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
                     energy_fraction=float(energy_fraction) if proof else None)
 
 
+#: How long the four-link model runs after the end of the excitation when no ``t_end`` is
+#: given, in units of sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking
+#: arch to come to rest or to be shown unable to reach a crest again.
+RUN_TAIL = 60.0
+
+
+def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) -> np.ndarray:
+    """The four-link model's default end of analysis, s: the end of the excitation plus
+    :data:`RUN_TAIL` sqrt(R/g) (what :func:`simulate`, the failure domains' batch and the
+    incremental dynamic analysis use).
+
+    Parameters
+    ----------
+    excitation_end_s : float or ndarray
+        End of each excitation, s.
+    radius : float
+        The arch's radius R, m.
+    g : float
+        Gravity, m/s^2.
+
+    Examples
+    --------
+    >>> round(float(default_t_end(0.81, 10.0)), 3)
+    61.4
+    """
+    return np.asarray(excitation_end_s, dtype=float) + RUN_TAIL * math.sqrt(radius / g)
+
+
 def simulate(
     arch: Arch | HingeMechanism | PreparedMechanism,
     motion: GroundMotion,
@@ -652,7 +680,7 @@ def simulate(
     check_time_resolution(kind, params, tau)
     excitation = float(K.excitation_end(kind, params))
     if t_end is None:
-        t_end = excitation + 60.0 * tau
+        t_end = float(default_t_end(excitation, mech.arch.radius, g))
     require_positive("t_end", t_end, "s")
     dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
     n_imp_cap = int(options.max_impacts)
@@ -765,6 +793,6 @@ def simulate(
     )
 
 
-__all__ = ["FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
-           "SolverOptions", "conclude_run", "last_impact_fraction", "mechanism_events",
-           "simulate"]
+__all__ = ["RUN_TAIL", "FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
+           "SolverOptions", "conclude_run", "default_t_end", "last_impact_fraction",
+           "mechanism_events", "simulate"]

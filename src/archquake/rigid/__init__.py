@@ -8,7 +8,7 @@ Moreau-Jean time stepper (:mod:`~archquake.rigid.steps`) and the event integrato
 run; :func:`simulate_rigid` (:mod:`~archquake.rigid.run`) drives either to a verdict.
 """
 
-from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel, absolute_states
+from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel
 from archquake.rigid.run import RigidRun, simulate_rigid
 
-__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "absolute_states", "simulate_rigid"]
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]
