@@ -77,6 +77,30 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
     return res.outcome, 0
 
 
+def _rigid_outcomes(assembly, family: PulseFamily, points, settings, tail_s: float,
+                    first_only: bool, g: float, governing_only: bool,
+                    threads: int | None) -> list[tuple[Outcome, int]]:
+    """:func:`_outcome` of the rigid chain for every (magnitude g, duration s) of ``points``,
+    as one batch of verdicts (:func:`~archquake.rigid.verdict.rigid_verdicts`: the
+    verdict's step with its guard, skips at rest, stops at collapse or proven rest)."""
+    from archquake.rigid.verdict import rigid_verdicts
+
+    motions = [family.motion(a, d, g=g) for a, d in points]
+    verdicts = rigid_verdicts(assembly, motions, duration=[m.duration + tail_s for m in motions],
+                              settings=settings, g=g, threads=threads)
+    out = []
+    for v in verdicts:
+        if v.outcome is Outcome.COLLAPSE:
+            half = int(v.collapse_half_cycle or 0)
+            if first_only and half != 1:
+                out.append((Outcome.SURVIVES, 0))
+            else:
+                out.append((Outcome.COLLAPSE, 0 if governing_only else half))
+        else:
+            out.append((v.outcome, 0))
+    return out
+
+
 @dataclass
 class DemPulseEvaluator:
     """``evaluate(magnitudes_g, durations) -> PulseOutcomes`` of a block assembly under the DEM
@@ -102,7 +126,12 @@ class DemPulseEvaluator:
     model : {'dem', 'rigid'}
         The block model run (:data:`BLOCK_MODELS`).
     solver : {'direct', 'events'}
-        How the rigid chain is integrated (``simulate_rigid``'s ``solver``).
+        How the rigid chain is integrated (``simulate_rigid``'s ``solver``). With 'direct'
+        the runs of a call are one batch of verdicts
+        (:func:`archquake.rigid.verdict.rigid_verdicts`, at the verdict's step,
+        threaded), not time histories through ``executor``.
+    threads : int, optional
+        Threads of that batch (default: the usable cores).
 
     Notes
     -----
@@ -120,6 +149,7 @@ class DemPulseEvaluator:
     governing_only: bool = False
     model: str = "dem"
     solver: str = "direct"
+    threads: int | None = None
     runs: int = 0
     seconds: float = 0.0
     _memo: dict = field(default_factory=dict, repr=False)
@@ -134,7 +164,11 @@ class DemPulseEvaluator:
             args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
                      self.first_only, self.g, self.governing_only, self.model, self.solver)
                     for a, d in todo]
-            if self.executor is None:
+            if self.model == "rigid" and self.solver == "direct":
+                results = _rigid_outcomes(self.assembly, self.family, todo, self.settings,
+                                          self.tail_s, self.first_only, self.g,
+                                          self.governing_only, self.threads)
+            elif self.executor is None:
                 results = [_outcome(*a) for a in args]
             else:
                 results = list(self.executor.map(_outcome, *zip(*args)))
@@ -228,7 +262,10 @@ def dem_failure_domain(
         Simulated time after each pulse, in sqrt(R/g).
     workers : int, optional
         Process-pool size (default: the usable cores, at most the number of durations x 2);
-        1 runs serially. Ignored if ``executor`` is given.
+        1 runs serially. Ignored if ``executor`` is given. With ``model='rigid'`` and
+        ``solver='direct'`` the runs are batches of verdicts threaded in this process
+        (:func:`archquake.rigid.verdict.rigid_verdicts`): ``workers`` is then the
+        number of threads (default: the usable cores) and ``executor`` is not used.
     executor : Executor, optional
         An executor to use instead of a new process pool.
     g : float
@@ -263,7 +300,12 @@ def dem_failure_domain(
     n_dur = int(np.atleast_1d(durations).size)
     t0 = time.perf_counter()
     own = None
-    if executor is None:
+    batched = model == "rigid" and solver == "direct"  # threads in one process, no pool
+    if batched:
+        n = workers if workers is not None else usable_cores()
+        if n < 1:
+            raise InvalidParameterError(f"workers must be >= 1, got {n}")
+    elif executor is None:
         n = workers if workers is not None else min(usable_cores(), max(1, 2 * n_dur))
         if n < 1:
             raise InvalidParameterError(f"workers must be >= 1, got {n}")
@@ -274,7 +316,8 @@ def dem_failure_domain(
     try:
         tail_s = tail * math.sqrt(arch.radius / g)
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
-                               governing_only and not first_only, model, solver)
+                               governing_only and not first_only, model, solver,
+                               threads=n if batched else None)
         dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
     finally:
         if own is not None:

@@ -10,5 +10,7 @@ run; :func:`simulate_rigid` (:mod:`~archquake.rigid.run`) drives either to a ver
 
 from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel
 from archquake.rigid.run import RigidRun, simulate_rigid
+from archquake.rigid.verdict import RigidVerdict, rigid_verdict, rigid_verdicts
 
-__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "simulate_rigid"]
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "RigidVerdict", "rigid_verdict",
+           "rigid_verdicts", "simulate_rigid"]

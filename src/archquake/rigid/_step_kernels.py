@@ -598,6 +598,34 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
         v[b, 2] += rb[2] * dp * inv_i[b]
 
 
+@nb.njit(cache=True, nogil=True)
+def advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc_k, h, g, gap_tol,
+            tol, max_iter, mu, method, h_corr, hold, slip_ref, work):
+    """One Moreau-Jean step from (q, v) under the mean ground acceleration ``acc_k`` (m/s^2):
+    steps 1-4 of the module docstring. ``h_corr`` (s, 0: none) and ``hold`` (m): the position
+    correction's; ``slip_ref`` and ``work`` as :func:`project`'s (updated in place). ``q``,
+    ``v`` and ``p_warm`` are not changed: the caller sets v = vn, q = qm + h/2 vn (step 5) and
+    the warm start. Returns (qm, gaps (nj, 2) at qm, v_free, vn, impulses (nj, 3), sweeps,
+    residual)."""
+    nb_ = q.shape[0]
+    qm = q + 0.5 * h * v
+    gaps, nrm, tan, pts = geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
+    vf = v.copy()
+    for i in range(nb_):
+        vf[i, 0] -= h * acc_k
+        vf[i, 1] -= h * g
+    if method == METHOD_DIRECT and mu <= 0.0:
+        vn, imp, sweeps, res = project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
+                                              gap_tol, p_warm, tol, max_iter, mu,
+                                              ACTIVE_SET_ITERATIONS, h_corr, hold, slip_ref,
+                                              work)
+    else:
+        vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
+                                       gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
+                                       slip_ref, work)
+    return qm, gaps, vf, vn, imp, sweeps, res
+
+
 @nb.njit(cache=True)
 def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, gap_tol, tol,
         max_iter, mu, out_every, out_q, out_v, out_diag, diag, method=METHOD_PGS,
@@ -618,21 +646,10 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
     hold = hold_tol if correction else 0.0
     work = np.zeros(1)
     for k in range(acc.shape[0]):
-        qm = q + 0.5 * h * v
-        gaps, nrm, tan, pts = geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
-        vf = v.copy()
-        for i in range(nb_):
-            vf[i, 0] -= h * acc[k]
-            vf[i, 1] -= h * g
-        if method == METHOD_DIRECT and mu <= 0.0:
-            vn, imp, sweeps, res = project_direct(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan,
-                                                  pts, gap_tol, p_warm, tol, max_iter, mu,
-                                                  ACTIVE_SET_ITERATIONS, h_corr, hold, slip_ref,
-                                                  work)
-        else:
-            vn, imp, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                           gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
-                                           slip_ref, work)
+        qm, gaps, vf, vn, imp, sweeps, res = advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a,
+                                                     arm_b, n0, t0, acc[k], h, g, gap_tol, tol,
+                                                     max_iter, mu, method, h_corr, hold,
+                                                     slip_ref, work)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0

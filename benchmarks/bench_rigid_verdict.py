@@ -1,0 +1,114 @@
+"""Benchmark: the rigid chain's verdict path (`rigid.verdict`) against plain references
+measured in the same run.
+
+1. One 4 s history of Oppenheim's arch (R 10 m, t 1.5 m, 157.5 deg, 7 voussoirs; step 1.0 g,
+   t_p = 0.20 s) at the verdict's default step (1.0e-3 s): the verdict alone
+   (``rigid_verdict(..., duration=4.0, guard=False)``) against the four-link kernel
+   (``simulate``, the same history) and against the recorded run at the same step
+   (``simulate_rigid``, samples and the DEM's post-processing); then the same verdict run to
+   its end (proven rest) with the guard.
+2. The Figure 5 domain under the rigid chain (step pulses, 12 durations 0.1-1.5 s, the block
+   models' search: 0.01 g brackets, pulse + 6 sqrt(R/g)) through ``dem_failure_domain(...,
+   model="rigid")`` (batches of verdicts, threaded over the usable cores), against the same
+   search on one thread, and against the recorded run at the old default step (1e-4 s) timed
+   on a sample of the search's runs and extrapolated to their number.
+
+Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_rigid_verdict.py  (a minute or two)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+
+import numpy as np
+from timing import best_of  # benchmarks/timing.py
+
+from archquake.compare.domains import dem_failure_domain
+from archquake.geometry import Arch
+from archquake.ground import StepImpulse
+from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
+from archquake.rigid import simulate_rigid
+from archquake.rigid.verdict import rigid_verdict, verdict_time_step
+
+SAMPLE = int(os.environ.get("BENCH_REFERENCE_SAMPLE", "4"))
+
+
+def history() -> dict:
+    arch = Arch(10.0, 1.5, math.radians(157.5), 7)
+    motion = StepImpulse.from_g(1.0, 0.20)
+    h = verdict_time_step(arch)
+    prepared = PreparedMechanism.build(arch)
+    quiet = SolverOptions(output_interval=0.0)
+    simulate(prepared, motion, t_end=4.0)
+    rigid_verdict(arch, motion, duration=4.0)  # compile / load the cache
+    simulate_rigid(arch, motion, duration=0.05, time_step=h)
+    four = best_of(lambda: simulate(prepared, motion, t_end=4.0, options=quiet), 5, 10)
+    verdict = best_of(lambda: rigid_verdict(arch, motion, duration=4.0, guard=False), 5, 2)
+    c0 = time.process_time()
+    for _ in range(5):
+        rigid_verdict(arch, motion, duration=4.0, guard=False)
+    verdict_cpu = (time.process_time() - c0) / 5
+    recorded = best_of(lambda: simulate_rigid(arch, motion, duration=4.0, time_step=h), 3, 1)
+    full = rigid_verdict(arch, motion)
+    to_end = best_of(lambda: rigid_verdict(arch, motion), 3, 1)
+    print(f"one 4 s history, Oppenheim's arch, step 1.0 g, t_p 0.20 s, h = {h:.4g} s")
+    print(f"  four-link kernel (simulate)               {four * 1e3:8.2f} ms")
+    print(f"  rigid verdict (4 s, no guard)             {verdict * 1e3:8.2f} ms  "
+          f"{verdict / four:6.1f} x four-link (CPU {verdict_cpu * 1e3:.2f} ms: "
+          f"{verdict_cpu / 4000 * 1e6:.1f} us a step)")
+    print(f"  recorded rigid run (simulate_rigid, 4 s)  {recorded * 1e3:8.2f} ms  "
+          f"verdict {recorded / verdict:5.1f} x faster")
+    print(f"  rigid verdict to its end ({full.outcome.value}, {full.end_time_s:.2f} s, guard "
+          f"{'ran' if full.guard_ran else 'not needed'})  {to_end * 1e3:8.2f} ms")
+    return {"four_link_s": four, "verdict_s": verdict, "recorded_s": recorded,
+            "to_end_s": to_end}
+
+
+def domain() -> dict:
+    from archquake.compare.domains import DOMAIN_TAIL, _outcome
+    from archquake.compare.histories import VOUSSOIRS, dem_assembly
+    from archquake.dem import DemSettings
+    from archquake.domains import PulseFamily
+
+    arch = Arch(10.0, 1.5, math.radians(157.5), 7)
+    durations = tuple(np.round(np.geomspace(0.1, 1.5, 12), 3))
+    cores = len(os.sched_getaffinity(0))
+    dem_failure_domain(arch, "step", (0.3,), model="rigid", workers=1)  # compile
+    t0, c0 = time.perf_counter(), time.process_time()
+    dom = dem_failure_domain(arch, "step", durations, model="rigid", workers=cores)
+    threaded, cpu = time.perf_counter() - t0, time.process_time() - c0
+    t0 = time.perf_counter()
+    dem_failure_domain(arch, "step", durations, model="rigid", workers=1)
+    single = time.perf_counter() - t0
+    # the recorded run at the old default step, on a sample of (magnitude, duration) pairs
+    rng = np.random.default_rng(5)
+    asm = dem_assembly(arch, VOUSSOIRS)
+    tail = DOMAIN_TAIL * math.sqrt(arch.radius / 9.80665)
+    pairs = [(float(rng.uniform(0.4, 1.5)), float(rng.choice(durations))) for _ in range(SAMPLE)]
+    t0 = time.perf_counter()
+    for a, d in pairs:
+        _outcome(asm, PulseFamily.STEP.value, a, d, DemSettings(), tail, False, 9.80665,
+                 model="rigid")
+    per_run = (time.perf_counter() - t0) / SAMPLE
+    plain = per_run * dom.runs
+    print(f"Figure 5 domain, rigid chain, {len(durations)} durations, {dom.runs} runs:")
+    print(f"  batches of verdicts, {cores} threads      {threaded:8.2f} s  "
+          f"(CPU {cpu:.2f} s over all threads: the wall time on idle cores is about "
+          f"{cpu / cores:.2f} s)")
+    print(f"  the same, one thread                     {single:8.2f} s  "
+          f"threads {single / threaded:4.2f} x faster")
+    print(f"  recorded runs at h = 1e-4 s (sampled)    {plain:8.2f} s  "
+          f"({per_run:.2f} s a run)  verdicts {plain / threaded:5.1f} x faster")
+    return {"domain_s": threaded, "domain_one_thread_s": single, "domain_recorded_s": plain}
+
+
+def main() -> dict:
+    out = history()
+    out.update(domain())
+    return out
+
+
+if __name__ == "__main__":
+    main()

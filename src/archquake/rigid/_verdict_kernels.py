@@ -1,0 +1,295 @@
+"""Compiled verdict-only run of the rigid chain (numba): the Moreau-Jean step of
+:func:`archquake.rigid._step_kernels.run` (the same step, bit for bit, through
+``project_direct``), with the verdict of :meth:`archquake.dem.result.DemResult.from_samples`
+read on the fly instead of from recorded samples, and three shortcuts that do not change it:
+
+* **skip at rest**: while the chain is at rest and the step's mean ground acceleration lies
+  inside the safe domain (-lambda_- g, lambda_+ g) (the no-slip chain's onset multipliers,
+  :attr:`archquake.rigid.events.EventModel.onset_g`), the exact solution does not
+  move, so the step is not computed. "At rest" is the untouched initial state (q, v exactly
+  the rest state: the skip is exact), or, after a motion, the rest of
+  :func:`archquake.dem.result.settled` (kinetic energy below ``REST_KINETIC`` W L for a rest
+  window; the velocity is then set to zero, and the safe domain is narrowed by
+  ``REST_MARGIN``, the configuration being only near the undisplaced one);
+* **stop at collapse**: at the first step meeting a collapse criterion
+  (:func:`archquake.dem._kernels.collapsed`);
+* **stop at proven rest**: at rest (as above) with the rest of the ground motion inside the
+  safe domain (a suffix maximum of the ground acceleration), or settled after the end of the
+  excitation (:func:`~archquake.dem.result.settled`'s rule).
+
+Every step is checked (the recorded runs check at their output samples); the hinge onset is
+read on the step's mid-step corner gaps (``_rigid_kernels.geometry``), the DEM's on the recorded
+joint openings: both are the opening of a joint end beyond ``hinge_opening`` L.
+
+The impacts before a collapse (its half cycle) are the sign changes of the rotation measure
+(:func:`archquake.dem.result.crossings`), counted on both the assembly's rotation link and its
+mirror image; the caller picks one with :func:`archquake.dem.result.mirror_opens_first`'s rule.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+import archquake.rigid._step_kernels as RK
+from archquake.dem import _kernels as DK
+
+#: Parameters, ``par`` (float64).
+P_H = 0  # s, time step
+P_G = 1  # m/s^2
+P_GAP_TOL = 2  # m
+P_TOL = 3  # m/s, solver tolerance
+P_MAX_ITER = 4
+P_HOLD_TOL = 5  # m
+P_SAFE_POS = 6  # m/s^2, the ground acceleration towards +x below which the resting chain stays
+P_SAFE_NEG = 7  # m/s^2, the same towards -x (a magnitude)
+P_EXC_END = 8  # s, the end of the excitation
+P_OPEN = 9  # m, a joint end open by more than this is a hinge
+P_REST_KIN = 10  # J
+P_REST_WINDOW = 11  # s
+P_ROT_THR = 12  # rad, the rotation measure's arming threshold (hinge_opening)
+P_SKIP = 13  # 1: skip at rest and stop at proven rest; 0: step every step
+P_STOP_COLLAPSE = 14  # 1: stop at collapse
+P_REST_MARGIN = 15  # -, the safe domain after a motion, a fraction of the onset's
+N_PAR = 16
+
+#: Outputs, ``out`` (float64).
+O_OUTCOME = 0  # 0 no_hinging, 1 survives, 2 collapse, 3 indeterminate
+O_T_END = 1  # s
+O_T_COLLAPSE = 2  # s, NaN if none
+O_ONSET_STEP = 3  # the step whose mid-step gaps first opened a hinge, -1 if none
+O_IMPACTS_0 = 4  # sign changes of the rotation measure before the verdict, assembly's link
+O_IMPACTS_1 = 5  # the same, mirror link
+O_STEPS = 6  # steps computed
+O_SKIPPED = 7  # steps skipped at rest
+O_PEAK_DROP = 8  # -, largest crown drop before the collapse, a fraction of the collapse drop
+O_MAX_SWEEPS = 9
+O_FINAL = 10  # 0 moving, 1 rest, 2 collapsed
+O_REST_PROVEN = 11  # 1: ended at rest with the remaining ground motion inside the safe domain
+O_FIRST_IMPACT_0 = 12  # s, the first sign change of the rotation measure, link 0 (NaN: none)
+O_FIRST_IMPACT_1 = 13  # the same, link 1
+O_LONGEST_0 = 14  # s, the longest time between two consecutive sign changes, or from the last
+#: one to the collapse, link 0 (0: none)
+O_LONGEST_1 = 15  # the same, link 1
+N_OUT = 16
+
+OUTCOME_NO_HINGING = 0
+OUTCOME_SURVIVES = 1
+OUTCOME_COLLAPSE = 2
+OUTCOME_INDETERMINATE = 3
+
+
+@nb.njit(cache=True, inline="always")
+def _chord_angle(st, links_block, links_local, ell):
+    """Angle (rad) of the chord of rotation link ``ell`` in the block states ``st``."""
+    ba = links_block[ell, 0]
+    bb = links_block[ell, 1]
+    ca = math.cos(st[ba, 2])
+    sa = math.sin(st[ba, 2])
+    cb = math.cos(st[bb, 2])
+    sb = math.sin(st[bb, 2])
+    ax = st[ba, 0] + ca * links_local[ell, 0, 0] - sa * links_local[ell, 0, 1]
+    ay = st[ba, 1] + sa * links_local[ell, 0, 0] + ca * links_local[ell, 0, 1]
+    bx = st[bb, 0] + cb * links_local[ell, 1, 0] - sb * links_local[ell, 1, 1]
+    by = st[bb, 1] + sb * links_local[ell, 1, 0] + cb * links_local[ell, 1, 1]
+    return math.atan2(by - ay, bx - ax)
+
+
+@nb.njit(cache=True, nogil=True)
+def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
+                free_mask, cpar, links_block, links_local, links_sign, acc, suffix_pos,
+                suffix_neg, par, out):
+    """Run the chain from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2)
+    up to a verdict (module docstring) and write it into ``out`` (:data:`N_OUT`).
+
+    ``base_state`` (n_blocks, 3): every block's undisplaced x, y, theta; ``free_blocks`` (nb,):
+    the assembly index of each free body; ``free_mask`` (n_blocks,) int: 1 for a free block;
+    ``cpar``: :func:`archquake.dem.result.collapse_parameters`; ``links_block`` (2, 2) int,
+    ``links_local`` (2, 2, 2) m, ``links_sign`` (2,): the two rotation links (the assembly's,
+    its mirror image), their blocks and points relative to the blocks' centroids;
+    ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
+    (magnitude) from step k to the end, m/s^2; ``par``: :data:`N_PAR` parameters (P_*)."""
+    h = par[P_H]
+    g = par[P_G]
+    nb_ = mass.shape[0]
+    nj = ja.shape[0]
+    n_steps = acc.shape[0]
+    inv_m = 1.0 / mass
+    inv_i = 1.0 / inertia
+    skip = par[P_SKIP] > 0.0
+    safe_pos = par[P_SAFE_POS]
+    safe_neg = par[P_SAFE_NEG]
+    margin = par[P_REST_MARGIN]
+    q = np.zeros((nb_, 3))
+    v = np.zeros((nb_, 3))
+    st = base_state.copy()
+    for i in range(nb_):
+        for c in range(3):
+            q[i, c] = base_state[free_blocks[i], c]
+    p_warm = np.zeros((nj, 3))
+    slip_ref = np.full(nj, np.nan)
+    work = np.zeros(1)
+    hold = par[P_HOLD_TOL]
+    # the rotation measure on both links: unwrapped angle, arming state
+    rot0 = np.zeros(2)
+    ang_prev = np.zeros(2)
+    rot = np.zeros(2)
+    armed = np.zeros(2)  # 0: not armed, else the sign of the side it is armed on
+    impacts = np.zeros(2)
+    last_impact = np.full(2, np.nan)
+    first_impact = np.full(2, np.nan)
+    longest = np.zeros(2)
+    prev_rot = np.zeros(2)
+    for ell in range(2):
+        rot0[ell] = _chord_angle(st, links_block, links_local, ell)
+        ang_prev[ell] = rot0[ell]
+    pristine = True  # q, v exactly the rest state
+    t_still = 0.0  # since when the kinetic energy has stayed below the rest threshold
+    onset = -1
+    peak_drop = 0.0
+    worst = 0
+    computed = 0
+    skipped = 0
+    outcome = -1
+    final = 0
+    rest_proven = 0
+    t_collapse = math.nan
+    k = 0
+    t = 0.0
+    while k < n_steps:
+        t = k * h  # the state's time
+        resting = pristine or (t - t_still > par[P_REST_WINDOW])
+        if skip and resting:
+            lim_p = safe_pos if pristine else margin * safe_pos
+            lim_n = safe_neg if pristine else margin * safe_neg
+            if suffix_pos[k] < lim_p and suffix_neg[k] < lim_n:
+                # at rest, and nothing left can move it: the verdict is reached
+                rest_proven = 1
+                final = 1
+                break
+            if -lim_n < acc[k] < lim_p:
+                if not pristine:
+                    for i in range(nb_):
+                        v[i, 0] = 0.0
+                        v[i, 1] = 0.0
+                        v[i, 2] = 0.0
+                skipped += 1
+                k += 1
+                t = k * h
+                continue
+        # one Moreau-Jean step, as _rigid_kernels.run (method direct, correction on)
+        t = (k + 1) * h
+        pristine = False
+        computed += 1
+        qm, gaps, vf, vn, imp, sweeps, res = RK.advance(
+            q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc[k], h, g,
+            par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0, RK.METHOD_DIRECT, h, hold,
+            slip_ref, work)
+        if sweeps > worst:
+            worst = sweeps
+        for j in range(nj):
+            p_warm[j, 0] = imp[j, 0]
+            p_warm[j, 1] = imp[j, 1]
+            p_warm[j, 2] = imp[j, 2]
+            if onset < 0 and (gaps[j, 0] > par[P_OPEN] or gaps[j, 1] > par[P_OPEN]):
+                onset = k
+        v[:, :] = vn
+        q[:, :] = qm + 0.5 * h * vn
+        kin = 0.0
+        for i in range(nb_):
+            kin += 0.5 * (mass[i] * (v[i, 0] ** 2 + v[i, 1] ** 2) + inertia[i] * v[i, 2] ** 2)
+            for c in range(3):
+                st[free_blocks[i], c] = q[i, c]
+        if kin > par[P_REST_KIN]:
+            t_still = t
+        k += 1
+        # collapse (the crown's drop from its undisplaced height, as cpar says)
+        if par[P_STOP_COLLAPSE] > 0.0 and DK.collapsed(st, free_mask, cpar):
+            outcome = OUTCOME_COLLAPSE
+            final = 2
+            t_collapse = t
+            # the collapsing half cycle, from the last impact, counts among the half cycles
+            for ell in range(2):
+                if not math.isnan(last_impact[ell]) and t - last_impact[ell] > longest[ell]:
+                    longest[ell] = t - last_impact[ell]
+            break
+        cb = int(cpar[DK.C_CROWN_BLOCK])
+        if cb >= 0:
+            cc = math.cos(st[cb, 2])
+            sc = math.sin(st[cb, 2])
+            yc = st[cb, 1] + sc * cpar[DK.C_CROWN_LX] + cc * cpar[DK.C_CROWN_LY]
+            drop = (cpar[DK.C_CROWN_Y0] - yc) / cpar[DK.C_CROWN_DROP]
+            if drop > peak_drop:
+                peak_drop = drop
+        # the rotation measure's sign changes (archquake.dem.result.crossings)
+        for ell in range(2):
+            a = _chord_angle(st, links_block, links_local, ell)
+            d = a - ang_prev[ell]
+            d = (d + math.pi) % (2.0 * math.pi) - math.pi
+            ang_prev[ell] = a
+            prev_rot[ell] = rot[ell]
+            rot[ell] += d
+            r = links_sign[ell] * rot[ell]
+            r_prev = links_sign[ell] * prev_rot[ell]
+            if armed[ell] == 0.0:
+                if abs(r) > par[P_ROT_THR]:
+                    armed[ell] = 1.0 if r > 0.0 else -1.0
+            elif (armed[ell] > 0.0 and r <= 0.0) or (armed[ell] < 0.0 and r >= 0.0):
+                impacts[ell] += 1.0
+                frac = r_prev / (r_prev - r) if r_prev != r else 1.0
+                t_imp = t - h + frac * h
+                if math.isnan(first_impact[ell]):
+                    first_impact[ell] = t_imp
+                elif t_imp - last_impact[ell] > longest[ell]:
+                    longest[ell] = t_imp - last_impact[ell]
+                last_impact[ell] = t_imp
+                if abs(r) > par[P_ROT_THR]:
+                    armed[ell] = 1.0 if r > 0.0 else -1.0
+                else:
+                    armed[ell] = 0.0
+        if t - par[P_REST_WINDOW] >= par[P_EXC_END] and t - t_still > par[P_REST_WINDOW]:
+            final = 1  # settled after the excitation: the ground is still, the chain stays
+            break
+    if outcome < 0:
+        if final == 0 and t - par[P_REST_WINDOW] >= par[P_EXC_END] \
+                and t - t_still > par[P_REST_WINDOW]:
+            final = 1
+        if onset < 0:
+            outcome = OUTCOME_NO_HINGING
+        elif final == 1:
+            outcome = OUTCOME_SURVIVES
+        else:
+            outcome = OUTCOME_INDETERMINATE
+    out[O_OUTCOME] = outcome
+    out[O_T_END] = t
+    out[O_T_COLLAPSE] = t_collapse
+    out[O_ONSET_STEP] = onset
+    out[O_IMPACTS_0] = impacts[0]
+    out[O_IMPACTS_1] = impacts[1]
+    out[O_STEPS] = computed
+    out[O_SKIPPED] = skipped
+    out[O_PEAK_DROP] = peak_drop
+    out[O_MAX_SWEEPS] = worst
+    out[O_FINAL] = final
+    out[O_REST_PROVEN] = rest_proven
+    out[O_FIRST_IMPACT_0] = first_impact[0]
+    out[O_FIRST_IMPACT_1] = first_impact[1]
+    out[O_LONGEST_0] = longest[0]
+    out[O_LONGEST_1] = longest[1]
+
+
+@nb.njit(cache=True, nogil=True)
+def verdict_batch(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
+                  free_mask, cpar, links_block, links_local, links_sign, accs, starts,
+                  suffix_pos, suffix_neg, pars, outs, first, last):
+    """:func:`verdict_run` for histories ``first`` to ``last - 1``: history i's steps are
+    ``accs[starts[i]:starts[i + 1]]`` (and the suffix maxima likewise), its parameters
+    ``pars[i]``, its verdict ``outs[i]``. Releases the GIL: a thread pool runs slices."""
+    for i in range(first, last):
+        a = starts[i]
+        b = starts[i + 1]
+        verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
+                    free_mask, cpar, links_block, links_local, links_sign, accs[a:b],
+                    suffix_pos[a:b], suffix_neg[a:b], pars[i], outs[i])

@@ -1,0 +1,510 @@
+"""The rigid chain's verdict alone, fast: a step chosen for the verdict, a guard that proves it,
+and many histories in one compiled, threaded call.
+
+* **The step** (:func:`verdict_time_step`): h = :data:`STEP_FACTOR` sqrt(L / g), L the chain's
+  reference length (the voussoirs' thickness): time scales as sqrt(L / g), so a lab arch and a
+  nave get the same accuracy (1.0e-3 s on Oppenheim's arch, L = 1.5 m). Its measured error is
+  in docs/mechanism.md ("The rigid chain's step").
+* **The guard**: a verdict that depends on an impact and may lie near its threshold (a half
+  cycle after the first lasted more than :data:`GUARD_LENGTHENING` times the first: the arch
+  lingered near a crest) is run again at half the step; where the two verdicts differ the
+  result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
+  in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
+  at most 0.2 % between the default step and a quarter of it (docs/mechanism.md).
+* **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
+  call; steps at rest under a ground acceleration inside the safe domain are skipped; the run
+  stops at collapse or once rest is proven; no samples are recorded and no
+  :class:`~archquake.dem.DemResult` is built.
+
+:func:`rigid_verdict` is one history; :func:`rigid_verdicts` runs many over a thread pool (the
+kernel releases the GIL), for failure domains, IDA and sweeps.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+import archquake.rigid._verdict_kernels as VK
+from archquake.constants import STANDARD_GRAVITY
+from archquake.dem.assembly import Assembly
+from archquake.dem.result import (
+    REST_KINETIC,
+    collapse_parameters,
+    crown_height,
+    excitation_end,
+    mirror_link,
+    rest_threshold,
+)
+from archquake.dem.settings import DemSettings
+from archquake.errors import InvalidParameterError
+from archquake.geometry.chain import VoussoirChain
+from archquake.mechanism.simulate import RUN_TAIL
+from archquake.outcome import Outcome
+from archquake.parallel import usable_cores
+from archquake.rigid.model import (
+    GAP_TOLERANCE,
+    HOLD_TOLERANCE,
+    MAX_SWEEPS,
+    SOLVER_TOLERANCE,
+    RigidModel,
+    mean_acceleration,
+)
+
+#: The verdict's step, in sqrt(L / g) (L the reference length): 1.0e-3 s on Oppenheim's arch
+#: (L = 1.5 m). Measured in docs/mechanism.md, "The rigid chain's step".
+STEP_FACTOR = 2.56e-3
+#: The guard reruns a verdict reached after an impact when one of its half cycles after the
+#: first (for a collapse: the collapsing one, up to the collapse) lasted more than this many
+#: times the first half cycle (onset to first impact): near the crest of its mechanism the arch
+#: slows down, and a half cycle's duration grows as log(1/delta) with the distance delta to the
+#: threshold. Measured at the default step (docs/mechanism.md, "The rigid chain's step"): 2.0
+#: is passed from 7 % below to 4 % above the critical step duration on Oppenheim's arch, from 7 %
+#: below to 10 % above at t/R = 0.11, and over the pointed arch's band where the step changes
+#: the verdict (collapse in half cycle 3; 2.5 missed it).
+GUARD_LENGTHENING = 2.0
+#: After a motion, the chain resting near (not at) its undisplaced configuration is taken as
+#: safe under ground accelerations below this fraction of its onset ones.
+REST_MARGIN = 0.98
+
+_OUTCOMES = (Outcome.NO_HINGING, Outcome.SURVIVES, Outcome.COLLAPSE, Outcome.INDETERMINATE)
+
+
+@functools.lru_cache(maxsize=64)
+def _model_of_chain(arch: VoussoirChain) -> RigidModel:
+    return RigidModel.build(arch)
+
+
+#: Models built from assemblies (not hashable: keyed by identity, the assembly kept alive).
+_ASSEMBLY_MODELS: dict[int, tuple[Assembly, RigidModel]] = {}
+
+
+def rigid_model(arch_or_model: VoussoirChain | Assembly | RigidModel) -> RigidModel:
+    """The :class:`RigidModel` of an arch or an assembly, built once (memoised: both are
+    frozen), or a model itself."""
+    if isinstance(arch_or_model, RigidModel):
+        return arch_or_model
+    if isinstance(arch_or_model, VoussoirChain):
+        return _model_of_chain(arch_or_model)
+    hit = _ASSEMBLY_MODELS.get(id(arch_or_model))
+    if hit is not None and hit[0] is arch_or_model:
+        return hit[1]
+    model = RigidModel.build(arch_or_model)
+    if len(_ASSEMBLY_MODELS) > 64:
+        _ASSEMBLY_MODELS.clear()
+    _ASSEMBLY_MODELS[id(arch_or_model)] = (arch_or_model, model)
+    return model
+
+
+def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
+    """The verdict's default step, s: :data:`STEP_FACTOR` sqrt(L / g), L the reference
+    length, m.
+
+    >>> import math
+    >>> from archquake.geometry import Arch
+    >>> round(verdict_time_step(Arch(10.0, 1.5, math.radians(157.5), 7)), 5)
+    0.001
+    """
+    model = rigid_model(arch_or_model)
+    return STEP_FACTOR * math.sqrt(model.assembly.reference_length / g)
+
+
+@dataclass(frozen=True)
+class _Packed:
+    """A model's arrays for :func:`~archquake.rigid._verdict_kernels.verdict_run`."""
+
+    arrays: tuple
+    safe_pos: float  # m/s^2 per g
+    safe_neg: float
+
+
+_PACKED: dict[tuple[int, DemSettings], tuple[RigidModel, _Packed]] = {}
+
+
+def _packed(model: RigidModel, settings: DemSettings) -> _Packed:
+    """:func:`_pack`, memoised on the model (by identity) and the settings."""
+    key = (id(model), settings)
+    hit = _PACKED.get(key)
+    if hit is not None and hit[0] is model:
+        return hit[1]
+    packed = _pack(model, settings)
+    if len(_PACKED) > 64:
+        _PACKED.clear()
+    _PACKED[key] = (model, packed)
+    return packed
+
+
+def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
+    from archquake.rigid.events import EventModel
+
+    asm = model.assembly
+    nblocks = len(asm.base)
+    base_state = np.zeros((nblocks, 3))
+    base_state[:, :2] = np.asarray(asm.centroids, float)
+    cpar = collapse_parameters(asm, settings, float(crown_height(asm, base_state[None])[0]))
+    free_mask = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)
+    links = [asm.rotation_link, mirror_link(asm) or asm.rotation_link]
+    cents = np.asarray(asm.centroids, float)
+    lb = np.array([[ln.block_a, ln.block_b] for ln in links], np.int64)
+    ll = np.array([[np.asarray(ln.point_a) - cents[ln.block_a],
+                    np.asarray(ln.point_b) - cents[ln.block_b]] for ln in links], float)
+    ls = np.array([float(ln.sign) for ln in links])
+    lam_p, lam_n = EventModel.of(model).onset_g
+    arrays = (model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
+              model.t0, base_state, model.free_blocks.astype(np.int64), free_mask, cpar, lb, ll,
+              ls)
+    return _Packed(arrays, lam_p, lam_n)
+
+
+@dataclass(frozen=True)
+class RigidVerdict:
+    """The rigid chain's verdict on one history (:func:`rigid_verdict`).
+
+    Attributes
+    ----------
+    outcome : Outcome
+    reason : str
+        One sentence: why.
+    collapse_half_cycle : int or None
+        1 + the impacts before the collapse (the DEM's count, the rotation measure's sign
+        changes); None without a collapse.
+    collapse_time_s, onset_time_s : float or None
+        s.
+    end_time_s : float
+        Where the run stopped, s (at collapse, at proven rest, or at the end of its window).
+    time_step_s : float
+        The step of the verdict, s.
+    guard_ran : bool
+        Whether the verdict was rerun at half the step (the guard).
+    guard_outcome : Outcome or None
+        The rerun's outcome.
+    peak_crown_drop : float
+        Largest fall of the crown before any collapse, a fraction of the collapse drop.
+    lengthening : float
+        The longest half cycle after the first (a collapse's up to the collapse) over the
+        first (0 without an impact): the guard's measure of nearness.
+    impacts : int
+        Impacts before the verdict.
+    steps, skipped_steps : int
+        Steps computed, and skipped at rest (of the first run).
+    rest_proven : bool
+        The run stopped at rest with the rest of the ground motion inside the safe domain.
+    final_state : str
+        How the run at the verdict's step ended: ``collapsed``, ``rest`` or ``moving``.
+    """
+
+    outcome: Outcome
+    reason: str
+    collapse_half_cycle: int | None
+    collapse_time_s: float | None
+    onset_time_s: float | None
+    end_time_s: float
+    time_step_s: float
+    guard_ran: bool
+    guard_outcome: Outcome | None
+    peak_crown_drop: float
+    lengthening: float
+    impacts: int
+    steps: int
+    skipped_steps: int
+    rest_proven: bool
+    final_state: str
+
+    def to_dict(self) -> dict:
+        """Summary for JSON (units in the keys): the keys of
+        :data:`archquake.outcome.RESULT_KEYS` it knows first (``model`` ``"rigid_chain"``),
+        then the verdict path's own."""
+        return {"model": "rigid_chain", "outcome": self.outcome.value,
+                "final_state": self.final_state,
+                "collapse_half_cycle": self.collapse_half_cycle,
+                "collapse_time_s": self.collapse_time_s, "onset_time_s": self.onset_time_s,
+                "verdict_reason": self.reason,
+                "end_time_s": self.end_time_s, "time_step_s": self.time_step_s,
+                "guard_ran": self.guard_ran,
+                "guard_outcome": None if self.guard_outcome is None else self.guard_outcome.value,
+                "peak_crown_drop": self.peak_crown_drop, "lengthening": self.lengthening,
+                "impacts": self.impacts,
+                "steps": self.steps, "skipped_steps": self.skipped_steps,
+                "rest_proven": self.rest_proven}
+
+
+def _params(model: RigidModel, packed: _Packed, settings: DemSettings, h: float, g: float,
+            exc_end: float, skip: bool, solver_tolerance: float) -> np.ndarray:
+    lref = model.assembly.reference_length
+    k_rest, window = rest_threshold(model.assembly, g)
+    par = np.zeros(VK.N_PAR)
+    par[VK.P_H] = h
+    par[VK.P_G] = g
+    par[VK.P_GAP_TOL] = GAP_TOLERANCE * lref
+    par[VK.P_TOL] = solver_tolerance * math.sqrt(g * lref)
+    par[VK.P_MAX_ITER] = MAX_SWEEPS
+    par[VK.P_HOLD_TOL] = HOLD_TOLERANCE * lref
+    # the bisection's bound moves; just below it the chain stays
+    par[VK.P_SAFE_POS] = packed.safe_pos * g * (1.0 - 1e-9)
+    par[VK.P_SAFE_NEG] = packed.safe_neg * g * (1.0 - 1e-9)
+    par[VK.P_EXC_END] = exc_end
+    par[VK.P_OPEN] = settings.hinge_opening * lref
+    par[VK.P_REST_KIN] = k_rest
+    par[VK.P_REST_WINDOW] = window
+    par[VK.P_ROT_THR] = settings.hinge_opening
+    par[VK.P_SKIP] = 1.0 if skip else 0.0
+    par[VK.P_STOP_COLLAPSE] = 1.0 if settings.stop_at_collapse else 0.0
+    par[VK.P_REST_MARGIN] = REST_MARGIN
+    return par
+
+
+def _suffix_max(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    pos = np.maximum.accumulate(np.maximum(acc, 0.0)[::-1])[::-1].copy()
+    neg = np.maximum.accumulate(np.maximum(-acc, 0.0)[::-1])[::-1].copy()
+    return pos, neg
+
+
+def _steps_of(motion, h: float, duration: float, until_rest: float | None
+              ) -> tuple[np.ndarray, float]:
+    n = int(math.ceil(max(duration, until_rest or 0.0) / h - 1e-9))
+    acc = mean_acceleration(motion, 0.0, h, n)
+    end = excitation_end(motion)
+    return acc, (float(n * h) if end is None else end)
+
+
+def _decode(out: np.ndarray, h: float, vg_of) -> dict:
+    """The kernel's ``out`` as plain values; ``vg_of(step)``: the ground velocity after a step
+    (for :func:`~archquake.dem.result.mirror_opens_first`'s choice of the rotation link)."""
+    code = int(out[VK.O_OUTCOME])
+    onset = int(out[VK.O_ONSET_STEP])
+    mirrored = False
+    if onset >= 0:
+        back = max(1, int(round(0.01 / h)))
+        mirrored = vg_of(onset) - vg_of(onset - back) > 0.0
+    impacts = int(out[VK.O_IMPACTS_1] if mirrored else out[VK.O_IMPACTS_0])
+    first_impact = float(out[VK.O_FIRST_IMPACT_1] if mirrored else out[VK.O_FIRST_IMPACT_0])
+    longest = float(out[VK.O_LONGEST_1] if mirrored else out[VK.O_LONGEST_0])
+    t_onset = None if onset < 0 else (onset + 1) * h
+    lengthening = (longest / (first_impact - t_onset)
+                   if t_onset is not None and first_impact > t_onset else 0.0)
+    return {"outcome": _OUTCOMES[code], "impacts": impacts,
+            "half": 1 + impacts if code == VK.OUTCOME_COLLAPSE else None,
+            "t_collapse": None if math.isnan(out[VK.O_T_COLLAPSE]) else float(out[VK.O_T_COLLAPSE]),
+            "onset": t_onset, "t_end": float(out[VK.O_T_END]), "lengthening": lengthening,
+            "steps": int(out[VK.O_STEPS]), "skipped": int(out[VK.O_SKIPPED]),
+            "peak_drop": float(out[VK.O_PEAK_DROP]), "rest_proven": bool(out[VK.O_REST_PROVEN]),
+            "final": int(out[VK.O_FINAL])}
+
+
+def _near(d: dict) -> bool:
+    """The guard's rule: the verdict depends on an impact (a survival or a collapse after
+    one) and one of its half cycles after the first (a collapse's up to the collapse) lasted
+    more than :data:`GUARD_LENGTHENING` times the first: the arch lingered near a crest."""
+    return (d["impacts"] >= 1 and d["outcome"] in (Outcome.SURVIVES, Outcome.COLLAPSE)
+            and d["lengthening"] > GUARD_LENGTHENING)
+
+
+def _reason(d: dict) -> str:
+    o = d["outcome"]
+    if o is Outcome.COLLAPSE:
+        return "a collapse criterion was met (crown fallen, a block below the springings or turned)"
+    if o is Outcome.NO_HINGING:
+        return "no joint opened"
+    if o is Outcome.SURVIVES:
+        return ("at rest with the rest of the ground motion below the onset accelerations"
+                if d["rest_proven"] else
+                f"at rest: kinetic energy below {REST_KINETIC:g} W L over a rest window, after "
+                "the excitation")
+    return (f"still moving at the end of the run ({d['t_end']:.3g} s); run longer to decide")
+
+
+class _Job:
+    """One history for the kernel: its steps, suffix maxima and parameters."""
+
+    def __init__(self, model, packed, motion, h, duration, until_rest, settings, g, skip, tol):
+        self.acc, exc_end = _steps_of(motion, h, duration, until_rest)
+        self.pos, self.neg = _suffix_max(self.acc)
+        self.par = _params(model, packed, settings, h, g, exc_end, skip, tol)
+        self.h = h
+        self._vg: np.ndarray | None = None
+
+    def vg(self, step: int) -> float:
+        if self._vg is None:
+            self._vg = np.cumsum(self.acc) * self.h
+        return 0.0 if step < 0 else float(self._vg[step])
+
+
+def _run_jobs(packed: _Packed, jobs: Sequence[_Job], threads: int) -> np.ndarray:
+    n = len(jobs)
+    outs = np.zeros((n, VK.N_OUT))
+    if n == 0:
+        return outs
+    starts = np.zeros(n + 1, np.int64)
+    starts[1:] = np.cumsum([j.acc.size for j in jobs])
+    accs = np.concatenate([j.acc for j in jobs])
+    pos = np.concatenate([j.pos for j in jobs])
+    neg = np.concatenate([j.neg for j in jobs])
+    pars = np.stack([j.par for j in jobs])
+    args = (*packed.arrays, accs, starts, pos, neg, pars, outs)
+    batch: Any = VK.verdict_batch  # a numba dispatcher: its arity is the kernel's
+    threads = max(1, min(threads, n))
+    if threads == 1:
+        batch(*args, 0, n)
+        return outs
+    # interleave small slices so that long and short histories share the threads evenly
+    edges = np.unique(np.linspace(0, n, min(n, 4 * threads) + 1).astype(int))
+    with ThreadPoolExecutor(threads) as pool:
+        list(pool.map(lambda ab: batch(*args, ab[0], ab[1]),
+                      zip(edges[:-1], edges[1:])))
+    return outs
+
+
+def _threads(threads: int | None) -> int:
+    if threads is None:
+        return usable_cores()
+    if int(threads) < 1:
+        raise InvalidParameterError(f"threads must be >= 1, got {threads!r}")
+    return int(threads)
+
+
+def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions: Sequence,
+                   *, duration: float | Sequence[float] | None = None,
+                   until_rest: float | Sequence[float] | None = None,
+                   time_step: float | None = None, settings: DemSettings | None = None,
+                   g: float = STANDARD_GRAVITY, guard: bool = True, skip_at_rest: bool = True,
+                   solver_tolerance: float = SOLVER_TOLERANCE,
+                   threads: int | None = None) -> list[RigidVerdict]:
+    """The rigid chain's verdicts on many ground motions, in one compiled call per step size,
+    threaded (the kernel releases the GIL).
+
+    Parameters
+    ----------
+    arch_or_model : VoussoirChain, Assembly or RigidModel
+    motions : sequence of GroundMotion
+        Ground accelerations, m/s^2.
+    duration : float or sequence, optional
+        s, the run's window for each motion (default: the end of the excitation
+        + :data:`WINDOW_TAIL` sqrt(R/g), at most ``ranges.DEM_T_END_MAX_S``; required for an
+        assembly). The run stops earlier at collapse or at proven rest, so a long window costs
+        only while the arch keeps moving.
+    until_rest : float or sequence, optional
+        s: go on past ``duration`` while the arch moves, up to this time.
+    time_step : float, optional
+        s (default :func:`verdict_time_step`).
+    settings : DemSettings, optional
+        Thresholds of the verdict (hinge opening, collapse criteria), as the DEM's.
+    g : float
+        m/s^2.
+    guard : bool
+        Rerun a verdict near its threshold at half the step (module docstring).
+    skip_at_rest : bool
+        Skip steps at rest and stop at proven rest (exact; False only to check that).
+    solver_tolerance : float
+        As :func:`~archquake.rigid.simulate_rigid`'s.
+    threads : int, optional
+        Threads (default: the cores this process may use).
+
+    Returns
+    -------
+    list of RigidVerdict, in the order of ``motions``.
+    """
+    model = rigid_model(arch_or_model)
+    settings = DemSettings() if settings is None else settings
+    packed = _packed(model, settings)
+    h = verdict_time_step(model, g=g) if time_step is None else float(time_step)
+    if not (h > 0 and math.isfinite(h)):
+        raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    motions = list(motions)
+    n = len(motions)
+    durs = _per_motion(duration, n, "duration")
+    rests = _per_motion(until_rest, n, "until_rest")
+    for i, mo in enumerate(motions):
+        if durs[i] is None:
+            durs[i] = _default_window(arch_or_model, mo, g)
+    nthreads = _threads(threads)
+
+    def jobs_at(step: float, which: Sequence[int]) -> list[_Job]:
+        return [_Job(model, packed, motions[i], step, durs[i], rests[i], settings, g,
+                     skip_at_rest, solver_tolerance) for i in which]
+
+    first = jobs_at(h, range(n))
+    outs = _run_jobs(packed, first, nthreads)
+    found = [_decode(outs[i], h, first[i].vg) for i in range(n)]
+    rerun = [i for i in range(n) if guard and _near(found[i])]
+    second: dict[int, dict] = {}
+    if rerun:
+        jobs2 = jobs_at(0.5 * h, rerun)
+        outs2 = _run_jobs(packed, jobs2, nthreads)
+        second = {i: _decode(outs2[k], 0.5 * h, jobs2[k].vg) for k, i in enumerate(rerun)}
+    return [_verdict(found[i], second.get(i), h) for i in range(n)]
+
+
+def _verdict(d: dict, d2: dict | None, h: float) -> RigidVerdict:
+    outcome = d["outcome"]
+    reason = _reason(d)
+    if d2 is not None:
+        if d2["outcome"] is not outcome:
+            reason = (f"near the threshold: {outcome.value} at the step {h:.3g} s, "
+                      f"{d2['outcome'].value} at {0.5 * h:.3g} s; a finer step "
+                      "(time_step) or solver='events' decides")
+            outcome = Outcome.INDETERMINATE
+        else:
+            reason += f" (confirmed at half the step, {0.5 * h:.3g} s)"
+    return RigidVerdict(
+        outcome=outcome, reason=reason,
+        collapse_half_cycle=d["half"] if outcome is Outcome.COLLAPSE else None,
+        collapse_time_s=d["t_collapse"] if outcome is Outcome.COLLAPSE else None,
+        onset_time_s=d["onset"], end_time_s=d["t_end"], time_step_s=h,
+        guard_ran=d2 is not None, guard_outcome=None if d2 is None else d2["outcome"],
+        peak_crown_drop=d["peak_drop"], lengthening=d["lengthening"], impacts=d["impacts"], steps=d["steps"],
+        skipped_steps=d["skipped"], rest_proven=d["rest_proven"],
+        final_state=("moving", "rest", "collapsed")[d["final"]])
+
+
+def _per_motion(value, n: int, name: str) -> list:
+    if value is None or np.ndim(value) == 0:
+        return [None if value is None else float(value)] * n
+    out = [None if x is None else float(x) for x in value]
+    if len(out) != n:
+        raise InvalidParameterError(f"{name} has {len(out)} entries for {n} ground motions")
+    return out
+
+
+#: The default window after the end of the excitation, in sqrt(R/g): the four-link model's
+#: default end (:data:`archquake.mechanism.simulate.RUN_TAIL`), the longest window of
+#: ``rigid_to_verdict``.
+WINDOW_TAIL = RUN_TAIL
+
+
+def _default_window(arch_or_model, motion, g: float) -> float:
+    """The default run window, s: the end of the excitation + :data:`WINDOW_TAIL` sqrt(R/g),
+    at most ``ranges.DEM_T_END_MAX_S`` (the block models' cap); the run stops earlier at
+    collapse or proven rest."""
+    from archquake.ranges import DEM_T_END_MAX_S
+
+    end = excitation_end(motion)
+    if end is None:
+        raise InvalidParameterError("give duration: the ground motion does not say when it ends")
+    radius = getattr(arch_or_model, "radius", None)
+    if radius is None:
+        raise InvalidParameterError("give duration: a block assembly has no radius to scale "
+                                    "the default window by")
+    return min(end + WINDOW_TAIL * math.sqrt(float(radius) / g), max(DEM_T_END_MAX_S, end))
+
+
+def rigid_verdict(arch_or_model: VoussoirChain | Assembly | RigidModel, motion, *,
+                  duration: float | None = None, until_rest: float | None = None,
+                  time_step: float | None = None, settings: DemSettings | None = None,
+                  g: float = STANDARD_GRAVITY, guard: bool = True,
+                  skip_at_rest: bool = True,
+                  solver_tolerance: float = SOLVER_TOLERANCE) -> RigidVerdict:
+    """The rigid chain's verdict on one ground motion (:func:`rigid_verdicts`, one thread)."""
+    return rigid_verdicts(arch_or_model, [motion], duration=duration, until_rest=until_rest,
+                          time_step=time_step, settings=settings, g=g, guard=guard,
+                          skip_at_rest=skip_at_rest, solver_tolerance=solver_tolerance,
+                          threads=1)[0]
+
+
+__all__ = ["GUARD_LENGTHENING", "STEP_FACTOR", "RigidVerdict", "rigid_model", "rigid_verdict",
+           "rigid_verdicts", "verdict_time_step"]
