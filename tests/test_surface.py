@@ -73,6 +73,11 @@ def _package(module: str) -> str:
     return "archquake"
 
 
+def _is_module(package: str, name: str) -> bool:
+    folder = ROOT.joinpath(*package.split(".")[1:])
+    return (folder / f"{name}.py").is_file() or (folder / name / "__init__.py").is_file()
+
+
 def _private_module(module: str) -> bool:
     return any(p.startswith("_") and not p.startswith("__") for p in module.split(".")[1:])
 
@@ -85,7 +90,9 @@ def crossings() -> list[str]:
         home = _package(importer)
         for node in ast.walk(ast.parse(path.read_text(), str(path))):
             if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-                targets = [(node.module, alias.name) for alias in node.names]
+                # ``from archquake.dem import _kernels`` imports a module, not a name
+                targets = [(f"{node.module}.{alias.name}", "") if _is_module(node.module, alias.name)
+                           else (node.module, alias.name) for alias in node.names]
             elif isinstance(node, ast.Import):
                 targets = [(alias.name, "") for alias in node.names]
             else:

@@ -159,6 +159,33 @@ def shared_columns(result: ModelResult) -> dict[str, np.ndarray]:
             "potential_J": result.potential}
 
 
+def shared_keys(result: ModelResult, model: str, final_state: str) -> dict:
+    """The keys of :data:`archquake.outcome.RESULT_KEYS`, in that order, for a result's
+    ``to_dict()`` (each model adds its own after them).
+
+    Parameters
+    ----------
+    result : ModelResult
+    model : str
+        ``'analytical'``, ``'dem'`` or ``'rigid_chain'``.
+    final_state : str
+        How the run ended, in the model's words.
+    """
+    peaks = result.peak_rotation
+    return {
+        "model": model,
+        "outcome": result.outcome.value,
+        "final_state": final_state,
+        "collapse_half_cycle": result.collapse_half_cycle,
+        "collapse_time_s": result.collapse_time,
+        "onset_time_s": result.onset_time,
+        "impact_times_s": result.impact_times.tolist(),
+        "peak_rotation_rad": peaks.tolist(),
+        "max_rotation_rad": float(peaks.max()) if peaks.size else 0.0,
+        "g_m_s2": result.g,
+    }
+
+
 def write_csv(table: dict[str, np.ndarray], path: str | Path) -> Path:
     """Write equal-length columns as CSV: a header of the column names, then one row per
     sample, each number with ten significant digits (integer columns as integers).
@@ -188,4 +215,5 @@ def write_csv(table: dict[str, np.ndarray], path: str | Path) -> Path:
     return path
 
 
-__all__ = ["TABLE_COLUMNS", "HingeEvent", "ModelResult", "shared_columns", "write_csv"]
+__all__ = ["TABLE_COLUMNS", "HingeEvent", "ModelResult", "shared_columns", "shared_keys",
+           "write_csv"]

@@ -39,7 +39,7 @@ import archquake.dem._kernels as K
 from archquake.dem.assembly import Assembly, RotationLink
 from archquake.dem.settings import DemSettings
 from archquake.outcome import Outcome
-from archquake.result import shared_columns, write_csv
+from archquake.result import shared_columns, shared_keys, write_csv
 
 
 # --------------------------------------------------------------------------- kinematics
@@ -629,16 +629,7 @@ class DemResult:
         shared with the analytical result (``final_state``: ``collapsed`` or None, the DEM runs
         for a fixed time with no rest criterion), then the DEM's own."""
         return {
-            "model": "dem",
-            "outcome": self.outcome.value,
-            "final_state": self.final_state,
-            "collapse_half_cycle": self.collapse_half_cycle,
-            "collapse_time_s": self.collapse_time,
-            "onset_time_s": self.onset_time,
-            "impact_times_s": self.impact_times.tolist(),
-            "peak_rotation_rad": self.peak_rotation.tolist(),
-            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
-            "g_m_s2": self.g,
+            **shared_keys(self, "dem", self.final_state),
             "mechanisms": [e.to_dict() for e in self.hinge_sets()],
             "verdict": self.verdict_reason,
             "excitation_end_s": self.excitation_end,

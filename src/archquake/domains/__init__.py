@@ -2,7 +2,6 @@
 searched by scan and batched bisection on a compiled, parallel batch of time histories."""
 
 from archquake.domains.batch import (
-    PulseFamily,
     PulseOutcomes,
     evaluate_pulses,
 )
@@ -27,6 +26,7 @@ from archquake.domains.studies import (
     scale_study,
     study_case,
 )
+from archquake.ground.pulses import PulseFamily  # the family the domain search takes
 
 __all__ = [
     "COLLAPSE",

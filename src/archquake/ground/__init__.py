@@ -1,5 +1,5 @@
-"""Ground motions: the step impulse, the one-cycle sine pulse, recorded accelerograms, their
-intensity measures and record suites."""
+"""Ground motions: the step impulse, the one-cycle sine pulse (and their families), recorded
+accelerograms, their intensity measures and record suites."""
 
 from archquake.ground.base import GroundMotion
 from archquake.ground.measures import (
@@ -11,7 +11,7 @@ from archquake.ground.measures import (
     response_spectrum,
     scale_to,
 )
-from archquake.ground.pulses import SinePulse, StepImpulse
+from archquake.ground.pulses import PulseFamily, SinePulse, StepImpulse
 from archquake.ground.records import (
     Record,
     baseline_corrected,
@@ -26,6 +26,7 @@ __all__ = [
     "GroundMotion",
     "IntensityMeasure",
     "IntensityMeasures",
+    "PulseFamily",
     "Record",
     "SinePulse",
     "StepImpulse",

@@ -31,6 +31,7 @@ import numpy as np
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face
+from archquake.geometry.planar import rotation_matrix
 from archquake.limit.thrust import arch_joint_points
 from archquake.mechanism.kinematics import eom_terms, fourbar, link_states, potential
 from archquake.mechanism.prepared import PreparedMechanism
@@ -97,11 +98,6 @@ class DisplacedArch:
         return np.column_stack([self.centroids - self.arch.voussoir_centroids, self.rotations])
 
 
-def _rot(angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s], [s, c]])
-
-
 def _packed(prepared: PreparedMechanism, phi: float, phi_dot: float, phi_ddot: float):
     """Faces, centroids, rigid motions and accelerations of the packed (side +1) mechanism."""
     mech = prepared.mechanism
@@ -135,7 +131,7 @@ def _packed(prepared: PreparedMechanism, phi: float, phi_dot: float, phi_ddot: f
     acc = np.zeros((n, 2))
     alpha = np.zeros(n)
     for rng, (p, p0, p1, p2, psi, w, a) in zip(mech.link_voussoirs, links, strict=True):
-        rot = _rot(psi)
+        rot = rotation_matrix(psi)
         shift = p - rot @ p0
         omega = w * phi_dot
         alph = w * phi_ddot + a * phi_dot**2

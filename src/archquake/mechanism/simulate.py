@@ -58,7 +58,7 @@ from archquake.ground.base import GroundMotion, check_time_resolution
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
-from archquake.result import shared_columns, write_csv
+from archquake.result import shared_columns, shared_keys, write_csv
 
 
 class FinalState(str, Enum):
@@ -386,16 +386,7 @@ class SimulationResult:
         :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
         the analytical model's own."""
         out = {
-            "model": "analytical",
-            "outcome": self.outcome.value,
-            "final_state": self.final_state.value,
-            "collapse_half_cycle": self.collapse_half_cycle,
-            "collapse_time_s": self.collapse_time,
-            "onset_time_s": self.onset_time,
-            "impact_times_s": self.impact_times.tolist(),
-            "peak_rotation_rad": self.peak_rotation.tolist(),
-            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
-            "g_m_s2": self.g,
+            **shared_keys(self, "analytical", self.final_state.value),
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,

@@ -32,7 +32,7 @@ from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
-from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.errors import InvalidParameterError, ModelUnavailableError
 from archquake.sweeps.cases import ArchSpec, Case, Model
 
 #: Where each model's simulate function lives, as (module, function).
@@ -41,11 +41,6 @@ MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
     Model.DEM: ("archquake.dem", "simulate_dem"),
     Model.RIGID: ("archquake.rigid", "simulate_rigid"),
 }
-
-
-class ModelUnavailableError(ArchquakeError):
-    """The study asks for a model this build of archquake does not provide (a fault of the
-    installation, not of a case: the runner lets it stop the sweep instead of storing it)."""
 
 
 def model_function(model: Model | str) -> Callable[..., Any]:
