@@ -1,6 +1,7 @@
 # archquake: the two commands a fresh machine needs.
-#   make demo   create .venv, install archquake, reproduce Oppenheim's arch into out/ and assess
-#               the example bridge (examples/bridge.toml, quick mode) into out/bridge/
+#   make demo   create .venv, install archquake, compile its numerical kernels once (archquake
+#               warm), reproduce Oppenheim's arch into out/ and assess the example bridge
+#               (examples/bridge.toml, quick mode) into out/bridge/
 #   make test   create .venv, install archquake with its test dependencies, run ruff, mypy
 #               (0 errors) and the test suite
 PYTHON ?= python3.11
@@ -24,6 +25,7 @@ $(STAMP_TEST): pyproject.toml | $(BIN)/python
 	touch $@ $(STAMP_RUN)
 
 demo: $(STAMP_RUN)
+	$(BIN)/archquake warm
 	$(BIN)/archquake demo --out out
 	$(BIN)/archquake assess examples/bridge.toml --out out/bridge --quick
 	@echo "the paper reproduced:   out/report.html"

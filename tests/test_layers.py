@@ -34,7 +34,8 @@ ROOT = Path(archquake.__file__).parent
 #: Why this order:
 #: - foundation: constants, errors and the helpers every layer uses (units, ranges, argument
 #:   validation, JSON, the kernel cache, the outcome vocabulary, the result interface, the
-#:   Dormand-Prince tableau, process pools); they import nothing above them;
+#:   Dormand-Prince tableau, process pools, the lazy loader of names); they import nothing
+#:   above them;
 #: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
 #:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
@@ -44,12 +45,13 @@ ROOT = Path(archquake.__file__).parent
 #:   of the four-link model);
 #: - compare (the models against each other) -> sweeps (grids of cases of any model; its case
 #:   table reads compare's run-to-verdict policies) -> ida (incremental dynamic analysis through
-#:   sweeps);
+#:   sweeps) -> warm (compiles every model's kernels, the batched ones of domains and ida
+#:   included);
 #: - plotting (figures of results) -> reproduce (the paper's studies, which draw figures) ->
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("constants", "errors", "units", "ranges", "_validate", "_json", "_kernel_cache", "outcome",
-     "result", "_dopri", "parallel"),
+     "result", "_dopri", "parallel", "_lazy"),
     ("geometry",),
     ("ground",),
     ("codes",),
@@ -63,6 +65,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("compare",),
     ("sweeps",),
     ("ida",),
+    ("warm",),
     ("plotting",),
     ("reproduce",),
     ("assess",),

@@ -149,7 +149,7 @@ def test_small_pulse_opens_no_hinge_in_any_model(tmp_path):
     assert not four.crown_displacement.any() and not four.kinetic.any()
 
 
-@pytest.mark.parametrize("model", ["analytical", "dem"])
+@pytest.mark.parametrize("model", ["fourlink", "rigid", "dem"])
 def test_cli_history_writes_the_shared_columns(tmp_path, model):
     """``archquake run --history`` writes ``to_csv``: the shared columns first, any model."""
     from archquake.cli.main import main

@@ -187,9 +187,9 @@ def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_e
 #: (what ``archquake run --json`` prints and a sweep stores as ``out.<key>``); each model adds
 #: its own after them.
 #:
-#: ``model``: ``'analytical'``, ``'dem'`` or ``'rigid_chain'``; ``outcome``: an :class:`Outcome` value;
-#: ``final_state``: how the run ended (analytical: rest, moving, collapsed, stalled; the
-#: block models: collapsed, rest or moving);
+#: ``model``: ``'rigid'``, ``'fourlink'`` or ``'dem'`` (as ``--model`` names them);
+#: ``outcome``: an :class:`Outcome` value; ``final_state``: how the run ended (fourlink:
+#: rest, moving, collapsed, stalled; the block models: collapsed, rest or moving);
 #: ``collapse_half_cycle``: 1 = before the first impact, 2 = after it, ... (None: no collapse);
 #: ``collapse_time_s``, ``onset_time_s`` (hinging starts): s or None; ``impact_times_s``: s,
 #: before the collapse; ``peak_rotation_rad``: the largest rotation of each half cycle, rad;

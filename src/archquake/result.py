@@ -167,7 +167,7 @@ def shared_keys(result: ModelResult, model: str, final_state: str) -> dict:
     ----------
     result : ModelResult
     model : str
-        ``'analytical'``, ``'dem'`` or ``'rigid_chain'``.
+        ``'fourlink'``, ``'rigid'`` or ``'dem'`` (as ``--model`` names them).
     final_state : str
         How the run ended, in the model's words.
     """

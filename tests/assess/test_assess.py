@@ -180,12 +180,13 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     assert ordered != ("restitution_ida_order" in keys)
     for e in ida:  # each P is a lognormal CDF at the site PGA: below 1/2 iff the median is above
         assert (e["p_collapse_at_site"] < 0.5) == (e["fragility_median_g"] > 0.15)
-    cfg = load_config(EXAMPLES / "bridge.toml")
+    cfg = rep_config = load_config(EXAMPLES / "bridge.toml")
     suite = load_suite(cfg.suite)
     records = Mode(True).records(suite.records)
     assert [r.name for r in records] == rec["records_used"]
     with ResultStore(tmp_path / "ida.sqlite") as store:
-        again = incremental_dynamic_analysis(cfg.arch, records, "pga", store,
+        again = incremental_dynamic_analysis(rep_config.arch, records, "pga", store,
+                                             model="fourlink",
                                              options=CaseOptions(restitution=0.9),
                                              executor=SerialExecutor(), workers=1,
                                              **Mode(True).ida)

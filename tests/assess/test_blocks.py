@@ -38,9 +38,11 @@ def _write_blocks(path, warp: float = 0.0):
 
 
 def _toml(folder, blocks: str, extra: str = "", site: float = 0.2):
+    """An assessment file of the four-link model (c_v 0.8) on a block file, no DEM."""
     path = folder / "survey.toml"
     path.write_text(f'[arch]\nblocks = "{blocks}"\ndensity = 2000\nfriction = 0.6\n{extra}'
-                    f'[seismic]\nsite_pga_g = {site}\n[options]\nrestitution = 0.8\ndem = false\n')
+                    f'[seismic]\nsite_pga_g = {site}\n[options]\nmodel = "fourlink"\n'
+                    'restitution = 0.8\ndem = false\n')
     return path
 
 
@@ -105,7 +107,7 @@ def test_block_file_is_assessed_and_its_statics_equal_the_api(tmp_path):
     assert rep.sections["pulses"].data["step"]["collapse_g"]  # the symmetric file's dynamics run
 
 
-def test_asymmetric_block_file_gets_one_line_not_a_traceback(tmp_path):
+def test_asymmetric_block_file_under_fourlink_gets_one_line_not_a_traceback(tmp_path):
     _write_blocks(tmp_path / "arch.json", warp=0.05)
     toml = _toml(tmp_path, "arch.json")
     out = subprocess.run([sys.executable, "-m", "archquake.cli.main", "assess", str(toml), "--out",
@@ -142,7 +144,7 @@ def test_study_file_takes_a_block_file_and_stores_its_cases(tmp_path):
 
     _write_blocks(tmp_path / "arch.json")
     study = tmp_path / "s.toml"
-    study.write_text('[study]\nname = "s"\n[arches]\nblocks = "arch.json"\n'
+    study.write_text('[study]\nname = "s"\nmodel = "fourlink"\n[arches]\nblocks = "arch.json"\n'
                      '[excitation]\ntype = "step"\nmagnitude_g = 0.3\nduration_s = 0.3\n'
                      '[options]\nrestitution = 0.8\n')
     st = load_study(study)

@@ -25,8 +25,18 @@ BAD = {
     "missing friction": (GOOD.replace("friction = 0.6", ""), "[arch] friction"),
     "record file missing": (GOOD + 'suite = ["no/such/record.AT2"]\n', "[seismic] suite"),
     "record folder missing": (GOOD + 'suite = "no_such_folder"\n', "[seismic] suite"),
-    "bad restitution": (GOOD + "[options]\nrestitution = 1.5\n", "[options] restitution"),
-    "bad impact": (GOOD + '[options]\nimpact = "elastic"\n', "[options] impact"),
+    "bad restitution": (GOOD + '[options]\nmodel = "fourlink"\nrestitution = 1.5\n',
+                        "[options] restitution must be in (0, 1]"),
+    "bad impact": (GOOD + '[options]\nmodel = "fourlink"\nimpact = "elastic"\n',
+                   "[options] impact"),
+    "restitution with the rigid chain": (GOOD + "[options]\nrestitution = 0.8\n",
+                                         '[options] restitution applies to model = "fourlink"'),
+    "impact with the rigid chain": (GOOD + '[options]\nmodel = "rigid"\nimpact = "chain"\n',
+                                    '[options] impact applies to model = "fourlink"'),
+    "retired model": (GOOD + '[options]\nmodel = "analytical"\n',
+                      "[options] model analytical is retired: use [options] model fourlink"),
+    "dem as the model": (GOOD + '[options]\nmodel = "dem"\n',
+                         "[options] model must be one of ['rigid', 'fourlink']"),
     "arch mixture": (GOOD.replace("voussoirs = 15", "voussoirs = 15\nspan = 10"), "[arch]"),
     "arch too thin": (GOOD.replace("0.12", "0.05"), "[arch]"),
     "not toml": ("[arch\nradius = 1", "not valid TOML"),
@@ -55,6 +65,21 @@ def test_bad_file_is_one_line_exit_2_before_any_computation(case, tmp_path, caps
     assert len(err.splitlines()) == 1, err
     assert key in err and "arch.toml" in err, err
     assert not out.exists()  # nothing written: validation came first
+
+
+@pytest.mark.parametrize("text, model, message", [
+    (GOOD, "dem", "--model must be rigid or fourlink for assess"),
+    (GOOD, "analytical", "--model analytical is retired"),
+    (GOOD + '[options]\nmodel = "fourlink"\nrestitution = 0.8\n', "rigid",
+     "--model rigid: the file prescribes [options] restitution"),
+])
+def test_bad_model_option_is_one_line_exit_2(text, model, message, tmp_path, capsys,
+                                            no_computation):
+    path = tmp_path / "arch.toml"
+    path.write_text(text)
+    assert main(["assess", str(path), "--out", str(tmp_path / "o"), "--model", model]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err
 
 
 def test_good_file_reaches_the_assessment(tmp_path, no_computation):

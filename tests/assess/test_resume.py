@@ -29,6 +29,7 @@ friction = 0.6
 [seismic]
 site_pga_g = 0.2
 [options]
+model = "fourlink"
 restitution = 0.8
 dem = false
 """

@@ -24,7 +24,8 @@ def one_line(capsys) -> str:
     # overflow and underflow the computation cannot represent (the issue's 40 tracebacks)
     (["run", *PULSE, "--t-end", "1e308"], ("--t-end", "[0.01, 10000] s")),
     (["run", *PULSE, "--t-end", "1e150"], ("--t-end",)),
-    (["run", *PULSE, "--restitution", "1e308"], ("--restitution", "[0, 1]")),
+    (["run", "--model", "fourlink", *PULSE, "--restitution", "1e308"],
+     ("--restitution", "[0, 1]")),
     (["run", *PULSE, "--depth", "1e-300"], ("--depth", "[0.001, 10000] m")),
     (["run", *PULSE, "--density", "1e-300"], ("--density", "kg/m^3")),
     (["static", "--thickness", "1e-300"], ("--thickness",)),
@@ -64,7 +65,8 @@ def test_out_of_range_values_are_one_line_naming_the_option(capsys, argv, names)
      ("--friction", "--damping", "--model dem")),
     (["run", *PULSE, "--dem-assembly", "hinges"], ("--dem-assembly",)),
     (["run", *PULSE, "--rayleigh", "0,0"], ("--rayleigh",)),
-    (["domain", "--workers", "2"], ("--workers", "--model dem")),
+    (["domain", "--model", "fourlink", "--workers", "2"], ("--workers", "--model rigid or dem")),
+    (["run", *PULSE, "--restitution", "0.5"], ("--restitution", "--model fourlink")),
 ])
 def test_options_that_do_not_apply_are_refused(capsys, argv, names):
     assert main(argv) == 2
@@ -156,6 +158,6 @@ def test_record_time_step_outside_its_range_is_one_line(capsys, tmp_path):
 def test_friction_under_a_pulse_that_opens_every_joint_at_once_is_one_line(capsys):
     """3 g on a 5-voussoir arch: the four-link mechanism would need tension from t = 0, so there
     is no instant to take a friction demand from (was: argmax of an empty sequence)."""
-    assert main(["friction", "--pulse", "step", "--magnitude", "3", "--duration", "0.1",
-                 "--voussoirs", "5"]) == 2
+    assert main(["friction", "--model", "fourlink", "--pulse", "step", "--magnitude", "3",
+                 "--duration", "0.1", "--voussoirs", "5"]) == 2
     assert "loses contact" in one_line(capsys)

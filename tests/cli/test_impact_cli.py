@@ -16,17 +16,19 @@ BRIDGE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--voussoir
 STEP = ["--pulse", "step", "--magnitude", "1.0", "--duration", "0.27"]
 #: each command that runs a time history, with the smallest arguments that make it quick
 COMMANDS = {
-    "run": ["run", *STEP],
-    "domain": ["domain", "--durations", "0.27", "--scan", "4", "--precision", "0.05"],
-    "thrust": ["thrust", *STEP, "--times", "0.5"],
-    "friction": ["friction", "--pulse", "step", "--magnitude", "0.5", "--duration", "0.27"],
+    "run": ["run", "--model", "fourlink", *STEP],
+    "domain": ["domain", "--model", "fourlink", "--durations", "0.27", "--scan", "4",
+               "--precision", "0.05"],
+    "thrust": ["thrust", "--model", "fourlink", *STEP, "--times", "0.5"],
+    "friction": ["friction", "--model", "fourlink", "--pulse", "step", "--magnitude", "0.5",
+                 "--duration", "0.27"],
 }
 
 
 @pytest.mark.parametrize("name", [*COMMANDS, "ida"])
 @pytest.mark.parametrize("bad", ["-0.1", "1.01"])
 def test_restitution_outside_0_1_is_one_line(capsys, name, bad):
-    args = COMMANDS.get(name, ["ida", "--records", "nowhere.AT2"])
+    args = COMMANDS.get(name, ["ida", "--model", "fourlink", "--records", "nowhere.AT2"])
     assert main([*args, "--restitution", bad]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1
@@ -41,13 +43,13 @@ def test_every_history_command_takes_both_options(capsys, name):
         assert out["impact_law"] == "chain" and out["restitution_cv"] == 0.5
         assert out["restitution_prescribed"] is True
     elif name == "domain":
-        assert out[0]["impact_law"] == "chain"
+        assert out["model"] == "fourlink" and out["rows"][0]["impact_law"] == "chain"
     elif name == "friction":
         assert out["impact_law"] == "chain" and out["restitution_cv"] == 0.5
 
 
 def test_run_perfectly_plastic(capsys):
-    assert main(["run", *STEP, "--restitution", "0", "--json"]) == 0
+    assert main(["run", "--model", "fourlink", *STEP, "--restitution", "0", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["restitution_cv"] == 0.0 and len(out["impact_times_s"]) == 1
     assert out["outcome"] == "survives"
@@ -56,7 +58,8 @@ def test_run_perfectly_plastic(capsys):
 def test_bridge_arch_under_eq4_prints_indeterminate_not_a_verdict(capsys):
     """Issue 10's semicircle under the paper's law (c_v = 49.9): collapse after the impact is
     computed but not claimed."""
-    args = ["run", *BRIDGE, "--pulse", "step", "--magnitude", "0.15", "--duration", "0.1"]
+    args = ["run", "--model", "fourlink", *BRIDGE, "--pulse", "step", "--magnitude", "0.15",
+            "--duration", "0.1"]
     assert main([*args, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["outcome"] == "indeterminate" and out["computed_outcome"] == "collapse"
@@ -71,13 +74,15 @@ def test_bridge_arch_under_eq4_prints_indeterminate_not_a_verdict(capsys):
                    for line in text.splitlines())
 
 
-def test_dem_refuses_the_analytical_impact_options(capsys):
-    assert main(["run", "--model", "dem", *STEP, "--impact", "chain"]) == 2
+@pytest.mark.parametrize("model", [[], ["--model", "rigid"], ["--model", "dem"]])
+def test_block_models_refuse_the_four_link_impact_options(capsys, model):
+    """The rigid chain (the default) and the DEM take their impacts from their contacts."""
+    assert main(["run", *model, *STEP, "--impact", "chain"]) == 2
     err = capsys.readouterr().err.strip()
-    assert "--impact applies to the analytical model only" in err and len(err.splitlines()) == 1
+    assert "--impact applies only to --model fourlink" in err and len(err.splitlines()) == 1
 
 
 def test_unknown_law_is_refused(capsys):
-    assert main(["run", *STEP, "--impact", "elastic"]) == 2
+    assert main(["run", "--model", "fourlink", *STEP, "--impact", "elastic"]) == 2
     err = capsys.readouterr().err.strip()
     assert "--impact" in err and len(err.splitlines()) == 1

@@ -1,5 +1,6 @@
-"""``archquake run``: the paper's Figure 4 cases through the command line, JSON keys, files, and
-one-line errors with exit status 2."""
+"""``archquake run --model fourlink``: the paper's Figure 4 cases through the command line, JSON
+keys, files, and one-line errors with exit status 2 (the default model, the rigid chain, is
+tested in test_rigid_default.py)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from archquake.validation import paper
 
 
 def _run_json(capsys, *args):
-    assert main(["run", *args, "--json"]) == 0
+    assert main(["run", "--model", "fourlink", *args, "--json"]) == 0
     return json.loads(capsys.readouterr().out)
 
 
@@ -48,7 +49,8 @@ def test_prescribed_restitution_is_used(capsys):
 
 def test_files_written(tmp_path, capsys):
     plot, gif, hist = tmp_path / "r.png", tmp_path / "r.gif", tmp_path / "h.csv"
-    assert main(["run", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.44", "--plot", str(plot),
+    assert main(["run", "--model", "fourlink", "--pulse", "step", "--magnitude", "1.0",
+                 "--duration", "0.44", "--plot", str(plot),
                  "--animate", str(gif), "--history", str(hist)]) == 0
     text = capsys.readouterr().out
     assert "collapse in half cycle 1" in text
@@ -71,7 +73,7 @@ def test_files_written(tmp_path, capsys):
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(capsys, args, needle):
-    assert main(["run", *args]) == 2
+    assert main(["run", "--model", "fourlink", *args]) == 2
     err = capsys.readouterr().err.strip()
     assert needle in err and "\n" not in err and "Traceback" not in err
 

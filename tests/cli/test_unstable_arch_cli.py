@@ -36,5 +36,5 @@ def test_prepared_mechanism_refuses_a_thin_arch():
 
 
 def test_many_voussoirs_use_the_static_method(capsys):
-    assert main(["run", "--voussoirs", "100", *PULSE, "--json"]) == 0
+    assert main(["run", "--model", "fourlink", "--voussoirs", "100", *PULSE, "--json"]) == 0
     assert '"outcome"' in capsys.readouterr().out

@@ -20,14 +20,14 @@ def test_run_dem_json_keys_match_the_analytical_run(capsys):
     run where they apply, and the same first impact (the 3-voussoir arch is the analytical
     mechanism: within 1 ms)."""
     args = ["--pulse", "step", "--magnitude", "1.0", "--duration", "0.20", "--t-end", "1.0", "--json"]
-    assert main(["run", *args]) == 0
+    assert main(["run", "--model", "fourlink", *args]) == 0
     an = json.loads(capsys.readouterr().out)
     assert main(["run", "--model", "dem", "--dem-assembly", "hinges", *args]) == 0
     dm = json.loads(capsys.readouterr().out)
     assert list(dm)[:len(RESULT_KEYS)] == list(an)[:len(RESULT_KEYS)] == list(RESULT_KEYS)
     for key in SHARED_KEYS:
         assert key in dm and key in an
-    assert dm["model"] == "dem" and an["model"] == "analytical"
+    assert dm["model"] == "dem" and an["model"] == "fourlink"
     for key in ("end_time_s", "energy_error", "settings", "solver"):
         assert key in dm
     # both rock at 1.0 s: the fixed-hinge model says 'survives' with final_state 'moving'; the
@@ -85,7 +85,7 @@ def test_run_dem_hinges_on_a_semicircle(capsys):
     the DEM arch cut at its hinges (voussoirs 0-2 held with the support), with no impact (its
     collapse criterion, a crown drop of t, is met later than the analytical crest: 1.21 s)."""
     args = [*SEMICIRCLE, "--pulse", "step", "--magnitude", "0.2", "--duration", "0.3", "--json"]
-    assert main(["run", *args]) == 0
+    assert main(["run", "--model", "fourlink", *args]) == 0
     an = json.loads(capsys.readouterr().out)
     assert main(["run", "--model", "dem", "--dem-assembly", "hinges", "--t-end", "1.4", *args]) == 0
     dm = json.loads(capsys.readouterr().out)

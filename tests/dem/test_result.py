@@ -101,7 +101,7 @@ def test_one_outcome_and_one_result_vocabulary(arch, figure4b):
     assert an.outcome is res.outcome is Outcome.COLLAPSE
     d, a = res.to_dict(), an.to_dict()
     assert list(d)[: len(RESULT_KEYS)] == list(a)[: len(RESULT_KEYS)] == list(RESULT_KEYS)
-    assert (d["model"], a["model"]) == ("dem", "analytical")
+    assert (d["model"], a["model"]) == ("dem", "fourlink")
     assert d["collapse_half_cycle"] == a["collapse_half_cycle"] == 1
     assert d["impact_times_s"] == a["impact_times_s"] == []
     assert d["collapse_time_s"] == res.collapse_time and a["collapse_time_s"] == an.collapse_time

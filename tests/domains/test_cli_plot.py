@@ -1,5 +1,6 @@
-"""``archquake domain`` and the domain figures: JSON is the domain's to_dict list, bad input is one
-line with exit status 2, and the plots write their files."""
+"""``archquake domain --model fourlink`` and the domain figures: JSON is the model and the
+domain's summary with its to_dict rows, bad input is one line with exit status 2, and the plots
+write their files."""
 
 from __future__ import annotations
 
@@ -13,9 +14,12 @@ from archquake.validation import paper
 
 
 def test_domain_json(capsys):
-    code = main(["domain", "--durations", "0.27:0.44:2", "--scan", "20", "--json"])
+    code = main(["domain", "--model", "fourlink", "--durations", "0.27:0.44:2", "--scan", "20",
+                 "--json"])
     assert code == 0
-    rows = json.loads(capsys.readouterr().out)
+    out = json.loads(capsys.readouterr().out)
+    assert out["model"] == "fourlink" and out["impact_law"] == "paper"
+    rows = out["rows"]
     assert [round(r["duration_s"], 2) for r in rows] == [0.27, 0.44]
     # paper Figure 4: at 1.0 g, t_p = 0.27 s lies between the boundaries, 0.44 s above both
     assert rows[0]["collapse_g"] < 1.0 < rows[0]["first_half_cycle_g"]
@@ -26,7 +30,8 @@ def test_domain_json(capsys):
 
 def test_domain_csv_and_plot(tmp_path, capsys):
     csv, png = tmp_path / "d.csv", tmp_path / "d.png"
-    code = main(["domain", "--pulse", "sine", "--durations", "1.0:2.0:2", "--scan", "16",
+    code = main(["domain", "--model", "fourlink", "--pulse", "sine", "--durations", "1.0:2.0:2",
+                 "--scan", "16",
                  "--csv", str(csv), "--plot", str(png)])
     assert code == 0
     assert "failure domain, sine pulse" in capsys.readouterr().out

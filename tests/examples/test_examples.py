@@ -23,7 +23,7 @@ def run_example(*args: str) -> str:
 @pytest.mark.parametrize(("script", "expected"), [
     ("own_arch.py", ["hinging starts at", "t_p [s]", "c_v ="]),
     ("earthquake_record.py", ["synthetic:", "x1:"]),
-    ("sweep.py", ["8 cases, 8 computed", "rerun: 0 computed, 8 already stored"]),
+    ("sweep.py", ["4 cases, 4 computed", "rerun: 0 computed, 4 already stored"]),
 ])
 def test_example_runs_quick(script, expected):
     out = run_example(f"examples/{script}", "--quick")

@@ -18,7 +18,7 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 STUDY = """\
 [study]
 name = "fuzz"
-model = "analytical"
+model = "fourlink"
 
 [arches]
 radius = 10

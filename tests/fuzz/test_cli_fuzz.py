@@ -99,18 +99,20 @@ COMMANDS: dict[str, tuple[list[str], dict[str, st.SearchStrategy[str]]]] = {
                 "--method": st.sampled_from(["auto", "static", "kinematic", "both", "x"])}),
     "min-thickness": (["min-thickness", "--voussoirs", "20", "--json"],
                       {"--embrace": floats_in(1.0, 240.0), "--voussoirs": ints_in(3, 40)}),
-    "run": (["run", *PULSE, "--t-end", "1", "--voussoirs", "5", "--json"],
+    "run": (["run", "--model", "fourlink", *PULSE, "--t-end", "1", "--voussoirs", "5", "--json"],
             {**ARCH, **EXCITATION, **DEM_OPTIONS,
              "--restitution": floats_in(0.0, 1.0), "--t-end": floats_in(0.01, 3.0),
-             "--model": st.sampled_from(["analytical", "udec"])}),
+             "--model": st.sampled_from(["fourlink", "analytical", "udec"])}),
     "run-dem": (["run", *PULSE, "--t-end", "0.05", "--voussoirs", "5", "--model", "dem", "--json"],
                 {**DEM_OPTIONS, "--t-end": floats_in(0.01, 0.06),
                  "--restitution": floats_in(0.0, 1.0), "--magnitude": floats_in(0.0, 3.0)}),
-    "thrust": (["thrust", *PULSE, "--times", "0.05", "--voussoirs", "5", "--json"],
+    "thrust": (["thrust", "--model", "fourlink", *PULSE, "--times", "0.05", "--voussoirs", "5",
+                "--json"],
                {**ARCH, **EXCITATION,
                 "--times": st.lists(floats_in(0.0, 0.3), min_size=1, max_size=4).map(",".join)}),
-    "friction": (["friction", *PULSE, "--voussoirs", "5", "--json"], {**ARCH, **EXCITATION}),
-    "domain": (["domain", "--durations", "0.3", "--scan", "4", "--precision", "0.1",
+    "friction": (["friction", "--model", "fourlink", *PULSE, "--voussoirs", "5", "--json"],
+                 {**ARCH, **EXCITATION}),
+    "domain": (["domain", "--model", "fourlink", "--durations", "0.3", "--scan", "4", "--precision", "0.1",
                 "--max-magnitude", "1", "--voussoirs", "5", "--json"],
                {**ARCH, "--durations": st.one_of(floats_in(0.05, 1.0), st.just("0.2:0.4:2")),
                 "--scan": ints_in(2, 8), "--precision": floats_in(0.05, 0.5),
@@ -203,8 +205,9 @@ def test_every_option_of_every_command_thoroughly(scratch, case):
 # ------------------------------------------------------------------------------------------
 OUTPUTS = {
     "--plot": (["static", "--voussoirs", "5"], ".png"),
-    "--history": (["run", *PULSE, "--t-end", "0.3", "--voussoirs", "5"], ".csv"),
-    "--csv": (["domain", "--durations", "0.3", "--scan", "3", "--precision", "0.2",
+    "--history": (["run", "--model", "fourlink", *PULSE, "--t-end", "0.3", "--voussoirs", "5"],
+                  ".csv"),
+    "--csv": (["domain", "--model", "fourlink", "--durations", "0.3", "--scan", "3", "--precision", "0.2",
                "--max-magnitude", "1", "--voussoirs", "5"], ".csv"),
     "--export": (["sweep", "study.toml", "--workers", "1", "--no-progress"], ".csv"),
     "--store": (["sweep", "study.toml", "--workers", "1", "--no-progress"], ".sqlite"),
@@ -309,7 +312,8 @@ def _run_record(scratch: Path, data: bytes, suffix: str, n: int, command: str):
     if command == "record":
         argv = ["record", str(path), "--json"]
     else:
-        argv = ["run", "--record", str(path), "--t-end", "1", "--voussoirs", "5", "--json"]
+        argv = ["run", "--model", "fourlink", "--record", str(path), "--t-end", "1",
+                "--voussoirs", "5", "--json"]
     check(call(argv, TIMEOUT), [path.name, "--record", "--scale", "--units"])
 
 
@@ -337,7 +341,7 @@ def test_malformed_record_files_thoroughly(scratch, case):
 # study files
 # ------------------------------------------------------------------------------------------
 STUDY_KEYS = {
-    "study": {"name": '"fuzz"', "model": '"analytical"'},
+    "study": {"name": '"fuzz"', "model": '"fourlink"'},
     "arches": {"radius": "10", "thickness_ratio": "0.15", "embrace_deg": "157.5",
                "voussoirs": "5", "depth": "1", "density": "2000"},
     "excitation": {"type": '"step"', "magnitude_g": "0.5", "duration_s": "0.1",

@@ -21,7 +21,7 @@ if not suites.fema_available():
 
 def _ida(tmp_path, records):
     with ResultStore(tmp_path / "nf.sqlite") as store:
-        return incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, ceiling=5.0,
+        return incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", ceiling=5.0,
                                             precision=0.02, fill=0.10, executor=SerialExecutor())
 
 

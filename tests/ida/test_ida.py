@@ -92,7 +92,7 @@ def test_step_pulse_ida_reproduces_the_failure_domain(tmp_path, tp):
     (band,) = dom.non_monotonic_bands
     with ResultStore(tmp_path / "s.sqlite") as store:
         res = incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, tp)], "pga", store,
-                                           ceiling=5.0, precision=0.002, fill=0.05,
+                                           model="fourlink", ceiling=5.0, precision=0.002, fill=0.05,
                                            executor=SerialExecutor())
     rec = res.records[0]
     first, second = rec.collapse_intervals
@@ -117,7 +117,7 @@ def test_step_pulse_ida_reproduces_the_failure_domain(tmp_path, tp):
 # ----------------------------------------------------------------------------- the batch
 def test_batch_evaluator_is_simulate_case_by_case(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build())
-    cases = [Case(OPPENHEIM, ExcitationSpec("record", motion=r, scale=s))
+    cases = [Case(OPPENHEIM, ExcitationSpec("record", motion=r, scale=s), model="fourlink")
              for r in records for s in (0.9, 1.3, 2.0, 3.0, 4.5, 6.0)]
     batch = evaluate_cases(cases)
     outcomes = set()
@@ -142,7 +142,7 @@ def test_batch_evaluator_is_simulate_under_the_followed_chain_law(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build(), "chain")
     assert prepared.table.size == 2
     opts = CaseOptions(impact="chain")
-    cases = [Case(OPPENHEIM, ExcitationSpec("record", motion=r, scale=s), options=opts)
+    cases = [Case(OPPENHEIM, ExcitationSpec("record", motion=r, scale=s), "fourlink", opts)
              for r in records for s in (1.3, 2.0, 3.0, 4.5)]
     batch = evaluate_cases(cases)
     early = 0
@@ -171,7 +171,7 @@ def test_batch_evaluator_states_a_cut_run_as_simulate_does(early):
 
     specs = [(0.3, 1.0, 0.20), (0.3, 0.3, 0.20), (1.5, 1.0, 0.27), (None, 1.0, 0.27),
              (None, 1.0, 0.20)]
-    cases = [Case(OPPENHEIM, ExcitationSpec("step", magnitude_g=a, duration_s=d),
+    cases = [Case(OPPENHEIM, ExcitationSpec("step", magnitude_g=a, duration_s=d), "fourlink",
                   options=CaseOptions(t_end_s=t)) for t, a, d in specs]
     got = [r["outcome"] for r in evaluate_cases(cases, early=early)]
     ref = [evaluate_case(c)["outcome"] for c in cases]
@@ -220,7 +220,7 @@ def test_the_analytical_ida_runs_in_process_by_default(tmp_path, monkeypatch):
     monkeypatch.setattr(runner, "run_sweep", spy)
     with ResultStore(tmp_path / "d.sqlite") as store:
         incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga", store,
-                                     ceiling=1.0, precision=0.2, fill=0.5)
+                                     model="fourlink", ceiling=1.0, precision=0.2, fill=0.5)
     assert seen and all(kind == "SerialExecutor" and chunk == n for kind, chunk, n in seen)
 
 
@@ -228,7 +228,7 @@ def test_prescribed_restitution_reaches_the_batch(records):
     prepared = PreparedMechanism.build(OPPENHEIM.build())
     from archquake.sweeps import CaseOptions
 
-    case = Case(OPPENHEIM, ExcitationSpec("record", motion=records[0], scale=3.0),
+    case = Case(OPPENHEIM, ExcitationSpec("record", motion=records[0], scale=3.0), "fourlink",
                 options=CaseOptions(restitution=0.6))
     (got,) = evaluate_cases([case])
     ref = simulate(prepared, case.excitation.build(), restitution=0.6,
@@ -241,7 +241,7 @@ def test_interrupted_ida_resumes_to_the_same_result(tmp_path, records):
     kwargs = dict(ceiling=3.0, precision=0.05, fill=0.2, executor=SerialExecutor(),
                   chunk_size=4)
     with ResultStore(tmp_path / "full.sqlite") as store:
-        full = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, **kwargs)
+        full = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", **kwargs)
 
     class Stop(KeyboardInterrupt):
         pass
@@ -255,22 +255,23 @@ def test_interrupted_ida_resumes_to_the_same_result(tmp_path, records):
 
     path = tmp_path / "cut.sqlite"
     with ResultStore(path) as store, pytest.raises(Stop):
-        incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, progress=progress,
+        incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", progress=progress,
                                      **kwargs)
     with ResultStore(path) as store:
         partial = store.count()
-        again = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, **kwargs)
+        again = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", **kwargs)
     assert 0 < partial < full.total
     assert again.computed == full.total - partial
     assert again.to_dict()["records"] == full.to_dict()["records"]
     with ResultStore(path) as store:
-        rerun = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, **kwargs)
+        rerun = incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", **kwargs)
     assert rerun.computed == 0 and rerun.total == full.total
 
 
 def test_levels_are_the_intensity_measure_of_the_scaled_record(tmp_path, records):
     with ResultStore(tmp_path / "pgv.sqlite") as store:
-        res = incremental_dynamic_analysis(OPPENHEIM, records[:1], "pgv", store, ceiling=2.0,
+        res = incremental_dynamic_analysis(OPPENHEIM, records[:1], "pgv", store,
+                                           model="fourlink", ceiling=2.0,
                                            precision=0.1, fill=0.5, executor=SerialExecutor())
     rec = res.records[0]
     for level, factor in zip(rec.levels, rec.factors, strict=True):
@@ -311,12 +312,14 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
         t = np.arange(r.points) * r.dt
         np.savetxt(folder / f"{r.name}.csv", np.column_stack([t, r.accelerations]),
                    delimiter=",", header="time_s,acc_m_s2", comments="")
-    argv = ["ida", "--records", str(folder), "--units", "m/s2", "--ceiling", "2.5",
+    argv = ["ida", "--model", "fourlink", "--records", str(folder), "--units", "m/s2",
+            "--ceiling", "2.5",
             "--precision", "0.05", "--fill", "0.2", "--workers", "1", "--no-progress",
             "--store", str(tmp_path / "i.sqlite"), "--csv", str(tmp_path / "runs.csv"),
             "--bootstrap", "50", "--json"]
     assert main(argv) == 0
     out = json.loads(capsys.readouterr().out)
+    assert out["model"] == "fourlink"
     assert out["im"] == "pga" and out["records_total"] == 3
     assert out["computed_now"] == out["cases_total"] > 0
     assert {"first_collapse", "collapse_fraction"} <= set(out["fragility"])
@@ -337,11 +340,13 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
     assert again["computed_now"] == 0 and again["records"] == out["records"]
 
 
-@pytest.mark.parametrize("extra, pool", [([], False), (["--workers", "2"], True),
-                                         (["--model", "dem"], True)])
+@pytest.mark.parametrize("extra, pool", [(["--model", "fourlink"], False),
+                                         (["--model", "fourlink", "--workers", "2"], True),
+                                         (["--model", "dem"], True), ([], True)])
 def test_cli_executor_follows_the_library_default(tmp_path, monkeypatch, extra, pool):
-    """The analytical model with no --workers/--scheduler runs as the library's default (in
-    this process: no executor passed, no pool opened); --workers and the DEM open the pool.
+    """The four-link model with no --workers/--scheduler runs as the library's default (in
+    this process: no executor passed, no pool opened); --workers, the DEM and the rigid chain
+    (the default) open the pool.
     Oracle: the executor the analysis receives (a spy stops before any run)."""
     import archquake.ida
     import archquake.parallel
@@ -391,7 +396,8 @@ def test_cli_bad_options_are_one_line(tmp_path, capsys, extra, needle):
 
 def test_ceiling_default_is_the_median_record_at_5_g(tmp_path, records):
     with ResultStore(tmp_path / "c.sqlite") as store:
-        res = incremental_dynamic_analysis(OPPENHEIM, records[:1], "pga", store, precision=0.2,
+        res = incremental_dynamic_analysis(OPPENHEIM, records[:1], "pga", store,
+                                           model="fourlink", precision=0.2,
                                            fill=2.0, executor=SerialExecutor())
     assert res.ceiling == pytest.approx(5.0, rel=1e-12)
     assert math.isfinite(res.records[0].first_collapse_level)
@@ -407,8 +413,8 @@ def test_worker_processes_after_a_threaded_kernel_in_this_process(tmp_path):
     def ida(name, **kwargs):
         with ResultStore(tmp_path / f"{name}.sqlite") as store:
             res = incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga",
-                                               store, ceiling=2.0, precision=0.05, fill=0.2,
-                                               **kwargs)
+                                               store, model="fourlink", ceiling=2.0,
+                                               precision=0.05, fill=0.2, **kwargs)
         return [(i.lower_edge, i.upper_edge) for i in res.records[0].collapse_intervals]
 
     here = ida("here", executor=SerialExecutor())

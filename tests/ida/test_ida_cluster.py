@@ -32,11 +32,11 @@ def test_ida_on_a_dask_cluster_equals_the_serial_run(tmp_path, cluster, records)
     address = cluster.address
     kwargs = dict(ceiling=3.0, precision=0.05, fill=0.3)
     with ResultStore(tmp_path / "serial.sqlite") as store:
-        serial = incremental_dynamic_analysis(OPPENHEIM, records[:2], "pga", store,
+        serial = incremental_dynamic_analysis(OPPENHEIM, records[:2], "pga", store, model="fourlink",
                                               executor=SerialExecutor(), **kwargs)
     with ResultStore(tmp_path / "dask.sqlite") as store, \
             open_executor(scheduler=address) as (executor, n):
-        on_dask = incremental_dynamic_analysis(OPPENHEIM, records[:2], "pga", store,
+        on_dask = incremental_dynamic_analysis(OPPENHEIM, records[:2], "pga", store, model="fourlink",
                                                executor=executor, workers=n, chunk_size=3,
                                                **kwargs)
     assert on_dask.computed == serial.total

@@ -18,7 +18,7 @@ from archquake.sweeps import ResultStore
 @pytest.fixture(scope="module")
 def result(tmp_path_factory, records):
     with ResultStore(tmp_path_factory.mktemp("plot") / "p.sqlite") as store:
-        return incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, ceiling=4.0,
+        return incremental_dynamic_analysis(OPPENHEIM, records, "pga", store, model="fourlink", ceiling=4.0,
                                             precision=0.05, fill=0.2, executor=SerialExecutor())
 
 

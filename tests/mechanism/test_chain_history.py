@@ -225,8 +225,8 @@ def test_run_plot_and_animation_under_the_chain_law(tmp_path, capsys):
     from archquake.plotting.history import animate_history
 
     plot, gif = tmp_path / "r.png", tmp_path / "r.gif"
-    assert main(["run", "--pulse", "step", "--magnitude", "1.0", "--duration", "0.20",
-                 "--impact", "chain", "--plot", str(plot)]) == 0
+    assert main(["run", "--model", "fourlink", "--pulse", "step", "--magnitude", "1.0",
+                 "--duration", "0.20", "--impact", "chain", "--plot", str(plot)]) == 0
     out = capsys.readouterr().out
     assert "impact     0e 2i 5e 7i (near_four_hinge)" in out
     assert plot.stat().st_size > 10_000

@@ -21,7 +21,7 @@ from archquake.geometry import Face, HingeMechanism
 SMALL_STUDY = """\
 [study]
 name = "small"
-model = "analytical"
+model = "fourlink"
 
 [arches]
 radius = [1, 5, 10]

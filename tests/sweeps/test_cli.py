@@ -20,7 +20,7 @@ def test_sweep_json_summary_and_rerun(small_study_file, capsys, sweep_cli):
     for case in sweep_fake_model_cases(small_study_file):
         outcome = sweep_fake_model.fake_evaluate(case)["outcome"]
         expected[outcome] = expected.get(outcome, 0) + 1
-    assert first == {"cases_total": 24, "computed_now": 24, "already_stored": 0,
+    assert first == {"model": "fourlink", "cases_total": 24, "computed_now": 24, "already_stored": 0,
                      "outcomes": dict(sorted(expected.items())), "store": str(store),
                      "study": "small"}
     assert sweep_cli(["sweep", str(small_study_file), "--workers", "2", "--json"]) == 0

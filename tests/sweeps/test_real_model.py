@@ -22,7 +22,7 @@ if not hasattr(mechanism, "simulate"):
 
 def test_evaluate_case_is_simulate():
     case = Case(ArchSpec(10, 0.15, 157.5, 7), ExcitationSpec("step", magnitude_g=1.0,
-                                                             duration_s=0.27))
+                                                             duration_s=0.27), "fourlink")
     direct = mechanism.simulate(case.arch.build(), case.excitation.build()).to_dict()
     assert evaluate_case(case) == direct
     # the paper's Figure 4c: Oppenheim's arch collapses after its first impact (at 0.86 s)
@@ -31,7 +31,7 @@ def test_evaluate_case_is_simulate():
 
 def test_sweep_obeys_dimensional_scaling(tmp_path):
     study = parse_study({
-        "study": {"name": "scaling"},
+        "study": {"name": "scaling", "model": "fourlink"},  # exactly similar (no fixed step)
         "arches": {"radius": [1, 4], "thickness_ratio": 0.15, "embrace_deg": 157.5,
                    "voussoirs": 7},
         "excitation": {"type": "step", "magnitude_g": {"start": 0.4, "stop": 1.6, "num": 7},

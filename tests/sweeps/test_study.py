@@ -86,7 +86,7 @@ def _replace(old: str, new: str) -> str:
 
 MALFORMED = [
     ("name missing", _replace('name = "small"\n', ""), "study.name"),
-    ("bad model", _replace('model = "analytical"', 'model = "fem"'), "study.model"),
+    ("bad model", _replace('model = "fourlink"', 'model = "fem"'), "study.model"),
     ("unknown arch key", _replace("voussoirs = 7", "voussoirs = 7\nradiu = 3"), "arches.radiu"),
     ("missing arch key", _replace("voussoirs = 7\n", ""), "arches.voussoirs"),
     ("text radius", _replace("radius = [1, 5, 10]", 'radius = "ten"'), "arches.radius"),

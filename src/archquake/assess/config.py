@@ -21,8 +21,10 @@ computation.
     units = "g"                      # units of CSV records (g, m/s2, cm/s2)
 
     [options]
-    impact = "paper"        # impact law: paper, chain or mirror
-    restitution = 0.8       # prescribed c_v in (0, 1] (instead of the impact law's)
+    model = "rigid"         # the model of every verdict: "rigid" (default, the chain of rigid
+                            # voussoirs) or "fourlink" (the paper's four-link mechanism)
+    impact = "paper"        # fourlink only: impact law, paper, chain or mirror
+    restitution = 0.8       # fourlink only: prescribed c_v in (0, 1] (instead of the law's)
     dem = true              # run the distinct-element check
 
 Every problem is one line naming the key as the file spells it (``[arch] radius``), raised as
@@ -46,7 +48,9 @@ ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "
              "span", "rise", "thickness", "joints", "pier_height", "pier_width", "pier_courses",
              "blocks", "friction")
 SEISMIC_KEYS = ("site_pga_g", "suite", "units")
-OPTION_KEYS = ("impact", "restitution", "dem")
+OPTION_KEYS = ("model", "impact", "restitution", "dem")
+#: The models an assessment's verdicts may rest on (the DEM is its check, ``dem = true``).
+ASSESS_MODELS = ("rigid", "fourlink")
 TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS}
 _WORDS = ("shape", "joints")
 _INTEGERS = ("voussoirs", "pier_courses")
@@ -69,13 +73,16 @@ class AssessConfig:
     units : str or None
         Units of CSV/text records.
     impact : str
-        Impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
+        Impact law of the four-link model (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
     restitution : float or None
-        Prescribed c_v (overrides the impact law's), in (0, 1].
+        Prescribed c_v of the four-link model (overrides the impact law's), in (0, 1].
     dem : bool
         Run the distinct-element check.
     source : str
         The file read (for messages).
+    model : str
+        The model of the dynamic verdicts, "rigid" (default) or "fourlink"
+        (:data:`ASSESS_MODELS`).
     """
 
     arch: Any
@@ -87,6 +94,7 @@ class AssessConfig:
     restitution: float | None
     dem: bool
     source: str = "assessment"
+    model: str = "rigid"
 
     def canonical(self) -> dict:
         """Everything that determines the results (the cache key's input)."""
@@ -94,7 +102,7 @@ class AssessConfig:
                 "site_pga_g": self.site_pga_g,
                 "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
                 "units": self.units, "impact": self.impact, "restitution": self.restitution,
-                "dem": self.dem}
+                "dem": self.dem, "model": self.model}
 
     @property
     def digest(self) -> str:
@@ -213,6 +221,21 @@ def parse_config(data: dict, *, source: str = "assessment",
         raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set)")
 
     options = data.get("options", {})
+    from archquake.sweeps.cases import model_of
+
+    try:  # the words of --model, with a pointer for the retired ones
+        model = model_of(options.get("model"), model_name="[options] model").value
+    except ArchquakeError as exc:
+        raise StudyFileError(f"{source}: {exc}") from None
+    if model not in ASSESS_MODELS:
+        raise _fail(source, "[options] model", f"must be one of {list(ASSESS_MODELS)}, got "
+                                               f"{model!r} (the DEM is the check: dem = true)")
+    if model != "fourlink":
+        for key in ("impact", "restitution"):
+            if key in options:
+                raise _fail(source, f"[options] {key}", f"applies to model = \"fourlink\" "
+                                                        f"only: the {model} model's impacts "
+                                                        "follow from its contacts; leave it out")
     from archquake.mechanism.impact import IMPACT_LAWS
     impact = options.get("impact", "paper")
     if impact not in IMPACT_LAWS:
@@ -227,7 +250,8 @@ def parse_config(data: dict, *, source: str = "assessment",
     dem = options.get("dem", True)
     if not isinstance(dem, bool):
         raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
-    return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source)
+    return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
+                        model=model)
 
 
 def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:
@@ -263,4 +287,4 @@ def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | N
                              f"({known})")
 
 
-__all__ = ["ARCH_KEYS", "AssessConfig", "load_config", "parse_config"]
+__all__ = ["ARCH_KEYS", "ASSESS_MODELS", "AssessConfig", "load_config", "parse_config"]

@@ -89,6 +89,11 @@ def elements(rep) -> list[tuple]:
     return el
 
 
+def _model_name(model: str) -> str:
+    """The model in words, for the report."""
+    return "chain of rigid voussoirs" if model == "rigid" else "four-link mechanism"
+
+
 def _refusal(s: dict) -> str | None:
     return next((w["meaning"] for w in s["validity"]["warnings"] if w["key"] == "asymmetric"),
                 None)
@@ -96,9 +101,13 @@ def _refusal(s: dict) -> str | None:
 
 def _pulses(el: list, rep, cfg, pu: dict) -> None:
     el.append(("h2", "pulses", "3. Pulses"))
-    el.append(("p", f"Failure domains of the step and the one-cycle sine pulse, c_v = "
-                    f"{pu['restitution_cv']:.3g}. Below the governing boundary the arch "
-                    "survives; above it, it collapses (except in non-monotonic bands)."))
+    how = (f"the four-link mechanism, c_v = {pu['restitution_cv']:.3g}"
+           if pu.get("restitution_cv") is not None else
+           "the chain of rigid voussoirs, every voussoir a block (its first-half-cycle boundary "
+           "is not searched)")
+    el.append(("p", f"Failure domains of the step and the one-cycle sine pulse, {how}. Below "
+                    "the governing boundary the arch survives; above it, it collapses (except "
+                    "in non-monotonic bands)."))
     rows = []
     for fam in ("step", "sine"):
         d = pu[fam]
@@ -131,10 +140,12 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
         r = s["records"]
         el.append(("h2", "records", "4. Records"))
         fit = r["fragility"]["first_collapse"]
+        how = (f"the four-link mechanism, c_v = {r['restitution_cv']:.3g}"
+               if r.get("restitution_cv") is not None else "the chain of rigid voussoirs")
         text = (f"Incremental dynamic analysis (PGA) of {len(r['records_used'])} of the "
                 f"{r['records_in_suite']} records of {r['suite']} ({r['runs']} time histories, "
-                f"c_v = {r['restitution_cv']:.3g}); {r['records_collapsing']} collapse the arch "
-                f"below the ceiling {r['ceiling_g']:.2f} g.")
+                f"{how}); {r['records_collapsing']} collapse the arch below the ceiling "
+                f"{r['ceiling_g']:.2f} g.")
         if fit is not None:
             ci = fit.get("median_ci_g")
             text += (f" Fragility (first collapse, lognormal): median {fit['median_g']:.3f} g"
@@ -155,45 +166,49 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
     if "dem" in s:
         d = s["dem"]
         el.append(("h2", "dem", "5. The DEM check"))
+        who = _model_name(d.get("model", "fourlink"))
         el.append(("p", "The distinct-element model (every voussoir a rigid block on Coulomb "
                         "contacts, the paper's stiffness and damping) on the governing cases: a "
-                        "step pulse on the analytical domain boundary and the record whose first "
+                        f"step pulse on the {who}'s domain boundary and the record whose first "
                         "collapse is nearest the fragility median, run at fractions of the "
-                        "analytical collapse level (where the analytical model survives)."
+                        f"{who}'s collapse level (where it survives)."
                    + (f" The record is run to 3 s after 95 % of its Arias intensity "
                       f"({d['record_window_s']:.1f} s)." if "record_window_s" in d else "")))
         if rep.quick:
-            el.append(("p", "Quick mode: one DEM run per case, at 0.85 x the analytical level; "
+            el.append(("p", f"Quick mode: one DEM run per case, at 0.85 x the {who}'s level; "
                             "the full mode runs 1.0, 0.85 and 0.7 x."))
         rows = []
         for c in d["cases"]:
             for run in c["runs"]:
                 rows.append([c["case"], f"{run['factor']:g}", f"{run['level_g']:.4f}",
-                             run["analytical_outcome"], run["dem_outcome"]])
-        el.append(("table", ["case", "x analytical collapse level", "magnitude / PGA (g)",
-                             "analytical", "DEM"], rows))
+                             run["model_outcome"], run["dem_outcome"]])
+        el.append(("table", ["case", f"x {who}'s collapse level", "magnitude / PGA (g)",
+                             who, "DEM"], rows))
         items = []
         for c in d["cases"]:
             if c["dem_more_vulnerable"]:
                 items.append(f"{c['case']}: the DEM is more vulnerable: it collapses at "
-                             f"{c['lowest_dem_collapse_factor']:g} x the analytical level "
-                             f"({c['analytical_level_g']:.4f} g); the analytical result is "
+                             f"{c['lowest_dem_collapse_factor']:g} x the {who}'s level "
+                             f"({c['model_level_g']:.4f} g); the {who}'s result is "
                              f"UNCONSERVATIVE there by at least "
                              f"{100 * c['unconservative_by_at_least']:.0f} %.")
             else:
                 at_one = [r for r in c["runs"] if r["factor"] >= 1.0]
-                more = (" The DEM survives even at the analytical collapse level: the analytical"
-                        " result is conservative there." if at_one and
+                more = (f" The DEM survives even at the {who}'s collapse level: its result is "
+                        "conservative there." if at_one and
                         at_one[0]["dem_outcome"] != "collapse" else "")
-                items.append(f"{c['case']}: the DEM does not collapse below the analytical "
-                             f"level ({c['analytical_level_g']:.4f} g) at the fractions run: "
-                             f"no sign that the analytical result is unconservative.{more}")
+                items.append(f"{c['case']}: the DEM does not collapse below the {who}'s "
+                             f"level ({c['model_level_g']:.4f} g) at the fractions run: "
+                             f"no sign that its result is unconservative.{more}")
         el.append(("ul", items))
 
     va = s["validity"]
     el.append(("h2", "validity", "6. Validity"))
     imp = va["impact"]
-    if "law_restitution_cv" not in imp:
+    if va.get("model") == "rigid":
+        el.append(("p", "Impacts: the chain of rigid voussoirs' plastic corner contacts (no "
+                        "coefficient of restitution to choose)."))
+    elif "law_restitution_cv" not in imp:
         el.append(("p", f"Impact law '{imp['law']}': not evaluated (no time history is run)."))
     else:
         el.append(("p", f"Impact law '{imp['law']}': c_v = {imp['law_restitution_cv']:.4g}, "
@@ -202,10 +217,20 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                    + (", creates energy" if imp["law_energy_gain"] else "")
                    + (f"; prescribed c_v = {imp['prescribed_restitution_cv']:g} used"
                       if imp["prescribed_restitution_cv"] is not None else "")
-                   + ". c_v used by every analytical time history: "
+                   + ". c_v used by every four-link time history: "
                    + f"{imp['used_restitution_cv']:.4g}."))
     warned: list = [(f"{w['warning']}: {w['meaning']}.", w["serious"]) for w in va["warnings"]]
     el.append(("ul", warned or ["no warning raised"]))
+    steps = va.get("step_sensitivity", [])
+    if steps:
+        el.append(("p", f"What the verdicts rest on: each pulse of the site PGA "
+                        f"({cfg.site_pga_g:g} g) at every scanned duration (and the governing "
+                        f"record scaled to it) run at the time step "
+                        f"{steps[0]['time_step_s']:.3g} s, at half of it, and with Coulomb "
+                        f"joints of mu = {steps[0]['friction_coefficient']:g}."))
+        el.append(("table", ["case", "step", "half step", "friction"],
+                   [[r["case"], r["default_step"], r["half_step"], r["friction"]]
+                    for r in steps]))
     if va["restitution_sensitivity"] and pu is not None:
         rows = [[f"{e['restitution_cv']:.3g}"] + [
             f"{_f(e[f]['min_collapse_g'])} g, {'collapses' if e[f]['collapses_at_site'] else 'survives'}"

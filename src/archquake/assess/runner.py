@@ -45,6 +45,7 @@ class Assessment:
     def to_dict(self) -> dict:
         return to_jsonable({
             "archquake_version": __version__,
+            "model": self.config.model,
             "input": self.config.canonical(),
             "source": self.config.source,
             "quick": self.quick,
@@ -60,14 +61,14 @@ class Assessment:
 
 def section_names(config: AssessConfig, arch=None) -> list[str]:
     """The sections this input calls for (records only with a suite, the DEM only if asked; no
-    pulses, records or DEM for an ``arch`` the rocking model cannot take:
+    pulses, records or DEM for an ``arch`` the four-link model cannot take:
     :func:`~archquake.assess.sections.dynamics_refusal`, reported in the validity section)."""
     names = [n for n, _ in SECTIONS]
     if config.suite is None:
         names.remove("records")
     if not config.dem:
         names.remove("dem")
-    if arch is not None and dynamics_refusal(arch) is not None:
+    if arch is not None and dynamics_refusal(arch, config.model) is not None:
         names = [n for n in names if n not in ("pulses", "records", "dem")]
     return names
 

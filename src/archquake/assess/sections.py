@@ -46,6 +46,16 @@ class Mode:
             return DomainSettings(coarse_points=16, fine_points=6, precision_g=5e-3)
         return DomainSettings(coarse_points=40, fine_points=20, precision_g=2e-3)
 
+    @property
+    def rigid_domain_settings(self):
+        """The domain search of the rigid chain (one time history per point, ~1 s each):
+        coarser than the four-link batch's."""
+        from archquake.domains import DomainSettings
+
+        if self.quick:
+            return DomainSettings(coarse_points=8, fine_points=4, precision_g=1e-2, early=False)
+        return DomainSettings(coarse_points=16, fine_points=8, precision_g=5e-3, early=False)
+
     def records(self, records: tuple) -> tuple:
         """The records analysed: all of them, or four spread over the suite (quick)."""
         if not self.quick or len(records) <= 4:
@@ -64,7 +74,7 @@ class Mode:
 
     @property
     def dem_factors(self) -> tuple[float, ...]:
-        """Fractions of the analytical collapse level at which the DEM runs."""
+        """Fractions of the model's collapse level at which the DEM runs."""
         return (0.85,) if self.quick else (1.0, 0.85, 0.7)
 
 
@@ -107,18 +117,20 @@ def used_restitution(config, arch) -> tuple[float, Any]:
     return float(cv), own
 
 
-def dynamics_refusal(arch) -> str | None:
-    """Why the time histories (pulses, records, DEM check) cannot run on ``arch``, or None.
+def dynamics_refusal(arch, model: str = "rigid") -> str | None:
+    """Why the time histories (pulses, records, DEM check) cannot run on ``arch`` with
+    ``model``, or None.
 
-    The analytical model switches to the mirror-image mechanism after each impact, which exists
-    only for a symmetric chain (:attr:`VoussoirChain.symmetric`, docs/geometry.md); a surveyed
-    asymmetric arch gets its static capacity and this one-line reason instead."""
-    if getattr(arch, "symmetric", True):
+    The chain of rigid voussoirs (``rigid``) takes any arch. The four-link model switches to
+    the mirror-image mechanism after each impact, which exists only for a symmetric chain
+    (:attr:`VoussoirChain.symmetric`, docs/geometry.md); with it a surveyed asymmetric arch
+    gets its static capacity and this one-line reason instead."""
+    if model != "fourlink" or getattr(arch, "symmetric", True):
         return None
-    return ("the arch is not symmetric about x = 0 (blocks from a file): the rocking model "
+    return ("the arch is not symmetric about x = 0 (blocks from a file): the four-link model "
             "switches to the mirror-image mechanism after each impact, which exists only for a "
             "symmetric arch, so the pulse, record and DEM sections are not run; the static "
-            "capacity (section 2) stands")
+            "capacity (section 2) stands (model = \"rigid\" runs them)")
 
 
 def _num(x) -> float | None:
@@ -221,7 +233,7 @@ def _domain_data(d, site: float | None) -> dict:
     out = {"durations_s": d.durations, "no_hinging_g": d.no_hinging_g,
            "first_half_cycle_g": d.first_half_cycle_g, "collapse_g": coll,
            "non_monotonic_bands": [b.to_dict() for b in d.non_monotonic_bands],
-           "restitution_cv": d.restitution_cv, "evaluations": d.evaluations,
+           "restitution_cv": _num(d.restitution_cv), "evaluations": d.evaluations,
            "min_collapse_g": _num(np.nanmin(coll)) if np.any(np.isfinite(coll)) else None}
     if site is not None:
         below = np.isfinite(coll) & (coll <= site)
@@ -231,8 +243,19 @@ def _domain_data(d, site: float | None) -> dict:
     return out
 
 
-def pulse_domains(ctx: Context, cv: float) -> dict:
-    """Step and sine failure domains at restitution ``cv`` (FailureDomain objects)."""
+def pulse_domains(ctx: Context, cv: float | None) -> dict:
+    """Step and sine failure domains (FailureDomain objects) of the configuration's model: the
+    rigid chain's governing boundary (every voussoir a block, searched by
+    :func:`archquake.compare.dem_failure_domain` with ``model='rigid'``: batches of
+    :func:`archquake.rigid.verdict.rigid_verdicts`, threaded), or the four-link model's at
+    restitution ``cv``."""
+    if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
+        from archquake.compare import dem_failure_domain
+
+        return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
+                                        settings=ctx.mode.rigid_domain_settings,
+                                        governing_only=True, model="rigid").domain
+                for fam in ("step", "sine")}
     from archquake.domains import failure_domain
 
     prep = prepared_mechanism(ctx.arch, ctx.config.impact)
@@ -249,16 +272,18 @@ def section_pulses(ctx: Context) -> StudyResult:
     from archquake.plotting.domains import plot_domain
     from archquake.plotting.figures import save
 
-    cv, _ = used_restitution(ctx.config, ctx.arch)
+    rigid = ctx.config.model == "rigid"
+    cv = None if rigid else used_restitution(ctx.config, ctx.arch)[0]
     domains = pulse_domains(ctx, cv)
-    data: dict[str, Any] = {"restitution_cv": cv}
+    data: dict[str, Any] = {"model": ctx.config.model, "restitution_cv": cv}
     figs = []
     for fam, d in domains.items():
         ctx.say(f"  {fam} domain: {d.evaluations} time histories")
         data[fam] = _domain_data(d, ctx.site)
         fig = MplFigure(figsize=(7, 4.6))
         ax = fig.subplots()
-        plot_domain(d, ax, title=f"{fam} pulse, c_v = {cv:.3g}")
+        plot_domain(d, ax, title=f"{fam} pulse, " + ("chain of rigid voussoirs" if rigid
+                                                      else f"c_v = {cv:.3g}"))
         if ctx.site is not None:
             ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
                        label=f"site PGA {ctx.site:g} g")
@@ -294,8 +319,9 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
 
 
 def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None):
-    """The IDA in PGA of the mode's records (all, or four in quick mode) at ``restitution``
-    (None: the impact law's own), its runs kept in a SQLite store under ``out/cache`` named by
+    """The IDA in PGA of the mode's records (all, or four in quick mode) with the
+    configuration's model (the four-link model at ``restitution``, None: the impact law's
+    own), its runs kept in a SQLite store under ``out/cache`` named by
     the input's digest, the restitution and the mode (so an interrupted run resumes them).
 
     Returns
@@ -312,7 +338,9 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
                        units=cfg.units)
     records = ctx.mode.records(suite.records)
-    options = CaseOptions(restitution=restitution, impact=cfg.impact)
+    fourlink = cfg.model == "fourlink"
+    options = (CaseOptions(restitution=restitution, impact=cfg.impact) if fourlink
+               else CaseOptions())
     tag = "" if restitution == cfg.restitution else f"-cv{restitution:.4g}"
     store_path = (ctx.out / "cache" /
                   f"ida-{cfg.digest}{tag}-{'quick' if ctx.mode.quick else 'full'}.sqlite")
@@ -322,7 +350,8 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     n = workers()
     with ResultStore(store_path) as store, interruptible_pool(n) as executor:
         res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
-                                           executor=executor, workers=n, **ctx.mode.ida)
+                                           model=cfg.model, executor=executor, workers=n,
+                                           **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
@@ -335,7 +364,7 @@ def section_records(ctx: Context) -> StudyResult:
     from archquake.plotting.ida import plot_fragility, plot_ida_curves
 
     cfg = ctx.config
-    cv, _ = used_restitution(cfg, ctx.arch)
+    cv = used_restitution(cfg, ctx.arch)[0] if cfg.model == "fourlink" else None
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
     fig = MplFigure(figsize=(12, 4.8))
@@ -345,7 +374,8 @@ def section_records(ctx: Context) -> StudyResult:
     first = res.first_collapse_levels
     data: dict[str, Any] = {
         "suite": suite.name, "records_in_suite": len(suite.records),
-        "records_used": [r.name for r in res.records], "restitution_cv": cv,
+        "records_used": [r.name for r in res.records], "model": cfg.model,
+        "restitution_cv": cv,
         "ceiling_g": res.ceiling, "runs": res.total,
         "first_collapse_g": [_num(x) for x in first],
         "records_collapsing": int(np.sum(np.isfinite(first))),
@@ -405,7 +435,8 @@ def section_dem(ctx: Context) -> StudyResult:
     from archquake.ground.suites import load_suite
 
     jobs: list[tuple[str, float, Any, float, float]] = []  # (case, factor, motion, duration, level)
-    data: dict[str, Any] = {"factors": list(ctx.mode.dem_factors), "cases": []}
+    data: dict[str, Any] = {"model": ctx.config.model, "factors": list(ctx.mode.dem_factors),
+                            "cases": []}
     pul = ctx.prior.get("pulses", {})
     step = pul.get("step")
     if step is not None:
@@ -449,11 +480,11 @@ def section_dem(ctx: Context) -> StudyResult:
         c = by_case.setdefault(case, {"case": case, "runs": []})
         c["runs"].append({"factor": f, "level_g": level, "duration_s": dur,
                           "dem_outcome": outcome,
-                          "analytical_outcome": "collapse" if f >= 1.0 else "survives"})
+                          "model_outcome": "collapse" if f >= 1.0 else "survives"})
     for c in by_case.values():
         dem_collapses = [r["factor"] for r in c["runs"] if r["dem_outcome"] == "collapse"]
         lowest = min(dem_collapses) if dem_collapses else None
-        c["analytical_level_g"] = c["runs"][0]["level_g"] / c["runs"][0]["factor"]
+        c["model_level_g"] = c["runs"][0]["level_g"] / c["runs"][0]["factor"]
         c["lowest_dem_collapse_factor"] = lowest
         c["dem_more_vulnerable"] = bool(lowest is not None and lowest < 1.0)
         c["unconservative_by_at_least"] = (1.0 - lowest) if lowest is not None and \
@@ -471,14 +502,18 @@ def section_validity(ctx: Context) -> StudyResult:
     def warn(key: str, text: str, means: str, serious: bool = True) -> None:
         warnings.append({"key": key, "warning": text, "meaning": means, "serious": serious})
 
-    refusal = dynamics_refusal(ctx.arch)
+    refusal = dynamics_refusal(ctx.arch, cfg.model)
     if refusal is not None:
         # serious unless the site PGA is below lambda: then the arch does not rock at all
         lam = ctx.prior.get("static", {}).get("collapse_acceleration_g", math.inf)
         warn("asymmetric", "the dynamic sections were not run", refusal,
              serious=ctx.site is None or ctx.site > lam)
     impact: dict[str, Any] = {"law": cfg.impact, "prescribed_restitution_cv": cfg.restitution}
-    if refusal is not None:
+    cv = math.nan
+    if cfg.model == "rigid":
+        impact = {"law": "plastic contacts (the chain of rigid voussoirs: no restitution)",
+                  "prescribed_restitution_cv": None}
+    elif refusal is not None:
         cv = cfg.restitution if cfg.restitution is not None else math.nan
     else:
         cv, own = used_restitution(cfg, ctx.arch)
@@ -506,8 +541,8 @@ def section_validity(ctx: Context) -> StudyResult:
         warn("sliding", f"the joints need a friction coefficient of "
              f"{static['static_friction_demand']:.3f} at the onset of rocking, more than the "
              f"given {cfg.friction:g}",
-             "the arch slides before it rocks: the rocking models (analytical and the "
-             "collapse criterion) do not cover sliding; the capacities are upper bounds")
+             "the arch slides before it rocks: the rocking models (four-link and the rigid "
+             "chain without friction) do not cover sliding; the capacities are upper bounds")
     for fam in ("step", "sine"):
         bands = ctx.prior.get("pulses", {}).get(fam, {}).get("non_monotonic_bands", [])
         if bands:
@@ -524,13 +559,15 @@ def section_validity(ctx: Context) -> StudyResult:
     for c in dem.get("cases", []):
         if c["dem_more_vulnerable"]:
             warn("dem", f"the DEM collapses under the {c['case']} at "
-                 f"{c['lowest_dem_collapse_factor']:g} x the analytical collapse level "
-                 f"({c['analytical_level_g']:.3g} g)",
-                 f"the analytical result is unconservative there by at least "
+                 f"{c['lowest_dem_collapse_factor']:g} x the {cfg.model} model's collapse level "
+                 f"({c['model_level_g']:.3g} g)",
+                 f"the {cfg.model} model's result is unconservative there by at least "
                  f"{100 * c['unconservative_by_at_least']:.0f} %")
-    # restitution sensitivity: the pulse verdict at c_v +- 0.1
+    step_sens = (_rigid_sensitivity(ctx, warn) if cfg.model == "rigid" and ctx.site is not None
+                 and "pulses" in ctx.prior else [])
+    # restitution sensitivity (four-link model): the pulse verdict at c_v +- 0.1
     sens = []
-    if ctx.site is not None and "pulses" in ctx.prior:
+    if cfg.model == "fourlink" and ctx.site is not None and "pulses" in ctx.prior:
         base = ctx.prior["pulses"]
         for dcv in (-0.1, 0.1):
             c2 = min(max(cv + dcv, 0.0), 1.0)
@@ -551,11 +588,97 @@ def section_validity(ctx: Context) -> StudyResult:
                  f"(at c_v = {', '.join(format(e['restitution_cv'], '.2g') for e in changed)})",
                  "the verdict rests on the restitution, which the rigid-block model cannot "
                  "fix: treat it as uncertain")
-    ida_sens = _ida_sensitivity(ctx, cv, warn) if "p_collapse_at_site" in rec else []
-    data = {"impact": impact, "warnings": warnings, "restitution_sensitivity": sens,
+    ida_sens = (_ida_sensitivity(ctx, cv, warn) if cfg.model == "fourlink"
+                and "p_collapse_at_site" in rec else [])
+    data = {"model": cfg.model, "impact": impact, "warnings": warnings,
+            "step_sensitivity": step_sens, "restitution_sensitivity": sens,
             "restitution_sensitivity_ida": ida_sens,
             "serious": any(w["serious"] for w in warnings)}
     return StudyResult("validity", "6. Validity", (), (), (), data)
+
+
+def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndarray:
+    """Indices of the durations of a domain's data (:func:`_domain_data`), all or the
+    ``count`` whose governing boundary is nearest ``site`` in ratio (no boundary: farthest)."""
+    coll = np.asarray(domain["collapse_g"], dtype=float)
+    if count is None or count >= coll.size:
+        return np.arange(coll.size)
+    gap = np.where(np.isfinite(coll), np.abs(np.log(np.where(np.isfinite(coll), coll, 1.0)
+                                                    / site)), np.inf)
+    return np.sort(np.argsort(gap, kind="stable")[:count])
+
+
+def _rigid_outcome(arch, motion, friction: float | None, time_step: float | None) -> str:
+    """One run of the rigid chain to a verdict: its outcome's word (module level: picklable)."""
+    from archquake.compare import rigid_to_verdict
+
+    run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step)
+    return str(run.outcome.value)
+
+
+def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
+    """What the rigid chain's verdicts at the site PGA rest on, in place of a restitution: the
+    time step and sliding. The pulses of the site PGA at every scanned duration (quick mode:
+    the two of each family whose governing boundary is nearest the site PGA, the verdicts a
+    small change would flip first) and the governing record scaled to it are run at the
+    default step, at half of it, and with Coulomb joints of the given friction coefficient (at
+    the default step). A verdict that changes at
+    half the step is a serious warning (the step does not resolve the motion); one that changes
+    from survival to collapse with friction too (the joints slide, which the default no-slip
+    chain leaves out); from collapse to survival with friction only a note."""
+    from archquake.ground.pulses import SinePulse, StepImpulse
+    from archquake.rigid import DEFAULT_TIME_STEP
+
+    assert ctx.site is not None  # called only with a site PGA
+    site = float(ctx.site)
+    cases: list[tuple[str, Any]] = []
+    pulses = ctx.prior["pulses"]
+    for fam, make, sym in (("step", StepImpulse.from_g, "t_p"), ("sine", SinePulse.from_g, "T")):
+        durs = np.asarray(pulses[fam]["durations_s"], dtype=float)
+        for d in durs[_nearest_boundaries(pulses[fam], site, 2 if ctx.mode.quick else None)]:
+            cases.append((f"{fam} {sym} = {d:.3g} s", make(site, float(d), -1)))
+    gov = ctx.prior.get("records", {}).get("governing")
+    if gov is not None:
+        from archquake.ground.suites import load_suite
+
+        cfg = ctx.config
+        suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                           units=cfg.units)
+        rec = suite.records[gov["index"]]
+        cases.append((f"record {gov['record']}", rec.scaled(site / gov["pga_unscaled_g"])))
+    variants = (("default_step", None, None), ("half_step", None, 0.5 * DEFAULT_TIME_STEP),
+                ("friction", ctx.config.friction, None))
+    ctx.say(f"  {len(cases)} cases at the site PGA x {len(variants)} (step, half step, friction)")
+    jobs = [(m, mu, h) for _, m in cases for _, mu, h in variants]
+    with interruptible_pool(min(workers(), len(jobs))) as pool:
+        futures = [pool.submit(_rigid_outcome, ctx.arch, m, mu, h) for m, mu, h in jobs]
+        words = [fu.result() for fu in futures]
+    out = []
+    for k, (case, _) in enumerate(cases):
+        row = {"case": case, "time_step_s": DEFAULT_TIME_STEP,
+               "friction_coefficient": ctx.config.friction}
+        row.update({name: words[k * len(variants) + j] for j, (name, _, _) in enumerate(variants)})
+        out.append(row)
+    step_changed = [r["case"] for r in out if r["half_step"] != r["default_step"]]
+    if step_changed:
+        warn("time_step", f"the verdict at the site PGA changes at half the time step under "
+             f"{', '.join(step_changed)}",
+             "the time step does not resolve these motions: treat their verdicts as uncertain")
+    slides = [r["case"] for r in out if r["default_step"] != "collapse" and
+              r["friction"] == "collapse"]
+    if slides:
+        warn("friction_collapse", f"with Coulomb joints (mu = {ctx.config.friction:g}) the arch "
+             f"collapses at the site PGA under {', '.join(slides)}, where the no-slip chain "
+             "does not",
+             "the joints slide: the no-slip verdicts are unconservative there")
+    held = [r["case"] for r in out if r["default_step"] == "collapse" and
+            r["friction"] != "collapse"]
+    if held:
+        warn("friction_survival", f"with Coulomb joints (mu = {ctx.config.friction:g}) the arch "
+             f"does not collapse at the site PGA under {', '.join(held)}, where the no-slip "
+             "chain does", "sliding changes the mechanism; the no-slip verdict is the "
+             "conservative one", serious=False)
+    return out
 
 
 def _ida_sensitivity(ctx: Context, cv: float, warn) -> list[dict]:
@@ -686,6 +809,14 @@ def verdict(config, prior: dict) -> dict:
             text += ("; P(collapse) of the records is " + ", ".join(
                 f"{e['p_collapse_at_site']:.2f} at c_v = {e['restitution_cv']:.2g}" for e in ida))
         parts.append(text + ".")
+    steps = val.get("step_sensitivity", [])
+    if steps:
+        n_same = sum(r["half_step"] == r["default_step"] for r in steps)
+        n_slid = sum(r["friction"] == r["default_step"] for r in steps)
+        parts.append(f"The chain of rigid voussoirs decides the verdicts (no coefficient of "
+                     f"restitution): at the site PGA, {n_same} of {len(steps)} verdicts are the "
+                     f"same at half the time step and {n_slid} of {len(steps)} with Coulomb "
+                     f"joints (mu = {config.friction:g}).")
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
                      f" > {config.friction:g}).")
@@ -702,6 +833,7 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("arch", section_arch), ("static", section_static), ("pulses", section_pulses),
     ("records", section_records), ("dem", section_dem), ("validity", section_validity))
 
-__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal", "prepared_mechanism",
+__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
+           "prepared_mechanism",
            "run_ida",
            "strong_motion_end", "used_restitution", "verdict"]

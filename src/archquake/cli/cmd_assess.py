@@ -27,21 +27,41 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--quick", action="store_true",
                    help="coarse domains, four records of the suite, fewer DEM runs (about a "
                         "minute)")
+    p.add_argument("--model", default=None, metavar="{rigid,fourlink}",
+                   help="the model of the verdicts, instead of the file's [options] model: "
+                        "'rigid' (default), the chain of rigid voussoirs; 'fourlink', the "
+                        "paper's four-link mechanism (needs a restitution the arch may not have)")
     p.add_argument("--force", action="store_true", help="recompute sections cached in DIR/cache/")
     p.add_argument("--json", action="store_true", help="print results.json on stdout")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    return assess(args.file, args.out, quick=args.quick, force=args.force, json=args.json)
+    return assess(args.file, args.out, quick=args.quick, force=args.force, json=args.json,
+                  model=args.model)
 
 
 def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = False,
-           prefix: str = "assess") -> int:
-    """Validate ``file``, run the assessment into ``out``, print where the report is."""
+           prefix: str = "assess", model: str | None = None) -> int:
+    """Validate ``file``, run the assessment into ``out``, print where the report is;
+    ``model`` (``--model``) replaces the file's [options] model."""
+    from dataclasses import replace
+
     from archquake.assess import load_config
+    from archquake.assess.config import ASSESS_MODELS
+    from archquake.errors import InvalidParameterError
+    from archquake.sweeps.cases import model_of
 
     config = load_config(file)  # every input error is raised here, before any computation
+    if model is not None:
+        word = model_of(model, model_name="--model").value
+        if word not in ASSESS_MODELS:
+            raise InvalidParameterError(f"--model must be rigid or fourlink for assess, got "
+                                        f"{word!r} (the DEM is the check: [options] dem = true)")
+        if word != "fourlink" and config.restitution is not None:
+            raise InvalidParameterError(f"--model {word}: the file prescribes [options] "
+                                        "restitution, which applies to the four-link model only")
+        config = replace(config, model=word)
     from archquake.assess import run_assessment
 
     def progress(line: str) -> None:

@@ -1,5 +1,7 @@
-"""``archquake domain``: the failure domain of an arch for a pulse family (paper Figures 5, 11), with
-``--model dem`` the distinct-element domain beside the analytical one (Figures 6, 11)."""
+"""``archquake domain``: the failure domain of an arch for a pulse family: the rigid chain's by
+default, or the distinct-element model's (``--model dem``), each beside the four-link
+mechanism's (Figures 6, 11); ``--model fourlink`` the four-link domain alone (paper Figures 5,
+11)."""
 
 from __future__ import annotations
 
@@ -9,10 +11,12 @@ import math
 from archquake.cli.common import (
     add_arch_arguments,
     add_impact_arguments,
+    add_model_argument,
     add_output_arguments,
     arch_from_args,
     impact_from_args,
     impact_line,
+    model_from_args,
     output_file,
     parse_durations,
     print_json,
@@ -24,7 +28,6 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     CSV_SUFFIXES,
     DEM_T_END_MAX_S,
-    HINGE_MODELS,
     MAGNITUDE_RANGE_G,
     PRECISION_RANGE_G,
     SCAN_RANGE,
@@ -50,31 +53,27 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(one sine cycle, duration = period T); default step")
     p.add_argument("--durations", type=parse_durations, default=None,
                    metavar="START:STOP:COUNT",
-                   help="durations in s, evenly spaced (default 0.05:1.5:40; with --model dem "
-                        "0.1:0.8:4), or one duration")
+                   help="durations in s, evenly spaced (default 0.1:0.8:4; with --model "
+                        "fourlink 0.05:1.5:40), or one duration")
     p.add_argument("--max-magnitude", type=ranged(*MAGNITUDE_RANGE_G, "g", low_open=True),
                    default=None, metavar="G",
                    help="ceiling of the magnitude scan, g (above the no-hinging limit, at most "
-                        f"{MAGNITUDE_RANGE_G[1]:g}; default 5; with --model dem 2); "
+                        f"{MAGNITUDE_RANGE_G[1]:g}; default 2; with --model fourlink 5); "
                         "boundaries above it are null")
     p.add_argument("--precision", type=ranged(*PRECISION_RANGE_G, "g"), default=None, metavar="G",
                    help=f"width of the final brackets, g ({PRECISION_RANGE_G[0]:g} to "
-                        f"{PRECISION_RANGE_G[1]:g}; default 0.001; with --model dem 0.01)")
+                        f"{PRECISION_RANGE_G[1]:g}; default 0.01; with --model fourlink 0.001)")
     p.add_argument("--scan", type=ranged_whole(*SCAN_RANGE), default=None, metavar="N",
-                   help="magnitudes in the coarse scan (default 60, with --model dem 8; the fine "
-                        "scan uses 2/3 of it, with --model dem 1/2)")
-    p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
-                   help="analytical (default), or the distinct-element model beside it: its "
-                        "1st-half-cycle boundary on the arch cut at the analytical hinges, its "
-                        "governing boundary with every voussoir a block (paper Figures 6, 11); "
-                        "one DEM time history per point, ~1-2 min per duration on 2 cores")
-    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
-                   help="analytical model only, as in archquake run: 'fixed' (default), the "
-                        "four-link mechanism's domain; 'moving', the chain of rigid blocks' "
-                        "domain beside it, searched as --model dem's (the DEM's rigid limit; "
-                        "~0.2-1 s a point)")
+                   help="magnitudes in the coarse scan (default 8, the fine scan 1/2 of it; with "
+                        "--model fourlink 60 and 2/3)")
+    add_model_argument(p, extra="rigid and dem search the block model's domain (its "
+                                "1st-half-cycle boundary on the arch cut at the four-link "
+                                "hinges, its governing boundary with every voussoir a block) "
+                                "beside the four-link one, one time history per point (~0.2-1 s "
+                                "for rigid, ~1-2 min per duration on 2 cores for dem); fourlink "
+                                "alone is its compiled batch (paper Figures 5, 11)")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), default=None, metavar="N",
-                   help="with --model dem or --hinges moving: worker processes for the block "
+                   help="with --model rigid or dem: worker processes for the block "
                         "model's runs (default: all cores)")
     add_impact_arguments(p)
     add_output_arguments(p)
@@ -85,20 +84,15 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from archquake.domains import DomainSettings, failure_domain
-    from archquake.sweeps.cases import Model, model_of
+    from archquake.sweeps.cases import Model
 
+    model = model_from_args(args)
     arch = arch_from_args(args)
-    model = model_of(args.model, args.hinges, model_name="--model", hinges_name="--hinges")
-    refuse_unless({"--workers": args.workers}, model is not Model.ANALYTICAL,
-                  "with --model dem or --hinges moving (the fixed-hinge domain runs in this "
-                  "process); leave it out")
+    refuse_unless({"--workers": args.workers}, model is not Model.FOURLINK,
+                  "with --model rigid or dem (the four-link domain runs in this process); "
+                  "leave it out")
     impact = impact_from_args(args)
-    if model is not Model.ANALYTICAL:
-        if any(v is not None for v in impact.values()):
-            raise InvalidParameterError(
-                "--restitution and --impact apply to the analytical model with --hinges fixed "
-                f"only; the {'DEM' if model is Model.DEM else 'rigid chain'}'s impacts follow "
-                "from its contacts")
+    if model is not Model.FOURLINK:
         return _run_dem(args, arch, model.value)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
@@ -116,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
 
         save_domain(dom, args.plot)
     if args.json:
-        print_json(dom.to_dict())
+        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict()})
         return 0
     sym = dom.family.duration_symbol
     print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "
@@ -170,9 +164,9 @@ def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
 
 
 def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
-    """``--model dem``: the distinct-element failure domain beside the analytical one (paper
-    Figures 6 and 11), through :func:`archquake.compare.compare_domains`; ``--hinges moving``
-    (``model`` 'rigid'): the rigid chain's, searched the same way on the same assemblies."""
+    """``--model rigid`` (the default) or ``dem``: the block model's failure domain beside the
+    four-link one (paper Figures 6 and 11), through :func:`archquake.compare.compare_domains`,
+    searched the same way on the same assemblies for either model."""
     import csv
 
     from archquake.compare import DEM_DOMAIN_SETTINGS, compare_domains
@@ -183,7 +177,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
     _check_search(arch, scan, precision, ceiling)
-    flag = "--model dem" if model == "dem" else "--hinges moving"
+    flag = f"--model {model}"
     who = "DEM" if model == "dem" else "rigid"
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
     if lobes * float(max(durations)) > DEM_T_END_MAX_S:
@@ -209,7 +203,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["boundary", "assembly", "duration_s", "analytical_g", f"{model}_g",
+            w.writerow(["boundary", "assembly", "duration_s", "fourlink_g", f"{model}_g",
                         "relative"])
             for r in rows:
                 w.writerow([r["boundary"], r["assembly"], f"{r['duration_s']:.6g}",
@@ -220,18 +214,19 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
 
         domain_comparison_figure([comp], args.plot)
     if args.json:
-        print_json(comp.to_dict())
+        print_json({"model": model, **comp.to_dict()})
         return 0
     an = comp.analytical
     sym = an.family.duration_symbol
-    print(f"failure domain, {an.family.value} pulse, analytical (hinges fixed) and "
-          + ("distinct-element" if model == "dem" else "rigid chain (hinges moving)") + "; arch "
+    print(f"failure domain, {an.family.value} pulse, "
+          + ("distinct-element" if model == "dem" else "rigid chain") + " beside the four-link "
+          "mechanism; arch "
           f"R = {arch.radius:g} m, t/R = {arch.thickness_ratio:.3f}, embrace "
           f"{math.degrees(arch.embrace):g} deg, {arch.voussoirs} voussoirs")
     print(f"{who} search: {scan} + {settings.fine_points} magnitudes, brackets {precision:g} g; "
-          f"analytical brackets {an.settings.precision_g:g} g; no hinging below "
+          f"four-link brackets {an.settings.precision_g:g} g; no hinging below "
           f"{an.no_hinging_g[0]:.3f} g")
-    print(f"{sym + ' [s]':>9} {'1st: anal.':>10} {who + ' hinges':>12} {'gov.: anal.':>11} "
+    print(f"{sym + ' [s]':>9} {'1st: 4-link':>11} {who + ' hinges':>12} {'gov.: 4-link':>12} "
           f"{who + ' vouss.':>12}  (g)")
 
     def fmt(x, width):
@@ -240,8 +235,8 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     for i, d in enumerate(an.durations):
         f = comp.first.boundary_g[i] if comp.first else None
         g = comp.governing.boundary_g[i] if comp.governing else None
-        print(f"{d:9.4g} {fmt(an.first_half_cycle_g[i], 10)} {fmt(f, 12)} "
-              f"{fmt(an.collapse_g[i], 11)} {fmt(g, 12)}")
+        print(f"{d:9.4g} {fmt(an.first_half_cycle_g[i], 11)} {fmt(f, 12)} "
+              f"{fmt(an.collapse_g[i], 12)} {fmt(g, 12)}")
     for dd in (comp.first, comp.governing):
         if dd is not None:
             print(f"{who} {dd.assembly}: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")

@@ -11,10 +11,12 @@ from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
     add_impact_arguments,
+    add_model_argument,
     add_output_arguments,
     arch_from_args,
     ground_motion_from_args,
     impact_from_args,
+    model_from_args,
     print_json,
 )
 
@@ -25,12 +27,16 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="least friction coefficient that prevents sliding during the motion (paper p. 2131)",
         description=(
             "Simulate the arch and find the largest |shear| / normal force over every joint and "
-            "instant of the motion (from the line of thrust of the moving arch), with the joint "
-            "and time where it occurs, beside the demand of the equivalent static analysis."
+            "instant of the motion, with the joint and time where it occurs, beside the demand "
+            "of the equivalent static analysis: by default from the joint forces of the chain "
+            "of rigid voussoirs (--model rigid; where they are unique, not at an impact, and "
+            "the joint carries at least 1 %% of the weight), or from the line of thrust of the "
+            "paper's four-link mechanism (--model fourlink)."
         ),
     )
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
+    add_model_argument(p, models=("rigid", "fourlink"))
     add_impact_arguments(p)
     add_output_arguments(p, plot=False)
     p.set_defaults(func=run)
@@ -56,14 +62,18 @@ def _progress_bar():
 
 
 def run(args: argparse.Namespace) -> int:
+    from archquake.sweeps.cases import Model
     from archquake.thrust.friction import friction_demand
 
+    model = model_from_args(args, models=("rigid", "fourlink"))
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
+    if model is Model.RIGID:
+        return _run_rigid(args, arch, motion)
     with _progress_bar() as progress:
         result = friction_demand(arch, motion, progress=progress, **impact_from_args(args))
     if args.json:
-        out = result.to_dict()
+        out = {"model": model.value, **result.to_dict()}
         out["arch"] = arch.describe()
         out["motion"] = motion.to_dict()
         print_json(out)
@@ -80,4 +90,50 @@ def run(args: argparse.Namespace) -> int:
     if result.tension_time is not None:
         print(f"note: from t = {result.tension_time:.3f} s joint {result.tension_joint} would need "
               "tension (the mechanism loses contact); later instants are left out")
+    return 0
+
+
+def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
+    """``--model rigid``: the friction demand of the chain of rigid voussoirs' joint forces
+    (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict."""
+    import numpy as np
+
+    from archquake.compare import rigid_to_verdict
+    from archquake.limit import limit_analysis
+
+    run = rigid_to_verdict(arch, motion)
+    forces = run.joint_forces
+    summary = forces.summary()
+    during = forces.friction_demand[forces.times <= motion.duration]
+    ground = (float(np.nanmax(during)) if during.size and np.any(np.isfinite(during))
+              else None)
+    static = limit_analysis(arch)
+    out = {"model": "rigid", "outcome": run.outcome.value,
+           "max_friction_demand": summary["max_friction_demand"],
+           "joint": summary["max_friction_demand_joint"],
+           "time_s": summary["max_friction_demand_time_s"],
+           "max_friction_demand_excitation": ground,
+           "static_friction_demand": static.min_friction,
+           "static_joint": static.min_friction_joint,
+           "joint_forces": summary, "arch": arch.describe(), "motion": motion.to_dict()}
+    if args.json:
+        print_json(out)
+        return 0
+    n = arch.voussoirs
+    place = {0: " (left springing)", n: " (right springing)"}
+    print(f"{motion.name}: {out['outcome']} (chain of rigid voussoirs)")
+    if out["max_friction_demand"] is None:
+        print("friction needed during the motion  none reported (no sample with unique joint "
+              "forces)")
+    else:
+        j = out["joint"]
+        print(f"friction needed during the motion  {out['max_friction_demand']:.3f} at joint "
+              f"{j}{place.get(j, '')}, t = {out['time_s']:.3f} s")
+    if ground is not None:
+        print(f"while the ground moves             {ground:.3f}")
+    print(f"equivalent static analysis         {static.min_friction:.3f} at joint "
+          f"{static.min_friction_joint}")
+    print(f"left out                           {summary['indeterminate_samples']} indeterminate "
+          f"and {summary['impulsive_samples']} impact samples of {summary['samples']}, and "
+          "joints carrying < 1 % of the weight")
     return 0

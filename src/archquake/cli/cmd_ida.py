@@ -18,14 +18,15 @@ import numpy as np
 from archquake.cli.common import (
     add_arch_arguments,
     add_impact_arguments,
+    add_model_argument,
     arch_from_args,
     impact_from_args,
+    model_from_args,
     number,
     print_json,
     whole,
 )
 from archquake.errors import ArchquakeError, InvalidParameterError
-from archquake.ranges import HINGE_MODELS
 
 #: Measures whose first-collapse dispersion is compared (besides the one of the analysis).
 DISPERSION_IMS = ("pga", "pgv", "sa:0.2", "sa:0.5", "sa:1.0", "arias", "cav")
@@ -59,19 +60,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="relative width of every survive/collapse bracket (default 0.02 = 2 %%)")
     p.add_argument("--fill", type=number, default=0.10, metavar="F",
                    help="largest relative gap between levels run (default 0.10)")
-    p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
-                   help="analytical rocking mechanism (default) or the DEM")
-    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
-                   help="analytical model only, as in archquake run: 'fixed' (default), the "
-                        "four-link mechanism; 'moving', the chain of rigid blocks (the DEM's rigid "
-                        "limit, ~0.2 s a run, a process per core)")
+    add_model_argument(p, extra="rigid and dem run a process per core (~0.2 s a run for "
+                                "rigid); fourlink its compiled batch on every core's threads")
     add_impact_arguments(p)
     p.add_argument("--store", type=Path, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
-                   help="local worker processes (default: the analytical model runs in "
-                        "this process, its compiled batch on all cores' threads; the DEM on a "
-                        "process per core; 1 runs serially)")
+                   help="local worker processes (default: fourlink runs in this process, its "
+                        "compiled batch on all cores' threads; rigid and dem on a process per "
+                        "core; 1 runs serially)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="run on the Dask cluster whose scheduler listens at this address")
     p.add_argument("--bootstrap", type=whole, default=500, metavar="N",
@@ -94,17 +91,8 @@ def _check(args: argparse.Namespace) -> None:
     if args.ceiling is not None and not args.ceiling > 0:
         raise InvalidParameterError(f"--ceiling must be > 0 (in the measure's unit), got "
                                     f"{args.ceiling:g}")
-    from archquake.sweeps.cases import Model
-
-    impact = impact_from_args(args)
-    model = _model(args)
-    if model is not Model.ANALYTICAL:
-        for option, value in (("--restitution", impact["restitution"]), ("--impact", impact["impact"])):
-            if value is not None:
-                raise InvalidParameterError(
-                    f"{option} applies to the analytical model with --hinges fixed only (the "
-                    f"{'DEM' if model is Model.DEM else 'rigid chain'}'s impacts follow from its "
-                    "contacts)")
+    model_from_args(args)
+    impact_from_args(args)
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be a whole number >= 1, got {args.workers}")
     if args.bootstrap < 0:
@@ -118,11 +106,10 @@ def _check(args: argparse.Namespace) -> None:
 
 
 def _model(args: argparse.Namespace):
-    """The :class:`~archquake.sweeps.Model` of --model and --hinges (the words of archquake
-    run)."""
-    from archquake.sweeps.cases import model_of
+    """The :class:`~archquake.sweeps.Model` of --model (checked by :func:`_check`)."""
+    from archquake.sweeps.cases import Model
 
-    return model_of(args.model, args.hinges, model_name="--model", hinges_name="--hinges")
+    return Model(args.model)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -259,7 +246,7 @@ def _executor(args: argparse.Namespace) -> AbstractContextManager[tuple[Any, int
     from archquake.parallel import open_executor
     from archquake.sweeps import Model
 
-    if _model(args) is Model.ANALYTICAL and args.workers is None and args.scheduler is None:
+    if _model(args) is Model.FOURLINK and args.workers is None and args.scheduler is None:
         return nullcontext((None, None))
     return open_executor(workers=args.workers, scheduler=args.scheduler)
 

@@ -8,11 +8,13 @@ from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
     add_impact_arguments,
+    add_model_argument,
     add_output_arguments,
     arch_from_args,
     ground_motion_from_args,
     impact_from_args,
     impact_line,
+    model_from_args,
     output_file,
     print_json,
     ranged,
@@ -22,7 +24,6 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     ANIMATION_SUFFIXES,
     CSV_SUFFIXES,
-    HINGE_MODELS,
     T_END_RANGE_S,
 )
 
@@ -32,9 +33,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         "run",
         help="time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
         description=(
-            "Rocking of the arch as the paper's four-link mechanism, with impacts, until collapse "
-            "or rest. Lengths in m, times in s, angles in degrees, accelerations in g. "
-            "Example: archquake run --pulse step --magnitude 1.0 --duration 0.27"
+            "Rocking of the arch until collapse or rest: by default the chain of rigid voussoirs "
+            "(--model rigid), or the paper's four-link mechanism (--model fourlink) or the "
+            "distinct-element model (--model dem). Lengths in m, times in s, angles in degrees, "
+            "accelerations in g. Example: archquake run --pulse step --magnitude 1.0 "
+            "--duration 0.27"
         ),
     )
     add_arch_arguments(p)
@@ -44,20 +47,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
                         "default: end of the excitation + 60 sqrt(R/g)); a run it cuts before "
                         "the survival is shown is indeterminate, with the reason")
-    p.add_argument("--model", choices=("analytical", "dem"), default="analytical",
-                   help="analytical model (default) or the distinct-element model")
-    p.add_argument("--hinges", choices=HINGE_MODELS, default=None,
-                   help="analytical model only: 'fixed' (default), the paper's four-link "
-                        "mechanism, hinges fixed between impacts (fast: the default of domain, "
-                        "ida and sweep); "
-                        "'moving', the chain of rigid blocks, hinges open, migrate and close "
-                        "anywhere (issue 16; ~0.2 s per 4 s simulated); see "
-                        "docs/mechanism.md")
+    add_model_argument(p, extra="~0.2 s per 4 s simulated for rigid, ~0.4 ms a history for "
+                                "fourlink")
     p.add_argument("--integrator", choices=("steps", "events"), default=None,
-                   help="with --hinges moving: how the chain of rigid blocks is integrated: "
+                   help="with --model rigid: how the chain of rigid voussoirs is integrated: "
                         "'steps' (default), Moreau-Jean time steps of 1e-4 s; 'events', from "
-                        "contact event to contact event (energy conserved between impacts, "
-                        "every hinge opening and closure located and listed; no --friction)")
+                        "contact event to contact event, the precise option (energy conserved "
+                        "between impacts, every hinge opening and closure located and listed; "
+                        "no --friction)")
     from archquake.cli.dem_run import add_dem_arguments
 
     add_dem_arguments(p)
@@ -73,23 +70,16 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from archquake.cli.dem_run import refuse_dem_options
+    from archquake.sweeps.cases import Model
 
+    model = model_from_args(args)
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    if args.model == "dem" and args.hinges is not None:
-        raise InvalidParameterError(
-            f"--hinges {args.hinges} applies only to the analytical model (the DEM's hinges "
-            "always move): leave --hinges out with --model dem")
-    moving = args.hinges == "moving"
-    if args.integrator is not None and not moving:
-        raise InvalidParameterError(
-            f"--integrator {args.integrator} applies only with --hinges moving (the chain of "
-            "rigid blocks)")
-    refuse_dem_options(args, friction_too=not moving)
+    refuse_dem_options(args, friction_too=model is not Model.RIGID)
     impact = impact_from_args(args)
-    if args.model == "dem":
+    if model is Model.DEM:
         return _run_dem(args, arch, motion)
-    if moving:
+    if model is Model.RIGID:
         from archquake.cli import rigid_run
 
         return rigid_run.run(args, arch, motion)
@@ -188,7 +178,7 @@ def _run_dem(args, arch, motion) -> int:
         from archquake.dem import simulate_dem  # noqa: F401
     except ImportError:
         raise InvalidParameterError(
-            "--model dem is not available in this build; use --model analytical"
+            "--model dem is not available in this build; use --model rigid"
         ) from None
     from archquake.cli import dem_run
 

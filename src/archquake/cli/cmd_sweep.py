@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 from archquake.cli.common import (
+    MODEL_HELP,
     number,
     output_file,
     print_json,
@@ -61,9 +62,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--export", type=output_file(*TABLE_SUFFIXES), metavar="FILE",
                    help="afterwards, write the store's rows to FILE (.csv or .parquet)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    p.add_argument("--model", default=None, metavar="{rigid,fourlink,dem}",
+                   help="run every case with this model instead of the study's [study] model "
+                        "(default rigid): " + MODEL_HELP)
     p.add_argument("--json", action="store_true",
-                   help="print a JSON summary (cases total, computed now, already stored, "
-                        "outcomes, store path)")
+                   help="print a JSON summary (model, cases total, computed now, already "
+                        "stored, outcomes, store path)")
     p.set_defaults(func=run)
 
 
@@ -83,6 +87,14 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidParameterError(
             f"--export file must end in .csv or .parquet, got {args.export.name!r}")
     study = load_study(args.study)
+    if args.model is not None:  # the same grid with another model (other case ids)
+        from dataclasses import replace
+
+        from archquake.sweeps.cases import model_of
+
+        model = model_of(args.model, model_name="--model")
+        study = replace(study, model=model,
+                        cases=tuple(replace(c, model=model) for c in study.cases))
     evaluate = case_function(study.model)
     store_path = args.store or study.default_store
     try:
@@ -121,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         bar.close()
         if args.export is not None:
             store.export(args.export)
-    summary = report.to_dict()
+    summary = {"model": study.model.value, **report.to_dict()}
     summary["study"] = study.name
     if args.export is not None:
         summary["export"] = str(args.export)
@@ -129,7 +141,8 @@ def run(args: argparse.Namespace) -> int:
         print_json(summary)
     else:
         outcomes = ", ".join(f"{k} {v}" for k, v in report.outcomes.items()) or "none"
-        print(f"{study.name}: {report.total} cases, {report.computed} computed now, "
+        print(f"{study.name} ({study.model.value} model): {report.total} cases, "
+              f"{report.computed} computed now, "
               f"{report.already_stored} already stored; outcomes: {outcomes}")
         print(f"store: {report.store}" + (f"; exported to {args.export}" if args.export else ""))
     return 0

@@ -9,12 +9,15 @@ from archquake.cli.common import (
     add_arch_arguments,
     add_ground_motion_arguments,
     add_impact_arguments,
+    add_model_argument,
     add_output_arguments,
     arch_from_args,
     comma_numbers,
     ground_motion_from_args,
     impact_from_args,
+    model_from_args,
     print_json,
+    refuse_unless,
 )
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
@@ -40,35 +43,48 @@ def register(sub: argparse._SubParsersAction) -> None:
         "thrust",
         help="line of thrust of the moving arch at chosen times (paper Figure 8)",
         description=(
-            "Simulate the arch under the excitation and, at each requested time, draw and report "
-            "the displaced arch, its hinges and its line of thrust (self-weight, ground inertia and "
-            "the links' inertia), with the joints where the line leaves the section. At a jump of "
-            "the ground acceleration the value just before the jump is used."
+            "Simulate the arch under the excitation and, at each requested time, report its "
+            "hinges and its line of thrust. By default (--model rigid) from the joint forces of "
+            "the chain of rigid voussoirs at the recorded sample nearest each time: where the "
+            "resultant crosses each joint (e / (d/2), +-1 at a hinge; it never leaves the "
+            "section) and the friction demand. With --model fourlink, the paper's four-link "
+            "mechanism: the displaced arch drawn with --plot and the line of thrust from "
+            "self-weight, ground inertia and the links' inertia, with the joints where it "
+            "leaves the section (at a jump of the ground acceleration the value just before "
+            "it)."
         ),
     )
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
     p.add_argument("--times", type=_times, default=[0.2, 0.5, 0.8, 1.1, 1.5, 2.22], metavar="T1,T2,...",
                    help="instants, s, comma-separated (default: Figure 8's 0.2,0.5,0.8,1.1,1.5,2.22)")
+    add_model_argument(p, models=("rigid", "fourlink"))
     add_impact_arguments(p)
     add_output_arguments(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from archquake.sweeps.cases import Model
     from archquake.thrust import states
 
+    model = model_from_args(args, models=("rigid", "fourlink"))
+    refuse_unless({"--plot": args.plot}, model is Model.FOURLINK,
+                  "with --model fourlink (the drawing shows the four-link mechanism's displaced "
+                  "arch)")
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
     if min(args.times) < 0:
         raise InvalidParameterError(f"--times must be >= 0 s, got {min(args.times):g}")
+    if model is Model.RIGID:
+        return _run_rigid(args, arch, motion)
     snapshots = states(arch, motion, args.times, **impact_from_args(args))
     if args.plot is not None:
         from archquake.plotting.thrust import save_thrust_snapshots
 
         save_thrust_snapshots(arch, snapshots, args.plot, suptitle=f"line of thrust: {motion.name}")
     if args.json:
-        print_json({"arch": arch.describe(), "motion": motion.to_dict(),
+        print_json({"model": "fourlink", "arch": arch.describe(), "motion": motion.to_dict(),
                     "states": [s.to_dict() for s in snapshots]})
         return 0
     print(f"{motion.name}")
@@ -81,4 +97,37 @@ def run(args: argparse.Namespace) -> int:
               f"{s.friction_demand[k]:.3f} (joint {k})")
     if args.plot is not None:
         print(f"figure: {args.plot}")
+    return 0
+
+
+def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
+    """``--model rigid``: the chain of rigid voussoirs run to the last time asked (or its
+    collapse), its joints at the recorded sample nearest each time
+    (:meth:`archquake.rigid.forces.JointForceHistory.state_at`)."""
+    from archquake.rigid import simulate_rigid
+
+    run = simulate_rigid(arch, motion, duration=max(max(args.times), 1e-3) + 1e-3)
+    collapse = run.result.collapse_time
+    if collapse is not None and max(args.times) > collapse:
+        raise InvalidParameterError(
+            f"--times must be before the collapse at t = {collapse:.3f} s, got "
+            f"{max(args.times):g} s")
+    forces = run.joint_forces
+    snaps = [forces.state_at(t) for t in args.times]
+    if args.json:
+        print_json({"model": "rigid", "arch": arch.describe(), "motion": motion.to_dict(),
+                    "outcome": run.outcome.value,
+                    "collapse_time_s": run.result.collapse_time, "states": snaps})
+        return 0
+    print(f"{motion.name} (chain of rigid voussoirs; the line of thrust as e / (d/2) per joint, "
+          "+-1 at a face: an open hinge, or one about to open)")
+    print("   t (s)  thrust at a face     line of thrust, joints 0..n          max friction |V|/N")
+    for s in snaps:
+        line = " ".join("  . " if e is None else f"{e:+.1f}" for e in s["relative_eccentricity"])
+        fd = s["max_friction_demand"]
+        print(f"{s['sample_time_s']:8.3f}  {','.join(map(str, s['face_joints'])) or '-':<19} "
+              f"{line:<36} "
+              + ("-" if fd is None else f"{fd:.3f} (joint {s['max_friction_demand_joint']})"))
+    if run.result.collapse_time is not None:
+        print(f"collapse at t = {run.result.collapse_time:.3f} s")
     return 0

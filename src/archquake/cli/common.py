@@ -443,12 +443,58 @@ def describe_arch(arch) -> str:
     return text
 
 
+#: What each model is, for the help of ``--model``.
+MODEL_HELP = ("'rigid' (default), the chain of rigid voussoirs: hinges open, migrate and close "
+              "anywhere, impacts follow from plastic contacts, no coefficient of restitution; "
+              "'fourlink', the paper's four-link mechanism, hinges fixed between impacts, "
+              "restitution from Eq. 4 or --restitution (fast); 'dem', the distinct-element "
+              "model (see docs/mechanism.md)")
+
+
+def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] = (),
+                       extra: str = "") -> None:
+    """``--model rigid|fourlink|dem`` (default rigid; ``models`` limits the choice), read by
+    :func:`model_from_args`. The retired ``--hinges`` stays hidden so that it gets a pointer to
+    ``--model`` instead of argparse's bare 'unrecognized arguments'."""
+    from archquake.sweeps.cases import Model
+
+    names = models or tuple(m.value for m in Model)
+    parser.add_argument("--model", default=None, metavar="{" + ",".join(names) + "}",
+                        help=f"the model: {MODEL_HELP}" + (f"; {extra}" if extra else ""))
+    parser.add_argument("--hinges", default=None, help=argparse.SUPPRESS)
+
+
+def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
+    """The :class:`~archquake.sweeps.Model` of ``--model`` (default rigid), with every
+    model-specific option given to another model refused in one line: ``--impact`` and
+    ``--restitution`` belong to fourlink, ``--integrator`` to rigid. ``args.model`` is set to
+    the model's word. ``models`` limits the choice (a command that lacks one)."""
+    from archquake.sweeps.cases import Model, model_of
+
+    model = model_of(args.model, getattr(args, "hinges", None), model_name="--model",
+                     hinges_name="--hinges")
+    if models and model.value not in models:
+        raise InvalidParameterError(f"--model must be {' or '.join(models)} here, got "
+                                    f"{model.value!r}")
+    who = "the DEM's" if model is Model.DEM else "the rigid chain's"
+    refuse_unless({"--impact": getattr(args, "impact", None),
+                   "--restitution": getattr(args, "restitution", None)},
+                  model is Model.FOURLINK,
+                  f"to --model fourlink ({who} impacts follow from its contacts): add --model "
+                  "fourlink, or leave it out")
+    refuse_unless({"--integrator": getattr(args, "integrator", None)}, model is Model.RIGID,
+                  "to --model rigid (how the chain of rigid voussoirs is integrated): leave it "
+                  "out")
+    args.model = model.value
+    return model
+
+
 def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     """--restitution and --impact: the impact of the analytical model (every command that runs a
     time history; :func:`impact_from_args` reads them)."""
-    from archquake.mechanism.impact import IMPACT_LAWS
+    from archquake.ranges import IMPACT_LAWS
 
-    g = parser.add_argument_group("impact (analytical model)")
+    g = parser.add_argument_group("impact (--model fourlink only)")
     g.add_argument("--restitution", type=number, default=None, metavar="CV",
                    help="prescribe the coefficient of restitution c_v on the angular velocity, "
                         "in [0, 1] (0 = perfectly plastic), instead of the impact law's")

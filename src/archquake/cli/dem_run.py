@@ -55,12 +55,12 @@ def _pair(text: str) -> tuple[float, float]:
 def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -> None:
     """The DEM's options are an error unless ``--model dem`` (never silently ignored); with it,
     ``--dem-assembly`` defaults to every voussoir. ``friction_too=False`` leaves ``--friction``
-    to the caller (``--hinges moving``: the rigid chain's Coulomb joints)."""
+    to the caller (``--model rigid``: the rigid chain's Coulomb joints)."""
     given = {"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
              "--friction": args.friction if friction_too else None, "--damping": args.damping,
              "--rayleigh": args.rayleigh}
     refuse_unless(given, args.model == "dem",
-                  "to the distinct-element model (--friction also to --hinges moving): add "
+                  "to the distinct-element model (--friction also to --model rigid): add "
                   "--model dem, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen
         args.dem_assembly = "voussoirs"

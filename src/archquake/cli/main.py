@@ -40,6 +40,7 @@ COMMANDS: tuple[str, ...] = (
     "reproduce",
     "assess",
     "demo",
+    "warm",
 )
 
 #: The line each command shows in ``archquake --help``, by module name (the command's name is
@@ -60,6 +61,7 @@ SUMMARIES: dict[str, str] = {
     "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
     "spectrum": "a site's elastic spectrum (NTC 2018, EN 1998-1): Sa (g) and Sd (m) against T (s)",
     "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",
+    "warm": "compile the numerical kernels once (after installing), so that no command waits",
 }
 
 

@@ -1,4 +1,5 @@
-"""``archquake run --hinges moving``: one history of the chain of rigid blocks (issue 16).
+"""``archquake run`` (``--model rigid``, the default): one history of the chain of rigid
+voussoirs.
 
 The model is :func:`archquake.rigid.simulate_rigid`: every voussoir a rigid
 block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,
@@ -20,12 +21,6 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
     from archquake.rigid import simulate_rigid
 
-    for option, value in (("--impact", getattr(args, "impact", None)),
-                          ("--restitution", args.restitution)):
-        if value is not None:
-            raise InvalidParameterError(
-                f"{option} applies to --hinges fixed only; with --hinges moving the impacts "
-                "follow from the blocks' contacts (perfectly plastic, no choice of law)")
     if args.friction is not None:
         check_range("--friction", args.friction, *FRICTION_RANGE)
     solver = "events" if getattr(args, "integrator", None) == "events" else "direct"
@@ -34,7 +29,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
     from archquake.cli.dem_run import block_duration
 
-    duration = block_duration(args, arch, motion, "--hinges moving",
+    duration = block_duration(args, arch, motion, "--model rigid",
                               "the rigid chain steps 1e-4 s")
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
@@ -46,7 +41,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     from archquake.cli.dem_run import emit_block_run
 
     return emit_block_run(args, arch, motion, result.result, result.to_dict(), _print_text,
-                          label="rigid chain (hinges moving)")
+                          label="rigid chain")
 
 
 def _print_text(out: dict) -> None:
@@ -54,7 +49,7 @@ def _print_text(out: dict) -> None:
 
     rig = out["rigid"]
     print(f"excitation          {_label_of(out)}")
-    print(f"model               hinges moving: chain of rigid blocks ({out['assembly']['name']}), "
+    print(f"model               rigid: chain of rigid voussoirs ({out['assembly']['name']}), "
           "plastic contacts, "
           + ("no sliding" if out["friction_coefficient"] is None
              else f"Coulomb friction mu = {out['friction_coefficient']:g}"))

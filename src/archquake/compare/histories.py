@@ -84,7 +84,8 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
 
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
-                     g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct"):
+                     g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
+                     time_step: float | None = None):
     """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
@@ -92,7 +93,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     ``ranges.DEM_T_END_MAX_S``, whichever comes first. The rigid chain resumes where it
     stopped (unlike the DEM, :func:`dem_to_verdict`), so a long tail costs only its own steps.
 
-    The default window of ``archquake run --hinges moving``, sweeps and the rigid IDA.
+    The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
 
     Parameters
     ----------
@@ -107,6 +108,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         Thresholds of the verdict (default ``DemSettings()``).
     solver : {"direct", "events"}
         How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
+    time_step : float, optional
+        The stepper's step, s (default: ``simulate_rigid``'s).
 
     Returns
     -------
@@ -127,8 +130,11 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
             f"the rigid chain's run of {d:g} s is longer than {DEM_T_END_MAX_S:g} s (it steps "
             "1e-4 s): shorten the excitation or give an end time")
     cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
+    if time_step is None:
+        return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+                              settings=settings, solver=solver)
     return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings, solver=solver)
+                          settings=settings, solver=solver, time_step=time_step)
 
 
 # ----------------------------------------------------------------------------- comparison

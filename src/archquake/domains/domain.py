@@ -54,6 +54,7 @@ from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.pulses import PulseFamily
 from archquake.mechanism.impact import check_restitution
+from archquake.mechanism.kinematics import G0, H0
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 from archquake.outcome import Outcome
@@ -388,8 +389,24 @@ def failure_domain(
     (True, 2)
     """
     settings = DomainSettings() if settings is None else settings
-    prepared = PreparedMechanism.build(arch, impact)
-    cv = prepared.restitution_for(restitution)
+    if evaluate is not None and isinstance(arch, VoussoirChain):
+        # another model's outcomes carry their own impacts: only the hinges and lambda of the
+        # equivalent static analysis are read (an asymmetric arch has no four-link impact law)
+        from archquake.limit import hinges_of
+        from archquake.mechanism.prepared import pack_mechanism
+
+        mech0 = hinges_of(arch)
+        packed = pack_mechanism(mech0)
+        prepared = None
+        cv = math.nan
+        lam = float(packed[G0] / abs(packed[H0]))  # PreparedMechanism's lambda
+        radius = mech0.arch.radius
+    else:
+        prepared = PreparedMechanism.build(arch, impact)
+        cv = prepared.restitution_for(restitution)
+        lam = prepared.collapse_acceleration_g
+        mech0 = prepared.mechanism
+        radius = mech0.arch.radius
     fam = PulseFamily.parse(family)
     require_positive("g", g, "m/s^2")
     if durations is None:
@@ -397,8 +414,7 @@ def failure_domain(
     dur = np.atleast_1d(np.asarray(durations, dtype=float))
     if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
         raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
-    check_durations(fam, dur, prepared.mechanism.arch.radius, g)
-    lam = prepared.collapse_acceleration_g
+    check_durations(fam, dur, radius, g)
     ceiling = settings.max_magnitude_g
     if ceiling <= lam:
         raise InvalidParameterError(
@@ -411,6 +427,7 @@ def failure_domain(
         evaluations += mags.size
         if evaluate is not None:
             return evaluate(mags, dur[idx])
+        assert prepared is not None  # built whenever no other model evaluates
         return evaluate_pulses(prepared, fam, mags, dur[idx], restitution=restitution,
                                options=settings.options, early=settings.early, g=g)
 
@@ -507,7 +524,19 @@ def failure_domain(
     if ok.any():
         half[ok] = run(collapse_g[ok], np.flatnonzero(ok)).collapse_half_cycle
     bands.sort(key=lambda b: (b.criterion, b.duration, b.lower_g))
-    mech = prepared.mechanism
+    mech = mech0
+    if prepared is None:  # another model's impacts: no restitution, no law
+        return FailureDomain(
+            arch=mech.arch, family=fam, durations=dur.copy(), no_hinging_g=np.full(nd, lam),
+            first_half_cycle_g=first_g, collapse_g=collapse_g,
+            first_half_cycle_below_g=first_below, collapse_below_g=collapse_below,
+            collapse_half_cycle=half, non_monotonic_bands=tuple(bands), restitution_cv=math.nan,
+            energy_gain=False,
+            mechanism={"joints": list(mech.joints), "faces": [f.value for f in mech.faces],
+                       "symmetric": bool(mech.symmetric)},
+            settings=settings, evaluations=evaluations, g=g, impact_law="contacts",
+            impact_validity="not applicable", impact_described=True,
+            restitution_prescribed=False)
     return FailureDomain(
         arch=mech.arch,
         family=fam,

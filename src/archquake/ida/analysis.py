@@ -9,9 +9,9 @@ store skips what it holds and stores each batch as it completes, on a local pool
 An interrupted analysis rerun with the same store replays the rounds from the store and computes
 only what is missing.
 
-The analytical model goes through one compiled batch call per round and chunk
-(:func:`archquake.ida.batch.evaluate_cases`); the DEM (``model="dem"``) and the rigid chain
-(``model="rigid"``, hinges moving) through :func:`archquake.sweeps.evaluate_case` case by case.
+The rigid chain (``model="rigid"``, the default) and the DEM (``model="dem"``) go through
+:func:`archquake.sweeps.evaluate_case` case by case; the four-link model (``model="fourlink"``)
+through one compiled batch call per round and chunk (:func:`archquake.ida.batch.evaluate_cases`).
 
 Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
 m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
@@ -37,12 +37,14 @@ from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
 from archquake.outcome import Outcome
 from archquake.sweeps.cases import (
+    DEFAULT_MODEL,
     ArchSpec,
     Case,
     CaseOptions,
     ExcitationKind,
     ExcitationSpec,
     Model,
+    model_of,
     motion_digest,
 )
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
@@ -298,7 +300,7 @@ def incremental_dynamic_analysis(
     fill: float = 0.10,
     hunt_step: float = 0.25,
     hunt_growth: float = 1.5,
-    model: Model | str = Model.ANALYTICAL,
+    model: Model | str = DEFAULT_MODEL,
     options: CaseOptions | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
@@ -324,15 +326,15 @@ def incremental_dynamic_analysis(
     precision, fill, hunt_step, hunt_growth : float
         See :class:`archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
         transition within 2 % of the IM).
-    model : {'analytical', 'rigid', 'dem'}
-        :class:`archquake.sweeps.Model` (``rigid``: the chain of rigid blocks, hinges moving;
-        users name it as ``run`` does, :func:`archquake.sweeps.model_of`).
+    model : {'rigid', 'fourlink', 'dem'}
+        :class:`archquake.sweeps.Model` (default ``rigid``, the chain of rigid voussoirs;
+        named as ``--model`` names it, :func:`archquake.sweeps.model_of`).
     options : CaseOptions, optional
-        Prescribed restitution and impact law (analytical only), end time, gravity (default: none, the
+        Prescribed restitution and impact law (fourlink only), end time, gravity (default: none, the
         model's own, standard gravity).
     executor, workers, chunk_size
         As :func:`archquake.sweeps.run_sweep` (default: a local process pool), except for the
-        analytical model: with neither ``executor`` nor ``workers`` it runs in this process
+        four-link model: with neither ``executor`` nor ``workers`` it runs in this process
         (:class:`~archquake.parallel.SerialExecutor`: the compiled batch already spreads a round
         over all cores with numba's threads; a pool of processes, each with as many threads,
         started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
@@ -352,8 +354,8 @@ def incremental_dynamic_analysis(
 
     measure = parse_im(im)
     options = CaseOptions() if options is None else options
-    model = Model(getattr(model, "value", model))
-    if model is Model.ANALYTICAL and executor is None and workers is None:
+    model = model_of(model)
+    if model is Model.FOURLINK and executor is None and workers is None:
         executor = SerialExecutor()
     if not motions:
         raise InvalidParameterError("the suite holds no records")
@@ -412,10 +414,10 @@ def incremental_dynamic_analysis(
         total_so_far = sum(len(r) for r in runs)
         report = run_sweep(
             new_cases, store,
-            evaluate=None, evaluate_batch=evaluate_cases if model is Model.ANALYTICAL else None,
+            evaluate=None, evaluate_batch=evaluate_cases if model is Model.FOURLINK else None,
             executor=executor, workers=workers,
             chunk_size=(round_chunk_size(len(new_cases), executor, workers)
-                        if chunk_size is None and model is Model.ANALYTICAL else chunk_size),
+                        if chunk_size is None and model is Model.FOURLINK else chunk_size),
             progress=None if progress is None else _round_progress(
                 progress, rounds, total_so_far, len(new_cases)))
         computed += report.computed

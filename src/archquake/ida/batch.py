@@ -52,8 +52,8 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     out: list[Any] = [None] * len(cases)
     groups: dict[tuple, list[int]] = {}
     for i, case in enumerate(cases):
-        if case.model is not Model.ANALYTICAL:
-            raise InvalidParameterError(f"the batch evaluator runs the analytical model only, "
+        if case.model is not Model.FOURLINK:
+            raise InvalidParameterError(f"the batch evaluator runs the four-link model only, "
                                         f"got {case.model.value!r}")
         groups.setdefault((case.arch, case.options), []).append(i)
     for (arch, options), idx in groups.items():

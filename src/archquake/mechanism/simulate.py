@@ -386,7 +386,7 @@ class SimulationResult:
         :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
         the analytical model's own."""
         out = {
-            **shared_keys(self, "analytical", self.final_state.value),
+            **shared_keys(self, "fourlink", self.final_state.value),
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,

@@ -21,8 +21,8 @@ _DEM_STYLE = {"hinges": ("--", "tab:blue", "DEM, arch cut at the hinges"),
 
 
 def save_dem_rotation(result, path: str | Path, *, label: str | None = None) -> Path:
-    """The rotation history of a block model alone (``archquake run --model dem --plot``, and
-    ``--hinges moving``, whose rigid chain returns the same result)."""
+    """The rotation history of a block model alone (``archquake run --plot`` with ``--model
+    dem`` or ``rigid``, whose chain returns the same result)."""
     fig, (ax, strip) = plt.subplots(2, 1, figsize=(6.4, 4.6), sharex=True,
                                     gridspec_kw={"height_ratios": [3, 1]})
     plot_dem_rotation(result, ax, label=label or f"DEM ({result.assembly.name})")

@@ -61,6 +61,8 @@ from archquake.rigid.model import (
 IMPULSIVE = 10.0
 #: Least normal force, as a fraction of the free blocks' weight, at which |V| / N is reported.
 N_MIN = 0.01
+#: The line of thrust is at a face of a joint when within this fraction of d/2 of it.
+HINGE_TOLERANCE = 1.0e-6
 #: Rows are independent when their smallest singular value (rows scaled to unit norm, columns
 #: to the bodies' mass and inertia) exceeds this.
 RANK_TOLERANCE = 1.0e-8
@@ -117,6 +119,27 @@ class JointForceHistory:
         with np.errstate(invalid="ignore", divide="ignore"):
             out = np.abs(self.shear) / self.normal
         return np.where(self.reported, out, np.nan)
+
+    def state_at(self, t: float) -> dict:
+        """For JSON: the joints at the recorded sample nearest ``t`` (s): its time
+        ``sample_time_s``; per joint the line of thrust as e / (d/2) (+-1 at a hinge, the
+        resultant at a corner; None where not reported) and |V| / N (None where not reported);
+        ``face_joints``, the joints where the line of thrust reaches a face (every open hinge,
+        and any closed joint loaded on one corner only: a hinge about to open); the largest
+        friction demand and its joint (None if none is reported). The resultant of rigid corner
+        contacts never leaves the section."""
+        k = int(np.argmin(np.abs(self.times - float(t))))
+        rel = self.relative_eccentricity[k]
+        fd = self.friction_demand[k]
+        faces = [int(j) for j in np.flatnonzero(np.abs(rel) >= 1.0 - HINGE_TOLERANCE)]
+        best = int(np.nanargmax(fd)) if np.any(np.isfinite(fd)) else None
+        return {"time_s": float(t), "sample_time_s": float(self.times[k]),
+                "unique": bool(self.unique[k]), "impulsive": bool(self.impulsive[k]),
+                "relative_eccentricity": [None if not np.isfinite(x) else float(x) for x in rel],
+                "friction_demand": [None if not np.isfinite(x) else float(x) for x in fd],
+                "face_joints": faces,
+                "max_friction_demand": None if best is None else float(fd[best]),
+                "max_friction_demand_joint": best}
 
     def summary(self) -> dict:
         """For JSON: the largest friction demand over the reported samples, where and when; the

@@ -172,12 +172,12 @@ class RigidRun:
 
     def to_dict(self, *, joint_forces: bool = True) -> dict:
         """Summary for JSON: ``DemResult.to_dict()`` (the keys of
-        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid_chain"``, then the
+        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model``
+        names it), then the
         stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
         forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
         out = self.result.to_dict()
-        out["model"] = "rigid_chain"
-        out["hinges_model"] = "moving"
+        out["model"] = "rigid"
         out["friction_coefficient"] = self.friction
         if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()

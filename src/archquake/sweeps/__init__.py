@@ -8,6 +8,7 @@ resumably in SQLite.
 """
 
 from archquake.sweeps.cases import (
+    DEFAULT_MODEL,
     ArchSpec,
     Case,
     CaseOptions,
@@ -28,6 +29,7 @@ __all__ = [
     "CaseRecord",
     "ExcitationKind",
     "ExcitationSpec",
+    "DEFAULT_MODEL",
     "Model",
     "model_of",
     "ModelUnavailableError",

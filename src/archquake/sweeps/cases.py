@@ -41,7 +41,6 @@ from archquake.geometry.arch import (
 )
 from archquake.geometry.chain import VoussoirChain
 from archquake.ranges import (
-    HINGE_MODELS,
     MAGNITUDE_RANGE_G,
     PULSE_TIME_RANGE_S,
     SCALE_RANGE,
@@ -63,45 +62,67 @@ class ExcitationKind(StrEnum):
 
 
 class Model(StrEnum):
-    """The model a case is evaluated with: the four-link mechanism with hinges fixed between
-    impacts (``analytical``), the chain of rigid blocks with hinges moving (``rigid``, issue 16)
-    or the distinct-element model (``dem``). Users name them as ``archquake run`` does
-    (:func:`model_of`): ``model`` analytical or dem, and for the analytical model ``hinges``
-    fixed (default) or moving."""
+    """The model a case is evaluated with, named as ``--model`` names it: the chain of rigid
+    voussoirs (``rigid``, the default: hinges open, migrate and close anywhere, impacts follow
+    from plastic contacts), the paper's four-link mechanism with hinges fixed between impacts
+    and Eq. 4's coefficient of restitution (``fourlink``), or the distinct-element model
+    (``dem``)."""
 
-    ANALYTICAL = "analytical"
-    DEM = "dem"
     RIGID = "rigid"
+    FOURLINK = "fourlink"
+    DEM = "dem"
 
 
-def model_of(model: str = "analytical", hinges: str | None = None, *, model_name: str = "model",
-             hinges_name: str = "hinges") -> Model:
-    """The :class:`Model` a user means by ``model`` (analytical or dem) and ``hinges`` (fixed or
-    moving, the analytical model only), the words of ``archquake run --model --hinges``.
+#: The model every command and API function uses unless told otherwise.
+DEFAULT_MODEL = Model.RIGID
 
-    ``model_name`` and ``hinges_name`` are the option or key as the user typed it, for the
-    one-line error (``--model``, ``study.hinges``...).
+#: The word a model's case ids hash, where it differs from its name (the four-link model was
+#: ``analytical`` when stores were first written: their ids stay valid).
+_ID_WORDS = {Model.FOURLINK: "analytical"}
+
+
+def _id_word(model: Model) -> str:
+    return _ID_WORDS.get(model, model.value)
+
+#: The words of earlier versions and what they are now (for a one-line pointer).
+_RETIRED = {"analytical": "fourlink (hinges fixed) or rigid (hinges moving, the default)",
+            "rigid_chain": "rigid"}
+
+
+def model_of(model: str | Model | None = None, hinges: str | None = None, *,
+             model_name: str = "model", hinges_name: str = "hinges") -> Model:
+    """The :class:`Model` a user names (``rigid``, ``fourlink`` or ``dem``; None: the default,
+    rigid), with a one-line pointer for the words of earlier versions.
+
+    ``hinges`` is the retired ``--hinges fixed|moving`` (None when not given): any value is
+    refused with the ``--model`` that replaces it. ``model_name`` and ``hinges_name`` are the
+    option or key as the user typed it (``--model``, ``study.model``...).
 
     Examples
     --------
-    >>> model_of("analytical", "moving").value
+    >>> model_of().value
     'rigid'
-    >>> model_of("dem").value
+    >>> model_of("fourlink").value
+    'fourlink'
+    >>> model_of("dem", model_name="--model").value
     'dem'
     """
-    if model not in (Model.ANALYTICAL.value, Model.DEM.value):
-        hint = (f" (the rigid chain is {model_name} analytical with {hinges_name} moving)"
-                if model == Model.RIGID.value else "")
-        raise InvalidParameterError(f"{model_name} must be analytical or dem, got {model!r}{hint}")
-    if hinges is None:
-        return Model(model)
-    if hinges not in HINGE_MODELS:
-        raise InvalidParameterError(f"{hinges_name} must be fixed or moving, got {hinges!r}")
-    if model == Model.DEM.value:
-        raise InvalidParameterError(
-            f"{hinges_name} {hinges} applies only to the analytical model (the DEM's hinges "
-            f"always move): leave {hinges_name} out with {model_name} dem")
-    return Model.RIGID if hinges == "moving" else Model.ANALYTICAL
+    if hinges is not None:
+        now = {"moving": "rigid", "fixed": "fourlink"}.get(str(hinges))
+        hint = (f"{model_name} {now}" if now is not None
+                else f"{model_name} rigid (hinges moving) or {model_name} fourlink (hinges fixed)")
+        raise InvalidParameterError(f"{hinges_name} is retired: use {hint}")
+    if model is None:
+        return DEFAULT_MODEL
+    word = str(getattr(model, "value", model))
+    if word in _RETIRED:
+        raise InvalidParameterError(f"{model_name} {word} is retired: use {model_name} "
+                                    f"{_RETIRED[word]}")
+    try:
+        return Model(word)
+    except ValueError:
+        raise InvalidParameterError(f"{model_name} must be one of "
+                                    f"{', '.join(m.value for m in Model)}, got {word!r}") from None
 
 
 #: Units a record file's accelerations may be given in (PEER .AT2 files are always in g).
@@ -525,7 +546,7 @@ class Case:
 
     arch: ArchSpec
     excitation: ExcitationSpec
-    model: Model = Model.ANALYTICAL
+    model: Model = DEFAULT_MODEL
     options: CaseOptions = field(default_factory=CaseOptions)
 
     def __post_init__(self) -> None:
@@ -537,15 +558,14 @@ class Case:
         if not isinstance(self.options, CaseOptions):
             raise InvalidParameterError(
                 f"options must be a CaseOptions, got {type(self.options).__name__}")
-        try:
-            _set(self, "model", Model(getattr(self.model, "value", self.model)))
-        except ValueError:
-            raise InvalidParameterError(
-                f"model must be one of {[m.value for m in Model]}, got {self.model!r}") from None
+        _set(self, "model", model_of(self.model))
 
     def canonical(self) -> dict[str, Any]:
-        """The inputs that define the case (what its id hashes), as plain JSON values."""
-        return {"schema": CASE_SCHEMA, "model": self.model.value, "arch": self.arch.canonical(),
+        """The inputs that define the case (what its id hashes), as plain JSON values. The
+        four-link model is hashed under its earlier word, ``analytical`` (:data:`_ID_WORDS`),
+        so stores written before it was named ``fourlink`` resume."""
+        return {"schema": CASE_SCHEMA, "model": _id_word(self.model),
+                "arch": self.arch.canonical(),
                 "excitation": self.excitation.canonical(), "options": self.options.canonical()}
 
     @property
@@ -556,7 +576,7 @@ class Case:
         million cases then costs one concatenation and one hash per case."""
         return (f'{{"arch":{self.arch.canonical_json},'
                 f'"excitation":{self.excitation.canonical_json},'
-                f'"model":{json.dumps(self.model.value)},'
+                f'"model":{json.dumps(_id_word(self.model))},'
                 f'"options":{self.options.canonical_json},"schema":{json.dumps(CASE_SCHEMA)}}}')
 
     @cached_property
@@ -650,6 +670,7 @@ __all__ = [
     "ExcitationKind",
     "ExcitationSpec",
     "INPUT_COLUMNS",
+    "DEFAULT_MODEL",
     "Model",
     "model_of",
     "RECORD_UNITS",

@@ -6,7 +6,7 @@ processes and Dask workers (a plain module-level function).
 
 Models:
 
-- ``analytical``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
+- ``fourlink``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
   impacts), summarised by ``result.to_dict(include_history=False)``;
 - ``dem``: :func:`archquake.dem.simulate_dem` on the arch with every voussoir a block, the
   paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: until a
@@ -37,7 +37,7 @@ from archquake.sweeps.cases import ArchSpec, Case, Model
 
 #: Where each model's simulate function lives, as (module, function).
 MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
-    Model.ANALYTICAL: ("archquake.mechanism", "simulate"),
+    Model.FOURLINK: ("archquake.mechanism", "simulate"),
     Model.DEM: ("archquake.dem", "simulate_dem"),
     Model.RIGID: ("archquake.rigid", "simulate_rigid"),
 }
@@ -77,7 +77,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     """
     simulate = model_function(case.model)
     motion = case.excitation.build(g=case.options.g)
-    if case.model is Model.ANALYTICAL:
+    if case.model is Model.FOURLINK:
         from archquake.mechanism import SolverOptions
 
         # no time history is kept (the store holds summaries), which also saves its memory
@@ -93,11 +93,11 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     who = "the DEM's" if case.model is Model.DEM else "the rigid chain's"
     for key in ("restitution", "impact"):
         if getattr(case.options, key) is not None:
-            raise InvalidParameterError(f"{key} applies to the analytical model with hinges fixed "
-                                        f"only; {who} impacts follow from its contacts")
+            raise InvalidParameterError(f"{key} applies to model fourlink only; {who} impacts "
+                                        "follow from its contacts")
     arch = case.arch.build()
     if case.model is Model.RIGID:
-        if case.options.t_end_s is None:  # to a verdict, as run --hinges moving
+        if case.options.t_end_s is None:  # to a verdict, as archquake run does
             from archquake.compare import rigid_to_verdict
 
             run = rigid_to_verdict(arch, motion, g=case.options.g)

@@ -4,10 +4,9 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
 
     [study]
     name = "scale"                      # required; default store is <name>.sqlite beside the file
-    model = "analytical"                # optional: "analytical" (default) or "dem"
-    hinges = "fixed"                    # optional, analytical only: "fixed" (default, the
-                                        # four-link mechanism) or "moving" (the chain of rigid
-                                        # blocks; stored as model "rigid"), as in archquake run
+    model = "rigid"                     # optional: "rigid" (default, the chain of rigid
+                                        # voussoirs), "fourlink" (the paper's four-link
+                                        # mechanism) or "dem", as archquake run --model
 
     [arches]                            # each axis: a number, a list, or {start, stop, num}
     radius = [1, 5, 10, 20]             # m (circular arch: radius, thickness_ratio, embrace_deg)
@@ -161,8 +160,8 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
     name = study["name"]
     if not isinstance(name, str) or not name.strip() or any(c in name for c in "/\\"):
         p.fail("study.name", f"must be a non-empty string without slashes, got {name!r}")
-    try:  # the words of archquake run: model analytical|dem, hinges fixed|moving
-        model = model_of(study.get("model", Model.ANALYTICAL.value), study.get("hinges"),
+    try:  # the words of archquake run --model (hinges is retired: a pointer to model)
+        model = model_of(study.get("model"), study.get("hinges"),
                          model_name="study.model", hinges_name="study.hinges")
     except InvalidParameterError as exc:
         raise StudyFileError(f"{p.source}: {exc}") from None

@@ -1,0 +1,106 @@
+"""Assessments under the default model, the chain of rigid voussoirs: no coefficient of
+restitution, every dynamic section for an asymmetric (surveyed) arch, and the time step and
+friction in place of the c_v sensitivity.
+
+The surveyed arch is the bridge example's semicircle (R = 5 m, t = 0.6 m, 15 voussoirs) as
+quadrilateral blocks with every corner moved by up to 1 % of t (seeded uniform noise; the
+corners shared by two blocks move together, so the blocks still tile): no longer symmetric, so
+the four-link model cannot move it (its mirror-image mechanism does not exist)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from archquake.assess import load_config
+from archquake.assess.runner import section_names
+from archquake.sweeps import ArchSpec
+
+BRIDGE = ArchSpec(radius=5.0, thickness_ratio=0.12, embrace_deg=180, voussoirs=15, density=1800)
+
+
+def surveyed_blocks(spec: ArchSpec = BRIDGE, fraction: float = 0.01, seed: int = 0) -> list:
+    """The arch's voussoirs as quadrilaterals (their joints' ends), every corner moved by up to
+    ``fraction`` of the ring thickness in x and y (``numpy.random.default_rng(seed)``)."""
+    arch = spec.build()
+    rng = np.random.default_rng(seed)
+    ip, ep = (np.asarray(p, dtype=float) for p in (arch.intrados_points, arch.extrados_points))
+    ip = ip + rng.uniform(-1.0, 1.0, ip.shape) * fraction * arch.thickness
+    ep = ep + rng.uniform(-1.0, 1.0, ep.shape) * fraction * arch.thickness
+    return [[ip[k], ip[k + 1], ep[k + 1], ep[k]] for k in range(arch.voussoirs)]
+
+
+def write_survey(folder, *, site: float = 0.15, suite: str | None = "near-field-pulse",
+                 dem: bool = True, model: str | None = None):
+    """blocks.json and survey.toml in ``folder``: the surveyed bridge, as the bridge example."""
+    blocks = surveyed_blocks()
+    (folder / "blocks.json").write_text(json.dumps({"blocks": [np.asarray(b).tolist()
+                                                               for b in blocks]}))
+    text = ('[arch]\nblocks = "blocks.json"\ndensity = 1800\nfriction = 0.6\n'
+            f'[seismic]\nsite_pga_g = {site}\n' + (f'suite = "{suite}"\n' if suite else "")
+            + f"[options]\ndem = {'true' if dem else 'false'}\n"
+            + (f'model = "{model}"\n' if model else ""))
+    (folder / "survey.toml").write_text(text)
+    return folder / "survey.toml"
+
+
+def test_the_surveyed_arch_is_asymmetric_and_gets_every_dynamic_section(tmp_path):
+    """Under the default model the surveyed arch keeps its pulses, records and DEM sections;
+    under the four-link model they are refused (the mirror mechanism of an asymmetric arch)."""
+    path = write_survey(tmp_path)
+    cfg = load_config(path)
+    arch = cfg.build_arch()
+    assert cfg.model == "rigid" and not arch.symmetric
+    assert section_names(cfg, arch) == ["arch", "static", "pulses", "records", "dem", "validity"]
+    four = load_config(write_survey(tmp_path, model="fourlink"))
+    assert section_names(four, arch) == ["arch", "static", "validity"]
+
+
+def test_rigid_domain_of_the_surveyed_arch(tmp_path):
+    """The rigid chain's governing boundary of the surveyed arch at one step duration (the
+    search the pulses section runs, coarse): found, above the arch's no-hinging limit lambda
+    (a pulse below lambda does not even rock it) and below the ceiling; no four-link impact law
+    is asked of the asymmetric arch."""
+    from archquake.compare import dem_failure_domain
+    from archquake.domains import DomainSettings
+
+    arch = load_config(write_survey(tmp_path, suite=None, dem=False)).build_arch()
+    settings = DomainSettings(max_magnitude_g=1.0, coarse_points=4, fine_points=0,
+                              precision_g=0.05, early=False)
+    dom = dem_failure_domain(arch, "step", [0.3], settings=settings, governing_only=True,
+                             model="rigid", workers=1).domain
+    lam = dom.no_hinging_g[0]
+    assert 0.0 < lam < dom.collapse_g[0] < 1.0
+    assert dom.impact_law == "contacts" and np.isnan(dom.restitution_cv)
+
+
+@pytest.mark.slow
+def test_surveyed_arch_full_report_with_pulses_records_and_dem(tmp_path):
+    """The whole quick assessment of the surveyed bridge under the default model (tens of
+    minutes on two cores): pulses, records (IDA and fragility), the DEM check, the time-step and
+    friction sensitivity, and a verdict that rests on them; no c_v anywhere."""
+    from archquake.assess import run_assessment
+    from archquake.ground.suites import fema_available
+
+    if not fema_available():
+        pytest.skip("the survey uses the FEMA P695 records (archquake[records])")
+    rep = run_assessment(load_config(write_survey(tmp_path)), tmp_path / "out", quick=True)
+    res = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert res["model"] == "rigid"
+    assert list(res["sections"]) == ["arch", "static", "pulses", "records", "dem", "validity"]
+    pu, rec, va = (res["sections"][k] for k in ("pulses", "records", "validity"))
+    assert pu["restitution_cv"] is None and rec["restitution_cv"] is None
+    for fam in ("step", "sine"):
+        coll = [c for c in pu[fam]["collapse_g"] if c is not None]
+        assert coll and min(coll) > res["sections"]["static"]["collapse_acceleration_g"]
+    assert rec["runs"] > 0 and rec["fragility"]["first_collapse"] is not None
+    assert res["sections"]["dem"]["cases"]
+    steps = va["step_sensitivity"]
+    assert steps and all({"default_step", "half_step", "friction"} <= set(r) for r in steps)
+    assert va["restitution_sensitivity"] == [] and va["restitution_sensitivity_ida"] == []
+    assert "asymmetric" not in [w["key"] for w in va["warnings"]]
+    assert "at half the time step" in rep.verdict["text"]
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "chain of rigid voussoirs" in md and "c_v =" not in md
