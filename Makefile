@@ -9,6 +9,8 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP_RUN  := $(VENV)/.installed-run
 STAMP_TEST := $(VENV)/.installed-test
+# pytest-xdist workers for make test (one per core of the 2-core machines it is sized for)
+TEST_WORKERS ?= 2
 
 .PHONY: demo test bench lint clean
 
@@ -37,7 +39,7 @@ test: $(STAMP_TEST)
 		echo "note: chromium could not be installed; the report's browser test will skip"
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/mypy src/archquake
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
 
 bench: $(STAMP_RUN)
 	$(BIN)/python benchmarks/run_all.py

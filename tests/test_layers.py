@@ -43,10 +43,11 @@ ROOT = Path(archquake.__file__).parent
 #:   rigid (built on the DEM's blocks and post-processing);
 #: - thrust (the line of thrust in motion, from the four-link model), domains (failure domains
 #:   of the four-link model);
-#: - compare (the models against each other) -> sweeps (grids of cases of any model; its case
-#:   table reads compare's run-to-verdict policies) -> ida (incremental dynamic analysis through
-#:   sweeps) -> warm (compiles every model's kernels, the batched ones of domains and ida
-#:   included);
+#: - compare (the models against each other) -> codecheck (the code check of the arch's
+#:   mechanism: its kinematics, the site's spectra, the rigid chain's run to a verdict) ->
+#:   sweeps (grids of cases of any model; its case table reads compare's run-to-verdict
+#:   policies) -> ida (incremental dynamic analysis through sweeps) -> warm (compiles every
+#:   model's kernels, the batched ones of domains and ida included);
 #: - plotting (figures of results) -> reproduce (the paper's studies, which draw figures) ->
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
 LAYERS: tuple[tuple[str, ...], ...] = (
@@ -63,6 +64,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("thrust",),
     ("domains",),
     ("compare",),
+    ("codecheck",),
     ("sweeps",),
     ("ida",),
     ("warm",),
