@@ -25,6 +25,7 @@ HOMES = {
     "limit_analysis": ("archquake.limit.analysis", "limit_analysis"),
     "simulate": ("archquake.mechanism.simulate", "simulate"),
     "Outcome": ("archquake.mechanism", "Outcome"),
+    "ModelResult": ("archquake.result", "ModelResult"),
     "simulate_dem": ("archquake.dem", "simulate_dem"),
     "failure_domain": ("archquake.domains.domain", "failure_domain"),
     "StepImpulse": ("archquake.ground.pulses", "StepImpulse"),

@@ -33,8 +33,9 @@ ROOT = Path(archquake.__file__).parent
 #: The layers, bottom first. A unit may import units of its own layer or below, never above.
 #: Why this order:
 #: - foundation: constants, errors and the helpers every layer uses (units, ranges, argument
-#:   validation, JSON, the kernel cache, the outcome vocabulary, the Dormand-Prince tableau,
-#:   process pools, the lazy loader of names); they import nothing above them;
+#:   validation, JSON, the kernel cache, the outcome vocabulary, the result interface, the
+#:   Dormand-Prince tableau, process pools, the lazy loader of names); they import nothing
+#:   above them;
 #: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
 #:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
@@ -51,7 +52,7 @@ ROOT = Path(archquake.__file__).parent
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("constants", "errors", "units", "ranges", "_validate", "_json", "_kernel_cache", "outcome",
-     "_dopri", "parallel", "_lazy"),
+     "result", "_dopri", "parallel", "_lazy"),
     ("geometry",),
     ("ground",),
     ("codes",),

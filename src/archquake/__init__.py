@@ -20,7 +20,8 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 ``Arch``, ``limit_analysis``, ``simulate`` (the paper's model: hinges fixed between impacts),
 ``simulate_rigid`` (the chain of rigid voussoirs: hinges that move), ``simulate_dem``,
 ``failure_domain``,
-``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, the error classes,
+``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, ``ModelResult`` (what
+the three models' results have in common), the error classes,
 the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
 in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
 """
@@ -60,6 +61,7 @@ _LAZY: dict[str, str] = {
     "limit_analysis": "archquake.limit",
     "simulate": "archquake.mechanism",
     "Outcome": "archquake.outcome",
+    "ModelResult": "archquake.result",
     "simulate_dem": "archquake.dem",
     "simulate_rigid": "archquake.rigid",
     "failure_domain": "archquake.domains",
@@ -77,6 +79,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.limit import limit_analysis
     from archquake.mechanism.simulate import simulate
     from archquake.outcome import Outcome
+    from archquake.result import ModelResult
     from archquake.rigid import simulate_rigid
 
 
@@ -91,6 +94,7 @@ __all__ = [
     "Hinge",
     "HingeMechanism",
     "InvalidParameterError",
+    "ModelResult",
     "Outcome",
     "Record",
     "STANDARD_GRAVITY",

@@ -56,9 +56,16 @@ class ClusterLostError(ArchquakeError):
     that had completed is in the store; rerunning the same sweep resumes."""
 
 
+class ModelUnavailableError(ArchquakeError):
+    """A study asks for a model this build of archquake does not provide (a fault of the
+    installation, not of a case: the sweep runner lets it stop the sweep instead of storing
+    it)."""
+
+
 __all__ = [
     "ArchquakeError",
     "ClusterLostError",
+    "ModelUnavailableError",
     "UsageError",
     "InvalidParameterError",
     "InvalidTypeError",

@@ -56,7 +56,7 @@ def test_files_written(tmp_path, capsys):
     assert "collapse in half cycle 1" in text
     assert plot.stat().st_size > 10_000 and gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
     rows = hist.read_text().splitlines()
-    assert rows[0].startswith("t_s,phi_rad") and len(rows) > 50
+    assert rows[0].startswith("time_s,crown_dx_m,crown_dy_m,rotation_rad") and len(rows) > 50
 
 
 @pytest.mark.parametrize(

@@ -10,10 +10,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from archquake.domains import evaluate_pulses, evaluate_pulses_scalar
-from archquake.domains._kernels import default_t_end
+from archquake.domains import evaluate_pulses
+from archquake.domains.batch import evaluate_pulses_scalar
 from archquake.ground import StepImpulse
 from archquake.mechanism import simulate
+from archquake.mechanism.simulate import default_t_end
 from archquake.outcome import Outcome
 
 

@@ -13,7 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from archquake.domains import DomainSettings, evaluate_pulses, evaluate_pulses_scalar, failure_domain
+from archquake.domains import DomainSettings, evaluate_pulses, failure_domain
+from archquake.domains.batch import evaluate_pulses_scalar
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse

@@ -11,7 +11,7 @@ from pathlib import Path
 from archquake import __version__
 from archquake.assess.sections import ASSUMPTIONS
 from archquake.assess.site import report_code_check
-from archquake.reproduce.report import _CSS, _img, _md_cell
+from archquake.reproduce.report import REPORT_CSS, image_data_uri, md_cell
 
 _EXTRA_CSS = (".verdict{font-size:1.05em;padding:0.8em;border-left:6px solid #888;"
               "background:#f7f7f7}.verdict.uncertain{border-color:#c0392b;background:#fbecea}"
@@ -275,7 +275,7 @@ def write_markdown(rep, path: Path) -> Path:
         elif kind == "table":
             lines.append("| " + " | ".join(e[1]) + " |")
             lines.append("| " + " | ".join("---" for _ in e[1]) + " |")
-            lines += ["| " + " | ".join(_md_cell(c) for c in row) + " |" for row in e[2]]
+            lines += ["| " + " | ".join(md_cell(c) for c in row) + " |" for row in e[2]]
             lines.append("")
         elif kind == "fig":
             lines += [f"![{e[2]}](figures/{e[1]})", "", f"*{e[2]}*", ""]
@@ -292,7 +292,7 @@ def write_html(rep, path: Path) -> Path:
     figures = Path(rep.out) / "figures"
     title = f"archquake assessment: {rep.config.source}"
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
-             f"<title>{esc(title)}</title>", f"<style>{_CSS}{_EXTRA_CSS}</style></head><body>"]
+             f"<title>{esc(title)}</title>", f"<style>{REPORT_CSS}{_EXTRA_CSS}</style></head><body>"]
     open_section = False
     for e in elements(rep):
         kind = e[0]
@@ -320,7 +320,7 @@ def write_html(rep, path: Path) -> Path:
                       for row in e[2]]
             parts.append("</tbody></table>")
         elif kind == "fig":
-            parts.append(f'<figure><img alt="{esc(e[2])}" src="{_img(figures / e[1])}">'
+            parts.append(f'<figure><img alt="{esc(e[2])}" src="{image_data_uri(figures / e[1])}">'
                          f"<figcaption>{esc(e[2])}</figcaption></figure>")
     if open_section:
         parts.append("</section>")

@@ -24,7 +24,7 @@ from archquake._json import to_jsonable
 from archquake.assess.config import AssessConfig
 from archquake.assess.sections import SECTIONS, Context, Mode, dynamics_refusal, verdict
 from archquake.reproduce.core import StudyResult
-from archquake.reproduce.runner import _load_cached, _store
+from archquake.reproduce.runner import load_cached, store_result
 
 
 @dataclass(frozen=True)
@@ -105,7 +105,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     cached: dict[str, bool] = {}
     for k, name in enumerate(names, 1):
         key = f"assess-{name}-{config.digest}"
-        hit = None if force else _load_cached(out, key, quick)
+        hit = None if force else load_cached(out, key, quick)
         head = f"[{k}/{len(names)}] {name}"
         if hit is not None:
             results[name], cached[name] = hit, True
@@ -119,7 +119,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
         s0 = time.perf_counter()
         res = funcs[name](ctx)
         res = replace(res, name=key, seconds=time.perf_counter() - s0)
-        _store(out, res, quick)
+        store_result(out, res, quick)
         # what the cache gives back (JSON types), so a fresh and a resumed run report alike
         results[name], cached[name] = StudyResult.from_dict(json.loads(json.dumps(
             res.to_dict()))), False

@@ -425,9 +425,9 @@ def _dem_outcome(arch, motion, duration: float) -> str:
 
 def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
     """Time at which the record's Arias intensity reaches ``fraction`` of its total, s."""
-    from archquake.ground.measures import _piecewise
+    from archquake.ground.measures import piecewise_samples
 
-    t, a = _piecewise(motion)
+    t, a = piecewise_samples(motion)
     sq = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] ** 2 + a[:-1] ** 2) * np.diff(t))])
     return float(np.interp(fraction * sq[-1], sq, t))
 

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import csv
-from pathlib import Path
 
 from archquake.cli.common import (
     add_arch_arguments,
@@ -64,8 +62,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--animate", metavar="FILE.gif", type=output_file(*ANIMATION_SUFFIXES),
                    help="write an animated GIF of the rocking arch")
     p.add_argument("--history", metavar="FILE.csv", type=output_file(*CSV_SUFFIXES),
-                   help="write the time history as CSV (t s, phi rad, phi_dot rad/s, side, "
-                        "ground acceleration m/s^2)")
+                   help="write the time history as CSV, the same first columns for every "
+                        "model (time s, crown displacement m, rotation rad, kinetic and "
+                        "potential energy J), then the model's own")
     p.set_defaults(func=run)
 
 
@@ -104,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
             t_show = min(t_show, motion.duration + 10.0)
         animate_history(prepared, result, args.animate, fps=15, t_end=t_show)
     if args.history:
-        _write_history(result, args.history)
+        result.to_csv(args.history)
     out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
@@ -172,15 +171,6 @@ def _print_text(result, motion, g: float) -> None:
     if result.peak_rotation.size:
         shown = ", ".join(f"{p:.4f}" for p in result.peak_rotation[:6])
         print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
-
-
-def _write_history(result, path: Path) -> None:
-    h = result.history
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["t_s", "phi_rad", "phi_dot_rad_s", "side", "ground_acceleration_m_s2"])
-        for row in zip(h.t, h.phi, h.phi_dot, h.side, h.ground_acceleration):
-            w.writerow([f"{row[0]:.6f}", f"{row[1]:.9e}", f"{row[2]:.9e}", int(row[3]), f"{row[4]:.6e}"])
 
 
 def _run_dem(args, arch, motion) -> int:

@@ -8,8 +8,6 @@ onset_time_s, impact_times_s, peak_rotation_rad, ...) followed by the DEM's own.
 from __future__ import annotations
 
 import argparse
-import csv
-from pathlib import Path
 
 from archquake.cli.common import (
     check_range,
@@ -167,7 +165,7 @@ def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
 
         animate_dem(result, args.animate, fps=15)
     if args.history:
-        _write_history(result, args.history)
+        result.to_csv(args.history)
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
     if args.json:
@@ -226,16 +224,6 @@ def _label_of(out: dict) -> str:
         return (f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
                 + _towards(e))
     return str(e.get("name", "record"))
-
-
-def _write_history(result, path: Path) -> None:
-    cols = result.to_table()
-    names = list(cols)
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(names)
-        for row in zip(*(cols[n] for n in names)):
-            w.writerow([f"{x:.9e}" for x in row])
 
 
 def _towards(motion: dict) -> str:

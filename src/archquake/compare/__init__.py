@@ -19,7 +19,6 @@ _LAZY: dict[str, str] = {
     "FIGURE10_DAMPING": "archquake.compare.snapshots",
     "FIGURE10_PULSE": "archquake.compare.snapshots",
     "FIGURE10_TIME": "archquake.compare.snapshots",
-    "FIGURE4_DURATIONS": "archquake.compare.histories",
     "FIGURE9_TIMES": "archquake.compare.snapshots",
     "HINGES": "archquake.compare.histories",
     "HingeComparison": "archquake.compare.snapshots",
@@ -53,7 +52,6 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     )
     from archquake.compare.histories import (
         ASSEMBLIES,
-        FIGURE4_DURATIONS,
         HINGES,
         VOUSSOIRS,
         HistoryComparison,
@@ -101,7 +99,6 @@ __all__ = [
     "joint_displacements",
     "reduced_damping_snapshot",
     "ASSEMBLIES",
-    "FIGURE4_DURATIONS",
     "HINGES",
     "VOUSSOIRS",
     "HistoryComparison",

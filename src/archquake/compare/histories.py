@@ -120,7 +120,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     InvalidParameterError
         If that first window exceeds ``ranges.DEM_T_END_MAX_S`` (the chain steps 1e-4 s).
     """
-    from archquake.domains._kernels import default_t_end
+    from archquake.mechanism.simulate import default_t_end
     from archquake.ranges import DEM_T_END_MAX_S
     from archquake.rigid import simulate_rigid
 

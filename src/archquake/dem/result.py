@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -38,6 +39,7 @@ import archquake.dem._kernels as K
 from archquake.dem.assembly import Assembly, RotationLink
 from archquake.dem.settings import DemSettings
 from archquake.outcome import Outcome
+from archquake.result import shared_columns, shared_keys, write_csv
 
 
 # --------------------------------------------------------------------------- kinematics
@@ -627,16 +629,7 @@ class DemResult:
         shared with the analytical result (``final_state``: ``collapsed`` or None, the DEM runs
         for a fixed time with no rest criterion), then the DEM's own."""
         return {
-            "model": "dem",
-            "outcome": self.outcome.value,
-            "final_state": self.final_state,
-            "collapse_half_cycle": self.collapse_half_cycle,
-            "collapse_time_s": self.collapse_time,
-            "onset_time_s": self.onset_time,
-            "impact_times_s": self.impact_times.tolist(),
-            "peak_rotation_rad": self.peak_rotation.tolist(),
-            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
-            "g_m_s2": self.g,
+            **shared_keys(self, "dem", self.final_state),
             "mechanisms": [e.to_dict() for e in self.hinge_sets()],
             "verdict": self.verdict_reason,
             "excitation_end_s": self.excitation_end,
@@ -652,13 +645,29 @@ class DemResult:
                        "t_end_s": self.settings.duration},
         }
 
+    @property
+    def crown_displacement(self) -> np.ndarray:
+        """(nt, 2): the crown point's displacement dx, dy relative to the ground, m, from its
+        place in the undisplaced assembly (NaN without a crown block)."""
+        if self.assembly.crown_block < 0:
+            return np.full((self.times.size, 2), np.nan)
+        point = np.asarray(self.assembly.crown_point, dtype=float)
+        moved = carry(self.assembly, self.positions, self.assembly.crown_block, point) - point
+        moved[:, 0] -= self.base_displacement
+        return moved
+
+    @property
+    def hinge_events(self) -> tuple[HingeSet, ...]:
+        """Every hinge set the arch passed through (:meth:`hinge_sets` at its default
+        sampling), as :attr:`archquake.result.ModelResult.hinge_events`."""
+        return self.hinge_sets()
+
     def to_table(self) -> dict[str, np.ndarray]:
-        """Columns for a tabular export: time, rotation, energies, base motion."""
+        """Columns for a tabular export: :data:`archquake.result.TABLE_COLUMNS` (time, crown
+        displacement, rotation, kinetic and potential energy), then the other energies and the
+        base motion."""
         return {
-            "time_s": self.times,
-            "rotation_rad": self.rotation,
-            "kinetic_J": self.kinetic,
-            "potential_J": self.potential,
+            **shared_columns(self),
             "strain_J": self.strain,
             "damping_J": self.damping,
             "friction_J": self.friction,
@@ -666,6 +675,10 @@ class DemResult:
             "base_displacement_m": self.base_displacement,
             "base_velocity_m_s": self.base_velocity,
         }
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        return write_csv(self.to_table(), path)
 
 
 

@@ -43,8 +43,6 @@ run ended and its last impact's energy, from which the caller states the verdict
 
 from __future__ import annotations
 
-import math
-
 import numba as nb
 import numpy as np
 
@@ -162,11 +160,5 @@ def decode(codes: np.ndarray) -> np.ndarray:
     return out
 
 
-def default_t_end(excitation_end_s: np.ndarray, radius: float, g: float) -> np.ndarray:
-    """End of each analysis, s: the default of :func:`archquake.mechanism.simulate`
-    (the end of the excitation plus 60 sqrt(R/g)); a test holds the two equal."""
-    return np.asarray(excitation_end_s, dtype=float) + 60.0 * math.sqrt(radius / g)
-
-
 __all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "OUTCOMES", "batch_kernel", "decode",
-           "default_t_end", "table_energies", "undescribed_seen"]
+           "table_energies", "undescribed_seen"]

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import Enum
 
 import numpy as np
 
@@ -18,51 +17,12 @@ from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
-from archquake.ground.base import GroundMotion, check_time_resolution
-from archquake.ground.pulses import SinePulse, StepImpulse
+from archquake.ground.base import check_time_resolution
+from archquake.ground.pulses import PulseFamily
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions, conclude_run, simulate
 from archquake.outcome import Outcome, qualify
-
-
-class PulseFamily(str, Enum):
-    """A one-parameter family of pulses: magnitude a and a duration.
-
-    ``step``: Oppenheim's step impulse, duration = t_p (the first lobe; the impulse lasts 3 t_p).
-    ``sine``: one cycle of a sine, duration = its period T.
-    """
-
-    STEP = "step"
-    SINE = "sine"
-
-    @classmethod
-    def parse(cls, value: PulseFamily | str) -> PulseFamily:
-        try:
-            return cls(value)
-        except ValueError:
-            raise InvalidParameterError(
-                f"pulse family must be 'step' or 'sine', got {value!r}") from None
-
-    def motion(self, magnitude_g: float, duration: float, *, g: float = STANDARD_GRAVITY) -> GroundMotion:
-        """The pulse of magnitude ``magnitude_g`` (g) and duration (s), first lobe towards -x."""
-        if self is PulseFamily.STEP:
-            return StepImpulse.from_g(magnitude_g, duration, g=g)
-        return SinePulse.from_g(magnitude_g, duration, g=g)
-
-    @property
-    def kind(self) -> int:
-        return int(self.motion(1.0, 1.0).kernel_spec()[0])
-
-    @property
-    def duration_symbol(self) -> str:
-        """How the paper names the duration: ``t_p`` or ``T``."""
-        return "t_p" if self is PulseFamily.STEP else "T"
-
-    @property
-    def duration_label(self) -> str:
-        return ("impulse duration t_p [s]" if self is PulseFamily.STEP else "impulse period T [s]")
-
 
 #: Integrator settings of :func:`~archquake.mechanism.simulate`'s default.
 DEFAULT_OPTIONS = SolverOptions()
@@ -187,7 +147,8 @@ def evaluate_pulses(
     >>> [int(h) for h in r.collapse_half_cycle], [o.value for o in r.outcome]
     ([1, 2, 0], ['collapse', 'collapse', 'survives'])
     """
-    from archquake.domains._kernels import batch_kernel, decode, default_t_end
+    from archquake.domains._kernels import batch_kernel, decode
+    from archquake.mechanism.simulate import default_t_end
 
     prepared = PreparedMechanism.build(arch, impact)
     prescribed = check_restitution(restitution)
@@ -258,4 +219,4 @@ def evaluate_pulses_scalar(
     return PulseOutcomes(a, d, outcome, half, np.ones(a.shape[0], dtype=np.int64))
 
 
-__all__ = ["PulseFamily", "PulseOutcomes", "evaluate_pulses", "evaluate_pulses_scalar"]
+__all__ = ["PulseOutcomes", "evaluate_pulses", "evaluate_pulses_scalar"]

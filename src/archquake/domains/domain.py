@@ -58,13 +58,14 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.pulses import PulseFamily
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.kinematics import G0, H0
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions
 from archquake.outcome import Outcome
 
-from .batch import PulseFamily, PulseOutcomes, check_durations, evaluate_pulses
+from .batch import PulseOutcomes, check_durations, evaluate_pulses
 
 #: Figure 5's durations t_p, s.
 FIGURE5_DURATIONS = tuple(np.linspace(0.05, 1.5, 40).tolist())

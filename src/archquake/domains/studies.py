@@ -17,6 +17,7 @@ import numpy as np
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError
 from archquake.geometry.arch import Arch
+from archquake.ground.pulses import PulseFamily
 from archquake.validation.paper import (
     FIGURE6_RADII,
     FIGURE7_EMBRACES_DEG,
@@ -24,7 +25,6 @@ from archquake.validation.paper import (
     oppenheim_arch,
 )
 
-from .batch import PulseFamily
 from .domain import FIGURE5_DURATIONS, DomainSettings, FailureDomain, failure_domain
 
 #: Figure 6: radii, m; Figure 7: thickness ratios at 157.5 degrees, and embraces (degrees) at

@@ -17,6 +17,7 @@ import numpy as np
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.fourbar import link_rates
+from archquake.geometry.planar import perp
 
 
 class Face(str, Enum):
@@ -143,11 +144,11 @@ class HingeMechanism:
         w = np.zeros(n)
         pivots = (self.points[0], self.points[1], self.points[3])
         # BC's velocity is that of B (on AB) plus its own rotation about B
-        vb = self.rates[0] * _perp(self.points[1] - self.points[0])
+        vb = self.rates[0] * perp(self.points[1] - self.points[0])
         for link, (rng, pivot) in enumerate(zip(self.link_voussoirs, pivots)):
             for k in rng:
                 r = arch.voussoir_centroids[k] - pivot
-                v[k] = self.rates[link] * _perp(r) + (vb if link == 1 else 0.0)
+                v[k] = self.rates[link] * perp(r) + (vb if link == 1 else 0.0)
                 w[k] = self.rates[link]
         return v, w
 
@@ -206,10 +207,6 @@ class HingeMechanism:
             "symmetric": self.symmetric,
             "load_direction": self.load_direction,
         }
-
-
-def _perp(r: np.ndarray) -> np.ndarray:
-    return np.array([-r[1], r[0]])
 
 
 __all__ = ["Face", "Hinge", "HingeMechanism"]

@@ -323,7 +323,7 @@ class ShapedArch(VoussoirChain):
                 continue
             ends, where = [], []
             for side, face in zip((-1.0, 1.0), faces):
-                q, i = _cross(face, c, d, j)
+                q, i = _line_crossing(face, c, d, j)
                 smooth = self.joints == "radial" and not (self.shape == "pointed" and 2 * j == n)
                 ends.append(c + side * 0.5 * self.thickness * d if smooth else q)  # exact offset
                 where.append(i)
@@ -398,7 +398,7 @@ class ShapedArch(VoussoirChain):
         return replace(self, thickness=thickness)
 
 
-def _cross(face: np.ndarray, c: np.ndarray, d: np.ndarray, j: int) -> tuple[np.ndarray, int]:
+def _line_crossing(face: np.ndarray, c: np.ndarray, d: np.ndarray, j: int) -> tuple[np.ndarray, int]:
     """Where the line through ``c`` along ``d`` crosses the polyline ``face`` nearest to ``c``:
     the point and the index of the segment's first vertex."""
     g = d[0] * (face[:, 1] - c[1]) - d[1] * (face[:, 0] - c[0])

@@ -1,5 +1,5 @@
-"""Ground motions: the step impulse, the one-cycle sine pulse, recorded accelerograms, their
-intensity measures and record suites.
+"""Ground motions: the step impulse, the one-cycle sine pulse (and their families), recorded
+accelerograms, their intensity measures and record suites.
 
 The intensity measures (:mod:`archquake.ground.measures`, which compiles a numba kernel) are
 imported on first use (PEP 562), so that a command that only builds a motion does not import
@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from archquake._lazy import attach
 from archquake.ground.base import GroundMotion
-from archquake.ground.pulses import SinePulse, StepImpulse
+from archquake.ground.pulses import PulseFamily, SinePulse, StepImpulse
 from archquake.ground.records import (
     Record,
     baseline_corrected,
@@ -47,6 +47,7 @@ __all__ = [
     "GroundMotion",
     "IntensityMeasure",
     "IntensityMeasures",
+    "PulseFamily",
     "Record",
     "SinePulse",
     "StepImpulse",

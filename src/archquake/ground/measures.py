@@ -151,7 +151,7 @@ class IntensityMeasure:
     def of(self, motion, *, g: float = STANDARD_GRAVITY) -> float:
         """Value of this measure for ``motion``, in :attr:`unit`."""
         g = require_gravity(g)
-        t, a = _piecewise(motion)
+        t, a = piecewise_samples(motion)
         if self.name == "pga":
             return float(np.max(np.abs(a))) / g if a.size else 0.0
         if self.name == "pgv":
@@ -296,7 +296,7 @@ def intensity_measures(motion, *, periods: Iterable[float] = (),
     g = require_gravity(g)
     damping = _damping(damping)
     periods = _periods(periods)
-    t, a = _piecewise(motion)
+    t, a = piecewise_samples(motion)
     sq = _sq_integrals(t, a)
     sa = _spectrum(t, a, periods, damping) / g if periods.size else np.empty(0)
     return IntensityMeasures(
@@ -320,7 +320,7 @@ def response_spectrum(motion, periods: Iterable[float], *, damping: float = DEFA
     See the module docstring for the oscillator and how it is integrated.
     """
     periods = _periods(periods)
-    t, a = _piecewise(motion)
+    t, a = piecewise_samples(motion)
     return _spectrum(t, a, periods, _damping(damping))
 
 
@@ -330,14 +330,14 @@ def significant_duration(motion, start: float = 0.05, end: float = 0.95) -> floa
     end = require_range("end fraction", end, 0.0, 1.0)
     if not start < end:
         raise InvalidParameterError(f"start fraction {start:g} must be < end fraction {end:g}")
-    t, a = _piecewise(motion)
+    t, a = piecewise_samples(motion)
     return _significant_duration(t, _sq_integrals(t, a), start, end)
 
 
 # -------------------------------------------------------------------------------------
 # the piecewise-linear history
 # -------------------------------------------------------------------------------------
-def _piecewise(motion) -> tuple[np.ndarray, np.ndarray]:
+def piecewise_samples(motion) -> tuple[np.ndarray, np.ndarray]:
     """(t, a): non-decreasing times (s) and accelerations (m/s^2), linear between; a repeated
     time is a jump. Records give their samples; other motions are sampled between their
     breakpoints, keeping the value just before each breakpoint as well as the one at it."""
@@ -536,6 +536,7 @@ __all__ = [
     "im_value",
     "intensity_measures",
     "parse_im",
+    "piecewise_samples",
     "response_spectrum",
     "scale_to",
     "significant_duration",

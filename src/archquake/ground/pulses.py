@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import Enum
 from numbers import Real
 
 import numpy as np
@@ -15,7 +16,7 @@ import numpy as np
 from archquake._validate import require_finite, require_gravity, require_positive
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.ground.base import KIND_SINE, KIND_STEP
+from archquake.ground.base import KIND_SINE, KIND_STEP, GroundMotion
 
 
 def _direction(value: object) -> int:
@@ -207,4 +208,42 @@ class RectangularPulse:
 
 
 
-__all__ = ["RectangularPulse", "StepImpulse", "SinePulse"]
+class PulseFamily(str, Enum):
+    """A one-parameter family of pulses: magnitude a and a duration.
+
+    ``step``: Oppenheim's step impulse, duration = t_p (the first lobe; the impulse lasts 3 t_p).
+    ``sine``: one cycle of a sine, duration = its period T.
+    """
+
+    STEP = "step"
+    SINE = "sine"
+
+    @classmethod
+    def parse(cls, value: PulseFamily | str) -> PulseFamily:
+        try:
+            return cls(value)
+        except ValueError:
+            raise InvalidParameterError(
+                f"pulse family must be 'step' or 'sine', got {value!r}") from None
+
+    def motion(self, magnitude_g: float, duration: float, *, g: float = STANDARD_GRAVITY) -> GroundMotion:
+        """The pulse of magnitude ``magnitude_g`` (g) and duration (s), first lobe towards -x."""
+        if self is PulseFamily.STEP:
+            return StepImpulse.from_g(magnitude_g, duration, g=g)
+        return SinePulse.from_g(magnitude_g, duration, g=g)
+
+    @property
+    def kind(self) -> int:
+        return int(self.motion(1.0, 1.0).kernel_spec()[0])
+
+    @property
+    def duration_symbol(self) -> str:
+        """How the paper names the duration: ``t_p`` or ``T``."""
+        return "t_p" if self is PulseFamily.STEP else "T"
+
+    @property
+    def duration_label(self) -> str:
+        return ("impulse duration t_p [s]" if self is PulseFamily.STEP else "impulse period T [s]")
+
+
+__all__ = ["PulseFamily", "RectangularPulse", "SinePulse", "StepImpulse"]

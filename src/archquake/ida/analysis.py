@@ -349,7 +349,7 @@ def incremental_dynamic_analysis(
     """
     from archquake.ida.batch import evaluate_cases
     from archquake.parallel import SerialExecutor
-    from archquake.sweeps.evaluate import _prepared
+    from archquake.sweeps.evaluate import prepared_mechanism
     from archquake.sweeps.runner import run_sweep
 
     measure = parse_im(im)
@@ -363,7 +363,7 @@ def incremental_dynamic_analysis(
     if len(set(names)) != len(names):
         raise InvalidParameterError("record names must be unique within a suite")
     g = options.g
-    prepared = _prepared(arch)
+    prepared = prepared_mechanism(arch)
     lam = prepared.collapse_acceleration_g
     phi_crit = prepared.critical_rotation
     im0 = np.array([im_value(m, measure, g=g) for m in motions])

@@ -47,7 +47,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
         "kernel_runs", "t_end_s", "evaluator"}``, or the :class:`~archquake.errors.ArchquakeError`
         refusing the case (e.g. an arch too thin to stand).
     """
-    from archquake.sweeps.evaluate import _prepared
+    from archquake.sweeps.evaluate import prepared_mechanism
 
     out: list[Any] = [None] * len(cases)
     groups: dict[tuple, list[int]] = {}
@@ -58,7 +58,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
         groups.setdefault((case.arch, case.options), []).append(i)
     for (arch, options), idx in groups.items():
         try:
-            prepared = _prepared(arch, options.impact)
+            prepared = prepared_mechanism(arch, options.impact)
         except ArchquakeError as exc:
             for i in idx:
                 out[i] = exc
@@ -70,11 +70,10 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
 
 
 def _run_group(prepared, cases, options, early) -> list[Any]:
-    from archquake.domains._kernels import default_t_end
     from archquake.ida._kernels import WINDOW_TAU, batch_kernel
     from archquake.mechanism import SolverOptions
     from archquake.mechanism._kernels import excitation_end
-    from archquake.mechanism.simulate import conclude_run
+    from archquake.mechanism.simulate import conclude_run, default_t_end
 
     g = options.g
     solver = SolverOptions()

@@ -30,14 +30,10 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
+from archquake.geometry.planar import perp
 
 #: Largest number of voussoirs the exhaustive mechanism enumeration accepts.
 MAX_KINEMATIC_VOUSSOIRS = 60
-
-
-def _perp(v: np.ndarray) -> np.ndarray:
-    """J v = (-v_y, v_x) over the last axis."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
 @dataclass(frozen=True)
@@ -118,7 +114,7 @@ def admissible_mechanisms(arch: VoussoirChain) -> MechanismSet:
         bits = np.array([(code >> i) & 1 for i in range(4)])
         pa, pb, pc, pd = (ends[bits[i]][quads[:, i]] for i in range(4))
         # four-bar rates for omega_AB = 1 (same algebra as geometry.fourbar.link_rates)
-        jcb, jcd, jba = _perp(pc - pb), _perp(pc - pd), _perp(pb - pa)
+        jcb, jcd, jba = perp(pc - pb), perp(pc - pd), perp(pb - pa)
         det = -jcb[:, 0] * jcd[:, 1] + jcd[:, 0] * jcb[:, 1]
         scale = np.hypot(*(pc - pb).T) * np.hypot(*(pc - pd).T)
         ok = np.abs(det) > 1e-12 * scale
@@ -177,9 +173,9 @@ def mechanism_multipliers(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray, 
     w_ab, w_bc, w_cd = mechs.rates.T
     # sum of m v over the three links, per unit opening rate
     p_sum = (
-        w_ab[:, None] * (_perp(s_ab - m_ab[:, None] * pa) + m_bc[:, None] * _perp(pb - pa))
-        + w_bc[:, None] * _perp(s_bc - m_bc[:, None] * pb)
-        + w_cd[:, None] * _perp(s_cd - m_cd[:, None] * pd)
+        w_ab[:, None] * (perp(s_ab - m_ab[:, None] * pa) + m_bc[:, None] * perp(pb - pa))
+        + w_bc[:, None] * perp(s_bc - m_bc[:, None] * pb)
+        + w_cd[:, None] * perp(s_cd - m_cd[:, None] * pd)
     )
     ok = p_sum[:, 0] > 0.0  # a load towards +x does positive work
     return mechs.joints[ok], mechs.faces[ok], p_sum[ok, 1] / p_sum[ok, 0]

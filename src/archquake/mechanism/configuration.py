@@ -31,8 +31,9 @@ import numpy as np
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face
+from archquake.geometry.planar import rotation_matrix
 from archquake.limit.thrust import arch_joint_points
-from archquake.mechanism.kinematics import fourbar, link_states
+from archquake.mechanism.kinematics import eom_terms, fourbar, link_states, potential
 from archquake.mechanism.prepared import PreparedMechanism
 
 #: Relative tolerance (on the thickness) below which two faces of a joint count as closed.
@@ -97,11 +98,6 @@ class DisplacedArch:
         return np.column_stack([self.centroids - self.arch.voussoir_centroids, self.rotations])
 
 
-def _rot(angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s], [s, c]])
-
-
 def _packed(prepared: PreparedMechanism, phi: float, phi_dot: float, phi_ddot: float):
     """Faces, centroids, rigid motions and accelerations of the packed (side +1) mechanism."""
     mech = prepared.mechanism
@@ -135,7 +131,7 @@ def _packed(prepared: PreparedMechanism, phi: float, phi_dot: float, phi_ddot: f
     acc = np.zeros((n, 2))
     alpha = np.zeros(n)
     for rng, (p, p0, p1, p2, psi, w, a) in zip(mech.link_voussoirs, links, strict=True):
-        rot = _rot(psi)
+        rot = rotation_matrix(psi)
         shift = p - rot @ p0
         omega = w * phi_dot
         alph = w * phi_ddot + a * phi_dot**2
@@ -278,4 +274,70 @@ def hinge_points(prepared: PreparedMechanism, phi: float, side: int = 1) -> np.n
     return points
 
 
-__all__ = ["DisplacedArch", "displaced_arch", "hinge_points", "voussoir_positions"]
+def crown_and_energies(prepared: PreparedMechanism, phi: np.ndarray, phi_dot: np.ndarray,
+                       side: np.ndarray, row: np.ndarray | None = None, *,
+                       g: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The crown's displacement and the energies along a time history of the four-link model.
+
+    Parameters
+    ----------
+    prepared : PreparedMechanism
+        The run's first mechanism under its impact law (the rows of ``row`` are rows of its
+        :attr:`~PreparedMechanism.table`).
+    phi, phi_dot, side : ndarray (nt,)
+        The history's samples (:class:`archquake.mechanism.simulate.History`): rotation (rad)
+        and rate (rad/s) of the open mechanism, and its side (+1, -1 mirror image, 0 locked).
+    row : ndarray (nt,) of int, optional
+        The open mechanism's row of the table (None: row 0 throughout).
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    crown : ndarray (nt, 2)
+        Displacement dx, dy of the crown point (:attr:`VoussoirChain.crown_point`, carried by
+        the middle voussoir ``n // 2`` as the block models carry it) relative to the ground, m.
+    kinetic : ndarray (nt,)
+        ``1/2 m_eff(phi) phi'^2`` (Eq. 2's generalised mass), J.
+    potential : ndarray (nt,)
+        ``g sum m_k (y_k - y_k0)`` of the open mechanism, J (0 in the undisplaced arch).
+
+    Examples
+    --------
+    >>> import math
+    >>> from archquake import Arch
+    >>> prep = PreparedMechanism.build(Arch(10.0, 1.5, math.radians(157.5), 7))
+    >>> crown, kinetic, pot = crown_and_energies(
+    ...     prep, np.array([0.0, 0.02]), np.array([0.0, 0.1]), np.array([0, 1]), g=9.81)
+    >>> crown[0].tolist(), bool(pot[1] > 0.0), bool(kinetic[1] > 0.0)
+    ([0.0, 0.0], True, True)
+    """
+    arch = prepared.mechanism.arch
+    k = min(arch.voussoirs // 2, arch.voussoirs - 1)
+    point = np.asarray(arch.crown_point, dtype=float)
+    nt = np.asarray(phi).shape[0]
+    crown = np.zeros((nt, 2))
+    kinetic = np.zeros(nt)
+    potential_ = np.zeros(nt)
+    members: dict[int, PreparedMechanism] = {}
+    for i in range(nt):
+        s = int(side[i])
+        if s == 0:
+            continue  # locked: the arch moves with the ground, undisplaced
+        r = 0 if row is None else int(row[i])
+        member = members.get(r)
+        if member is None:
+            member = members[r] = prepared.member(r)
+        p = float(phi[i])
+        config = displaced_arch(member, p, s)
+        c, sn = math.cos(config.rotations[k]), math.sin(config.rotations[k])
+        crown[i] = (c * point[0] - sn * point[1] + config.translations[k, 0] - point[0],
+                    sn * point[0] + c * point[1] + config.translations[k, 1] - point[1])
+        meff = eom_terms(member.packed, p)[1]
+        kinetic[i] = 0.5 * meff * float(phi_dot[i]) ** 2
+        potential_[i] = g * potential(member.packed, p)
+    return crown, kinetic, potential_
+
+
+__all__ = ["DisplacedArch", "crown_and_energies", "displaced_arch", "hinge_points",
+           "voussoir_positions"]

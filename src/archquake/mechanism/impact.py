@@ -44,6 +44,7 @@ import numpy as np
 from archquake._validate import require_range
 from archquake.errors import InvalidParameterError
 from archquake.geometry.hinges import HingeMechanism
+from archquake.geometry.planar import cross
 from archquake.ranges import IMPACT_LAWS  # the laws' names (the command line reads them there)
 
 if TYPE_CHECKING:
@@ -175,13 +176,9 @@ def _momenta(mech: HingeMechanism, rate: float):
     return p, spin
 
 
-def _cross(r: np.ndarray, v: np.ndarray) -> np.ndarray:
-    return r[..., 0] * v[..., 1] - r[..., 1] * v[..., 0]
-
-
 def _angular(arch, p, spin, about, mask) -> float:
     r = arch.voussoir_centroids[mask] - about
-    return float(_cross(r, p[mask]).sum() + spin[mask].sum())
+    return float(cross(r, p[mask]).sum() + spin[mask].sum())
 
 
 def _momenta_mirrored(mech: HingeMechanism, rate: float):

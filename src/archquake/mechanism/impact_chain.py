@@ -57,6 +57,7 @@ import numpy as np
 
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
+from archquake.geometry.planar import cross, perp
 from archquake.limit.kinematic import MechanismSet, admissible_mechanisms
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces
 
@@ -78,14 +79,6 @@ VALIDITY = ("four_hinge", "at_rest", "near_four_hinge", "outside", "not_four_hin
 
 
 # ----------------------------------------------------------------------------- velocity fields
-def _perp(v: np.ndarray) -> np.ndarray:
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
 def mechanism_field(points: np.ndarray, rates: np.ndarray, joints, arch: VoussoirChain
                     ) -> tuple[np.ndarray, np.ndarray]:
     """Velocity field of one four-hinge mechanism per unit opening rate, at phi = 0.
@@ -105,12 +98,12 @@ def mechanism_field(points: np.ndarray, rates: np.ndarray, joints, arch: Voussoi
     w = np.zeros(n)
     a, b, cc, d = (int(j) for j in joints)
     pa, pb, _, pd = points
-    vb = rates[0] * _perp(pb - pa)
-    v[a:b] = rates[0] * _perp(c[a:b] - pa)
+    vb = rates[0] * perp(pb - pa)
+    v[a:b] = rates[0] * perp(c[a:b] - pa)
     w[a:b] = rates[0]
-    v[b:cc] = vb + rates[1] * _perp(c[b:cc] - pb)
+    v[b:cc] = vb + rates[1] * perp(c[b:cc] - pb)
     w[b:cc] = rates[1]
-    v[cc:d] = rates[2] * _perp(c[cc:d] - pd)
+    v[cc:d] = rates[2] * perp(c[cc:d] - pd)
     w[cc:d] = rates[2]
     return v, w
 
@@ -152,16 +145,16 @@ def generalised_momenta(arch: VoussoirChain, mechs: MechanismSet, velocity: np.n
     m = arch.voussoir_masses
     c = arch.voussoir_centroids
     p = m[:, None] * velocity
-    h0 = _cross(c, p) + arch.voussoir_inertias * spin  # angular momentum about O
+    h0 = cross(c, p) + arch.voussoir_inertias * spin  # angular momentum about O
     cp, ch = _prefix(p), _prefix(h0)
     a, b, cc, d = mechs.joints.T
     pa, pb, pd = mechs.points[:, 0], mechs.points[:, 1], mechs.points[:, 3]
     w_ab, w_bc, w_cd = mechs.rates.T
 
     def about(i, j, pivot):
-        return (ch[j] - ch[i]) - _cross(pivot, cp[j] - cp[i])
+        return (ch[j] - ch[i]) - cross(pivot, cp[j] - cp[i])
 
-    vb = w_ab[:, None] * _perp(pb - pa)
+    vb = w_ab[:, None] * perp(pb - pa)
     return (w_ab * about(a, b, pa) + np.einsum("ij,ij->i", vb, cp[cc] - cp[b])
             + w_bc * about(b, cc, pb) + w_cd * about(cc, d, pd))
 
@@ -180,10 +173,10 @@ def generalised_masses(arch: VoussoirChain, mechs: MechanismSet) -> np.ndarray:
         m0, m1, m2 = s0[j] - s0[i], s1[j] - s1[i], s2[j] - s2[i]
         return w**2 * (m2 - 2.0 * np.einsum("ij,ij->i", pivot, m1) + (pivot**2).sum(axis=1) * m0)
 
-    vb = w_ab[:, None] * _perp(pb - pa)
+    vb = w_ab[:, None] * perp(pb - pa)
     m0, m1 = s0[cc] - s0[b], s1[cc] - s1[b]
     coupler = ((vb**2).sum(axis=1) * m0
-               + 2.0 * w_bc * np.einsum("ij,ij->i", vb, _perp(m1 - m0[:, None] * pb)))
+               + 2.0 * w_bc * np.einsum("ij,ij->i", vb, perp(m1 - m0[:, None] * pb)))
     return rot(a, b, pa, w_ab) + coupler + rot(b, cc, pb, w_bc) + rot(cc, d, pd, w_cd)
 
 
@@ -260,7 +253,7 @@ def _generators(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray]:
             col = 2 * j + side
             p = ends[side][j]
             if j < n:
-                v = sign * _perp(c[j:] - p)
+                v = sign * perp(c[j:] - p)
                 g[3 * j::3, col] = v[:, 0]
                 g[3 * j + 1::3, col] = v[:, 1]
                 g[3 * j + 2::3, col] = sign
@@ -412,7 +405,7 @@ def _response(pre: HingeMechanism, post: HingeMechanism | None, field_post, rate
         dv = rate * v_q + v_pre  # Pi = M (s u_Q - (-u_P))
         dw = rate * w_q + w_pre
         pf = arch.voussoir_masses[:, None] * dv
-        pm = _cross(arch.voussoir_centroids, pf) + arch.voussoir_inertias * dw
+        pm = cross(arch.voussoir_centroids, pf) + arch.voussoir_inertias * dw
         impulses, _ = impulse_line(arch, pf, pm, post.points, post.joints)
         carry = impulses.normal > 1e-9 * max(float(np.max(np.abs(impulses.normal))), 1e-300)
         if np.any(carry):

@@ -43,7 +43,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from enum import Enum
-from functools import lru_cache
+from functools import cached_property, lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -65,6 +66,7 @@ from archquake.ground.base import GroundMotion, check_motion, check_time_resolut
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
+from archquake.result import shared_columns, shared_keys, write_csv
 
 
 class FinalState(str, Enum):
@@ -322,21 +324,76 @@ class SimulationResult:
     def half_cycles(self) -> int:
         return int(self.peak_rotation.shape[0])
 
+    @property
+    def times(self) -> np.ndarray:
+        """The history's sample times, s (empty without a history: ``output_interval=0``)."""
+        return self.history.t if self.history is not None else np.zeros(0)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """phi signed by the side, rad (> 0 in the first mechanism, < 0 in its mirror image),
+        at :attr:`times`: :attr:`History.signed_rotation`."""
+        return self.history.signed_rotation if self.history is not None else np.zeros(0)
+
+    @cached_property
+    def _motion(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        from archquake.mechanism.configuration import crown_and_energies
+
+        h = self.history
+        if h is None:
+            return np.zeros((0, 2)), np.zeros(0), np.zeros(0)
+        prepared = PreparedMechanism.build(self.mechanism, self.impact_law)
+        return crown_and_energies(prepared, h.phi, h.phi_dot, h.side, h.mechanism_row, g=self.g)
+
+    @property
+    def crown_displacement(self) -> np.ndarray:
+        """(nt, 2): the crown point's displacement dx, dy relative to the ground at
+        :attr:`times`, m (:func:`archquake.mechanism.configuration.crown_and_energies`;
+        computed on first use)."""
+        return self._motion[0]
+
+    @property
+    def kinetic(self) -> np.ndarray:
+        """Kinetic energy relative to the ground, ``1/2 m_eff phi'^2``, at :attr:`times`, J."""
+        return self._motion[1]
+
+    @property
+    def potential(self) -> np.ndarray:
+        """Gravitational potential energy from the undisplaced arch at :attr:`times`, J."""
+        return self._motion[2]
+
+    @property
+    def hinge_events(self) -> tuple[MechanismEvent, ...]:
+        """The sequence of mechanisms (:attr:`mechanisms`), as
+        :attr:`archquake.result.ModelResult.hinge_events`."""
+        return tuple(self.mechanisms)
+
+    def to_table(self) -> dict[str, np.ndarray]:
+        """Columns for a tabular export (``pandas.DataFrame(result.to_table())``):
+        :data:`archquake.result.TABLE_COLUMNS`, then phi' (rad/s), the side, the ground
+        acceleration (m/s^2) and the mechanism's row. Empty columns without a history."""
+        out = shared_columns(self)
+        h = self.history
+        if h is None:
+            out.update(phi_dot_rad_s=np.zeros(0), side=np.zeros(0, dtype=int),
+                       ground_acceleration_m_s2=np.zeros(0))
+            return out
+        out.update(phi_dot_rad_s=h.phi_dot, side=np.asarray(h.side).astype(int),
+                   ground_acceleration_m_s2=h.ground_acceleration)
+        if h.mechanism_row is not None:
+            out["mechanism_row"] = h.mechanism_row
+        return out
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        return write_csv(self.to_table(), path)
+
     def to_dict(self, include_history: bool = False) -> dict:
         """Plain dict for JSON (the CLI's ``--json``, a sweep's stored row): the keys of
         :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
         the analytical model's own."""
         out = {
-            "model": "fourlink",
-            "outcome": self.outcome.value,
-            "final_state": self.final_state.value,
-            "collapse_half_cycle": self.collapse_half_cycle,
-            "collapse_time_s": self.collapse_time,
-            "onset_time_s": self.onset_time,
-            "impact_times_s": self.impact_times.tolist(),
-            "peak_rotation_rad": self.peak_rotation.tolist(),
-            "max_rotation_rad": float(self.peak_rotation.max()) if self.peak_rotation.size else 0.0,
-            "g_m_s2": self.g,
+            **shared_keys(self, "fourlink", self.final_state.value),
             "restitution_cv": self.restitution_cv,
             "restitution_ct": self.restitution_ct,
             "energy_gain": self.energy_gain,
@@ -502,6 +559,34 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
                     energy_fraction=float(energy_fraction) if proof else None)
 
 
+#: How long the four-link model runs after the end of the excitation when no ``t_end`` is
+#: given, in units of sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking
+#: arch to come to rest or to be shown unable to reach a crest again.
+RUN_TAIL = 60.0
+
+
+def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) -> np.ndarray:
+    """The four-link model's default end of analysis, s: the end of the excitation plus
+    :data:`RUN_TAIL` sqrt(R/g) (what :func:`simulate`, the failure domains' batch and the
+    incremental dynamic analysis use).
+
+    Parameters
+    ----------
+    excitation_end_s : float or ndarray
+        End of each excitation, s.
+    radius : float
+        The arch's radius R, m.
+    g : float
+        Gravity, m/s^2.
+
+    Examples
+    --------
+    >>> round(float(default_t_end(0.81, 10.0)), 3)
+    61.4
+    """
+    return np.asarray(excitation_end_s, dtype=float) + RUN_TAIL * math.sqrt(radius / g)
+
+
 def simulate(
     arch: Arch | HingeMechanism | PreparedMechanism,
     motion: GroundMotion,
@@ -588,7 +673,7 @@ def simulate(
     check_time_resolution(kind, params, tau)
     excitation = float(K.excitation_end(kind, params))
     if t_end is None:
-        t_end = excitation + 60.0 * tau
+        t_end = float(default_t_end(excitation, mech.arch.radius, g))
     require_positive("t_end", t_end, "s")
     dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
     n_imp_cap = int(options.max_impacts)
@@ -701,6 +786,6 @@ def simulate(
     )
 
 
-__all__ = ["FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
-           "SolverOptions", "conclude_run", "last_impact_fraction", "mechanism_events",
-           "simulate"]
+__all__ = ["RUN_TAIL", "FinalState", "History", "MechanismEvent", "Outcome", "SimulationResult",
+           "SolverOptions", "conclude_run", "default_t_end", "last_impact_fraction",
+           "mechanism_events", "simulate"]

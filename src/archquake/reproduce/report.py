@@ -27,7 +27,8 @@ def _summary(rep) -> str:
     )
 
 
-def _md_cell(text: str) -> str:
+def md_cell(text: str) -> str:
+    """``text`` as one cell of a Markdown table (pipes escaped, on one line)."""
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
@@ -61,7 +62,7 @@ def write_markdown(rep, path: Path) -> Path:
             lines.append(
                 "| "
                 + " | ".join(
-                    _md_cell(x)
+                    md_cell(x)
                     for x in (
                         row.quantity,
                         row.source,
@@ -82,7 +83,8 @@ def write_markdown(rep, path: Path) -> Path:
     return path
 
 
-_CSS = """
+#: The style sheet of the HTML reports (the reproduction's and a bridge assessment's).
+REPORT_CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.4}
 h1{font-size:1.5em}h2{font-size:1.2em;margin-top:2em;border-bottom:1px solid #ccc}
@@ -99,7 +101,8 @@ figcaption{font-size:0.85em;color:#555}
 """
 
 
-def _img(path: Path) -> str:
+def image_data_uri(path: Path) -> str:
+    """The PNG at ``path`` as a ``data:`` URI, for a self-contained HTML page."""
     data = base64.b64encode(path.read_bytes()).decode("ascii")
     return f"data:image/png;base64,{data}"
 
@@ -112,7 +115,7 @@ def write_html(rep, path: Path) -> Path:
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         "<title>archquake: the paper regenerated</title>",
-        f"<style>{_CSS}</style></head><body>",
+        f"<style>{REPORT_CSS}</style></head><body>",
         "<h1>The paper regenerated: archquake beside De Lorenzis, DeJong &amp; Ochsendorf (2007)</h1>",
         f"<p>{e(_INTRO)}</p>",
         f'<p class="summary" id="summary">Summary: {e(_summary(rep))}.</p>',
@@ -156,7 +159,7 @@ def write_html(rep, path: Path) -> Path:
         parts.append("</tbody></table>")
         for f in res.figures:
             parts.append(
-                f'<figure><img alt="{e(f.caption)}" src="{_img(figures / f.file)}">'
+                f'<figure><img alt="{e(f.caption)}" src="{image_data_uri(figures / f.file)}">'
                 f"<figcaption>{e(f.caption)}</figcaption></figure>"
             )
     parts.append("</body></html>")
@@ -164,4 +167,4 @@ def write_html(rep, path: Path) -> Path:
     return path
 
 
-__all__ = ["write_html", "write_markdown"]
+__all__ = ["REPORT_CSS", "image_data_uri", "md_cell", "write_html", "write_markdown"]

@@ -94,7 +94,9 @@ def cache_path(out: Path, name: str, quick: bool, version: str = __version__) ->
     return Path(out) / "cache" / f"{name}-{version}-{'quick' if quick else 'full'}.json"
 
 
-def _load_cached(out: Path, name: str, quick: bool) -> StudyResult | None:
+def load_cached(out: Path, name: str, quick: bool) -> StudyResult | None:
+    """The cached result of study ``name`` under ``out`` (:func:`store_result`), or None if
+    there is none, it cannot be read, or a figure it drew is missing or altered."""
     path = cache_path(out, name, quick)
     try:
         entry = json.loads(path.read_text())
@@ -110,7 +112,7 @@ def _load_cached(out: Path, name: str, quick: bool) -> StudyResult | None:
     return result
 
 
-def _store(out: Path, result: StudyResult, quick: bool) -> None:
+def store_result(out: Path, result: StudyResult, quick: bool) -> None:
     """Write the cache entry (atomically) with each figure's size and SHA-256."""
     figures = Path(out) / "figures"
     entry = result.to_dict()
@@ -184,7 +186,7 @@ def run_studies(
     studies = select(only)
     for k, study in enumerate(studies, 1):
         head = f"[{k}/{len(studies)}] {study.name:<10s} {study.title}"
-        cached = None if force else _load_cached(out, study.name, quick)
+        cached = None if force else load_cached(out, study.name, quick)
         if cached is not None:
             runs.append(StudyRun(cached, True))
             if progress:
@@ -193,7 +195,7 @@ def run_studies(
         t0 = time.perf_counter()
         result = _compute(study, arch, quick, figures)
         result = replace(result, seconds=time.perf_counter() - t0)
-        _store(out, result, quick)
+        store_result(out, result, quick)
         runs.append(StudyRun(result, False))
         if progress:
             c = result.counts
@@ -211,4 +213,5 @@ def run_studies(
     return rep
 
 
-__all__ = ["Reproduction", "StudyRun", "cache_path", "run_studies", "select"]
+__all__ = ["Reproduction", "StudyRun", "cache_path", "load_cached", "run_studies", "select",
+           "store_result"]

@@ -8,9 +8,9 @@ Moreau-Jean time stepper (:mod:`~archquake.rigid.steps`) and the event integrato
 run; :func:`simulate_rigid` (:mod:`~archquake.rigid.run`) drives either to a verdict.
 """
 
-from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel, absolute_states
+from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel
 from archquake.rigid.run import RigidRun, simulate_rigid
 from archquake.rigid.verdict import RigidVerdict, rigid_verdict, rigid_verdicts
 
-__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "RigidVerdict", "absolute_states",
-           "rigid_verdict", "rigid_verdicts", "simulate_rigid"]
+__all__ = ["DEFAULT_TIME_STEP", "RigidModel", "RigidRun", "RigidVerdict", "rigid_verdict",
+           "rigid_verdicts", "simulate_rigid"]

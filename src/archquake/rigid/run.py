@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
 
 import numpy as np
 
@@ -23,11 +24,13 @@ import archquake.rigid._step_kernels as RK
 from archquake._validate import require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly
-from archquake.dem.result import DemResult, excitation_end
+from archquake.dem.result import DemResult, HingeSet, excitation_end
 from archquake.dem.settings import MAX_DURATION, DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion
+from archquake.outcome import Outcome
+from archquake.result import write_csv
 from archquake.rigid.events import EventModel, events_summary, ground_kinematics, run_events
 from archquake.rigid.forces import joint_forces as _joint_forces
 from archquake.rigid.model import (
@@ -88,9 +91,87 @@ class RigidRun:
         return _joint_forces(self, self.motion, every=every)
 
     @property
-    def outcome(self):
+    def outcome(self) -> Outcome:
         """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
         return self.result.outcome
+
+    # what every model's result has (archquake.result.ModelResult), read from ``result``
+    @property
+    def verdict_reason(self) -> str:
+        """Why the outcome is what it is, in one sentence (``result.verdict_reason``)."""
+        return self.result.verdict_reason
+
+    @property
+    def times(self) -> np.ndarray:
+        """The samples' times, s."""
+        return self.result.times
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """The mechanism's rotation, rad (``result.rotation``)."""
+        return self.result.rotation
+
+    @property
+    def crown_displacement(self) -> np.ndarray:
+        """(nt, 2): the crown's displacement relative to the ground, m."""
+        return self.result.crown_displacement
+
+    @property
+    def kinetic(self) -> np.ndarray:
+        """Kinetic energy relative to the ground, J."""
+        return self.result.kinetic
+
+    @property
+    def potential(self) -> np.ndarray:
+        """Gravitational potential energy from the undisplaced arch, J."""
+        return self.result.potential
+
+    @property
+    def impact_times(self) -> np.ndarray:
+        """s, before the collapse."""
+        return self.result.impact_times
+
+    @property
+    def hinge_events(self) -> tuple[HingeSet, ...]:
+        """Every hinge set the chain passed through (``result.hinge_sets()``)."""
+        return self.result.hinge_events
+
+    @property
+    def onset_time(self) -> float | None:
+        """When hinging started, s."""
+        return self.result.onset_time
+
+    @property
+    def collapse_time(self) -> float | None:
+        """When a collapse criterion was met, s."""
+        return self.result.collapse_time
+
+    @property
+    def peak_rotation(self) -> np.ndarray:
+        """The largest rotation of each half cycle, rad."""
+        return self.result.peak_rotation
+
+    @property
+    def collapse_half_cycle(self) -> int | None:
+        """1 + the impacts before the collapse."""
+        return self.result.collapse_half_cycle
+
+    @property
+    def g(self) -> float:
+        """Gravity, m/s^2."""
+        return self.result.g
+
+    def to_table(self) -> dict[str, np.ndarray]:
+        """Columns for a tabular export: ``result.to_table()``
+        (:data:`archquake.result.TABLE_COLUMNS` first), then the friction demand."""
+        out = self.result.to_table()
+        if self.friction_demand.shape == self.result.times.shape:
+            out["friction_demand"] = self.friction_demand
+        return out
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        return write_csv(self.to_table(), path)
 
     def to_dict(self, *, joint_forces: bool = True) -> dict:
         """Summary for JSON: ``DemResult.to_dict()`` (the keys of

@@ -45,6 +45,7 @@ from archquake.dem.result import (
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.mechanism.simulate import RUN_TAIL
 from archquake.outcome import Outcome
 from archquake.parallel import usable_cores
 from archquake.rigid.model import (
@@ -474,8 +475,9 @@ def _per_motion(value, n: int, name: str) -> list:
 
 
 #: The default window after the end of the excitation, in sqrt(R/g): the four-link model's
-#: default end (``simulate``), the longest window of ``rigid_to_verdict``.
-WINDOW_TAIL = 60.0
+#: default end (:data:`archquake.mechanism.simulate.RUN_TAIL`), the longest window of
+#: ``rigid_to_verdict``.
+WINDOW_TAIL = RUN_TAIL
 
 
 def _default_window(arch_or_model, motion, g: float) -> float:

@@ -18,7 +18,7 @@ from archquake.sweeps.cases import (
     model_of,
 )
 from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
-from archquake.sweeps.runner import SweepReport, evaluate_chunk, run_sweep
+from archquake.sweeps.runner import SweepReport, run_sweep
 from archquake.sweeps.store import CaseRecord, ResultStore
 from archquake.sweeps.study import Study, load_study, parse_study
 
@@ -37,7 +37,6 @@ __all__ = [
     "Study",
     "SweepReport",
     "evaluate_case",
-    "evaluate_chunk",
     "load_study",
     "model_function",
     "parse_study",

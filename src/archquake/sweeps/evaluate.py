@@ -32,7 +32,7 @@ from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
-from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.errors import InvalidParameterError, ModelUnavailableError
 from archquake.sweeps.cases import ArchSpec, Case, Model
 
 #: Where each model's simulate function lives, as (module, function).
@@ -41,11 +41,6 @@ MODEL_FUNCTIONS: dict[Model, tuple[str, str]] = {
     Model.DEM: ("archquake.dem", "simulate_dem"),
     Model.RIGID: ("archquake.rigid", "simulate_rigid"),
 }
-
-
-class ModelUnavailableError(ArchquakeError):
-    """The study asks for a model this build of archquake does not provide (a fault of the
-    installation, not of a case: the runner lets it stop the sweep instead of storing it)."""
 
 
 def model_function(model: Model | str) -> Callable[..., Any]:
@@ -86,7 +81,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         from archquake.mechanism import SolverOptions
 
         # no time history is kept (the store holds summaries), which also saves its memory
-        result = simulate(_prepared(case.arch, case.options.impact), motion,
+        result = simulate(prepared_mechanism(case.arch, case.options.impact), motion,
                           restitution=case.options.restitution,
                           t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
                           g=case.options.g)
@@ -119,7 +114,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=256)
-def _prepared(arch: ArchSpec, impact: str | None = None):
+def prepared_mechanism(arch: ArchSpec, impact: str | None = None):
     """The arch's mechanism from the equivalent static analysis, packed for the kernels with
     its impact solution under ``impact`` (None: "paper"). A pure function of the arch and the
     law, memoised per process: a sweep usually runs many excitations on each arch, and this
@@ -129,4 +124,5 @@ def _prepared(arch: ArchSpec, impact: str | None = None):
     return PreparedMechanism.build(arch.build(), impact)
 
 
-__all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function"]
+__all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function",
+           "prepared_mechanism"]

@@ -44,6 +44,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.planar import perp
 from archquake.ground.base import GroundMotion
 from archquake.limit.locked import locked_joint_forces
 from archquake.limit.thrust import JointForces, joint_forces, moments_about_origin
@@ -188,11 +189,6 @@ def _voussoir_loads(arch: VoussoirChain, centroids: np.ndarray, acc: np.ndarray,
     return f, moments_about_origin(f, centroids, -arch.voussoir_inertias * alpha)
 
 
-def _cross(p: np.ndarray) -> np.ndarray:
-    """Row giving p x F (z-component) for F = (Fx, Fy)."""
-    return np.array([-p[1], p[0]])
-
-
 def _hinge_forces(config: DisplacedArch, loads: np.ndarray, moments: np.ndarray,
                   scale_f: float, scale_m: float) -> tuple[np.ndarray, float]:
     """Forces at A, B, C, D (left part on right part) from the three links' equilibrium, and
@@ -208,8 +204,8 @@ def _hinge_forces(config: DisplacedArch, loads: np.ndarray, moments: np.ndarray,
         # F_in + L - F_out = 0 ; p_in x F_in + M - p_out x F_out = 0
         a[r:r + 2, 2 * link:2 * link + 2] = np.eye(2)
         a[r:r + 2, 2 * link + 2:2 * link + 4] = -np.eye(2)
-        a[r + 2, 2 * link:2 * link + 2] = _cross(p[link])
-        a[r + 2, 2 * link + 2:2 * link + 4] = -_cross(p[link + 1])
+        a[r + 2, 2 * link:2 * link + 2] = perp(p[link])
+        a[r + 2, 2 * link + 2:2 * link + 4] = -perp(p[link + 1])
         rhs[r:r + 2] = -loads[sl].sum(axis=0)
         rhs[r + 2] = -moments[sl].sum()
     weights = np.tile([1.0 / scale_f, 1.0 / scale_f, 1.0 / scale_m], 3)
@@ -284,7 +280,7 @@ def state_at(
     hinge_f, residual = _hinge_forces(config, loads, moments, weight, weight * arch.radius)
     a_joint = config.hinge_joints[0]
     reaction = hinge_f[0] - loads[:a_joint].sum(axis=0)
-    reaction_moment = float(_cross(config.hinge_points[0]) @ hinge_f[0] - moments[:a_joint].sum())
+    reaction_moment = float(perp(config.hinge_points[0]) @ hinge_f[0] - moments[:a_joint].sum())
     jf = joint_forces(config.joint_points, loads, moments, reaction, reaction_moment)
     return MotionState(t=float(t), configuration=config, ground_acceleration=xg, loads=loads,
                        load_moments=moments, hinge_forces=hinge_f, forces=jf,
