@@ -78,9 +78,9 @@ def test_laws_differ_where_the_paper_says_collapse():
 
 def test_failure_domain_takes_restitution_and_impact():
     s = DomainSettings(coarse_points=12, fine_points=4)
-    paper = failure_domain(OPPENHEIM, "step", [0.27], settings=s)
-    chain = failure_domain(OPPENHEIM, "step", [0.27], settings=s, impact="chain")
-    plastic = failure_domain(OPPENHEIM, "step", [0.27], settings=s, restitution=0.0)
+    paper = failure_domain(OPPENHEIM, "step", [0.27], settings=s, model="fourlink")
+    chain = failure_domain(OPPENHEIM, "step", [0.27], settings=s, impact="chain", model="fourlink")
+    plastic = failure_domain(OPPENHEIM, "step", [0.27], settings=s, restitution=0.0, model="fourlink")
     assert paper.impact_law == "paper" and chain.impact_law == "chain"
     assert chain.restitution_cv == pytest.approx(0.7461, abs=1e-4)
     assert plastic.restitution_cv == 0.0 and plastic.restitution_prescribed
@@ -249,7 +249,7 @@ def test_plots_say_indeterminate(tmp_path):
     from archquake.plotting.history import verdict_text
 
     s = DomainSettings(coarse_points=8, fine_points=2, precision_g=0.01)
-    dom = failure_domain(BRIDGE, "step", [0.15, 0.3], settings=s, impact="paper")
+    dom = failure_domain(BRIDGE, "step", [0.15, 0.3], settings=s, impact="paper", model="fourlink")
     assert not dom.impact_described
     assert dom.collapse_verdict == ("indeterminate", "indeterminate")
     ax = plot_domain(dom)
