@@ -155,6 +155,19 @@ class TestCacheDirFallback:
         assert chosen is not None and env["NUMBA_CACHE_DIR"] == chosen
         assert "archquake-numba-cache" in chosen
 
+    def test_an_empty_xdg_cache_home_is_ignored(self):
+        """numba would read an empty XDG_CACHE_HOME as the working directory (a relative
+        ``numba``); the XDG specification says to use ``$HOME/.cache``."""
+        from archquake._kernel_cache import ensure_cache_dir, user_cache_dir
+
+        env = {"HOME": "/home/u", "XDG_CACHE_HOME": ""}
+        assert user_cache_dir(env) == "numba"
+        chosen = ensure_cache_dir(env, "/pkg", writable=lambda p: p != "/pkg")
+        assert chosen == env["NUMBA_CACHE_DIR"] == "/home/u/.cache/numba"
+        env = {"HOME": "/home/u", "XDG_CACHE_HOME": ""}
+        chosen = ensure_cache_dir(env, "/pkg", writable=lambda p: p == "numba")
+        assert chosen is not None and "archquake-numba-cache" in chosen
+
     def test_a_user_setting_is_never_changed(self):
         from archquake._kernel_cache import ensure_cache_dir
 

@@ -34,7 +34,7 @@ ROOT = Path(archquake.__file__).parent
 #: Why this order:
 #: - foundation: constants, errors and the helpers every layer uses (units, ranges, argument
 #:   validation, JSON, the kernel cache, the outcome vocabulary, the Dormand-Prince tableau,
-#:   process pools); they import nothing above them;
+#:   process pools, the lazy loader of names); they import nothing above them;
 #: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
 #:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
@@ -42,14 +42,16 @@ ROOT = Path(archquake.__file__).parent
 #:   rigid (built on the DEM's blocks and post-processing);
 #: - thrust (the line of thrust in motion, from the four-link model), domains (failure domains
 #:   of the four-link model);
-#: - compare (the models against each other) -> sweeps (grids of cases of any model; its case
-#:   table reads compare's run-to-verdict policies) -> ida (incremental dynamic analysis through
-#:   sweeps);
+#: - compare (the models against each other) -> codecheck (the code check of the arch's
+#:   mechanism: its kinematics, the site's spectra, the rigid chain's run to a verdict) ->
+#:   sweeps (grids of cases of any model; its case table reads compare's run-to-verdict
+#:   policies) -> ida (incremental dynamic analysis through sweeps) -> warm (compiles every
+#:   model's kernels, the batched ones of domains and ida included);
 #: - plotting (figures of results) -> reproduce (the paper's studies, which draw figures) ->
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("constants", "errors", "units", "ranges", "_validate", "_json", "_kernel_cache", "outcome",
-     "_dopri", "parallel"),
+     "_dopri", "parallel", "_lazy"),
     ("geometry",),
     ("ground",),
     ("codes",),
@@ -61,8 +63,10 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("thrust",),
     ("domains",),
     ("compare",),
+    ("codecheck",),
     ("sweeps",),
     ("ida",),
+    ("warm",),
     ("plotting",),
     ("reproduce",),
     ("assess",),

@@ -27,11 +27,12 @@ in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+import sys
+from typing import TYPE_CHECKING
 
 from archquake import errors
 from archquake._kernel_cache import ensure_cache_dir
+from archquake._lazy import attach
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import (
     ArchquakeError,
@@ -79,18 +80,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.rigid import simulate_rigid
 
 
-def __getattr__(name: str) -> Any:
-    """Import a lazy public name on first access and keep it in the module's namespace."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'archquake' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value  # later accesses skip this function
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
 
 
 __all__ = [

@@ -6,7 +6,8 @@ user's cache directory (``$XDG_CACHE_HOME/numba`` or ``~/.cache/numba``). When n
 writable (a read-only install run by a user without a writable home, as in some containers),
 numba refuses to define a cached function at all and the import fails. :func:`ensure_cache_dir`
 then points ``NUMBA_CACHE_DIR`` at a per-user directory under the system's temporary
-directory, so the kernels still compile once and load afterwards. It runs when
+directory, so the kernels still compile once and load afterwards. (It also corrects numba's
+reading of an empty ``XDG_CACHE_HOME``, which would put the cache in the working directory.) It runs when
 :mod:`archquake` is imported, before any kernel module imports numba, and costs a few
 ``os.access`` calls; a ``NUMBA_CACHE_DIR`` the user set is never changed.
 """
@@ -30,7 +31,11 @@ def _writable(path: str) -> bool:
 
 
 def user_cache_dir(environ: MutableMapping[str, str]) -> str:
-    """numba's user-wide cache directory on POSIX (its ``appdirs.user_cache_dir('numba')``)."""
+    """numba's user-wide cache directory on POSIX (its ``appdirs.user_cache_dir('numba')``).
+
+    A relative path (``numba``, in the working directory) when ``XDG_CACHE_HOME`` is set but
+    empty or relative: numba does not ignore it, as the XDG base directory specification asks.
+    """
     home_cache = os.path.join(environ.get("HOME") or os.path.expanduser("~"), ".cache")
     return os.path.join(environ.get("XDG_CACHE_HOME", home_cache), "numba")
 
@@ -60,12 +65,20 @@ def ensure_cache_dir(
     if environ.get("NUMBA_CACHE_DIR") or sys.platform == "win32":
         return None
     package_dir = package_dir or os.path.dirname(os.path.abspath(__file__))
-    if writable(package_dir) or writable(user_cache_dir(environ)):
+    if writable(package_dir):
         return None
-    import tempfile
+    numbas = user_cache_dir(environ)
+    if os.path.isabs(numbas) and writable(numbas):
+        return None
+    # an empty or relative XDG_CACHE_HOME would put the cache in the working directory
+    home_cache = os.path.join(environ.get("HOME") or os.path.expanduser("~"), ".cache", "numba")
+    if not os.path.isabs(numbas) and os.path.isabs(home_cache) and writable(home_cache):
+        fallback = home_cache
+    else:
+        import tempfile
 
-    uid = os.getuid() if hasattr(os, "getuid") else 0
-    fallback = os.path.join(tempfile.gettempdir(), f"archquake-numba-cache-{uid}")
+        uid = os.getuid() if hasattr(os, "getuid") else 0
+        fallback = os.path.join(tempfile.gettempdir(), f"archquake-numba-cache-{uid}")
     environ["NUMBA_CACHE_DIR"] = fallback
     config = sys.modules.get("numba.core.config")
     if config is not None and environ is os.environ:  # numba read the environment already

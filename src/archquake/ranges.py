@@ -15,6 +15,8 @@ MAGNITUDE_RANGE_G = (0.0, 1000.0)
 PULSE_TIME_RANGE_S = (1e-6, 1000.0)
 #: End of an analysis, s (--t-end); also the latest instant --times may ask for.
 T_END_RANGE_S = (0.01, 1e4)
+#: The four-link model's impact laws (``--impact``; :mod:`archquake.mechanism.impact`).
+IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
 #: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.
 DEM_T_END_MAX_S = 120.0
@@ -79,6 +81,10 @@ SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
 SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
 #: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
 MAX_SPECTRUM_PERIODS = 10000
+#: Height Z of a local mechanism's base and a building's height H, m; a building's period T1, s
+#: (the code check at height: C7.2.11).
+MECHANISM_HEIGHT_RANGE_M = (0.0, 1000.0)
+BUILDING_PERIOD_RANGE_S = (0.0, 10.0)
 
 #: Accepted suffixes by kind of output file.
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
@@ -87,6 +93,8 @@ CSV_SUFFIXES = (".csv",)
 TABLE_SUFFIXES = (".csv", ".parquet")
 
 __all__ = [
+    "BUILDING_PERIOD_RANGE_S",
+    "MECHANISM_HEIGHT_RANGE_M",
     "SITE_AG_RANGE_G",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",
@@ -107,6 +115,7 @@ __all__ = [
     "DAMPING_FREQUENCY_RANGE_HZ",
     "DAMPING_RATIO_RANGE_PERCENT",
     "DEM_T_END_MAX_S",
+    "IMPACT_LAWS",
     "FIGURE_SUFFIXES",
     "FRICTION_RANGE",
     "MAGNITUDE_RANGE_G",

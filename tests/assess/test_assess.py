@@ -16,9 +16,9 @@ from archquake.assess.sections import Context, Mode, prepared_mechanism, section
 
 from .conftest import EXAMPLES
 
-SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity")
+SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity", "codecheck")
 TITLES = ("1. The arch", "2. Static capacity", "3. Pulses", "4. Records", "5. The DEM check",
-          "6. Validity", "7. Verdict")
+          "6. Validity", "7. Verdict", "8. Code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)")
 
 
 def test_every_section_is_present(bridge):

@@ -17,7 +17,7 @@ import pytest
 
 from archquake.cli import main as cli_main
 
-HEAVY = ("numba", "scipy", "matplotlib")
+HEAVY = ("numba", "scipy", "matplotlib", "dask", "distributed", "pyarrow", "pandas")
 
 
 def _modules_after(argv: list[str]) -> tuple[int, set[str]]:
@@ -41,6 +41,49 @@ def test_top_level_imports_no_command_and_no_numerics(argv):
     assert code == (2 if not argv else 0)
     assert _heavy(modules) == []
     assert not any(m.startswith("archquake.cli.cmd_") for m in modules)
+
+
+def test_importing_the_command_line_imports_no_numerics():
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+    code = "import sys, json\nimport archquake.cli.main\nprint(json.dumps(sorted(sys.modules)))"
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                          check=True)
+    modules = set(json.loads(done.stdout.strip().splitlines()[-1]))
+    assert "archquake.cli.main" in modules and _heavy(modules) == []
+
+
+@pytest.mark.parametrize("command", ["run", "domain", "friction", "thrust", "ida", "sweep", "warm"])
+def test_the_help_of_a_command_that_runs_kernels_imports_none(command):
+    code, modules = _modules_after([command, "--help"])
+    assert code == 0
+    assert _heavy(modules) == []
+
+
+def test_static_analysis_imports_no_numba():
+    """The equivalent static analysis is linear programming: no kernel, so no numba."""
+    code, modules = _modules_after(["static", "--json"])
+    assert code == 0
+    assert "scipy.optimize" in modules  # the linear program ran (the check can fail)
+    assert _heavy(modules) == sorted(m for m in modules if m.split(".")[0] == "scipy")
+
+
+#: What a time history does not use: plotting, clusters, tables, the other studies' packages.
+#: (archquake.sweeps is imported: --model reads its Model.)
+NOT_IN_A_RUN = ("matplotlib", "dask", "distributed", "pyarrow", "pandas", "scipy.stats",
+                "scipy.integrate", "scipy.signal", "archquake.plotting", "archquake.ida",
+                "archquake.reproduce", "archquake.assess")
+
+
+@pytest.mark.parametrize("extra", [["--model", "fourlink"], ["--t-end", "0.1"]])
+def test_a_run_imports_only_what_it_uses(extra):
+    code, modules = _modules_after(["run", "--pulse", "step", "--magnitude", "1.0", "--duration",
+                                    "0.27", "--json", *extra])
+    assert code == 0
+    assert "numba" in modules  # the kernels ran (the check can fail)
+    assert sorted(m for m in modules if m.startswith(NOT_IN_A_RUN)) == []
+    if extra[0] == "--model":  # the four-link model builds no blocks, needs no run-length rule
+        others = ("archquake.dem", "archquake.compare", "archquake.domains")
+        assert sorted(m for m in modules if m.startswith(others)) == []
 
 
 def test_a_command_imports_its_own_module_only():

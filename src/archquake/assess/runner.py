@@ -68,6 +68,8 @@ def section_names(config: AssessConfig, arch=None) -> list[str]:
         names.remove("records")
     if not config.dem:
         names.remove("dem")
+    if config.site is None:
+        names.remove("codecheck")
     if arch is not None and dynamics_refusal(arch, config.model) is not None:
         names = [n for n in names if n not in ("pulses", "records", "dem")]
     return names

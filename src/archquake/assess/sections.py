@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from archquake.assess.site import section_code_check
 from archquake.constants import STANDARD_GRAVITY
 from archquake.parallel import interruptible_pool, usable_cores
 from archquake.reproduce.core import Figure, StudyResult
@@ -841,7 +842,8 @@ def verdict(config, prior: dict) -> dict:
 
 SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("arch", section_arch), ("static", section_static), ("pulses", section_pulses),
-    ("records", section_records), ("dem", section_dem), ("validity", section_validity))
+    ("records", section_records), ("dem", section_dem), ("validity", section_validity),
+    ("codecheck", section_code_check))
 
 __all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
            "prepared_mechanism",

@@ -492,7 +492,7 @@ def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
 def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     """--restitution and --impact: the impact of the analytical model (every command that runs a
     time history; :func:`impact_from_args` reads them)."""
-    from archquake.mechanism.impact import IMPACT_LAWS
+    from archquake.ranges import IMPACT_LAWS
 
     g = parser.add_argument_group("impact (--model fourlink only)")
     g.add_argument("--restitution", type=number, default=None, metavar="CV",

@@ -27,6 +27,7 @@ from archquake.errors import ArchquakeError, UsageError
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS: tuple[str, ...] = (
     "static",
+    "check",
     "min_thickness",
     "run",
     "record",
@@ -40,6 +41,7 @@ COMMANDS: tuple[str, ...] = (
     "reproduce",
     "assess",
     "demo",
+    "warm",
 )
 
 #: The line each command shows in ``archquake --help``, by module name (the command's name is
@@ -47,6 +49,7 @@ COMMANDS: tuple[str, ...] = (
 #: equal, so that listing the commands imports none of them.
 SUMMARIES: dict[str, str] = {
     "static": "equivalent static analysis: collapse acceleration (g), hinges, friction demand",
+    "check": "code check of the arch's collapse mechanism (NTC 2018 §8.7.1 kinematic analysis)",
     "min_thickness": "minimum thickness ratio t/R of an arch under its own weight",
     "run": "time history of the arch under a pulse or an accelerogram (paper Eqs. 2-7)",
     "record": "check an accelerogram file (.AT2 or CSV): points, dt, PGA, PGV, Arias, Sa(T), ...",
@@ -60,6 +63,7 @@ SUMMARIES: dict[str, str] = {
     "records": "list the record suites (FEMA P695 sets, folders) with their intensity measures",
     "spectrum": "a site's elastic spectrum (NTC 2018, EN 1998-1): Sa (g) and Sd (m) against T (s)",
     "ida": "incremental dynamic analysis of the arch under a record suite, and fragility",
+    "warm": "compile the numerical kernels once (after installing), so that no command waits",
 }
 
 

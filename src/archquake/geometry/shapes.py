@@ -42,7 +42,6 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from archquake._validate import require_int, require_positive, require_range
 from archquake.errors import InvalidParameterError
@@ -192,6 +191,8 @@ class ShapedArch(VoussoirChain):
         a, f = 0.5 * self.span, self.rise
         g = lambda k: k * (math.cosh(a / k) - 1.0) - f  # noqa: E731
         lo = a / 700.0
+        from scipy.optimize import brentq  # (lazy: scipy is slow to import)
+
         return brentq(g, lo, 1e6 * (a + f), xtol=1e-14 * a, rtol=1e-15, maxiter=500)
 
     def _min_curvature_radius(self) -> float:

@@ -1,16 +1,15 @@
 """Ground motions: the step impulse, the one-cycle sine pulse, recorded accelerograms, their
-intensity measures and record suites."""
+intensity measures and record suites.
 
+The intensity measures (:mod:`archquake.ground.measures`, which compiles a numba kernel) are
+imported on first use (PEP 562), so that a command that only builds a motion does not import
+numba."""
+
+import sys
+from typing import TYPE_CHECKING
+
+from archquake._lazy import attach
 from archquake.ground.base import GroundMotion
-from archquake.ground.measures import (
-    IntensityMeasure,
-    IntensityMeasures,
-    im_value,
-    intensity_measures,
-    parse_im,
-    response_spectrum,
-    scale_to,
-)
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.ground.records import (
     Record,
@@ -21,6 +20,28 @@ from archquake.ground.records import (
     resampled,
 )
 from archquake.ground.suites import Suite, available_suites, load_suite
+
+#: Names loaded on first access, and the module that defines them.
+_LAZY: dict[str, str] = {
+    name: "archquake.ground.measures"
+    for name in ("IntensityMeasure", "IntensityMeasures", "im_value", "intensity_measures",
+                 "parse_im", "response_spectrum", "scale_to")
+}
+
+if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type checkers
+    from archquake.ground.measures import (
+        IntensityMeasure,
+        IntensityMeasures,
+        im_value,
+        intensity_measures,
+        parse_im,
+        response_spectrum,
+        scale_to,
+    )
+
+
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
+
 
 __all__ = [
     "GroundMotion",

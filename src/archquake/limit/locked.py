@@ -15,7 +15,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import linprog
 
 from archquake.errors import SolverError
 from archquake.geometry.chain import VoussoirChain
@@ -103,6 +102,8 @@ def locked_joint_forces(arch: VoussoirChain, loads: np.ndarray, moments: np.ndar
         a_fr = np.vstack([v1 - mu * n1, -v1 - mu * n1]) / w
         b_fr = -np.concatenate([v0 - mu * n0, -v0 - mu * n0]) / w
         a_fr = np.hstack([a_fr, -np.concatenate([d, d])[:, None] / w])
+        from scipy.optimize import linprog  # (lazy: scipy is slow to import)
+
         res = linprog(np.array([0.0, 0.0, 0.0, 1.0]), A_ub=np.vstack([a_in, a_fr]),
                       b_ub=np.concatenate([b_in, b_fr]), bounds=[(-1e3, 1e3)] * 3 + [(None, None)],
                       method="highs")

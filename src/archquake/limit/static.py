@@ -24,7 +24,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import linprog
 
 from archquake._validate import require_range
 from archquake.errors import ArchquakeError, SolverError, UnstableArchError
@@ -95,6 +94,8 @@ def _constraints(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _solve(c, a_ub, b_ub, bounds):
+    from scipy.optimize import linprog  # (lazy: scipy is slow to import)
+
     res = linprog(c, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs")
     if res.status not in (0, 2, 3):
         raise SolverError(f"the limit-analysis linear program failed: {res.message}")

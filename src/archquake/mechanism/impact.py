@@ -44,12 +44,11 @@ import numpy as np
 from archquake._validate import require_range
 from archquake.errors import InvalidParameterError
 from archquake.geometry.hinges import HingeMechanism
+from archquake.ranges import IMPACT_LAWS  # the laws' names (the command line reads them there)
 
 if TYPE_CHECKING:
     from archquake.mechanism.impact_chain import ChainImpact
 
-#: Names of the impact laws (see the module docstring).
-IMPACT_LAWS = ("paper", "chain", "mirror")
 
 #: One line of meaning for each validity (what ``archquake run`` prints and the plots show).
 VALIDITY_MEANING = {

@@ -1,0 +1,300 @@
+"""The assessment's ``[site]`` table and its "Code check" section (NTC 2018 §8.7.1, Circolare
+2019 C8.7.1.2: the kinematic analysis of the arch's collapse mechanism).
+
+::
+
+    [site]
+    code = "ntc2018"            # or "ec8"
+    # NTC 2018: the hazard at the limit states' return periods ...
+    hazard = [[50, 0.08, 2.45, 0.27], [475, 0.25, 2.40, 0.30], [975, 0.32, 2.45, 0.32]]
+                                # (T_R years, a_g g, F0, T_C* s), two or more points
+    nominal_life_years = 50     # V_N (default 50)
+    use_class = "II"            # I..IV (default II)
+    # ... or one spectrum for every limit state: ag_g, f0, tc_star_s
+    soil = "B"                  # A..E (default A)
+    topography = "T1"           # T1..T4 (default T1)
+    # EN 1998-1 (one spectrum for every limit state): ag_g, spectrum_type, ground, importance
+    knowledge = "LC1"           # LC1, LC2, LC3: FC 1.35, 1.20, 1.00 (default LC1)
+    procedure = "2019"          # or "2009" (default 2019)
+    height_m = 0.0              # Z, the arch's springings above the building's foundation
+    building_height_m = 12.0    # H (with height_m > 0)
+    building_period_s = 0.4     # T1 (with height_m > 0)
+
+Every problem is one line naming the key (``[site] ag_g``), raised as
+:class:`~archquake.errors.StudyFileError`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from archquake.errors import ArchquakeError, StudyFileError
+
+SITE_KEYS = ("code", "hazard", "nominal_life_years", "use_class", "ag_g", "f0", "tc_star_s",
+             "soil", "topography", "spectrum_type", "ground", "importance", "knowledge",
+             "procedure", "height_m", "building_height_m", "building_period_s")
+_NTC_ONLY = ("hazard", "nominal_life_years", "use_class", "f0", "tc_star_s", "soil", "topography")
+_EC8_ONLY = ("spectrum_type", "ground", "importance")
+
+
+@dataclass(frozen=True)
+class SiteConfig:
+    """A validated ``[site]`` table (see the module docstring); None where not given."""
+
+    code: str
+    hazard: tuple[tuple[float, float, float, float], ...] | None
+    nominal_life_years: float
+    use_class: str
+    ag_g: float | None
+    f0: float | None
+    tc_star_s: float | None
+    soil: str
+    topography: str
+    spectrum_type: int
+    ground: str
+    importance: float
+    knowledge: str
+    procedure: str
+    height_m: float
+    building_height_m: float | None
+    building_period_s: float | None
+
+    def canonical(self) -> dict:
+        d = asdict(self)
+        d["hazard"] = None if self.hazard is None else [list(p) for p in self.hazard]
+        return d
+
+    def spectra(self) -> dict:
+        """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC')."""
+        from archquake.codecheck.check import LIMIT_STATES, limit_state_spectra
+        from archquake.codes.spectra import NTCHazard, ec8_spectrum, ntc2018_spectrum
+
+        if self.code == "ec8":
+            assert self.ag_g is not None
+            spec = ec8_spectrum(ag_g=self.ag_g, spectrum_type=self.spectrum_type,
+                                ground=self.ground, importance=self.importance)
+            return {s: spec for s in LIMIT_STATES}
+        if self.hazard is not None:
+            return limit_state_spectra(NTCHazard(self.hazard),
+                                       nominal_life_years=self.nominal_life_years,
+                                       use_class=self.use_class, soil=self.soil,
+                                       topography=self.topography)
+        assert self.ag_g is not None and self.f0 is not None and self.tc_star_s is not None
+        spec = ntc2018_spectrum(ag_g=self.ag_g, f0=self.f0, tc_star_s=self.tc_star_s,
+                                soil=self.soil, topography=self.topography)
+        return {s: spec for s in LIMIT_STATES}
+
+    def position(self):
+        from archquake.codecheck.check import Position
+
+        return Position(self.height_m, self.building_height_m, self.building_period_s)
+
+    def describe(self) -> str:
+        """One line: where the spectra come from."""
+        if self.code == "ec8":
+            return (f"EN 1998-1 type {self.spectrum_type}, ground {self.ground}, a_gR "
+                    f"{self.ag_g:g} g, gamma_I {self.importance:g} (one spectrum for every "
+                    "limit state)")
+        if self.hazard is None:
+            return (f"NTC 2018, a_g {self.ag_g:g} g, F0 {self.f0:g}, T_C* {self.tc_star_s:g} s, "
+                    f"soil {self.soil}, {self.topography} (one spectrum for every limit state)")
+        return (f"NTC 2018 hazard ({len(self.hazard)} points), V_N {self.nominal_life_years:g} "
+                f"y, use class {self.use_class}, soil {self.soil}, {self.topography}")
+
+
+def _fail(source: str, key: str, what: str) -> StudyFileError:
+    return StudyFileError(f"{source}: [site] {key} {what}")
+
+
+def _num(source: str, key: str, value: Any, low: float, high: float, unit: str = "",
+         low_open: bool = True) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise _fail(source, key, f"must be a finite number, got {value!r}")
+    v = float(value)
+    if (v <= low if low_open else v < low) or v > high:
+        lo = "(" if low_open else "["
+        raise _fail(source, key, f"must be in {lo}{low:g}, {high:g}]{' ' + unit if unit else ''}, "
+                                 f"got {v:g}")
+    return v
+
+
+def _word(source: str, key: str, value: Any, choices: tuple) -> str:
+    if not isinstance(value, str) or value.upper() not in [str(c).upper() for c in choices]:
+        raise _fail(source, key, f"must be one of {list(choices)}, got {value!r}")
+    return next(str(c) for c in choices if str(c).upper() == value.upper())
+
+
+def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
+    """Validate a ``[site]`` table (see the module docstring).
+
+    Raises
+    ------
+    StudyFileError
+        One line naming the key.
+    """
+    from archquake.ranges import (
+        BUILDING_PERIOD_RANGE_S,
+        EC8_GROUNDS,
+        IMPORTANCE_RANGE,
+        MECHANISM_HEIGHT_RANGE_M,
+        NOMINAL_LIFE_RANGE_YEARS,
+        NTC_F0_RANGE,
+        NTC_SOILS,
+        NTC_TC_STAR_RANGE_S,
+        NTC_TOPOGRAPHIES,
+        NTC_USE_CLASSES,
+        SITE_AG_RANGE_G,
+    )
+
+    for key in table:
+        if key not in SITE_KEYS:
+            raise _fail(source, key, f"is not a known key; expected one of {list(SITE_KEYS)}")
+    code = _word(source, "code", table.get("code", "ntc2018"), ("ntc2018", "ec8"))
+    wrong = [k for k in (_EC8_ONLY if code == "ntc2018" else _NTC_ONLY) if k in table]
+    if wrong:
+        raise _fail(source, wrong[0], f"does not apply to code = {code!r}")
+    ag = None
+    if "ag_g" in table:
+        ag = _num(source, "ag_g", table["ag_g"], *SITE_AG_RANGE_G, "g")
+    hazard = None
+    if "hazard" in table:
+        if ag is not None:
+            raise _fail(source, "hazard", "and ag_g exclude each other (the hazard gives a_g at "
+                                          "each limit state's return period)")
+        value = table["hazard"]
+        if (not isinstance(value, list) or len(value) < 2
+                or not all(isinstance(p, list) and len(p) == 4 for p in value)):
+            raise _fail(source, "hazard", "must be two or more [T_R years, a_g g, F0, T_C* s]")
+        rows = [[_num(source, "hazard", x, 0.0, math.inf) for x in p] for p in value]
+        hazard = tuple((r[0], r[1], r[2], r[3]) for r in rows)
+    elif ag is None:
+        raise _fail(source, "ag_g", "is missing: give ag_g (g)"
+                                    + (" or hazard" if code == "ntc2018" else ""))
+    f0 = tc = None
+    if code == "ntc2018" and hazard is None:
+        for key in ("f0", "tc_star_s"):
+            if key not in table:
+                raise _fail(source, key, "is missing (read it off the hazard grid)")
+        f0 = _num(source, "f0", table["f0"], *NTC_F0_RANGE)
+        tc = _num(source, "tc_star_s", table["tc_star_s"], *NTC_TC_STAR_RANGE_S, "s")
+    elif code == "ntc2018":
+        for key in ("f0", "tc_star_s"):
+            if key in table:
+                raise _fail(source, key, "and hazard exclude each other")
+    height = _num(source, "height_m", table.get("height_m", 0.0), *MECHANISM_HEIGHT_RANGE_M, "m",
+                  low_open=False)
+    bh = bt = None
+    if "building_height_m" in table:
+        bh = _num(source, "building_height_m", table["building_height_m"],
+                  *MECHANISM_HEIGHT_RANGE_M, "m")
+    if "building_period_s" in table:
+        bt = _num(source, "building_period_s", table["building_period_s"],
+                  *BUILDING_PERIOD_RANGE_S, "s")
+    if height > 0.0:
+        if bh is None or bt is None:
+            raise _fail(source, "height_m", "> 0 needs building_height_m and building_period_s")
+        if height > bh:
+            raise _fail(source, "height_m", f"must be in [0, {bh:g}] m (building_height_m), "
+                                            f"got {height:g}")
+    elif bh is not None or bt is not None:
+        raise _fail(source, "building_height_m" if bh is not None else "building_period_s",
+                    "applies only with height_m > 0")
+    stype = table.get("spectrum_type", 1)
+    if stype not in (1, 2) or isinstance(stype, bool):
+        raise _fail(source, "spectrum_type", f"must be 1 or 2, got {stype!r}")
+    procedure = str(table.get("procedure", "2019"))
+    if procedure not in ("2019", "2009"):
+        raise _fail(source, "procedure", f"must be '2019' or '2009', got {procedure!r}")
+    if procedure == "2009" and height > 0.0:
+        raise _fail(source, "procedure", "'2009' is implemented at the ground only (height_m 0)")
+    site = SiteConfig(
+        code=code, hazard=hazard,
+        nominal_life_years=_num(source, "nominal_life_years", table.get("nominal_life_years", 50),
+                                *NOMINAL_LIFE_RANGE_YEARS, "years", low_open=False),
+        use_class=_word(source, "use_class", table.get("use_class", "II"), NTC_USE_CLASSES),
+        ag_g=ag, f0=f0, tc_star_s=tc,
+        soil=_word(source, "soil", table.get("soil", "A"), NTC_SOILS),
+        topography=_word(source, "topography", table.get("topography", "T1"), NTC_TOPOGRAPHIES),
+        spectrum_type=int(stype),
+        ground=_word(source, "ground", table.get("ground", "A"), EC8_GROUNDS),
+        importance=_num(source, "importance", table.get("importance", 1.0), *IMPORTANCE_RANGE,
+                        low_open=False),
+        knowledge=_word(source, "knowledge", table.get("knowledge", "LC1"),
+                        ("LC1", "LC2", "LC3")),
+        procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt)
+    try:
+        site.spectra()
+    except ArchquakeError as exc:
+        raise _fail(source, "hazard" if hazard is not None else "ag_g", f"is invalid: {exc}") from None
+    return site
+
+
+# ----------------------------------------------------------------------------- the section
+def section_code_check(ctx):
+    """The code check of the arch's collapse mechanism (:func:`archquake.codecheck.kinematic_check`)
+    with the ``[site]`` table; its capacity curve against the demand in a figure."""
+    from archquake.codecheck.check import kinematic_check
+    from archquake.codecheck.kinematic import capacity_curve
+    from archquake.plotting.codecheck import save_code_check
+    from archquake.reproduce.core import Figure, StudyResult
+
+    site: SiteConfig = ctx.config.site
+    curve = capacity_curve(ctx.arch)
+    result = kinematic_check(curve, site.spectra(), knowledge=site.knowledge,
+                             procedure=site.procedure, position=site.position())
+    save_code_check(result, ctx.figures / "codecheck.png")
+    data = result.to_dict()
+    data["site"] = site.describe()
+    data["verdicts"] = [c.verdict() for c in result.governing]
+    return StudyResult("codecheck", "Code check", (),
+                       (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
+                               "(C8.7.1.3) against the site's demand spectra at each limit "
+                               "state's damping; dots: the displacement capacities."),),
+                       (), data)
+
+
+def report_code_check(el: list, rep, data: dict) -> None:
+    """The report's "Code check" section from the section's data."""
+    g = data["capacity_curve"]["g"]
+    el.append(("h2", "codecheck", "8. Code check (NTC 2018 §8.7.1, Circolare "
+                                  f"{data['procedure']} C8.7.1.2)"))
+    pos = data["position"]
+    where = ("at the ground" if not pos["height_m"] else
+             f"at Z = {pos['height_m']:g} m in a building H = {pos['building_height_m']:g} m, "
+             f"T1 = {pos['building_period_s']:g} s (C7.2.11 floor spectrum)")
+    el.append(("p", f"Site: {data['site']}; knowledge level {data['knowledge']} (FC = "
+                    f"{data['confidence_factor']:.2f}); the arch {where}. The collapse "
+                    "mechanism of the static analysis, followed at large displacements, is the "
+                    "local mechanism; each limit state is reported as the capacity a_g (the "
+                    "least a_g on rock at which the demand reaches the capacity, the site's "
+                    "spectral shape held) against the site's a_g."))
+    el.append(("table", ["quantity", "value", "from"], [
+        ["activation multiplier alpha0", f"{data['alpha0']:.4f}", "C8.7.1.1 (static analysis)"],
+        ["participating mass fraction e*", f"{data['e_star']:.4f}", "C8.7.1.5"],
+        ["participating mass M*", f"{data['m_star_kg']:.0f} kg of {data['mass_kg']:.0f} kg",
+         "e* M"],
+        ["a0* = alpha0 g / (e* FC)", f"{data['a0_star_g']:.4f} g", "C8.7.1.3"],
+        ["d0 (capacity curve reaches zero)", f"{data['d0_m']:.4f} m", "C8.7.1.4"],
+    ]))
+    rows = []
+    for c in data["limit_states"]:
+        if "capacity_m" in c:
+            cap, dem = f"d {c['capacity_m']:.4f} m", f"{c['demand_m']:.4f} m"
+            extra = f"T = {c['period_s']:.3f} s, damping {c['damping']:.0%}"
+        else:
+            cap, dem = f"a {c['capacity_m_s2'] / g:.4f} g", f"{c['demand_m_s2'] / g:.4f} g"
+            extra = ""
+        rows.append([c["limit_state"], c["method"] + ("" if c["governing"] else " (info)"), cap,
+                     dem, extra, f"{c['capacity_ag_g']:.4f} g", f"{c['demand_ag_g']:.4f} g",
+                     f"{c['ratio']:.3f}", "passes" if c["passes"] else "FAILS"])
+    el.append(("table", ["limit state", "check", "capacity", "demand at the site", "read at",
+                         "capacity a_g", "site a_g", "ratio", ""], rows))
+    el.append(("fig", "codecheck.png", rep.sections["codecheck"].figures[0].caption))
+    el.append(("ul", list(data["verdicts"])))
+    formulas = sorted({f"{k}: {v}" for c in data["limit_states"] for k, v in c["formulas"].items()})
+    el.append(("p", "Where each number comes from: " + "; ".join(formulas) + "."))
+
+
+__all__ = ["SITE_KEYS", "SiteConfig", "parse_site", "report_code_check", "section_code_check"]

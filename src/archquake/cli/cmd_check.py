@@ -1,0 +1,204 @@
+"""``archquake check``: the code check of the arch's collapse mechanism by kinematic analysis
+(NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2.1; the 2009 procedure C8A.4 as an option)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from archquake.cli.common import (
+    add_arch_arguments,
+    add_output_arguments,
+    arch_from_args,
+    comma_numbers,
+    describe_arch,
+    print_json,
+    ranged,
+)
+from archquake.cli.site_options import add_site_options, spectrum_from_args
+from archquake.errors import InvalidParameterError
+from archquake.ranges import (
+    BUILDING_PERIOD_RANGE_S,
+    MECHANISM_HEIGHT_RANGE_M,
+    NOMINAL_LIFE_RANGE_YEARS,
+    NTC_USE_CLASSES,
+)
+
+
+def _hazard_point(text: str) -> tuple[float, float, float, float]:
+    values = comma_numbers(text, 4, "TR,AG,F0,TCSTAR (years, g, -, s)")
+    return (values[0], values[1], values[2], values[3])
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "check",
+        help="code check of the arch's collapse mechanism (NTC 2018 §8.7.1 kinematic analysis)",
+        description=(
+            "The kinematic analysis of local mechanisms of NTC 2018 §8.7.1, done as the "
+            "Circolare 2019 C8.7.1.2 describes: the activation multiplier alpha0 (the collapse "
+            "acceleration of the equivalent static analysis), the participating mass e* M, the "
+            "capacity curve of the four-hinge mechanism at large displacements down to d0, and "
+            "per limit state the capacity a_g (the least peak ground acceleration on rock the "
+            "mechanism fails at, the site's spectral shape held) against the site's a_g. "
+            "SLD: activation; SLV: linear (q = 2) and nonlinear (0.4 d0); SLC: nonlinear "
+            "(0.6 d0). The site's spectrum is given by the site options; with --hazard the "
+            "limit states get their own spectra at their return periods (--nominal-life, "
+            "--use-class). Accelerations in g, lengths in m, periods in s."
+        ),
+    )
+    add_arch_arguments(p)
+    add_site_options(p, required=False)
+    grp = p.add_argument_group("code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)")
+    grp.add_argument("--hazard", metavar="TR,AG,F0,TCSTAR", type=_hazard_point, action="append",
+                     help="NTC hazard point: return period (years), a_g (g), F0, T_C* (s); give "
+                          "two or more (e.g. the grid's 50, 475 and 975 years) to check each "
+                          "limit state at its own return period (with --code ntc2018; replaces "
+                          "--ag, --f0, --tc-star)")
+    grp.add_argument("--nominal-life", metavar="YEARS", type=ranged(*NOMINAL_LIFE_RANGE_YEARS,
+                                                                    unit="years"),
+                     help="nominal life V_N with --hazard, years (default 50)")
+    grp.add_argument("--use-class", type=str.upper, choices=NTC_USE_CLASSES,
+                     help="use class with --hazard (default II: C_U = 1)")
+    grp.add_argument("--knowledge", type=str.upper, choices=("LC1", "LC2", "LC3"), default="LC1",
+                     help="knowledge level: confidence factor FC 1.35 (LC1, default), 1.20 (LC2), "
+                          "1.00 (LC3)")
+    grp.add_argument("--procedure", choices=("2019", "2009"), default="2019",
+                     help="Circolare 2019 (default) or the superseded 2009 C8A.4 (at the "
+                          "ground only, no SLC)")
+    grp.add_argument("--height", metavar="Z", type=ranged(*MECHANISM_HEIGHT_RANGE_M, unit="m"),
+                     default=0.0,
+                     help="height of the arch's springings above the foundation of the building "
+                          "it belongs to, m (default 0: at the ground; > 0 needs "
+                          "--building-height and --building-period)")
+    grp.add_argument("--building-height", metavar="H",
+                     type=ranged(*MECHANISM_HEIGHT_RANGE_M, unit="m", low_open=True),
+                     help="the building's height H, m (with --height)")
+    grp.add_argument("--building-period", metavar="T1",
+                     type=ranged(*BUILDING_PERIOD_RANGE_S, unit="s", low_open=True),
+                     help="the building's fundamental period T1, s (with --height; NTC eq. "
+                          "7.3.6 or a pushover)")
+    add_output_arguments(p)
+    p.set_defaults(func=run)
+
+
+def _position(args: argparse.Namespace):
+    from archquake.codecheck.check import Position
+
+    z, h, t1 = args.height, args.building_height, args.building_period
+    if z == 0.0:
+        if h is not None or t1 is not None:
+            given = [n for n, v in (("--building-height", h), ("--building-period", t1)) if v]
+            raise InvalidParameterError(
+                f"{', '.join(given)} applies only with --height Z > 0 (the arch in a building)")
+        return Position()
+    missing = [n for n, v in (("--building-height H", h), ("--building-period T1", t1))
+               if v is None]
+    if missing:
+        raise InvalidParameterError(f"--height {z:g} needs {' and '.join(missing)}")
+    if z > h:
+        raise InvalidParameterError(
+            f"--height must be in [0, {h:g}] m (not above --building-height), got {z:g}")
+    return Position(z, h, t1)
+
+
+def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
+    """The spectra by limit state the options describe, and a line saying where they come from."""
+    from archquake.codecheck.check import limit_state_spectra
+    from archquake.codes.spectra import NTCHazard, return_period_years
+
+    if args.hazard is None:
+        for name, value in (("--nominal-life", args.nominal_life), ("--use-class", args.use_class)):
+            if value is not None:
+                raise InvalidParameterError(f"{name} applies only with --hazard")
+        if args.code is None:
+            raise InvalidParameterError(
+                "the site is needed: --code ntc2018 --ag G --f0 F --tc-star S [--soil X], "
+                "--code ec8 --ag G, or --code ntc2018 --hazard TR,AG,F0,TCSTAR (two or more)")
+        spectrum = spectrum_from_args(args)
+        return ({state: spectrum for state in ("SLD", "SLV", "SLC")},
+                f"one spectrum for every limit state: {spectrum.label()}")
+    if args.code != "ntc2018":
+        raise InvalidParameterError("--hazard needs --code ntc2018 (the NTC hazard grid)")
+    for name in ("ag", "f0", "tc_star"):
+        if getattr(args, name) is not None:
+            raise InvalidParameterError(
+                f"--{name.replace('_', '-')} and --hazard exclude each other (the hazard gives "
+                "a_g, F0 and T_C* at each limit state's return period)")
+    hazard = NTCHazard(args.hazard)
+    life = 50.0 if args.nominal_life is None else args.nominal_life
+    use = args.use_class or "II"
+    try:
+        spectra = limit_state_spectra(hazard, nominal_life_years=life, use_class=use,
+                                      soil=args.soil or "A", topography=args.topography or "T1",
+                                      component=args.component)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"--hazard: {exc}") from None
+    lines = [f"{state} T_R {return_period_years(state, life, use):.0f} y a_g "
+             f"{spectrum.ag / spectrum.g:.4f} g" for state, spectrum in spectra.items()]
+    return spectra, f"NTC hazard, V_N {life:g} y, class {use}: " + "; ".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    from archquake.codecheck.check import kinematic_check
+    from archquake.codecheck.kinematic import capacity_curve
+
+    position = _position(args)
+    spectra, source = site_spectra(args)
+    if args.procedure == "2009" and not position.at_ground:
+        raise InvalidParameterError(
+            "--procedure 2009 is implemented at the ground only (--height 0); use 2019")
+    arch = arch_from_args(args)
+    curve = capacity_curve(arch)
+    result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
+                             position=position)
+    if args.plot is not None:
+        from archquake.plotting.codecheck import save_code_check
+
+        save_code_check(result, args.plot)
+    if args.json:
+        out = result.to_dict()
+        out["arch"] = arch.describe()
+        out["site"] = source
+        print_json(out)
+        return 0
+    print(format_result(result, arch, source))
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def format_result(result, arch, source: str) -> str:
+    """The check as text: the mechanism's numbers, then one line per limit state."""
+    curve = result.curve
+    g = curve.g
+    pos = result.position
+    where = ("at the ground" if pos.at_ground else
+             f"at Z = {pos.height_m:g} m in a building H = {pos.building_height_m:g} m, "
+             f"T1 = {pos.building_period_s:g} s (C7.2.11 floor spectrum)")
+    lines = [
+        f"arch: {describe_arch(arch)}",
+        f"site: {source}",
+        f"procedure: Circolare {result.procedure.value}, {result.knowledge.value} "
+        f"(FC = {result.confidence_factor:.2f}), {where}",
+        f"mechanism: alpha0 = {curve.alpha0:.4f} (C8.7.1.1), e* = {curve.e_star:.4f} "
+        f"(C8.7.1.5), M* = {curve.m_star_kg:.5g} kg of {curve.mass_kg:.5g} kg",
+        f"  a0* = alpha0 g / (e* FC) = {result.a0_star / g:.4f} g "
+        f"({result.a0_star:.4f} m/s^2, C8.7.1.3)",
+        f"  d0 = {curve.d0_m:.4f} m (alpha = 0 at rotation {curve.phi0_rad:.4f} rad; control "
+        "point: centre of mass of the moving voussoirs, C8.7.1.4)",
+    ]
+    governing = result.governing
+    for c in result.checks:
+        lines.append(c.verdict() + ("" if c in governing else "  (not governing)"))
+        if c.quantity == "displacement":
+            lines.append(f"    d capacity {c.capacity:.4f} m, demand at the site {c.demand:.4f} m "
+                         f"at T = {c.period_s:.3f} s, damping {c.damping:.0%}")
+        else:
+            lines.append(f"    a capacity {c.capacity / g:.4f} g, demand at the site "
+                         f"{c.demand / g:.4f} g")
+    worst = min(governing, key=lambda c: c.ratio)
+    ratio = "inf" if math.isinf(worst.ratio) else f"{worst.ratio:.3f}"
+    lines.append(f"verdict: {'passes' if result.passes else 'FAILS'} "
+                 f"(least ratio {ratio}, {worst.limit_state} {worst.method})")
+    return "\n".join(lines)
