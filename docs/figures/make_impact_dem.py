@@ -1,4 +1,4 @@
-"""Figure for docs/mechanism.md: the DEM's mechanical energy across the first impact of free
+"""Figure for docs/notes/mechanism.md: the DEM's mechanical energy across the first impact of free
 rocking (archquake.compare.impacts protocol), against the c_T of each impact law.
 
 Run: PYTHONPATH=src python docs/figures/make_impact_dem.py   (about a minute)

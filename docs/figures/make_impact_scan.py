@@ -1,4 +1,4 @@
-"""Figure for docs/mechanism.md: c_v against the number of voussoirs, semicircles R = 5 m,
+"""Figure for docs/notes/mechanism.md: c_v against the number of voussoirs, semicircles R = 5 m,
 under Eq. 4 (the paper's law) and the chain law.
 
 Run: PYTHONPATH=src python docs/figures/make_impact_scan.py

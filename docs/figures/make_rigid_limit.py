@@ -1,4 +1,4 @@
-"""docs/figures/rigid_energy.png and rigid_hinges.png (docs/mechanism.md, "The rigid limit").
+"""docs/figures/rigid_energy.png and rigid_hinges.png (docs/notes/mechanism.md, "The rigid limit").
 
 Energy from the end of the pulse through the first impact: the rigid-block chain
 (`rigid`, h = 1e-4 s) against the DEM at the paper's contact stiffness and at

@@ -18,7 +18,7 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 'collapse'
 
 ``Arch``, ``limit_analysis``, ``simulate`` (the paper's model: hinges fixed between impacts),
-``simulate_rigid`` (hinges that move: the chain of rigid blocks, issue 16), ``simulate_dem``,
+``simulate_rigid`` (the chain of rigid voussoirs: hinges that move), ``simulate_dem``,
 ``failure_domain``,
 ``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, the error classes,
 the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives

@@ -1,20 +1,34 @@
-"""Small input checks shared by every frozen dataclass: one line, the parameter, its range."""
+"""Small input checks shared by every frozen dataclass and public function: one line, the
+parameter, its range (from :mod:`archquake.ranges`)."""
 
 from __future__ import annotations
 
 import math
+import os
+from enum import Enum
 from numbers import Integral, Real
+from pathlib import Path
+from typing import Any, TypeVar
 
-from archquake.errors import InvalidParameterError
+import numpy as np
+
+from archquake.errors import InvalidParameterError, InvalidTypeError
+from archquake.ranges import GRAVITY_RANGE_MS2
+
+E = TypeVar("E", bound=Enum)
 
 
 def require_finite(name: str, value: object, unit: str = "") -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not a finite number."""
     if isinstance(value, bool) or not isinstance(value, Real):
-        raise InvalidParameterError(f"{name} must be a number{_u(unit)}, got {value!r}")
-    v = float(value)
+        raise InvalidParameterError(f"{name} must be a number{_u(unit)}, got {_short(value)}")
+    try:
+        v = float(value)
+    except (OverflowError, ValueError):
+        v = math.inf
     if not math.isfinite(v):
-        raise InvalidParameterError(f"{name} must be a finite number{_u(unit)}, got {value!r}")
+        raise InvalidParameterError(
+            f"{name} must be a finite number{_u(unit)}, got {_short(value)}")
     return v
 
 
@@ -66,3 +80,84 @@ def require_int(name: str, value: object, minimum: int, maximum: int | None = No
 
 def _u(unit: str) -> str:
     return f" ({unit})" if unit else ""
+
+
+def require_gravity(value: object) -> float:
+    """Gravity ``g`` in m/s^2, inside :data:`archquake.ranges.GRAVITY_RANGE_MS2`."""
+    low, high = GRAVITY_RANGE_MS2
+    return require_range("g", value, low, high, "m/s^2", low_open=False, high_open=False)
+
+
+def require_instance(name: str, value: object, types: type | tuple[type, ...], what: str) -> Any:
+    """``value`` itself if it is an instance of ``types``; else an :class:`InvalidTypeError`
+    naming ``name`` and ``what`` it accepts (in words, e.g. "an Arch")."""
+    if not isinstance(value, types):
+        raise InvalidTypeError(f"{name} must be {what}, got {_short(value)}")
+    return value
+
+
+def require_choice(name: str, value: object, choices: type[E]) -> E:
+    """The member of the enum ``choices`` that ``value`` is or names (by its value)."""
+    if isinstance(value, choices):
+        return value
+    try:
+        return choices(value)
+    except (ValueError, TypeError):
+        allowed = ", ".join(repr(c.value) for c in choices)
+        raise InvalidParameterError(
+            f"{name} must be one of {allowed}, got {_short(value)}") from None
+
+
+def require_path(name: str, value: object) -> Path:
+    """A file path given as ``str`` or :class:`os.PathLike` (of ``str``), not empty."""
+    if isinstance(value, (bytes, bytearray)) or not isinstance(value, (str, os.PathLike)):
+        raise InvalidTypeError(f"{name} must be a path (str or pathlib.Path), got {_short(value)}")
+    try:
+        text = os.fspath(value)
+    except TypeError:
+        raise InvalidTypeError(
+            f"{name} must be a path (str or pathlib.Path), got {_short(value)}") from None
+    if not isinstance(text, str):
+        raise InvalidTypeError(f"{name} must be a path (str or pathlib.Path), got {_short(value)}")
+    if not text.strip():
+        raise InvalidParameterError(f"{name} must name a file, got an empty path")
+    if "\x00" in text:
+        raise InvalidParameterError(f"{name} must not contain a NUL character, got {text!r}")
+    return Path(text)
+
+
+def _short(value: object, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, so that the message stays one short line."""
+    try:
+        text = repr(value)
+    except Exception:  # a hostile __repr__ must not replace the message
+        text = f"<{type(value).__name__}>"
+    text = text.replace("\n", " ")
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def require_array(name: str, value: object, unit: str = "", *, min_size: int = 1,
+                  minimum: float | None = None, exclusive: bool = False) -> np.ndarray:
+    """``value`` (a number or a 1-D sequence of numbers) as a 1-D float array of at least
+    ``min_size`` finite values, each >= ``minimum`` (> when ``exclusive``) if given."""
+    what = f"{name} must be a 1-D sequence of finite real numbers{_u(unit)}"
+    try:
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "biuf":  # complex, text, objects, ...
+            raise TypeError
+        arr = np.atleast_1d(raw.astype(float))
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidParameterError(f"{what}, got {_short(value)}") from None
+    if arr.ndim != 1 or arr.size < min_size:
+        raise InvalidParameterError(
+            f"{what} (at least {min_size}), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InvalidParameterError(f"{what}, got {_short(value)}")
+    if minimum is not None:
+        low = arr < minimum if not exclusive else arr <= minimum
+        if np.any(low):
+            sign = ">" if exclusive else ">="
+            raise InvalidParameterError(
+                f"{name} must hold values {sign} {minimum:g}{_u(unit)}, got "
+                f"{float(arr[np.flatnonzero(low)[0]]):g}")
+    return arr

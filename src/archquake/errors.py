@@ -16,6 +16,14 @@ class InvalidParameterError(ArchquakeError, ValueError):
     """A parameter is outside its valid range (message names it and the range)."""
 
 
+class InvalidTypeError(ArchquakeError, TypeError):
+    """An argument is of the wrong kind (message names it and what it accepts)."""
+
+
+class CorruptStoreError(ArchquakeError, ValueError):
+    """A results store is damaged or is not an archquake store (message names the file)."""
+
+
 class UnstableArchError(ArchquakeError, ValueError):
     """The arch cannot stand under its own weight (message names the minimum thickness)."""
 
@@ -53,6 +61,8 @@ __all__ = [
     "ClusterLostError",
     "UsageError",
     "InvalidParameterError",
+    "InvalidTypeError",
+    "CorruptStoreError",
     "UnstableArchError",
     "GroundMotionFormatError",
     "StudyFileError",

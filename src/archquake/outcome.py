@@ -52,7 +52,7 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
             impact_described: bool) -> Outcome:
     """The verdict as it may be stated, given whether the impact law describes the impacts.
 
-    The rule (docs/mechanism.md, "An honest verdict"): a verdict *depends on an impact* when an
+    The rule (docs/notes/mechanism.md, "An honest verdict"): a verdict *depends on an impact* when an
     impact happened before it was reached:
 
     * ``collapse`` in half cycle 2 or later (an impact preceded it; half cycle 1 does not
@@ -99,7 +99,7 @@ def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_e
     """The analytical model's verdict as it may be stated, given how its run ended, with the
     reason in one sentence.
 
-    The rule (docs/mechanism.md, "Time history: events, collapse, rest"): ``collapse`` stands
+    The rule (docs/notes/mechanism.md, "Time history: events, collapse, rest"): ``collapse`` stands
     (the mechanism passed its crest after the excitation, or reached its toggle). Otherwise the
     arch is only shown to be safe if nothing can still happen:
 

@@ -7,12 +7,14 @@ pool and its core count from here.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import time
 from collections.abc import Iterator
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
+from pathlib import Path
 
 from archquake.errors import ArchquakeError, InvalidParameterError
 
@@ -151,7 +153,12 @@ def _watch_parent(parent: int) -> None:
             return True
         except PermissionError:  # the pid now belongs to another user's process
             return True
-        return False
+        try:  # a parent that died but is not yet reaped (a zombie) still answers kill(pid, 0);
+            # its reader may be waiting for the pipe this worker holds before reaping it
+            state = Path(f"/proc/{parent}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except (OSError, IndexError):
+            return False  # no /proc (not Linux): the checks above stand
+        return state in ("Z", "X")
 
     def watch() -> None:
         while not gone():
@@ -175,11 +182,20 @@ def interruptible_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     try:
         yield pool
     except BaseException:
-        for proc in list((getattr(pool, "_processes", None) or {}).values()):
-            proc.terminate()
+        stop_workers(pool)
         pool.shutdown(wait=False, cancel_futures=True)
         raise
     pool.shutdown(wait=True)
+
+
+def stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate ``pool``'s worker processes at once (SIGTERM), without waiting for the tasks
+    they run: what an interrupted command does before it exits, so that none keeps computing
+    or holds the terminal's pipes."""
+    processes = getattr(pool, "_processes", None) or {}  # the executor's own table of workers
+    for process in list(processes.values()):
+        with contextlib.suppress(Exception):
+            process.terminate()
 
 
 def executor_workers(executor: Executor | None) -> int | None:
@@ -208,6 +224,33 @@ def usable_cores() -> int:
         return os.cpu_count() or 1
 
 
+#: Dask's transports an address may name.
+SCHEDULER_SCHEMES = ("tcp", "tls")
+
+
+def check_scheduler(address: object, name: str = "scheduler") -> str:
+    """A Dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``), checked before any
+    connection: scheme, host and a port in [1, 65535]; else one line naming ``name``."""
+    from urllib.parse import urlsplit
+
+    usage = f"{name} must be an address like tcp://HOST:PORT, got {address!r}"
+    if not isinstance(address, str) or any(c.isspace() or c == "\x00" for c in address):
+        raise InvalidParameterError(usage)
+    try:
+        parts = urlsplit(address)
+        port = parts.port
+    except ValueError:
+        raise InvalidParameterError(usage + " (the port must be a number from 1 to 65535)"
+                                    ) from None
+    if parts.scheme not in SCHEDULER_SCHEMES:
+        raise InvalidParameterError(
+            usage + f" (the scheme must be {' or '.join(SCHEDULER_SCHEMES)})")
+    if not parts.hostname or port is None or not 1 <= port <= 65535 or parts.path not in ("", "/") \
+            or parts.query or parts.fragment:
+        raise InvalidParameterError(usage)
+    return address
+
+
 @contextmanager
 def open_executor(*, workers: int | None = None, scheduler: str | None = None,
                   connect_timeout: float | None = None) -> Iterator[tuple[Executor, int]]:
@@ -222,10 +265,14 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
             from distributed import Client
         except ImportError:
             raise ArchquakeError("--scheduler needs Dask: pip install 'archquake[dask]'") from None
+        scheduler = check_scheduler(scheduler)
         try:
             client = Client(scheduler, timeout=connect_timeout or CONNECT_TIMEOUT)
-        except (OSError, TimeoutError) as exc:
-            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} ({exc}); start "
+        except Exception as exc:  # noqa: BLE001  (distributed raises OSError, TimeoutError and,
+            # for some unreachable hosts, errors of its own: every one means "not reached")
+            reason = " ".join(str(exc).split())[:120] or type(exc).__name__
+            raise ArchquakeError(f"cannot reach the Dask scheduler at {scheduler} within "
+                                 f"{connect_timeout or CONNECT_TIMEOUT:g} s ({reason}); start "
                                  "one with 'dask scheduler' or check the address") from None
         try:
             n = workers or max(1, sum(client.nthreads().values()))
@@ -243,6 +290,9 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
     pool = process_pool(n)
     try:
         yield pool, n
+    except BaseException:  # interrupted (Ctrl-C, SIGTERM) or failed: end the workers now
+        stop_workers(pool)
+        raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
 
@@ -250,13 +300,16 @@ def open_executor(*, workers: int | None = None, scheduler: str | None = None,
 __all__ = [
     "CONNECT_TIMEOUT",
     "FORKSERVER_PRELOAD",
+    "SCHEDULER_SCHEMES",
     "START_METHOD",
     "SerialExecutor",
     "cap_workers",
+    "check_scheduler",
     "executor_workers",
     "interruptible_pool",
     "open_executor",
     "process_pool",
+    "stop_workers",
     "threads_per_worker",
     "usable_cores",
 ]

@@ -9,6 +9,10 @@ thickness ratio, embrace, voussoirs) live with the Arch in :mod:`archquake.geome
 
 from __future__ import annotations
 
+#: Gravity g, m/s^2 (the keyword ``g=`` of every function): from a small moon's to a hundred
+#: times the Earth's. Outside it weights and the time scale sqrt(R/g) leave the range where
+#: the linear programme and the integrators are well conditioned (g = 1e308 overflows).
+GRAVITY_RANGE_MS2 = (1e-2, 1e3)
 #: Pulse magnitude and domain ceiling, g (--magnitude, --max-magnitude).
 MAGNITUDE_RANGE_G = (0.0, 1000.0)
 #: Pulse duration t_p and period T, s (--duration, --period, --durations).
@@ -20,9 +24,21 @@ IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
 #: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.
 DEM_T_END_MAX_S = 120.0
+#: Most work of one distinct-element run: blocks x time steps (settling included). The stable
+#: step shrinks about as 1/blocks (Oppenheim's arch: 8.4e-7 s with 60 voussoirs, 2.3e-8 s with
+#: 2000), so the work grows as blocks^2: 2000 voussoirs for 0.1 s are 9e9 block-steps. Measured
+#: cost on one core: 1 to 5 us per block-step (7 to 200 blocks), so the bound is ~10-40 min.
+DEM_MAX_BLOCK_STEPS = 5e8
+#: The cost per block-step quoted in the refusal, s (the low end of the measured range).
+DEM_SECONDS_PER_BLOCK_STEP = 1e-6
 #: Time step of a record, s: below 1e-6 s the integration's resolution is lost, above 1 s a
 #: file is not an accelerogram.
 RECORD_DT_RANGE_S = (1e-6, 1.0)
+#: Longest record, s: the latest end of an analysis (T_END_RANGE_S).
+RECORD_DURATION_MAX_S = T_END_RANGE_S[1]
+#: Largest accelerogram file read, bytes: a 10,000 s record at 1 kHz is ~10^7 samples, ~200 MB
+#: of text; a larger "file" is not an accelerogram (and a device like /dev/zero never ends).
+RECORD_FILE_MAX_BYTES = 256 * 10**6
 #: Factor on a record's values (--scale).
 SCALE_RANGE = (0.0, 1000.0)
 #: Records in a selected set, and the per-event limit (--count, --max-per-event).
@@ -114,10 +130,13 @@ __all__ = [
     "CSV_SUFFIXES",
     "DAMPING_FREQUENCY_RANGE_HZ",
     "DAMPING_RATIO_RANGE_PERCENT",
+    "DEM_MAX_BLOCK_STEPS",
+    "DEM_SECONDS_PER_BLOCK_STEP",
     "DEM_T_END_MAX_S",
     "IMPACT_LAWS",
     "FIGURE_SUFFIXES",
     "FRICTION_RANGE",
+    "GRAVITY_RANGE_MS2",
     "MAGNITUDE_RANGE_G",
     "MAX_DURATIONS",
     "MAX_TIMES",
@@ -126,6 +145,8 @@ __all__ = [
     "RAYLEIGH_ALPHA_RANGE",
     "RAYLEIGH_BETA_RANGE",
     "RECORD_DT_RANGE_S",
+    "RECORD_DURATION_MAX_S",
+    "RECORD_FILE_MAX_BYTES",
     "RESTITUTION_RANGE",
     "SCALE_RANGE",
     "SELECT_COUNT_RANGE",

@@ -3,7 +3,7 @@ voussoirs is the default, the four-link mechanism gives the numbers it always ga
 retired spellings (``--model analytical``, ``--hinges``) get one line pointing at the new one,
 and each model's own options are refused with another model (exit status 2).
 
-Oracles: the DEM's Figure 4(a) collapse time (1.508 s, docs/mechanism.md), which the rigid
+Oracles: the DEM's Figure 4(a) collapse time (1.508 s, docs/notes/mechanism.md), which the rigid
 chain, its rigid limit, matches within 3 %; the four-link model's Figure 4(d) numbers as the
 README shows them (first impact 0.601 s, c_v = 0.8754: the paper's about 0.6 s); the flat API
 called directly."""

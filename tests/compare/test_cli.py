@@ -31,7 +31,7 @@ def test_run_dem_json_keys_match_the_analytical_run(capsys):
     for key in ("end_time_s", "energy_error", "settings", "solver"):
         assert key in dm
     # both rock at 1.0 s: the fixed-hinge model says 'survives' with final_state 'moving'; the
-    # DEM's verdict needs rest (docs/mechanism.md, "An honest verdict for the block models")
+    # DEM's verdict needs rest (docs/notes/mechanism.md, "An honest verdict for the block models")
     assert an["outcome"] == "survives" and an["final_state"] == "moving"
     assert dm["outcome"] == "indeterminate" and dm["final_state"] == "moving"
     assert dm["impact_times_s"][0] == pytest.approx(an["impact_times_s"][0], abs=1e-3)

@@ -94,7 +94,7 @@ def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):
     at the analytical hinges, t_p = 0.6 s: the four rigid links are the fixed-hinge mechanism
     before any impact, so the analytical first-half-cycle boundary (0.681 g) must lie inside
     the rigid bracket widened by 1 % (measured 0.3-0.8 % apart at 0.01 g on t_p = 0.3-0.8 s:
-    docs/mechanism.md). All runs are rigid: the domain records its model."""
+    docs/notes/mechanism.md). All runs are rigid: the domain records its model."""
     tp = 0.6
     dd = dem_failure_domain(oppenheim, "step", [tp], assembly="hinges", settings=COARSE,
                             workers=1, model="rigid")

@@ -83,7 +83,7 @@ def test_overturning_threshold_of_a_rectangular_pulse_matches_housner():
 @pytest.mark.parametrize("width", [0.2, 0.4, 0.6])
 def test_free_rocking_loses_energy_at_impact_like_housner(width):
     """With the paper's damping the impacts are plastic: the measured restitution is < 1 and
-    close to Housner's 1 - 1.5 sin^2 alpha (table in docs/dem.md; 2 % here)."""
+    close to Housner's 1 - 1.5 sin^2 alpha (table in docs/models/dem.md; 2 % here)."""
     r = free_rocking_restitution(width, 2.0, DemSettings())
     assert r < 1.0
     assert r == pytest.approx(housner.restitution(width, 2.0), rel=0.02)

@@ -137,7 +137,7 @@ def test_from_g_uses_standard_gravity_or_the_given_g():
         (lambda: StepImpulse(1.0, 0.1, 0), "direction must be -1"),
         (lambda: SinePulse(1.0, 0.1, True), "direction must be -1"),
         (lambda: StepImpulse(1.0, 0.1).scaled(math.nan), "scale factor"),
-        (lambda: StepImpulse.from_g(0.2, 0.1, g=0.0), "g must be > 0"),
+        (lambda: StepImpulse.from_g(0.2, 0.1, g=0.0), "g must be in [0.01, 1000]"),
     ],
 )
 def test_bad_pulse_parameters_give_one_line(build, fragment):

@@ -312,9 +312,9 @@ def test_record_is_an_immutable_value(northridge):
         ({"accelerations": [1.0], "dt": 0.01}, "at least 2 samples"),
         ({"accelerations": [[1.0, 2.0]], "dt": 0.01}, "1-D"),
         ({"accelerations": [1.0, math.nan], "dt": 0.01}, "finite"),
-        ({"accelerations": [1.0, 2.0], "dt": 0.0}, "dt must be > 0"),
-        ({"accelerations": [1.0, 2.0], "dt": -0.01}, "dt must be > 0"),
-        ({"accelerations": ["a", "b"], "dt": 0.01}, "sequence of numbers"),
+        ({"accelerations": [1.0, 2.0], "dt": 0.0}, r"dt must be in \(0, 1\]"),
+        ({"accelerations": [1.0, 2.0], "dt": -0.01}, r"dt must be in \(0, 1\]"),
+        ({"accelerations": ["a", "b"], "dt": 0.01}, "sequence of real numbers"),
     ],
 )
 def test_record_validates_its_inputs(kwargs, fragment):

@@ -4,7 +4,7 @@ LANDERS-LCN_239, KOCAELI-IZT_270; needs the records extra).
 
 Oracle: the distinct-element model, run through the same hunt-and-fill (5 % brackets, the quick
 assessment's): the chain of rigid voussoirs is its rigid limit and matches its critical pulse
-durations within 3 % (docs/mechanism.md, "The rigid limit"), so each record's first collapsing
+durations within 3 % (docs/notes/mechanism.md, "The rigid limit"), so each record's first collapsing
 PGA is held to the DEM's within 10 % (a 5 % bracket on each side, and the DEM's contact
 compliance). Earlier measurements on a coarser grid: IMPVALL-H-E06_233 rigid 0.125 g, DEM
 0.125 g, four-link 0.100 g; SUPERST-B-PTS_127 0.100 g for all three. Each DEM run of a record

@@ -288,7 +288,7 @@ def test_levels_are_the_intensity_measure_of_the_scaled_record(tmp_path, records
 def test_dem_model_goes_through_the_same_rounds(tmp_path):
     """A DEM IDA of the step pulse t_p = 0.3 s (one-record suite, 10 % precision): its first
     collapse bracket must overlap the DEM failure domain's governing boundary at that duration,
-    0.672 g with a 0.01 g bracket (docs/dem.md, an independent bisection on the DEM), and lie
+    0.672 g with a 0.01 g bracket (docs/models/dem.md, an independent bisection on the DEM), and lie
     above the analytical 0.610 g (the DEM is the stronger model there). All runs are DEM cases."""
     pulse = [StepImpulse.from_g(1.0, 0.3)]
     with ResultStore(tmp_path / "dem.sqlite") as store:

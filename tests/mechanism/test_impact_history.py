@@ -34,7 +34,7 @@ def test_symmetric_hinges_chain_history_equals_paper():
 
 def test_oppenheim_chain_history():
     """Oppenheim's arch: the chain law selects 0e 2i 5e 7i (not the mirror 0e 2i 4e 7i) and the
-    history follows it (docs/mechanism.md, the reachable set: 0i 3e 5i 7e -> 0e 2i 5e 7i ->
+    history follows it (docs/notes/mechanism.md, the reachable set: 0i 3e 5i 7e -> 0e 2i 5e 7i ->
     0i 2e 5i 7e -> ...). Every impact keeps the law's c_T <= 1 of the kinetic energy."""
     prep = PreparedMechanism.build(Arch(10.0, 1.5, math.radians(157.5), 7), "chain")
     r = simulate(prep, StepImpulse.from_g(1.0, 0.20))

@@ -69,7 +69,7 @@ def test_domain_batch_uses_the_chosen_law_and_restitution(impact, restitution):
 
 def test_laws_differ_where_the_paper_says_collapse():
     """Figure 4c (1.0 g, 0.27 s): Eq. 4 (c_v 0.875) collapses in half cycle 2; the chain law
-    (c_v 0.746) survives (docs/mechanism.md table). So the batch must not take Eq. 4's c_v."""
+    (c_v 0.746) survives (docs/notes/mechanism.md table). So the batch must not take Eq. 4's c_v."""
     r = evaluate_pulses(OPPENHEIM, "step", [1.0, 1.0], [0.27, 0.27])
     c = evaluate_pulses(OPPENHEIM, "step", [1.0, 1.0], [0.27, 0.27], impact="chain")
     assert r.outcome.tolist() == [Outcome.COLLAPSE] * 2

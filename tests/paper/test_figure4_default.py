@@ -3,7 +3,7 @@ Figure 4(b)-(d)) under the default model of ``archquake run``, the chain of rigi
 
 Oracles: the paper's outcomes (p. 2126: collapse in the first half cycle with no impact; one
 impact then collapse; survival with shrinking half cycles) and the distinct-element model's
-histories at the paper's stiffness (docs/mechanism.md, "The rigid limit": collapse at 1.508 s;
+histories at the paper's stiffness (docs/notes/mechanism.md, "The rigid limit": collapse at 1.508 s;
 first impact 0.916 s then collapse in half cycle 2; survival with first impact 0.635 s). The
 rigid chain is the DEM's rigid limit; the DEM's contact compliance moves its impacts by
 milliseconds, so the first impacts are held to the DEM's within the paper's own 0.02 s (one

@@ -141,7 +141,7 @@ def simulate(*args, **kwargs):
 
 def test_voussoir_arch_follows_the_four_link_mechanism_while_it_is_admissible():
     """Oppenheim's seven voussoirs under a 0.40 g step (lambda = 0.37 g): the four-hinge
-    mechanism is admissible until t_p = 0.20 s (docs/mechanism.md, `first_exit`), and in that
+    mechanism is admissible until t_p = 0.20 s (docs/notes/mechanism.md, `first_exit`), and in that
     time the rigid chain's rotation measure equals Eq. 2's phi to 1e-5 of its value (measured
     1.3e-6 at h = 1e-4 s, 3e-7 at 2.5e-5 s: first order), with the limit-analysis hinges open."""
     from archquake.compare.snapshots import dem_hinges
@@ -265,7 +265,7 @@ def test_dynamic_similarity():
 @pytest.mark.slow
 def test_critical_step_duration_on_oppenheim():
     """The first collapsing t_p at 1.0 g lies in (0.2586, 0.2606] s (measured; DEM 0.2531-0.2550
-    at the paper's stiffness, 0.2569-0.2588 at 100 times it: docs/mechanism.md "The rigid
+    at the paper's stiffness, 0.2569-0.2588 at 100 times it: docs/notes/mechanism.md "The rigid
     limit")."""
     from archquake.compare.rigid import step_collapses
 

@@ -53,7 +53,7 @@ def test_verdict_is_the_recorded_runs(tp, outcome, half):
 
 def test_oppenheim_collapses_at_a_long_pulse():
     """Figure 4(a)'s t_p = 0.415 s at 1.0 g, where the fixed-hinge model survives: the rigid
-    chain (and the DEM, docs/mechanism.md) collapses in its first half cycle, at its default
+    chain (and the DEM, docs/notes/mechanism.md) collapses in its first half cycle, at its default
     step; no impact, so no guard."""
     v = rigid_verdict(OPPENHEIM, StepImpulse.from_g(1.0, 0.415))
     assert v.outcome is Outcome.COLLAPSE and v.collapse_half_cycle == 1
@@ -71,9 +71,9 @@ DEM_CRITICAL = {"oppenheim": (OPPENHEIM, 1.0, 0.253, 0.2625),
     "oppenheim", "t/R 0.11", pytest.param("semicircle", marks=pytest.mark.slow)])
 def test_critical_duration_within_3_percent_of_the_dem(name):
     """At the default step the first collapsing t_p lies within 3 % of the DEM's bracket
-    (docs/dem.md: the DEM's own resolution is 2-5 ms): the chain survives at 0.97 times the
+    (docs/models/dem.md: the DEM's own resolution is 2-5 ms): the chain survives at 0.97 times the
     DEM's lower end and collapses at 1.03 times its upper end (measured thresholds:
-    0.2589, 0.1456, 0.1463 s, docs/mechanism.md "The rigid chain's step")."""
+    0.2589, 0.1456, 0.1463 s, docs/notes/mechanism.md "The rigid chain's step")."""
     arch, a_g, lo, hi = DEM_CRITICAL[name]
     vs = rigid_verdicts(arch, [StepImpulse.from_g(a_g, 0.97 * lo), StepImpulse.from_g(a_g, 1.03 * hi)])
     assert [v.outcome for v in vs] == [Outcome.SURVIVES, Outcome.COLLAPSE]

@@ -226,3 +226,47 @@ def test_pool_workers_run_numba_on_their_share_of_the_cores():
     finally:
         pool.shutdown(wait=True)
     assert 1 <= min(inside) and max(inside) <= max(1, usable_cores() // 2)
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir() or usable_cores() < 2, reason="needs /proc and 2 cores")
+def test_sigterm_ends_every_worker_with_output_to_a_pipe(tmp_path):
+    """SIGTERM on a sweep whose output goes to a pipe, read to its end and not yet reaped (as
+    ``subprocess.communicate`` and a shell pipeline do): the fork server and the workers held
+    the pipe past 75 s, waiting on a parent that was a zombie. Now every process below the
+    sweep is gone within 5 s and the pipe closes; oracle: the process table (/proc)."""
+    import threading
+
+    study = tmp_path / "s.toml"
+    study.write_text(SMALL_STUDY.replace("num = 4", "num = 40"))  # 240 cases of 50 ms
+    store = tmp_path / "s.sqlite"
+    proc = subprocess.Popen([sys.executable, "-c", DRIVER.format(here=str(HERE), study=str(study),
+                                                                 store=str(store))],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    below: set[int] = set()
+    eof = threading.Event()
+
+    def drain() -> None:  # what a reader of the pipe does: read until every writer closed it
+        proc.stdout.read()
+        eof.set()
+
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not _rows(store):  # workers are computing
+            time.sleep(0.05)
+        below = _descendants(proc.pid)
+        assert _rows(store) and len(below) >= 2, "the sweep did not start its worker processes"
+        threading.Thread(target=drain, daemon=True).start()
+        proc.send_signal(signal.SIGTERM)
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline and (any(_alive(p) for p in below) or not eof.is_set()):
+            time.sleep(0.1)
+        alive = [p for p in below if _alive(p)]
+        assert not alive, f"{len(alive)} processes below the sweep outlived SIGTERM by 5 s"
+        assert eof.is_set(), "the output pipe was still held 5 s after SIGTERM"
+        assert proc.wait(timeout=10) != 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        for p in _descendants(proc.pid) | below:
+            if _alive(p):
+                os.kill(p, signal.SIGKILL)

@@ -1,4 +1,4 @@
-"""The assessment of one arch, end to end (issue 14): the arch, its static capacity, pulse
+"""The assessment of one arch, end to end: the arch, its static capacity, pulse
 failure domains, records (IDA and fragility), the distinct-element check, the models' validity
 and a verdict, in one report (``archquake assess ARCH.toml --out DIR``).
 

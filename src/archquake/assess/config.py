@@ -36,7 +36,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -147,12 +146,9 @@ def load_config(path: str | Path) -> AssessConfig:
     """
     path = Path(path)
     source = path.name
-    try:
-        data = tomllib.loads(path.read_text())
-    except OSError as exc:
-        raise StudyFileError(f"{path}: cannot read the assessment file ({exc.strerror})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise StudyFileError(f"{source}: not valid TOML ({exc})") from None
+    from archquake.sweeps.study import read_toml
+
+    data = read_toml(path, "assessment file")
     return parse_config(data, source=source, base_dir=path.parent)
 
 

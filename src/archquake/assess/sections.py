@@ -1,4 +1,4 @@
-"""The sections of an assessment, in the order an engineer reads them (issue 14).
+"""The sections of an assessment, in the order an engineer reads them.
 
 Each section is a pure function ``section(ctx) -> StudyResult`` (the reproduction's result type:
 its ``data`` holds every number, its ``figures`` the files it wrote), so the reproduction's

@@ -13,7 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from archquake.cli.common import print_json
+from archquake.cli.common import output_folder, path_argument, print_json
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -22,8 +22,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="assess your own arch: statics, pulses, records, DEM check, validity, verdict",
         description=__doc__.split("\n\n")[1],
     )
-    p.add_argument("file", type=Path, metavar="ARCH.toml", help="the assessment file")
-    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder (created)")
+    p.add_argument("file", type=path_argument, metavar="ARCH.toml", help="the assessment file")
+    p.add_argument("--out", type=output_folder, required=True, metavar="DIR", help="output folder (created)")
     p.add_argument("--quick", action="store_true",
                    help="coarse domains, four records of the suite, fewer DEM runs (about a "
                         "minute)")

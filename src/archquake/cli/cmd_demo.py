@@ -7,6 +7,7 @@ import argparse
 from pathlib import Path
 
 from archquake.cli.cmd_reproduce import reproduce
+from archquake.cli.common import output_folder
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -17,7 +18,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "Figure 4(d) rocking to rest. The report is DIR/report.html.",
     )
     d.add_argument(
-        "--out", type=Path, default=Path("out"), metavar="DIR", help="output folder (default out/)"
+        "--out", type=output_folder, default=Path("out"), metavar="DIR", help="output folder (default out/)"
     )
     d.add_argument("--json", action="store_true", help="print the results as JSON on stdout")
     d.set_defaults(func=run)

@@ -23,6 +23,7 @@ from archquake.cli.common import (
     impact_from_args,
     model_from_args,
     number,
+    path_argument,
     print_json,
     whole,
 )
@@ -63,7 +64,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_model_argument(p, extra="rigid runs its verdicts as one compiled batch per round on "
                                 "every core's threads, fourlink likewise; dem a process per core")
     add_impact_arguments(p)
-    p.add_argument("--store", type=Path, metavar="FILE",
+    p.add_argument("--store", type=path_argument, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
                    help="local worker processes (default: rigid and fourlink run in this "
@@ -75,9 +76,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="bootstrap resamples of the fragility fits (default 500; 0: none)")
     p.add_argument("--seed", type=whole, default=0, metavar="N",
                    help="seed of the bootstrap (default 0)")
-    p.add_argument("--plot", type=Path, metavar="FILE",
+    p.add_argument("--plot", type=path_argument, metavar="FILE",
                    help="draw the IDA and fragility curves to FILE (.png, .pdf or .svg)")
-    p.add_argument("--csv", type=Path, metavar="FILE", help="write every run to FILE (CSV)")
+    p.add_argument("--csv", type=path_argument, metavar="FILE", help="write every run to FILE (CSV)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     p.set_defaults(func=run)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from archquake.cli.common import MAX_EMBRACE_DEG, number, print_json, whole
+from archquake.cli.common import MAX_EMBRACE_DEG, MIN_EMBRACE_DEG, number, print_json, whole
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import MAX_VOUSSOIRS
 from archquake.limit import min_thickness_ratio
@@ -22,7 +22,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         ),
     )
     p.add_argument("--embrace", type=number, default=180.0,
-                   help=f"angle of embrace, degrees (0 < embrace <= {MAX_EMBRACE_DEG:g}; "
+                   help=f"angle of embrace, degrees ({MIN_EMBRACE_DEG:g} to {MAX_EMBRACE_DEG:g}; "
                         "default 180)")
     p.add_argument("--voussoirs", type=whole, default=200,
                    help=f"number of voussoirs (3 to {MAX_VOUSSOIRS}; default 200)")
@@ -88,10 +88,10 @@ def _run_shape(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     if any(getattr(args, k, None) is not None for k in _SHAPE_OPTIONS) or args.joints != "radial":
         return _run_shape(args)
-    if not (0.0 < args.embrace <= MAX_EMBRACE_DEG):
+    if not (MIN_EMBRACE_DEG <= args.embrace <= MAX_EMBRACE_DEG):
         raise InvalidParameterError(
-            f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {args.embrace:g}"
-        )
+            f"--embrace must be in [{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees, "
+            f"got {args.embrace:g}")
     if not (3 <= args.voussoirs <= MAX_VOUSSOIRS):
         raise InvalidParameterError(
             f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {args.voussoirs}"

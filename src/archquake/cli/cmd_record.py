@@ -4,11 +4,12 @@ measures before a run."""
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
+import math
 
 from archquake.cli.common import (
     add_output_arguments,
     number,
+    path_argument,
     periods_list,
     print_json,
     record_from_args,
@@ -20,6 +21,12 @@ from archquake.ground.measures import DEFAULT_DAMPING, intensity_measures
 from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
 from archquake.ground.records import UNITS, baseline_corrected, resampled
 from archquake.ground.response_spectra import record_spectra
+from archquake.ranges import (
+    RECORD_DT_RANGE_S,
+    RECORD_DURATION_MAX_S,
+    RECORD_FILE_MAX_BYTES,
+    SCALE_RANGE,
+)
 
 #: Sa periods printed unless --periods says otherwise, s.
 DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
@@ -31,8 +38,9 @@ def add_record_file_arguments(p: argparse.ArgumentParser) -> None:
                    help="units of a CSV/text file's acceleration column: g, m/s2 or cm/s2 (= gal) "
                         "(default g; .AT2 files are always in g)")
     p.add_argument("--dt", type=number, metavar="S",
-                   help="time step of a one-column file, s (> 0); a two-column file (time, "
-                        "acceleration) gives its own")
+                   help=f"time step of a one-column file, s ({RECORD_DT_RANGE_S[0]:g} to "
+                        f"{RECORD_DT_RANGE_S[1]:g}); a two-column file (time, acceleration) "
+                        "gives its own")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -43,16 +51,20 @@ def register(sub: argparse._SubParsersAction) -> None:
             "Read a recorded ground acceleration and print what archquake understood (name, "
             "points, time step, duration) and its intensity measures: PGA (g), PGV (m/s), "
             "PGD (m), Arias intensity (m/s), CAV (m/s), significant duration D5-95 (s), mean "
-            "period Tm (s) and the 5 %%-damped pseudo-spectral acceleration Sa(T) (g). "
-            "Positive values are ground accelerations towards +x."
+            "period Tm (s) and the 5 %-damped pseudo-spectral acceleration Sa(T) (g). "
+            "Positive values are ground accelerations towards +x. A record may last at most "
+            f"{RECORD_DURATION_MAX_S:,.0f} s, with a time step from {RECORD_DT_RANGE_S[0]:g} to "
+            f"{RECORD_DT_RANGE_S[1]:g} s, in a regular file of at most "
+            f"{RECORD_FILE_MAX_BYTES / 1e6:.0f} MB."
         ),
     )
-    p.add_argument("file", type=Path, metavar="FILE",
+    p.add_argument("file", type=path_argument, metavar="FILE",
                    help="PEER .AT2 (values in g), .csv/.txt with two columns time (s), "
                         "acceleration, or one column of accelerations with --dt")
     add_record_file_arguments(p)
     p.add_argument("--scale", type=number, metavar="S",
-                   help="factor applied to every value (> 0; default 1)")
+                   help=f"factor applied to every value ({SCALE_RANGE[0]:g} < S <= "
+                        f"{SCALE_RANGE[1]:g}; default 1)")
     p.add_argument("--baseline", type=int, metavar="ORDER", default=None,
                    help="remove a polynomial baseline of this degree (0 to 5) from the "
                         "acceleration, fitted to the velocity (default: none)")
@@ -123,7 +135,9 @@ def run(args: argparse.Namespace) -> int:
         f"Arias      {ims.arias_m_s:.4g} m/s",
         f"CAV        {ims.cav_m_s:.4g} m/s",
         f"D5-95      {ims.d5_95_s:.4g} s",
-        f"Tm         {ims.mean_period_s:.4g} s (mean period, 0.25-20 Hz)",
+        f"Tm         {ims.mean_period_s:.4g} s (mean period, 0.25-20 Hz)"
+        if math.isfinite(ims.mean_period_s) else
+        "Tm         undefined (no motion between 0.25 and 20 Hz)",
     ]
     for period, sa in ims.sa_g.items():
         lines.append(f"Sa({period:g} s) {' ' * max(0, 4 - len(f'{period:g}'))}{sa:.4g} g "

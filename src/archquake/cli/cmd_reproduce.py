@@ -17,7 +17,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from archquake.cli.common import print_json
+from archquake.cli.common import output_folder, print_json
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="regenerate the paper: every study, its figures and a side-by-side report",
         description=__doc__.split("\n\n")[1] + " Studies: " + ", ".join(s.name for s in STUDIES) + ".",
     )
-    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder (created)")
+    p.add_argument("--out", type=output_folder, required=True, metavar="DIR", help="output folder (created)")
     p.add_argument(
         "--quick",
         action="store_true",

@@ -8,18 +8,18 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from archquake.cli.common import (
     MODEL_HELP,
     number,
     output_file,
+    path_argument,
     print_json,
     quiet_dask,
     ranged_whole,
 )
 from archquake.errors import ArchquakeError, ClusterLostError, InvalidParameterError
-from archquake.parallel import cap_workers, open_executor
+from archquake.parallel import cap_workers, check_scheduler, open_executor
 from archquake.ranges import (
     TABLE_SUFFIXES,
     WORKERS_RANGE,
@@ -47,7 +47,7 @@ def register(sub: argparse._SubParsersAction) -> None:
             "See docs/sweeps.md for the study schema."
         ),
     )
-    p.add_argument("study", type=Path, metavar="STUDY.toml", help="the study file")
+    p.add_argument("study", type=path_argument, metavar="STUDY.toml", help="the study file")
     p.add_argument("--store", type=output_file(create_parents=True), metavar="FILE",
                    help="SQLite store (default: <study name>.sqlite beside the study file)")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), metavar="N",
@@ -80,9 +80,8 @@ def run(args: argparse.Namespace) -> int:
     if not 0 < args.worker_wait <= 86400:
         raise InvalidParameterError(
             f"--worker-wait must be in (0, 86400] s, got {args.worker_wait:g}")
-    if args.scheduler is not None and "://" not in args.scheduler:
-        raise InvalidParameterError(
-            f"--scheduler must be an address like tcp://HOST:PORT, got {args.scheduler!r}")
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler, "--scheduler")
     if args.export is not None and args.export.suffix.lower() not in (".csv", ".parquet"):
         raise InvalidParameterError(
             f"--export file must end in .csv or .parquet, got {args.export.name!r}")
@@ -133,6 +132,10 @@ def run(args: argparse.Namespace) -> int:
         bar.close()
         if args.export is not None:
             store.export(args.export)
+            if store.damaged:
+                print(f"archquake: --export: skipped {len(store.damaged)} damaged row"
+                      f"{'s' * (len(store.damaged) != 1)} of the store (their cases are "
+                      "computed again by the next run)", file=sys.stderr)
     summary = {"model": study.model.value, **report.to_dict()}
     summary["study"] = study.name
     if args.export is not None:

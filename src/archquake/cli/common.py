@@ -23,6 +23,7 @@ from archquake.geometry.arch import (
     MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_EMBRACE_DEG,
     MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
@@ -233,6 +234,8 @@ def output_file(*suffixes: str, create_parents: bool = False):
     bad path fails before any computation (argparse names the option)."""
 
     def parse(text: str) -> Path:
+        if not text.strip():  # Path("") is ".", the working folder
+            raise argparse.ArgumentTypeError("an empty path is not a file name")
         try:
             return check_output_file(Path(text), suffixes or None, create_parents=create_parents)
         except InvalidParameterError as exc:
@@ -242,8 +245,17 @@ def output_file(*suffixes: str, create_parents: bool = False):
     return parse
 
 
+def path_argument(text: str) -> Path:
+    """argparse type: a path that is not empty (``Path("")`` would be ".", the working folder)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty path is not a file name")
+    return Path(text)
+
+
 def output_folder(text: str) -> Path:
     """argparse type: an output folder checked by :func:`check_output_folder`."""
+    if not text.strip():  # Path("") is ".": the working folder would take the output
+        raise argparse.ArgumentTypeError("an empty path is not a folder name")
     try:
         return check_output_folder(Path(text))
     except InvalidParameterError as exc:
@@ -305,7 +317,7 @@ def add_arch_arguments(parser: argparse.ArgumentParser, *, defaults: bool = True
                    help="pier width, m (at least the springing joint's horizontal extent)")
     g.add_argument("--pier-courses", type=whole, default=None,
                    help="number of courses (blocks) in each pier (1 to 500; default 1)")
-    g.add_argument("--blocks", type=Path, default=None, metavar="FILE",
+    g.add_argument("--blocks", type=path_argument, default=None, metavar="FILE",
                    help="the arch's blocks from a surveyed file: .json, .csv or .dxf (see "
                         "docs/geometry.md)")
     g.add_argument("--depth", type=number, default=1.0,
@@ -394,10 +406,10 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
             f"a circular arch needs {', '.join('--' + k for k in missing)}")
     radius, thickness, embrace, voussoirs = (values[k] for k in ("radius", "thickness", "embrace",
                                                                   "voussoirs"))
-    if not (0.0 < embrace <= MAX_EMBRACE_DEG):
+    if not (MIN_EMBRACE_DEG <= embrace <= MAX_EMBRACE_DEG):
         raise InvalidParameterError(
-            f"--embrace must be in (0, {MAX_EMBRACE_DEG:g}] degrees, got {embrace:g}"
-        )
+            f"--embrace must be in [{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees, "
+            f"got {embrace:g}")
     if voussoirs < 3 or voussoirs > MAX_VOUSSOIRS:
         raise InvalidParameterError(
             f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {voussoirs}"
@@ -448,7 +460,7 @@ MODEL_HELP = ("'rigid' (default), the chain of rigid voussoirs: hinges open, mig
               "anywhere, impacts follow from plastic contacts, no coefficient of restitution; "
               "'fourlink', the paper's four-link mechanism, hinges fixed between impacts, "
               "restitution from Eq. 4 or --restitution (fast); 'dem', the distinct-element "
-              "model (see docs/mechanism.md)")
+              "model (see docs/models/choosing.md)")
 
 
 def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] = (),
@@ -501,7 +513,7 @@ def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--impact", choices=IMPACT_LAWS, default=None,
                    help="impact law: 'paper' (the paper's Eq. 4, default), 'chain' (chain of "
                         "rigid voussoirs: maximum restitution, never creates energy) or 'mirror' "
-                        "(chain law, mirror mechanism forced); see docs/mechanism.md")
+                        "(chain law, mirror mechanism forced); see docs/models/fourlink.md")
 
 
 def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
@@ -577,7 +589,7 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
     grp.add_argument("--period", type=number, metavar="T",
                      help=f"sine pulse: period T, s ({PULSE_TIME_RANGE_S[0]:g} to "
                           f"{PULSE_TIME_RANGE_S[1]:g})")
-    grp.add_argument("--record", type=Path, metavar="FILE",
+    grp.add_argument("--record", type=path_argument, metavar="FILE",
                      help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
                           "time (s), acceleration (units from --units); positive = towards +x")
     grp.add_argument("--units", choices=RECORD_UNITS, default=None,

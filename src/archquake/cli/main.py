@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
 from collections.abc import Sequence
 
@@ -126,6 +127,7 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 user error)."""
     argv = list(argv) if argv is not None else sys.argv[1:]
+    previous = _stop_on_sigterm()
     try:
         parser = build_parser(argv)
         args = parser.parse_args(argv)
@@ -143,6 +145,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _sigterm(signum, frame) -> None:
+    raise KeyboardInterrupt  # the command stops as on Ctrl-C: workers ended, stores closed
+
+
+def _stop_on_sigterm():
+    """Treat SIGTERM as Ctrl-C while a command runs (in the main thread only): the command's
+    cleanup runs (worker processes are ended, a sweep says how to resume), where the default
+    action would end this process alone and leave its workers waiting. Returns the previous
+    handler (None if not installed)."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, _sigterm)
 
 
 def entry_point() -> None:

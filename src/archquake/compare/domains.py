@@ -1,7 +1,7 @@
 """Failure domains of the block models, found by the analytical domain search
 (:func:`archquake.domains.failure_domain`) with a block model's evaluation plugged in: the
 distinct-element model (``model='dem'``, paper Figures 6, 11) or the chain of rigid blocks
-(``model='rigid'``, hinges moving: the DEM's rigid limit, issue 16), on the same assemblies
+(``model='rigid'``, hinges moving: the DEM's rigid limit), on the same assemblies
 with the same tail and the same search.
 
 As in the paper, the DEM's first-half-cycle boundary comes from the arch cut at the analytical

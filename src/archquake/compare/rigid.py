@@ -1,4 +1,4 @@
-"""The rigid limit (issue 16): the DEM's energy over a half cycle against its contact model, and
+"""The rigid limit: the DEM's energy over a half cycle against its contact model, and
 the rigid-block chain (:mod:`archquake.rigid`) through the same protocol.
 
 Protocols are :mod:`archquake.compare.impacts`'s (energy kept over the first half cycle,

@@ -504,7 +504,7 @@ class DemResult:
                      excitation_end: float | None = None) -> DemResult:
         """Post-process the recorded samples of a run.
 
-        The verdict (docs/mechanism.md, "An honest verdict for the block models"):
+        The verdict (docs/notes/mechanism.md, "An honest verdict for the block models"):
         ``collapse`` at the first sample meeting a collapse criterion; ``no_hinging`` if no
         joint opened; ``survives`` only if the run ends at rest (:func:`settled`: kinetic
         energy below ``REST_KINETIC`` W L for ``REST_WINDOW`` sqrt(L/g) after the end of the
@@ -648,7 +648,7 @@ class DemResult:
             "excitation": self.motion,
             "settings": self.settings.to_dict(),
             "solver": {"steps": self.n_steps, "settle_steps": self.settle_steps,
-                       "time_step_s": self.time_step, "omega_max_rad_s": self.omega_max,
+                       "time_step_s": self.time_step, "omega_max_rad_s": _finite_or_none(self.omega_max),
                        "t_end_s": self.settings.duration},
         }
 
@@ -666,6 +666,12 @@ class DemResult:
             "base_displacement_m": self.base_displacement,
             "base_velocity_m_s": self.base_velocity,
         }
+
+
+
+def _finite_or_none(value: float) -> float | None:
+    """``value``, or None where it does not apply (the rigid chain has no omega_max: NaN)."""
+    return float(value) if math.isfinite(value) else None
 
 
 __all__ = [

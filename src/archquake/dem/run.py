@@ -24,8 +24,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.sparse import coo_matrix
 
 import archquake.dem._kernels as K
+from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem._kernels import Packed
 from archquake.dem.assembly import Assembly, build_arch_assembly
@@ -34,7 +36,8 @@ from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, check_motion
+from archquake.ranges import DEM_MAX_BLOCK_STEPS, DEM_SECONDS_PER_BLOCK_STEP
 
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
 MAX_STEPS = 200_000_000
@@ -169,27 +172,45 @@ def stable_time_step(
     st = packed.state
     nb = st.shape[0]
     tangent = edir[:, :2]
-    stiff = np.zeros((3 * nb, 3 * nb))
+    # the stiffness as a sum of rank-one terms k w w^T, each w touching the 3 coordinates of at
+    # most two blocks: kept sparse (a dense (3 nb)^2 matrix built term by term cost minutes
+    # and a gigabyte for 2000 blocks)
+    rows: list[np.ndarray] = []
+    cols: list[np.ndarray] = []
+    vals: list[np.ndarray] = []
     for s in act:
         v, a, b = packed.sl_i[s, :3]
         tx, ty = tangent[packed.sl_edge[s]]
         p = vw[v]
         for k, direction in ((packed.sl_f[s, K.F_KN], (ty, -tx)), (packed.sl_f[s, K.F_KS], (tx, ty))):
-            w = np.zeros(3 * nb)
+            idx: list[int] = []
+            w: list[float] = []
             for blk, sgn in ((a, 1.0), (b, -1.0)):
                 if not packed.free[blk]:
                     continue
                 r = p - st[blk, :2]
                 lever = r[0] * direction[1] - r[1] * direction[0]
                 sm, si = math.sqrt(packed.mass[blk]), math.sqrt(packed.inertia[blk])
-                w[3 * blk : 3 * blk + 3] = sgn * np.array(
-                    [direction[0] / sm, direction[1] / sm, lever / si]
-                )
-            stiff += k * np.outer(w, w)
+                idx.extend((3 * blk, 3 * blk + 1, 3 * blk + 2))
+                w.extend((sgn * direction[0] / sm, sgn * direction[1] / sm, sgn * lever / si))
+            if not idx:
+                continue
+            ii, ww = np.asarray(idx), np.asarray(w)
+            rows.append(np.repeat(ii, ii.size))
+            cols.append(np.tile(ii, ii.size))
+            vals.append(k * np.outer(ww, ww).ravel())
+    # each entry summed in contact order, from 0.0, as a dense stiff += k w w^T would (np.add.at
+    # adds in the order given): the same bits, so the time step and every DEM number stay
+    # byte-identical to the dense computation
+    r_all, c_all = np.concatenate(rows), np.concatenate(cols)
+    keys, inverse = np.unique(r_all * (3 * nb) + c_all, return_inverse=True)
+    summed = np.zeros(keys.size)
+    np.add.at(summed, inverse, np.concatenate(vals))
+    stiff = coo_matrix((summed, (keys // (3 * nb), keys % (3 * nb))), shape=(3 * nb, 3 * nb))
     if nb <= 500:
-        lam = float(np.linalg.eigvalsh(stiff)[-1])
-    else:  # Gershgorin bound
-        lam = float(np.max(np.sum(np.abs(stiff), axis=1)))
+        lam = float(np.linalg.eigvalsh(stiff.toarray())[-1])
+    else:  # Gershgorin bound (row sums over the nonzeros: may differ from a dense sum by ulps)
+        lam = float(np.max(np.asarray(abs(stiff.tocsr()).sum(axis=1)).ravel()))
     omega = math.sqrt(lam)
     alpha, beta = settings.damping
     xi = alpha / (2 * omega) + beta * omega / 2
@@ -296,7 +317,8 @@ def simulate_dem(
     settings = DemSettings() if settings is None else settings
     if not isinstance(settings, DemSettings):
         raise InvalidParameterError(f"settings must be a DemSettings, got {type(settings).__name__}")
-    kind, gparams = motion.kernel_spec()
+    g = require_gravity(g)
+    kind, gparams = check_motion(motion).kernel_spec()
     gparams = np.ascontiguousarray(gparams, dtype=float)
     omega = float("nan")
     if settings.time_step is None:
@@ -320,6 +342,15 @@ def simulate_dem(
             f"output_interval (now {settings.output_interval:g} s) or shorten the duration "
             f"(now {settings.duration:g} s)"
         )
+    work = (n_steps + settle_steps) * assembly.n_blocks
+    if work > DEM_MAX_BLOCK_STEPS:
+        raise InvalidParameterError(
+            f"{assembly.n_blocks} blocks over {n_steps + settle_steps:,} time steps of "
+            f"{dt:.3g} s are {work:.3g} block-steps, more than {DEM_MAX_BLOCK_STEPS:.0e} (the "
+            f"explicit DEM's time step shrinks with the blocks: about "
+            f"{work * DEM_SECONDS_PER_BLOCK_STEP / 3600:.2g} h at "
+            f"{DEM_SECONDS_PER_BLOCK_STEP * 1e6:g} us per block-step): use fewer voussoirs or "
+            f"a shorter duration (now {settings.duration:g} s)")
     packed = pack(assembly)
     margin = 0.2 * float(packed.radius[packed.free == 1].min())
     packed = build_slots(packed, neighbour_pairs(packed, margin))

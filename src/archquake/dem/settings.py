@@ -38,7 +38,7 @@ class ContactLaw:
     ----------
     normal_stiffness : float
         Joint normal stiffness k_n, Pa/m (> 0). Default 1e12 Pa/m = 1000 GPa/m, the plausible
-        reading of the paper's "10^12 GPa/m" (see docs/dem.md).
+        reading of the paper's "10^12 GPa/m" (see docs/models/dem.md).
     shear_stiffness : float
         Joint shear stiffness k_s, Pa/m (> 0). Default equal to ``normal_stiffness``.
     friction : float

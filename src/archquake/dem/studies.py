@@ -1,7 +1,7 @@
 """Small studies on top of :func:`simulate_dem`: restitution of a free-rocking block, the
 rocking-onset and overturning thresholds of a block, and the friction needed by an arch.
 
-Each returns plain numbers so that tests and docs/dem.md can quote them.
+Each returns plain numbers so that tests and docs/models/dem.md can quote them.
 """
 
 from __future__ import annotations
@@ -78,7 +78,7 @@ def free_rocking_restitution(
 def restitution_table(
     cases: list[tuple[float, float, DemSettings]], *, g: float = STANDARD_GRAVITY
 ) -> list[dict]:
-    """Rows (b, h, alpha, stiffness, alpha_R, beta_R, measured r, Housner r) for docs/dem.md."""
+    """Rows (b, h, alpha, stiffness, alpha_R, beta_R, measured r, Housner r) for docs/models/dem.md."""
     rows = []
     for b, h, st in cases:
         rows.append(

@@ -14,7 +14,7 @@ from enum import Enum
 
 import numpy as np
 
-from archquake._validate import require_positive
+from archquake._validate import require_gravity
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
@@ -196,7 +196,7 @@ def evaluate_pulses(
     undescribed = ~table.described(prepared.impact.law, prescribed)
     ct_max = float(np.max(table.restitution_cts(prescribed)))
     fam = PulseFamily.parse(family)
-    require_positive("g", g, "m/s^2")
+    require_gravity(g)
     a, d = _pairs(magnitudes_g, durations)
     check_durations(fam, d, prepared.mechanism.arch.radius, g)
     n = a.shape[0]

@@ -47,7 +47,13 @@ from pathlib import Path
 
 import numpy as np
 
-from archquake._validate import require_int, require_positive
+from archquake._validate import (
+    require_array,
+    require_gravity,
+    require_instance,
+    require_int,
+    require_positive,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
@@ -420,6 +426,7 @@ def failure_domain(
     (True, 2)
     """
     settings = DomainSettings() if settings is None else settings
+    require_instance("settings", settings, DomainSettings, "a DomainSettings (or None)")
     if model is None:
         model = "fourlink" if isinstance(arch, PreparedMechanism) else "rigid"
     if model not in ("rigid", "fourlink"):
@@ -445,12 +452,10 @@ def failure_domain(
         mech0 = prepared.mechanism
         radius = mech0.arch.radius
     fam = PulseFamily.parse(family)
-    require_positive("g", g, "m/s^2")
+    require_gravity(g)
     if durations is None:
         durations = FIGURE5_DURATIONS
-    dur = np.atleast_1d(np.asarray(durations, dtype=float))
-    if dur.ndim != 1 or dur.size == 0 or np.any(~np.isfinite(dur)) or np.any(dur <= 0):
-        raise InvalidParameterError("durations must be a non-empty 1-D array of finite values > 0 s")
+    dur = require_array("durations", durations, "s", minimum=0.0, exclusive=True)
     check_durations(fam, dur, radius, g)
     ceiling = settings.max_magnitude_g
     if ceiling <= lam:

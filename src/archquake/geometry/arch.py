@@ -36,6 +36,12 @@ MAX_EMBRACE_DEG = 240.0
 #: The same in rad. Compare degrees with :data:`MAX_EMBRACE_DEG` (degrees(radians(240)) is
 #: 239.99999999999997, so converting the bound back would refuse the documented maximum).
 MAX_EMBRACE = math.radians(MAX_EMBRACE_DEG)
+#: Least angle of embrace, degrees: a flatter ring is a straight beam, and below it (5e-324 rad
+#: reached a division by zero) the joint angles pi/2 +- embrace/2 of thousands of voussoirs stop
+#: being distinct in double precision.
+MIN_EMBRACE_DEG = 1e-3
+#: The same in rad.
+MIN_EMBRACE = math.radians(MIN_EMBRACE_DEG)
 #: Most voussoirs accepted (limit analysis enumerates joint quadruples).
 MAX_VOUSSOIRS = 2000
 #: Radii accepted, m: from a 1 mm laboratory model to a 10 km arch. Beyond them nothing is
@@ -57,9 +63,10 @@ class Arch(VoussoirChain):
     radius : float
         Centreline radius R, m (> 0).
     thickness : float
-        Radial thickness t, m (0 < t < 2R).
+        Radial thickness t, m (1e-6 R <= t < 2R).
     embrace : float
-        Angle of embrace beta, rad (0 < beta <= 240 deg), symmetric about the vertical axis.
+        Angle of embrace beta, rad (1e-3 deg <= beta <= 240 deg), symmetric about the vertical
+        axis.
     voussoirs : int
         Number of voussoirs n (>= 3).
     depth : float, optional
@@ -92,14 +99,20 @@ class Arch(VoussoirChain):
         t = require_positive("thickness", self.thickness, "m")
         if t >= 2.0 * r:
             raise_thick(t, r)
+        if t < MIN_THICKNESS_RATIO * r:
+            raise InvalidParameterError(
+                f"thickness must be in [{MIN_THICKNESS_RATIO:g} x radius, 2 x radius) = "
+                f"[{MIN_THICKNESS_RATIO * r:g}, {2 * r:g}) m, got {t:g}")
         require_range(
             "embrace",
             self.embrace,
-            0.0,
+            MIN_EMBRACE,
             MAX_EMBRACE,
-            "rad",
+            "",
+            low_open=False,
             high_open=False,
-            shown="(0, 240] degrees = (0, 4.18879] rad",
+            shown=f"[{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees = "
+                  f"[{MIN_EMBRACE:.4g}, {MAX_EMBRACE:.6g}] rad",
         )
         require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS)
         require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
@@ -307,4 +320,5 @@ def raise_thick(t: float, r: float) -> None:
 
 
 __all__ = ["Arch", "MAX_DENSITY", "MAX_DEPTH", "MAX_EMBRACE", "MAX_EMBRACE_DEG", "MAX_VOUSSOIRS",
-           "MIN_DENSITY", "MIN_DEPTH", "MIN_THICKNESS_RATIO", "RADIUS_RANGE"]
+           "MIN_DENSITY", "MIN_EMBRACE", "MIN_EMBRACE_DEG", "MIN_DEPTH", "MIN_THICKNESS_RATIO",
+           "RADIUS_RANGE"]

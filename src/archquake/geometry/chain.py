@@ -42,8 +42,8 @@ MAX_DENSITY = 1e5
 MAX_DEPTH = 1e4
 #: Least density (kg/m^3) and depth (m): far below any masonry; below them masses leave the
 #: range where the impact and kernel arithmetic is sound (the CLI fuzz found 1e-300 of each
-#: dividing by zero). Least thickness ratio t/R the CLI and study files accept: below it the
-#: limit analysis's coefficients overflow (an Arch itself may be thinner, as a limit case).
+#: dividing by zero). Least thickness ratio t/R of a circular Arch (the CLI and study files
+#: check the same): below it the limit analysis's coefficients overflow.
 MIN_DENSITY = 1.0
 MIN_DEPTH = 1e-3
 MIN_THICKNESS_RATIO = 1e-6

@@ -21,7 +21,7 @@ kind        params (float64)                   x_g''(t)
 from __future__ import annotations
 
 import math
-from typing import Protocol, runtime_checkable
+from typing import Protocol, cast, runtime_checkable
 
 import numpy as np
 
@@ -81,6 +81,19 @@ _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
                 KIND_SAMPLED: ("record time step DT", 1.0)}
 
 
+def check_motion(motion: object, needs: tuple[str, ...] | None = None) -> GroundMotion:
+    """``motion`` itself if it is a ground motion (or, given ``needs``, has those attributes:
+    what a model reads of it); else the one line that says what is."""
+    ok = (isinstance(motion, GroundMotion) if needs is None
+          else all(hasattr(motion, name) for name in needs))
+    if not ok:
+        raise InvalidParameterError(
+            f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
+            f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
+            f"{type(motion).__name__}")
+    return cast(GroundMotion, motion)
+
+
 def time_floor(time_scale: float, duration: float) -> float:
     """Shortest piece of a ground motion (s) that the compiled integrators resolve.
 
@@ -126,5 +139,5 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
             f"are below the integrator's time resolution), got {value:g}")
 
 
-__all__ = ["GroundMotion", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION",
+__all__ = ["GroundMotion", "check_motion", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION",
            "check_time_resolution", "time_floor"]

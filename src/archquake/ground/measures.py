@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 import numba as nb
 import numpy as np
 
-from archquake._validate import require_finite, require_positive, require_range
+from archquake._validate import require_finite, require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 
@@ -150,7 +150,7 @@ class IntensityMeasure:
 
     def of(self, motion, *, g: float = STANDARD_GRAVITY) -> float:
         """Value of this measure for ``motion``, in :attr:`unit`."""
-        g = require_positive("g", g, "m/s^2")
+        g = require_gravity(g)
         t, a = _piecewise(motion)
         if self.name == "pga":
             return float(np.max(np.abs(a))) / g if a.size else 0.0
@@ -293,7 +293,7 @@ def intensity_measures(motion, *, periods: Iterable[float] = (),
     g : float
         m/s^2, to express PGA and Sa in g and in the Arias intensity.
     """
-    g = require_positive("g", g, "m/s^2")
+    g = require_gravity(g)
     damping = _damping(damping)
     periods = _periods(periods)
     t, a = _piecewise(motion)
@@ -432,9 +432,10 @@ def _mean_period(motion, t: np.ndarray, a: np.ndarray) -> float:
     f = np.fft.rfftfreq(n, dt)
     lo, hi = MEAN_PERIOD_BAND_HZ
     band = (f >= lo) & (f <= hi)
-    c2 = c[band] ** 2
-    if not np.sum(c2) > 0:
+    peak = float(np.max(c[band], initial=0.0))
+    if not peak > 0:  # no motion in the band: Tm is undefined
         return math.nan
+    c2 = (c[band] / peak) ** 2  # Tm does not depend on the scale; a tiny one must not underflow
     return float(np.sum(c2 / f[band]) / np.sum(c2))
 
 

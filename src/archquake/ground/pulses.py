@@ -8,21 +8,22 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 
-from archquake._validate import require_finite, require_positive
+from archquake._validate import require_finite, require_gravity, require_positive
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.base import KIND_SINE, KIND_STEP
 
 
 def _direction(value: object) -> int:
-    if isinstance(value, bool) or value not in (-1, 1):
+    if isinstance(value, bool) or not isinstance(value, Real) or value not in (-1, 1):
         raise InvalidParameterError(
             f"direction must be -1 (towards -x) or +1 (towards +x), got {value!r}"
         )
-    return int(value)
+    return 1 if value == 1 else -1
 
 
 def _magnitude(value: object, unit: str) -> float:
@@ -75,7 +76,7 @@ class StepImpulse:
     def from_g(cls, magnitude_g: float, duration: float, direction: int = -1, *,
                g: float = STANDARD_GRAVITY) -> StepImpulse:
         """Build from a magnitude in multiples of g (``duration`` is t_p, s)."""
-        return cls(_magnitude(magnitude_g, "g") * require_positive("g", g, "m/s^2"),
+        return cls(_magnitude(magnitude_g, "g") * require_gravity(g),
                    duration, direction)
 
     @property
@@ -144,7 +145,7 @@ class SinePulse:
     def from_g(cls, magnitude_g: float, period: float, direction: int = -1, *,
                g: float = STANDARD_GRAVITY) -> SinePulse:
         """Build from a magnitude in multiples of g."""
-        return cls(_magnitude(magnitude_g, "g") * require_positive("g", g, "m/s^2"),
+        return cls(_magnitude(magnitude_g, "g") * require_gravity(g),
                    period, direction)
 
     @property

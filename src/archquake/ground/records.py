@@ -16,15 +16,23 @@ from __future__ import annotations
 
 import math
 import re
+import stat
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from archquake._validate import require_finite, require_positive
+from archquake._validate import (
+    require_finite,
+    require_gravity,
+    require_path,
+    require_positive,
+    require_range,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import GroundMotionFormatError, InvalidParameterError
 from archquake.ground.base import KIND_SAMPLED
+from archquake.ranges import RECORD_DT_RANGE_S, RECORD_DURATION_MAX_S, RECORD_FILE_MAX_BYTES
 
 #: Largest allowed deviation of a CSV sample time from the uniform grid, as a fraction of dt.
 SPACING_TOLERANCE = 1e-6
@@ -96,10 +104,13 @@ class Record:
 
     def __post_init__(self) -> None:
         try:
-            acc = np.array(self.accelerations, dtype=float)
-        except (TypeError, ValueError):
+            raw = np.asarray(self.accelerations)
+            if np.iscomplexobj(raw):  # a float conversion would drop the imaginary part
+                raise TypeError
+            acc = np.array(raw, dtype=float)
+        except (TypeError, ValueError, OverflowError):
             raise InvalidParameterError(
-                "accelerations must be a 1-D sequence of numbers (m/s^2)"
+                "accelerations must be a 1-D sequence of real numbers (m/s^2)"
             ) from None
         if acc.ndim != 1 or acc.size < 2:
             raise InvalidParameterError(
@@ -112,7 +123,15 @@ class Record:
             )
         acc.setflags(write=False)
         object.__setattr__(self, "accelerations", acc)
-        object.__setattr__(self, "dt", require_positive("record time step dt", self.dt, "s"))
+        # at most a file's largest time step; the least one a run can resolve depends on the
+        # arch (simulate's check_time_resolution), finer sampled pulses are built internally
+        object.__setattr__(self, "dt", require_range("record time step dt", self.dt, 0.0,
+                                                     RECORD_DT_RANGE_S[1], "s",
+                                                     high_open=False))
+        if self.duration > RECORD_DURATION_MAX_S:
+            raise InvalidParameterError(
+                f"a record may last at most {RECORD_DURATION_MAX_S:g} s, this one lasts "
+                f"{self.duration:g} s ({acc.size} samples at dt = {self.dt:g} s)")
         object.__setattr__(self, "scale", require_finite("record scale", self.scale))
         if not isinstance(self.name, str):
             raise InvalidParameterError(f"record name must be a string, got {self.name!r}")
@@ -263,7 +282,7 @@ def read_at2(path: str | Path, *, scale: float = 1.0, g: float = STANDARD_GRAVIT
     GroundMotionFormatError
         Missing, empty or malformed file (one line: file, line, problem, fix).
     """
-    path = Path(path)
+    path = require_path("path", path)
     factor = _factor(scale, g)
     lines = _read_lines(path)
     if len(lines) < 4:
@@ -336,7 +355,7 @@ def read_csv(path: str | Path, *, units: str, dt: float | None = None, scale: fl
     GroundMotionFormatError
         Missing, empty or malformed file (one line: file, line, problem, fix).
     """
-    path = Path(path)
+    path = require_path("path", path)
     factor = _csv_factor(units, scale, g)
     if dt is not None:
         dt = require_positive("time step dt", dt, "s")
@@ -426,7 +445,7 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
     ``.csv`` / ``.txt`` -> :func:`read_csv` (``units`` required; ``dt`` for a one-column
     file).
     """
-    path = Path(path)
+    path = require_path("path", path)
     ext = path.suffix.lower()
     if ext == ".at2" and dt is not None:
         raise InvalidParameterError(
@@ -554,6 +573,16 @@ def _err(path: Path, line: int | None, message: str) -> GroundMotionFormatError:
 
 def _read_lines(path: Path) -> list[str]:
     try:
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode):  # a device, pipe or socket could stream forever
+            kind = "a directory" if stat.S_ISDIR(info.st_mode) else "not a regular file"
+            raise GroundMotionFormatError(
+                f"{path}: is {kind} (a device, pipe or socket is not read); give the "
+                "accelerogram file")
+        if info.st_size > RECORD_FILE_MAX_BYTES:
+            raise GroundMotionFormatError(
+                f"{path}: is {info.st_size / 1e6:.0f} MB; an accelerogram file may hold at most "
+                f"{RECORD_FILE_MAX_BYTES / 1e6:.0f} MB")
         data = path.read_bytes()
     except FileNotFoundError:
         raise GroundMotionFormatError(
@@ -640,7 +669,7 @@ def _unit_key(units: object) -> str:
 
 def _factor(scale: float, g: float) -> float:
     """Multiplier from the file's g to m/s^2 with the scale applied."""
-    return require_finite("scale", scale) * require_positive("g", g, "m/s^2")
+    return require_finite("scale", scale) * require_gravity(g)
 
 
 def _csv_factor(units: str, scale: float, g: float) -> float:

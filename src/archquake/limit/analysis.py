@@ -50,6 +50,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from archquake._validate import require_choice, require_gravity, require_instance
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
@@ -221,7 +222,9 @@ def limit_analysis(
     >>> round(res.collapse_acceleration_g, 3), res.mechanism.joints, res.symmetric
     (0.37, (0, 3, 5, 7), False)
     """
-    method = Method(method)
+    require_instance("arch", arch, VoussoirChain, "an arch of archquake.geometry (e.g. Arch)")
+    method = require_choice("method", method, Method)
+    g = require_gravity(g)
     if method is not Method.STATIC and arch.voussoirs > MAX_KINEMATIC_VOUSSOIRS:
         raise InvalidParameterError(
             f"the kinematic method enumerates mechanisms and needs voussoirs <= "

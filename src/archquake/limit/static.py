@@ -25,15 +25,16 @@ import math
 
 import numpy as np
 
-from archquake._validate import require_range
+from archquake._validate import require_instance, require_range
 from archquake.errors import ArchquakeError, SolverError, UnstableArchError
 from archquake.geometry.arch import MAX_VOUSSOIRS, Arch
-from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.chain import MIN_THICKNESS_RATIO, VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
 from archquake.limit.thrust import arch_joint_points, joint_forces, moments_about_origin
 
-#: Below this t/R an arch that still stands is reported as standing at any thickness.
-_THINNEST = 1e-9
+#: Below this t/R an arch that still stands is reported as standing at any thickness: twice the
+#: least t/R an Arch accepts, so that the bisection's next midpoint is still an Arch.
+_THINNEST = 2.0 * MIN_THICKNESS_RATIO
 
 #: Smallest relative bracket width :func:`min_thickness_ratio` accepts: a few units of double
 #: precision (2.2e-16) above which the bisection's midpoint still differs from its ends.
@@ -186,6 +187,7 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     >>> round(min_thickness(Arch(2.0, 0.5, math.pi, 200)) / 2.0, 3)
     0.107
     """
+    require_instance("arch", arch, VoussoirChain, "an arch of archquake.geometry (e.g. Arch)")
     if isinstance(arch, Arch):
         return min_thickness_ratio(arch.embrace, arch.voussoirs, rtol=rtol) * arch.radius
     require_range("rtol", rtol, MIN_RTOL, 0.5, low_open=False, high_open=False)

@@ -261,7 +261,7 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
     """True if the ground motion left after ``t_left`` cannot bring a mechanism that is past
     its crest (``phi >= phi_crit``) and opening (``v >= 0``) back over the crest.
 
-    The sufficient criterion of ``docs/mechanism.md`` (collapse on a record): the ground's power
+    The sufficient criterion of ``docs/notes/mechanism.md`` (collapse on a record): the ground's power
     on the mechanism is ``P = -side x_g'' H(phi) phi'`` and by Cauchy-Schwarz
     ``|H| <= sqrt(M m_eff)`` (M = ``kappa2``, the moving links' mass), so
     ``|P| <= |x_g''| sqrt(2 M T)``. Until it recrosses the crest the mechanism stays in

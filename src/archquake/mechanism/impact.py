@@ -81,7 +81,7 @@ def check_restitution(value: object, name: str = "restitution") -> float | None:
 
 def check_impact_law(law: object, name: str = "impact") -> str:
     """The one check of an impact law's name (:data:`IMPACT_LAWS`)."""
-    if law not in IMPACT_LAWS:
+    if not isinstance(law, str) or law not in IMPACT_LAWS:
         raise InvalidParameterError(f"{name} must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
     return str(law)
 

@@ -4,7 +4,7 @@ When an open four-hinge mechanism P returns to the undisplaced configuration, ev
 arch is closed at once and the voussoirs' velocities jump. This module computes the jump for any
 arch, choosing the post-impact mechanism instead of assuming the mirror image of P.
 
-Derivation (in brief; docs/mechanism.md has it in full)
+Derivation (in brief; docs/notes/mechanism.md has it in full)
 --------------------------------------------------------
 Write the velocity of the whole chain as one vector v (centroid velocity and spin of every
 voussoir, 3n entries) and M for the block-diagonal mass matrix (m_k, m_k, I_k), so that the

@@ -48,12 +48,20 @@ from functools import lru_cache
 import numpy as np
 
 import archquake.mechanism._kernels as K
-from archquake._validate import require_finite, require_int, require_positive, require_range
+from archquake._validate import (
+    require_array,
+    require_finite,
+    require_gravity,
+    require_instance,
+    require_int,
+    require_positive,
+    require_range,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
-from archquake.ground.base import GroundMotion, check_time_resolution
+from archquake.ground.base import GroundMotion, check_motion, check_time_resolution
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
@@ -125,10 +133,9 @@ class SolverOptions:
         require_range("atol", self.atol, 1e-20, 1e-3, "rad", low_open=False, high_open=False)
         require_range("rest_rotation", self.rest_rotation, 0.0, 1e-2, "rad", high_open=False)
         require_int("max_impacts", self.max_impacts, 1, MAX_IMPACTS)
-        if self.output_interval is not None and not math.isfinite(self.output_interval):
-            raise InvalidParameterError(
-                f"output_interval must be a finite number of seconds, got {self.output_interval}"
-            )
+        if self.output_interval is not None:
+            object.__setattr__(self, "output_interval",
+                               require_finite("output_interval", self.output_interval, "s"))
 
 
 @dataclass(frozen=True)
@@ -559,7 +566,8 @@ def simulate(
     ('collapse', 2, 0.86)
     """
     prepared = PreparedMechanism.build(arch, impact)
-    require_positive("g", g, "m/s^2")
+    require_gravity(g)
+    require_instance("options", options, SolverOptions, "a SolverOptions")
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution_for(restitution)
     mechs, nxt, flip, ratio = prepared.table.kernel_arrays(check_restitution(restitution))
@@ -569,16 +577,10 @@ def simulate(
     if t_eval is None:
         requested = np.empty(0)
     else:
-        requested = np.ascontiguousarray(np.atleast_1d(np.asarray(t_eval, dtype=float)).ravel())
-        if not np.all(np.isfinite(requested)) or np.any(requested < 0):
-            raise InvalidParameterError("t_eval must hold finite times >= 0 s")
+        requested = np.ascontiguousarray(require_array("t_eval", t_eval, "s", minimum=0.0))
         if np.any(np.diff(requested) < 0):
             raise InvalidParameterError("t_eval must be sorted (non-decreasing times, s)")
-    if not isinstance(motion, GroundMotion):
-        raise InvalidParameterError(
-            f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
-            f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
-            f"{motion!r}")
+    check_motion(motion)
     kind, params = motion.kernel_spec()
     params = np.ascontiguousarray(params, dtype=np.float64)
     mech = prepared.mechanism
@@ -590,7 +592,7 @@ def simulate(
     require_positive("t_end", t_end, "s")
     dt_out = options.output_interval if options.output_interval is not None else tau / 200.0
     n_imp_cap = int(options.max_impacts)
-    # history: sized by what happens, not by t_end (issue 15). While locked during the
+    # history: sized by what happens, not by t_end. While locked during the
     # excitation at most LOCKED_SAMPLES samples (then each stretch's end), none after it; while
     # moving one per dt_out. The buffer starts small; a run that wants more samples is rerun
     # with the exact size (deterministic: the same steps), up to MAX_HISTORY_SAMPLES.

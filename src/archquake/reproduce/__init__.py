@@ -2,11 +2,13 @@
 run again, each number the paper states set beside archquake's with a tolerance and a mark, and
 the figures (with the distinct-element overlays) in one self-contained report.
 
+Run it with :func:`run_studies` or ``archquake reproduce --quick --out DIR``.
+
+Examples
+--------
 >>> from archquake.reproduce import STUDIES
 >>> [s.name for s in STUDIES][:3]
 ['static', 'figure4', 'figure5']
-
-Run it with :func:`run_studies` or ``archquake reproduce --quick --out DIR``.
 """
 
 from archquake.reproduce.core import Figure, Row, Study, StudyResult

@@ -1,4 +1,4 @@
-"""Compiled event-driven integrator of the rigid-block chain (issue 16; numba).
+"""Compiled event-driven integrator of the rigid-block chain (numba).
 
 The same model as :mod:`archquake.rigid._step_kernels` (rigid voussoirs, unilateral
 plastic corner contacts, no sliding), integrated between contact changes as an ODE in the

@@ -22,7 +22,7 @@ ground; base bodies fixed in the ground's frame):
    solves the same projection exactly on a guessed active set (the contacts that pushed at
    the previous step): one banded Cholesky of the Delassus matrix per step, Gauss-Seidel only
    when the guess fails (at most 129 of the 40 000 steps of Oppenheim's 4 s history); it
-   returns the converged Gauss-Seidel's velocities (docs/mechanism.md, "Speed of the rigid chain");
+   returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed of the rigid chain");
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
 **Position-level correction** (:func:`run`'s ``correction``, on by default; :func:`project`
@@ -31,11 +31,11 @@ probes call them). With b = 0 the scheme holds velocities only, and a pivot in p
 contact drifts: q is advanced linearly in theta, so a corner turning about its pivot at omega
 leaves it by about r omega^2 h^2 / 2 a step (7e-8 m on a parabolic arch at 3 lambda), past
 ``gap_tol`` (1e-9 L): the corner dropped out with its joint's no-slip row and the block slid
-(33 mm in 0.29 s, docs/mechanism.md). The bounds (:func:`_targets`): b_N = -g_c / h on a
+(33 mm in 0.29 s, docs/notes/mechanism.md). The bounds (:func:`_targets`): b_N = -g_c / h on a
 corner open by g_c > 0 (pulled shut in one step; a penetration is not pushed out, which would
 throw the corner off at |g_c| / h: half the approach speed after an impact, a restitution the
 plastic model has not: it moved the energy kept over the half cycles of
-docs/mechanism.md by -0.022 to +0.037);
+docs/notes/mechanism.md by -0.022 to +0.037);
 b_T = -(s - s_0) / h, s the joint's tangential offset at its no-slip point and s_0 its value
 when the contact began (``slip_ref``, NaN while the joint is open: a flight's offset is the
 model's, not an error); and a corner that pushed stays active while g_c <= ``hold_tol``
@@ -209,7 +209,7 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
 
     Normal row of an active corner open by g_c > 0 (m): -g_c / ``correction`` (pulled shut in
     one step; a penetration, g_c < 0, is not pushed out: that would throw the corner out at
-    |g_c| / h, a restitution the plastic model has not, docs/mechanism.md). Tangential row:
+    |g_c| / h, a restitution the plastic model has not, docs/notes/mechanism.md). Tangential row:
     -(offset - ref) / ``correction``, ref = ``slip_ref[j]`` (m), the joint's tangential offset
     when its contact began (recorded here, in place, when ``slip_ref[j]`` is NaN; set back to
     NaN when the joint has no row). ``slip_ref`` None: tangential bounds zero."""

@@ -1,4 +1,4 @@
-"""The rigid-block chain integrated from event to event (issue 16): ``simulate_rigid(...,
+"""The rigid-block chain integrated from event to event: ``simulate_rigid(...,
 solver="events")``.
 
 The model is :mod:`archquake.rigid`'s (rigid voussoirs, plastic no-slip corner

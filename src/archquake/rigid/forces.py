@@ -1,5 +1,5 @@
 """Joint forces of the rigid chain (:mod:`archquake.rigid`): the line of thrust
-and the friction demand of the mechanism in use (issue 16, Build 5).
+and the friction demand of the mechanism in use.
 
 At a recorded sample (q, v) the stepper's next step is repeated (the same contact projection,
 :func:`archquake.rigid._step_kernels.project`, at the mid-step configuration, warm-started
@@ -16,7 +16,7 @@ then H^T p = M (v - v_free) has one solution. That holds while the arch moves on
 independent), and fails whenever a closed part is statically indeterminate: the arch at rest
 (3(n + 1) rows for 3n velocities), and every closure that locks a joint while the rest is
 closed. There Gauss-Seidel returns one distribution of many, so its |V| / N (the 2.9-14.5 the
-rigid-limit study found at isolated closure steps, docs/mechanism.md) bounds nothing.
+rigid-limit study found at isolated closure steps, docs/notes/mechanism.md) bounds nothing.
 
 **Impacts.** A closure that meets a determinate part (a cantilever of locked blocks, a
 three-hinged arch) has a unique impulse, but it is an impact, not a force: its corner impulses

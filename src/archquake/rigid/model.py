@@ -1,8 +1,8 @@
 """The rigid limit of the distinct-element model: rigid blocks with unilateral, plastic, no-slip
-joint contacts, any number of open hinges (issue 16).
+joint contacts, any number of open hinges.
 
 Why this model. The four-link mechanism (Eq. 2) moves with one degree of freedom and its hinges
-fixed; a migrating one-degree model (removed; docs/mechanism.md) switched between one-degree
+fixed; a migrating one-degree model (removed; docs/notes/mechanism.md) switched between one-degree
 mechanisms and had to re-express the configuration at each switch. The DEM shows five-hinge
 phases of 0.1-0.4 s and joints closing one after another. A chain of rigid blocks whose joints
 may open at either corner has all of these motions at once, and needs no choice of mechanism:
@@ -30,7 +30,7 @@ may open at either corner has all of these motions at once, and needs no choice 
 Why time stepping and not events: the number of possible contact states is 3^(n+1), the set of
 active contacts changes during a half cycle tens of times, and closures accumulate (a closing
 joint can reopen its neighbour at once); Moreau-Jean needs no event location and is robust to
-accumulation, at first order in h. The convergence in h is measured (docs/mechanism.md).
+accumulation, at first order in h. The convergence in h is measured (docs/notes/mechanism.md).
 
 Energies are relative to the ground. The results are a :class:`archquake.dem.DemResult` built
 by the DEM's own post-processing (:meth:`DemResult.from_samples`, through
@@ -54,7 +54,7 @@ from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 
-#: Default time step, s (convergence in docs/mechanism.md: halving it changes the energy kept
+#: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
 #: over Oppenheim's first half cycle by < 0.01).
 DEFAULT_TIME_STEP = 1.0e-4
 #: A corner is in contact when its gap is below this fraction of the assembly's reference length.
@@ -62,7 +62,7 @@ GAP_TOLERANCE = 1.0e-9
 #: The stepper's position-level correction (``_step_kernels.run``): a corner that pushed at the
 #: previous step stays in contact while its gap is below this fraction of the reference length
 #: (it must exceed a step's drift, r omega^2 h^2 / 2: 7e-8 m on the parabolic arch of
-#: docs/mechanism.md), and every contact's normal row is bound to close its gap in one step.
+#: docs/notes/mechanism.md), and every contact's normal row is bound to close its gap in one step.
 HOLD_TOLERANCE = 1.0e-6
 #: Gauss-Seidel stops when a sweep changes no velocity by more than this times sqrt(g L), L the
 #: reference length (or after ``MAX_SWEEPS``). 1e-9 runs 2 times faster and changes the energy

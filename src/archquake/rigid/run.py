@@ -20,12 +20,14 @@ from functools import cached_property
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
+from archquake._validate import require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly
 from archquake.dem.result import DemResult, excitation_end
-from archquake.dem.settings import DemSettings
+from archquake.dem.settings import MAX_DURATION, DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import check_motion
 from archquake.rigid.events import EventModel, events_summary, ground_kinematics, run_events
 from archquake.rigid.forces import joint_forces as _joint_forces
 from archquake.rigid.model import (
@@ -156,6 +158,16 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         reached. Without it (default) the run ends at ``duration``; the verdict is
         ``indeterminate`` if the arch is still moving then.
     """
+    g = require_gravity(g)
+    check_motion(motion, needs=("acceleration", "duration", "breakpoints"))  # what the steps read
+    duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
+    output_interval = require_range("output_interval", output_interval, 0.0, MAX_DURATION, "s",
+                                    high_open=False)
+    chunk = require_range("chunk", chunk, 0.0, MAX_DURATION, "s", high_open=False)
+    solver_tolerance = require_positive("solver_tolerance", solver_tolerance)
+    if until_rest is not None:
+        until_rest = require_range("until_rest", until_rest, 0.0, MAX_DURATION, "s",
+                                   high_open=False)
     model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
         arch_or_assembly)
     settings = DemSettings() if settings is None else settings

@@ -4,13 +4,13 @@ and many histories in one compiled, threaded call.
 * **The step** (:func:`verdict_time_step`): h = :data:`STEP_FACTOR` sqrt(L / g), L the chain's
   reference length (the voussoirs' thickness): time scales as sqrt(L / g), so a lab arch and a
   nave get the same accuracy (1.0e-3 s on Oppenheim's arch, L = 1.5 m). Its measured error is
-  in docs/mechanism.md ("The rigid chain's step").
+  in docs/notes/mechanism.md ("The rigid chain's step").
 * **The guard**: a verdict that depends on an impact and may lie near its threshold (a half
   cycle after the first lasted more than :data:`GUARD_LENGTHENING` times the first: the arch
   lingered near a crest) is run again at half the step; where the two verdicts differ the
   result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
-  at most 0.2 % between the default step and a quarter of it (docs/mechanism.md).
+  at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md).
 * **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps at rest under a ground acceleration inside the safe domain are skipped; the run
   stops at collapse or once rest is proven; no samples are recorded and no
@@ -57,13 +57,13 @@ from archquake.rigid.model import (
 )
 
 #: The verdict's step, in sqrt(L / g) (L the reference length): 1.0e-3 s on Oppenheim's arch
-#: (L = 1.5 m). Measured in docs/mechanism.md, "The rigid chain's step".
+#: (L = 1.5 m). Measured in docs/notes/mechanism.md, "The rigid chain's step".
 STEP_FACTOR = 2.56e-3
 #: The guard reruns a verdict reached after an impact when one of its half cycles after the
 #: first (for a collapse: the collapsing one, up to the collapse) lasted more than this many
 #: times the first half cycle (onset to first impact): near the crest of its mechanism the arch
 #: slows down, and a half cycle's duration grows as log(1/delta) with the distance delta to the
-#: threshold. Measured at the default step (docs/mechanism.md, "The rigid chain's step"): 2.0
+#: threshold. Measured at the default step (docs/notes/mechanism.md, "The rigid chain's step"): 2.0
 #: is passed from 7 % below to 4 % above the critical step duration on Oppenheim's arch, from 7 %
 #: below to 10 % above at t/R = 0.11, and over the pointed arch's band where the step changes
 #: the verdict (collapse in half cycle 3; 2.5 missed it).

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from archquake._validate import require_int, require_positive, require_range
+from archquake._validate import require_gravity, require_int, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import (
@@ -35,6 +35,7 @@ from archquake.geometry.arch import (
     MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_EMBRACE_DEG,
     MIN_THICKNESS_RATIO,
     RADIUS_RANGE,
     Arch,
@@ -220,8 +221,9 @@ class ArchSpec:
                                                low_open=False, high_open=False))
             _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
                                                         MIN_THICKNESS_RATIO, 2, low_open=False))
-            _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg, 0,
-                                                     MAX_EMBRACE_DEG, "degrees", high_open=False))
+            _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg,
+                                                     MIN_EMBRACE_DEG, MAX_EMBRACE_DEG, "degrees",
+                                                     low_open=False, high_open=False))
         elif all(v is not None for v in by_span) and all(v is None for v in by_radius):
             for name in ("span", "rise", "thickness"):
                 _set(self, name, require_positive(name, getattr(self, name), "m"))
@@ -515,7 +517,7 @@ class CaseOptions:
         if self.t_end_s is not None:
             _set(self, "t_end_s", require_range("t_end_s", self.t_end_s, *T_END_RANGE_S, "s",
                                                 low_open=False, high_open=False))
-        _set(self, "g", require_positive("g", self.g, "m/s^2"))
+        _set(self, "g", require_gravity(self.g))
 
     def canonical(self) -> dict[str, Any]:
         out: dict[str, Any] = {"restitution": self.restitution, "t_end_s": self.t_end_s,

@@ -18,13 +18,18 @@ Table ``results`` (primary key ``case_id``):
 
 The database runs in WAL mode with ``synchronous=FULL`` and each batch is one transaction
 (``INSERT OR IGNORE``), so an interruption at any moment leaves whole batches behind and a
-rerun skips them.
+rerun skips them. A store is verified, not trusted: when opened, SQLite's quick_check and the
+tables' columns are checked (a damaged or foreign file is refused in one line); a row whose
+status or outputs do not decode counts as not stored, is skipped by the export and is replaced
+when its case is computed again; and one sweep at a time holds the file (an exclusive lock).
 """
 
 from __future__ import annotations
 
 import csv
+import fcntl
 import json
+import os
 import sqlite3
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
@@ -32,7 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from archquake._json import to_jsonable
-from archquake.errors import ArchquakeError
+from archquake.errors import ArchquakeError, CorruptStoreError
 from archquake.sweeps.cases import INPUT_COLUMNS, Case
 
 STORE_SCHEMA = "1"
@@ -84,9 +89,23 @@ class ResultStore:
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
+        #: Rows found damaged (by id) when read: not counted as stored, skipped by the export,
+        #: and replaced when their case is computed again.
+        self.damaged: set[str] = set()
+        self._lock_fd: int | None = None
+        where = repr(str(self.path))
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
+            existed = self.path.exists() and self.path.stat().st_size > 0
+            if self.path.exists() and not self.path.is_file():
+                raise CorruptStoreError(f"sweep store {where} is not a regular file")
             self._db = sqlite3.connect(self.path)
+        except (OSError, sqlite3.DatabaseError) as exc:
+            raise ArchquakeError(f"cannot open sweep store {where}: {exc}") from None
+        try:
+            self._lock()
+            if existed:
+                self._verify(where)
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=FULL")
             cols = ", ".join(f"{name} {kind}" for name, kind in
@@ -99,10 +118,59 @@ class ResultStore:
                 self._db.execute("INSERT OR IGNORE INTO meta VALUES ('schema', ?)", (STORE_SCHEMA,))
             (schema,) = self._db.execute("SELECT value FROM meta WHERE key='schema'").fetchone()
         except sqlite3.DatabaseError as exc:
-            raise ArchquakeError(f"cannot open sweep store {str(self.path)!r}: {exc}") from None
+            self.close()
+            raise CorruptStoreError(f"sweep store {where} cannot be read ({exc}); it is damaged "
+                                    "or not a sweep store: use a new --store file") from None
+        except ArchquakeError:
+            self.close()
+            raise
         if schema != STORE_SCHEMA:
-            raise ArchquakeError(f"sweep store {str(self.path)!r} has schema {schema}, this "
+            self.close()
+            raise ArchquakeError(f"sweep store {where} has schema {schema}, this "
                                  f"archquake writes schema {STORE_SCHEMA}; use a new --store file")
+
+    def _lock(self) -> None:
+        """Hold an exclusive lock on the store file for as long as it is open, so that two
+        sweeps never write one store at once (the second is refused, in one line)."""
+        fd = os.open(self.path, os.O_RDWR)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise ArchquakeError(
+                f"sweep store {str(self.path)!r} is in use by another sweep; wait for it to "
+                "finish (then rerun to resume) or give another --store") from None
+        self._lock_fd = fd
+
+    def _verify(self, where: str) -> None:
+        """Refuse a damaged file (SQLite's quick_check) or one whose tables are not a sweep
+        store's, in one line."""
+        report = [str(row[0]) for row in self._db.execute("PRAGMA quick_check")]
+        if report != ["ok"]:
+            problems = [line.strip() for text in report for line in text.splitlines()
+                        if line.strip() and not line.startswith("***")]
+            first = problems[0][:100] if problems else "failed"
+            more = f"; {len(problems) - 1} more" if len(problems) > 1 else ""
+            raise CorruptStoreError(
+                f"sweep store {where} is damaged (SQLite's integrity check: {first}{more}); "
+                "restore it from a copy or use a new --store file")
+        kinds = dict(self._db.execute(
+            "SELECT name, type FROM sqlite_master WHERE name IN ('results', 'meta')").fetchall())
+        if not kinds:
+            return  # an empty database: the tables are created
+        expected = ["case_id", *INPUT_COLUMNS, *RESULT_COLUMNS]
+        for table, cols in (("results", expected), ("meta", ["key", "value"])):
+            if kinds.get(table) != "table":
+                what = f"a {kinds[table]}" if table in kinds else "missing"
+                raise CorruptStoreError(
+                    f"sweep store {where} is not an archquake sweep store ({table!r} is {what}); "
+                    "use a new --store file")
+            found = [row[1] for row in self._db.execute(f"PRAGMA table_info({table})")]
+            if found != cols:
+                raise CorruptStoreError(
+                    f"sweep store {where} is not an archquake sweep store (table {table!r} has "
+                    f"columns {', '.join(found[:4])}{', ...' if len(found) > 4 else ''}); "
+                    "use a new --store file")
 
     # ------------------------------------------------------------------ context
     def __enter__(self) -> ResultStore:
@@ -112,12 +180,25 @@ class ResultStore:
         self.close()
 
     def close(self) -> None:
-        self._db.close()
+        db = getattr(self, "_db", None)
+        if db is not None:
+            db.close()
+        if self._lock_fd is not None:
+            os.close(self._lock_fd)  # releases the lock
+            self._lock_fd = None
 
     # ------------------------------------------------------------------ reading
     def stored_ids(self) -> set[str]:
-        """Ids of every stored case."""
-        return {row[0] for row in self._db.execute("SELECT case_id FROM results")}
+        """Ids of every stored case whose row is whole (a damaged row, :attr:`damaged`, is not
+        stored: its case is computed again)."""
+        ids: set[str] = set()
+        for cid, status, outputs in self._db.execute(
+                "SELECT case_id, status, outputs_json FROM results"):
+            if _decode(status, outputs) is None:
+                self.damaged.add(str(cid))
+            else:
+                ids.add(cid)
+        return ids
 
     def lookup(self, case_ids: Iterable[str]) -> dict[str, CaseRecord]:
         """The stored records of ``case_ids`` (ids not stored are absent), outputs decoded."""
@@ -128,8 +209,12 @@ class ResultStore:
             sql = ("SELECT case_id, status, outputs_json, outcome, error, elapsed_s FROM results "
                    f"WHERE case_id IN ({', '.join('?' * len(part))})")
             for cid, status, outputs, outcome, error, elapsed in self._db.execute(sql, part):
-                out[cid] = CaseRecord(cid, status, json.loads(outputs), outcome, error,
-                                      elapsed or 0.0)
+                decoded = _decode(status, outputs)
+                if decoded is None:
+                    self.damaged.add(str(cid))
+                    continue
+                out[cid] = CaseRecord(cid, status, decoded, outcome, error,
+                                      elapsed if isinstance(elapsed, (int, float)) else 0.0)
         return out
 
     def count(self) -> int:
@@ -142,7 +227,7 @@ class ResultStore:
         counts: dict[str, int] = {}
         for cid, status, outcome in self._db.execute(
                 "SELECT case_id, status, outcome FROM results"):
-            if wanted is not None and cid not in wanted:
+            if (wanted is not None and cid not in wanted) or cid in self.damaged:
                 continue
             key = STATUS_ERROR if status == STATUS_ERROR else (outcome or "none")
             counts[key] = counts.get(key, 0) + 1
@@ -151,7 +236,8 @@ class ResultStore:
     def rows(self, *, flatten_outputs: bool = True) -> list[dict[str, Any]]:
         """Every stored case as a flat dict (ordered by case id): id, inputs, status columns and,
         with ``flatten_outputs``, one column per output (nested keys joined by '.', lists as
-        JSON text) instead of ``outputs_json``."""
+        JSON text) instead of ``outputs_json``. Damaged rows are skipped (their ids are added
+        to :attr:`damaged`)."""
         return list(self._iter_rows(flatten_outputs))
 
     def _iter_rows(self, flatten_outputs: bool) -> Iterator[dict[str, Any]]:
@@ -159,8 +245,12 @@ class ResultStore:
         names = [d[0] for d in cur.description]
         for values in cur:
             row = dict(zip(names, values, strict=True))
+            outputs = _decode(row["status"], row["outputs_json"])
+            if outputs is None:
+                self.damaged.add(str(row["case_id"]))
+                continue
             if flatten_outputs:
-                outputs = json.loads(row.pop("outputs_json"))
+                row.pop("outputs_json")
                 row.update(_flatten(outputs, "out."))
             yield row
 
@@ -169,23 +259,29 @@ class ResultStore:
         """Store ``records`` (inputs from ``cases`` by id) in one transaction; a case already
         stored is left as it is. Returns the number of rows inserted."""
         names = ["case_id", *INPUT_COLUMNS, *RESULT_COLUMNS]
-        sql = (f"INSERT OR IGNORE INTO results ({', '.join(names)}) "
-               f"VALUES ({', '.join('?' * len(names))})")
-        rows = []
+        values = f"({', '.join(names)}) VALUES ({', '.join('?' * len(names))})"
+        sql = f"INSERT OR IGNORE INTO results {values}"
+        replace = f"INSERT OR REPLACE INTO results {values}"  # damaged rows only
+        repaired: list[tuple] = []
+        rows: list[tuple] = []
         for rec in records:
             case = cases[rec.case_id]
             inputs = case.columns()
-            rows.append((rec.case_id, *(inputs[c] for c in INPUT_COLUMNS), rec.status,
-                         rec.outcome, rec.error, rec.elapsed_s, case.canonical_json,
-                         json.dumps(rec.outputs, sort_keys=True, allow_nan=False)))
+            row = (rec.case_id, *(inputs[c] for c in INPUT_COLUMNS), rec.status,
+                   rec.outcome, rec.error, rec.elapsed_s, case.canonical_json,
+                   json.dumps(rec.outputs, sort_keys=True, allow_nan=False))
+            (repaired if rec.case_id in self.damaged else rows).append(row)
         with self._db:
             before = self._db.total_changes
             self._db.executemany(sql, rows)
+            self._db.executemany(replace, repaired)
+            self.damaged.difference_update(r[0] for r in repaired)
             return self._db.total_changes - before
 
     # ------------------------------------------------------------------ export
     def export(self, path: str | Path) -> Path:
-        """Write every row (inputs and outputs as columns) to ``.csv`` or ``.parquet``."""
+        """Write every whole row (inputs and outputs as columns) to ``.csv`` or ``.parquet``;
+        damaged rows are skipped and their ids added to :attr:`damaged`."""
         path = Path(path)
         rows = self.rows()
         columns = ["case_id", *INPUT_COLUMNS, *(c for c in RESULT_COLUMNS if c != "outputs_json")]
@@ -209,6 +305,18 @@ class ResultStore:
         else:
             raise ArchquakeError(f"export file must end in .csv or .parquet, got {path.name!r}")
         return path
+
+
+def _decode(status: object, outputs: object) -> dict | None:
+    """A row's outputs, or None if the row is damaged (unknown status, outputs that are not a
+    JSON object)."""
+    if status not in (STATUS_OK, STATUS_ERROR) or not isinstance(outputs, str):
+        return None
+    try:
+        decoded = json.loads(outputs)
+    except ValueError:
+        return None
+    return decoded if isinstance(decoded, dict) else None
 
 
 def _flatten(obj: Mapping[str, Any], prefix: str) -> dict[str, Any]:

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import stat
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -123,6 +124,44 @@ class Study:
         return folder / f"{self.name}.sqlite"
 
 
+#: Largest study file read, bytes: a study is a few tables; its grids are ranges, not lists.
+MAX_STUDY_BYTES = 16 * 10**6
+
+
+def _has_control(text: str) -> bool:
+    """True if ``text`` holds a control character (NUL, newline, ...): no file name takes one."""
+    return any(ord(c) < 32 or ord(c) == 127 for c in text)
+
+
+def read_toml(path: Path, what: str) -> dict[str, Any]:
+    """The parsed TOML file ``path`` (``what`` names it in messages, e.g. "study file"), read
+    only if it is a regular file of reasonable size; every failure is one
+    :class:`StudyFileError` line naming the file."""
+    try:
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode):  # a device or pipe could stream or block forever
+            raise StudyFileError(f"{what} {str(path)!r} is not a regular file")
+        if info.st_size > MAX_STUDY_BYTES:
+            raise StudyFileError(f"{what} {str(path)!r} is {info.st_size / 1e6:.0f} MB; a "
+                                 f"{what} may hold at most {MAX_STUDY_BYTES / 1e6:.0f} MB")
+        with path.open("rb") as fh:
+            data = tomllib.load(fh)
+    except RecursionError:  # tomllib recurses once per level of nested arrays or tables
+        raise StudyFileError(f"{path.name}: arrays or tables nested too deeply for the TOML "
+                             f"reader (a {what} needs two or three levels)") from None
+    except FileNotFoundError:
+        raise StudyFileError(f"{what} {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise StudyFileError(f"cannot read {what} {str(path)!r}: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyFileError(f"{path.name}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        line = data_line(path, exc.start)
+        raise StudyFileError(f"{path.name}: line {line}: byte 0x{exc.object[exc.start]:02x} is "
+                             "not UTF-8 (TOML files are UTF-8; re-save the file as UTF-8)") from None
+    return data
+
+
 def load_study(path: str | Path) -> Study:
     """Read and validate a ``STUDY.toml`` file.
 
@@ -132,19 +171,7 @@ def load_study(path: str | Path) -> Study:
         One line naming the file, the key and what is expected.
     """
     path = Path(path)
-    try:
-        with path.open("rb") as fh:
-            data = tomllib.load(fh)
-    except FileNotFoundError:
-        raise StudyFileError(f"study file {str(path)!r} does not exist") from None
-    except OSError as exc:
-        raise StudyFileError(f"cannot read study file {str(path)!r}: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise StudyFileError(f"{path.name}: not valid TOML: {exc}") from None
-    except UnicodeDecodeError as exc:
-        line = data_line(path, exc.start)
-        raise StudyFileError(f"{path.name}: line {line}: byte 0x{exc.object[exc.start]:02x} is "
-                             "not UTF-8 (TOML files are UTF-8; re-save the file as UTF-8)") from None
+    data = read_toml(path, "study file")
     return parse_study(data, source=path.name, base_dir=path.parent, path=path)
 
 
@@ -158,8 +185,10 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
     study = p.table(data, "study", required=True)
     p.keys(study, "study", _STUDY_KEYS)
     name = study["name"]
-    if not isinstance(name, str) or not name.strip() or any(c in name for c in "/\\"):
-        p.fail("study.name", f"must be a non-empty string without slashes, got {name!r}")
+    if (not isinstance(name, str) or not name.strip() or any(c in name for c in "/\\")
+            or _has_control(name)):
+        p.fail("study.name", f"must be a non-empty string without slashes or control "
+                             f"characters (it names the store file), got {name!r}")
     try:  # the words of archquake run --model (hinges is retired: a pointer to model)
         model = model_of(study.get("model"), study.get("hinges"),
                          model_name="study.model", hinges_name="study.hinges")
@@ -235,6 +264,8 @@ class _Parser:
 
     def existing(self, key: str, name: str) -> str:
         """``name`` relative to the study file, absolute; one line if it does not exist."""
+        if not isinstance(name, str) or _has_control(name):
+            self.fail(key, f"must be a file name without control characters, got {name!r}")
         full = (self.base_dir / name).resolve()
         if not full.is_file():
             self.fail(key, f"names {name!r}, which does not exist (paths are relative to the "

@@ -164,7 +164,10 @@ def oppenheim_arch(radius: float = OPPENHEIM_RADIUS_M,
     embrace_deg : float
         Embrace, degrees.
     voussoirs : int
+        Number of voussoirs.
 
+    Examples
+    --------
     >>> oppenheim_arch().thickness
     1.5
     """
