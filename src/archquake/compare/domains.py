@@ -254,7 +254,7 @@ def compare_domains(
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
     of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
     model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`)."""
-    an = failure_domain(arch, family, durations, g=g)
+    an = failure_domain(arch, family, durations, g=g, model="fourlink")
     pool = executor
     own = None
     if pool is None and (workers is None or workers > 1):
