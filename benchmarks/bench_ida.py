@@ -44,12 +44,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         with ResultStore(Path(tmp) / "warm.sqlite") as store:  # compile the kernels
             incremental_dynamic_analysis(arch, records[:1], "pga", store, ceiling=1.0,
-                                         precision=0.5, fill=2.0, executor=SerialExecutor())
+                                         precision=0.5, fill=2.0, model="fourlink",
+                                         executor=SerialExecutor())
         simulate(prepared, records[0], options=SolverOptions(output_interval=0.0))
         t0 = time.perf_counter()
         with ResultStore(Path(tmp) / "ida.sqlite") as store:
             res = incremental_dynamic_analysis(arch, records, "pga", store, ceiling=5.0,
-                                               precision=0.02, fill=0.10,
+                                               precision=0.02, fill=0.10, model="fourlink",
                                                executor=SerialExecutor())
         t_ida = time.perf_counter() - t0
     cases = [Case(arch, ExcitationSpec("record", motion=m, scale=float(f)))

@@ -38,7 +38,7 @@ def test_dem_first_half_cycle_boundary_point(oppenheim):
     lo = simulate_dem(asm, StepImpulse.from_g(below, tp), st)
     assert hi.outcome.value == "collapse" and hi.first_impact_time is None
     assert lo.outcome.value != "collapse" or lo.first_impact_time is not None
-    analytical = float(failure_domain(oppenheim, "step", [tp]).first_half_cycle_g[0])
+    analytical = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
     assert 0.99 * below <= analytical <= 1.01 * above
     assert dd.runs >= 4 and dom.evaluations >= dd.runs  # memoised: lookups >= runs
 
@@ -102,7 +102,7 @@ def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):
     dom = dd.domain
     above, below = float(dom.first_half_cycle_g[0]), float(dom.first_half_cycle_below_g[0])
     assert math.isfinite(above) and above - below <= COARSE.precision_g + 1e-12
-    analytical = float(failure_domain(oppenheim, "step", [tp]).first_half_cycle_g[0])
+    analytical = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
     assert 0.99 * below <= analytical <= 1.01 * above
     with pytest.raises(InvalidParameterError, match="model must be one of dem, rigid"):
         dem_failure_domain(oppenheim, "step", [tp], model="analytical", workers=1)

@@ -28,8 +28,8 @@ def test_search_at_the_precision_floor_ends_and_agrees():
     # Oracle: the same boundary found at 1e-3 g lies inside the bracket found at the floor.
     coarse = DomainSettings(coarse_points=12, fine_points=4)
     fine = DomainSettings(coarse_points=12, fine_points=4, precision_g=PRECISION_FLOOR * 5.0)
-    a = failure_domain(OPPENHEIM, "step", [0.44], settings=coarse)
-    b = failure_domain(OPPENHEIM, "step", [0.44], settings=fine)
+    a = failure_domain(OPPENHEIM, "step", [0.44], settings=coarse, model="fourlink")
+    b = failure_domain(OPPENHEIM, "step", [0.44], settings=fine, model="fourlink")
     assert b.collapse_g[0] - b.collapse_below_g[0] <= 1e-10
     assert a.collapse_below_g[0] <= b.collapse_g[0] <= a.collapse_g[0]
 
@@ -70,7 +70,7 @@ def test_same_band_found_whatever_the_ceiling():
     bands = {}
     for top in (2.5, 5.0, 9.0):
         s = DomainSettings(max_magnitude_g=top, coarse_points=40, fine_points=24)
-        d = failure_domain(OPPENHEIM, "step", [0.27], settings=s)
+        d = failure_domain(OPPENHEIM, "step", [0.27], settings=s, model="fourlink")
         bands[top] = [(b.criterion, b.lower_g, b.upper_g) for b in d.non_monotonic_bands
                       if b.upper_g < 2.5]
         bands[top + 0.5] = float(d.collapse_g[0])

@@ -27,9 +27,9 @@ PRECISION = 1e-3
 @pytest.mark.parametrize("family, durations", [("step", [0.2, 0.5]), ("sine", [0.9, 2.0])])
 @pytest.mark.parametrize("k", [0.25, 4.0])
 def test_exact_dynamic_similarity(quick, family, durations, k):
-    base = failure_domain(oppenheim_arch(10.0), family, durations, settings=quick)
+    base = failure_domain(oppenheim_arch(10.0), family, durations, settings=quick, model="fourlink")
     scaled = failure_domain(oppenheim_arch(10.0 * k), family, np.array(durations) * math.sqrt(k),
-                            settings=quick)
+                            settings=quick, model="fourlink")
     d_map, first_map = similar_boundary(base.durations, base.first_half_cycle_g, k)
     np.testing.assert_allclose(d_map, scaled.durations, rtol=1e-14)
     np.testing.assert_allclose(scaled.first_half_cycle_g, first_map, atol=PRECISION)
@@ -41,8 +41,8 @@ def test_paper_sqrt_rule_is_approximate(quick):
     """Larger arches are stronger (paper p. 2128); the sqrt(R) rule is close for short pulses and
     fails towards long ones, where every radius tends to the same lambda."""
     durations = [0.3, 1.2]
-    ref = failure_domain(oppenheim_arch(10.0), "step", durations, settings=quick)
-    big = failure_domain(oppenheim_arch(20.0), "step", durations, settings=quick)
+    ref = failure_domain(oppenheim_arch(10.0), "step", durations, settings=quick, model="fourlink")
+    big = failure_domain(oppenheim_arch(20.0), "step", durations, settings=quick, model="fourlink")
     assert np.all(big.collapse_g > ref.collapse_g)
     cmp = compare_scaling(ref, big)
     _, paper = paper_boundary(ref.durations, ref.collapse_g, 2.0)

@@ -88,7 +88,7 @@ def test_step_pulse_ida_reproduces_the_failure_domain(tmp_path, tp):
     The IDA of the pulse as a one-record suite (PGA = a) must find the same three transitions.
     Tolerance: each IDA bracket is 0.2 % wide (precision 0.002) and each domain bracket 0.001 g,
     so the domain's collapsing level must lie within the IDA bracket widened by 0.001 g."""
-    dom = failure_domain(oppenheim_arch(), "step", [tp])
+    dom = failure_domain(oppenheim_arch(), "step", [tp], model="fourlink")
     (band,) = dom.non_monotonic_bands
     with ResultStore(tmp_path / "s.sqlite") as store:
         res = incremental_dynamic_analysis(OPPENHEIM, [StepImpulse.from_g(1.0, tp)], "pga", store,
@@ -342,11 +342,11 @@ def test_cli_ida_json_and_csv(tmp_path, capsys, records):
 
 @pytest.mark.parametrize("extra, pool", [(["--model", "fourlink"], False),
                                          (["--model", "fourlink", "--workers", "2"], True),
-                                         (["--model", "dem"], True), ([], True)])
+                                         (["--model", "dem"], True), ([], False)])
 def test_cli_executor_follows_the_library_default(tmp_path, monkeypatch, extra, pool):
-    """The four-link model with no --workers/--scheduler runs as the library's default (in
-    this process: no executor passed, no pool opened); --workers, the DEM and the rigid chain
-    (the default) open the pool.
+    """The four-link model and the rigid chain (the default) with no --workers/--scheduler
+    run as the library's default (in this process: no executor passed, no pool opened);
+    --workers and the DEM open the pool.
     Oracle: the executor the analysis receives (a spy stops before any run)."""
     import archquake.ida
     import archquake.parallel

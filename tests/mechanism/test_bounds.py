@@ -53,9 +53,9 @@ def test_domain_refuses_durations_below_the_floor():
 
     # before: every magnitude above lambda "collapsed", boundary at lambda = 0.370 g
     with pytest.raises(InvalidParameterError, match="pulse duration t_p"):
-        failure_domain(OPPENHEIM, "step", [1e-13])
+        failure_domain(OPPENHEIM, "step", [1e-13], model="fourlink")
     with pytest.raises(InvalidParameterError, match="period T"):
-        failure_domain(OPPENHEIM, "sine", [1e-12])
+        failure_domain(OPPENHEIM, "sine", [1e-12], model="fourlink")
 
 
 # ------------------------------------------------------------ history memory (item 1)

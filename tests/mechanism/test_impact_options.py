@@ -79,9 +79,10 @@ def test_laws_differ_where_the_paper_says_collapse():
 
 def test_failure_domain_takes_restitution_and_impact():
     s = DomainSettings(coarse_points=12, fine_points=4)
-    paper = failure_domain(OPPENHEIM, "step", [0.27], settings=s)
-    chain = failure_domain(OPPENHEIM, "step", [0.27], settings=s, impact="chain")
-    plastic = failure_domain(OPPENHEIM, "step", [0.27], settings=s, restitution=0.0)
+    paper = failure_domain(OPPENHEIM, "step", [0.27], settings=s, model="fourlink")
+    chain = failure_domain(OPPENHEIM, "step", [0.27], settings=s, impact="chain", model="fourlink")
+    plastic = failure_domain(OPPENHEIM, "step", [0.27], settings=s, restitution=0.0,
+                             model="fourlink")
     assert paper.impact_law == "paper" and chain.impact_law == "chain"
     assert chain.restitution_cv == pytest.approx(0.7461, abs=1e-4)
     assert plastic.restitution_cv == 0.0 and plastic.restitution_prescribed
@@ -129,9 +130,9 @@ def test_case_options_take_impact_without_changing_existing_ids():
 
     arch = ArchSpec(10, 0.15, 157.5, 7)
     exc = ExcitationSpec("step", magnitude_g=1.0, duration_s=0.27)
-    base = Case(arch, exc)
-    assert Case(arch, exc, options=CaseOptions(impact="paper")).case_id == base.case_id
-    chain = Case(arch, exc, options=CaseOptions(impact="chain"))
+    base = Case(arch, exc, "fourlink")
+    assert Case(arch, exc, "fourlink", CaseOptions(impact="paper")).case_id == base.case_id
+    chain = Case(arch, exc, "fourlink", CaseOptions(impact="chain"))
     assert chain.case_id != base.case_id
     assert CaseOptions(restitution=0).restitution == 0.0
     with pytest.raises(InvalidParameterError, match="restitution"):
@@ -180,8 +181,8 @@ def test_ida_batch_reports_the_law_and_qualifies_verdicts():
     from archquake.sweeps import ArchSpec, Case, CaseOptions, ExcitationSpec
 
     bridge = ArchSpec(5.0, 0.12, 180.0, 15)
-    cases = [Case(bridge, ExcitationSpec("step", magnitude_g=0.15, duration_s=tp),
-                  options=CaseOptions(impact="paper")) for tp in (0.1, 0.3)]
+    cases = [Case(bridge, ExcitationSpec("step", magnitude_g=0.15, duration_s=tp), "fourlink",
+                  CaseOptions(impact="paper")) for tp in (0.1, 0.3)]
     out = evaluate_cases(cases)
     assert [o["impact_law"] for o in out] == ["paper", "paper"]
     assert [o["outcome"] for o in out] == ["indeterminate", "collapse"]
@@ -250,7 +251,7 @@ def test_plots_say_indeterminate(tmp_path):
     from archquake.plotting.history import verdict_text
 
     s = DomainSettings(coarse_points=8, fine_points=2, precision_g=0.01)
-    dom = failure_domain(BRIDGE, "step", [0.15, 0.3], settings=s, impact="paper")
+    dom = failure_domain(BRIDGE, "step", [0.15, 0.3], settings=s, impact="paper", model="fourlink")
     assert not dom.impact_described
     assert dom.collapse_verdict == ("indeterminate", "indeterminate")
     ax = plot_domain(dom)

@@ -1,8 +1,10 @@
 """The rigid chain as the default sweep model, and the models' words.
 
-Oracles: :func:`archquake.rigid.simulate_rigid` called directly with the window
-``archquake run`` documents (the end of the excitation + 5 sqrt(R/g), on until rest up to the
-end of the excitation + 60 sqrt(R/g)); the pinned id of an existing four-link case."""
+Oracles: :func:`archquake.rigid.rigid_verdict` called directly (the case's summary is its
+verdict), and, independently, :func:`archquake.rigid.simulate_rigid` at its own recorded step
+(1e-4 s, ten times finer than the verdict's) with the window ``archquake run --friction``
+documents (the end of the excitation + 5 sqrt(R/g), on until rest up to the end of the
+excitation + 60 sqrt(R/g)); the pinned id of an existing four-link case."""
 
 from __future__ import annotations
 
@@ -13,7 +15,7 @@ import pytest
 from archquake.compare import default_dem_duration
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, StudyFileError
-from archquake.rigid import simulate_rigid
+from archquake.rigid import rigid_verdict, simulate_rigid
 from archquake.sweeps import (
     ArchSpec,
     Case,
@@ -29,21 +31,32 @@ OPPENHEIM = ArchSpec(10, 0.15, 157.5, 7)
 STEP = ExcitationSpec("step", magnitude_g=0.5, duration_s=0.25)
 
 
-def test_rigid_case_equals_simulate_rigid():
-    """The default model of a case is the rigid chain, run to a verdict."""
-    case = Case(OPPENHEIM, STEP)
+@pytest.mark.parametrize("a_g", [0.5, 1.2])
+def test_rigid_case_is_the_verdict_and_agrees_with_the_recorded_run(a_g):
+    """The default model of a case is the rigid chain, on its verdict path; its outcome and
+    collapse half cycle are those of the recorded stepper at 1e-4 s. Both magnitudes lie far
+    from the step pulse's threshold at t_p = 0.25 s (0.5 g survives, 1.2 g collapses), so the
+    two steps must agree. The largest rotation of the survival is held to the recorded run's
+    at the same step (1e-4 s: the verdict kernel and the recorded stepper integrate the same
+    equations, measured to agree within 1e-7); at the verdict's own step (1e-3 s) it is 17 %
+    below (0.00401 against 0.00480 rad, a small rocking's second half cycle: docs/earthquakes.md)
+    and is not compared."""
+    step = ExcitationSpec("step", magnitude_g=a_g, duration_s=0.25)
+    case = Case(OPPENHEIM, step)
     assert case.model is Model.RIGID
     out = evaluate_case(case)
-    arch, motion = OPPENHEIM.build(), STEP.build()
+    arch, motion = OPPENHEIM.build(), step.build()
+    assert out == {**rigid_verdict(arch, motion).to_dict(), "model": "rigid",
+                   "evaluator": out["evaluator"]}
     cap = motion.duration + 60 * math.sqrt(arch.radius / STANDARD_GRAVITY)
     ref = simulate_rigid(arch, motion, duration=default_dem_duration(arch, motion),
                          until_rest=cap).to_dict(joint_forces=False)
-    for key in ("outcome", "collapse_half_cycle", "collapse_time_s", "impact_times_s",
-                "peak_rotation_rad", "end_time_s", "verdict", "model"):
-        assert out[key] == ref[key], key
+    assert out["outcome"] == ref["outcome"] == ("survives" if a_g < 1 else "collapse")
+    assert out["collapse_half_cycle"] == ref["collapse_half_cycle"]
+    if ref["outcome"] == "survives":
+        fine = rigid_verdict(arch, motion, time_step=1e-4)
+        assert fine.max_rotation_rad == pytest.approx(ref["max_rotation_rad"], rel=1e-5)
     assert out["model"] == "rigid" and "joint_forces" not in out
-    # the window went past the first 5 sqrt(R/g) only if the arch still moved: a verdict either way
-    assert out["outcome"] in ("survives", "collapse", "no_hinging")
 
 
 def test_rigid_case_refuses_impact_options_and_keeps_existing_ids():

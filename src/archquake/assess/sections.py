@@ -263,7 +263,7 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
     prescribed = ctx.config.restitution is not None or cv != prep.restitution
     return {fam: failure_domain(prep, fam, ctx.mode.durations,
                                 settings=ctx.mode.domain_settings,
-                                restitution=cv if prescribed else None)
+                                restitution=cv if prescribed else None, model="fourlink")
             for fam in ("step", "sine")}
 
 
@@ -348,11 +348,16 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     store_path.parent.mkdir(parents=True, exist_ok=True)
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
-    n = workers()
-    with ResultStore(store_path) as store, interruptible_pool(n) as executor:
-        res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
-                                           model=cfg.model, executor=executor, workers=n,
-                                           **ctx.mode.ida)
+    if cfg.model == "rigid":  # one threaded batch of verdicts per round, in this process
+        with ResultStore(store_path) as store:
+            res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
+                                               model=cfg.model, **ctx.mode.ida)
+    else:
+        n = workers()
+        with ResultStore(store_path) as store, interruptible_pool(n) as executor:
+            res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
+                                               model=cfg.model, executor=executor, workers=n,
+                                               **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
@@ -609,11 +614,12 @@ def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndar
     return np.sort(np.argsort(gap, kind="stable")[:count])
 
 
-def _rigid_outcome(arch, motion, friction: float | None, time_step: float | None) -> str:
-    """One run of the rigid chain to a verdict: its outcome's word (module level: picklable)."""
+def _rigid_friction_outcome(arch, motion, friction: float) -> str:
+    """One recorded run of the rigid chain with Coulomb joints to a verdict (the verdict path
+    has no friction): its outcome's word (module level: picklable)."""
     from archquake.compare import rigid_to_verdict
 
-    run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step)
+    run = rigid_to_verdict(arch, motion, friction=friction)
     return str(run.outcome.value)
 
 
@@ -621,14 +627,17 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     """What the rigid chain's verdicts at the site PGA rest on, in place of a restitution: the
     time step and sliding. The pulses of the site PGA at every scanned duration (quick mode:
     the two of each family whose governing boundary is nearest the site PGA, the verdicts a
-    small change would flip first) and the governing record scaled to it are run at the
-    default step, at half of it, and with Coulomb joints of the given friction coefficient (at
-    the default step). A verdict that changes at
+    small change would flip first) and the governing record scaled to it are run on the
+    verdict path (:func:`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
+    it (guarded at a quarter), and with Coulomb joints of the given friction coefficient (the
+    recorded stepper, :func:`archquake.compare.rigid_to_verdict`: the verdict path has no
+    friction). A verdict that changes at
     half the step is a serious warning (the step does not resolve the motion); one that changes
     from survival to collapse with friction too (the joints slide, which the default no-slip
     chain leaves out); from collapse to survival with friction only a note."""
     from archquake.ground.pulses import SinePulse, StepImpulse
-    from archquake.rigid import DEFAULT_TIME_STEP
+    from archquake.rigid import rigid_verdicts
+    from archquake.rigid.verdict import verdict_time_step
 
     assert ctx.site is not None  # called only with a site PGA
     site = float(ctx.site)
@@ -647,19 +656,20 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
                            units=cfg.units)
         rec = suite.records[gov["index"]]
         cases.append((f"record {gov['record']}", rec.scaled(site / gov["pga_unscaled_g"])))
-    variants = (("default_step", None, None), ("half_step", None, 0.5 * DEFAULT_TIME_STEP),
-                ("friction", ctx.config.friction, None))
-    ctx.say(f"  {len(cases)} cases at the site PGA x {len(variants)} (step, half step, friction)")
-    jobs = [(m, mu, h) for _, m in cases for _, mu, h in variants]
-    with interruptible_pool(min(workers(), len(jobs))) as pool:
-        futures = [pool.submit(_rigid_outcome, ctx.arch, m, mu, h) for m, mu, h in jobs]
-        words = [fu.result() for fu in futures]
+    ctx.say(f"  {len(cases)} cases at the site PGA x 3 (step, half step, friction)")
+    motions = [m for _, m in cases]
+    h = verdict_time_step(ctx.arch)
+    with interruptible_pool(min(workers(), len(motions))) as pool:
+        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, ctx.config.friction)
+                   for m in motions]
+        default = rigid_verdicts(ctx.arch, motions, time_step=h)
+        half = rigid_verdicts(ctx.arch, motions, time_step=0.5 * h)
+        slid = [fu.result() for fu in futures]
     out = []
     for k, (case, _) in enumerate(cases):
-        row = {"case": case, "time_step_s": DEFAULT_TIME_STEP,
-               "friction_coefficient": ctx.config.friction}
-        row.update({name: words[k * len(variants) + j] for j, (name, _, _) in enumerate(variants)})
-        out.append(row)
+        out.append({"case": case, "time_step_s": h, "friction_coefficient": ctx.config.friction,
+                    "default_step": default[k].outcome.value,
+                    "half_step": half[k].outcome.value, "friction": slid[k]})
     step_changed = [r["case"] for r in out if r["half_step"] != r["default_step"]]
     if step_changed:
         warn("time_step", f"the verdict at the site PGA changes at half the time step under "

@@ -102,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     _check_search(arch, args.scan, args.precision, args.max_magnitude)
     settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
                               fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
-    dom = failure_domain(arch, args.pulse, args.durations, settings=settings, **impact)
+    dom = failure_domain(arch, args.pulse, args.durations, settings=settings, **impact, model="fourlink")
     if args.csv:
         dom.write_csv(args.csv)
     if args.plot:

@@ -61,15 +61,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="relative width of every survive/collapse bracket (default 0.02 = 2 %%)")
     p.add_argument("--fill", type=number, default=0.10, metavar="F",
                    help="largest relative gap between levels run (default 0.10)")
-    add_model_argument(p, extra="rigid and dem run a process per core (~0.2 s a run for "
-                                "rigid); fourlink its compiled batch on every core's threads")
+    add_model_argument(p, extra="rigid runs its verdicts as one compiled batch per round on "
+                                "every core's threads, fourlink likewise; dem a process per core")
     add_impact_arguments(p)
     p.add_argument("--store", type=path_argument, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
-                   help="local worker processes (default: fourlink runs in this process, its "
-                        "compiled batch on all cores' threads; rigid and dem on a process per "
-                        "core; 1 runs serially)")
+                   help="local worker processes (default: rigid and fourlink run in this "
+                        "process, their compiled batch on all cores' threads; dem on a process "
+                        "per core; 1 runs serially)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="run on the Dask cluster whose scheduler listens at this address")
     p.add_argument("--bootstrap", type=whole, default=500, metavar="N",
@@ -240,14 +240,15 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
 
 
 def _executor(args: argparse.Namespace) -> AbstractContextManager[tuple[Any, int | None]]:
-    """Where the runs go: the analysis's own default for the analytical model when neither
-    --workers nor --scheduler is given (this process, the compiled batch on numba's threads:
-    2.62 s against 3.10 s through a pool, docs/earthquakes.md), else the executor the options
+    """Where the runs go: the analysis's own default for the four-link model and the rigid
+    chain when neither --workers nor --scheduler is given (this process, the compiled batch on
+    threads: 2.62 s against 3.10 s through a pool for the four-link model,
+    docs/earthquakes.md), else the executor the options
     ask for (the DEM's runs are one process each: a pool of all cores by default)."""
     from archquake.parallel import open_executor
     from archquake.sweeps import Model
 
-    if _model(args) is Model.FOURLINK and args.workers is None and args.scheduler is None:
+    if _model(args) in (Model.FOURLINK, Model.RIGID) and args.workers is None and args.scheduler is None:
         return nullcontext((None, None))
     return open_executor(workers=args.workers, scheduler=args.scheduler)
 

@@ -6,6 +6,14 @@ block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), 
 migrating and closing anywhere. Its output is ``RigidRun.to_dict()``: the keys every model
 shares (:data:`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
 run is read by the DEM's own code) and the rigid stepper's.
+
+Without ``--t-end``, ``--friction`` or ``--integrator events``, the verdict printed is the
+verdict path's (:func:`archquake.rigid.rigid_verdict`: the step scaled with the arch, 1e-3 s on
+Oppenheim's arch, rerun at half the step near a threshold, ``indeterminate`` where the two
+differ), under ``rigid_verdict`` in the JSON; the recorded history (plot, ``--history``,
+impacts, peak rotations) is :func:`archquake.compare.rigid_to_verdict` at that step, its own
+outcome kept as ``history_outcome``. With ``--friction`` (the verdict path has no sliding) or
+``--integrator events`` the recorded run's verdict is printed, at 1e-4 s.
 """
 
 from __future__ import annotations
@@ -31,17 +39,39 @@ def run(args: argparse.Namespace, arch, motion) -> int:
 
     duration = block_duration(args, arch, motion, "--model rigid",
                               "the rigid chain steps 1e-4 s")
+    verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
-        result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
+        if args.friction is None and solver == "direct":  # the guarded verdict, its step
+            from archquake.rigid import rigid_verdict
+
+            verdict = rigid_verdict(arch, motion)
+            result = rigid_to_verdict(arch, motion, solver=solver,
+                                      time_step=verdict.time_step_s)
+        else:
+            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
     else:  # a given --t-end is run as given
         result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
                                 solver=solver)
     from archquake.cli.dem_run import emit_block_run
 
-    return emit_block_run(args, arch, motion, result.result, result.to_dict(), _print_text,
+    out = result.to_dict()
+    if verdict is not None:
+        out = with_verdict(out, verdict)
+    return emit_block_run(args, arch, motion, result.result, out, _print_text,
                           label="rigid chain")
+
+
+def with_verdict(out: dict, verdict) -> dict:
+    """A recorded run's summary ``out`` with the verdict path's ``verdict``
+    (:class:`~archquake.rigid.RigidVerdict`) in place of its own: outcome, collapse half cycle
+    and time (s), the reason; the verdict's own keys under ``rigid_verdict``, the history's
+    outcome under ``history_outcome``."""
+    return {**out, "outcome": verdict.outcome.value,
+            "collapse_half_cycle": verdict.collapse_half_cycle,
+            "collapse_time_s": verdict.collapse_time_s, "verdict": verdict.reason,
+            "history_outcome": out["outcome"], "rigid_verdict": verdict.to_dict()}
 
 
 def _print_text(out: dict) -> None:
@@ -64,6 +94,13 @@ def _print_text(out: dict) -> None:
     from archquake.cli.dem_run import print_block_verdict
 
     print_block_verdict(out)
+    v = out.get("rigid_verdict")
+    if v is not None:
+        print(f"verdict path        step {v['time_step_s']:.3g} s, "
+              + (f"rerun at half the step: {v['guard_outcome']}" if v["guard_ran"]
+                 else "not near a threshold (no rerun)")
+              + ("" if out["history_outcome"] == out["outcome"]
+                 else f"; the recorded history ends {out['history_outcome']}"))
     events = out["mechanisms"]
     for k, e in enumerate(events[:10]):
         print(f"{'hinge sets' if k == 0 else '':<19} t = {e['time_s']:.3f} s  {e['kind']:<7} "

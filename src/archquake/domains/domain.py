@@ -342,6 +342,25 @@ def _predicate(res, criterion: str) -> np.ndarray:
     return res.collapses_first if criterion == FIRST_HALF_CYCLE else res.collapses
 
 
+def _rigid_evaluator(arch, family, restitution, impact, g: float, threads: int | None):
+    """The rigid chain's outcomes for :func:`failure_domain` (``model='rigid'``)."""
+    from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+    from archquake.dem.settings import DemSettings
+    from archquake.domains.blocks import DOMAIN_TAIL, DemPulseEvaluator
+
+    for name, value in (("restitution", restitution), ("impact", impact)):
+        if value is not None:
+            raise InvalidParameterError(f"{name} applies to model fourlink only; the rigid "
+                                        "chain's impacts follow from its contacts")
+    if not isinstance(arch, VoussoirChain):
+        raise InvalidParameterError("model 'rigid' needs an Arch; a PreparedMechanism is the "
+                                    "four-link model's (model='fourlink')")
+    require_positive("g", g, "m/s^2")
+    return DemPulseEvaluator(dem_assembly(arch, VOUSSOIRS), PulseFamily.parse(family),
+                             DemSettings(), DOMAIN_TAIL * math.sqrt(arch.radius / g), g=g,
+                             model="rigid", threads=threads)
+
+
 def failure_domain(
     arch: Arch | PreparedMechanism,
     family: PulseFamily | str = PulseFamily.STEP,
@@ -352,6 +371,8 @@ def failure_domain(
     impact: str | None = None,
     g: float = STANDARD_GRAVITY,
     evaluate: Callable[[np.ndarray, np.ndarray], PulseOutcomes] | None = None,
+    model: str | None = None,
+    threads: int | None = None,
 ) -> FailureDomain:
     """Failure domain of an arch for a pulse family (paper Figures 5, 6, 7, 11).
 
@@ -376,6 +397,16 @@ def failure_domain(
         :func:`archquake.compare.dem_failure_domain`). Default: the compiled analytical batch
         :func:`~archquake.domains.evaluate_pulses` (``settings.options``, ``settings.early``).
         lambda (the scan's start) is always the analytical mechanism's.
+    model : {'rigid', 'fourlink'}, optional
+        The model whose outcomes are searched when ``evaluate`` is not given. ``'rigid'`` (the
+        default for an Arch): the chain of rigid voussoirs, every voussoir a block, each pulse
+        run for itself plus :data:`~archquake.domains.blocks.DOMAIN_TAIL` sqrt(R/g) as
+        threaded batches of guarded verdicts (:func:`archquake.rigid.rigid_verdicts`; its
+        impacts follow from the contacts: no ``restitution`` or ``impact``). ``'fourlink'``
+        (the default for a PreparedMechanism): the paper's four-link mechanism, the compiled
+        batch :func:`~archquake.domains.evaluate_pulses`.
+    threads : int, optional
+        With ``model='rigid'``: threads of each batch (default: the usable cores).
 
     Returns
     -------
@@ -389,13 +420,20 @@ def failure_domain(
     >>> import math
     >>> from archquake import Arch
     >>> d = failure_domain(Arch(10, 1.5, math.radians(157.5), 7), "step", [0.44],
-    ...                    settings=DomainSettings(coarse_points=30, fine_points=10))
+    ...                    settings=DomainSettings(coarse_points=30, fine_points=10),
+    ...                    model="fourlink")
     >>> lam, first, governing = d.no_hinging_g[0], d.first_half_cycle_g[0], d.collapse_g[0]
     >>> bool(lam < governing < first < 1.0), int(d.collapse_half_cycle[0])
     (True, 2)
     """
     settings = DomainSettings() if settings is None else settings
     require_instance("settings", settings, DomainSettings, "a DomainSettings (or None)")
+    if model is None:
+        model = "fourlink" if isinstance(arch, PreparedMechanism) else "rigid"
+    if model not in ("rigid", "fourlink"):
+        raise InvalidParameterError(f"model must be 'rigid' or 'fourlink', got {model!r}")
+    if evaluate is None and model == "rigid":
+        evaluate = _rigid_evaluator(arch, family, restitution, impact, g, threads)
     if evaluate is not None and isinstance(arch, VoussoirChain):
         # another model's outcomes carry their own impacts: only the hinges and lambda of the
         # equivalent static analysis are read (an asymmetric arch has no four-link impact law)

@@ -58,7 +58,7 @@ def study_case(label: str, arch: Arch, family: PulseFamily | str, durations,
     """The domain of one arch under the impact law ``impact`` (None: "paper", as the paper's
     studies), with any problem stated."""
     try:
-        dom = failure_domain(arch, family, durations, settings=settings, g=g, impact=impact)
+        dom = failure_domain(arch, family, durations, settings=settings, g=g, impact=impact, model="fourlink")
     except ArchquakeError as exc:  # e.g. UnstableArchError: the arch cannot stand
         return StudyCase(label, arch, None, str(exc))
     problem = None

@@ -9,9 +9,11 @@ store skips what it holds and stores each batch as it completes, on a local pool
 An interrupted analysis rerun with the same store replays the rounds from the store and computes
 only what is missing.
 
-The rigid chain (``model="rigid"``, the default) and the DEM (``model="dem"``) go through
-:func:`archquake.sweeps.evaluate_case` case by case; the four-link model (``model="fourlink"``)
-through one compiled batch call per round and chunk (:func:`archquake.ida.batch.evaluate_cases`).
+The rigid chain (``model="rigid"``, the default) goes through its verdict path, one threaded
+batch of compiled verdicts per round and chunk (:func:`archquake.ida.batch.evaluate_rigid_cases`,
+:func:`archquake.rigid.rigid_verdicts`); the four-link model (``model="fourlink"``) through one
+compiled batch call per round and chunk (:func:`archquake.ida.batch.evaluate_cases`); the DEM
+(``model="dem"``) through :func:`archquake.sweeps.evaluate_case` case by case.
 
 Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
 m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
@@ -334,9 +336,9 @@ def incremental_dynamic_analysis(
         model's own, standard gravity).
     executor, workers, chunk_size
         As :func:`archquake.sweeps.run_sweep` (default: a local process pool), except for the
-        four-link model: with neither ``executor`` nor ``workers`` it runs in this process
+        four-link model and the rigid chain: with neither ``executor`` nor ``workers`` it runs in this process
         (:class:`~archquake.parallel.SerialExecutor`: the compiled batch already spreads a round
-        over all cores with numba's threads; a pool of processes, each with as many threads,
+        over all cores with threads; a pool of processes, each with as many threads,
         started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
         pulse set, docs/earthquakes.md), and its default chunk is a round's share per worker
         (one compiled call per worker and round, :func:`round_chunk_size`).
@@ -347,7 +349,7 @@ def incremental_dynamic_analysis(
     -------
     IdaResult
     """
-    from archquake.ida.batch import evaluate_cases
+    from archquake.ida.batch import evaluate_cases, evaluate_rigid_cases
     from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import prepared_mechanism
     from archquake.sweeps.runner import run_sweep
@@ -355,7 +357,8 @@ def incremental_dynamic_analysis(
     measure = parse_im(im)
     options = CaseOptions() if options is None else options
     model = model_of(model)
-    if model is Model.FOURLINK and executor is None and workers is None:
+    batched = model in (Model.FOURLINK, Model.RIGID)  # one compiled, threaded call per round
+    if batched and executor is None and workers is None:
         executor = SerialExecutor()
     if not motions:
         raise InvalidParameterError("the suite holds no records")
@@ -394,6 +397,11 @@ def incremental_dynamic_analysis(
                                          scale=float(factor), file_sha256=digests[i]),
                     model, options)
 
+    batch: Callable[[Sequence[Case]], list[Any]] | None = None
+    if model is Model.FOURLINK:
+        batch = evaluate_cases
+    elif model is Model.RIGID:
+        batch = evaluate_rigid_cases
     runs: list[dict[float, Case]] = [{} for _ in motions]
     outcomes: list[dict[float, Any]] = [{} for _ in motions]
     computed = 0
@@ -414,10 +422,11 @@ def incremental_dynamic_analysis(
         total_so_far = sum(len(r) for r in runs)
         report = run_sweep(
             new_cases, store,
-            evaluate=None, evaluate_batch=evaluate_cases if model is Model.FOURLINK else None,
+            evaluate=None,
+            evaluate_batch=batch,
             executor=executor, workers=workers,
             chunk_size=(round_chunk_size(len(new_cases), executor, workers)
-                        if chunk_size is None and model is Model.FOURLINK else chunk_size),
+                        if chunk_size is None and batched else chunk_size),
             progress=None if progress is None else _round_progress(
                 progress, rounds, total_so_far, len(new_cases)))
         computed += report.computed

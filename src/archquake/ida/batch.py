@@ -69,6 +69,55 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     return out
 
 
+def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -> list[Any]:
+    """The rigid chain's verdicts of many cases, one threaded batch per (arch, options) group
+    (:func:`archquake.rigid.rigid_verdicts`: the step scaled with the arch, the half-step
+    guard, stopped at collapse or proven rest).
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        Rigid-chain cases (any excitation); ``t_end_s`` is the run's window, s (default: the
+        end of the excitation + 60 sqrt(R/g)).
+    threads : int, optional
+        Threads of each batch (default: the cores this process may use).
+
+    Returns
+    -------
+    list
+        Per case, in order: :func:`archquake.sweeps.evaluate.rigid_summary` of its verdict, or
+        the :class:`~archquake.errors.ArchquakeError` refusing the case.
+    """
+    from archquake.rigid import rigid_verdicts
+    from archquake.sweeps.evaluate import rigid_summary
+
+    out: list[Any] = [None] * len(cases)
+    groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        if case.model is not Model.RIGID:
+            raise InvalidParameterError(f"the rigid batch evaluator runs the rigid chain only, "
+                                        f"got {case.model.value!r}")
+        for key in ("restitution", "impact"):
+            if getattr(case.options, key) is not None:
+                out[i] = InvalidParameterError(f"{key} applies to model fourlink only; the rigid "
+                                               "chain's impacts follow from its contacts")
+        if out[i] is None:
+            groups.setdefault((case.arch, case.options), []).append(i)
+    for (arch, options), idx in groups.items():
+        try:
+            built = arch.build()
+            motions = [cases[i].excitation.build(g=options.g) for i in idx]
+            verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
+                                      threads=threads)
+        except ArchquakeError as exc:
+            for i in idx:
+                out[i] = exc
+            continue
+        for i, v in zip(idx, verdicts, strict=True):
+            out[i] = rigid_summary(v)
+    return out
+
+
 def _run_group(prepared, cases, options, early) -> list[Any]:
     from archquake.ida._kernels import WINDOW_TAU, batch_kernel
     from archquake.mechanism import SolverOptions
@@ -165,4 +214,4 @@ def thread_order(n: int, threads: int) -> list[int]:
     return [j for t in range(threads) for j in range(t, n, threads)]
 
 
-__all__ = ["BATCH_EVALUATOR", "evaluate_cases", "thread_order"]
+__all__ = ["BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases", "thread_order"]

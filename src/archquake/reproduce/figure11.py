@@ -28,7 +28,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
 
     settings = domain_settings(quick)
     periods = np.linspace(0.5, 4.0, 8) if quick else np.linspace(0.25, 4.0, 31)
-    dom = failure_domain(arch, "sine", periods, settings=settings, impact="paper")
+    dom = failure_domain(arch, "sine", periods, settings=settings, impact="paper", model="fourlink")
     first, coll = dom.first_half_cycle_g, dom.collapse_g
     both = np.isfinite(first) & np.isfinite(coll)
     tol = 2 * settings.precision_g

@@ -27,7 +27,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
 
     settings = domain_settings(quick)
     durations = np.linspace(0.1, 1.5, 8) if quick else np.linspace(0.05, 1.5, 40)
-    dom = failure_domain(arch, "step", durations, settings=settings, impact="paper")
+    dom = failure_domain(arch, "step", durations, settings=settings, impact="paper", model="fourlink")
     fig = save_domain(dom, figures / "figure5_domain_step.png")
     lam = float(dom.no_hinging_g[0])
     first, coll = dom.first_half_cycle_g, dom.collapse_g

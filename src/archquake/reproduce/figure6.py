@@ -43,6 +43,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         durations * math.sqrt(2.0),
         settings=settings,
         impact="paper",
+        model="fourlink",
     )
     diff = np.nanmax(
         np.abs(

@@ -73,7 +73,9 @@ O_FIRST_IMPACT_1 = 13  # the same, link 1
 O_LONGEST_0 = 14  # s, the longest time between two consecutive sign changes, or from the last
 #: one to the collapse, link 0 (0: none)
 O_LONGEST_1 = 15  # the same, link 1
-N_OUT = 16
+O_PEAK_ROT_0 = 16  # rad, the largest |rotation measure| before the verdict, link 0
+O_PEAK_ROT_1 = 17  # the same, link 1
+N_OUT = 18
 
 OUTCOME_NO_HINGING = 0
 OUTCOME_SURVIVES = 1
@@ -143,6 +145,7 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
     first_impact = np.full(2, np.nan)
     longest = np.zeros(2)
     prev_rot = np.zeros(2)
+    peak_rot = np.zeros(2)
     for ell in range(2):
         rot0[ell] = _chord_angle(st, links_block, links_local, ell)
         ang_prev[ell] = rot0[ell]
@@ -234,6 +237,8 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
             ang_prev[ell] = a
             prev_rot[ell] = rot[ell]
             rot[ell] += d
+            if abs(rot[ell]) > peak_rot[ell]:
+                peak_rot[ell] = abs(rot[ell])
             r = links_sign[ell] * rot[ell]
             r_prev = links_sign[ell] * prev_rot[ell]
             if armed[ell] == 0.0:
@@ -281,6 +286,8 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
     out[O_FIRST_IMPACT_1] = first_impact[1]
     out[O_LONGEST_0] = longest[0]
     out[O_LONGEST_1] = longest[1]
+    out[O_PEAK_ROT_0] = peak_rot[0]
+    out[O_PEAK_ROT_1] = peak_rot[1]
 
 
 @nb.njit(cache=True, nogil=True)

@@ -187,6 +187,9 @@ class RigidVerdict:
         The rerun's outcome.
     peak_crown_drop : float
         Largest fall of the crown before any collapse, a fraction of the collapse drop.
+    max_rotation_rad : float
+        The largest |rotation| of the chord of the rotation link (hinge A to hinge B, as
+        ``DemResult.rotation``) before the verdict, rad (at the collapse for a collapse).
     lengthening : float
         The longest half cycle after the first (a collapse's up to the collapse) over the
         first (0 without an impact): the guard's measure of nearness.
@@ -210,6 +213,7 @@ class RigidVerdict:
     guard_ran: bool
     guard_outcome: Outcome | None
     peak_crown_drop: float
+    max_rotation_rad: float
     lengthening: float
     impacts: int
     steps: int
@@ -229,7 +233,8 @@ class RigidVerdict:
                 "end_time_s": self.end_time_s, "time_step_s": self.time_step_s,
                 "guard_ran": self.guard_ran,
                 "guard_outcome": None if self.guard_outcome is None else self.guard_outcome.value,
-                "peak_crown_drop": self.peak_crown_drop, "lengthening": self.lengthening,
+                "peak_crown_drop": self.peak_crown_drop,
+                "max_rotation_rad": self.max_rotation_rad, "lengthening": self.lengthening,
                 "impacts": self.impacts,
                 "steps": self.steps, "skipped_steps": self.skipped_steps,
                 "rest_proven": self.rest_proven}
@@ -286,6 +291,7 @@ def _decode(out: np.ndarray, h: float, vg_of) -> dict:
     impacts = int(out[VK.O_IMPACTS_1] if mirrored else out[VK.O_IMPACTS_0])
     first_impact = float(out[VK.O_FIRST_IMPACT_1] if mirrored else out[VK.O_FIRST_IMPACT_0])
     longest = float(out[VK.O_LONGEST_1] if mirrored else out[VK.O_LONGEST_0])
+    peak_rot = float(out[VK.O_PEAK_ROT_1] if mirrored else out[VK.O_PEAK_ROT_0])
     t_onset = None if onset < 0 else (onset + 1) * h
     lengthening = (longest / (first_impact - t_onset)
                    if t_onset is not None and first_impact > t_onset else 0.0)
@@ -294,7 +300,8 @@ def _decode(out: np.ndarray, h: float, vg_of) -> dict:
             "t_collapse": None if math.isnan(out[VK.O_T_COLLAPSE]) else float(out[VK.O_T_COLLAPSE]),
             "onset": t_onset, "t_end": float(out[VK.O_T_END]), "lengthening": lengthening,
             "steps": int(out[VK.O_STEPS]), "skipped": int(out[VK.O_SKIPPED]),
-            "peak_drop": float(out[VK.O_PEAK_DROP]), "rest_proven": bool(out[VK.O_REST_PROVEN]),
+            "peak_drop": float(out[VK.O_PEAK_DROP]), "peak_rotation": peak_rot,
+            "rest_proven": bool(out[VK.O_REST_PROVEN]),
             "final": int(out[VK.O_FINAL])}
 
 
@@ -460,7 +467,8 @@ def _verdict(d: dict, d2: dict | None, h: float) -> RigidVerdict:
         collapse_time_s=d["t_collapse"] if outcome is Outcome.COLLAPSE else None,
         onset_time_s=d["onset"], end_time_s=d["t_end"], time_step_s=h,
         guard_ran=d2 is not None, guard_outcome=None if d2 is None else d2["outcome"],
-        peak_crown_drop=d["peak_drop"], lengthening=d["lengthening"], impacts=d["impacts"], steps=d["steps"],
+        peak_crown_drop=d["peak_drop"], max_rotation_rad=d["peak_rotation"],
+        lengthening=d["lengthening"], impacts=d["impacts"], steps=d["steps"],
         skipped_steps=d["skipped"], rest_proven=d["rest_proven"],
         final_state=("moving", "rest", "collapsed")[d["final"]])
 

@@ -13,12 +13,14 @@ Models:
   verdict, the end of the excitation + 5, then 10, then 20 sqrt(R/g) while the arch still moves,
   :func:`archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
   ``restitution`` and ``impact`` do not apply to it (a case giving one is refused);
-- ``rigid``: :func:`archquake.rigid.simulate_rigid`, the chain of rigid blocks
-  (hinges moving, the DEM's rigid limit), for ``t_end_s`` (default: until a verdict, the end of
-  the excitation + 5 sqrt(R/g), then on while the arch moves up to the end of the excitation
-  + 60 sqrt(R/g), :func:`archquake.compare.rigid_to_verdict`), summarised by
-  ``RigidRun.to_dict()`` without its joint forces. ``restitution`` and ``impact`` are refused
-  as for the DEM (its impacts follow from the blocks' plastic contacts).
+- ``rigid``: the chain of rigid blocks (hinges moving, the DEM's rigid limit). Without
+  ``t_end_s``: its verdict (:func:`archquake.rigid.rigid_verdict`: the step scaled with the
+  arch, the half-step guard, stopped at collapse or proven rest, within the end of the
+  excitation + 60 sqrt(R/g)), summarised by :func:`rigid_summary` (no impact times or peak
+  rotation per half cycle: the verdict path records no history). With ``t_end_s``:
+  :func:`archquake.rigid.simulate_rigid` for that time, summarised by ``RigidRun.to_dict()``
+  without its joint forces. ``restitution`` and ``impact`` are refused as for the DEM (its
+  impacts follow from the blocks' plastic contacts).
 
 All summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
 collapse_half_cycle, collapse_time_s, impact_times_s, peak_rotation_rad, ...), so a store
@@ -97,12 +99,11 @@ def evaluate_case(case: Case) -> dict[str, Any]:
                                         "follow from its contacts")
     arch = case.arch.build()
     if case.model is Model.RIGID:
-        if case.options.t_end_s is None:  # to a verdict, as archquake run does
-            from archquake.compare import rigid_to_verdict
+        if case.options.t_end_s is None:  # to a verdict, on the verdict path
+            from archquake.rigid import rigid_verdict
 
-            run = rigid_to_verdict(arch, motion, g=case.options.g)
-        else:
-            run = simulate(arch, motion, duration=case.options.t_end_s, g=case.options.g)
+            return rigid_summary(rigid_verdict(arch, motion, g=case.options.g))
+        run = simulate(arch, motion, duration=case.options.t_end_s, g=case.options.g)
         return run.to_dict(joint_forces=False)  # a store holds no histories' forces
     if case.options.t_end_s is None:  # run until a verdict (rest or collapse), or the cap
         from archquake.compare import dem_to_verdict
@@ -111,6 +112,18 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
     result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
     return result.to_dict()
+
+
+#: The ``evaluator`` key of a summary of the rigid chain's verdict path.
+RIGID_VERDICT_EVALUATOR = "rigid verdict (compiled, guarded)"
+
+
+def rigid_summary(verdict) -> dict[str, Any]:
+    """The stored summary of a :class:`~archquake.rigid.RigidVerdict`: its ``to_dict()``
+    (outcome, collapse half cycle and time in s, largest rotation in rad, the step in s, the
+    guard's rerun, ...) under the model's sweep name ``rigid``, with ``evaluator``."""
+    return {**verdict.to_dict(), "model": Model.RIGID.value,
+            "evaluator": RIGID_VERDICT_EVALUATOR}
 
 
 @lru_cache(maxsize=256)
@@ -124,5 +137,5 @@ def prepared_mechanism(arch: ArchSpec, impact: str | None = None):
     return PreparedMechanism.build(arch.build(), impact)
 
 
-__all__ = ["MODEL_FUNCTIONS", "ModelUnavailableError", "evaluate_case", "model_function",
-           "prepared_mechanism"]
+__all__ = ["MODEL_FUNCTIONS", "RIGID_VERDICT_EVALUATOR", "ModelUnavailableError", "evaluate_case",
+           "model_function", "prepared_mechanism", "rigid_summary"]
