@@ -25,7 +25,7 @@ def test_dom_has_every_section_and_embedded_figures(tmp_path, bridge):
     for sid in ("arch", "static", "pulses", "records", "dem", "validity", "verdict"):
         assert f'<section id="{sid}">' in dom, sid
     srcs = re.findall(r'<img[^>]*src="(data:image/png;base64,[^"]+)"', dom)
-    assert len(srcs) == 5
+    assert len(srcs) == 6  # the five figures of the dynamics, and the code check's capacity curve
     for s in srcs:
         assert base64.b64decode(s.split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n"
     assert "src=\"figures/" not in dom and "http" not in dom.split("<body>")[1][:200]

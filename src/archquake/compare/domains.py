@@ -30,8 +30,8 @@ from archquake.domains.blocks import (  # noqa: F401  (re-exported)
     BLOCK_MODELS,
     DOMAIN_TAIL,
     DemPulseEvaluator,
-    _outcome,
-    _rigid_outcomes,
+    block_pulse_outcome,
+    rigid_pulse_outcomes,
 )
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch

@@ -26,7 +26,7 @@ BLOCK_MODELS = ("dem", "rigid")
 DOMAIN_TAIL = 6.0
 
 
-def _outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
+def block_pulse_outcome(assembly, family: str, magnitude_g: float, duration: float, settings, tail_s: float,
              first_only: bool, g: float, governing_only: bool = False,
              model: str = "dem", solver: str = "direct") -> tuple[Outcome, int]:
     """One run of the block model ``model`` ('dem' or 'rigid', the latter integrated by
@@ -56,10 +56,10 @@ def _outcome(assembly, family: str, magnitude_g: float, duration: float, setting
     return res.outcome, 0
 
 
-def _rigid_outcomes(assembly, family: PulseFamily, points, settings, tail_s: float,
+def rigid_pulse_outcomes(assembly, family: PulseFamily, points, settings, tail_s: float,
                     first_only: bool, g: float, governing_only: bool,
                     threads: int | None) -> list[tuple[Outcome, int]]:
-    """:func:`_outcome` of the rigid chain for every (magnitude g, duration s) of ``points``,
+    """:func:`block_pulse_outcome` of the rigid chain for every (magnitude g, duration s) of ``points``,
     as one batch of verdicts (:func:`~archquake.rigid.verdict.rigid_verdicts`: the
     verdict's step with its guard, skips at rest, stops at collapse or proven rest)."""
     from archquake.rigid.verdict import rigid_verdicts
@@ -144,13 +144,13 @@ class DemPulseEvaluator:
                      self.first_only, self.g, self.governing_only, self.model, self.solver)
                     for a, d in todo]
             if self.model == "rigid" and self.solver == "direct":
-                results = _rigid_outcomes(self.assembly, self.family, todo, self.settings,
+                results = rigid_pulse_outcomes(self.assembly, self.family, todo, self.settings,
                                           self.tail_s, self.first_only, self.g,
                                           self.governing_only, self.threads)
             elif self.executor is None:
-                results = [_outcome(*a) for a in args]
+                results = [block_pulse_outcome(*a) for a in args]
             else:
-                results = list(self.executor.map(_outcome, *zip(*args)))
+                results = list(self.executor.map(block_pulse_outcome, *zip(*args)))
             self._memo.update(zip(todo, results))
             self.runs += len(todo)
         self.seconds += time.perf_counter() - t0
@@ -159,4 +159,4 @@ class DemPulseEvaluator:
         return PulseOutcomes(mags.copy(), np.array(durs, float), out, half, np.ones(mags.size, np.int64))
 
 
-__all__ = ["BLOCK_MODELS", "DOMAIN_TAIL", "DemPulseEvaluator"]
+__all__ = ["BLOCK_MODELS", "DOMAIN_TAIL", "DemPulseEvaluator", "block_pulse_outcome", "rigid_pulse_outcomes"]
