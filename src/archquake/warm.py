@@ -66,7 +66,10 @@ def _step():
 
 def _four_link() -> None:
     """The four-link mechanism (``--model fourlink``)."""
-    from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.simulate import (
+        simulate,  # the function (the module of its name can shadow it on the package)
+    )
 
     prepared = PreparedMechanism.build(_arch(), None)
     simulate(prepared, _step(), restitution=None, t_end=None)

@@ -83,7 +83,10 @@ def run(args: argparse.Namespace) -> int:
         from archquake.cli import rigid_run
 
         return rigid_run.run(args, arch, motion)
-    from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.simulate import (
+        simulate,  # the function (the module of its name can shadow it on the package)
+    )
 
     prepared = PreparedMechanism.build(arch, impact["impact"])
     result = simulate(prepared, motion, restitution=impact["restitution"], t_end=args.t_end)

@@ -244,7 +244,10 @@ def compare_history(
     (True, True)
     """
     from archquake.dem import DemSettings, simulate_dem
-    from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.simulate import (
+        simulate,  # the function (the module of its name can shadow it on the package)
+    )
 
     if not isinstance(arch, VoussoirChain):
         raise InvalidParameterError(f"compare_history needs an Arch, got {type(arch).__name__}")

@@ -47,7 +47,10 @@ def rocking_pulse(arch: Arch, *, target: float = 0.35, magnitude_factor: float =
     the crest rotation (bisection on the duration; the first half cycle does not depend on the
     impact law). Returns (Record, duration_s, analytical first impact time_s)."""
     from archquake.dem.studies import bisect, rectangular_pulse
-    from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.simulate import (
+        simulate,  # the function (the module of its name can shadow it on the package)
+    )
 
     prep = PreparedMechanism.build(arch)
     lam = prep.collapse_acceleration_g

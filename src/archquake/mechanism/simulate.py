@@ -582,7 +582,7 @@ def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) 
     Examples
     --------
     >>> round(float(default_t_end(0.81, 10.0)), 3)
-    61.4
+    61.399
     """
     return np.asarray(excitation_end_s, dtype=float) + RUN_TAIL * math.sqrt(radius / g)
 

@@ -190,7 +190,10 @@ def animation(arch: Arch, path: Path, *, quick: bool = True) -> Path:
     Path
         ``path``.
     """
-    from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.mechanism import PreparedMechanism
+    from archquake.mechanism.simulate import (
+        simulate,  # the function (the module of its name can shadow it on the package)
+    )
     from archquake.plotting.history import animate_history
 
     prepared = PreparedMechanism.build(arch, "paper")  # the paper's Eq. 4, always
