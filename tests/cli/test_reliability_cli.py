@@ -23,7 +23,7 @@ from archquake.errors import ArchquakeError, InvalidParameterError
 STUDY = """\
 [study]
 name = "{name}"
-model = "analytical"
+model = "fourlink"
 
 [arches]
 radius = 10
