@@ -75,6 +75,13 @@ RUN_PAGES = (
     "docs/guide/report.md",
     "docs/models/rigid.md",
     "docs/models/fourlink.md",
+    "docs/geometry.md",
+    "docs/ground-motions.md",
+    "docs/thrust-and-friction.md",
+    "docs/domains.md",
+    "docs/earthquakes.md",
+    "docs/sweeps.md",
+    "docs/assess.md",
 )
 
 SKIP_MARK = "*Not run by the tests"
