@@ -203,30 +203,55 @@ def shown(got: str, workdir: Path | None = None) -> str:
     return "\n".join(line.rstrip() for line in got.strip("\n").splitlines())
 
 
+def _elided_pairs(old: list[str], new: list[str]) -> tuple[list[str], list[tuple[int, int]]] | None:
+    """``new`` cut where ``old`` has whole ``...`` lines, and the (old, new) line pairs kept.
+
+    The segment before the first cut keeps its length from the top, the one after the last cut
+    from the bottom; a segment between two cuts is found again in ``new`` by its first line (equal,
+    or matching it with ELLIPSIS) after the previous segment. ``None`` where ``new`` has no room
+    for the segments or a middle segment's first line is not found."""
+    cuts = [k for k, line in enumerate(old) if line.strip() == "..."]
+    bounds = [-1, *cuts, len(old)]
+    segments = [(bounds[n] + 1, bounds[n + 1]) for n in range(len(bounds) - 1)]
+    out: list[str] = []
+    pairs: list[tuple[int, int]] = []
+    pos = 0
+    for n, (first, end) in enumerate(segments):
+        size = end - first
+        if n == 0:
+            start = 0
+        elif n == len(segments) - 1:
+            start = len(new) - size
+        else:
+            start = next((j for j in range(pos, len(new) - size + 1)
+                          if old[first] == new[j] or same_output(old[first], new[j])), -1)
+        if start < pos or start + size > len(new):
+            return None
+        if n > 0:
+            out.append(old[cuts[n - 1]])
+        out.extend(new[start : start + size])
+        pairs.extend((first + k, len(out) - size + k) for k in range(size))
+        pos = start + size
+    return out, pairs
+
+
 def merged(want: str, got: str) -> str:
     """The output to write for a command that printed ``got`` where the page shows ``want``.
 
     ``want`` is kept if it still matches. Otherwise ``got`` (as :func:`shown`), keeping the
     page's elisions where they still hold: a whole line ``...`` of ``want`` stays, with as many
-    lines of ``got`` before and after it as ``want`` had; a line of ``want`` holding ``...`` is
+    lines of ``got`` before the first and after the last as ``want`` had (and each stretch
+    between two such lines found again by its first line); a line of ``want`` holding ``...`` is
     kept where it still matches the line of ``got`` in its place."""
     if same_output(want, got):
         return want
     old, new = want.splitlines(), got.splitlines()
-    cuts = [k for k, line in enumerate(old) if line.strip() == "..."]
-    if cuts:
-        head, tail = cuts[0], len(old) - cuts[-1] - 1
-        if len(new) > head + tail:
-            new = new[:head] + [old[cuts[0]]] + (new[len(new) - tail :] if tail else [])
-            pairs = list(zip(range(head), range(head))) + [
-                (len(old) - 1 - k, len(new) - 1 - k) for k in range(tail)
-            ]
-        else:
-            pairs = []
-    else:
-        pairs = list(zip(range(len(old)), range(len(new))))
+    pairs = list(zip(range(len(old)), range(len(new))))
+    if any(line.strip() == "..." for line in old):
+        cut = _elided_pairs(old, new)
+        new, pairs = cut if cut is not None else (new, [])
     for i, j in pairs:
-        if "..." in old[i] and old[i].strip() != "..." and same_output(old[i], new[j]):
+        if "..." in old[i] and same_output(old[i], new[j]):
             new[j] = old[i]
     text = "\n".join(new)
     return text if same_output(text, got) else got
@@ -332,6 +357,8 @@ def test_merged_keeps_what_still_holds_and_writes_what_changed():
     assert merged("h 1\n...\nt 1", "h 2\nm\nm\nt 2") == "h 2\n...\nt 2"
     assert merged("h 1\n...", "h 2\nm\nm") == "h 2\n..."
     assert merged("q ... 1", "q 5 2") == "q 5 2"
+    assert merged("{\n...\n  rows\n  x ...\n  y 1\n...\n}", "{\na\nb\n  rows\n  x 7\n  y 2\nc\n}") == (
+        "{\n...\n  rows\n  x ...\n  y 2\n...\n}")
     assert shown("3.10 s simulated (0.42 s wall)  ") == "3.10 s simulated (... wall)"
     assert shown("file /tmp/x/examples/a.csv", Path("/tmp/x")) == "file ...examples/a.csv"
 
