@@ -66,7 +66,7 @@ DOCS = ROOT / "docs"
 #: The pages whose commands and code are run: the README's tour, getting started, the guide by
 #: task, the pages on the models and the reference pages. The API, validation and the research
 #: notes are built, not run; so is the spectra reference, whose record selections take some 20 s
-#: of CPU (the guide's site page runs the same commands).
+#: of CPU (the guide's site page runs the same kinds of command on smaller sets).
 RUN_PAGES = (
     "README.md",
     "docs/getting-started.md",
