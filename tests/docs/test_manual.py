@@ -29,21 +29,25 @@ Regenerating the pages when a command's output changes::
     .venv/bin/python tests/docs/test_manual.py --write    # ... and rewrite it in place
     .venv/bin/python tests/docs/test_manual.py --write docs/assess.md   # one page
 
-``--write`` runs each page as the test does and, for every command or ``>>>`` example whose
-output no longer matches, writes what it prints now in place of what the page showed. What a
-page chose to show is kept where it still holds: an output that still matches is not touched; a
-line of the old output holding ``...`` is kept if it still matches its new line; a whole line
-``...`` (an elided middle or tail) stays, with as many lines before and after it as before. Wall
-times are written ``(... wall)`` and the temporary folder ``...``. A command that exits with
-another status than the page expects, or a Python block that raises, is reported and its block
-left as it was; the exit status is 1 if anything was reported or (without ``--write``) differs.
-Read the diff (``git diff docs``) before committing: a changed number is a changed result.
+Without ``--write`` each difference is printed as a diff of the page's lines. ``--write`` runs
+each page as the test does and, for every command or ``>>>`` example whose output no longer
+matches, writes what it prints now in place of what the page showed. What a page chose to show
+is kept where it still holds: an output that still matches is not touched; a line holding
+``...`` is kept if it still matches the new line in its place; a whole line ``...`` stays, with
+as many lines before the first such line and after the last as before (a stretch between two is
+found again by its first line). Wall times are written ``(... wall)`` and the temporary folder
+``...``. A command that exits with another status than the page expects, or a Python block that
+raises, is reported and its block left as it was; the exit status is 1 if anything was
+reported or (without ``--write``) differs. Blocks marked ``*Not run by the tests`` are not
+touched: their output is updated by hand. Read ``git diff docs`` before committing: a changed
+number is a changed result.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import doctest
 import io
 import os
@@ -378,9 +382,10 @@ def test_page_runs_as_written(page, tmp_path, monkeypatch):
     assert ran > 0, f"{page} shows nothing that runs"
 
 
-def regenerate(page: str, write: bool) -> tuple[int, int, list[str]]:
+def regenerate(page: str, write: bool) -> tuple[int, int, list[str], list[str]]:
     """Run ``page`` and, with ``write``, rewrite the outputs that changed. Returns the number of
-    things run, the number that differ, and the problems (failures the tool cannot rewrite)."""
+    things run, the number that differ, the problems (failures the tool cannot rewrite) and the
+    changes as unified diffs of the page's lines."""
     problems: list[str] = []
     edits: list[tuple[int, int, list[str]]] = []
     ran = differ = 0
@@ -400,12 +405,17 @@ def regenerate(page: str, write: bool) -> tuple[int, int, list[str]]:
         except Exception:  # noqa: BLE001 - a Python block of the page raised: report it, go on
             problems.append(f"{page}: a Python block raised (the page's later blocks did not run):\n"
                             + traceback.format_exc(limit=3))
+    lines = (ROOT / page).read_text(encoding="utf-8").splitlines()
+    changes = [
+        "\n".join(difflib.unified_diff(lines[first:end], new, f"{page}:{first + 1}",
+                                        f"{page}:{first + 1} now", n=0, lineterm=""))
+        for first, end, new in sorted(edits)
+    ]
     if write and edits:
-        lines = (ROOT / page).read_text(encoding="utf-8").splitlines()
         for first, end, new in sorted(edits, reverse=True):
             lines[first:end] = new
         (ROOT / page).write_text("\n".join(lines) + "\n", encoding="utf-8")
-    return ran, differ, problems
+    return ran, differ, problems, changes
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -419,9 +429,11 @@ def main(argv: list[str] | None = None) -> int:
     failed = False
     for page in args.pages or RUN_PAGES:
         page = str(Path(page).resolve().relative_to(ROOT))
-        ran, differ, problems = regenerate(page, args.write)
+        ran, differ, problems, changes = regenerate(page, args.write)
         verb = "rewritten" if args.write else "differ"
         print(f"{page}: {ran} run, {differ} {verb}, {len(problems)} failed", flush=True)
+        for change in changes if not args.write else []:
+            print("  " + change.replace("\n", "\n  "), flush=True)
         for problem in problems:
             print("  " + problem.replace("\n", "\n  "), flush=True)
         failed = failed or bool(problems) or (differ > 0 and not args.write)
