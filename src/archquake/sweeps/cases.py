@@ -25,22 +25,26 @@ from typing import Any
 
 import numpy as np
 
-from archquake._validate import require_gravity, require_int, require_positive, require_range
+from archquake._validate import require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import (
-    MAX_DENSITY,
-    MAX_DEPTH,
-    MAX_EMBRACE_DEG,
-    MAX_VOUSSOIRS,
-    MIN_DENSITY,
-    MIN_DEPTH,
-    MIN_EMBRACE_DEG,
-    MIN_THICKNESS_RATIO,
-    RADIUS_RANGE,
-    Arch,
-)
+from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.checks import (  # the one place where an arch is checked
+    MAX_VOUSSOIRS,
+    MIN_VOUSSOIRS,
+    check_density,
+    check_depth,
+    check_embrace_deg,
+    check_joints,
+    check_pier_courses,
+    check_pier_values,
+    check_piers,
+    check_radius,
+    check_shape,
+    check_thickness_ratio,
+    check_voussoirs,
+)
 from archquake.ranges import (
     MAGNITUDE_RANGE_G,
     PULSE_TIME_RANGE_S,
@@ -200,30 +204,22 @@ class ArchSpec:
                   "thickness", "pier_height", "pier_width")
 
     def __post_init__(self) -> None:
-        from archquake.geometry.shapes import JOINTS, SHAPES
-
         if self.blocks is not None:
             self._check_blocks()
             return
         if self.voussoirs is None:
-            raise InvalidParameterError("voussoirs is required (3 to 2000)")
-        shape = str(self.shape).replace("_", "-").lower()
-        if shape not in SHAPES:
-            raise InvalidParameterError(f"shape must be one of {', '.join(SHAPES)}, got {self.shape!r}")
-        if self.joints not in JOINTS:
-            raise InvalidParameterError(f"joints must be radial or vertical, got {self.joints!r}")
+            raise InvalidParameterError(f"voussoirs is required ({MIN_VOUSSOIRS} to "
+                                        f"{MAX_VOUSSOIRS})")
+        shape = check_shape(self.shape)
+        check_joints(self.joints)
         _set(self, "shape", shape)
         by_radius = (self.radius, self.thickness_ratio, self.embrace_deg)
         by_span = (self.span, self.rise, self.thickness)
         if shape == "circular" and all(v is not None for v in by_radius) and all(
                 v is None for v in by_span):
-            _set(self, "radius", require_range("radius", self.radius, *RADIUS_RANGE, "m",
-                                               low_open=False, high_open=False))
-            _set(self, "thickness_ratio", require_range("thickness_ratio", self.thickness_ratio,
-                                                        MIN_THICKNESS_RATIO, 2, low_open=False))
-            _set(self, "embrace_deg", require_range("embrace_deg", self.embrace_deg,
-                                                     MIN_EMBRACE_DEG, MAX_EMBRACE_DEG, "degrees",
-                                                     low_open=False, high_open=False))
+            _set(self, "radius", check_radius(self.radius))
+            _set(self, "thickness_ratio", check_thickness_ratio(self.thickness_ratio))
+            _set(self, "embrace_deg", check_embrace_deg(self.embrace_deg))
         elif all(v is not None for v in by_span) and all(v is None for v in by_radius):
             for name in ("span", "rise", "thickness"):
                 _set(self, name, require_positive(name, getattr(self, name), "m"))
@@ -231,17 +227,17 @@ class ArchSpec:
             raise InvalidParameterError(
                 "an arch needs radius, thickness_ratio and embrace_deg (circular), or span, rise "
                 "and thickness (any shape), not a mixture")
-        _set(self, "voussoirs", require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS))
-        _set(self, "depth", require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m",
-                                          low_open=False, high_open=False))
-        _set(self, "density", require_range("density", self.density, MIN_DENSITY, MAX_DENSITY,
-                                            "kg/m^3", low_open=False, high_open=False))
-        if (self.pier_height is None) != (self.pier_width is None):
-            raise InvalidParameterError("pier_height and pier_width go together (m)")
-        if self.pier_height is not None:
-            _set(self, "pier_height", require_positive("pier_height", self.pier_height, "m"))
-            _set(self, "pier_width", require_positive("pier_width", self.pier_width, "m"))
-        _set(self, "pier_courses", require_int("pier_courses", self.pier_courses, 1, 500))
+        _set(self, "voussoirs", check_voussoirs(self.voussoirs))
+        _set(self, "depth", check_depth(self.depth))
+        _set(self, "density", check_density(self.density))
+        if check_piers(self.pier_height, self.pier_width):
+            height, width, courses = check_pier_values(self.pier_height, self.pier_width,
+                                                       self.pier_courses)
+            _set(self, "pier_height", height)
+            _set(self, "pier_width", width)
+        else:
+            courses = check_pier_courses(self.pier_courses)
+        _set(self, "pier_courses", courses)
 
     def _check_blocks(self) -> None:
         """A block file: no shape keys beside it (one line naming them), depth and density in
@@ -255,10 +251,8 @@ class ArchSpec:
             raise InvalidParameterError(f"blocks (a surveyed arch) does not go with the shape "
                                         f"keys {', '.join(mixed)}: give the block file or a "
                                         "shape, not both")
-        _set(self, "depth", require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m",
-                                          low_open=False, high_open=False))
-        _set(self, "density", require_range("density", self.density, MIN_DENSITY, MAX_DENSITY,
-                                            "kg/m^3", low_open=False, high_open=False))
+        _set(self, "depth", check_depth(self.depth))
+        _set(self, "density", check_density(self.density))
         if self.blocks_sha256 is None:
             try:
                 digest = hashlib.sha256(Path(self.blocks).read_bytes()).hexdigest()
