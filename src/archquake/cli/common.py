@@ -370,6 +370,7 @@ def arch_from_args(args: argparse.Namespace):
     courses = getattr(args, "pier_courses", None)
     if not check_piers(height, width, courses, OPTIONS):
         return arch
+    assert height is not None and width is not None  # check_piers: both or neither
     return OnPiers(arch, Piers(height, width, 1 if courses is None else courses))
 
 
