@@ -1,15 +1,9 @@
-"""The ``archquake`` command line: a thin shell over the library (see :mod:`archquake.cli.main`)."""
+"""The ``archquake`` command line: a thin shell over the library (see :mod:`archquake.cli.main`).
 
-import sys
-from typing import TYPE_CHECKING
-
-from archquake._lazy import attach
-
-if TYPE_CHECKING:  # pragma: no cover - what the lazy name resolves to, for type checkers
-    from archquake.cli.main import main
-
-#: ``main(argv) -> int`` loads on first access: the console script imports
-#: :mod:`archquake.cli.main` itself, and nothing else is paid for on start-up.
-__getattr__, __dir__ = attach(sys.modules[__name__], {"main": "archquake.cli.main"})
+What a user imports from here is the module :mod:`archquake.cli.main`: ``main.main(argv) ->
+int`` runs a command as the console script does and returns its exit status
+(``from archquake.cli.main import main``). The package imports nothing itself, so that the
+console script pays only for the command it runs.
+"""
 
 __all__ = ["main"]
