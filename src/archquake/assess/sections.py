@@ -631,7 +631,10 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     verdict path (:func:`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
     it (guarded at a quarter), and with Coulomb joints of the given friction coefficient (the
     recorded stepper, :func:`archquake.compare.rigid_to_verdict`: the verdict path has no
-    friction). A verdict that changes at
+    friction) at the verdict's step; a friction verdict that differs from the no-slip one is
+    run again at :data:`archquake.rigid.DEFAULT_TIME_STEP` (1e-4 s) and that one kept, so that
+    every verdict the report counts as changed by sliding, or warns about, is the fine step's
+    (``friction_time_step_s``: the step of each). A verdict that changes at
     half the step is a serious warning (the step does not resolve the motion); one that changes
     from survival to collapse with friction too (the joints slide, which the default no-slip
     chain leaves out); from collapse to survival with friction only a note."""
@@ -671,7 +674,8 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         # a friction verdict that differs from the no-slip chain's (one the report warns about
         # or counts as changed by sliding) is run again at the recorded stepper's fine step,
         # and that one is kept
-        again = [k for k in range(len(motions)) if slid[k] != default[k].outcome.value]
+        again = [k for k in range(len(motions))
+                 if fine < h and slid[k] != default[k].outcome.value]
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine)
                    for k in again]
         for k, fu in zip(again, futures, strict=True):
