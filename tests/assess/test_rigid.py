@@ -127,3 +127,25 @@ def test_friction_check_at_the_verdict_step_gives_the_fine_step_verdict(t_p):
     assert 6.0e-4 < h < 6.6e-4
     motion = StepImpulse.from_g(0.15, t_p, -1)
     assert _friction_verdict(arch, motion, h) == _friction_verdict(arch, motion, 1e-4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("family", ["step", "sine"])
+def test_friction_check_at_the_verdict_step_over_the_quick_durations(family):
+    """As above, over every duration the quick report scans (six from 0.1 s to 2 s) for both
+    pulse families (about 2 min of CPU at 1e-4 s): the same verdict at the verdict's step as at
+    1e-4 s (oracle), survivals and collapses both among them."""
+    from archquake.assess.sections import Mode
+    from archquake.ground.pulses import SinePulse, StepImpulse
+    from archquake.rigid.verdict import verdict_time_step
+
+    arch = BRIDGE.build()
+    h = verdict_time_step(arch)
+    make = StepImpulse.from_g if family == "step" else SinePulse.from_g
+    coarse, fine = [], []
+    for d in Mode(quick=True).durations:
+        motion = make(0.15, float(d), -1)
+        coarse.append(_friction_verdict(arch, motion, h))
+        fine.append(_friction_verdict(arch, motion, 1e-4))
+    assert coarse == fine
+    assert {"survives", "collapse"} <= set(fine)
