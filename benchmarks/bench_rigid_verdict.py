@@ -67,10 +67,10 @@ def history() -> dict:
 
 
 def domain() -> dict:
-    from archquake.compare.domains import DOMAIN_TAIL, _outcome
     from archquake.compare.histories import VOUSSOIRS, dem_assembly
     from archquake.dem import DemSettings
     from archquake.domains import PulseFamily
+    from archquake.domains.blocks import DOMAIN_TAIL, block_pulse_outcome
 
     arch = Arch(10.0, 1.5, math.radians(157.5), 7)
     durations = tuple(np.round(np.geomspace(0.1, 1.5, 12), 3))
@@ -89,8 +89,8 @@ def domain() -> dict:
     pairs = [(float(rng.uniform(0.4, 1.5)), float(rng.choice(durations))) for _ in range(SAMPLE)]
     t0 = time.perf_counter()
     for a, d in pairs:
-        _outcome(asm, PulseFamily.STEP.value, a, d, DemSettings(), tail, False, 9.80665,
-                 model="rigid")
+        block_pulse_outcome(asm, PulseFamily.STEP.value, a, d, DemSettings(), tail, False,
+                            9.80665, model="rigid")
     per_run = (time.perf_counter() - t0) / SAMPLE
     plain = per_run * dom.runs
     print(f"Figure 5 domain, rigid chain, {len(durations)} durations, {dom.runs} runs:")
