@@ -185,15 +185,29 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
     nrm = np.zeros((nj, 2))
     tan = np.zeros((nj, 2))
     pts = np.zeros((nj, 2, 2, 2))
-    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts)
+    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, np.zeros((q.shape[0], 2)))
     return gaps, nrm, tan, pts
 
 
+@nb.njit(cache=True, inline="always")
+def _corner(q, trig, body, arm):
+    """:func:`_point` with the body's cos and sin read from ``trig`` (the same numbers)."""
+    if body < 0:
+        return arm[0], arm[1]
+    c = trig[body, 0]
+    s = trig[body, 1]
+    return q[body, 0] + c * arm[0] - s * arm[1], q[body, 1] + s * arm[0] + c * arm[1]
+
+
 @nb.njit(cache=True)
-def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts):
+def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
     """:func:`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
-    entry is overwritten)."""
+    entry is overwritten); ``trig`` (nb, 2) scratch: each body's cos and sin, computed once
+    (not once per corner: the same numbers, a fifth of the calls)."""
     nj = ja.shape[0]
+    for i in range(q.shape[0]):
+        trig[i, 0] = math.cos(q[i, 2])
+        trig[i, 1] = math.sin(q[i, 2])
     for j in range(nj):
         tha = 0.0 if ja[j] < 0 else q[ja[j], 2]
         thb = 0.0 if jb[j] < 0 else q[jb[j], 2]
@@ -205,8 +219,8 @@ def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts):
         tan[j, 0] = c * t0[j, 0] - s * t0[j, 1]
         tan[j, 1] = s * t0[j, 0] + c * t0[j, 1]
         for k in range(2):
-            ax, ay = _point(q, ja[j], arm_a[j, k])
-            bx, by = _point(q, jb[j], arm_b[j, k])
+            ax, ay = _corner(q, trig, ja[j], arm_a[j, k])
+            bx, by = _corner(q, trig, jb[j], arm_b[j, k])
             pts[j, k, 0, 0] = ax
             pts[j, k, 0, 1] = ay
             pts[j, k, 1, 0] = bx
@@ -544,7 +558,7 @@ class Work(NamedTuple):
     every step (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the
     mid-step configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses;
     ``gaps``, ``nrm``, ``tan``, ``pts``: :func:`geometry`'s; ``corr`` (1,): the correction's
-    work of the step, J; the others the contact rows' and the direct solve's scratch."""
+    work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -574,6 +588,7 @@ class Work(NamedTuple):
     lst_i: np.ndarray
     lst_side: np.ndarray
     corr: np.ndarray
+    trig: np.ndarray
 
 
 @nb.njit(cache=True)
@@ -588,7 +603,8 @@ def workspace(nbody, nj):
                 np.zeros(nj, np.bool_), np.zeros(nr, np.bool_), np.zeros(nr),
                 np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, nr)),
                 np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nbody, np.int64),
-                np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1))
+                np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1),
+                np.zeros((nbody, 2)))
 
 
 @nb.njit(cache=True)
@@ -800,7 +816,7 @@ def advance(chain, cfg, state, acc_k, ws):
         for c in range(3):
             qm[i, c] = q[i, c] + 0.5 * h * v[i, c]
     geometry_into(qm, chain.ja, chain.jb, chain.arm_a, chain.arm_b, chain.n0, chain.t0, ws.gaps,
-                  ws.nrm, ws.tan, ws.pts)
+                  ws.nrm, ws.tan, ws.pts, ws.trig)
     vf[:, :] = v
     for i in range(nb_):
         vf[i, 0] -= h * acc_k

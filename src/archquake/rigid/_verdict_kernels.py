@@ -267,8 +267,11 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
         # the rotation measure's sign changes (archquake.dem.result.crossings)
         for ell in range(2):
             a = _chord_angle(st, links_block, links_local, ell)
-            d = a - ang_prev[ell]
-            d = (d + math.pi) % (2.0 * math.pi) - math.pi
+            # d wrapped into [-pi, pi), the modulo only when needed (the same numbers)
+            x = a - ang_prev[ell] + math.pi
+            if not 0.0 <= x < 2.0 * math.pi:
+                x = x % (2.0 * math.pi)
+            d = x - math.pi
             ang_prev[ell] = a
             prev_rot[ell] = rot[ell]
             rot[ell] += d
