@@ -492,6 +492,16 @@ def _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i):
 
 
 @nb.njit(cache=True, inline="always")
+def _copy3(dst, src):
+    """dst[:, :] = src for (n, 3) arrays, as a plain loop (cheaper than a slice assignment in
+    the step's inner code)."""
+    for i in range(src.shape[0]):
+        dst[i, 0] = src[i, 0]
+        dst[i, 1] = src[i, 1]
+        dst[i, 2] = src[i, 2]
+
+
+@nb.njit(cache=True, inline="always")
 def _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows):
     j = rows_j[r]
     a = ja[j]
@@ -640,8 +650,8 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
         imp[j, 1] = 0.0
         imp[j, 2] = 0.0
     _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, ws.seen)
-    v[:, :] = v_free
     if nrows == 0:
+        _copy3(v, v_free)
         if work is not None:
             work[0] = 0.0
         return 0, 0.0
@@ -654,7 +664,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     for _ in range(max_sets):
         solves += 1
         # v_w and p: the previous impulses on S
-        v[:, :] = v_free
+        _copy3(v, v_free)
         for r in range(nrows):
             p[r] = pw[r] if in_s[r] else 0.0
             if p[r] != 0.0:
@@ -771,7 +781,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
         for r in range(nrows):
             if rows_k[r] < 2 and p[r] < 0.0:
                 p[r] = 0.0
-        v[:, :] = v_free
+        _copy3(v, v_free)
         for r in range(nrows):
             if p[r] != 0.0:
                 _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
@@ -817,7 +827,7 @@ def advance(chain, cfg, state, acc_k, ws):
             qm[i, c] = q[i, c] + 0.5 * h * v[i, c]
     geometry_into(qm, chain.ja, chain.jb, chain.arm_a, chain.arm_b, chain.n0, chain.t0, ws.gaps,
                   ws.nrm, ws.tan, ws.pts, ws.trig)
-    vf[:, :] = v
+    _copy3(vf, v)
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
         vf[i, 1] -= h * cfg.g
