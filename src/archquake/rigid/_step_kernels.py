@@ -568,7 +568,9 @@ class Work(NamedTuple):
     every step (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the
     mid-step configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses;
     ``gaps``, ``nrm``, ``tan``, ``pts``: :func:`geometry`'s; ``corr`` (1,): the correction's
-    work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; the others the contact rows' and the direct solve's scratch."""
+    work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; ``sa``, ``sb``, ``ha``,
+    ``hb``, ``tg``: the direct solve's equality rows packed in set order (bodies, Jacobian
+    entries, bounds); the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -599,6 +601,11 @@ class Work(NamedTuple):
     lst_side: np.ndarray
     corr: np.ndarray
     trig: np.ndarray
+    sa: np.ndarray
+    sb: np.ndarray
+    ha: np.ndarray
+    hb: np.ndarray
+    tg: np.ndarray
 
 
 @nb.njit(cache=True)
@@ -614,7 +621,8 @@ def workspace(nbody, nj):
                 np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, nr)),
                 np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nbody, np.int64),
                 np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1),
-                np.zeros((nbody, 2)))
+                np.zeros((nbody, 2)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
+                np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr))
 
 
 @nb.njit(cache=True)
@@ -643,6 +651,11 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     cnt = ws.cnt
     lst_i = ws.lst_i
     lst_side = ws.lst_side
+    sa = ws.sa
+    sb = ws.sb
+    ha = ws.ha
+    hb = ws.hb
+    tg = ws.tg
     nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
                        rows_j, rows_k, ja_rows, jb_rows, diag, offset)
     for j in range(nj):
@@ -685,6 +698,14 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                 first[i] = i
                 for k in range(i + 1):
                     w_mat[i, k] = 0.0
+                # the set's rows packed in set order, for the refinement's inner loops
+                r = idx[i]
+                sa[i] = ja[rows_j[r]]
+                sb[i] = jb[rows_j[r]]
+                tg[i] = target[r]
+                for c3 in range(3):
+                    ha[i, c3] = ja_rows[r, c3]
+                    hb[i, c3] = jb_rows[r, c3]
             # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
             for c in range(nbody):
                 cnt[c] = 0
@@ -746,8 +767,14 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             for _ref in range(REFINEMENTS):
                 big = 0.0
                 for i in range(n):
-                    rhs[i] = target[idx[i]] - _row_velocity(v, idx[i], rows_j, ja, jb, ja_rows,
-                                                            jb_rows)
+                    a = sa[i]
+                    b = sb[i]
+                    w = 0.0
+                    if a >= 0:
+                        w += ha[i, 0] * v[a, 0] + ha[i, 1] * v[a, 1] + ha[i, 2] * v[a, 2]
+                    if b >= 0:
+                        w += hb[i, 0] * v[b, 0] + hb[i, 1] * v[b, 1] + hb[i, 2] * v[b, 2]
+                    rhs[i] = tg[i] - w
                     if abs(rhs[i]) > big:
                         big = abs(rhs[i])
                 if big <= tol:
@@ -755,9 +782,18 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     break
                 _envelope_solve(w_mat, first, n, rhs, d)
                 for i in range(n):
-                    r = idx[i]
-                    p[r] += d[i]
-                    _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, d[i], inv_m, inv_i)
+                    p[idx[i]] += d[i]
+                    dp = d[i]
+                    a = sa[i]
+                    b = sb[i]
+                    if a >= 0:
+                        v[a, 0] += ha[i, 0] * dp * inv_m[a]
+                        v[a, 1] += ha[i, 1] * dp * inv_m[a]
+                        v[a, 2] += ha[i, 2] * dp * inv_i[a]
+                    if b >= 0:
+                        v[b, 0] += hb[i, 0] * dp * inv_m[b]
+                        v[b, 1] += hb[i, 1] * dp * inv_m[b]
+                        v[b, 2] += hb[i, 2] * dp * inv_i[b]
             if not converged:
                 break
         # the cone's conditions
