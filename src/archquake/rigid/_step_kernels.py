@@ -725,20 +725,18 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             for c in range(nbody):
                 for u in range(cnt[c]):
                     i = lst_i[c, u]
-                    r = idx[i]
                     if lst_side[c, u] == 0:
-                        h0, h1, h2 = ja_rows[r, 0], ja_rows[r, 1], ja_rows[r, 2]
+                        h0, h1, h2 = ha[i, 0], ha[i, 1], ha[i, 2]
                     else:
-                        h0, h1, h2 = jb_rows[r, 0], jb_rows[r, 1], jb_rows[r, 2]
+                        h0, h1, h2 = hb[i, 0], hb[i, 1], hb[i, 2]
                     for u2 in range(cnt[c]):
                         k = lst_i[c, u2]
                         if k > i:
                             continue
-                        s2 = idx[k]
                         if lst_side[c, u2] == 0:
-                            g0, g1, g2 = ja_rows[s2, 0], ja_rows[s2, 1], ja_rows[s2, 2]
+                            g0, g1, g2 = ha[k, 0], ha[k, 1], ha[k, 2]
                         else:
-                            g0, g1, g2 = jb_rows[s2, 0], jb_rows[s2, 1], jb_rows[s2, 2]
+                            g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
                         w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
                         if k < first[i]:
                             first[i] = k
