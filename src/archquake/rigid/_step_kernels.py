@@ -199,7 +199,7 @@ def _corner(q, trig, body, arm):
     return q[body, 0] + c * arm[0] - s * arm[1], q[body, 1] + s * arm[0] + c * arm[1]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
     """:func:`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
     entry is overwritten); ``trig`` (nb, 2) scratch: each body's cos and sin, computed once
@@ -263,7 +263,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
     return nrows, rows_j, rows_k, ja_rows, jb_rows, diag_all[:nrows].copy(), offset
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol, rows_j,
                rows_k, ja_rows, jb_rows, diag, offset):
     """:func:`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
@@ -326,7 +326,7 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
     return target
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen):
     """:func:`_targets` written into ``target`` (its first ``nrows`` entries), ``seen`` (nj,)
     bool scratch."""
@@ -625,7 +625,7 @@ def workspace(nbody, nj):
                 np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr))
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
                  max_iter, mu, max_sets, correction, hold_tol, slip_ref, work, ws):
     """:func:`project_direct` in the work arrays ``ws`` (:class:`Work`): the velocity is
@@ -840,7 +840,7 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
         v[b, 2] += rb[2] * dp * inv_i[b]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def advance(chain, cfg, state, acc_k, ws):
     """One Moreau-Jean step of the :class:`Chain` ``chain`` from ``state`` (:class:`State`)
     under the mean ground acceleration ``acc_k`` (m/s^2), with the settings ``cfg``
