@@ -143,6 +143,30 @@ def test_forces_of_the_four_link_phase_are_its_statics(four_hinge_run):
         assert np.max(np.abs(f.friction_demand[k] - s.friction_demand)) < 1e-4
 
 
+@pytest.mark.parametrize("friction", [None, 0.6])
+def test_the_compiled_force_probe_is_its_plain_twin(friction):
+    """The compiled probe (all samples in one call, the rank test batched by active set) against
+    its plain loop (`joint_forces_reference`: one projection and one SVD per sample): the same
+    projections in the same order, so the forces agree to 1e-12 of the largest (double
+    rounding only) and the flags exactly. The history rocks, impacts and all (warm starts,
+    holds, impulsive and indeterminate samples), with and without Coulomb friction."""
+    from archquake.rigid.forces import joint_forces, joint_forces_reference
+
+    run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.27), duration=1.2,
+                         friction=friction, output_interval=1e-3)
+    fast = joint_forces(run, run.motion)
+    plain = joint_forces_reference(run, run.motion)
+    assert plain.impulsive.any() and plain.unique.any() and not plain.unique.all()  # exercised
+    assert np.array_equal(fast.unique, plain.unique)
+    assert np.array_equal(fast.impulsive, plain.impulsive)
+    for name in ("normal", "shear", "eccentricity"):
+        a, b = getattr(fast, name), getattr(plain, name)
+        assert np.array_equal(np.isnan(a), np.isnan(b))
+        scale = np.nanmax(np.abs(b))
+        assert np.nanmax(np.abs(a - b)) <= 1e-12 * scale, name
+    assert fast.summary() == plain.summary()
+
+
 def test_at_rest_the_forces_are_indeterminate_but_in_equilibrium():
     """Below lambda (0.30 g step, lambda = 0.37 g) the closed arch is three times statically
     indeterminate: one distribution of many, so none is reported (the thrust line at rest is
