@@ -257,6 +257,18 @@ def _history(s: dict, imp: np.ndarray, unique: np.ndarray, impulsive: np.ndarray
                              weight=float(s["g"] * s["model"].mass.sum()))
 
 
+def _entries(rows, q, body, p, d, sign, isq_m, isq_i) -> None:
+    """One body's entries of a contact row, for every sample at once (as :func:`_rows`'s
+    ``entry``): ``rows`` (ns, 3 nb), ``q`` (ns, nb, 3), the point ``p`` and direction ``d``
+    (ns, 2)."""
+    if body < 0:
+        return
+    rx, ry = p[:, 0] - q[:, body, 0], p[:, 1] - q[:, body, 1]
+    rows[:, 3 * body] += sign * d[:, 0] * isq_m[body]
+    rows[:, 3 * body + 1] += sign * d[:, 1] * isq_m[body]
+    rows[:, 3 * body + 2] += sign * (rx * d[:, 1] - ry * d[:, 0]) * isq_i[body]
+
+
 def _unique(model: RigidModel, active: np.ndarray, qm: np.ndarray, nrm: np.ndarray,
             tan: np.ndarray, pts: np.ndarray) -> np.ndarray:
     """The rank test of every sample (nt,) bool: the rows of :func:`_rows`, built at once for
@@ -279,13 +291,8 @@ def _unique(model: RigidModel, active: np.ndarray, qm: np.ndarray, nrm: np.ndarr
         rows = np.zeros((sel.size, nrows, 3 * nb))
         q = qm[sel]
 
-        def entry(r, body, p, d, sign):
-            if body < 0:
-                return
-            rx, ry = p[:, 0] - q[:, body, 0], p[:, 1] - q[:, body, 1]
-            rows[:, r, 3 * body] += sign * d[:, 0] * isq_m[body]
-            rows[:, r, 3 * body + 1] += sign * d[:, 1] * isq_m[body]
-            rows[:, r, 3 * body + 2] += sign * (rx * d[:, 1] - ry * d[:, 0]) * isq_i[body]
+        def entry(r, body, p, d, sign, rows=rows, q=q):
+            _entries(rows[:, r], q, body, p, d, sign, isq_m, isq_i)
 
         r = 0
         for j in range(nj):
