@@ -45,6 +45,7 @@ so :attr:`HingeMechanism.symmetric` compares the joints only.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -286,10 +287,23 @@ def hinges_of(arch: VoussoirChain) -> HingeMechanism:
     >>> m.joints, m.load_direction
     ((0, 3, 5, 7), 1)
     """
+    try:
+        hash(arch)
+    except TypeError:  # a chain that cannot be a key: not memoised
+        return _hinges(arch)
+    return _memoised_hinges(arch)
+
+
+def _hinges(arch: VoussoirChain) -> HingeMechanism:
     mech = certified_mechanism(arch)
     if mech is None:
         mech = limit_analysis(arch).mechanism
     return mech if mech.load_direction > 0 else mech.mirrored()
+
+
+#: :func:`hinges_of` once per arch (arches are frozen; the DEM's and the rigid chain's
+#: assemblies of one arch, and the verdict's onset, all ask for its hinges).
+_memoised_hinges = functools.lru_cache(maxsize=128)(_hinges)
 
 
 #: Largest arch whose hinges :func:`certified_mechanism` looks for (it enumerates 16 C(n+1, 4)
