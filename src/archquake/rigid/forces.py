@@ -379,4 +379,5 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
     return _history(s, imp_all, unique, impulsive)
 
 
-__all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces"]
+__all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces",
+           "joint_forces_reference"]
