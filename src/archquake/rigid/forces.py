@@ -323,7 +323,8 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
     recorded samples. Cost: one contact projection per sample used, all in one compiled call
     (:func:`archquake.rigid._force_kernels.probe`; :func:`joint_forces_reference` is its
-    plain twin). A run of the event integrator (``solver="events"``, no time step of its own)
+    plain twin), which also proves most samples' rank test by a bound; the SVD settles the
+    rest. A run of the event integrator (``solver="events"``, no time step of its own)
     is probed with the stepper's default step."""
     import archquake.rigid._force_kernels as FK
 
@@ -332,12 +333,17 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     fb = model.free_blocks
     pos = res.positions[picks][:, fb, :]
     vel = res.velocities[picks][:, fb, :]
-    imp, impulsive, active, qm, nrm, tan, pts = FK.probe(
+    imp, impulsive, active, qm, nrm, tan, pts, certified = FK.probe(
         pos, vel, res.base_displacement[picks], res.base_velocity[picks], s["acc"],
         model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
         model.t0, s["h"], s["g"], s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"],
         s["correction"], s["hold"], s["lref"], IMPULSIVE)
-    return _history(s, imp, _unique(model, active, qm, nrm, tan, pts), impulsive)
+    unique = certified == 1
+    open_ = np.flatnonzero(certified < 0)  # not settled by the certificate: the SVD decides
+    if open_.size:
+        unique[open_] = _unique(model, active[open_], qm[open_], nrm[open_], tan[open_],
+                                pts[open_])
+    return _history(s, imp, unique, impulsive)
 
 
 def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 1
