@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Mapping
 from typing import Any
@@ -28,4 +29,26 @@ def to_jsonable(obj: Any) -> Any:
     return obj
 
 
-__all__ = ["to_jsonable"]
+def canonical_json(obj: Any) -> str:
+    """Sorted keys, no whitespace, reals as floats (so 1 and 1.0 agree), NaN rejected: the text
+    a case's id hashes (:attr:`archquake.sweeps.Case.case_id`) and its specs cache.
+
+    >>> canonical_json({"b": 1, "a": [-0.0, 2.5]})
+    '{"a":[0.0,2.5],"b":1}'
+    """
+    return json.dumps(_floats(obj), sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+
+def _floats(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {k: _floats(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_floats(v) for v in obj]
+    if isinstance(obj, float) and obj == 0.0:
+        return 0.0  # -0.0 and 0.0 are the same input
+    return obj
+
+
+
+__all__ = ["canonical_json", "to_jsonable"]

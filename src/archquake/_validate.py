@@ -78,6 +78,36 @@ def require_int(name: str, value: object, minimum: int, maximum: int | None = No
     return v
 
 
+def check_range(option: str, value: float, low: float, high: float, unit: str = "", *,
+                low_open: bool = False, high_open: bool = False, hint: str = "") -> float:
+    """``value`` of ``option`` (as the user typed it, e.g. ``--duration``) inside its range in the
+    user's units, or :class:`InvalidParameterError` naming both (``hint`` says what to do).
+
+    The command line's wording: the unit follows the range bare (``--radius must be in
+    [0.001, 10000] m, got 0``); :func:`require_range` is the wording of arguments and study keys.
+    """
+    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
+    if not (math.isfinite(value) and ok):
+        rng = _fmt_range(low, high, unit, low_open, high_open)
+        raise InvalidParameterError(
+            f"{option} must be in {rng}, got {value:g}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def check_whole(option: str, value: int, low: int, high: int, hint: str = "") -> int:
+    """A whole number ``value`` of ``option`` from ``low`` to ``high`` (the command line's
+    wording; :func:`require_int` is that of arguments and study keys)."""
+    if not low <= value <= high:
+        raise InvalidParameterError(f"{option} must be a whole number from {low} to {high}, got "
+                                    f"{value}" + (f"; {hint}" if hint else ""))
+    return value
+
+
+def _fmt_range(low: float, high: float, unit: str, low_open: bool, high_open: bool) -> str:
+    u = f" {unit}" if unit else ""
+    return f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}{u}"
+
+
 def _u(unit: str) -> str:
     return f" ({unit})" if unit else ""
 

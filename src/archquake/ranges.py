@@ -1,10 +1,11 @@
 """The range of every kind of value a user gives, in the user's units (g, s, m, degrees).
 
 One place: the command line (:mod:`archquake.cli.common`) and the study files
-(:mod:`archquake.sweeps.cases`) check against these. Ranges come from what the computation
+(:mod:`archquake.geometry.spec`, :mod:`archquake.ground.spec`, :mod:`archquake.sweeps.cases`)
+check against these. Ranges come from what the computation
 represents without overflow or a time step below float resolution, and from what is physically
 meaningful (an impact cannot create energy). Geometry's ranges (radius, depth, density,
-thickness ratio, embrace, voussoirs) live with the Arch in :mod:`archquake.geometry.arch`.
+thickness ratio, embrace, voussoirs) live with their checks in :mod:`archquake.geometry.checks`.
 """
 
 from __future__ import annotations

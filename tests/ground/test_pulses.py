@@ -145,3 +145,26 @@ def test_bad_pulse_parameters_give_one_line(build, fragment):
         build()
     assert fragment in str(info.value)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("motion, want", [
+    (StepImpulse.from_g(0.5, 0.25), "step a = 0.5 g, t_p = 0.25 s"),
+    (StepImpulse.from_g(0.5, 0.25).mirrored(),
+     "step a = 0.5 g, t_p = 0.25 s, first towards +x (mirrored)"),
+    (SinePulse.from_g(0.41, 1.3), "sine a = 0.41 g, T = 1.3 s"),
+    (SinePulse.from_g(0.41, 1.3).mirrored(), "sine a = 0.41 g, T = 1.3 s, first towards +x (mirrored)"),
+])
+def test_motion_label_reads_the_motion_and_its_description_alike(motion, want):
+    """Oracle: the text output's words for each kind (magnitude in g to 3 digits, the first
+    lobe's side only when mirrored); the motion and its ``to_dict()`` give the same line."""
+    from archquake.ground.base import motion_label
+
+    assert motion_label(motion) == motion_label(motion.to_dict()) == want
+
+
+def test_motion_label_of_a_record_is_its_name():
+    from archquake.ground import Record
+    from archquake.ground.base import motion_label
+
+    record = Record([0.0, 2.0, -1.0], 0.01, name="RSN6_IMPVALL.I_I-ELC180")
+    assert motion_label(record) == motion_label(record.to_dict()) == "RSN6_IMPVALL.I_I-ELC180"

@@ -5,9 +5,16 @@ from __future__ import annotations
 import argparse
 import math
 
-from archquake.cli.common import MAX_EMBRACE_DEG, MIN_EMBRACE_DEG, number, print_json, whole
+from archquake.cli.common import number, print_json, whole
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import MAX_VOUSSOIRS
+from archquake.geometry.checks import (
+    MAX_EMBRACE_DEG,
+    MAX_VOUSSOIRS,
+    MIN_EMBRACE_DEG,
+    OPTIONS,
+    check_embrace_deg,
+    check_voussoirs,
+)
 from archquake.limit import min_thickness_ratio
 
 
@@ -88,14 +95,8 @@ def _run_shape(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     if any(getattr(args, k, None) is not None for k in _SHAPE_OPTIONS) or args.joints != "radial":
         return _run_shape(args)
-    if not (MIN_EMBRACE_DEG <= args.embrace <= MAX_EMBRACE_DEG):
-        raise InvalidParameterError(
-            f"--embrace must be in [{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees, "
-            f"got {args.embrace:g}")
-    if not (3 <= args.voussoirs <= MAX_VOUSSOIRS):
-        raise InvalidParameterError(
-            f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {args.voussoirs}"
-        )
+    check_embrace_deg(args.embrace, OPTIONS)
+    check_voussoirs(args.voussoirs, OPTIONS)
     ratio = min_thickness_ratio(math.radians(args.embrace), args.voussoirs)
     if args.json:
         print_json({"min_thickness_ratio": ratio, "embrace_deg": args.embrace,

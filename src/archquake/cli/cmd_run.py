@@ -21,6 +21,7 @@ from archquake.cli.common import (
 )
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ground.base import motion_label
 from archquake.ranges import (
     ANIMATION_SUFFIXES,
     CSV_SUFFIXES,
@@ -97,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
 
         t_show = result.collapse_time if result.collapse_time is not None else None
         t_show = max(1.2 * (t_show or 0.0), min(float(result.history.t[-1]), 1.5 * motion.duration + 3.0))
-        figure4([result], [motion], [_label(motion, g)], args.plot, t_end=t_show, title="(a) excitation")
+        figure4([result], [motion], [motion_label(motion)], args.plot, t_end=t_show, title="(a) excitation")
     if args.animate:
         from archquake.plotting.history import animate_history
 
@@ -120,19 +121,8 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _label(motion, g: float) -> str:
-    d = motion.to_dict()
-    if d.get("type") == "step":
-        return (f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s"
-                + _towards(d))
-    if d.get("type") == "sine":
-        return (f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s"
-                + _towards(d))
-    return str(getattr(motion, "name", "record"))
-
-
 def _print_text(result, motion, g: float) -> None:
-    print(f"excitation          {_label(motion, g)}")
+    print(f"excitation          {motion_label(motion)}")
     hinges = ", ".join(f"joint {h.joint} {h.face.value}" for h in result.mechanism.hinges)
     print(f"hinges (A, B, C, D) {hinges}")
     print(f"onset of hinging    {result.collapse_acceleration_g:.4f} g (equivalent static analysis)")
@@ -186,8 +176,3 @@ def _run_dem(args, arch, motion) -> int:
     from archquake.cli import dem_run
 
     return dem_run.run(args, arch, motion)
-
-
-def _towards(motion: dict) -> str:
-    """', first towards +x' for a mirrored pulse (the default's first lobe is towards -x)."""
-    return ", first towards +x (mirrored)" if motion.get("direction", -1) > 0 else ""

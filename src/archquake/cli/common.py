@@ -14,21 +14,28 @@ from typing import Any
 import numpy as np
 
 from archquake._json import to_jsonable
+from archquake._validate import check_range, check_whole  # noqa: F401  (the CLI's wording)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import GroundMotionFormatError, InvalidParameterError
-from archquake.geometry.arch import (
+from archquake.geometry.arch import Arch
+from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.checks import (  # the one place where an arch is checked
     MAX_DENSITY,
     MAX_DEPTH,
     MAX_EMBRACE_DEG,
     MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
-    MIN_EMBRACE_DEG,
-    MIN_THICKNESS_RATIO,
+    OPTIONS,
     RADIUS_RANGE,
-    Arch,
+    check_density,
+    check_depth,
+    check_embrace_deg,
+    check_piers,
+    check_radius,
+    check_thickness,
+    check_voussoirs,
 )
-from archquake.geometry.chain import VoussoirChain
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
 from archquake.ground.periods import period_grid
 from archquake.ground.records import UNITS
@@ -67,33 +74,9 @@ OPPENHEIM_DEFAULTS = {"radius": 10.0, "thickness": 1.5, "embrace": 157.5, "vouss
 
 
 # ---------------------------------------------------------------------------------------------
-# Checks of a value against its range (archquake.ranges), named as the user typed the option.
+# Checks of a value against its range (archquake.ranges), named as the user typed the option
+# (archquake._validate.check_range and check_whole; the arch's in archquake.geometry.checks).
 # ---------------------------------------------------------------------------------------------
-
-
-def _fmt_range(low: float, high: float, unit: str, low_open: bool, high_open: bool) -> str:
-    u = f" {unit}" if unit else ""
-    return f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}{u}"
-
-
-def check_range(option: str, value: float, low: float, high: float, unit: str = "", *,
-                low_open: bool = False, high_open: bool = False, hint: str = "") -> float:
-    """``value`` of ``option`` (as the user typed it, e.g. ``--duration``) inside its range in the
-    user's units, or :class:`InvalidParameterError` naming both (``hint`` says what to do)."""
-    ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
-    if not (math.isfinite(value) and ok):
-        rng = _fmt_range(low, high, unit, low_open, high_open)
-        raise InvalidParameterError(
-            f"{option} must be in {rng}, got {value:g}" + (f"; {hint}" if hint else ""))
-    return value
-
-
-def check_whole(option: str, value: int, low: int, high: int, hint: str = "") -> int:
-    """A whole number ``value`` of ``option`` from ``low`` to ``high``."""
-    if not low <= value <= high:
-        raise InvalidParameterError(f"{option} must be a whole number from {low} to {high}, got "
-                                    f"{value}" + (f"; {hint}" if hint else ""))
-    return value
 
 
 def ranged(low: float, high: float, unit: str = "", *, low_open: bool = False,
@@ -337,8 +320,8 @@ def arch_from_args(args: argparse.Namespace):
     from archquake.geometry import OnPiers, Piers
     from archquake.geometry.shapes import ShapedArch, pointed
 
-    check_range("--depth", args.depth, MIN_DEPTH, MAX_DEPTH, "m")
-    check_range("--density", args.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3")
+    check_depth(args.depth, OPTIONS)
+    check_density(args.density, OPTIONS)
     shape = getattr(args, "shape", None)
     blocks = getattr(args, "blocks", None)
     joints = getattr(args, "joints", "radial") or "radial"
@@ -385,12 +368,9 @@ def arch_from_args(args: argparse.Namespace):
                 arch = Arch(r, args.thickness, beta, voussoirs, args.depth, args.density)
     height, width = getattr(args, "pier_height", None), getattr(args, "pier_width", None)
     courses = getattr(args, "pier_courses", None)
-    if height is None and width is None:
-        if courses is not None:
-            raise InvalidParameterError("--pier-courses needs --pier-height and --pier-width")
+    if not check_piers(height, width, courses, OPTIONS):
         return arch
-    if height is None or width is None:
-        raise InvalidParameterError("piers need both --pier-height and --pier-width (m)")
+    assert height is not None and width is not None  # check_piers: both or neither
     return OnPiers(arch, Piers(height, width, 1 if courses is None else courses))
 
 
@@ -406,23 +386,10 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
             f"a circular arch needs {', '.join('--' + k for k in missing)}")
     radius, thickness, embrace, voussoirs = (values[k] for k in ("radius", "thickness", "embrace",
                                                                   "voussoirs"))
-    if not (MIN_EMBRACE_DEG <= embrace <= MAX_EMBRACE_DEG):
-        raise InvalidParameterError(
-            f"--embrace must be in [{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees, "
-            f"got {embrace:g}")
-    if voussoirs < 3 or voussoirs > MAX_VOUSSOIRS:
-        raise InvalidParameterError(
-            f"--voussoirs must be a whole number from 3 to {MAX_VOUSSOIRS}, got {voussoirs}"
-        )
-    low, high = RADIUS_RANGE
-    if not low <= radius <= high:
-        raise InvalidParameterError(f"--radius must be in [{low:g}, {high:g}] m, got {radius:g}")
-    thin = MIN_THICKNESS_RATIO * radius
-    if not thin <= thickness < 2 * radius:
-        raise InvalidParameterError(
-            f"--thickness must be in [{MIN_THICKNESS_RATIO:g} x radius, 2 x radius) = "
-            f"[{thin:g}, {2 * radius:g}) m, got {thickness:g}"
-        )
+    check_embrace_deg(embrace, OPTIONS)
+    check_voussoirs(voussoirs, OPTIONS)
+    check_radius(radius, OPTIONS)
+    check_thickness(thickness, radius, OPTIONS)
     if joints == "vertical":
         from archquake.geometry.shapes import circular
 

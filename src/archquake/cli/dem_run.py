@@ -16,6 +16,7 @@ from archquake.cli.common import (
     refuse_unless,
 )
 from archquake.errors import InvalidParameterError
+from archquake.ground.base import motion_label
 from archquake.ranges import (
     DAMPING_FREQUENCY_RANGE_HZ,
     DAMPING_RATIO_RANGE_PERCENT,
@@ -182,7 +183,7 @@ def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
 
 def _print_text(out: dict, result) -> None:
     s = out["settings"]
-    print(f"excitation          {_label_of(out)}")
+    print(f"excitation          {motion_label(out['excitation'])}")
     print(f"model               distinct elements: {out['assembly']['name']}, "
           f"k = {s['contact']['normal_stiffness_Pa_m']:.3g} Pa/m, Rayleigh alpha = "
           f"{s['rayleigh_alpha_1_s']:.3g} 1/s, beta = {s['rayleigh_beta_s']:.3g} s")
@@ -213,19 +214,3 @@ def print_block_verdict(out: dict, criterion: str = "") -> None:
     if imp:
         more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
         print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
-
-
-def _label_of(out: dict) -> str:
-    e = out["excitation"]
-    if e.get("type") == "step":
-        return (f"step a = {e['magnitude_g']:.3g} g, t_p = {e['duration_s']:.3g} s"
-                + _towards(e))
-    if e.get("type") == "sine":
-        return (f"sine a = {e['magnitude_g']:.3g} g, T = {e['period_s']:.3g} s"
-                + _towards(e))
-    return str(e.get("name", "record"))
-
-
-def _towards(motion: dict) -> str:
-    """', first towards +x' for a mirrored pulse (the default's first lobe is towards -x)."""
-    return ", first towards +x (mirrored)" if motion.get("direction", -1) > 0 else ""

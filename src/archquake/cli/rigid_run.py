@@ -75,10 +75,10 @@ def with_verdict(out: dict, verdict) -> dict:
 
 
 def _print_text(out: dict) -> None:
-    from archquake.cli.dem_run import _label_of
+    from archquake.ground.base import motion_label
 
     rig = out["rigid"]
-    print(f"excitation          {_label_of(out)}")
+    print(f"excitation          {motion_label(out['excitation'])}")
     print(f"model               rigid: chain of rigid voussoirs ({out['assembly']['name']}), "
           "plastic contacts, "
           + ("no sliding" if out["friction_coefficient"] is None

@@ -120,9 +120,10 @@ def ramp_and_hold(acceleration: float, ramp: float, hold: float) -> Record:
 
 def rectangular_pulse(acceleration: float, duration: float, *, samples: int = 2000) -> Record:
     """A rectangular acceleration pulse (m/s^2, s), sampled finely (the fall to zero takes
-    duration / samples)."""
-    dt = duration / samples
-    return Record(np.array([acceleration] * (samples + 1) + [0.0, 0.0]), dt, name="rectangular pulse")
+    duration / samples): :meth:`archquake.ground.pulses.RectangularPulse.sampled`."""
+    from archquake.ground.pulses import RectangularPulse
+
+    return RectangularPulse(acceleration, duration).sampled(samples)
 
 
 __all__ = [

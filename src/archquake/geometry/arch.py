@@ -18,36 +18,27 @@ from functools import cached_property
 
 import numpy as np
 
-from archquake._validate import require_int, require_positive, require_range
-from archquake.errors import InvalidParameterError
-from archquake.geometry.chain import (  # noqa: F401  (the ranges are re-exported here)
+from archquake._validate import require_positive
+from archquake.geometry.chain import VoussoirChain
+from archquake.geometry.checks import (  # noqa: F401  (the ranges are re-exported here)
     MAX_DENSITY,
     MAX_DEPTH,
+    MAX_EMBRACE,
+    MAX_EMBRACE_DEG,
+    MAX_VOUSSOIRS,
     MIN_DENSITY,
     MIN_DEPTH,
+    MIN_EMBRACE,
+    MIN_EMBRACE_DEG,
     MIN_THICKNESS_RATIO,
-    VoussoirChain,
+    RADIUS_RANGE,
+    check_density,
+    check_depth,
+    check_embrace,
+    check_radius,
+    check_thickness,
+    check_voussoirs,
 )
-
-#: Largest supported angle of embrace, rad (240 deg): deeper arches than this are horseshoe
-#: shapes whose springings overhang the centre far enough that a two-support, four-hinge
-#: description stops being a sensible model.
-MAX_EMBRACE_DEG = 240.0
-#: The same in rad. Compare degrees with :data:`MAX_EMBRACE_DEG` (degrees(radians(240)) is
-#: 239.99999999999997, so converting the bound back would refuse the documented maximum).
-MAX_EMBRACE = math.radians(MAX_EMBRACE_DEG)
-#: Least angle of embrace, degrees: a flatter ring is a straight beam, and below it (5e-324 rad
-#: reached a division by zero) the joint angles pi/2 +- embrace/2 of thousands of voussoirs stop
-#: being distinct in double precision.
-MIN_EMBRACE_DEG = 1e-3
-#: The same in rad.
-MIN_EMBRACE = math.radians(MIN_EMBRACE_DEG)
-#: Most voussoirs accepted (limit analysis enumerates joint quadruples).
-MAX_VOUSSOIRS = 2000
-#: Radii accepted, m: from a 1 mm laboratory model to a 10 km arch. Beyond them nothing is
-#: gained physically, and masses (rho d beta R t) and inertias (~ m R^2) would leave the range
-#: where the limit analysis's linear programme and the time steps are well conditioned.
-RADIUS_RANGE = (1e-3, 1e4)
 
 
 @dataclass(frozen=True)
@@ -94,31 +85,12 @@ class Arch(VoussoirChain):
     density: float = 2000.0
 
     def __post_init__(self) -> None:
-        r = require_range("radius", self.radius, *RADIUS_RANGE, "m", low_open=False,
-                          high_open=False)
-        t = require_positive("thickness", self.thickness, "m")
-        if t >= 2.0 * r:
-            raise_thick(t, r)
-        if t < MIN_THICKNESS_RATIO * r:
-            raise InvalidParameterError(
-                f"thickness must be in [{MIN_THICKNESS_RATIO:g} x radius, 2 x radius) = "
-                f"[{MIN_THICKNESS_RATIO * r:g}, {2 * r:g}) m, got {t:g}")
-        require_range(
-            "embrace",
-            self.embrace,
-            MIN_EMBRACE,
-            MAX_EMBRACE,
-            "",
-            low_open=False,
-            high_open=False,
-            shown=f"[{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees = "
-                  f"[{MIN_EMBRACE:.4g}, {MAX_EMBRACE:.6g}] rad",
-        )
-        require_int("voussoirs", self.voussoirs, 3, MAX_VOUSSOIRS)
-        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
-                      high_open=False)
-        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
-                      low_open=False, high_open=False)
+        r = check_radius(self.radius)
+        check_thickness(self.thickness, r)
+        check_embrace(self.embrace)
+        check_voussoirs(self.voussoirs)
+        check_depth(self.depth)
+        check_density(self.density)
         # store plain Python numbers so that the dataclass hashes and pickles predictably
         for name in ("radius", "thickness", "embrace", "depth", "density"):
             object.__setattr__(self, name, float(getattr(self, name)))
@@ -310,13 +282,6 @@ class Arch(VoussoirChain):
             "depth_m": self.depth,
             "density_kg_m3": self.density,
         }
-
-
-def raise_thick(t: float, r: float) -> None:
-    raise InvalidParameterError(
-        f"thickness must be less than 2 x radius = {2 * r:g} m (the intrados radius R - t/2 "
-        f"must stay positive), got {t:g} m"
-    )
 
 
 __all__ = ["Arch", "MAX_DENSITY", "MAX_DEPTH", "MAX_EMBRACE", "MAX_EMBRACE_DEG", "MAX_VOUSSOIRS",

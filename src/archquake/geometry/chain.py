@@ -33,20 +33,24 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from archquake._validate import require_int, require_positive, require_range
+from archquake._validate import require_positive
 from archquake.errors import InvalidParameterError
+from archquake.geometry.checks import (  # noqa: F401  (the ranges are re-exported here)
+    MAX_DENSITY,
+    MAX_DEPTH,
+    MIN_DENSITY,
+    MIN_DEPTH,
+    MIN_THICKNESS_RATIO,
+    Wording,
+    check_density,
+    check_depth,
+    check_pier_values,
+)
 from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 
-#: Largest density, kg/m^3 (the densest element, osmium, is 22,590), and largest depth, m.
-MAX_DENSITY = 1e5
-MAX_DEPTH = 1e4
-#: Least density (kg/m^3) and depth (m): far below any masonry; below them masses leave the
-#: range where the impact and kernel arithmetic is sound (the CLI fuzz found 1e-300 of each
-#: dividing by zero). Least thickness ratio t/R of a circular Arch (the CLI and study files
-#: check the same): below it the limit analysis's coefficients overflow.
-MIN_DENSITY = 1.0
-MIN_DEPTH = 1e-3
-MIN_THICKNESS_RATIO = 1e-6
+#: A pier's parameters in the messages of :class:`Piers`.
+_PIER_NAMES = Wording(names={"pier_height": "pier height", "pier_width": "pier width",
+                             "pier_courses": "pier courses"})
 
 
 class VoussoirChain(ABC):
@@ -323,10 +327,8 @@ class BlockChain(VoussoirChain):
             fixed.append(tuple(map(tuple, arr.tolist())))
         object.__setattr__(self, "blocks", tuple(fixed))
         object.__setattr__(self, "joints", joints)
-        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
-                      high_open=False)
-        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
-                      low_open=False, high_open=False)
+        check_depth(self.depth)
+        check_density(self.density)
         object.__setattr__(self, "depth", float(self.depth))
         object.__setattr__(self, "density", float(self.density))
         check_tiling(self)
@@ -432,9 +434,7 @@ class Piers:
     courses: int = 1
 
     def __post_init__(self) -> None:
-        require_positive("pier height", self.height, "m")
-        require_positive("pier width", self.width, "m")
-        require_int("pier courses", self.courses, 1, 500)
+        check_pier_values(self.height, self.width, self.courses, _PIER_NAMES)
         object.__setattr__(self, "height", float(self.height))
         object.__setattr__(self, "width", float(self.width))
         object.__setattr__(self, "courses", int(self.courses))

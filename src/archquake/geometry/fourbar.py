@@ -11,10 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-
-def cross2(u: np.ndarray, v: np.ndarray) -> float:
-    """z component of the cross product of two plane vectors."""
-    return float(u[0] * v[1] - u[1] * v[0])
+from archquake.geometry.planar import perp
 
 
 def link_rates(points: np.ndarray) -> np.ndarray:
@@ -42,9 +39,9 @@ def link_rates(points: np.ndarray) -> np.ndarray:
     a, b, c, d = (np.asarray(p, dtype=float) for p in points)
     # v_B = J (B - A) for omega_AB = 1; v_C = v_B + w_bc J (C - B) = w_cd J (C - D).
     # In components with J(x, y) = (-y, x):  w_bc * J(C-B) - w_cd * J(C-D) = -J(B-A).
-    jcb = np.array([-(c - b)[1], (c - b)[0]])
-    jcd = np.array([-(c - d)[1], (c - d)[0]])
-    jba = np.array([-(b - a)[1], (b - a)[0]])
+    jcb = perp(c - b)
+    jcd = perp(c - d)
+    jba = perp(b - a)
     mat = np.column_stack([jcb, -jcd])
     det = np.linalg.det(mat)
     scale = float(np.linalg.norm(c - b) * np.linalg.norm(c - d))
@@ -56,8 +53,7 @@ def link_rates(points: np.ndarray) -> np.ndarray:
 
 def point_velocity(rate: float, pivot: np.ndarray, point: np.ndarray) -> np.ndarray:
     """Velocity of ``point`` on a body turning at ``rate`` about the fixed ``pivot`` (m/s per rad/s)."""
-    r = np.asarray(point, dtype=float) - np.asarray(pivot, dtype=float)
-    return rate * np.array([-r[..., 1], r[..., 0]]).T if r.ndim > 1 else rate * np.array([-r[1], r[0]])
+    return rate * perp(np.asarray(point, dtype=float) - np.asarray(pivot, dtype=float))
 
 
-__all__ = ["cross2", "link_rates", "point_velocity"]
+__all__ = ["link_rates", "point_velocity"]

@@ -43,22 +43,23 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from archquake._validate import require_int, require_positive, require_range
+from archquake._validate import require_positive, require_range
 from archquake.errors import InvalidParameterError
-from archquake.geometry.arch import (
-    MAX_DENSITY,
-    MAX_DEPTH,
-    MAX_VOUSSOIRS,
-    MIN_DENSITY,
-    MIN_DEPTH,
-    Arch,
-)
+from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain, three_point_radius
+from archquake.geometry.checks import (  # noqa: F401  (SHAPES and JOINTS are re-exported here)
+    JOINTS,
+    SHAPES,
+    Wording,
+    check_density,
+    check_depth,
+    check_joints,
+    check_shape,
+    check_voussoirs,
+)
 
-#: Shapes :class:`ShapedArch` knows ("segmental" is the circular arch with f < L/2).
-SHAPES = ("circular", "segmental", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
-#: Joint patterns.
-JOINTS = ("radial", "vertical")
+#: The shape's and joints' names in the messages of :class:`ShapedArch` (as the options).
+_NAMES = Wording(names={"shape": "--shape", "joints": "--joints"})
 #: Turning of the three-centred arch's haunch arcs, rad.
 HAUNCH_ANGLE = math.radians(60.0)
 #: Samples of the half centreline for its arc length, and of each half face.
@@ -105,20 +106,16 @@ class ShapedArch(VoussoirChain):
     density: float = 2000.0
 
     def __post_init__(self) -> None:
-        shape = str(self.shape).replace("_", "-").lower()
-        if shape not in SHAPES:
-            raise InvalidParameterError(f"--shape must be one of {', '.join(SHAPES)}, got {self.shape!r}")
+        shape = check_shape(self.shape, _NAMES)
+        if str(self.joints).lower() not in JOINTS:
+            check_joints(self.joints, _NAMES)
         joints = str(self.joints).lower()
-        if joints not in JOINTS:
-            raise InvalidParameterError(f"--joints must be radial or vertical, got {self.joints!r}")
         L = require_range("span", self.span, 1e-3, 2e4, "m", low_open=False, high_open=False)
         f = require_positive("rise", self.rise, "m")
         t = require_positive("thickness", self.thickness, "m")
-        require_int("voussoirs", self.voussoirs, 4 if joints == "vertical" else 3, MAX_VOUSSOIRS)
-        require_range("depth", self.depth, MIN_DEPTH, MAX_DEPTH, "m", low_open=False,
-                      high_open=False)
-        require_range("density", self.density, MIN_DENSITY, MAX_DENSITY, "kg/m^3",
-                      low_open=False, high_open=False)
+        check_voussoirs(self.voussoirs, least=4 if joints == "vertical" else 3)
+        check_depth(self.depth)
+        check_density(self.density)
         if shape == "segmental" and f > 0.5 * L:
             raise InvalidParameterError(
                 f"--rise of a segmental arch must be at most half the span ({0.5 * L:g} m), got {f:g} m"
@@ -480,8 +477,7 @@ def shaped(shape: str, **kwargs) -> VoussoirChain:
         return segmental(**kwargs)
     if shape == "pointed":
         return pointed(**kwargs)
-    if shape not in SHAPES:
-        raise InvalidParameterError(f"--shape must be one of {', '.join(SHAPES)}, got {shape!r}")
+    check_shape(shape, _NAMES)
     extra = set(kwargs) - {"span", "rise", "thickness", "voussoirs", "joints", "depth", "density"}
     if extra:
         raise InvalidParameterError(f"a {shape} arch takes --span and --rise, not {sorted(extra)}")

@@ -21,7 +21,8 @@ kind        params (float64)                   x_g''(t)
 from __future__ import annotations
 
 import math
-from typing import Protocol, cast, runtime_checkable
+from collections.abc import Mapping
+from typing import Any, Protocol, cast, runtime_checkable
 
 import numpy as np
 
@@ -139,5 +140,34 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
             f"are below the integrator's time resolution), got {value:g}")
 
 
-__all__ = ["GroundMotion", "check_motion", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION",
-           "check_time_resolution", "time_floor"]
+def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
+    """One line naming a ground motion for text output: a pulse by its kind, magnitude (g)
+    and duration or period (s), and the side of its first lobe when mirrored; a record by its
+    name.
+
+    Parameters
+    ----------
+    motion : GroundMotion or mapping
+        The motion, or its description (its ``to_dict()``, as a run's JSON output holds it
+        under ``excitation``).
+
+    Examples
+    --------
+    >>> from archquake.ground import StepImpulse
+    >>> motion_label(StepImpulse.from_g(0.5, 0.25))
+    'step a = 0.5 g, t_p = 0.25 s'
+    >>> motion_label({"type": "sine", "magnitude_g": 0.4, "period_s": 1.0, "direction": 1})
+    'sine a = 0.4 g, T = 1 s, first towards +x (mirrored)'
+    """
+    d = motion if isinstance(motion, Mapping) else motion.to_dict()
+    # the default pulse's first lobe is towards -x (module docstring)
+    towards = ", first towards +x (mirrored)" if d.get("direction", -1) > 0 else ""
+    if d.get("type") == "step":
+        return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s" + towards
+    if d.get("type") == "sine":
+        return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s" + towards
+    return str(d.get("name", getattr(motion, "name", "record")))
+
+
+__all__ = ["GroundMotion", "check_motion", "motion_label", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED",
+           "TIME_RESOLUTION", "check_time_resolution", "time_floor"]

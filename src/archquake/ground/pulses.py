@@ -17,6 +17,7 @@ from archquake._validate import require_finite, require_gravity, require_positiv
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ground.base import KIND_SINE, KIND_STEP, GroundMotion
+from archquake.ground.records import Record
 
 
 def _direction(value: object) -> int:
@@ -186,8 +187,7 @@ class SinePulse:
 @dataclass(frozen=True)
 class RectangularPulse:
     """x_g'' = ``acceleration`` (m/s^2) for 0 <= t < ``pulse_duration`` (s), then 0: the exact
-    rectangle the DEM's sampled :func:`archquake.dem.studies.rectangular_pulse` approximates
-    (its fall takes t_p / 2000)."""
+    rectangle that :meth:`sampled` approximates (its fall takes t_p / 2000)."""
 
     acceleration_m_s2: float
     pulse_duration: float
@@ -205,6 +205,14 @@ class RectangularPulse:
 
     def mirrored(self) -> RectangularPulse:
         return RectangularPulse(-self.acceleration_m_s2, self.pulse_duration)
+
+    def sampled(self, samples: int = 2000) -> Record:
+        """The pulse as a sampled :class:`~archquake.ground.Record` for the kernels that read
+        a motion's compiled description (the DEM's): ``samples`` intervals of t_p / samples s
+        at the full acceleration, so the fall to zero takes t_p / samples."""
+        dt = self.pulse_duration / samples
+        return Record(np.array([self.acceleration_m_s2] * (samples + 1) + [0.0, 0.0]), dt,
+                      name="rectangular pulse")
 
 
 

@@ -55,6 +55,7 @@ SI units throughout.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -120,6 +121,95 @@ RESUME_SEPARATION = 1.0e-6
 CHATTER_WINDOW = 1.0e-3
 #: ... more than this many: fallback.
 CHATTER_EVENTS = 60
+
+
+class Chain(NamedTuple):
+    """The packed arrays of the chain that :func:`run` reads and never writes, assembled once
+    per run (:class:`archquake.rigid.events.EventModel`).
+
+    Blocks (n of them, in chain order): ``X0`` (n, 2) undisplaced centroids, m; ``mb``, ``ib``
+    masses (kg) and inertias (kg m^2); prefix sums from the left ``S0`` (n + 1,) of the mass,
+    kg, ``S1`` (n + 1, 2) of m X, kg m, ``S2`` (n + 1,) of m |X|^2 + I, kg m^2. Joints (nj):
+    ``p0`` (nj, 2, 2) undisplaced corners, m; ``n0``, ``t0`` (nj, 2) normals and tangents;
+    ``hw`` half-widths, m; ``sg`` = t x n (+-1); ``ja``, ``jb`` the blocks on either side (-1:
+    a springing); ``arm_a``, ``arm_b`` the corners from those blocks' centroids, m (as the
+    time stepper's :mod:`archquake.rigid._step_kernels` reads them). ``free_blocks`` and ``free``: the
+    blocks the collapse criterion reads, and 1 for each movable block. ``cpar``: the collapse
+    criterion's parameters (:func:`archquake.dem._kernels.collapsed`). ``lref``: the chain's
+    reference length L, m (the radius of a circular arch).
+    """
+
+    X0: np.ndarray
+    mb: np.ndarray
+    ib: np.ndarray
+    S0: np.ndarray
+    S1: np.ndarray
+    S2: np.ndarray
+    p0: np.ndarray
+    n0: np.ndarray
+    t0: np.ndarray
+    hw: np.ndarray
+    sg: np.ndarray
+    ja: np.ndarray
+    jb: np.ndarray
+    arm_a: np.ndarray
+    arm_b: np.ndarray
+    free_blocks: np.ndarray
+    free: np.ndarray
+    cpar: np.ndarray
+    lref: float
+
+
+class Span(NamedTuple):
+    """What one call of :func:`run` integrates: the ground motion (``kind``, ``gp``: its
+    compiled description, :meth:`archquake.ground.GroundMotion.kernel_spec`), gravity ``g``
+    (m/s^2), the end ``t_end`` (s) and the excitation's end ``t_exc_end`` (s); the onset
+    thresholds ``lam_pos``, ``lam_neg`` (m/s^2, the ground acceleration that moves the locked
+    arch either way); the error control ``rtol``, ``atol`` and largest step ``h_max`` (s); the
+    sample interval ``dt_out`` (s); whether to stop at the first collapsed sample, and whether
+    to resume from the block state (``State.fq``, ``State.fv``) first."""
+
+    kind: int
+    gp: np.ndarray
+    g: float
+    t_end: float
+    t_exc_end: float
+    lam_pos: float
+    lam_neg: float
+    rtol: float
+    atol: float
+    h_max: float
+    dt_out: float
+    stop_at_collapse: bool
+    resume: bool
+
+
+class State(NamedTuple):
+    """The state :func:`run` reads and updates in place: ``st`` = [K, jh, ch] (the hinge set),
+    ``y`` = (beta, beta', W_in), ``tt`` (1,) the time (s); ``counters`` (N_COUNTERS), ``diag``
+    (N_E); ``fq``, ``fv`` (n, 3) the block positions and velocities handed to and from the time
+    stepper; ``log`` (rows, 4) the event log; ``state_all`` (n, 6) work array of the collapse
+    criterion."""
+
+    st: np.ndarray
+    y: np.ndarray
+    tt: np.ndarray
+    counters: np.ndarray
+    diag: np.ndarray
+    fq: np.ndarray
+    fv: np.ndarray
+    log: np.ndarray
+    state_all: np.ndarray
+
+
+class Output(NamedTuple):
+    """The samples :func:`run` writes: block positions ``q`` and velocities ``v`` (cap, n, 3)
+    and energies ``e`` (cap, 5: kinetic, potential, dissipated, input work (J), friction
+    demand)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    e: np.ndarray
 
 
 @nb.njit(cache=True)
@@ -903,15 +993,14 @@ def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, why, t, tt, st, diag):
 
 
 @nb.njit(cache=True)
-def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
-        kind, gp, g, t_end, t_exc_end, lam_pos, lam_neg, st, y, tt, rtol, atol, h_max,
-        dt_out, out_q, out_v, out_e, written, state_all, freemap, free, cpar, stop_at_collapse,
-        counters, diag, fq, fv, log, resume):
-    """Integrate from ``tt[0]`` to ``t_end`` (module docstring). ``st`` = [K, jh (MAX_HINGES),
-    ch (MAX_HINGES)] and ``y`` = (beta, beta', W_in) are the state, updated in place; samples
-    at k ``dt_out`` (k = written + 1, ...) go to ``out_*`` (``out_e``: kinetic, potential,
-    dissipated, input, friction demand). ``log`` (rows: t s, kind (1 closure, 2 opening, 3
-    relock, 4 onset, 5 rest), joint, hinges after) gets every event while it has room
+def run(chain, span, state, output, written):
+    """Integrate from ``state.tt[0]`` to ``span.t_end`` (module docstring): ``chain`` a
+    :class:`Chain`, ``span`` a :class:`Span`, ``state`` a :class:`State` (updated in place),
+    ``output`` an :class:`Output`. ``st`` = [K, jh (MAX_HINGES), ch (MAX_HINGES)] and ``y`` =
+    (beta, beta', W_in) are the state, updated in place; samples at k ``dt_out`` (k = written +
+    1, ...) go to ``output`` (``e``: kinetic, potential, dissipated, input, friction demand).
+    ``log`` (rows: t s, kind (1 closure, 2 opening, 3 relock, 4 onset, 5 rest), joint, hinges
+    after) gets every event while it has room
     (``counters[N_LOG]`` rows written). With ``resume`` the state is first read from the block
     positions and velocities ``fq``, ``fv`` (the time stepper's, after a fallback window):
     a joint open by more than ``RESUME_GAP`` L, or closed but turning (its corner speed above
@@ -921,6 +1010,12 @@ def run(X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, lref,
     kinetic-energy metric (the energy that removes is counted as dissipated);
     ``diag[E_INPUT]`` carries the input work.
     Returns (status, reason, samples written)."""
+    X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, freemap, free, cpar, lref = (
+        chain)
+    kind, gp, g, t_end, t_exc_end, lam_pos, lam_neg, rtol, atol, h_max, dt_out = span[:11]
+    stop_at_collapse, resume = span.stop_at_collapse, span.resume
+    st, y, tt, counters, diag, fq, fv, log, state_all = state
+    out_q, out_v, out_e = output
     n = X0.shape[0]
     MX = MAX_HINGES
     jh = st[1:1 + MX]

@@ -344,14 +344,16 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     if initial is not None:
         fq[:] = np.asarray(initial[0], float)
         fv[:] = np.asarray(initial[1], float)
+    chain = EK.Chain(model.X0, model.mb, model.ib, model.S0, model.S1, model.S2, model.p0,
+                     model.n0, model.t0, model.hw, model.sg, r.ja, r.jb, r.arm_a, r.arm_b,
+                     r.free_blocks, free, cpar, lref)
+    state = EK.State(st, y, tt, counters, diag, fq, fv, log, state_all)
+    output = EK.Output(out_q, out_v, out_e)
     while True:
-        status, why, written = EK.run(
-            model.X0, model.mb, model.ib, model.S0, model.S1, model.S2, model.p0, model.n0,
-            model.t0, model.hw, model.sg, r.ja, r.jb, r.arm_a, r.arm_b, lref, kind, gp, g,
-            min(t_stop, n_out * output_interval + 1e-12), t_exc, lam_p * g, lam_n * g, st, y, tt,
-            rtol, atol, h_max, output_interval, out_q, out_v, out_e, written, state_all,
-            r.free_blocks, free, cpar, bool(settings.stop_at_collapse), counters, diag, fq, fv,
-            log, resume)
+        span = EK.Span(kind, gp, g, min(t_stop, n_out * output_interval + 1e-12), t_exc,
+                       lam_p * g, lam_n * g, rtol, atol, h_max, output_interval,
+                       bool(settings.stop_at_collapse), resume)
+        status, why, written = EK.run(chain, span, state, output, written)
         resume = False
         if status == EK.STATUS_FALLBACK:
             windows.append(float(tt[0]))

@@ -6,3 +6,30 @@
 
 ``archquake reproduce`` and the tests under ``tests/paper`` read them from here.
 """
+
+from archquake.validation.housner import (
+    fall_time,
+    free_rocking,
+    frequency_parameter,
+    onset_acceleration,
+    rectangular_pulse_overturning,
+    restitution,
+    restitution_from_inertia,
+    slenderness,
+)
+from archquake.validation.paper import CITATION, Agreement, PaperValue, oppenheim_arch
+
+__all__ = [
+    "Agreement",
+    "CITATION",
+    "PaperValue",
+    "fall_time",
+    "free_rocking",
+    "frequency_parameter",
+    "onset_acceleration",
+    "oppenheim_arch",
+    "rectangular_pulse_overturning",
+    "restitution",
+    "restitution_from_inertia",
+    "slenderness",
+]
