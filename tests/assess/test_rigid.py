@@ -104,3 +104,48 @@ def test_surveyed_arch_full_report_with_pulses_records_and_dem(tmp_path):
     assert "at half the time step" in rep.verdict["text"]
     md = (tmp_path / "out" / "report.md").read_text()
     assert "chain of rigid voussoirs" in md and "c_v =" not in md
+
+
+def _friction_verdict(arch, motion, time_step: float) -> str:
+    from archquake.compare import rigid_to_verdict
+
+    return rigid_to_verdict(arch, motion, friction=0.6, time_step=time_step).outcome.value
+
+
+@pytest.mark.parametrize("t_p", [0.1, 0.331])
+def test_friction_check_at_the_verdict_step_gives_the_fine_step_verdict(t_p):
+    """The validity section's friction check runs the Coulomb chain at the verdict's step
+    (2.56e-3 sqrt(t/g), 6.3e-4 s for the bridge), not at the recorded stepper's 1e-4 s. Oracle:
+    the same run at 1e-4 s, 6.3 times finer. The bridge example's arch (mu = 0.6) under step
+    pulses of its site PGA (0.15 g) that the report checks: t_p = 0.1 s (it survives) and
+    0.331 s (it collapses). The verdict's word must be the same at both steps."""
+    from archquake.ground.pulses import StepImpulse
+    from archquake.rigid.verdict import verdict_time_step
+
+    arch = BRIDGE.build()
+    h = verdict_time_step(arch)
+    assert 6.0e-4 < h < 6.6e-4
+    motion = StepImpulse.from_g(0.15, t_p, -1)
+    assert _friction_verdict(arch, motion, h) == _friction_verdict(arch, motion, 1e-4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("family", ["step", "sine"])
+def test_friction_check_at_the_verdict_step_over_the_quick_durations(family):
+    """As above, over every duration the quick report scans (six from 0.1 s to 2 s) for both
+    pulse families (about 2 min of CPU at 1e-4 s): the same verdict at the verdict's step as at
+    1e-4 s (oracle), survivals and collapses both among them."""
+    from archquake.assess.sections import Mode
+    from archquake.ground.pulses import SinePulse, StepImpulse
+    from archquake.rigid.verdict import verdict_time_step
+
+    arch = BRIDGE.build()
+    h = verdict_time_step(arch)
+    make = StepImpulse.from_g if family == "step" else SinePulse.from_g
+    coarse, fine = [], []
+    for d in Mode(quick=True).durations:
+        motion = make(0.15, float(d), -1)
+        coarse.append(_friction_verdict(arch, motion, h))
+        fine.append(_friction_verdict(arch, motion, 1e-4))
+    assert coarse == fine
+    assert {"survives", "collapse"} <= set(fine)

@@ -323,9 +323,9 @@ def test_step_work_arrays_carry_nothing_between_steps():
     slip = np.full(m.ja.size, np.nan)
     oq, ov = np.zeros((n, m.n_bodies, 3)), np.zeros((n, m.n_bodies, 3))
     run_p, run_slip = p_warm, slip
-    RK.run(q, v, p_warm, m.mass, m.inertia, m.ja, m.jb, m.arm_a, m.arm_b, m.n0, m.t0, acc, h, G,
-           gap_tol, tol, MAX_SWEEPS, 0.0, 1, oq, ov, np.zeros((n, RK.N_DIAG)),
-           np.zeros(RK.N_DIAG), RK.METHOD_DIRECT, True, hold, slip)
+    cfg = RK.stepping(h, G, gap_tol, tol, MAX_SWEEPS, 0.0, RK.METHOD_DIRECT, True, hold)
+    RK.run(RK.pack_chain(m), cfg, RK.State(q, v, p_warm, slip), acc,
+           RK.Record(1, oq, ov, np.zeros((n, RK.N_DIAG))), np.zeros(RK.N_DIAG))
     q, v = q0.copy(), v0.copy()
     p_warm = np.zeros((m.ja.size, 3))
     slip = np.full(m.ja.size, np.nan)

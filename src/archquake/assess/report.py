@@ -226,14 +226,21 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
     el.append(("ul", warned or ["no warning raised"]))
     steps = va.get("step_sensitivity", [])
     if steps:
+        which = ("the two scanned durations of each family whose boundary is nearest it"
+                 if rep.quick else "every scanned duration")
         el.append(("p", f"What the verdicts rest on: each pulse of the site PGA "
-                        f"({cfg.site_pga_g:g} g) at every scanned duration (and the governing "
+                        f"({cfg.site_pga_g:g} g) at {which} (and the governing "
                         f"record scaled to it) run at the time step "
                         f"{steps[0]['time_step_s']:.3g} s, at half of it, and with Coulomb "
-                        f"joints of mu = {steps[0]['friction_coefficient']:g}."))
+                        f"joints of mu = {steps[0]['friction_coefficient']:g} at the same step "
+                        "(a friction verdict that differs from the no-slip one is run again at "
+                        f"{steps[0].get('friction_recheck_time_step_s', 1e-4):.3g} s and that "
+                        "one kept, its step in brackets)."))
         el.append(("table", ["case", "step", "half step", "friction"],
-                   [[r["case"], r["default_step"], r["half_step"], r["friction"]]
-                    for r in steps]))
+                   [[r["case"], r["default_step"], r["half_step"], r["friction"] + (
+                       f" ({r['friction_time_step_s']:.3g} s)"
+                       if r.get("friction_time_step_s", r["time_step_s"]) != r["time_step_s"]
+                       else "")] for r in steps]))
     if va["restitution_sensitivity"] and pu is not None:
         rows = [[f"{e['restitution_cv']:.3g}"] + [
             f"{_f(e[f]['min_collapse_g'])} g, {'collapses' if e[f]['collapses_at_site'] else 'survives'}"

@@ -614,12 +614,12 @@ def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndar
     return np.sort(np.argsort(gap, kind="stable")[:count])
 
 
-def _rigid_friction_outcome(arch, motion, friction: float) -> str:
-    """One recorded run of the rigid chain with Coulomb joints to a verdict (the verdict path
-    has no friction): its outcome's word (module level: picklable)."""
+def _rigid_friction_outcome(arch, motion, friction: float, time_step: float) -> str:
+    """One recorded run of the rigid chain with Coulomb joints to a verdict, at ``time_step``
+    (s; the verdict path has no friction): its outcome's word (module level: picklable)."""
     from archquake.compare import rigid_to_verdict
 
-    run = rigid_to_verdict(arch, motion, friction=friction)
+    run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step)
     return str(run.outcome.value)
 
 
@@ -631,12 +631,15 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     verdict path (:func:`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
     it (guarded at a quarter), and with Coulomb joints of the given friction coefficient (the
     recorded stepper, :func:`archquake.compare.rigid_to_verdict`: the verdict path has no
-    friction). A verdict that changes at
+    friction) at the verdict's step; a friction verdict that differs from the no-slip one is
+    run again at :data:`archquake.rigid.DEFAULT_TIME_STEP` (1e-4 s) and that one kept, so that
+    every verdict the report counts as changed by sliding, or warns about, is the fine step's
+    (``friction_time_step_s``: the step of each). A verdict that changes at
     half the step is a serious warning (the step does not resolve the motion); one that changes
     from survival to collapse with friction too (the joints slide, which the default no-slip
     chain leaves out); from collapse to survival with friction only a note."""
     from archquake.ground.pulses import SinePulse, StepImpulse
-    from archquake.rigid import rigid_verdicts
+    from archquake.rigid import DEFAULT_TIME_STEP, rigid_verdicts
     from archquake.rigid.verdict import verdict_time_step
 
     assert ctx.site is not None  # called only with a site PGA
@@ -659,17 +662,31 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     ctx.say(f"  {len(cases)} cases at the site PGA x 3 (step, half step, friction)")
     motions = [m for _, m in cases]
     h = verdict_time_step(ctx.arch)
+    mu = ctx.config.friction
+    fine = min(h, DEFAULT_TIME_STEP)
     with interruptible_pool(min(workers(), len(motions))) as pool:
-        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, ctx.config.friction)
-                   for m in motions]
+        # Coulomb joints at the verdict's step, in worker processes while the verdicts run
+        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h) for m in motions]
         default = rigid_verdicts(ctx.arch, motions, time_step=h)
         half = rigid_verdicts(ctx.arch, motions, time_step=0.5 * h)
         slid = [fu.result() for fu in futures]
+        slid_steps = [h] * len(motions)
+        # a friction verdict that differs from the no-slip chain's (one the report warns about
+        # or counts as changed by sliding) is run again at the recorded stepper's fine step,
+        # and that one is kept
+        again = [k for k in range(len(motions))
+                 if fine < h and slid[k] != default[k].outcome.value]
+        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine)
+                   for k in again]
+        for k, fu in zip(again, futures, strict=True):
+            slid[k], slid_steps[k] = fu.result(), fine
     out = []
     for k, (case, _) in enumerate(cases):
         out.append({"case": case, "time_step_s": h, "friction_coefficient": ctx.config.friction,
                     "default_step": default[k].outcome.value,
-                    "half_step": half[k].outcome.value, "friction": slid[k]})
+                    "half_step": half[k].outcome.value, "friction": slid[k],
+                    "friction_time_step_s": slid_steps[k],
+                    "friction_recheck_time_step_s": fine})
     step_changed = [r["case"] for r in out if r["half_step"] != r["default_step"]]
     if step_changed:
         warn("time_step", f"the verdict at the site PGA changes at half the time step under "

@@ -57,6 +57,7 @@ SI units throughout: masses kg, inertias kg m^2, impulses N s.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -90,6 +91,81 @@ REFINEMENTS = 6
 ACTIVE_SET_ITERATIONS = 6
 
 
+class Chain(NamedTuple):
+    """The chain's packed arrays (:class:`archquake.rigid.model.RigidModel`'s): per free body
+    ``mass`` (kg), ``inertia`` (kg m^2) and their inverses ``inv_m``, ``inv_i``; per joint the
+    free bodies on its two sides ``ja``, ``jb`` (int, -1: the base), the corners relative to
+    their bodies' centroids ``arm_a``, ``arm_b`` (nj, 2, 2) m, the undisplaced normal ``n0``
+    and tangent ``t0`` (nj, 2)."""
+
+    mass: np.ndarray
+    inertia: np.ndarray
+    inv_m: np.ndarray
+    inv_i: np.ndarray
+    ja: np.ndarray
+    jb: np.ndarray
+    arm_a: np.ndarray
+    arm_b: np.ndarray
+    n0: np.ndarray
+    t0: np.ndarray
+
+
+def pack_chain(model) -> Chain:
+    """The :class:`Chain` of a :class:`~archquake.rigid.model.RigidModel` (its arrays, not
+    copied; the inverses computed once)."""
+    return Chain(model.mass, model.inertia, 1.0 / model.mass, 1.0 / model.inertia, model.ja,
+                 model.jb, model.arm_a, model.arm_b, model.n0, model.t0)
+
+
+class Stepping(NamedTuple):
+    """The settings of a step: ``h`` (s), ``g`` (m/s^2), ``gap_tol`` (m, a corner is active
+    below it), ``tol`` (m/s, the solver's), ``max_iter`` (Gauss-Seidel sweeps), ``mu``
+    (friction coefficient, 0: no slip), ``method`` (:data:`METHOD_PGS` or
+    :data:`METHOD_DIRECT`), ``h_corr`` (s, the position correction's time, 0: none) and
+    ``hold`` (m, its hold; module docstring)."""
+
+    h: float
+    g: float
+    gap_tol: float
+    tol: float
+    max_iter: int
+    mu: float
+    method: int
+    h_corr: float
+    hold: float
+
+
+def stepping(h: float, g: float, gap_tol: float, tol: float, max_iter: int, mu: float,
+             method: int, correction: bool = True, hold_tol: float = 0.0) -> Stepping:
+    """A :class:`Stepping` (types fixed for the compiled kernels): ``correction`` False turns
+    the position-level correction off (``h_corr`` and ``hold`` 0)."""
+    return Stepping(float(h), float(g), float(gap_tol), float(tol), int(max_iter), float(mu),
+                    int(method), float(h) if correction else 0.0,
+                    float(hold_tol) if correction else 0.0)
+
+
+class State(NamedTuple):
+    """What a run updates in place: ``q``, ``v`` (nb, 3) the free bodies' configuration and
+    velocity (x, y m, theta rad, and rates), ``p_warm`` (nj, 3) the previous step's impulses
+    (N s: normal at corner 0, at corner 1, tangential), ``slip_ref`` (nj,) m the joints'
+    tangential offsets when their contact began (NaN: open)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    p_warm: np.ndarray
+    slip_ref: np.ndarray
+
+
+class Record(NamedTuple):
+    """Where :func:`run` writes its samples: every ``out_every`` steps a row of ``q``, ``v``
+    (k, nb, 3) and ``diag`` (k, :data:`N_DIAG`)."""
+
+    out_every: int
+    q: np.ndarray
+    v: np.ndarray
+    diag: np.ndarray
+
+
 @nb.njit(cache=True)
 def _point(q, body, arm):
     """World (ground-frame) position of a point of ``body`` at local ``arm`` (base: arm itself)."""
@@ -109,15 +185,29 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
     nrm = np.zeros((nj, 2))
     tan = np.zeros((nj, 2))
     pts = np.zeros((nj, 2, 2, 2))
-    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts)
+    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, np.zeros((q.shape[0], 2)))
     return gaps, nrm, tan, pts
 
 
-@nb.njit(cache=True)
-def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts):
+@nb.njit(cache=True, inline="always")
+def _corner(q, trig, body, arm):
+    """:func:`_point` with the body's cos and sin read from ``trig`` (the same numbers)."""
+    if body < 0:
+        return arm[0], arm[1]
+    c = trig[body, 0]
+    s = trig[body, 1]
+    return q[body, 0] + c * arm[0] - s * arm[1], q[body, 1] + s * arm[0] + c * arm[1]
+
+
+@nb.njit(cache=True, inline="always")
+def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
     """:func:`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
-    entry is overwritten)."""
+    entry is overwritten); ``trig`` (nb, 2) scratch: each body's cos and sin, computed once
+    (not once per corner: the same numbers, a fifth of the calls)."""
     nj = ja.shape[0]
+    for i in range(q.shape[0]):
+        trig[i, 0] = math.cos(q[i, 2])
+        trig[i, 1] = math.sin(q[i, 2])
     for j in range(nj):
         tha = 0.0 if ja[j] < 0 else q[ja[j], 2]
         thb = 0.0 if jb[j] < 0 else q[jb[j], 2]
@@ -129,8 +219,8 @@ def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts):
         tan[j, 0] = c * t0[j, 0] - s * t0[j, 1]
         tan[j, 1] = s * t0[j, 0] + c * t0[j, 1]
         for k in range(2):
-            ax, ay = _point(q, ja[j], arm_a[j, k])
-            bx, by = _point(q, jb[j], arm_b[j, k])
+            ax, ay = _corner(q, trig, ja[j], arm_a[j, k])
+            bx, by = _corner(q, trig, jb[j], arm_b[j, k])
             pts[j, k, 0, 0] = ax
             pts[j, k, 0, 1] = ay
             pts[j, k, 1, 0] = bx
@@ -173,7 +263,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
     return nrows, rows_j, rows_k, ja_rows, jb_rows, diag_all[:nrows].copy(), offset
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol, rows_j,
                rows_k, ja_rows, jb_rows, diag, offset):
     """:func:`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
@@ -236,7 +326,7 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
     return target
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen):
     """:func:`_targets` written into ``target`` (its first ``nrows`` entries), ``seen`` (nj,)
     bool scratch."""
@@ -402,6 +492,16 @@ def _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i):
 
 
 @nb.njit(cache=True, inline="always")
+def _copy3(dst, src):
+    """dst[:, :] = src for (n, 3) arrays, as a plain loop (cheaper than a slice assignment in
+    the step's inner code)."""
+    for i in range(src.shape[0]):
+        dst[i, 0] = src[i, 0]
+        dst[i, 1] = src[i, 1]
+        dst[i, 2] = src[i, 2]
+
+
+@nb.njit(cache=True, inline="always")
 def _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows):
     j = rows_j[r]
     a = ja[j]
@@ -455,73 +555,116 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     :func:`project`; the count is the number of factorised active sets plus any Gauss-Seidel
     sweeps."""
     ws = workspace(inv_m.shape[0], ja.shape[0])
-    v = ws[W_VN]
-    imp = ws[W_IMP]
+    v = ws.vn
+    imp = ws.imp
     count, change = _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
                                  p_warm, tol, max_iter, mu, max_sets, correction, hold_tol,
                                  slip_ref, work, ws)
     return v, imp, count, change
 
 
-#: Members of the tuple :func:`workspace` returns (arrays a step writes into, allocated once per
-#: run: the step itself allocates nothing).
-W_QM, W_VF, W_VN, W_IMP, W_GAPS, W_NRM, W_TAN, W_PTS = 0, 1, 2, 3, 4, 5, 6, 7
-W_ROWS_J, W_ROWS_K, W_JA_ROWS, W_JB_ROWS, W_DIAG, W_OFFSET, W_TARGET, W_SEEN = \
-    8, 9, 10, 11, 12, 13, 14, 15
-W_IN_S, W_PW, W_IDX, W_FIRST, W_MAT, W_RHS, W_D, W_P, W_CNT, W_LST_I, W_LST_SIDE = \
-    16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26
+class Work(NamedTuple):
+    """The work arrays of one step (:func:`workspace`): allocated once per run, overwritten by
+    every step (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the
+    mid-step configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses;
+    ``gaps``, ``nrm``, ``tan``, ``pts``: :func:`geometry`'s; ``corr`` (1,): the correction's
+    work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; ``sa``, ``sb``, ``ha``,
+    ``hb``, ``tg``: the direct solve's equality rows packed in set order (bodies, Jacobian
+    entries, bounds); the others the contact rows' and the direct solve's scratch."""
+
+    qm: np.ndarray
+    vf: np.ndarray
+    vn: np.ndarray
+    imp: np.ndarray
+    gaps: np.ndarray
+    nrm: np.ndarray
+    tan: np.ndarray
+    pts: np.ndarray
+    rows_j: np.ndarray
+    rows_k: np.ndarray
+    ja_rows: np.ndarray
+    jb_rows: np.ndarray
+    diag: np.ndarray
+    offset: np.ndarray
+    target: np.ndarray
+    seen: np.ndarray
+    in_s: np.ndarray
+    pw: np.ndarray
+    idx: np.ndarray
+    first: np.ndarray
+    mat: np.ndarray
+    rhs: np.ndarray
+    d: np.ndarray
+    p: np.ndarray
+    cnt: np.ndarray
+    lst_i: np.ndarray
+    lst_side: np.ndarray
+    corr: np.ndarray
+    trig: np.ndarray
+    sa: np.ndarray
+    sb: np.ndarray
+    ha: np.ndarray
+    hb: np.ndarray
+    tg: np.ndarray
 
 
 @nb.njit(cache=True)
 def workspace(nbody, nj):
-    """The work arrays of one step of ``nbody`` free bodies and ``nj`` joints (members W_*):
+    """The :class:`Work` arrays of one step of ``nbody`` free bodies and ``nj`` joints:
     allocated once, reused by every step (:func:`advance`)."""
     nr = 3 * nj
-    return (np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nj, 3)),
-            np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2, 2, 2)),
-            np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, 3)),
-            np.zeros((nr, 3)), np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nj, np.bool_),
-            np.zeros(nr, np.bool_), np.zeros(nr), np.zeros(nr, np.int64),
-            np.zeros(nr, np.int64), np.zeros((nr, nr)), np.zeros(nr), np.zeros(nr),
-            np.zeros(nr), np.zeros(nbody, np.int64), np.zeros((nbody, nr), np.int64),
-            np.zeros((nbody, nr), np.int64))
+    return Work(np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nbody, 3)),
+                np.zeros((nj, 3)), np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2)),
+                np.zeros((nj, 2, 2, 2)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
+                np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr), np.zeros(nr), np.zeros(nr),
+                np.zeros(nj, np.bool_), np.zeros(nr, np.bool_), np.zeros(nr),
+                np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, nr)),
+                np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nbody, np.int64),
+                np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1),
+                np.zeros((nbody, 2)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
+                np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr))
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
                  max_iter, mu, max_sets, correction, hold_tol, slip_ref, work, ws):
-    """:func:`project_direct` in the work arrays ``ws`` (:func:`workspace`): the velocity is
-    written into ``ws[W_VN]``, the impulses into ``ws[W_IMP]``; returns (count, residual)."""
+    """:func:`project_direct` in the work arrays ``ws`` (:class:`Work`): the velocity is
+    written into ``ws.vn``, the impulses into ``ws.imp``; returns (count, residual)."""
     nj = ja.shape[0]
-    v = ws[W_VN]
-    imp = ws[W_IMP]
-    rows_j = ws[W_ROWS_J]
-    rows_k = ws[W_ROWS_K]
-    ja_rows = ws[W_JA_ROWS]
-    jb_rows = ws[W_JB_ROWS]
-    diag = ws[W_DIAG]
-    offset = ws[W_OFFSET]
-    target = ws[W_TARGET]
-    in_s = ws[W_IN_S]
-    pw = ws[W_PW]
-    idx = ws[W_IDX]
-    first = ws[W_FIRST]
-    w_mat = ws[W_MAT]
-    rhs = ws[W_RHS]
-    d = ws[W_D]
-    p = ws[W_P]
-    cnt = ws[W_CNT]
-    lst_i = ws[W_LST_I]
-    lst_side = ws[W_LST_SIDE]
+    v = ws.vn
+    imp = ws.imp
+    rows_j = ws.rows_j
+    rows_k = ws.rows_k
+    ja_rows = ws.ja_rows
+    jb_rows = ws.jb_rows
+    diag = ws.diag
+    offset = ws.offset
+    target = ws.target
+    in_s = ws.in_s
+    pw = ws.pw
+    idx = ws.idx
+    first = ws.first
+    w_mat = ws.mat
+    rhs = ws.rhs
+    d = ws.d
+    p = ws.p
+    cnt = ws.cnt
+    lst_i = ws.lst_i
+    lst_side = ws.lst_side
+    sa = ws.sa
+    sb = ws.sb
+    ha = ws.ha
+    hb = ws.hb
+    tg = ws.tg
     nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
                        rows_j, rows_k, ja_rows, jb_rows, diag, offset)
     for j in range(nj):
         imp[j, 0] = 0.0
         imp[j, 1] = 0.0
         imp[j, 2] = 0.0
-    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, ws[W_SEEN])
-    v[:, :] = v_free
+    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, ws.seen)
     if nrows == 0:
+        _copy3(v, v_free)
         if work is not None:
             work[0] = 0.0
         return 0, 0.0
@@ -534,7 +677,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     for _ in range(max_sets):
         solves += 1
         # v_w and p: the previous impulses on S
-        v[:, :] = v_free
+        _copy3(v, v_free)
         for r in range(nrows):
             p[r] = pw[r] if in_s[r] else 0.0
             if p[r] != 0.0:
@@ -555,6 +698,14 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                 first[i] = i
                 for k in range(i + 1):
                     w_mat[i, k] = 0.0
+                # the set's rows packed in set order, for the refinement's inner loops
+                r = idx[i]
+                sa[i] = ja[rows_j[r]]
+                sb[i] = jb[rows_j[r]]
+                tg[i] = target[r]
+                for c3 in range(3):
+                    ha[i, c3] = ja_rows[r, c3]
+                    hb[i, c3] = jb_rows[r, c3]
             # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
             for c in range(nbody):
                 cnt[c] = 0
@@ -574,20 +725,18 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             for c in range(nbody):
                 for u in range(cnt[c]):
                     i = lst_i[c, u]
-                    r = idx[i]
                     if lst_side[c, u] == 0:
-                        h0, h1, h2 = ja_rows[r, 0], ja_rows[r, 1], ja_rows[r, 2]
+                        h0, h1, h2 = ha[i, 0], ha[i, 1], ha[i, 2]
                     else:
-                        h0, h1, h2 = jb_rows[r, 0], jb_rows[r, 1], jb_rows[r, 2]
+                        h0, h1, h2 = hb[i, 0], hb[i, 1], hb[i, 2]
                     for u2 in range(cnt[c]):
                         k = lst_i[c, u2]
                         if k > i:
                             continue
-                        s2 = idx[k]
                         if lst_side[c, u2] == 0:
-                            g0, g1, g2 = ja_rows[s2, 0], ja_rows[s2, 1], ja_rows[s2, 2]
+                            g0, g1, g2 = ha[k, 0], ha[k, 1], ha[k, 2]
                         else:
-                            g0, g1, g2 = jb_rows[s2, 0], jb_rows[s2, 1], jb_rows[s2, 2]
+                            g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
                         w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
                         if k < first[i]:
                             first[i] = k
@@ -616,8 +765,14 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             for _ref in range(REFINEMENTS):
                 big = 0.0
                 for i in range(n):
-                    rhs[i] = target[idx[i]] - _row_velocity(v, idx[i], rows_j, ja, jb, ja_rows,
-                                                            jb_rows)
+                    a = sa[i]
+                    b = sb[i]
+                    w = 0.0
+                    if a >= 0:
+                        w += ha[i, 0] * v[a, 0] + ha[i, 1] * v[a, 1] + ha[i, 2] * v[a, 2]
+                    if b >= 0:
+                        w += hb[i, 0] * v[b, 0] + hb[i, 1] * v[b, 1] + hb[i, 2] * v[b, 2]
+                    rhs[i] = tg[i] - w
                     if abs(rhs[i]) > big:
                         big = abs(rhs[i])
                 if big <= tol:
@@ -625,9 +780,18 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     break
                 _envelope_solve(w_mat, first, n, rhs, d)
                 for i in range(n):
-                    r = idx[i]
-                    p[r] += d[i]
-                    _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, d[i], inv_m, inv_i)
+                    p[idx[i]] += d[i]
+                    dp = d[i]
+                    a = sa[i]
+                    b = sb[i]
+                    if a >= 0:
+                        v[a, 0] += ha[i, 0] * dp * inv_m[a]
+                        v[a, 1] += ha[i, 1] * dp * inv_m[a]
+                        v[a, 2] += ha[i, 2] * dp * inv_i[a]
+                    if b >= 0:
+                        v[b, 0] += hb[i, 0] * dp * inv_m[b]
+                        v[b, 1] += hb[i, 1] * dp * inv_m[b]
+                        v[b, 2] += hb[i, 2] * dp * inv_i[b]
             if not converged:
                 break
         # the cone's conditions
@@ -651,7 +815,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
         for r in range(nrows):
             if rows_k[r] < 2 and p[r] < 0.0:
                 p[r] = 0.0
-        v[:, :] = v_free
+        _copy3(v, v_free)
         for r in range(nrows):
             if p[r] != 0.0:
                 _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
@@ -676,70 +840,75 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
         v[b, 2] += rb[2] * dp * inv_i[b]
 
 
-@nb.njit(cache=True, nogil=True)
-def advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc_k, h, g, gap_tol,
-            tol, max_iter, mu, method, h_corr, hold, slip_ref, work, ws):
-    """One Moreau-Jean step from (q, v) under the mean ground acceleration ``acc_k`` (m/s^2):
-    steps 1-4 of the module docstring. ``h_corr`` (s, 0: none) and ``hold`` (m): the position
-    correction's; ``slip_ref`` and ``work`` as :func:`project`'s (updated in place); ``ws``: the
-    work arrays (:func:`workspace`, allocated once per run). ``q``, ``v`` and ``p_warm`` are not
-    changed: the caller sets v = vn, q = qm + h/2 vn (step 5) and the warm start. Returns
-    (qm, gaps (nj, 2) at qm, v_free, vn, impulses (nj, 3), sweeps, residual), the arrays
-    members of ``ws`` (overwritten by the next step)."""
+@nb.njit(cache=True, nogil=True, inline="always")
+def advance(chain, cfg, state, acc_k, ws):
+    """One Moreau-Jean step of the :class:`Chain` ``chain`` from ``state`` (:class:`State`)
+    under the mean ground acceleration ``acc_k`` (m/s^2), with the settings ``cfg``
+    (:class:`Stepping`): steps 1-4 of the module docstring. ``state.slip_ref`` is updated in
+    place; ``state.q``, ``state.v`` and ``state.p_warm`` are not changed: the caller sets
+    v = vn, q = qm + h/2 vn (step 5) and the warm start. The step writes into ``ws``
+    (:class:`Work`, allocated once per run): ``ws.qm``, ``ws.gaps`` (at qm), ``ws.vf`` (v_free),
+    ``ws.vn``, ``ws.imp`` (nj, 3) and ``ws.corr`` (the correction's work). Returns (sweeps,
+    residual m/s)."""
+    q = state.q
+    v = state.v
+    h = cfg.h
     nb_ = q.shape[0]
-    qm = ws[W_QM]
-    vf = ws[W_VF]
+    qm = ws.qm
+    vf = ws.vf
     for i in range(nb_):
         for c in range(3):
             qm[i, c] = q[i, c] + 0.5 * h * v[i, c]
-    gaps = ws[W_GAPS]
-    nrm = ws[W_NRM]
-    tan = ws[W_TAN]
-    pts = ws[W_PTS]
-    geometry_into(qm, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts)
-    vf[:, :] = v
+    geometry_into(qm, chain.ja, chain.jb, chain.arm_a, chain.arm_b, chain.n0, chain.t0, ws.gaps,
+                  ws.nrm, ws.tan, ws.pts, ws.trig)
+    _copy3(vf, v)
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
-        vf[i, 1] -= h * g
-    if method == METHOD_DIRECT and mu <= 0.0:
-        sweeps, res = _direct_into(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
-                                   p_warm, tol, max_iter, mu, ACTIVE_SET_ITERATIONS, h_corr,
-                                   hold, slip_ref, work, ws)
+        vf[i, 1] -= h * cfg.g
+    if cfg.method == METHOD_DIRECT and cfg.mu <= 0.0:
+        sweeps, res = _direct_into(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb, ws.gaps,
+                                   ws.nrm, ws.tan, ws.pts, cfg.gap_tol, state.p_warm, cfg.tol,
+                                   cfg.max_iter, cfg.mu, ACTIVE_SET_ITERATIONS, cfg.h_corr,
+                                   cfg.hold, state.slip_ref, ws.corr, ws)
     else:
-        vn_, imp_, sweeps, res = project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                         gap_tol, p_warm, tol, max_iter, mu, h_corr, hold,
-                                         slip_ref, work)
-        ws[W_VN][:, :] = vn_
-        ws[W_IMP][:, :] = imp_
-    return qm, gaps, vf, ws[W_VN], ws[W_IMP], sweeps, res
+        vn_, imp_, sweeps, res = project(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb,
+                                         ws.gaps, ws.nrm, ws.tan, ws.pts, cfg.gap_tol,
+                                         state.p_warm, cfg.tol, cfg.max_iter, cfg.mu, cfg.h_corr,
+                                         cfg.hold, state.slip_ref, ws.corr)
+        ws.vn[:, :] = vn_
+        ws.imp[:, :] = imp_
+    return sweeps, res
 
 
 @nb.njit(cache=True)
-def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, gap_tol, tol,
-        max_iter, mu, out_every, out_q, out_v, out_diag, diag, method=METHOD_PGS,
-        correction=True, hold_tol=0.0, slip_ref=None):
+def run(chain, cfg, state, acc, record, diag):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
-    m/s^2), writing q, v, diagnostics after every ``out_every`` steps into row ``k // out_every``
-    of ``out_*``. ``q``, ``v``, ``p_warm``, ``diag`` (running D_* values) are updated in place.
-    ``correction``: the position-level correction (module docstring), with the hold
-    ``hold_tol`` (m) and ``slip_ref`` (nj,), m, the joints' tangential offsets when their
-    contact began (NaN: open; updated in place; None: no tangential correction); False: the
-    velocity-level scheme alone (the event integrator's stepping windows).
-    Returns the number of sweeps of the worst step."""
+    m/s^2) of the :class:`Chain` ``chain`` with the settings ``cfg`` (:class:`Stepping`; its
+    ``h_corr`` and ``hold``: the position-level correction, module docstring; 0: the
+    velocity-level scheme alone, as the event integrator's stepping windows), writing q, v,
+    diagnostics after every ``record.out_every`` steps into row ``k // out_every`` of
+    ``record``'s arrays (:class:`Record`). ``state`` (:class:`State`) and ``diag`` (the running
+    D_* values) are updated in place. Returns the number of sweeps of the worst step."""
+    q = state.q
+    v = state.v
+    p_warm = state.p_warm
+    mass = chain.mass
+    inertia = chain.inertia
+    h = cfg.h
+    g = cfg.g
+    out_every = record.out_every
     nb_ = mass.shape[0]
-    inv_m = 1.0 / mass
-    inv_i = 1.0 / inertia
+    nj = chain.ja.shape[0]
     worst = 0
-    h_corr = h if correction else 0.0
-    hold = hold_tol if correction else 0.0
-    work = np.zeros(1)
-    ws = workspace(nb_, ja.shape[0])
+    ws = workspace(nb_, nj)
+    vf = ws.vf
+    vn = ws.vn
+    imp = ws.imp
+    gaps = ws.gaps
+    qm = ws.qm
     m_max = mass.max()
     for k in range(acc.shape[0]):
-        qm, gaps, vf, vn, imp, sweeps, res = advance(q, v, p_warm, inv_m, inv_i, ja, jb, arm_a,
-                                                     arm_b, n0, t0, acc[k], h, g, gap_tol, tol,
-                                                     max_iter, mu, method, h_corr, hold,
-                                                     slip_ref, work, ws)
+        sweeps, res = advance(chain, cfg, state, acc[k], ws)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0
@@ -748,9 +917,9 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
             t_new += mass[i] * (vn[i, 0] ** 2 + vn[i, 1] ** 2) + inertia[i] * vn[i, 2] ** 2
             w_in -= acc[k] * mass[i] * 0.5 * h * (v[i, 0] + vn[i, 0])
         diag[D_DISSIPATED] += 0.5 * (t_free - t_new)
-        diag[D_CORRECTION] += work[0]
+        diag[D_CORRECTION] += ws.corr[0]
         diag[D_INPUT] += w_in
-        for j in range(ja.shape[0]):
+        for j in range(nj):
             for c in range(2):
                 if -gaps[j, c] > diag[D_PENETRATION]:
                     diag[D_PENETRATION] = -gaps[j, c]
@@ -774,9 +943,9 @@ def run(q, v, p_warm, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, acc, h, g, ga
                 q[i, c] = qm[i, c] + 0.5 * h * vn[i, c]
         if (k + 1) % out_every == 0:
             row = (k + 1) // out_every - 1
-            out_q[row] = q
-            out_v[row] = v
-            out_diag[row] = diag
+            record.q[row] = q
+            record.v[row] = v
+            record.diag[row] = diag
             diag[D_PENETRATION] = 0.0
             diag[D_FRICTION] = 0.0
             diag[D_ITERATIONS] = 0.0

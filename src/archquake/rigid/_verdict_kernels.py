@@ -29,6 +29,7 @@ mirror image; the caller picks one with :func:`archquake.dem.result.mirror_opens
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -83,6 +84,38 @@ OUTCOME_COLLAPSE = 2
 OUTCOME_INDETERMINATE = 3
 
 
+class Frame(NamedTuple):
+    """The assembly's arrays the verdict reads besides the :class:`~._step_kernels.Chain`:
+    ``base_state`` (n_blocks, 3) every block's undisplaced x, y (m), theta (rad);
+    ``free_blocks`` (nb,) int the assembly index of each free body; ``free_mask`` (n_blocks,)
+    int 1 for a free block; ``cpar``: :func:`archquake.dem.result.collapse_parameters`;
+    ``links_block`` (2, 2) int, ``links_local`` (2, 2, 2) m, ``links_sign`` (2,): the two
+    rotation links (the assembly's, its mirror image), their blocks and points relative to the
+    blocks' centroids."""
+
+    base_state: np.ndarray
+    free_blocks: np.ndarray
+    free_mask: np.ndarray
+    cpar: np.ndarray
+    links_block: np.ndarray
+    links_local: np.ndarray
+    links_sign: np.ndarray
+
+
+class Histories(NamedTuple):
+    """Histories for :func:`verdict_batch`, end to end: history i's steps are
+    ``acc[starts[i]:starts[i + 1]]`` (the steps' mean ground accelerations, m/s^2), with the
+    suffix maxima ``suffix_pos``, ``suffix_neg`` (the largest ground acceleration towards +x /
+    -x, a magnitude, from a step to the history's end, m/s^2) and the parameters ``pars[i]``
+    (:data:`N_PAR`, P_*)."""
+
+    acc: np.ndarray
+    suffix_pos: np.ndarray
+    suffix_neg: np.ndarray
+    starts: np.ndarray
+    pars: np.ndarray
+
+
 @nb.njit(cache=True, inline="always")
 def _chord_angle(st, links_block, links_local, ell):
     """Angle (rad) of the chord of rotation link ``ell`` in the block states ``st``."""
@@ -100,26 +133,27 @@ def _chord_angle(st, links_block, links_local, ell):
 
 
 @nb.njit(cache=True, nogil=True)
-def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
-                free_mask, cpar, links_block, links_local, links_sign, acc, suffix_pos,
-                suffix_neg, par, out):
-    """Run the chain from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2)
-    up to a verdict (module docstring) and write it into ``out`` (:data:`N_OUT`).
+def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
+    """Run the chain (:class:`~._step_kernels.Chain` ``chain``, :class:`Frame` ``frame``)
+    from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2) up to a verdict
+    (module docstring) and write it into ``out`` (:data:`N_OUT`).
 
-    ``base_state`` (n_blocks, 3): every block's undisplaced x, y, theta; ``free_blocks`` (nb,):
-    the assembly index of each free body; ``free_mask`` (n_blocks,) int: 1 for a free block;
-    ``cpar``: :func:`archquake.dem.result.collapse_parameters`; ``links_block`` (2, 2) int,
-    ``links_local`` (2, 2, 2) m, ``links_sign`` (2,): the two rotation links (the assembly's,
-    its mirror image), their blocks and points relative to the blocks' centroids;
     ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
     (magnitude) from step k to the end, m/s^2; ``par``: :data:`N_PAR` parameters (P_*)."""
+    mass = chain.mass
+    inertia = chain.inertia
+    base_state = frame.base_state
+    free_blocks = frame.free_blocks
+    free_mask = frame.free_mask
+    cpar = frame.cpar
+    links_block = frame.links_block
+    links_local = frame.links_local
+    links_sign = frame.links_sign
     h = par[P_H]
     g = par[P_G]
     nb_ = mass.shape[0]
-    nj = ja.shape[0]
+    nj = chain.ja.shape[0]
     n_steps = acc.shape[0]
-    inv_m = 1.0 / mass
-    inv_i = 1.0 / inertia
     skip = par[P_SKIP] > 0.0
     safe_pos = par[P_SAFE_POS]
     safe_neg = par[P_SAFE_NEG]
@@ -131,10 +165,14 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
         for c in range(3):
             q[i, c] = base_state[free_blocks[i], c]
     p_warm = np.zeros((nj, 3))
-    slip_ref = np.full(nj, np.nan)
-    work = np.zeros(1)
+    state = RK.State(q, v, p_warm, np.full(nj, np.nan))
     ws = RK.workspace(nb_, nj)
-    hold = par[P_HOLD_TOL]
+    cfg = RK.Stepping(h, g, par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0,
+                      RK.METHOD_DIRECT, h, par[P_HOLD_TOL])
+    gaps = ws.gaps
+    vn = ws.vn
+    imp = ws.imp
+    qm = ws.qm
     # the rotation measure on both links: unwrapped angle, arming state
     rot0 = np.zeros(2)
     ang_prev = np.zeros(2)
@@ -187,10 +225,7 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
         t = (k + 1) * h
         pristine = False
         computed += 1
-        qm, gaps, vf, vn, imp, sweeps, res = RK.advance(
-            q, v, p_warm, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0, acc[k], h, g,
-            par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0, RK.METHOD_DIRECT, h, hold,
-            slip_ref, work, ws)
+        sweeps, res = RK.advance(chain, cfg, state, acc[k], ws)
         if sweeps > worst:
             worst = sweeps
         for j in range(nj):
@@ -232,8 +267,11 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
         # the rotation measure's sign changes (archquake.dem.result.crossings)
         for ell in range(2):
             a = _chord_angle(st, links_block, links_local, ell)
-            d = a - ang_prev[ell]
-            d = (d + math.pi) % (2.0 * math.pi) - math.pi
+            # d wrapped into [-pi, pi), the modulo only when needed (the same numbers)
+            x = a - ang_prev[ell] + math.pi
+            if not 0.0 <= x < 2.0 * math.pi:
+                x = x % (2.0 * math.pi)
+            d = x - math.pi
             ang_prev[ell] = a
             prev_rot[ell] = rot[ell]
             rot[ell] += d
@@ -291,15 +329,12 @@ def verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_bl
 
 
 @nb.njit(cache=True, nogil=True)
-def verdict_batch(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
-                  free_mask, cpar, links_block, links_local, links_sign, accs, starts,
-                  suffix_pos, suffix_neg, pars, outs, first, last):
-    """:func:`verdict_run` for histories ``first`` to ``last - 1``: history i's steps are
-    ``accs[starts[i]:starts[i + 1]]`` (and the suffix maxima likewise), its parameters
-    ``pars[i]``, its verdict ``outs[i]``. Releases the GIL: a thread pool runs slices."""
+def verdict_batch(chain, frame, hist, outs, first, last):
+    """:func:`verdict_run` for histories ``first`` to ``last - 1`` of ``hist``
+    (:class:`Histories`), history i's verdict into ``outs[i]``. Releases the GIL: a thread
+    pool runs slices."""
     for i in range(first, last):
-        a = starts[i]
-        b = starts[i + 1]
-        verdict_run(mass, inertia, ja, jb, arm_a, arm_b, n0, t0, base_state, free_blocks,
-                    free_mask, cpar, links_block, links_local, links_sign, accs[a:b],
-                    suffix_pos[a:b], suffix_neg[a:b], pars[i], outs[i])
+        a = hist.starts[i]
+        b = hist.starts[i + 1]
+        verdict_run(chain, frame, hist.acc[a:b], hist.suffix_pos[a:b], hist.suffix_neg[a:b],
+                    hist.pars[i], outs[i])

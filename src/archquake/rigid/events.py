@@ -257,9 +257,10 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
         od = np.zeros((1, RK.N_DIAG))
         if h > 0.0:
             acc = mean_acceleration(motion, t, h, ns)
-            RK.run(q, v, p_warm, r.mass, r.inertia, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0,
-                   acc, h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0, ns, oq, ov, od, dg,
-                   RK.METHOD_DIRECT, False)
+            cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0,
+                              RK.METHOD_DIRECT, correction=False)
+            RK.run(RK.pack_chain(r), cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
+                   acc, RK.Record(ns, oq, ov, od), dg)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
         i = k - 1

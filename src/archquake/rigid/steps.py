@@ -117,10 +117,13 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
                                                   np.array(initial[1], float))
     p_warm = np.zeros((len(model.ja), 3))
     slip_ref = np.full(len(model.ja), np.nan)  # the joints' tangential offsets at contact, m
+    state = RK.State(q, v, p_warm, slip_ref)
     diag = np.zeros(RK.N_DIAG)
     lref = asm.reference_length
     tol = float(solver_tolerance) * math.sqrt(g * lref)
-    gap_tol = GAP_TOLERANCE * lref
+    chain = RK.pack_chain(model)
+    cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, mu, METHODS[solver], True,
+                      HOLD_TOLERANCE * lref)
     free = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)
     cpar = collapse_parameters(asm, settings, math.nan)
     # the samples, one array per chunk (the first chunk: the initial state)
@@ -147,10 +150,7 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
         oq = np.zeros((n_out, model.n_bodies, 3))
         ov = np.zeros_like(oq)
         od = np.zeros((n_out, RK.N_DIAG))
-        w = RK.run(q, v, p_warm, model.mass, model.inertia, model.ja, model.jb, model.arm_a,
-                   model.arm_b, model.n0, model.t0, acc, h, g, gap_tol, tol, MAX_SWEEPS, mu,
-                   out_every, oq, ov, od, diag, METHODS[solver], True, HOLD_TOLERANCE * lref,
-                   slip_ref)
+        w = RK.run(chain, cfg, state, acc, RK.Record(out_every, oq, ov, od), diag)
         worst = max(worst, int(w))
         if not np.all(np.isfinite(q)):
             raise SolverError("the rigid-chain state became non-finite")

@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+import archquake.rigid._step_kernels as RK
 import archquake.rigid._verdict_kernels as VK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly
@@ -149,7 +150,8 @@ def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
 class _Packed:
     """A model's arrays for :func:`~archquake.rigid._verdict_kernels.verdict_run`."""
 
-    arrays: tuple
+    chain: RK.Chain
+    frame: VK.Frame
     safe_pos: float  # m/s^2 per g
     safe_neg: float
 
@@ -184,10 +186,8 @@ def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
                     np.asarray(ln.point_b) - cents[ln.block_b]] for ln in links], float)
     ls = np.array([float(ln.sign) for ln in links])
     lam_p, lam_n = _onset_g(model)
-    arrays = (model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
-              model.t0, base_state, model.free_blocks.astype(np.int64), free_mask, cpar, lb, ll,
-              ls)
-    return _Packed(arrays, lam_p, lam_n)
+    frame = VK.Frame(base_state, model.free_blocks.astype(np.int64), free_mask, cpar, lb, ll, ls)
+    return _Packed(RK.pack_chain(model), frame, lam_p, lam_n)
 
 
 @dataclass(frozen=True)
@@ -381,16 +381,16 @@ def _run_jobs(packed: _Packed, jobs: Sequence[_Job], threads: int) -> np.ndarray
     pos = np.concatenate([j.pos for j in jobs])
     neg = np.concatenate([j.neg for j in jobs])
     pars = np.stack([j.par for j in jobs])
-    args = (*packed.arrays, accs, starts, pos, neg, pars, outs)
-    batch: Any = VK.verdict_batch  # a numba dispatcher: its arity is the kernel's
+    hist = VK.Histories(accs, pos, neg, starts, pars)
+    batch: Any = VK.verdict_batch  # a numba dispatcher
     threads = max(1, min(threads, n))
     if threads == 1:
-        batch(*args, 0, n)
+        batch(packed.chain, packed.frame, hist, outs, 0, n)
         return outs
     # interleave small slices so that long and short histories share the threads evenly
     edges = np.unique(np.linspace(0, n, min(n, 4 * threads) + 1).astype(int))
     with ThreadPoolExecutor(threads) as pool:
-        list(pool.map(lambda ab: batch(*args, ab[0], ab[1]),
+        list(pool.map(lambda ab: batch(packed.chain, packed.frame, hist, outs, ab[0], ab[1]),
                       zip(edges[:-1], edges[1:])))
     return outs
 
