@@ -153,6 +153,25 @@ def test_skip_at_rest_is_no_skipping(strong):
     assert a.skipped_steps >= 2900 and a.steps < b.steps and b.skipped_steps == 0
 
 
+@pytest.mark.parametrize("amplitude_g", [0.45, 0.55])
+def test_a_chain_set_moving_is_not_at_rest(amplitude_g):
+    """Oracle: the same run stepping every step. 1 s of quiet, then 2 s of noise whose samples
+    pass the onset (0.370 g) one at a time: the chain starts to move with little kinetic
+    energy, settles, and is pushed again. Skipping may not treat it as at rest (zeroing its
+    velocity): the verdict, onset, impacts and peak crown drop are those of the full run
+    (measured: equal, the drop to 8e-11 of the collapse drop). Zeroing the velocity of a chain
+    just set moving (rest counted from t = 0) gave 4 impacts instead of 1 at 0.55 g; zeroing it
+    after it had settled gave no_hinging instead of survives at 0.45 g."""
+    noise = amplitude_g * G * np.random.default_rng(2).uniform(-1.0, 1.0, 200)
+    rec = Record(np.r_[np.zeros(100), noise, np.zeros(10)], 0.01, name="late noise")
+    a = rigid_verdict(OPPENHEIM, rec, guard=False)
+    b = rigid_verdict(OPPENHEIM, rec, guard=False, skip_at_rest=False)
+    assert a.outcome is b.outcome is Outcome.SURVIVES
+    assert a.onset_time_s == b.onset_time_s and a.impacts == b.impacts
+    assert a.peak_crown_drop == pytest.approx(b.peak_crown_drop, abs=1e-9)
+    assert a.skipped_steps >= 900  # the quiet second
+
+
 def test_motion_below_the_onset_costs_no_step():
     """A record whose peak (0.3 g) stays below the chain's onset accelerations (0.370 g both
     ways, the limit-analysis multiplier): no hinge, proven at t = 0 without a step."""

@@ -3,19 +3,21 @@
 ``project_direct``), with the verdict of :meth:`archquake.dem.result.DemResult.from_samples`
 read on the fly instead of from recorded samples, and three shortcuts that do not change it:
 
-* **skip at rest**: while the chain is at rest and the step's mean ground acceleration lies
-  inside the safe domain (-lambda_- g, lambda_+ g) (the no-slip chain's onset multipliers,
-  :attr:`archquake.rigid.events.EventModel.onset_g`), the exact solution does not
-  move, so the step is not computed. "At rest" is the untouched initial state (q, v exactly
-  the rest state: the skip is exact), or, after a motion, the rest of
-  :func:`archquake.dem.result.settled` (kinetic energy below ``REST_KINETIC`` W L for a rest
-  window; the velocity is then set to zero, and the safe domain is narrowed by
-  ``REST_MARGIN``, the configuration being only near the undisplaced one);
+* **skip at rest**: while the chain is untouched at rest (q, v exactly the rest state) and the
+  step's mean ground acceleration lies inside the safe domain (-lambda_- g, lambda_+ g) (the
+  no-slip chain's onset multipliers, :attr:`archquake.rigid.events.EventModel.onset_g`), the
+  exact solution does not move, so the step is not computed. Once the chain has moved, every
+  step is computed: a chain that has settled again (kinetic energy below ``REST_KINETIC`` W L)
+  still moves a little, and on records the verdict near a threshold depends on that motion
+  (zeroing it and skipping changed verdicts at threshold levels of the bridge example under
+  near-field records);
 * **stop at collapse**: at the first step meeting a collapse criterion
   (:func:`archquake.dem._kernels.collapsed`);
-* **stop at proven rest**: at rest (as above) with the rest of the ground motion inside the
-  safe domain (a suffix maximum of the ground acceleration), or settled after the end of the
-  excitation (:func:`~archquake.dem.result.settled`'s rule).
+* **stop at proven rest**: at rest with the rest of the ground motion inside the safe domain (a
+  suffix maximum of the ground acceleration): untouched, or, after a motion, settled (kinetic
+  energy below ``REST_KINETIC`` W L for a rest window, every joint closed, the safe domain
+  narrowed by ``REST_MARGIN``, the configuration being only near the undisplaced one); or
+  settled after the end of the excitation (:func:`~archquake.dem.result.settled`'s rule).
 
 Every step is checked (the recorded runs check at their output samples); the hinge onset is
 read on the step's mid-step corner gaps (``_rigid_kernels.geometry``), the DEM's on the recorded
@@ -188,6 +190,7 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
         rot0[ell] = _chord_angle(st, links_block, links_local, ell)
         ang_prev[ell] = rot0[ell]
     pristine = True  # q, v exactly the rest state
+    closed = True  # no joint end open beyond hinge_opening L after the last step
     t_still = 0.0  # since when the kinetic energy has stayed below the rest threshold
     onset = -1
     peak_drop = 0.0
@@ -202,7 +205,7 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
     t = 0.0
     while k < n_steps:
         t = k * h  # the state's time
-        resting = pristine or (t - t_still > par[P_REST_WINDOW])
+        resting = pristine or (closed and t - t_still > par[P_REST_WINDOW])
         if skip and resting:
             lim_p = safe_pos if pristine else margin * safe_pos
             lim_n = safe_neg if pristine else margin * safe_neg
@@ -211,29 +214,31 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
                 rest_proven = 1
                 final = 1
                 break
-            if -lim_n < acc[k] < lim_p:
-                if not pristine:
-                    for i in range(nb_):
-                        v[i, 0] = 0.0
-                        v[i, 1] = 0.0
-                        v[i, 2] = 0.0
+            if pristine and -lim_n < acc[k] < lim_p:
                 skipped += 1
                 k += 1
                 t = k * h
                 continue
         # one Moreau-Jean step, as _rigid_kernels.run (method direct, correction on)
+        if pristine:
+            # the chain starts to move: it has been still only from here on (a chain just set
+            # moving has little kinetic energy, and is not at rest)
+            t_still = t
         t = (k + 1) * h
         pristine = False
         computed += 1
         sweeps, res = RK.advance(chain, cfg, state, acc[k], ws)
         if sweeps > worst:
             worst = sweeps
+        closed = True
         for j in range(nj):
             p_warm[j, 0] = imp[j, 0]
             p_warm[j, 1] = imp[j, 1]
             p_warm[j, 2] = imp[j, 2]
-            if onset < 0 and (gaps[j, 0] > par[P_OPEN] or gaps[j, 1] > par[P_OPEN]):
-                onset = k
+            if gaps[j, 0] > par[P_OPEN] or gaps[j, 1] > par[P_OPEN]:
+                closed = False
+                if onset < 0:
+                    onset = k
         for i in range(nb_):
             for c in range(3):
                 v[i, c] = vn[i, c]

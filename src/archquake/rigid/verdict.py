@@ -12,8 +12,8 @@ and many histories in one compiled, threaded call.
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
   at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md).
 * **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
-  call; steps at rest under a ground acceleration inside the safe domain are skipped; the run
-  stops at collapse or once rest is proven; no samples are recorded and no
+  call; steps of the untouched chain under a ground acceleration inside the safe domain are
+  skipped; the run stops at collapse or once rest is proven; no samples are recorded and no
   :class:`~archquake.dem.DemResult` is built.
 
 :func:`rigid_verdict` is one history; :func:`rigid_verdicts` runs many over a thread pool (the
@@ -71,8 +71,9 @@ STEP_FACTOR = 2.56e-3
 #: below to 10 % above at t/R = 0.11, and over the pointed arch's band where the step changes
 #: the verdict (collapse in half cycle 3; 2.5 missed it).
 GUARD_LENGTHENING = 2.0
-#: After a motion, the chain resting near (not at) its undisplaced configuration is taken as
-#: safe under ground accelerations below this fraction of its onset ones.
+#: After a motion, the chain settled near (not at) its undisplaced configuration is taken as
+#: safe under the rest of the ground motion when it stays below this fraction of its onset
+#: accelerations (the run then stops at proven rest).
 REST_MARGIN = 0.98
 
 _OUTCOMES = (Outcome.NO_HINGING, Outcome.SURVIVES, Outcome.COLLAPSE, Outcome.INDETERMINATE)
