@@ -32,6 +32,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "archquake.ground.measures",
     "archquake.mechanism._kernels",
     "archquake.rigid._step_kernels",
+    "archquake.rigid._force_kernels",
     "archquake.rigid._event_kernels",
     "archquake.rigid._verdict_kernels",
     "archquake.domains._kernels",

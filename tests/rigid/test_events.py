@@ -180,3 +180,29 @@ def test_not_a_chain_is_refused():
     joints = asm.joints[1:] + asm.joints[:1]  # the springing's joint moved to the end
     with pytest.raises(InvalidParameterError, match="solver='direct'"):
         EventModel.build(RigidModel.build(Assembly(**{**asm.__dict__, "joints": joints})))
+
+
+class _Counted(EventModel):
+    """An EventModel that counts its Gauss projections."""
+
+    def _moves(self, ax_g: float) -> bool:
+        self.__dict__["calls"] = self.__dict__.get("calls", 0) + 1
+        return super()._moves(ax_g)
+
+
+@pytest.mark.parametrize("hint_factor", [1.0, 2.0])
+def test_the_seeded_onset_is_the_plain_bisection_to_the_bit(opp, hint_factor):
+    """`onset_near` replays `onset_g`'s bisection, projecting only inside a checked bracket:
+    oracle, the plain bisection's numbers, exactly equal. Seeded with the limit analysis's
+    multiplier it needs at most half the projections; a wrong seed (twice the multiplier) fails
+    its bracket's check and lambda_+ falls back to the plain bisection, with the same numbers
+    (and more projections than the right seed)."""
+    lam = limit_analysis(OPPENHEIM).collapse_acceleration_g
+    plain = _Counted.build(opp.rigid)
+    seeded = _Counted.build(opp.rigid)
+    assert seeded.onset_near(hint_factor * lam) == plain.onset_g
+    assert seeded.onset_g == plain.onset_g  # the cached property holds the same
+    if hint_factor == 1.0:
+        assert seeded.calls <= plain.calls // 2
+    else:
+        assert seeded.calls > plain.calls // 2 + 2

@@ -143,6 +143,30 @@ def test_forces_of_the_four_link_phase_are_its_statics(four_hinge_run):
         assert np.max(np.abs(f.friction_demand[k] - s.friction_demand)) < 1e-4
 
 
+@pytest.mark.parametrize("friction", [None, 0.6])
+def test_the_compiled_force_probe_is_its_plain_twin(friction):
+    """The compiled probe (all samples in one call, the rank test batched by active set) against
+    its plain loop (`joint_forces_reference`: one projection and one SVD per sample): the same
+    projections in the same order, so the forces agree to 1e-12 of the largest (double
+    rounding only) and the flags exactly. The history rocks, impacts and all (warm starts,
+    holds, impulsive and indeterminate samples), with and without Coulomb friction."""
+    from archquake.rigid.forces import joint_forces, joint_forces_reference
+
+    run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.27), duration=1.2,
+                         friction=friction, output_interval=1e-3)
+    fast = joint_forces(run, run.motion)
+    plain = joint_forces_reference(run, run.motion)
+    assert plain.impulsive.any() and plain.unique.any() and not plain.unique.all()  # exercised
+    assert np.array_equal(fast.unique, plain.unique)
+    assert np.array_equal(fast.impulsive, plain.impulsive)
+    for name in ("normal", "shear", "eccentricity"):
+        a, b = getattr(fast, name), getattr(plain, name)
+        assert np.array_equal(np.isnan(a), np.isnan(b))
+        scale = np.nanmax(np.abs(b))
+        assert np.nanmax(np.abs(a - b)) <= 1e-12 * scale, name
+    assert fast.summary() == plain.summary()
+
+
 def test_at_rest_the_forces_are_indeterminate_but_in_equilibrium():
     """Below lambda (0.30 g step, lambda = 0.37 g) the closed arch is three times statically
     indeterminate: one distribution of many, so none is reported (the thrust line at rest is
@@ -184,3 +208,32 @@ def test_closure_spikes_are_not_reported_as_demand(rocking_cut_short):
     assert 0.5 < s["max_friction_demand"] < 1.0
     assert np.nanpercentile(f.friction_demand, 99) < 0.6
     assert 0.9 < s["max_relative_eccentricity_closed"] < 1.0
+
+
+def test_the_rank_certificate_never_contradicts_the_svd():
+    """`rank_certificate` (a Cholesky bound) against the oracle it stands in for, the SVD of
+    the same rows (`forces._rows`, `forces._independent`): over random sets of active corners
+    of Oppenheim's arch, displaced at random, a certified 1 is independent by the SVD and a
+    certified 0 dependent; most sets are settled (the bound is not vacuous)."""
+    from archquake.rigid import _force_kernels as FK
+    from archquake.rigid import _step_kernels as RK
+    from archquake.rigid.forces import _independent, _rows
+    from archquake.rigid.model import RigidModel
+
+    model = RigidModel.build(OPPENHEIM)
+    isq_m, isq_i = np.sqrt(1.0 / model.mass), np.sqrt(1.0 / model.inertia)
+    rng = np.random.default_rng(7)
+    settled = {0: 0, 1: 0}
+    q0, _ = model.rest()
+    for _ in range(300):
+        q = q0 + rng.normal(scale=[1e-3, 1e-3, 1e-3], size=q0.shape)
+        act = rng.random((len(model.ja), 2)) < rng.uniform(0.2, 0.9)
+        _, nrm, tan, pts = RK.geometry(q, model.ja, model.jb, model.arm_a, model.arm_b,
+                                       model.n0, model.t0)
+        gaps = np.where(act, 0.0, 1.0)  # active exactly where asked
+        svd = _independent(_rows(q, model.ja, model.jb, gaps, nrm, tan, pts, 0.5, isq_m, isq_i))
+        cert = FK.rank_certificate(q, act, model.ja, model.jb, nrm, tan, pts, isq_m, isq_i)
+        if cert >= 0:
+            assert bool(cert) == svd
+            settled[cert] += 1
+    assert settled[1] > 150 and settled[0] > 10

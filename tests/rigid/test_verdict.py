@@ -223,3 +223,23 @@ def test_bad_inputs_name_the_option():
         rigid_verdicts(OPPENHEIM, [StepImpulse.from_g(1.0, 0.2)], threads=0)
     with pytest.raises(InvalidParameterError, match="duration"):
         rigid_verdicts(OPPENHEIM, [StepImpulse.from_g(1.0, 0.2)], duration=[1.0, 2.0])
+
+
+def test_mean_acceleration_of_a_piecewise_constant_pulse_is_the_sub_sampled_mean():
+    """Oracle: the 16 mid-point sub-samples of every step, averaged (what `mean_acceleration`
+    does for any motion). For the step impulse and the rectangular pulse only the steps across
+    a breakpoint are sub-sampled, and the others must equal that mean to the bit (a sum of equal
+    values is exact): the verdicts' digests rest on it. Steps that do not divide the pulse, and
+    starts before, at and after its breakpoints."""
+    from archquake.ground.pulses import RectangularPulse
+    from archquake.rigid.model import ACC_SAMPLES, mean_acceleration
+
+    sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
+    for motion in (StepImpulse.from_g(1.0, 0.27), StepImpulse.from_g(0.731, 0.1234567, 1),
+                   RectangularPulse(-7.3, 0.283)):
+        for h in (1e-3, 1e-4, 0.00123456):
+            for t0 in (0.0, -0.01, 0.13, 0.27):
+                n = int(1.0 / h)
+                t = t0 + h * (np.arange(n)[:, None] + sub[None, :])
+                plain = motion.acceleration(t.ravel()).reshape(n, ACC_SAMPLES).mean(1)
+                assert np.array_equal(mean_acceleration(motion, t0, h, n), plain)

@@ -486,10 +486,12 @@ def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
 def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
     """``{"restitution": c_v or None, "impact": law or None}`` from :func:`add_impact_arguments`'s
     options, checked (one line naming --restitution and its range)."""
-    from archquake.mechanism.impact import check_restitution
+    restitution = getattr(args, "restitution", None)
+    if restitution is not None:  # (the four-link package is imported only to check one)
+        from archquake.mechanism.impact import check_restitution
 
-    return {"restitution": check_restitution(getattr(args, "restitution", None), "--restitution"),
-            "impact": getattr(args, "impact", None)}
+        restitution = check_restitution(restitution, "--restitution")
+    return {"restitution": restitution, "impact": getattr(args, "impact", None)}
 
 
 def impact_line(law: str, validity: str, described: bool, prescribed: bool = False) -> str:

@@ -24,7 +24,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.sparse import coo_matrix
 
 import archquake.dem._kernels as K
 from archquake._validate import require_gravity
@@ -206,6 +205,8 @@ def stable_time_step(
     keys, inverse = np.unique(r_all * (3 * nb) + c_all, return_inverse=True)
     summed = np.zeros(keys.size)
     np.add.at(summed, inverse, np.concatenate(vals))
+    from scipy.sparse import coo_matrix  # (the DEM's only use of scipy: imported here)
+
     stiff = coo_matrix((summed, (keys // (3 * nb), keys % (3 * nb))), shape=(3 * nb, 3 * nb))
     if nb <= 500:
         lam = float(np.linalg.eigvalsh(stiff.toarray())[-1])

@@ -45,6 +45,7 @@ so :attr:`HingeMechanism.symmetric` compares the joints only.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -55,9 +56,11 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
-from archquake.geometry.hinges import HingeMechanism
+from archquake.geometry.hinges import Face, HingeMechanism
 from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS, kinematic_collapse
 from archquake.limit.static import (
+    MAX_MULTIPLIER,
+    _constraints,
     collapse_state,
     min_thickness_ratio,
     stands,
@@ -284,12 +287,98 @@ def hinges_of(arch: VoussoirChain) -> HingeMechanism:
     >>> m.joints, m.load_direction
     ((0, 3, 5, 7), 1)
     """
-    mech = limit_analysis(arch).mechanism
+    try:
+        hash(arch)
+    except TypeError:  # a chain that cannot be a key: not memoised
+        return _hinges(arch)
+    return _memoised_hinges(arch)
+
+
+def _hinges(arch: VoussoirChain) -> HingeMechanism:
+    mech = certified_mechanism(arch)
+    if mech is None:
+        mech = limit_analysis(arch).mechanism
     return mech if mech.load_direction > 0 else mech.mirrored()
 
 
+#: :func:`hinges_of` once per arch (arches are frozen; the DEM's and the rigid chain's
+#: assemblies of one arch, and the verdict's onset, all ask for its hinges).
+_memoised_hinges = functools.lru_cache(maxsize=128)(_hinges)
+
+
+#: Largest arch whose hinges :func:`certified_mechanism` looks for (it enumerates 16 C(n+1, 4)
+#: mechanisms: 1 120 at n = 7, 95 760 at n = 20, a few ms); above it the linear program does.
+CERTIFIED_VOUSSOIRS = 20
+#: Margins of the certificate, relative to the largest of their kind: a joint that is not a
+#: hinge keeps the line of thrust inside its section by more than this (of the largest
+#: half-depth times normal force), and each hinge's dual (its rotation in the virtual-work
+#: equation) exceeds this of the largest. Both far above the linear program's tolerances
+#: (1e-7 relative on the duals, HiGHS's 1e-7 on feasibility is absolute in these units).
+CERTIFICATE_MARGIN = 1e-5
+
+
+def certified_mechanism(arch: VoussoirChain) -> HingeMechanism | None:
+    """The collapse mechanism of the static linear program, found without solving it, where
+    its optimum can be proven; None where it cannot (then call :func:`limit_analysis`).
+
+    The least-multiplier four-hinge mechanism of the enumeration
+    (:func:`~archquake.limit.kinematic.kinematic_collapse`) proposes a vertex of the static
+    program: the equilibrium with the line of thrust through its four hinges
+    (:func:`~archquake.limit.static.collapse_state`). That vertex is the program's optimum,
+    and its only one, when it is primal feasible with every other constraint strictly slack
+    (the line of thrust inside every other joint) and dual feasible with every dual strictly
+    positive (the objective's gradient a positive combination of the four hinge constraints'):
+    the optimality conditions of linear programming, checked with the margin
+    :data:`CERTIFICATE_MARGIN`. The program's duals are then these four, so
+    :func:`~archquake.limit.static.static_collapse` reads the same hinges from them. Arches of
+    more than :data:`CERTIFIED_VOUSSOIRS` voussoirs, ties between mechanisms, a line of thrust
+    that grazes a fifth joint, a multiplier at :data:`~archquake.limit.static.MAX_MULTIPLIER`
+    and arches that cannot stand are left to the program (which reports them).
+
+    Examples
+    --------
+    >>> import math
+    >>> certified_mechanism(Arch(10.0, 1.5, math.radians(157.5), 7)).joints
+    (0, 3, 5, 7)
+    """
+    if arch.voussoirs > CERTIFIED_VOUSSOIRS:
+        return None
+    try:
+        _, mech = kinematic_collapse(arch)
+    except InvalidParameterError:
+        return None
+    if len(set(mech.joints)) < 4:
+        return None
+    a_ub, b_ub = _constraints(arch)  # A x <= b over x = (H, V, M0, lambda)
+    rows = [2 * j + (1 if face is Face.EXTRADOS else 0)
+            for j, face in zip(mech.joints, mech.faces, strict=True)]
+    a_act = a_ub[rows]
+    try:
+        x = np.linalg.solve(a_act, b_ub[rows])
+        duals = np.linalg.solve(a_act.T, np.array([0.0, 0.0, 0.0, 1.0]))  # max lambda
+    except np.linalg.LinAlgError:
+        return None
+    lam = float(x[3])
+    if not (0.0 < lam < MAX_MULTIPLIER * (1 - 1e-9)) or not np.all(np.isfinite(x)):
+        return None
+    slack = b_ub - a_ub @ x
+    others = np.ones(slack.size, dtype=bool)
+    others[rows] = False
+    # the section's size at each constraint: half-depth times normal force (b - A x at a
+    # constraint's partner face is 2 h N)
+    size = float(np.max(np.abs(slack)))
+    if size <= 0.0 or np.any(slack[others] <= CERTIFICATE_MARGIN * size):
+        return None
+    if np.any(duals <= CERTIFICATE_MARGIN * float(np.max(np.abs(duals)))):
+        return None
+    return mech
+
+
 __all__ = [
+    "CERTIFICATE_MARGIN",
+    "CERTIFIED_VOUSSOIRS",
     "LimitAnalysis",
+    "certified_mechanism",
     "hinges_of",
     "Method",
     "collapse_joint_forces",

@@ -155,21 +155,65 @@ class EventModel:
     def onset_g(self) -> tuple[float, float]:
         """(lambda_+, lambda_-): the ground accelerations, in g, towards +x and -x at which the
         locked arch starts to move (the no-slip rigid chain's collapse multipliers), by
-        bisection on the Gauss projection to 1e-12; inf above 20 g."""
-        out = []
-        for sgn in (1.0, -1.0):
-            lo, hi = 0.0, 20.0
-            if not self._moves(sgn * hi):
-                out.append(math.inf)
-                continue
-            while hi - lo > 1e-12 * hi:
-                mid = 0.5 * (lo + hi)
-                if self._moves(sgn * mid):
-                    hi = mid
-                else:
-                    lo = mid
-            out.append(hi)
-        return out[0], out[1]
+        bisection on the Gauss projection to 1e-12; inf above 20 g. :meth:`onset_near`
+        gives the same numbers with fewer projections when they are known roughly."""
+        return self._bisect(1.0), self._bisect(-1.0)
+
+    def onset_near(self, hint_g: float) -> tuple[float, float]:
+        """:attr:`onset_g`, the same numbers, found with fewer projections from a rough value
+        ``hint_g`` (g) of lambda_+ (the limit analysis's, which the chain's exceeds by 1e-8 to
+        2e-7 of itself: its projection's tolerances).
+
+        The bisection of :attr:`onset_g` is replayed step by step, but a projection whose
+        answer a bracket already gives is not computed: once the arch is shown to stay at
+        ``a`` and to move at ``b``, every midpoint below ``a`` stays and every one above ``b``
+        moves (the bisection's own premise), so only the midpoints inside (a, b) are
+        projected. The bracket is ``hint_g`` (1 - 1e-7) to ``hint_g`` (1 + 1e-6) for
+        lambda_+, then lambda_+ (1 -+ 1e-10) for lambda_- (equal to 1e-12 for a
+        mirror-symmetric chain); a bracket that fails its check is dropped (a plain
+        bisection). About 32 projections instead of 94."""
+        cached = self.__dict__.get("onset_g")
+        if cached is not None:
+            return cached
+        if math.isfinite(hint_g) and hint_g > 0.0:
+            plus = self._bisect(1.0, *self._bracket(1.0, hint_g * (1 - 1e-7), hint_g * (1 + 1e-6)))
+        else:
+            plus = self._bisect(1.0)
+        if math.isfinite(plus):
+            minus = self._bisect(-1.0, *self._bracket(-1.0, plus * (1 - 1e-10), plus * (1 + 1e-10)))
+        else:
+            minus = self._bisect(-1.0)
+        self.__dict__["onset_g"] = (plus, minus)  # what the cached property would have found
+        return plus, minus
+
+    def _bracket(self, sgn: float, low: float, high: float) -> tuple[float, float]:
+        """(a, b) with the arch at rest under ``sgn`` a and moving under ``sgn`` b, g; (0, inf)
+        (nothing known) if (``low``, ``high``) is not such a bracket."""
+        if 0.0 < low < high < 20.0 and not self._moves(sgn * low) and self._moves(sgn * high):
+            return low, high
+        return 0.0, math.inf
+
+    def _bisect(self, sgn: float, stays: float = 0.0, moves: float = math.inf) -> float:
+        """The bisection of :attr:`onset_g` towards ``sgn`` x, taking the arch to stay at rest
+        at or below ``stays`` and to move at or above ``moves`` (g) without projecting."""
+
+        def moving(x: float) -> bool:
+            if x <= stays:
+                return False
+            if x >= moves:
+                return True
+            return self._moves(sgn * x)
+
+        lo, hi = 0.0, 20.0
+        if not moving(hi):
+            return math.inf
+        while hi - lo > 1e-12 * hi:
+            mid = 0.5 * (lo + hi)
+            if moving(mid):
+                hi = mid
+            else:
+                lo = mid
+        return hi
 
 
 def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4

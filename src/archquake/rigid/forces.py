@@ -47,13 +47,13 @@ import numpy as np
 
 import archquake.rigid._step_kernels as RK
 from archquake.rigid.model import (
+    ACC_SAMPLES,
     DEFAULT_TIME_STEP,
     GAP_TOLERANCE,
     HOLD_TOLERANCE,
     MAX_SWEEPS,
     SOLVER_TOLERANCE,
     RigidModel,
-    mean_acceleration,
 )
 
 #: A sample is impulsive when a block's velocity changes over the step by more than this many
@@ -213,15 +213,9 @@ def _independent(h: np.ndarray) -> bool:
     return bool(s[-1] > RANK_TOLERANCE * s[0])
 
 
-def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> JointForceHistory:
-    """The joint forces of ``run`` (a :class:`~archquake.rigid.run.RigidRun`) at its
-    recorded samples, under the ``motion`` it was run with (module docstring).
-
-    Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
-    recorded samples. Cost: one contact projection per sample used. A run of the event
-    integrator (``solver="events"``, no time step of its own) is probed with the stepper's
-    default step."""
-
+def _setup(run, motion, g: float | None, every: int) -> dict:
+    """What both probes of :func:`joint_forces` read: the model, the step and the projection's
+    settings, the samples used and their ground accelerations."""
     res = run.result
     g = res.g if g is None else float(g)
     model = RigidModel.build(res.assembly)
@@ -231,23 +225,141 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     # a stepper's run: its step, position-level correction included (the tangential part
     # needs the run's contact history and is left out); an event run's: the plain cone
     correction, hold = (h, HOLD_TOLERANCE * lref) if stepped else (0.0, 0.0)
-    gap_tol = GAP_TOLERANCE * lref
-    tol = SOLVER_TOLERANCE * np.sqrt(g * lref)
-    mu = 0.0 if run.friction is None else float(run.friction)
+    picks = np.arange(0, res.times.size, max(1, int(every)))
+    times = res.times[picks]
+    # each sample's step: the mean of ``ACC_SAMPLES`` mid-points, as ``mean_acceleration``
+    sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
+    t = times[:, None] + h * sub[None, :]
+    acc = np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(t.shape).mean(1)
+    depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
+                      for jt in res.assembly.joints])
+    return {"res": res, "g": g, "model": model, "h": h, "lref": lref, "correction": correction,
+            "hold": hold, "gap_tol": GAP_TOLERANCE * lref,
+            "tol": SOLVER_TOLERANCE * np.sqrt(g * lref),
+            "mu": 0.0 if run.friction is None else float(run.friction), "picks": picks,
+            "times": times, "acc": acc, "depth": depth}
+
+
+def _history(s: dict, imp: np.ndarray, unique: np.ndarray, impulsive: np.ndarray
+             ) -> JointForceHistory:
+    """The forces from the impulses over each sample's step, ``imp`` (nt, nj, 3), N s."""
+    h, depth = s["h"], s["depth"]
+    normal = (imp[:, :, 0] + imp[:, :, 1]) / h
+    shear = imp[:, :, 2] / h
+    pn = imp[:, :, 0] + imp[:, :, 1]
+    ok = pn > 0.0
+    depths = np.broadcast_to(depth, pn.shape)
+    ecc = np.full(pn.shape, np.nan)
+    ecc[ok] = (imp[:, :, 1][ok] - imp[:, :, 0][ok]) / pn[ok] * 0.5 * depths[ok]
+    return JointForceHistory(times=s["times"].copy(), normal=normal, shear=shear,
+                             eccentricity=ecc, half_depth=0.5 * depth, unique=unique,
+                             impulsive=impulsive,
+                             weight=float(s["g"] * s["model"].mass.sum()))
+
+
+def _entries(rows, q, body, p, d, sign, isq_m, isq_i) -> None:
+    """One body's entries of a contact row, for every sample at once (as :func:`_rows`'s
+    ``entry``): ``rows`` (ns, 3 nb), ``q`` (ns, nb, 3), the point ``p`` and direction ``d``
+    (ns, 2)."""
+    if body < 0:
+        return
+    rx, ry = p[:, 0] - q[:, body, 0], p[:, 1] - q[:, body, 1]
+    rows[:, 3 * body] += sign * d[:, 0] * isq_m[body]
+    rows[:, 3 * body + 1] += sign * d[:, 1] * isq_m[body]
+    rows[:, 3 * body + 2] += sign * (rx * d[:, 1] - ry * d[:, 0]) * isq_i[body]
+
+
+def _unique(model: RigidModel, active: np.ndarray, qm: np.ndarray, nrm: np.ndarray,
+            tan: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    """The rank test of every sample (nt,) bool: the rows of :func:`_rows`, built at once for
+    all samples that share a set of active corners, and one batched SVD per set."""
+    nt, nj = active.shape[:2]
+    nb = qm.shape[1]
+    isq_m, isq_i = np.sqrt(1.0 / model.mass), np.sqrt(1.0 / model.inertia)
+    unique = np.ones(nt, dtype=bool)
+    keys, inverse = np.unique(active.reshape(nt, 2 * nj), axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    for key_index, key in enumerate(keys):
+        sel = np.flatnonzero(inverse == key_index)
+        act = key.reshape(nj, 2)
+        nrows = int(act.sum() + act.any(axis=1).sum())
+        if nrows == 0:
+            continue
+        if nrows > 3 * nb:
+            unique[sel] = False
+            continue
+        rows = np.zeros((sel.size, nrows, 3 * nb))
+        q = qm[sel]
+
+        def entry(r, body, p, d, sign, rows=rows, q=q):
+            _entries(rows[:, r], q, body, p, d, sign, isq_m, isq_i)
+
+        r = 0
+        for j in range(nj):
+            ja, jb = int(model.ja[j]), int(model.jb[j])
+            n_j, t_j, p_j = nrm[sel, j], tan[sel, j], pts[sel, j]
+            for c in range(2):
+                if act[j, c]:
+                    entry(r, ja, p_j[:, c, 0], n_j, -1.0)
+                    entry(r, jb, p_j[:, c, 1], n_j, 1.0)
+                    r += 1
+            if act[j, 0] or act[j, 1]:
+                w = 0.5 if (act[j, 0] and act[j, 1]) else (1.0 if act[j, 0] else 0.0)
+                pa = w * p_j[:, 0, 0] + (1 - w) * p_j[:, 1, 0]
+                pb = w * p_j[:, 0, 1] + (1 - w) * p_j[:, 1, 1]
+                entry(r, ja, pa, t_j, -1.0)
+                entry(r, jb, pb, t_j, 1.0)
+                r += 1
+        rows = rows / np.linalg.norm(rows, axis=2, keepdims=True)
+        s = np.linalg.svd(rows, compute_uv=False)
+        unique[sel] = s[:, -1] > RANK_TOLERANCE * s[:, 0]
+    return unique
+
+
+def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> JointForceHistory:
+    """The joint forces of ``run`` (a :class:`~archquake.rigid.run.RigidRun`) at its
+    recorded samples, under the ``motion`` it was run with (module docstring).
+
+    Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
+    recorded samples. Cost: one contact projection per sample used, all in one compiled call
+    (:func:`archquake.rigid._force_kernels.probe`; :func:`joint_forces_reference` is its
+    plain twin), which also proves most samples' rank test by a bound; the SVD settles the
+    rest. A run of the event integrator (``solver="events"``, no time step of its own)
+    is probed with the stepper's default step."""
+    import archquake.rigid._force_kernels as FK
+
+    s = _setup(run, motion, g, every)
+    res, model, picks = s["res"], s["model"], s["picks"]
+    fb = model.free_blocks
+    pos = res.positions[picks][:, fb, :]
+    vel = res.velocities[picks][:, fb, :]
+    imp, impulsive, active, qm, nrm, tan, pts, certified = FK.probe(
+        pos, vel, res.base_displacement[picks], res.base_velocity[picks], s["acc"],
+        model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
+        model.t0, s["h"], s["g"], s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"],
+        s["correction"], s["hold"], s["lref"], IMPULSIVE)
+    unique = certified == 1
+    open_ = np.flatnonzero(certified < 0)  # not settled by the certificate: the SVD decides
+    if open_.size:
+        unique[open_] = _unique(model, active[open_], qm[open_], nrm[open_], tan[open_],
+                                pts[open_])
+    return _history(s, imp, unique, impulsive)
+
+
+def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 1
+                           ) -> JointForceHistory:
+    """:func:`joint_forces` by a plain loop over the samples (one projection and one rank test
+    each, in Python): the twin a test holds the compiled probe to."""
+    s = _setup(run, motion, g, every)
+    res, model, picks, h, acc = s["res"], s["model"], s["picks"], s["h"], s["acc"]
+    g, lref, hold = s["g"], s["lref"], s["hold"]
     inv_m, inv_i = 1.0 / model.mass, 1.0 / model.inertia
     isq_m, isq_i = np.sqrt(inv_m), np.sqrt(inv_i)
     fb = model.free_blocks
-    picks = np.arange(0, res.times.size, max(1, int(every)))
     nt, nj = picks.size, len(model.ja)
-    normal = np.zeros((nt, nj))
-    shear = np.zeros((nt, nj))
-    ecc = np.full((nt, nj), np.nan)
+    imp_all = np.zeros((nt, nj, 3))
     unique = np.zeros(nt, dtype=bool)
     impulsive = np.zeros(nt, dtype=bool)
-    times = res.times[picks]
-    acc = np.array([mean_acceleration(motion, float(t), h, 1)[0] for t in times])
-    depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
-                      for jt in res.assembly.joints])
     p_warm = np.zeros((nj, 3))
     for k, i in enumerate(picks):
         q = res.positions[i, fb, :].copy()
@@ -260,22 +372,18 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
         vf = v.copy()
         vf[:, 0] -= h * acc[k]
         vf[:, 1] -= h * g
-        vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan, pts,
-                                  gap_tol, p_warm, tol, MAX_SWEEPS, mu, correction, hold)
-        unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts, gap_tol,
-                                       isq_m, isq_i, p_warm, hold))
+        vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan,
+                                   pts, s["gap_tol"], p_warm, s["tol"], MAX_SWEEPS, s["mu"],
+                                   s["correction"], hold)
+        unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts,
+                                       s["gap_tol"], isq_m, isq_i, p_warm, hold))
         p_warm = imp
         dv = vn - v
         jump = float(np.max(np.hypot(dv[:, 0], dv[:, 1]) + np.abs(dv[:, 2]) * lref))
         impulsive[k] = jump > IMPULSIVE * h * (g + abs(acc[k]))
-        normal[k] = (imp[:, 0] + imp[:, 1]) / h
-        shear[k] = imp[:, 2] / h
-        pn = imp[:, 0] + imp[:, 1]
-        ok = pn > 0.0
-        ecc[k, ok] = (imp[ok, 1] - imp[ok, 0]) / pn[ok] * 0.5 * depth[ok]
-    return JointForceHistory(times=times.copy(), normal=normal, shear=shear, eccentricity=ecc,
-                             half_depth=0.5 * depth, unique=unique, impulsive=impulsive,
-                             weight=float(g * model.mass.sum()))
+        imp_all[k] = imp
+    return _history(s, imp_all, unique, impulsive)
 
 
-__all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces"]
+__all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces",
+           "joint_forces_reference"]

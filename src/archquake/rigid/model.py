@@ -54,6 +54,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.pulses import RectangularPulse, StepImpulse
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
 
 #: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
@@ -177,10 +178,28 @@ class RigidModel:
 
 def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     """The ground acceleration, m/s^2, averaged over each of ``n`` steps of ``h`` s from ``t0``
-    s (``ACC_SAMPLES`` mid-point sub-samples a step), (n,)."""
+    s (``ACC_SAMPLES`` mid-point sub-samples a step), (n,).
+
+    For a pulse constant between its breakpoints (the step impulse, the rectangular pulse) only
+    the steps that straddle a breakpoint are sub-sampled: every other step's sub-samples are
+    equal, and so is their mean (a sum of 16 equal values is exact), to the bit."""
     sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
-    t = t0 + h * (np.arange(n)[:, None] + sub[None, :])
-    return np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(n, ACC_SAMPLES).mean(1)
+    k = np.arange(n)
+    if not isinstance(motion, (StepImpulse, RectangularPulse)):
+        t = t0 + h * (k[:, None] + sub[None, :])
+        return np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(
+            n, ACC_SAMPLES).mean(1)
+    first = t0 + h * (k + sub[0])  # each step's first and last sub-sample, as in ``t`` above
+    last = t0 + h * (k + sub[-1])
+    breaks = np.asarray(motion.breakpoints(), dtype=float)
+    mixed = np.flatnonzero(np.searchsorted(breaks, first, side="right")
+                           != np.searchsorted(breaks, last, side="right"))
+    out = np.asarray(motion.acceleration(first), dtype=float).copy()
+    if mixed.size:
+        t = t0 + h * (k[mixed][:, None] + sub[None, :])
+        out[mixed] = np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(
+            mixed.size, ACC_SAMPLES).mean(1)
+    return out
 
 
 def absolute_states(model: RigidModel, q: np.ndarray, v: np.ndarray,

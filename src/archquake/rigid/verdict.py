@@ -44,7 +44,7 @@ from archquake.dem.result import (
     rest_threshold,
 )
 from archquake.dem.settings import DemSettings
-from archquake.errors import InvalidParameterError
+from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.mechanism.simulate import RUN_TAIL
 from archquake.outcome import Outcome
@@ -79,9 +79,38 @@ REST_MARGIN = 0.98
 _OUTCOMES = (Outcome.NO_HINGING, Outcome.SURVIVES, Outcome.COLLAPSE, Outcome.INDETERMINATE)
 
 
+#: The arch each memoised model was built from (by the model's identity, the model kept
+#: alive by :func:`_model_of_chain`'s cache): its limit analysis seeds the onset's bisection.
+_CHAIN_OF: dict[int, tuple[RigidModel, VoussoirChain]] = {}
+
+
 @functools.lru_cache(maxsize=64)
 def _model_of_chain(arch: VoussoirChain) -> RigidModel:
-    return RigidModel.build(arch)
+    model = RigidModel.build(arch)
+    if len(_CHAIN_OF) > 64:
+        _CHAIN_OF.clear()
+    _CHAIN_OF[id(model)] = (model, arch)
+    return model
+
+
+def _onset_g(model: RigidModel) -> tuple[float, float]:
+    """The chain's onset multipliers, g (:attr:`~archquake.rigid.events.EventModel.onset_g`);
+    for a model built from an arch, by the bisection seeded with the arch's limit analysis
+    (:meth:`~archquake.rigid.events.EventModel.onset_near`: the same numbers, fewer
+    projections)."""
+    from archquake.limit import hinges_of
+    from archquake.limit.static import collapse_state
+    from archquake.rigid.events import EventModel
+
+    events = EventModel.of(model)
+    hit = _CHAIN_OF.get(id(model))
+    if hit is None or hit[0] is not model:
+        return events.onset_g
+    try:
+        hint = collapse_state(hinges_of(hit[1]))[0]
+    except (ArchquakeError, np.linalg.LinAlgError):
+        return events.onset_g
+    return events.onset_near(hint)
 
 
 #: Models built from assemblies (not hashable: keyed by identity, the assembly kept alive).
@@ -145,8 +174,6 @@ def _packed(model: RigidModel, settings: DemSettings) -> _Packed:
 
 
 def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
-    from archquake.rigid.events import EventModel
-
     asm = model.assembly
     nblocks = len(asm.base)
     base_state = np.zeros((nblocks, 3))
@@ -159,7 +186,7 @@ def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
     ll = np.array([[np.asarray(ln.point_a) - cents[ln.block_a],
                     np.asarray(ln.point_b) - cents[ln.block_b]] for ln in links], float)
     ls = np.array([float(ln.sign) for ln in links])
-    lam_p, lam_n = EventModel.of(model).onset_g
+    lam_p, lam_n = _onset_g(model)
     frame = VK.Frame(base_state, model.free_blocks.astype(np.int64), free_mask, cpar, lb, ll, ls)
     return _Packed(RK.pack_chain(model), frame, lam_p, lam_n)
 

@@ -7,20 +7,40 @@ resumably in SQLite.
 {'type': 'sine', 'direction': -1, 'magnitude_g': 0.4, 'period_s': 1.0}
 """
 
-from archquake.sweeps.cases import (
-    DEFAULT_MODEL,
-    ArchSpec,
-    Case,
-    CaseOptions,
-    ExcitationKind,
-    ExcitationSpec,
-    Model,
-    model_of,
-)
-from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
-from archquake.sweeps.runner import SweepReport, run_sweep
-from archquake.sweeps.store import CaseRecord, ResultStore
-from archquake.sweeps.study import Study, load_study, parse_study
+import sys
+from typing import TYPE_CHECKING
+
+from archquake._lazy import attach
+
+#: Public names -> their module, imported on first access (a command that needs only the
+#: cases' vocabulary does not load the runner, the store and the study reader).
+_LAZY: dict[str, str] = {
+    **dict.fromkeys(("DEFAULT_MODEL", "ArchSpec", "Case", "CaseOptions", "ExcitationKind",
+                     "ExcitationSpec", "Model", "model_of"), "archquake.sweeps.cases"),
+    **dict.fromkeys(("ModelUnavailableError", "evaluate_case", "model_function"),
+                    "archquake.sweeps.evaluate"),
+    **dict.fromkeys(("SweepReport", "run_sweep"), "archquake.sweeps.runner"),
+    **dict.fromkeys(("CaseRecord", "ResultStore"), "archquake.sweeps.store"),
+    **dict.fromkeys(("Study", "load_study", "parse_study"), "archquake.sweeps.study"),
+}
+
+if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type checkers
+    from archquake.sweeps.cases import (
+        DEFAULT_MODEL,
+        ArchSpec,
+        Case,
+        CaseOptions,
+        ExcitationKind,
+        ExcitationSpec,
+        Model,
+        model_of,
+    )
+    from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
+    from archquake.sweeps.runner import SweepReport, run_sweep
+    from archquake.sweeps.store import CaseRecord, ResultStore
+    from archquake.sweeps.study import Study, load_study, parse_study
+
+__getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
 
 __all__ = [
     "ArchSpec",
