@@ -30,7 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
             "instant of the motion, with the joint and time where it occurs, beside the demand "
             "of the equivalent static analysis: by default from the joint forces of the chain "
             "of rigid voussoirs (--model rigid; where they are unique, not at an impact, and "
-            "the joint carries at least 1 %% of the weight), or from the line of thrust of the "
+            "the joint carries at least 1 % of the weight), or from the line of thrust of the "
             "paper's four-link mechanism (--model fourlink)."
         ),
     )

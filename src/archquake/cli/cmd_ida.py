@@ -186,11 +186,15 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
           f"{result.collapse_acceleration_g:.3f} g); {result.model.value} model"
           + (f", c_v = {result.settings['restitution']:g} (prescribed)"
              if result.settings["restitution"] is not None else "")
-          + f"; impact law {result.settings.get('impact', 'paper')}")
+          + (f"; impact law {result.settings.get('impact', 'paper')}"
+             if result.model.value == "fourlink" else ""))
     indeterminate = sum(int(r.indeterminate.sum()) for r in result.records)
     if indeterminate:
-        print(f"{indeterminate} run(s) indeterminate (the verdict came after an impact the law "
-              "does not describe): counted as collapses, so the fragility is an upper bound")
+        why = {"fourlink": "the verdict came after an impact the law does not describe",
+               "rigid": "the verdict changed at half the time step"}.get(
+                   result.model.value, "the arch still moved at the end of the run")
+        print(f"{indeterminate} run(s) indeterminate ({why}): counted as collapses, so the "
+              "fragility is an upper bound")
     print(f"suite {suite.name} ({len(result.records)} records); IM {im.label} ({u}); "
           f"hunt-and-fill to {100 * result.settings['precision']:g} % (fill "
           f"{100 * result.settings['fill']:g} %), ceiling {result.ceiling:.4g} {u}")
