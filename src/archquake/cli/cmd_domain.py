@@ -69,8 +69,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_model_argument(p, extra="rigid and dem search the block model's domain (its "
                                 "1st-half-cycle boundary on the arch cut at the four-link "
                                 "hinges, its governing boundary with every voussoir a block) "
-                                "beside the four-link one, one time history per point (~0.2-1 s "
-                                "for rigid, ~1-2 min per duration on 2 cores for dem); fourlink "
+                                "beside the four-link one, one time history per point (~10-100 ms "
+                                "each for rigid, ~1-2 min per duration on 2 cores for dem); fourlink "
                                 "alone is its compiled batch (paper Figures 5, 11)")
     p.add_argument("--workers", type=ranged_whole(*WORKERS_RANGE), default=None, metavar="N",
                    help="with --model rigid or dem: worker processes for the block "

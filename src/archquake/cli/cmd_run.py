@@ -48,8 +48,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help=f"end of the analysis, s ({T_END_RANGE_S[0]:g} to {T_END_RANGE_S[1]:g}; "
                         "default: end of the excitation + 60 sqrt(R/g)); a run it cuts before "
                         "the survival is shown is indeterminate, with the reason")
-    add_model_argument(p, extra="~0.2 s per 4 s simulated for rigid, ~0.4 ms a history for "
-                                "fourlink")
+    add_model_argument(p, extra="~30 ms per 4 s simulated for rigid on a 7-voussoir arch, "
+                                "~0.4 ms a history for fourlink")
     p.add_argument("--integrator", choices=("steps", "events"), default=None,
                    help="with --model rigid: how the chain of rigid voussoirs is integrated: "
                         "'steps' (default), Moreau-Jean time steps of 1e-4 s; 'events', from "
