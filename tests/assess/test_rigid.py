@@ -149,3 +149,27 @@ def test_friction_check_at_the_verdict_step_over_the_quick_durations(family):
         fine.append(_friction_verdict(arch, motion, 1e-4))
     assert coarse == fine
     assert {"survives", "collapse"} <= set(fine)
+
+
+def test_the_ida_of_the_surveyed_arch_asks_no_impact_law(tmp_path):
+    """The records section's IDA on the asymmetric arch under the default model: its levels
+    start from the arch's static collapse acceleration, which must equal the limit analysis's
+    (the oracle, to 1e-9) without the four-link impact law (whose mirror-image mechanism does not
+    exist here), and a step pulse's first collapse lies above it and below the ceiling."""
+    from archquake.ground import StepImpulse
+    from archquake.ida import incremental_dynamic_analysis
+    from archquake.limit import limit_analysis
+    from archquake.sweeps import ResultStore
+    from archquake.sweeps.evaluate import mechanism_limits
+
+    cfg = load_config(write_survey(tmp_path, suite=None, dem=False))
+    lam, phi_crit = mechanism_limits(cfg.arch)
+    assert lam == pytest.approx(limit_analysis(cfg.build_arch()).collapse_acceleration_g,
+                                rel=1e-9)
+    assert 0.0 < phi_crit < 0.5
+    with ResultStore(tmp_path / "ida.sqlite") as store:
+        res = incremental_dynamic_analysis(cfg.arch, [StepImpulse.from_g(1.0, 0.3)], "pga",
+                                           store, ceiling=1.0, precision=0.1, fill=1.0)
+        assert {r["model"] for r in store.rows()} == {"rigid"}
+    first = res.records[0].first_collapse
+    assert lam < first.below < first.low < 1.0

@@ -351,7 +351,7 @@ def incremental_dynamic_analysis(
     """
     from archquake.ida.batch import evaluate_cases, evaluate_rigid_cases
     from archquake.parallel import SerialExecutor
-    from archquake.sweeps.evaluate import prepared_mechanism
+    from archquake.sweeps.evaluate import mechanism_limits
     from archquake.sweeps.runner import run_sweep
 
     measure = parse_im(im)
@@ -366,9 +366,9 @@ def incremental_dynamic_analysis(
     if len(set(names)) != len(names):
         raise InvalidParameterError("record names must be unique within a suite")
     g = options.g
-    prepared = prepared_mechanism(arch)
-    lam = prepared.collapse_acceleration_g
-    phi_crit = prepared.critical_rotation
+    # the levels start at the static collapse acceleration; no impact law is asked of the
+    # block models, which run on any arch, symmetric or not
+    lam, phi_crit = mechanism_limits(arch)
     im0 = np.array([im_value(m, measure, g=g) for m in motions])
     pga0 = np.array([im_value(m, "pga", g=g) for m in motions])
     for name, v in zip(names, im0, strict=True):

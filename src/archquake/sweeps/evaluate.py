@@ -137,5 +137,28 @@ def prepared_mechanism(arch: ArchSpec, impact: str | None = None):
     return PreparedMechanism.build(arch.build(), impact)
 
 
+@lru_cache(maxsize=256)
+def mechanism_limits(arch: ArchSpec) -> tuple[float, float]:
+    """The arch's equivalent static collapse acceleration (g) and the critical rotation of its
+    four-hinge mechanism (rad: the crest of its potential), with no impact law: defined on any
+    arch, symmetric or not (:func:`prepared_mechanism` needs the mirror-image mechanism of a
+    symmetric one for its impact). Memoised per process.
+
+    Returns
+    -------
+    (float, float)
+        collapse acceleration, g; critical rotation, rad.
+    """
+    from archquake.limit.analysis import hinges_of
+    from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
+    from archquake.mechanism.prepared import pack_mechanism
+
+    mech = hinges_of(arch.build())
+    if mech.load_direction < 0:
+        mech = mech.mirrored()
+    packed = pack_mechanism(mech)
+    return float(packed[G0] / abs(packed[H0])), float(packed[PHI_CRIT])
+
+
 __all__ = ["MODEL_FUNCTIONS", "RIGID_VERDICT_EVALUATOR", "ModelUnavailableError", "evaluate_case",
-           "model_function", "prepared_mechanism", "rigid_summary"]
+           "mechanism_limits", "model_function", "prepared_mechanism", "rigid_summary"]
