@@ -695,9 +695,6 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     dmax = diag[idx[i]]
             eps = EPS_REG * dmax
             for i in range(n):
-                first[i] = i
-                for k in range(i + 1):
-                    w_mat[i, k] = 0.0
                 # the set's rows packed in set order, for the refinement's inner loops
                 r = idx[i]
                 sa[i] = ja[rows_j[r]]
@@ -722,6 +719,17 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     lst_i[c, cnt[c]] = i
                     lst_side[c, cnt[c]] = 1
                     cnt[c] += 1
+            # the envelope: row i meets the rows from the first one touching either of its
+            # bodies (the lists are in set order); only the envelope is cleared and read
+            for i in range(n):
+                f = i
+                if sa[i] >= 0 and lst_i[sa[i], 0] < f:
+                    f = lst_i[sa[i], 0]
+                if sb[i] >= 0 and lst_i[sb[i], 0] < f:
+                    f = lst_i[sb[i], 0]
+                first[i] = f
+                for k in range(f, i + 1):
+                    w_mat[i, k] = 0.0
             for c in range(nbody):
                 for u in range(cnt[c]):
                     i = lst_i[c, u]
@@ -738,8 +746,6 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                         else:
                             g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
                         w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
-                        if k < first[i]:
-                            first[i] = k
             for i in range(n):
                 w_mat[i, i] += eps
             ok = True
