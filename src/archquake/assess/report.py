@@ -31,7 +31,7 @@ def elements(rep) -> list[tuple]:
     s = {k: v.data for k, v in rep.sections.items()}
     el: list[tuple] = [("h1", f"Assessment of {cfg.source}"),
                        ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
-                             f"computed in {sum(r.seconds for r in rep.sections.values()):.0f} s"
+                             f"computed in {rep.seconds:.0f} s"
                              f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
                              "Sections: the arch, static capacity"
                              + (", pulses" if "pulses" in s else "")

@@ -271,27 +271,28 @@ def section_pulses(ctx: Context) -> StudyResult:
     from matplotlib.figure import Figure as MplFigure
 
     from archquake.plotting.domains import plot_domain
-    from archquake.plotting.figures import save
+    from archquake.plotting.figures import DRAWING, save
 
     rigid = ctx.config.model == "rigid"
     cv = None if rigid else used_restitution(ctx.config, ctx.arch)[0]
     domains = pulse_domains(ctx, cv)
     data: dict[str, Any] = {"model": ctx.config.model, "restitution_cv": cv}
-    figs = []
-    for fam, d in domains.items():
-        ctx.say(f"  {fam} domain: {d.evaluations} time histories")
-        data[fam] = _domain_data(d, ctx.site)
-        fig = MplFigure(figsize=(7, 4.6))
-        ax = fig.subplots()
-        plot_domain(d, ax, title=f"{fam} pulse, " + ("chain of rigid voussoirs" if rigid
-                                                      else f"c_v = {cv:.3g}"))
-        if ctx.site is not None:
-            ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
-                       label=f"site PGA {ctx.site:g} g")
-            ax.legend(loc="upper right", fontsize=7)
-        save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
-        figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
-                           f"against {'t_p' if fam == 'step' else 'T'}), site PGA dashed."))
+    with DRAWING:  # the figures of sections run side by side, one at a time
+        figs = []
+        for fam, d in domains.items():
+            ctx.say(f"  {fam} domain: {d.evaluations} time histories")
+            data[fam] = _domain_data(d, ctx.site)
+            fig = MplFigure(figsize=(7, 4.6))
+            ax = fig.subplots()
+            plot_domain(d, ax, title=f"{fam} pulse, " + ("chain of rigid voussoirs" if rigid
+                                                          else f"c_v = {cv:.3g}"))
+            if ctx.site is not None:
+                ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
+                           label=f"site PGA {ctx.site:g} g")
+                ax.legend(loc="upper right", fontsize=7)
+            save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
+            figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
+                               f"against {'t_p' if fam == 'step' else 'T'}), site PGA dashed."))
     return StudyResult("pulses", "3. Pulses", (), tuple(figs), (), data)
 
 
@@ -366,41 +367,42 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
 def section_records(ctx: Context) -> StudyResult:
     from matplotlib.figure import Figure as MplFigure
 
-    from archquake.plotting.figures import save
+    from archquake.plotting.figures import DRAWING, save
     from archquake.plotting.ida import plot_fragility, plot_ida_curves
 
     cfg = ctx.config
     cv = used_restitution(cfg, ctx.arch)[0] if cfg.model == "fourlink" else None
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
-    fig = MplFigure(figsize=(12, 4.8))
-    a1, a2 = fig.subplots(1, 2)
-    plot_ida_curves(res, a1)
-    plot_fragility(res, fits, a2)
-    first = res.first_collapse_levels
-    data: dict[str, Any] = {
-        "suite": suite.name, "records_in_suite": len(suite.records),
-        "records_used": [r.name for r in res.records], "model": cfg.model,
-        "restitution_cv": cv,
-        "ceiling_g": res.ceiling, "runs": res.total,
-        "first_collapse_g": [_num(x) for x in first],
-        "records_collapsing": int(np.sum(np.isfinite(first))),
-        "records_with_resurrections": sum(1 for r in res.records if r.resurrections),
-        "fragility": {k: (None if fits[k] is None else fits[k].to_dict("g"))
-                      for k in ("first_collapse", "collapse_fraction")},
-    }
-    fit = fits["first_collapse"]
-    if ctx.site is not None:
-        for ax in (a1, a2):
-            (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
-                                                      label=f"site PGA {ctx.site:g} g")
-        data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
-        if fit is not None:
-            data["p_collapse_at_site"] = float(fit.probability(ctx.site))
-            ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
-            data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
-            data["p_collapse_confidence"] = 0.9
-    save(fig, ctx.figures / "records.png", dpi=110)
+    with DRAWING:  # the figures of sections run side by side, one at a time
+        fig = MplFigure(figsize=(12, 4.8))
+        a1, a2 = fig.subplots(1, 2)
+        plot_ida_curves(res, a1)
+        plot_fragility(res, fits, a2)
+        first = res.first_collapse_levels
+        data: dict[str, Any] = {
+            "suite": suite.name, "records_in_suite": len(suite.records),
+            "records_used": [r.name for r in res.records], "model": cfg.model,
+            "restitution_cv": cv,
+            "ceiling_g": res.ceiling, "runs": res.total,
+            "first_collapse_g": [_num(x) for x in first],
+            "records_collapsing": int(np.sum(np.isfinite(first))),
+            "records_with_resurrections": sum(1 for r in res.records if r.resurrections),
+            "fragility": {k: (None if fits[k] is None else fits[k].to_dict("g"))
+                          for k in ("first_collapse", "collapse_fraction")},
+        }
+        fit = fits["first_collapse"]
+        if ctx.site is not None:
+            for ax in (a1, a2):
+                (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
+                                                          label=f"site PGA {ctx.site:g} g")
+            data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
+            if fit is not None:
+                data["p_collapse_at_site"] = float(fit.probability(ctx.site))
+                ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
+                data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
+                data["p_collapse_confidence"] = 0.9
+        save(fig, ctx.figures / "records.png", dpi=110)
     governing = None
     if fit is not None and np.any(np.isfinite(first)):
         i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
@@ -561,14 +563,6 @@ def section_validity(ctx: Context) -> StudyResult:
         warn("resurrections", f"{rec['records_with_resurrections']} record(s) collapse the arch "
              "at some scale and not at a larger one", "the IDA curves are not monotonic; the "
              "first-collapse fit is the one that counts", serious=False)
-    dem = ctx.prior.get("dem", {})
-    for c in dem.get("cases", []):
-        if c["dem_more_vulnerable"]:
-            warn("dem", f"the DEM collapses under the {c['case']} at "
-                 f"{c['lowest_dem_collapse_factor']:g} x the {cfg.model} model's collapse level "
-                 f"({c['model_level_g']:.3g} g)",
-                 f"the {cfg.model} model's result is unconservative there by at least "
-                 f"{100 * c['unconservative_by_at_least']:.0f} %")
     step_sens = (_rigid_sensitivity(ctx, warn) if cfg.model == "rigid" and ctx.site is not None
                  and "pulses" in ctx.prior else [])
     # restitution sensitivity (four-link model): the pulse verdict at c_v +- 0.1
@@ -601,6 +595,33 @@ def section_validity(ctx: Context) -> StudyResult:
             "restitution_sensitivity_ida": ida_sens,
             "serious": any(w["serious"] for w in warnings)}
     return StudyResult("validity", "6. Validity", (), (), (), data)
+
+
+#: The keys of the validity warnings that come after the DEM check's (the sensitivity runs').
+_AFTER_DEM = ("time_step", "friction_collapse", "friction_survival", "restitution",
+              "restitution_ida", "restitution_ida_order")
+
+
+def with_dem_warnings(validity: dict, dem: dict | None, model: str) -> dict:
+    """The validity section's data with the DEM check's warnings in it: one serious warning per
+    governing case where the DEM collapses below the model's collapse level, placed before the
+    sensitivity runs' warnings (as the report lists them), and ``serious`` updated.
+
+    The validity section does not wait for the DEM check (the two run side by side); its data
+    is completed here once both are done, the same way for a fresh and a resumed run (any
+    ``dem`` warning already present is replaced)."""
+    warnings = [w for w in validity.get("warnings", []) if w["key"] != "dem"]
+    extra = [{"key": "dem",
+              "warning": f"the DEM collapses under the {c['case']} at "
+                         f"{c['lowest_dem_collapse_factor']:g} x the {model} model's collapse "
+                         f"level ({c['model_level_g']:.3g} g)",
+              "meaning": f"the {model} model's result is unconservative there by at least "
+                         f"{100 * c['unconservative_by_at_least']:.0f} %",
+              "serious": True}
+             for c in (dem or {}).get("cases", []) if c["dem_more_vulnerable"]]
+    at = next((k for k, w in enumerate(warnings) if w["key"] in _AFTER_DEM), len(warnings))
+    warnings[at:at] = extra
+    return dict(validity, warnings=warnings, serious=any(w["serious"] for w in warnings))
 
 
 def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndarray:
@@ -865,4 +886,4 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
 __all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
            "prepared_mechanism",
            "run_ida",
-           "strong_motion_end", "used_restitution", "verdict"]
+           "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]
