@@ -105,4 +105,7 @@ def test_dem_warnings_fold_into_validity_in_report_order():
     assert with_dem_warnings(out, dem, "rigid") == out  # a resumed run does not add it twice
     assert with_dem_warnings(validity, None, "rigid") == validity
     assert validity["warnings"][1]["key"] == "time_step"  # the input is not changed
+    dem["cases"][1]["model_collapses_below_its_level_factor"] = 0.85
+    keys = [w["key"] for w in with_dem_warnings(validity, dem, "rigid")["warnings"]]
+    assert keys == ["sliding", "dem", "model_below_level", "time_step"]
 
