@@ -146,6 +146,51 @@ def table(out: Path) -> None:
         moved += len(set(firsts)) > 1
         print(f"  {name:22s} " + " ".join("-" if f is None else f"{f:.3f}" for f in firsts))
     print(f"first collapse moves with the step on {moved} of {len(names)} records")
+    print("first collapsing level on the grid with each guard, against h/4's "
+          "(indeterminate counted as collapse, as the IDA counts it):")
+    print("| guard | reruns | equal | lower (conservative) | higher (missed) |")
+    for name, rule in (("current rule", RULES[next(iter(RULES))]), ("deciding levels", None)):
+        reruns = 0
+        tally = [0, 0, 0]
+        for i in range(len(names)):
+            at_h = [by[(lv, 1)]["verdicts"][i] for lv in levels]
+            at_h2 = [by[(lv, 2)]["verdicts"][i] for lv in levels]
+            ref = [_decided(by[(lv, 4)]["verdicts"][i]["outcome"]) == "collapse"
+                   for lv in levels]
+            counted = [_decided(a["outcome"]) == "collapse" for a in at_h]
+            if rule is not None:
+                for k, (a, b) in enumerate(zip(at_h, at_h2, strict=True)):
+                    if rule(a):
+                        reruns += 1
+                        counted[k] |= _decided(a["outcome"]) != _decided(b["outcome"])
+            else:
+                checked: set[int] = set()
+                while True:
+                    pending = [k for k in _deciding(counted) if k not in checked]
+                    if not pending:
+                        break
+                    for k in pending:
+                        checked.add(k)
+                        reruns += 1
+                        counted[k] |= (_decided(at_h[k]["outcome"])
+                                       != _decided(at_h2[k]["outcome"]))
+            first = next((k for k, c in enumerate(counted) if c), len(levels))
+            first_ref = next((k for k, c in enumerate(ref) if c), len(levels))
+            tally[0 if first == first_ref else 1 if first < first_ref else 2] += 1
+        print(f"| {name} | {reruns} | {tally[0]} | {tally[1]} | {tally[2]} |")
+
+
+def _deciding(counted: list[bool]) -> list[int]:
+    """:func:`archquake.ida.analysis.deciding_levels` on a grid's collapse flags."""
+    out = set()
+    if counted and counted[0]:
+        out.add(0)
+    if counted and not counted[-1]:
+        out.add(len(counted) - 1)
+    for k in range(len(counted) - 1):
+        if counted[k] != counted[k + 1]:
+            out.update((k, k + 1))
+    return sorted(out)
 
 
 def main() -> None:

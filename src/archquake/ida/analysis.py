@@ -571,5 +571,5 @@ def _peak(outputs: dict) -> float:
     return float(max(peaks))
 
 
-__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "incremental_dynamic_analysis",
-           "round_chunk_size"]
+__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "deciding_levels",
+           "guarded_record", "incremental_dynamic_analysis", "round_chunk_size"]
