@@ -50,6 +50,30 @@ def test_deciding_levels_are_the_ends_of_every_transition(pairs, expected):
     assert deciding_levels(_trace(pairs)) == expected
 
 
+@pytest.mark.parametrize("at_h, at_half, expected", [
+    ("survives", "survives", "survives"), ("survives", "no_hinging", "survives"),
+    ("collapse", "collapse", "collapse"), ("survives", "collapse", "indeterminate"),
+    ("collapse", "survives", "indeterminate"), ("collapse", "indeterminate", "indeterminate"),
+    ("indeterminate", "collapse", "indeterminate"),
+])
+def test_guarded_record_follows_the_two_steps(at_h, at_half, expected):
+    """The rule, case by case: confirmed where both steps survive (``no_hinging`` is a
+    survival) or both collapse, ``indeterminate`` otherwise, the rerun recorded."""
+    from types import SimpleNamespace
+
+    from archquake.ida.analysis import guarded_record
+    from archquake.outcome import Outcome
+    from archquake.sweeps.store import CaseRecord
+
+    raw = {"outcome": at_h, "time_step_s": 6.3e-4, "verdict_reason": "why",
+           "collapse_half_cycle": 3 if at_h == "collapse" else None, "guard_ran": False}
+    half = SimpleNamespace(outcome=Outcome(at_half), time_step_s=3.15e-4)
+    rec = guarded_record(CaseRecord("id", "ok", raw, at_h), half)
+    assert rec.outcome == rec.outputs["outcome"] == expected
+    assert rec.outputs["guard_ran"] is True and rec.outputs["guard_outcome"] == at_half
+    assert raw["guard_ran"] is False  # the stored record's outputs are not modified
+
+
 def test_unguarded_levels_have_their_own_case_ids():
     """The default options keep the canonical form (and so the case ids) they had before the
     guard became an option; unguarded verdicts are stored under other ids."""

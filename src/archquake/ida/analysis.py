@@ -519,7 +519,8 @@ def guarded_record(rec: Any, half: Any) -> Any:
     """A level's stored record (the rigid chain's verdict at its step, guard off) with the
     half-step guard's rerun ``half`` (a :class:`~archquake.rigid.RigidVerdict`): confirmed when
     both steps agree on survival or collapse (``no_hinging`` counts as survival), otherwise
-    ``indeterminate`` (counted as collapse), with the reason naming both."""
+    ``indeterminate`` (counted as collapse), with the reason naming both; a level already
+    ``indeterminate`` at its step stays so."""
     outputs = dict(rec.outputs)
     first = outputs.get("outcome", rec.outcome)
     second = half.outcome.value
@@ -528,6 +529,8 @@ def guarded_record(rec: Any, half: Any) -> Any:
     step = outputs.get("time_step_s", 2.0 * half.time_step_s)
     outputs["guard_ran"] = True
     outputs["guard_outcome"] = second
+    if first == Outcome.INDETERMINATE.value:  # undecided at the step already: stays so
+        return replace(rec, outputs=outputs)
     if agree:
         outputs["verdict_reason"] = (f"{outputs.get('verdict_reason', '')} (confirmed at half "
                                      f"the step, {half.time_step_s:.3g} s)").lstrip()
