@@ -19,7 +19,8 @@ The rigid chain's half-step guard (:mod:`archquake.rigid.verdict`) guards what t
 answers, the levels where each record's trace changes between survival and collapse: the levels
 run at the verdict's step alone (stored with ``guard`` false in their options), and once a
 record's trace has converged its deciding levels (:func:`deciding_levels`) are rerun at half the
-step (:func:`~archquake.ida.batch.rigid_half_step_verdicts`). A level whose two verdicts differ
+step (:func:`~archquake.ida.batch.rigid_half_step_verdicts`, one threaded batch in this
+process, not stored: a resumed analysis computes them again). A level whose two verdicts differ
 is ``indeterminate``, counted as a collapse, and the trace goes on from there until every
 deciding level is confirmed or indeterminate. On the bridge example under the 28 near-field
 records, levels that decide nothing were rerun by the per-verdict rule without changing any
