@@ -173,3 +173,31 @@ def test_the_ida_of_the_surveyed_arch_asks_no_impact_law(tmp_path):
         assert {r["model"] for r in store.rows()} == {"rigid"}
     first = res.records[0].first_collapse
     assert lam < first.below < first.low < 1.0
+
+
+def test_the_dem_check_runs_the_model_at_every_level_it_compares(tmp_path, monkeypatch):
+    """The DEM check compares the DEM with the model's own verdict at each level, not with a
+    survival presumed below the model's reported level. Oracle: the bridge's step pulse of
+    t_p = 0.3314 s, where the quick domain search reports 0.0955 g because its first scanned
+    magnitude, 0.0870 g, falls in a survival window 0.7 mg wide (0.0862-0.0869 g) above a band
+    that collapses in half cycles 2 and 3 (0.065-0.086 g, checked at 1e-4 s too,
+    docs/notes/measurements.md): at 0.85 x 0.0955 g the chain itself collapses, so the case is
+    the model's missed band (a serious warning), not the DEM's vulnerability."""
+    from archquake.assess import sections
+    from archquake.assess.sections import Context, Mode, section_dem, with_dem_warnings
+
+    monkeypatch.setattr(sections, "_dem_outcome", lambda arch, motion, duration: "collapse")
+    from pathlib import Path
+
+    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    arch = cfg.build_arch()
+    prior = {"static": {"collapse_acceleration_g": 0.0491},
+             "pulses": {"step": {"durations_s": [0.3314454], "collapse_g": [0.0954919]}}}
+    ctx = Context(cfg, arch, Mode(True), tmp_path, tmp_path, prior)
+    data = section_dem(ctx).data
+    (case,) = data["cases"]
+    assert [r["model_outcome"] for r in case["runs"]] == ["collapse"]
+    assert case["model_collapses_below_its_level_factor"] == 0.85
+    assert not case["dem_more_vulnerable"]  # both collapse there
+    keys = [w["key"] for w in with_dem_warnings({"warnings": []}, data, "rigid")["warnings"]]
+    assert keys == ["model_below_level"]

@@ -31,7 +31,7 @@ def elements(rep) -> list[tuple]:
     s = {k: v.data for k, v in rep.sections.items()}
     el: list[tuple] = [("h1", f"Assessment of {cfg.source}"),
                        ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
-                             f"computed in {sum(r.seconds for r in rep.sections.values()):.0f} s"
+                             f"computed in {rep.seconds:.0f} s"
                              f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
                              "Sections: the arch, static capacity"
                              + (", pulses" if "pulses" in s else "")
@@ -189,12 +189,24 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                              who, "DEM"], rows))
         items = []
         for c in d["cases"]:
+            below = c.get("model_collapses_below_its_level_factor")
+            if below is not None:
+                items.append(f"{c['case']}: the {who} itself collapses at {below:g} x the "
+                             f"level its search reported ({c['model_level_g']:.4f} g): the "
+                             "search missed a band of collapses below that level, so the "
+                             "capacity there is lower than reported.")
+            dem_below = [r["factor"] for r in c["runs"]
+                         if r["factor"] < 1.0 and r["dem_outcome"] == "collapse"]
             if c["dem_more_vulnerable"]:
                 items.append(f"{c['case']}: the DEM is more vulnerable: it collapses at "
                              f"{c['lowest_dem_collapse_factor']:g} x the {who}'s level "
                              f"({c['model_level_g']:.4f} g); the {who}'s result is "
                              f"UNCONSERVATIVE there by at least "
                              f"{100 * c['unconservative_by_at_least']:.0f} %.")
+            elif dem_below:
+                items.append(f"{c['case']}: the DEM collapses at {min(dem_below):g} x the "
+                             f"{who}'s reported level, and so does the {who}: the two models "
+                             "agree there.")
             else:
                 at_one = [r for r in c["runs"] if r["factor"] >= 1.0]
                 more = (f" The DEM survives even at the {who}'s collapse level: its result is "

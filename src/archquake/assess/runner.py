@@ -14,6 +14,7 @@ reuses a stale section.
 from __future__ import annotations
 
 import json
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -22,7 +23,14 @@ from pathlib import Path
 from archquake import __version__
 from archquake._json import to_jsonable
 from archquake.assess.config import AssessConfig
-from archquake.assess.sections import SECTIONS, Context, Mode, dynamics_refusal, verdict
+from archquake.assess.sections import (
+    SECTIONS,
+    Context,
+    Mode,
+    dynamics_refusal,
+    verdict,
+    with_dem_warnings,
+)
 from archquake.reproduce.core import StudyResult
 from archquake.reproduce.runner import load_cached, store_result
 
@@ -103,7 +111,11 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     names = section_names(config, arch)
     results: dict[str, StudyResult] = {}
     cached: dict[str, bool] = {}
-    for k, name in enumerate(names, 1):
+    side_by_side = config.model == "rigid"
+    if progress is not None and side_by_side:
+        progress = _one_at_a_time(progress)
+
+    def run(k: int, name: str, prior: dict) -> None:
         key = f"assess-{name}-{config.digest}"
         hit = None if force else load_cached(out, key, quick)
         head = f"[{k}/{len(names)}] {name}"
@@ -111,11 +123,11 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
             results[name], cached[name] = hit, True
             if progress:
                 progress(f"{head}: cached ({hit.seconds:.1f} s when computed)")
-            continue
+            return
         if progress:
             progress(f"{head} ...")
-        ctx = Context(config, arch, Mode(quick), figures, out,
-                      {n: r.data for n, r in results.items()}, progress)
+        ctx = Context(config, arch, Mode(quick), figures, out, prior,
+                      _tagged(progress, name) if side_by_side else progress)
         s0 = time.perf_counter()
         res = funcs[name](ctx)
         res = replace(res, name=key, seconds=time.perf_counter() - s0)
@@ -125,6 +137,13 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
             res.to_dict()))), False
         if progress:
             progress(f"{head}: {res.seconds:.1f} s")
+
+    _run_sections(names, run, results, side_by_side)
+    results = {n: results[n] for n in names}  # the report's order
+    if "validity" in results:
+        va = results["validity"]
+        results["validity"] = replace(va, data=with_dem_warnings(
+            va.data, results["dem"].data if "dem" in results else None, config.model))
     v = verdict(config, {n: r.data for n, r in results.items()})
     rep = Assessment(config, results, cached, v, quick, out, time.perf_counter() - t0)
     if report:
@@ -136,4 +155,73 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     return rep
 
 
-__all__ = ["Assessment", "run_assessment", "section_names"]
+def _one_at_a_time(progress: Callable[[str], None]) -> Callable[[str], None]:
+    """``progress`` called by one thread at a time (whole lines from sections side by side)."""
+    lock = threading.Lock()
+
+    def say(line: str) -> None:
+        with lock:
+            progress(line)
+
+    return say
+
+
+def _tagged(progress: Callable[[str], None] | None, name: str
+            ) -> Callable[[str], None] | None:
+    """``progress`` with each line tagged by its section (sections running side by side)."""
+    if progress is None:
+        return None
+    return lambda line: progress(f"  [{name}] {line.strip()}")
+
+
+#: The sections whose data each section reads (``Context.prior``): a section starts once these
+#: are done. The validity section does not wait for the DEM check; the DEM check's warnings are
+#: added to it afterwards (:func:`~archquake.assess.sections.with_dem_warnings`).
+NEEDS: dict[str, tuple[str, ...]] = {
+    "arch": (), "static": (), "codecheck": (), "pulses": (), "records": (),
+    "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records")}
+
+
+def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> None:
+    """Call ``run(k, name, prior)`` for every section, ``prior`` the data of the sections it
+    needs (:data:`NEEDS`): one after another, or with ``side_by_side`` each in its own thread
+    as soon as those are done (the chain of rigid voussoirs' sections spend their time in
+    compiled kernels that release the GIL, and in worker processes; the four-link model's
+    threaded kernels cannot be entered from two threads at once).
+
+    The threads are daemons: on Ctrl-C this thread stops waiting at once, the command ends,
+    and what each section finished is in the cache (its IDA's runs in their store)."""
+
+    def prior_of(name: str) -> dict:
+        return {n: results[n].data for n in NEEDS[name] if n in results}
+
+    if not side_by_side:
+        for k, name in enumerate(names, 1):
+            run(k, name, prior_of(name))
+        return
+    done = {name: threading.Event() for name in names}
+    failed: dict[str, BaseException] = {}
+
+    def task(k: int, name: str) -> None:
+        try:
+            for dep in NEEDS[name]:
+                if dep in done:
+                    done[dep].wait()
+            lost = [dep for dep in NEEDS[name] if dep in failed]
+            if not lost:
+                run(k, name, prior_of(name))
+        except BaseException as exc:  # handed to the waiting thread, which raises it
+            failed[name] = exc
+        finally:
+            done[name].set()
+
+    for k, name in enumerate(names, 1):
+        threading.Thread(target=task, args=(k, name), name=f"assess-{name}", daemon=True).start()
+    for name in names:
+        while not done[name].wait(0.2):  # short waits: Ctrl-C reaches this thread at once
+            pass
+        if name in failed:
+            raise failed[name]
+
+
+__all__ = ["NEEDS", "Assessment", "run_assessment", "section_names"]

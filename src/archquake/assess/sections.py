@@ -271,27 +271,28 @@ def section_pulses(ctx: Context) -> StudyResult:
     from matplotlib.figure import Figure as MplFigure
 
     from archquake.plotting.domains import plot_domain
-    from archquake.plotting.figures import save
+    from archquake.plotting.figures import DRAWING, save
 
     rigid = ctx.config.model == "rigid"
     cv = None if rigid else used_restitution(ctx.config, ctx.arch)[0]
     domains = pulse_domains(ctx, cv)
     data: dict[str, Any] = {"model": ctx.config.model, "restitution_cv": cv}
-    figs = []
-    for fam, d in domains.items():
-        ctx.say(f"  {fam} domain: {d.evaluations} time histories")
-        data[fam] = _domain_data(d, ctx.site)
-        fig = MplFigure(figsize=(7, 4.6))
-        ax = fig.subplots()
-        plot_domain(d, ax, title=f"{fam} pulse, " + ("chain of rigid voussoirs" if rigid
-                                                      else f"c_v = {cv:.3g}"))
-        if ctx.site is not None:
-            ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
-                       label=f"site PGA {ctx.site:g} g")
-            ax.legend(loc="upper right", fontsize=7)
-        save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
-        figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
-                           f"against {'t_p' if fam == 'step' else 'T'}), site PGA dashed."))
+    with DRAWING:  # the figures of sections run side by side, one at a time
+        figs = []
+        for fam, d in domains.items():
+            ctx.say(f"  {fam} domain: {d.evaluations} time histories")
+            data[fam] = _domain_data(d, ctx.site)
+            fig = MplFigure(figsize=(7, 4.6))
+            ax = fig.subplots()
+            plot_domain(d, ax, title=f"{fam} pulse, " + ("chain of rigid voussoirs" if rigid
+                                                          else f"c_v = {cv:.3g}"))
+            if ctx.site is not None:
+                ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
+                           label=f"site PGA {ctx.site:g} g")
+                ax.legend(loc="upper right", fontsize=7)
+            save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
+            figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
+                               f"against {'t_p' if fam == 'step' else 'T'}), site PGA dashed."))
     return StudyResult("pulses", "3. Pulses", (), tuple(figs), (), data)
 
 
@@ -366,41 +367,42 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
 def section_records(ctx: Context) -> StudyResult:
     from matplotlib.figure import Figure as MplFigure
 
-    from archquake.plotting.figures import save
+    from archquake.plotting.figures import DRAWING, save
     from archquake.plotting.ida import plot_fragility, plot_ida_curves
 
     cfg = ctx.config
     cv = used_restitution(cfg, ctx.arch)[0] if cfg.model == "fourlink" else None
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
-    fig = MplFigure(figsize=(12, 4.8))
-    a1, a2 = fig.subplots(1, 2)
-    plot_ida_curves(res, a1)
-    plot_fragility(res, fits, a2)
-    first = res.first_collapse_levels
-    data: dict[str, Any] = {
-        "suite": suite.name, "records_in_suite": len(suite.records),
-        "records_used": [r.name for r in res.records], "model": cfg.model,
-        "restitution_cv": cv,
-        "ceiling_g": res.ceiling, "runs": res.total,
-        "first_collapse_g": [_num(x) for x in first],
-        "records_collapsing": int(np.sum(np.isfinite(first))),
-        "records_with_resurrections": sum(1 for r in res.records if r.resurrections),
-        "fragility": {k: (None if fits[k] is None else fits[k].to_dict("g"))
-                      for k in ("first_collapse", "collapse_fraction")},
-    }
-    fit = fits["first_collapse"]
-    if ctx.site is not None:
-        for ax in (a1, a2):
-            (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
-                                                      label=f"site PGA {ctx.site:g} g")
-        data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
-        if fit is not None:
-            data["p_collapse_at_site"] = float(fit.probability(ctx.site))
-            ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
-            data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
-            data["p_collapse_confidence"] = 0.9
-    save(fig, ctx.figures / "records.png", dpi=110)
+    with DRAWING:  # the figures of sections run side by side, one at a time
+        fig = MplFigure(figsize=(12, 4.8))
+        a1, a2 = fig.subplots(1, 2)
+        plot_ida_curves(res, a1)
+        plot_fragility(res, fits, a2)
+        first = res.first_collapse_levels
+        data: dict[str, Any] = {
+            "suite": suite.name, "records_in_suite": len(suite.records),
+            "records_used": [r.name for r in res.records], "model": cfg.model,
+            "restitution_cv": cv,
+            "ceiling_g": res.ceiling, "runs": res.total,
+            "first_collapse_g": [_num(x) for x in first],
+            "records_collapsing": int(np.sum(np.isfinite(first))),
+            "records_with_resurrections": sum(1 for r in res.records if r.resurrections),
+            "fragility": {k: (None if fits[k] is None else fits[k].to_dict("g"))
+                          for k in ("first_collapse", "collapse_fraction")},
+        }
+        fit = fits["first_collapse"]
+        if ctx.site is not None:
+            for ax in (a1, a2):
+                (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
+                                                          label=f"site PGA {ctx.site:g} g")
+            data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
+            if fit is not None:
+                data["p_collapse_at_site"] = float(fit.probability(ctx.site))
+                ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
+                data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
+                data["p_collapse_confidence"] = 0.9
+        save(fig, ctx.figures / "records.png", dpi=110)
     governing = None
     if fit is not None and np.any(np.isfinite(first)):
         i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
@@ -426,6 +428,23 @@ def _dem_outcome(arch, motion, duration: float) -> str:
 
     res = simulate_dem(arch, motion, DemSettings().with_(duration=duration))
     return str(getattr(res.outcome, "value", res.outcome))
+
+
+def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
+    """The configuration's model's outcome words for ``motions`` (s windows, None: the model's
+    own, run to a verdict): the rigid chain's verdict path, or the four-link model at the
+    restitution its pulses and records used."""
+    if not motions:
+        return []
+    if ctx.config.model == "rigid":
+        from archquake.rigid import rigid_verdicts
+
+        return [v.outcome.value for v in rigid_verdicts(ctx.arch, motions, duration=windows)]
+    from archquake.mechanism.simulate import simulate
+
+    prep = prepared_mechanism(ctx.arch, ctx.config.impact)
+    return [simulate(prep, m, restitution=ctx.config.restitution, t_end=w).outcome.value
+            for m, w in zip(motions, windows, strict=True)]
 
 
 def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
@@ -475,26 +494,40 @@ def section_dem(ctx: Context) -> StudyResult:
                          end, level))
         data["record_window_s"] = end
     ctx.say(f"  {len(jobs)} DEM runs")
+    # the model's own verdict at each level run, beside the DEM's: a level below the model's
+    # reported one is not assumed to survive (a search can miss a band of collapses below it)
+    # (a pulse's as its domain search ran it, a record's to a verdict as the IDA ran it)
+    from archquake.domains.blocks import DOMAIN_TAIL
+
+    tail = DOMAIN_TAIL * math.sqrt(float(ctx.arch.radius) / STANDARD_GRAVITY)
+    windows = [None if case.startswith("record") or ctx.config.model != "rigid"
+               else float(m.duration) + tail for case, _, m, _, _ in jobs]
     if len(jobs) <= 1:
+        model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
         outcomes = [_dem_outcome(ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
     else:
         with interruptible_pool(min(workers(), len(jobs))) as pool:
             futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+            model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
             outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}
-    for (case, f, _, dur, level), outcome in zip(jobs, outcomes, strict=True):
+    for (case, f, _, dur, level), outcome, mine in zip(jobs, outcomes, model, strict=True):
         c = by_case.setdefault(case, {"case": case, "runs": []})
         c["runs"].append({"factor": f, "level_g": level, "duration_s": dur,
-                          "dem_outcome": outcome,
-                          "model_outcome": "collapse" if f >= 1.0 else "survives"})
+                          "dem_outcome": outcome, "model_outcome": mine})
     for c in by_case.values():
         dem_collapses = [r["factor"] for r in c["runs"] if r["dem_outcome"] == "collapse"]
         lowest = min(dem_collapses) if dem_collapses else None
+        # the DEM is more vulnerable where it collapses and the model does not
+        worse = [r["factor"] for r in c["runs"] if r["factor"] < 1.0
+                 and r["dem_outcome"] == "collapse" and r["model_outcome"] != "collapse"]
+        below = [r["factor"] for r in c["runs"] if r["factor"] < 1.0
+                 and r["model_outcome"] == "collapse"]
         c["model_level_g"] = c["runs"][0]["level_g"] / c["runs"][0]["factor"]
         c["lowest_dem_collapse_factor"] = lowest
-        c["dem_more_vulnerable"] = bool(lowest is not None and lowest < 1.0)
-        c["unconservative_by_at_least"] = (1.0 - lowest) if lowest is not None and \
-            lowest < 1.0 else 0.0
+        c["dem_more_vulnerable"] = bool(worse)
+        c["unconservative_by_at_least"] = (1.0 - min(worse)) if worse else 0.0
+        c["model_collapses_below_its_level_factor"] = min(below) if below else None
         data["cases"].append(c)
     data["dem_more_vulnerable"] = any(c["dem_more_vulnerable"] for c in data["cases"])
     return StudyResult("dem", "5. The DEM check", (), (), (), data)
@@ -561,14 +594,6 @@ def section_validity(ctx: Context) -> StudyResult:
         warn("resurrections", f"{rec['records_with_resurrections']} record(s) collapse the arch "
              "at some scale and not at a larger one", "the IDA curves are not monotonic; the "
              "first-collapse fit is the one that counts", serious=False)
-    dem = ctx.prior.get("dem", {})
-    for c in dem.get("cases", []):
-        if c["dem_more_vulnerable"]:
-            warn("dem", f"the DEM collapses under the {c['case']} at "
-                 f"{c['lowest_dem_collapse_factor']:g} x the {cfg.model} model's collapse level "
-                 f"({c['model_level_g']:.3g} g)",
-                 f"the {cfg.model} model's result is unconservative there by at least "
-                 f"{100 * c['unconservative_by_at_least']:.0f} %")
     step_sens = (_rigid_sensitivity(ctx, warn) if cfg.model == "rigid" and ctx.site is not None
                  and "pulses" in ctx.prior else [])
     # restitution sensitivity (four-link model): the pulse verdict at c_v +- 0.1
@@ -601,6 +626,52 @@ def section_validity(ctx: Context) -> StudyResult:
             "restitution_sensitivity_ida": ida_sens,
             "serious": any(w["serious"] for w in warnings)}
     return StudyResult("validity", "6. Validity", (), (), (), data)
+
+
+#: The keys of the DEM check's warnings in the validity section.
+_DEM_KEYS = ("dem", "model_below_level")
+#: The keys of the validity warnings that come after the DEM check's (the sensitivity runs').
+_AFTER_DEM = ("time_step", "friction_collapse", "friction_survival", "restitution",
+              "restitution_ida", "restitution_ida_order")
+
+
+def with_dem_warnings(validity: dict, dem: dict | None, model: str) -> dict:
+    """The validity section's data with the DEM check's warnings in it, placed before the
+    sensitivity runs' warnings (as the report lists them), and ``serious`` updated: per
+    governing case, a serious warning where the model itself collapses at a fraction of the
+    collapse level its search reported (the search missed a band below it), and one where the
+    DEM collapses at a fraction where the model survives (the model is unconservative).
+
+    The validity section does not wait for the DEM check (the two run side by side); its data
+    is completed here once both are done, the same way for a fresh and a resumed run (any
+    ``dem`` warning already present is replaced)."""
+    warnings = [w for w in validity.get("warnings", []) if w["key"] not in _DEM_KEYS]
+    extra = []
+    for c in (dem or {}).get("cases", []):
+        below = c.get("model_collapses_below_its_level_factor")
+        if below is not None:
+            extra.append({
+                "key": "model_below_level",
+                "warning": f"the {model} model itself collapses under the {c['case']} at "
+                           f"{below:g} x the collapse level its search reported "
+                           f"({c['model_level_g']:.3g} g)",
+                "meaning": "the search missed collapses below the boundary it reported (a "
+                           "band where a weaker motion brings the arch down): the capacity "
+                           "there is lower than the section reports",
+                "serious": True})
+        if c["dem_more_vulnerable"]:
+            extra.append({
+                "key": "dem",
+                "warning": f"the DEM collapses under the {c['case']} at "
+                           f"{1.0 - c['unconservative_by_at_least']:g} x the {model} model's "
+                           f"collapse level ({c['model_level_g']:.3g} g), where the {model} "
+                           "model survives",
+                "meaning": f"the {model} model's result is unconservative there by at least "
+                           f"{100 * c['unconservative_by_at_least']:.0f} %",
+                "serious": True})
+    at = next((k for k, w in enumerate(warnings) if w["key"] in _AFTER_DEM), len(warnings))
+    warnings[at:at] = extra
+    return dict(validity, warnings=warnings, serious=any(w["serious"] for w in warnings))
 
 
 def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndarray:
@@ -865,4 +936,4 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
 __all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
            "prepared_mechanism",
            "run_ida",
-           "strong_motion_end", "used_restitution", "verdict"]
+           "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]

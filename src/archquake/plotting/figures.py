@@ -8,6 +8,7 @@ line selects Agg for itself before matplotlib is first imported.
 
 from __future__ import annotations
 
+import threading
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -46,11 +47,17 @@ def save(target: Figure | Axes, path: str | Path, *, dpi: int = 150, tight: bool
     fig: Figure | SubFigure | Axes = target
     while not isinstance(fig, Figure):  # axes -> (sub)figure -> the figure that is saved
         fig = fig.figure
-    if tight:
-        fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
+    with DRAWING:
+        if tight:
+            fig.tight_layout()
+        fig.savefig(path, dpi=dpi)
+        plt.close(fig)
     return path
 
 
-__all__ = ["axes", "save"]
+#: Held while a figure is laid out and drawn: matplotlib's text layout (its shared font cache)
+#: and pyplot's figure registry are not thread-safe, and ``archquake assess`` builds the figures
+#: of independent sections in threads side by side.
+DRAWING = threading.RLock()
+
+__all__ = ["DRAWING", "axes", "save"]
