@@ -388,11 +388,15 @@ class _Job:
         return out[0]
 
     def vg(self, step: int) -> float:
-        """The ground velocity after a step, m/s (after :meth:`run`)."""
-        if self._vg is None:
+        """The ground velocity after a step, m/s (after :meth:`run`): the running sum of the
+        steps' accelerations, up to the latest step asked for (a prefix of ``np.cumsum``,
+        which sums one step after another: the same bits)."""
+        if step < 0:
+            return 0.0
+        if self._vg is None or self._vg.size <= step:
             assert self.acc is not None
-            self._vg = np.cumsum(self.acc) * self.h
-        return 0.0 if step < 0 else float(self._vg[step])
+            self._vg = np.cumsum(self.acc[:step + 1]) * self.h
+        return float(self._vg[step])
 
 
 def _drain(packed: _Packed, jobs: Iterable[tuple[float, Hashable, _Job]], threads: int,
