@@ -178,7 +178,7 @@ def test_the_ida_of_the_surveyed_arch_asks_no_impact_law(tmp_path):
 def test_the_dem_check_runs_the_model_at_every_level_it_compares(tmp_path, monkeypatch):
     """The DEM check compares the DEM with the model's own verdict at each level, not with a
     survival presumed below the model's reported level. Oracle: the bridge's step pulse of
-    t_p = 0.3314 s, where the quick domain search reports 0.0955 g because its first scanned
+    t_p = 0.3314 s, where the quick domain search scanned up to 5 g reported 0.0955 g: its first scanned
     magnitude, 0.0870 g, falls in a survival window 0.7 mg wide (0.0862-0.0869 g) above a band
     that collapses in half cycles 2 and 3 (0.065-0.086 g, checked at 1e-4 s too,
     docs/notes/measurements.md): at 0.85 x 0.0955 g the chain itself collapses, so the case is
@@ -201,3 +201,21 @@ def test_the_dem_check_runs_the_model_at_every_level_it_compares(tmp_path, monke
     assert not case["dem_more_vulnerable"]  # both collapse there
     keys = [w["key"] for w in with_dem_warnings({"warnings": []}, data, "rigid")["warnings"]]
     assert keys == ["model_below_level"]
+
+
+def test_the_quick_rigid_scan_finds_the_band_below_its_first_magnitude():
+    """The rigid chain's quick domain search of the bridge, scanned up to
+    :func:`rigid_scan_ceiling` (1 g here), finds the governing boundary at t_p = 0.3314 s
+    within its 0.01 g precision of a 60-magnitude scan's 0.0659 g (docs/notes/measurements.md);
+    scanned up to 5 g it reported 0.0955 g."""
+    from archquake.assess.sections import Mode, rigid_scan_ceiling
+    from archquake.compare import dem_failure_domain
+
+    arch = BRIDGE.build()
+    assert rigid_scan_ceiling(0.0488, 0.15) == 1.0
+    assert rigid_scan_ceiling(0.0488, None) == 5.0
+    assert rigid_scan_ceiling(0.4, 0.3) == pytest.approx(2.4)
+    dom = dem_failure_domain(arch, "step", [0.3314454],
+                             settings=Mode(True).rigid_domain_settings(0.0488, 0.15),
+                             governing_only=True, model="rigid").domain
+    assert abs(float(dom.collapse_g[0]) - 0.0659) <= 0.01

@@ -28,6 +28,23 @@ ASSUMPTIONS = ("rigid blocks", "no tension at the joints", "infinite compressive
                "in-plane motion only", "no backfill or spandrel walls")
 
 
+def rigid_scan_ceiling(lam_g: float, site_g: float | None) -> float:
+    """The ceiling of the rigid chain's domain scan in an assessment, g: max(1 g, 4 x the site
+    PGA, 6 lambda), at most 5 g (5 g without a site PGA).
+
+    The coarse scan is geometric from lambda to its ceiling with a fixed number of magnitudes,
+    so the ceiling sets its spacing. Up to 5 g, 8 magnitudes on the bridge example (lambda =
+    0.049 g) are 1.78 apart and the first one, 0.087 g, fell in a survival window 0.7 mg wide
+    above a band that collapses from 0.065 g (t_p = 0.331 s): the quick search reported 0.0955
+    g. Up to 1 g the same 8 magnitudes are 1.46 apart, and at the same cost the quick search's
+    boundaries lie within its 0.01 g precision of a 60-magnitude scan at all six durations of
+    both families (docs/notes/measurements.md). A boundary above the ceiling
+    (only the shortest pulses, far above the site PGA) is reported as none found."""
+    if site_g is None:
+        return 5.0
+    return float(min(5.0, max(1.0, 4.0 * site_g, 6.0 * lam_g)))
+
+
 @dataclass(frozen=True)
 class Mode:
     """How fine each part of the assessment is (``quick`` or full)."""
@@ -47,15 +64,19 @@ class Mode:
             return DomainSettings(coarse_points=16, fine_points=6, precision_g=5e-3)
         return DomainSettings(coarse_points=40, fine_points=20, precision_g=2e-3)
 
-    @property
-    def rigid_domain_settings(self):
-        """The domain search of the rigid chain (one time history per point, ~1 s each):
-        coarser than the four-link batch's."""
+    def rigid_domain_settings(self, lam_g: float, site_g: float | None):
+        """The domain search of the rigid chain (one time history per point): coarser than the
+        four-link batch's, and scanned from lambda (``lam_g``, g) up to
+        :func:`rigid_scan_ceiling`, so that its magnitudes fall where the verdict is decided."""
         from archquake.domains import DomainSettings
 
+        top = rigid_scan_ceiling(lam_g, site_g)
         if self.quick:
-            return DomainSettings(coarse_points=8, fine_points=4, precision_g=1e-2, early=False)
-        return DomainSettings(coarse_points=16, fine_points=8, precision_g=5e-3, early=False)
+            return DomainSettings(max_magnitude_g=top, scan_reference_g=top, coarse_points=8,
+                                  fine_points=4, precision_g=1e-2, early=False)
+        return DomainSettings(max_magnitude_g=top, scan_reference_g=top, coarse_points=16,
+                              fine_points=8, precision_g=5e-3, early=False)
+
 
     def records(self, records: tuple) -> tuple:
         """The records analysed: all of them, or four spread over the suite (quick)."""
@@ -252,9 +273,13 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
     restitution ``cv``."""
     if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
         from archquake.compare import dem_failure_domain
+        from archquake.limit import hinges_of
+        from archquake.limit.static import collapse_state
 
+        lam = float(collapse_state(hinges_of(ctx.arch))[0])
+        settings = ctx.mode.rigid_domain_settings(lam, ctx.site)
         return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
-                                        settings=ctx.mode.rigid_domain_settings,
+                                        settings=settings,
                                         governing_only=True, model="rigid").domain
                 for fam in ("step", "sine")}
     from archquake.domains import failure_domain
@@ -934,6 +959,6 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("codecheck", section_code_check))
 
 __all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
-           "prepared_mechanism",
+           "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",
            "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]
