@@ -10,7 +10,12 @@ and many histories in one compiled, threaded call.
   lingered near a crest) is run again at half the step; where the two verdicts differ the
   result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
-  at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md).
+  at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md). The
+  rule was measured on pulses; on earthquake records it reruns about half of the verdicts and
+  no single run foretells which verdicts change with the step, so incremental dynamic analysis
+  runs its levels with ``guard=False`` and reruns at half the step only the levels that decide
+  its result (:func:`archquake.ida.analysis.deciding_levels`; docs/notes/mechanism.md, "The
+  guard on earthquake records").
 * **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps of the untouched chain under a ground acceleration inside the safe domain are
   skipped; the run stops at collapse or once rest is proven; no samples are recorded and no
