@@ -20,6 +20,11 @@ MAGNITUDE_RANGE_G = (0.0, 1000.0)
 PULSE_TIME_RANGE_S = (1e-6, 1000.0)
 #: End of an analysis, s (--t-end); also the latest instant --times may ask for.
 T_END_RANGE_S = (0.01, 1e4)
+#: How long a run goes on after the end of the excitation when no end is given, in units of
+#: sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking arch to come to rest
+#: or to be shown unable to reach a crest again. The four-link model's default end
+#: (:func:`archquake.mechanism.simulate.default_t_end`) and the rigid chain's verdict window.
+RUN_TAIL = 60.0
 #: The four-link model's impact laws (``--impact``; :mod:`archquake.mechanism.impact`).
 IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):

@@ -31,6 +31,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "archquake.ground._kernel",
     "archquake.ground.measures",
     "archquake.mechanism._kernels",
+    "archquake.rigid._input_kernels",
     "archquake.rigid._step_kernels",
     "archquake.rigid._force_kernels",
     "archquake.rigid._event_kernels",

@@ -15,6 +15,17 @@ batch of compiled verdicts per round and chunk (:func:`archquake.ida.batch.evalu
 compiled batch call per round and chunk (:func:`archquake.ida.batch.evaluate_cases`); the DEM
 (``model="dem"``) through :func:`archquake.sweeps.evaluate_case` case by case.
 
+The rigid chain's half-step guard (:mod:`archquake.rigid.verdict`) guards what the analysis
+answers, the levels where each record's trace changes between survival and collapse: the levels
+run at the verdict's step alone (stored with ``guard`` false in their options), and once a
+record's trace has converged its deciding levels (:func:`deciding_levels`) are rerun at half the
+step (:func:`~archquake.ida.batch.rigid_half_step_verdicts`, one threaded batch in this
+process, not stored: a resumed analysis computes them again). A level whose two verdicts differ
+is ``indeterminate``, counted as a collapse, and the trace goes on from there until every
+deciding level is confirmed or indeterminate. On the bridge example under the 28 near-field
+records, levels that decide nothing were rerun by the per-verdict rule without changing any
+result (docs/notes/mechanism.md, "The rigid chain's step, its guard and its verdict path").
+
 Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
 m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
 ``s = (x / IM(r))^(1/k)`` (k = 1, or 2 for Arias intensity), as
@@ -27,7 +38,7 @@ import csv
 import math
 from collections.abc import Callable, Sequence
 from concurrent.futures import Executor
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -183,10 +194,14 @@ class IdaResult:
     critical_rotation_rad : float
         Crest of the mechanism's potential, rad (scale of the IDA curves).
     rounds : int
+        Rounds of levels, and of the guard's reruns.
     computed : int
         Cases evaluated by this call (the rest came from the store).
     total : int
         Cases of the analysis.
+    guarded : int
+        Levels rerun at half the step by the rigid chain's guard (:func:`deciding_levels`;
+        computed again on every call, not stored).
     """
 
     arch: ArchSpec
@@ -202,6 +217,7 @@ class IdaResult:
     g: float = STANDARD_GRAVITY
     store: str = ""
     motions: tuple = field(default=(), repr=False, compare=False)
+    guarded: int = 0
 
     @property
     def unit_key(self) -> str:
@@ -266,6 +282,7 @@ class IdaResult:
             "computed_now": self.computed,
             "already_stored": self.total - self.computed,
             "rounds": self.rounds,
+            "guard_reruns": self.guarded,
             "store": self.store,
             "collapse_fraction": [{f"level_{unit}": float(x), "fraction": float(p)}
                                   for x, p in zip(levels, self.collapse_fraction(levels),
@@ -349,7 +366,7 @@ def incremental_dynamic_analysis(
     -------
     IdaResult
     """
-    from archquake.ida.batch import evaluate_cases, evaluate_rigid_cases
+    from archquake.ida.batch import evaluate_cases, evaluate_rigid_cases, rigid_half_step_verdicts
     from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import mechanism_limits
     from archquake.sweeps.runner import run_sweep
@@ -357,6 +374,11 @@ def incremental_dynamic_analysis(
     measure = parse_im(im)
     options = CaseOptions() if options is None else options
     model = model_of(model)
+    # the rigid chain's levels run at its step alone; the guard then checks the levels that
+    # decide the result at half the step (module docstring)
+    guard = model is Model.RIGID and options.guard
+    if guard:
+        options = replace(options, guard=False)
     batched = model in (Model.FOURLINK, Model.RIGID)  # one compiled, threaded call per round
     if batched and executor is None and workers is None:
         executor = SerialExecutor()
@@ -404,6 +426,8 @@ def incremental_dynamic_analysis(
         batch = evaluate_rigid_cases
     runs: list[dict[float, Case]] = [{} for _ in motions]
     outcomes: list[dict[float, Any]] = [{} for _ in motions]
+    checked: list[set[float]] = [set() for _ in motions]  # levels the guard has rerun
+    guarded = 0
     computed = 0
     rounds = 0
     for rounds in range(1, MAX_ROUNDS + 1):  # noqa: B007
@@ -417,8 +441,18 @@ def incremental_dynamic_analysis(
                 runs[i][x] = case
                 new_cases.append(case)
         if not new_cases:
-            rounds -= 1
-            break
+            pending = [(i, x) for i in range(len(motions))
+                       for x in deciding_levels(outcomes[i]) if x not in checked[i]] \
+                if guard else []
+            if not pending:
+                rounds -= 1
+                break
+            halves = rigid_half_step_verdicts([runs[i][x] for i, x in pending])
+            for (i, x), half in zip(pending, halves, strict=True):
+                checked[i].add(x)
+                outcomes[i][x] = guarded_record(outcomes[i][x], half)
+            guarded += len(pending)
+            continue
         total_so_far = sum(len(r) for r in runs)
         report = run_sweep(
             new_cases, store,
@@ -460,7 +494,54 @@ def incremental_dynamic_analysis(
     return IdaResult(arch=arch, model=model, im=measure, records=tuple(records),
                      settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
                      rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
-                     store=str(store.path), motions=tuple(motions))
+                     store=str(store.path), motions=tuple(motions), guarded=guarded)
+
+
+def deciding_levels(done: dict[float, Any]) -> list[float]:
+    """The levels of one record's trace whose outcomes decide its IDA: both ends of every
+    transition between levels counted as surviving and as collapsing (the first collapse's
+    bracket, and every resurrection's), the lowest level if it collapses, and the highest if it
+    survives. ``done`` maps a level to its stored record (``.outcome``)."""
+    levels = sorted(done)
+    collapsed = [done[x].outcome in COUNTED_AS_COLLAPSE for x in levels]
+    out: set[float] = set()
+    if levels and collapsed[0]:
+        out.add(levels[0])
+    if levels and not collapsed[-1]:
+        out.add(levels[-1])
+    for a, b, ca, cb in zip(levels[:-1], levels[1:], collapsed[:-1], collapsed[1:],
+                            strict=True):
+        if ca != cb:
+            out.update((a, b))
+    return sorted(out)
+
+
+def guarded_record(rec: Any, half: Any) -> Any:
+    """A level's stored record (the rigid chain's verdict at its step, guard off) with the
+    half-step guard's rerun ``half`` (a :class:`~archquake.rigid.RigidVerdict`): confirmed when
+    both steps agree on survival or collapse (``no_hinging`` counts as survival), otherwise
+    ``indeterminate`` (counted as collapse), with the reason naming both; a level already
+    ``indeterminate`` at its step stays so."""
+    outputs = dict(rec.outputs)
+    first = outputs.get("outcome", rec.outcome)
+    second = half.outcome.value
+    survived = (Outcome.SURVIVES.value, Outcome.NO_HINGING.value)
+    agree = (first == second or (first in survived and second in survived))
+    step = outputs.get("time_step_s", 2.0 * half.time_step_s)
+    outputs["guard_ran"] = True
+    outputs["guard_outcome"] = second
+    if first == Outcome.INDETERMINATE.value:  # undecided at the step already: stays so
+        return replace(rec, outputs=outputs)
+    if agree:
+        outputs["verdict_reason"] = (f"{outputs.get('verdict_reason', '')} (confirmed at half "
+                                     f"the step, {half.time_step_s:.3g} s)").lstrip()
+        return replace(rec, outputs=outputs)
+    outputs["outcome"] = Outcome.INDETERMINATE.value
+    outputs["verdict_reason"] = (f"near the threshold: {first} at the step {step:.3g} s, "
+                                 f"{second} at {half.time_step_s:.3g} s; a finer step or "
+                                 "solver='events' decides")
+    outputs["collapse_half_cycle"] = None
+    return replace(rec, outcome=Outcome.INDETERMINATE.value, outputs=outputs)
 
 
 def round_chunk_size(cases: int, executor: Executor | None, workers: int | None) -> int:
@@ -494,5 +575,5 @@ def _peak(outputs: dict) -> float:
     return float(max(peaks))
 
 
-__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "incremental_dynamic_analysis",
-           "round_chunk_size"]
+__all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "deciding_levels",
+           "guarded_record", "incremental_dynamic_analysis", "round_chunk_size"]

@@ -108,13 +108,50 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
             built = arch.build()
             motions = [cases[i].excitation.build(g=options.g) for i in idx]
             verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
-                                      threads=threads)
+                                      guard=options.guard, threads=threads)
         except ArchquakeError as exc:
             for i in idx:
                 out[i] = exc
             continue
         for i, v in zip(idx, verdicts, strict=True):
             out[i] = rigid_summary(v)
+    return out
+
+
+def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = None) -> list[Any]:
+    """The rigid chain's verdicts of rigid cases at half the verdict's step, guard off: the
+    half-step guard's rerun (:func:`archquake.rigid.rigid_verdicts`), for the levels that decide
+    an incremental dynamic analysis.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        Rigid-chain cases, as :func:`evaluate_rigid_cases` takes them.
+    threads : int, optional
+        Threads of each batch (default: the cores this process may use).
+
+    Returns
+    -------
+    list of RigidVerdict, in the order of ``cases``.
+    """
+    from archquake.rigid import rigid_verdicts
+    from archquake.rigid.verdict import verdict_time_step
+
+    out: list[Any] = [None] * len(cases)
+    groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        if case.model is not Model.RIGID:
+            raise InvalidParameterError(f"the half-step rerun runs the rigid chain only, got "
+                                        f"{case.model.value!r}")
+        groups.setdefault((case.arch, case.options), []).append(i)
+    for (arch, options), idx in groups.items():
+        built = arch.build()
+        motions = [cases[i].excitation.build(g=options.g) for i in idx]
+        half = 0.5 * verdict_time_step(built, g=options.g)
+        verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
+                                  time_step=half, guard=False, threads=threads)
+        for i, v in zip(idx, verdicts, strict=True):
+            out[i] = v
     return out
 
 
@@ -214,4 +251,5 @@ def thread_order(n: int, threads: int) -> list[int]:
     return [j for t in range(threads) for j in range(t, n, threads)]
 
 
-__all__ = ["BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases", "thread_order"]
+__all__ = ["BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases",
+           "rigid_half_step_verdicts", "thread_order"]

@@ -66,6 +66,7 @@ from archquake.ground.base import GroundMotion, check_motion, check_time_resolut
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
+from archquake.ranges import RUN_TAIL
 from archquake.result import shared_columns, shared_keys, write_csv
 
 
@@ -559,16 +560,10 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
                     energy_fraction=float(energy_fraction) if proof else None)
 
 
-#: How long the four-link model runs after the end of the excitation when no ``t_end`` is
-#: given, in units of sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking
-#: arch to come to rest or to be shown unable to reach a crest again.
-RUN_TAIL = 60.0
-
-
 def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) -> np.ndarray:
     """The four-link model's default end of analysis, s: the end of the excitation plus
-    :data:`RUN_TAIL` sqrt(R/g) (what :func:`simulate`, the failure domains' batch and the
-    incremental dynamic analysis use).
+    :data:`~archquake.ranges.RUN_TAIL` sqrt(R/g) (what :func:`simulate`, the failure domains'
+    batch and the incremental dynamic analysis use).
 
     Parameters
     ----------

@@ -49,12 +49,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+import archquake.rigid._input_kernels as IK
 import archquake.rigid._step_kernels as RK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.pulses import RectangularPulse, StepImpulse
+from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
 
 #: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
@@ -180,9 +182,21 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     """The ground acceleration, m/s^2, averaged over each of ``n`` steps of ``h`` s from ``t0``
     s (``ACC_SAMPLES`` mid-point sub-samples a step), (n,).
 
-    For a pulse constant between its breakpoints (the step impulse, the rectangular pulse) only
-    the steps that straddle a breakpoint are sub-sampled: every other step's sub-samples are
-    equal, and so is their mean (a sum of 16 equal values is exact), to the bit."""
+    The mean of a step is that of its sub-samples ``motion.acceleration(t0 + h (k + (j + 1/2)
+    / ACC_SAMPLES))`` as ``ndarray.mean`` computes it, to the bit, by three routes:
+
+    * a sampled record (:class:`~archquake.ground.Record`): compiled
+      (:func:`archquake.rigid._input_kernels.step_means`: the same interpolation and NumPy's
+      order of summation), without the (n, ``ACC_SAMPLES``) array of sub-samples;
+    * a pulse constant between its breakpoints (the step impulse, the rectangular pulse): only
+      the steps that straddle a breakpoint are sub-sampled: every other step's sub-samples are
+      equal, and so is their mean (a sum of 16 equal values is exact);
+    * any other motion: all sub-samples, then ``mean``.
+    """
+    if isinstance(motion, Record):
+        out = np.empty(n)
+        IK.step_means(motion.kernel_spec()[1], float(t0), float(h), ACC_SAMPLES, out)
+        return out
     sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
     k = np.arange(n)
     if not isinstance(motion, (StepImpulse, RectangularPulse)):

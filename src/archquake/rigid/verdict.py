@@ -10,7 +10,12 @@ and many histories in one compiled, threaded call.
   lingered near a crest) is run again at half the step; where the two verdicts differ the
   result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
-  at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md).
+  at most 0.2 % between the default step and a quarter of it (docs/notes/mechanism.md). The
+  rule was measured on pulses; on earthquake records it reruns about half of the verdicts and
+  no single run foretells which verdicts change with the step, so incremental dynamic analysis
+  runs its levels with ``guard=False`` and reruns at half the step only the levels that decide
+  its result (:func:`archquake.ida.analysis.deciding_levels`; docs/notes/mechanism.md, "The
+  guard on earthquake records").
 * **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps of the untouched chain under a ground acceleration inside the safe domain are
   skipped; the run stops at collapse or once rest is proven; no samples are recorded and no
@@ -23,14 +28,17 @@ kernel releases the GIL), for failure domains, IDA and sweeps.
 from __future__ import annotations
 
 import functools
+import heapq
+import itertools
 import math
-from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Callable, Hashable, Iterable, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+import archquake.rigid._input_kernels as IK
 import archquake.rigid._step_kernels as RK
 import archquake.rigid._verdict_kernels as VK
 from archquake.constants import STANDARD_GRAVITY
@@ -46,9 +54,10 @@ from archquake.dem.result import (
 from archquake.dem.settings import DemSettings
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
-from archquake.mechanism.simulate import RUN_TAIL
+from archquake.ground.records import Record
 from archquake.outcome import Outcome
 from archquake.parallel import usable_cores
+from archquake.ranges import RUN_TAIL
 from archquake.rigid.model import (
     GAP_TOLERANCE,
     HOLD_TOLERANCE,
@@ -293,20 +302,6 @@ def _params(model: RigidModel, packed: _Packed, settings: DemSettings, h: float,
     return par
 
 
-def _suffix_max(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    pos = np.maximum.accumulate(np.maximum(acc, 0.0)[::-1])[::-1].copy()
-    neg = np.maximum.accumulate(np.maximum(-acc, 0.0)[::-1])[::-1].copy()
-    return pos, neg
-
-
-def _steps_of(motion, h: float, duration: float, until_rest: float | None
-              ) -> tuple[np.ndarray, float]:
-    n = int(math.ceil(max(duration, until_rest or 0.0) / h - 1e-9))
-    acc = mean_acceleration(motion, 0.0, h, n)
-    end = excitation_end(motion)
-    return acc, (float(n * h) if end is None else end)
-
-
 def _decode(out: np.ndarray, h: float, vg_of) -> dict:
     """The kernel's ``out`` as plain values; ``vg_of(step)``: the ground velocity after a step
     (for :func:`~archquake.dem.result.mirror_opens_first`'s choice of the rotation link)."""
@@ -356,44 +351,89 @@ def _reason(d: dict) -> str:
 
 
 class _Job:
-    """One history for the kernel: its steps, suffix maxima and parameters."""
+    """One history for the kernel: its parameters, and its steps' mean ground accelerations
+    and their suffix maxima, prepared by :meth:`run` in the thread that runs it (compiled for
+    a record: without the GIL, beside the other threads' kernels)."""
 
     def __init__(self, model, packed, motion, h, duration, until_rest, settings, g, skip, tol):
-        self.acc, exc_end = _steps_of(motion, h, duration, until_rest)
-        self.pos, self.neg = _suffix_max(self.acc)
-        self.par = _params(model, packed, settings, h, g, exc_end, skip, tol)
+        self.motion = motion
         self.h = h
+        self.n = int(math.ceil(max(duration, until_rest or 0.0) / h - 1e-9))
+        end = excitation_end(motion)
+        self.par = _params(model, packed, settings, h, g,
+                           float(self.n * h) if end is None else end, skip, tol)
+        self.acc: np.ndarray | None = None
         self._vg: np.ndarray | None = None
 
+    def expected_steps(self) -> float:
+        """A guess of the steps the kernel will compute, to start the longest first: for a
+        record (steps skipped at rest), those from its first sample outside the safe domain to
+        its last (the steps before are skipped; after the last, the run ends at collapse or
+        once the arch settles); otherwise all of them."""
+        if not isinstance(self.motion, Record) or self.par[VK.P_SKIP] == 0.0:
+            return float(self.n)
+        x = self.motion.accelerations
+        out = np.flatnonzero((x > self.par[VK.P_SAFE_POS]) | (-x > self.par[VK.P_SAFE_NEG]))
+        if out.size == 0:
+            return 0.0
+        return min(float(self.n), (out[-1] - out[0] + 1) * self.motion.dt / self.h)
+
+    def run(self, packed: _Packed) -> np.ndarray:
+        """Prepare the steps and run the kernel: its ``out`` (:data:`VK.N_OUT`)."""
+        acc = mean_acceleration(self.motion, 0.0, self.h, self.n)
+        pos = np.empty_like(acc)
+        neg = np.empty_like(acc)
+        IK.suffix_maxima(acc, pos, neg)
+        hist = VK.Histories(acc, pos, neg, np.array([0, acc.size], np.int64),
+                            self.par.reshape(1, -1))
+        out = np.zeros((1, VK.N_OUT))
+        batch: Any = VK.verdict_batch  # a numba dispatcher
+        batch(packed.chain, packed.frame, hist, out, 0, 1)
+        self.acc = acc
+        return out[0]
+
     def vg(self, step: int) -> float:
-        if self._vg is None:
-            self._vg = np.cumsum(self.acc) * self.h
-        return 0.0 if step < 0 else float(self._vg[step])
+        """The ground velocity after a step, m/s (after :meth:`run`): the running sum of the
+        steps' accelerations, up to the latest step asked for (a prefix of ``np.cumsum``,
+        which sums one step after another: the same bits)."""
+        if step < 0:
+            return 0.0
+        if self._vg is None or self._vg.size <= step:
+            assert self.acc is not None
+            self._vg = np.cumsum(self.acc[:step + 1]) * self.h
+        return float(self._vg[step])
 
 
-def _run_jobs(packed: _Packed, jobs: Sequence[_Job], threads: int) -> np.ndarray:
-    n = len(jobs)
-    outs = np.zeros((n, VK.N_OUT))
-    if n == 0:
-        return outs
-    starts = np.zeros(n + 1, np.int64)
-    starts[1:] = np.cumsum([j.acc.size for j in jobs])
-    accs = np.concatenate([j.acc for j in jobs])
-    pos = np.concatenate([j.pos for j in jobs])
-    neg = np.concatenate([j.neg for j in jobs])
-    pars = np.stack([j.par for j in jobs])
-    hist = VK.Histories(accs, pos, neg, starts, pars)
-    batch: Any = VK.verdict_batch  # a numba dispatcher
-    threads = max(1, min(threads, n))
+def _drain(packed: _Packed, jobs: Iterable[tuple[float, Hashable, _Job]], threads: int,
+           done: Callable[[Hashable, _Job, np.ndarray], list[tuple[float, Hashable, _Job]]]
+           ) -> None:
+    """Run ``(expected steps, key, job)`` jobs on ``threads`` threads, the longest expected
+    first, one job a task (the histories' costs differ tenfold); ``done(key, job, out)``, in
+    this thread as each ends, may return more jobs (the guard's), queued with the rest. Each
+    job's numbers do not depend on the order."""
+    queue: list[tuple[float, int, Hashable, _Job]] = []
+    order = itertools.count()
+
+    def push(items) -> None:
+        for cost, key, job in items:
+            heapq.heappush(queue, (-cost, next(order), key, job))
+
+    push(jobs)
     if threads == 1:
-        batch(packed.chain, packed.frame, hist, outs, 0, n)
-        return outs
-    # interleave small slices so that long and short histories share the threads evenly
-    edges = np.unique(np.linspace(0, n, min(n, 4 * threads) + 1).astype(int))
+        while queue:
+            _, _, key, job = heapq.heappop(queue)
+            push(done(key, job, job.run(packed)))
+        return
     with ThreadPoolExecutor(threads) as pool:
-        list(pool.map(lambda ab: batch(packed.chain, packed.frame, hist, outs, ab[0], ab[1]),
-                      zip(edges[:-1], edges[1:])))
-    return outs
+        running: dict[Future, tuple[Hashable, _Job]] = {}
+        while queue or running:
+            while queue and len(running) < threads:
+                _, _, key, job = heapq.heappop(queue)
+                running[pool.submit(job.run, packed)] = (key, job)
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            for future in finished:
+                key, job = running.pop(future)
+                push(done(key, job, future.result()))
 
 
 def _threads(threads: int | None) -> int:
@@ -462,19 +502,27 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     packed = _packed(model, settings)
     nthreads = _threads(threads)
 
-    def jobs_at(step: float, which: Sequence[int]) -> list[_Job]:
-        return [_Job(model, packed, motions[i], step, durs[i], rests[i], settings, g,
-                     skip_at_rest, solver_tolerance) for i in which]
+    def job(step: float, i: int) -> _Job:
+        return _Job(model, packed, motions[i], step, durs[i], rests[i], settings, g,
+                    skip_at_rest, solver_tolerance)
 
-    first = jobs_at(h, range(n))
-    outs = _run_jobs(packed, first, nthreads)
-    found = [_decode(outs[i], h, first[i].vg) for i in range(n)]
-    rerun = [i for i in range(n) if guard and _near(found[i])]
+    found: dict[int, dict] = {}
     second: dict[int, dict] = {}
-    if rerun:
-        jobs2 = jobs_at(0.5 * h, rerun)
-        outs2 = _run_jobs(packed, jobs2, nthreads)
-        second = {i: _decode(outs2[k], 0.5 * h, jobs2[k].vg) for k, i in enumerate(rerun)}
+
+    def done(key, ran: _Job, out: np.ndarray) -> list[tuple[float, Hashable, _Job]]:
+        i, rerun = key
+        d = _decode(out, ran.h, ran.vg)
+        if rerun:
+            second[i] = d
+            return []
+        found[i] = d
+        if guard and _near(d):  # at half the step: twice the steps computed at the first
+            return [(2.0 * d["steps"], (i, True), job(0.5 * h, i))]
+        return []
+
+    firsts = [job(h, i) for i in range(n)]
+    _drain(packed, [(j.expected_steps(), (i, False), j) for i, j in enumerate(firsts)],
+           nthreads, done)
     return [_verdict(found[i], second.get(i), h) for i in range(n)]
 
 
@@ -511,7 +559,7 @@ def _per_motion(value, n: int, name: str) -> list:
 
 
 #: The default window after the end of the excitation, in sqrt(R/g): the four-link model's
-#: default end (:data:`archquake.mechanism.simulate.RUN_TAIL`), the longest window of
+#: default end (:data:`archquake.ranges.RUN_TAIL`), the longest window of
 #: ``rigid_to_verdict``.
 WINDOW_TAIL = RUN_TAIL
 

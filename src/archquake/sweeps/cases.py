@@ -123,12 +123,18 @@ class CaseOptions:
         End of the simulation, s (> 0); None: the model's default.
     g : float
         Gravity, m/s^2 (> 0), also the factor from study magnitudes in g to m/s^2.
+    guard : bool
+        The rigid chain's half-step guard on its verdict (:func:`archquake.rigid.rigid_verdicts`;
+        False: the verdict at the step alone, as incremental dynamic analysis runs its levels
+        before it checks the levels that decide its result). Left out of the canonical form when
+        True, so existing case ids are unchanged.
     """
 
     restitution: float | None = None
     t_end_s: float | None = None
     g: float = STANDARD_GRAVITY
     impact: str | None = None
+    guard: bool = True
 
     def __post_init__(self) -> None:
         from archquake.mechanism.impact import check_impact_law, check_restitution
@@ -140,12 +146,16 @@ class CaseOptions:
             _set(self, "t_end_s", require_range("t_end_s", self.t_end_s, *T_END_RANGE_S, "s",
                                                 low_open=False, high_open=False))
         _set(self, "g", require_gravity(self.g))
+        if not isinstance(self.guard, bool):
+            raise InvalidParameterError(f"guard must be true or false, got {self.guard!r}")
 
     def canonical(self) -> dict[str, Any]:
         out: dict[str, Any] = {"restitution": self.restitution, "t_end_s": self.t_end_s,
                                "g_m_s2": self.g}
         if self.impact not in (None, "paper"):  # the default law keeps the ids it always had
             out["impact"] = self.impact
+        if not self.guard:  # the guarded verdict keeps the ids it always had
+            out["guard"] = False
         return out
 
     @cached_property

@@ -79,6 +79,9 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     """
     simulate = model_function(case.model)
     motion = case.excitation.build(g=case.options.g)
+    if not case.options.guard and case.model is not Model.RIGID:
+        raise InvalidParameterError("guard applies to model rigid only (its verdict path's "
+                                    "half-step rerun)")
     if case.model is Model.FOURLINK:
         from archquake.mechanism import SolverOptions
 
@@ -102,7 +105,8 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         if case.options.t_end_s is None:  # to a verdict, on the verdict path
             from archquake.rigid import rigid_verdict
 
-            return rigid_summary(rigid_verdict(arch, motion, g=case.options.g))
+            return rigid_summary(rigid_verdict(arch, motion, g=case.options.g,
+                                               guard=case.options.guard))
         run = simulate(arch, motion, duration=case.options.t_end_s, g=case.options.g)
         return run.to_dict(joint_forces=False)  # a store holds no histories' forces
     if case.options.t_end_s is None:  # run until a verdict (rest or collapse), or the cap
