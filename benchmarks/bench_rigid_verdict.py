@@ -8,7 +8,11 @@ measured in the same run.
    paired repeats, with the time per computed step) and against the recorded run at the same
    step (``simulate_rigid``, samples and the DEM's post-processing); then the same verdict run
    to its end (proven rest) with the guard.
-2. The Figure 5 domain under the rigid chain (step pulses, 12 durations 0.1-1.5 s, the block
+2. The bridge (semicircle R 5 m, t 0.6 m, 15 voussoirs: 48 contact rows against Oppenheim's
+   24) under five FEMA near-field records scaled to a PGA of 0.11 g, one verdict at a time on
+   one thread, guard off (``rigid_verdicts(arch, [m], threads=1, guard=False)``): CPU time per
+   history (median of 5) and per computed step, against Oppenheim's step measured above.
+3. The Figure 5 domain under the rigid chain (step pulses, 12 durations 0.1-1.5 s, the block
    models' search: 0.01 g brackets, pulse + 6 sqrt(R/g)) through ``dem_failure_domain(...,
    model="rigid")`` (batches of verdicts, threaded over the usable cores), against the same
    search on one thread, and against the recorded run at the old default step (1e-4 s) timed
@@ -73,7 +77,45 @@ def history() -> dict:
     print(f"  rigid verdict to its end ({full.outcome.value}, {full.end_time_s:.2f} s, guard "
           f"{'ran' if full.guard_ran else 'not needed'})  {to_end * 1e3:8.2f} ms")
     return {"four_link_s": four, "verdict_s": verdict, "recorded_s": recorded,
-            "to_end_s": to_end, "verdict_cpu_s": verdict_cpu, "four_link_cpu_s": four_cpu}
+            "to_end_s": to_end, "verdict_cpu_s": verdict_cpu, "four_link_cpu_s": four_cpu,
+            "step_cpu_s": verdict_cpu / max(v4.steps, 1)}
+
+
+#: The bridge's records (indices in the FEMA near-field pulse suite) and their PGA, g.
+BRIDGE_RECORDS = (0, 4, 14, 20, 26)
+BRIDGE_PGA_G = 0.11
+
+
+def bridge(oppenheim_step_s: float) -> dict:
+    from archquake.ground.measures import im_value
+    from archquake.ground.suites import load_suite
+    from archquake.rigid import rigid_verdicts
+
+    arch = Arch(5.0, 0.6, math.pi, 15)
+    records = load_suite("near-field-pulse").records
+    motions = [records[i].scaled(BRIDGE_PGA_G / im_value(records[i], "pga"))
+               for i in BRIDGE_RECORDS]
+    rigid_verdicts(arch, motions[:1], threads=1, guard=False)  # compile / load the cache
+    print(f"the bridge (R 5 m, t 0.6 m, 15 voussoirs), near-field records at "
+          f"{BRIDGE_PGA_G} g, one thread, guard off (CPU, median of 5; the jobs' preparation "
+          "included, as in Oppenheim's):")
+    steps, cpu = 0, 0.0
+    for i, m in zip(BRIDGE_RECORDS, motions):
+        cpus = []
+        for _ in range(5):
+            c0 = time.process_time()
+            v = rigid_verdicts(arch, [m], threads=1, guard=False)[0]
+            cpus.append(time.process_time() - c0)
+        c = float(np.median(cpus))
+        steps += v.steps
+        cpu += c
+        print(f"  {records[i].name:22s} {v.outcome.value:9s} {c * 1e3:8.1f} ms  "
+              f"{v.steps:6d} steps  {c / max(v.steps, 1) * 1e6:6.2f} us a step")
+    per_step = cpu / max(steps, 1)
+    print(f"  all five                          {cpu * 1e3:8.1f} ms  {steps:6d} steps  "
+          f"{per_step * 1e6:6.2f} us a step, {per_step / oppenheim_step_s:.1f} x Oppenheim's "
+          f"step (twice the rows)")
+    return {"bridge_cpu_s": cpu, "bridge_step_cpu_s": per_step}
 
 
 def domain() -> dict:
@@ -116,6 +158,7 @@ def domain() -> dict:
 
 def main() -> dict:
     out = history()
+    out.update(bridge(out["step_cpu_s"]))
     out.update(domain())
     return out
 

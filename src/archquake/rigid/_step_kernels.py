@@ -20,8 +20,10 @@ ground; base bodies fixed in the ground's frame):
    uniqueness nor convergence is guaranteed; the sweep count and residual are reported.
    Without friction, :func:`run`'s default solver (``METHOD_DIRECT``, :func:`project_direct`)
    solves the same projection exactly on a guessed active set (the contacts that pushed at
-   the previous step): one banded Cholesky of the Delassus matrix per step, Gauss-Seidel only
-   when the guess fails (at most 129 of the 40 000 steps of Oppenheim's 4 s history); it
+   the previous step): one banded Cholesky of the Delassus matrix per step, corrected sets
+   when the guess fails, and Gauss-Seidel only when no set is accepted after
+   :data:`ACTIVE_SET_ITERATIONS` or the refinement stalls (3 of the 3996 steps of Oppenheim's
+   4 s history at the verdict's step, 0.04 % of the bridge's steps under near-field records); it
    returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed of the rigid chain");
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
@@ -85,10 +87,15 @@ METHOD_PGS = 0
 METHOD_DIRECT = 1
 #: :func:`project_direct`: regularisation of the (singular) Delassus matrix, relative to its
 #: largest diagonal entry; refinement solves per active set; active sets tried before
-#: Gauss-Seidel.
+#: Gauss-Seidel. An accepted active set gives the exact projection whatever the number of
+#: sets tried, so the cap only decides when Gauss-Seidel takes over, and Gauss-Seidel is what
+#: costs: on the 15-voussoir semicircle (R 5 m, t 0.6 m) under the 28 near-field records at
+#: 0.11 g, 0.2 % of the steps needed 7 to 15 sets, and each of them, sent to Gauss-Seidel after
+#: 6, took ~1600 sweeps of 44 rows (up to the 5000 allowed): 60 % of the run's time
+#: (docs/notes/measurements.md, "The rigid chain's step on 15 voussoirs").
 EPS_REG = 1.0e-10
 REFINEMENTS = 6
-ACTIVE_SET_ITERATIONS = 6
+ACTIVE_SET_ITERATIONS = 24
 
 
 class Chain(NamedTuple):
@@ -695,9 +702,6 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     dmax = diag[idx[i]]
             eps = EPS_REG * dmax
             for i in range(n):
-                first[i] = i
-                for k in range(i + 1):
-                    w_mat[i, k] = 0.0
                 # the set's rows packed in set order, for the refinement's inner loops
                 r = idx[i]
                 sa[i] = ja[rows_j[r]]
@@ -722,6 +726,17 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                     lst_i[c, cnt[c]] = i
                     lst_side[c, cnt[c]] = 1
                     cnt[c] += 1
+            # the envelope: row i meets the rows from the first one touching either of its
+            # bodies (the lists are in set order); only the envelope is cleared and read
+            for i in range(n):
+                f = i
+                if sa[i] >= 0 and lst_i[sa[i], 0] < f:
+                    f = lst_i[sa[i], 0]
+                if sb[i] >= 0 and lst_i[sb[i], 0] < f:
+                    f = lst_i[sb[i], 0]
+                first[i] = f
+                for k in range(f, i + 1):
+                    w_mat[i, k] = 0.0
             for c in range(nbody):
                 for u in range(cnt[c]):
                     i = lst_i[c, u]
@@ -738,8 +753,6 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
                         else:
                             g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
                         w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
-                        if k < first[i]:
-                            first[i] = k
             for i in range(n):
                 w_mat[i, i] += eps
             ok = True
