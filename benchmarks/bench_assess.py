@@ -15,6 +15,7 @@ Run:
 
     .venv/bin/python benchmarks/bench_assess.py          # quick and full
     .venv/bin/python benchmarks/bench_assess.py --quick  # quick only
+    .venv/bin/python benchmarks/bench_assess.py --full   # full only
 """
 
 from __future__ import annotations
@@ -81,7 +82,8 @@ def _archquake() -> list[str]:
 
 
 def main() -> None:
-    modes = ["--quick"] if "--quick" in sys.argv[1:] else ["--quick", ""]
+    args = sys.argv[1:]
+    modes = ["--quick"] if "--quick" in args else [""] if "--full" in args else ["--quick", ""]
     refs = [_timed([sys.executable, "-c", "import numpy"]) for _ in range(5)]
     ref_wall, ref_cpu = min(w for w, _ in refs), min(c for _, c in refs)
     print(f"reference: python -c 'import numpy' {ref_wall:.3f} s wall, {ref_cpu:.3f} s CPU "
