@@ -825,7 +825,10 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     sweeps = 0
     change = 0.0
     if not accepted:
+        # Gauss-Seidel from the previous step's impulses, not from the last set tried (after
+        # many sets those can be far off, and the sweeps then take thousands of passes)
         for r in range(nrows):
+            p[r] = pw[r]
             if rows_k[r] < 2 and p[r] < 0.0:
                 p[r] = 0.0
         _copy3(v, v_free)
