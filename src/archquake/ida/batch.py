@@ -13,7 +13,7 @@ rotation of the run. It is a smaller summary than :func:`archquake.sweeps.evalua
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numba
@@ -50,12 +50,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     from archquake.sweeps.evaluate import prepared_mechanism
 
     out: list[Any] = [None] * len(cases)
-    groups: dict[tuple, list[int]] = {}
-    for i, case in enumerate(cases):
-        if case.model is not Model.FOURLINK:
-            raise InvalidParameterError(f"the batch evaluator runs the four-link model only, "
-                                        f"got {case.model.value!r}")
-        groups.setdefault((case.arch, case.options), []).append(i)
+    groups = _groups(cases, Model.FOURLINK, "the batch evaluator runs the four-link model", out)
     for (arch, options), idx in groups.items():
         try:
             prepared = prepared_mechanism(arch, options.impact)
@@ -92,17 +87,8 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
     from archquake.sweeps.evaluate import rigid_summary
 
     out: list[Any] = [None] * len(cases)
-    groups: dict[tuple, list[int]] = {}
-    for i, case in enumerate(cases):
-        if case.model is not Model.RIGID:
-            raise InvalidParameterError(f"the rigid batch evaluator runs the rigid chain only, "
-                                        f"got {case.model.value!r}")
-        for key in ("restitution", "impact"):
-            if getattr(case.options, key) is not None:
-                out[i] = InvalidParameterError(f"{key} applies to model fourlink only; the rigid "
-                                               "chain's impacts follow from its contacts")
-        if out[i] is None:
-            groups.setdefault((case.arch, case.options), []).append(i)
+    groups = _groups(cases, Model.RIGID, "the rigid batch evaluator runs the rigid chain", out,
+                     refuse=_fourlink_options)
     for (arch, options), idx in groups.items():
         try:
             built = arch.build()
@@ -138,12 +124,7 @@ def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = Non
     from archquake.rigid.verdict import verdict_time_step
 
     out: list[Any] = [None] * len(cases)
-    groups: dict[tuple, list[int]] = {}
-    for i, case in enumerate(cases):
-        if case.model is not Model.RIGID:
-            raise InvalidParameterError(f"the half-step rerun runs the rigid chain only, got "
-                                        f"{case.model.value!r}")
-        groups.setdefault((case.arch, case.options), []).append(i)
+    groups = _groups(cases, Model.RIGID, "the half-step rerun runs the rigid chain", out)
     for (arch, options), idx in groups.items():
         built = arch.build()
         motions = [cases[i].excitation.build(g=options.g) for i in idx]
@@ -153,6 +134,33 @@ def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = Non
         for i, v in zip(idx, verdicts, strict=True):
             out[i] = v
     return out
+
+
+def _groups(cases: Sequence[Case], model: Model, runs: str, out: list,
+            refuse: Callable[[Case], ArchquakeError | None] | None = None
+            ) -> dict[tuple, list[int]]:
+    """The indices of ``cases`` by (arch, options), one batch each; a case of another model is
+    refused with ``runs`` (what runs which model) "... only, got ...", and a case ``refuse``
+    returns an error for gets that error in ``out`` and no batch."""
+    groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        if case.model is not model:
+            raise InvalidParameterError(f"{runs} only, got {case.model.value!r}")
+        error = None if refuse is None else refuse(case)
+        if error is not None:
+            out[i] = error
+        else:
+            groups.setdefault((case.arch, case.options), []).append(i)
+    return groups
+
+
+def _fourlink_options(case: Case) -> ArchquakeError | None:
+    """The error of a rigid case given the four-link model's impact options, or None."""
+    for key in ("restitution", "impact"):
+        if getattr(case.options, key) is not None:
+            return InvalidParameterError(f"{key} applies to model fourlink only; the rigid "
+                                         "chain's impacts follow from its contacts")
+    return None
 
 
 def _run_group(prepared, cases, options, early) -> list[Any]:
