@@ -33,8 +33,8 @@ import numpy as np
 from archquake.ground._kernel import ground_acceleration
 
 # parameter indices
-P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX = range(9)
-N_PAR = 9
+P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX, P_BROAD = range(10)
+N_PAR = 10
 # accumulator indices
 A_VB, A_XB, A_DAMP, A_FRIC, A_WIN, A_KE, A_SE, A_KEPREV = range(8)
 N_ACC = 8
@@ -68,13 +68,15 @@ class Packed(NamedTuple):
 
 class Scratch(NamedTuple):
     """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
-    vertices ``vw`` (nv, 2) and edge frames ``edir`` (nv, 3)."""
+    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3), and ``slots``, the contact slots the
+    step looks at (increasing; every slot, or those :func:`slots_in_reach` keeps)."""
 
     force: np.ndarray
     dforce: np.ndarray
     record: np.ndarray
     vw: np.ndarray
     edir: np.ndarray
+    slots: np.ndarray
 
 
 class Span(NamedTuple):
@@ -101,10 +103,12 @@ class Output(NamedTuple):
 
 
 def scratch(packed: Packed) -> Scratch:
-    """Zeroed work arrays for ``packed``."""
+    """Zeroed work arrays for ``packed``, looking at every contact slot."""
     nbk, nv = packed.state.shape[0], packed.vloc.shape[0]
     return Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
-                   np.zeros((nv, 2)), np.zeros((nv, 3)))
+                   np.zeros((nv, 2)), np.zeros((nv, 3)), np.arange(packed.sl_i.shape[0], dtype=np.int64))
+
+
 #: A vertex may touch an edge only if neither of its own edges dips into the face by more than
 #: this (sine of the angle; about 3 deg).
 ANGLE_TOL = 0.05
@@ -147,6 +151,38 @@ def world_vertices(state, vloc, vstart, vw, edir):
             edir[e, 2] = length
 
 
+@nb.njit(cache=True)
+def slots_in_reach(state, radius, free, vw, sl_i, par, margin):
+    """The contact slots (increasing) a step looks at until the neighbour lists are rebuilt,
+    for the world vertices ``vw`` of ``state``: every slot with ``par[P_BROAD]`` = 0; else
+    every slot of a base block, and those whose corner may come within reach of the other
+    block (:func:`update_contacts`) before then.
+
+    Between rebuilds no free block moves by more than margin/2 (:func:`run`'s check, the
+    neighbour lists' own assumption), so a corner farther than radius + dmax + tol + margin
+    from the other free block's centroid cannot reach it (2 margin is kept). Active contacts
+    are within reach, so every one is kept."""
+    ns = sl_i.shape[0]
+    out = np.empty(ns, dtype=np.int64)
+    broad = par[P_BROAD] != 0.0
+    tol = par[P_TOL]
+    dmax = par[P_DMAX]
+    k = 0
+    for s in range(ns):
+        a = sl_i[s, 1]
+        b = sl_i[s, 2]
+        if broad and free[a] != 0 and free[b] != 0:
+            v = sl_i[s, 0]
+            dx = vw[v, 0] - state[b, 0]
+            dy = vw[v, 1] - state[b, 1]
+            reach = radius[b] + dmax + tol + 2.0 * margin
+            if dx * dx + dy * dy > reach * reach:
+                continue
+        out[k] = s
+        k += 1
+    return out[:k].copy()
+
+
 @nb.njit(cache=True, inline="always")
 def _edge_frame(vw, edir, e, px, py):
     """Overlap of point p behind edge e (> 0 inside), its edge parameter in [0, 1] along
@@ -163,8 +199,20 @@ def _edge_frame(vw, edir, e, px, py):
     return overlap, spar, nx, ny, tx, ty, length
 
 
+@nb.njit(cache=True, inline="always")
+def _coincides(px, py, s, vw, sl_i, sl_edge, tol):
+    """Whether point p lies within ``tol`` of a corner of the other block that is in contact
+    with slot s's block (an active slot among s's reverse slots)."""
+    for r in range(sl_i[s, 3], sl_i[s, 4]):
+        if sl_edge[r] >= 0:
+            q = sl_i[r, 0]
+            if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
+                return True
+    return False
+
+
 @nb.njit(cache=True)
-def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
+def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, par, acc):
     """Drop contacts that opened or slid off their edge; create new ones (two passes, the
     lower-numbered block's vertices first; a vertex coinciding with an active vertex of the
     other block is skipped, so an edge-to-edge contact carries one contact per end).
@@ -174,11 +222,21 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
     best faces one of the two edges meeting at the vertex (most
     negative dot product of their directions; first such edge on ties): a corner lying in
     a corner of the other block touches the face it rests on, not the side it grazes.
+
+    With ``par[P_BROAD]`` = 1 a free corner is first tested against the other block's reach
+    (its bounding circle, ``radius`` about the centroid in ``state``, widened by dmax and the
+    contact tolerance: an accepted edge puts the corner within dmax of a point of that edge),
+    and a corner coinciding with an active corner of the other block is skipped before its
+    edges are scanned. Both only leave out corners that the scan would reject, so the contacts,
+    and every number after them, are the same bits as with 0 (every edge of every candidate
+    scanned, as :mod:`archquake.dem._reference` does). Only the slots listed in ``slots`` are
+    looked at (:func:`slots_in_reach`).
     """
     tol = par[P_TOL]
     dmax = par[P_DMAX]
-    ns = sl_i.shape[0]
-    for s in range(ns):
+    broad = par[P_BROAD] != 0.0
+    for k in range(slots.shape[0]):
+        s = slots[k]
         e = sl_edge[s]
         if e < 0:
             continue
@@ -196,7 +254,8 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
             sl_f[s, F_FS] = 0.0
             sl_f[s, F_FN] = 0.0
     for pas in range(2):
-        for s in range(ns):
+        for k in range(slots.shape[0]):
+            s = slots[k]
             if sl_edge[s] >= 0:
                 continue
             v = sl_i[s, 0]
@@ -206,6 +265,14 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
                 continue
             px = vw[v, 0]
             py = vw[v, 1]
+            if broad:
+                dx = px - state[b, 0]
+                dy = py - state[b, 1]
+                reach = radius[b] + dmax + tol
+                if dx * dx + dy * dy > reach * reach:
+                    continue
+                if _coincides(px, py, s, vw, sl_i, sl_edge, tol):
+                    continue
             vp = _prev_vertex(v, a, vstart)
             best = -1
             best_score = 0.0
@@ -227,14 +294,7 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
                         best_len = length
             if best < 0:
                 continue
-            blocked = False
-            for r in range(sl_i[s, 3], sl_i[s, 4]):
-                if sl_edge[r] >= 0:
-                    q = sl_i[r, 0]
-                    if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
-                        blocked = True
-                        break
-            if blocked:
+            if not broad and _coincides(px, py, s, vw, sl_i, sl_edge, tol):
                 continue
             # tributary length: half the shorter of the touched edge and the facing edge of a
             tx = edir[best, 0]
@@ -251,15 +311,17 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
 
 
 @nb.njit(cache=True)
-def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce):
+def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force, dforce):
     """Add the contact forces to ``force`` (elastic + friction) and ``dforce`` (viscous part of
-    the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid.
-    Returns the elastic energy stored in the contact springs, J."""
+    the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid, for
+    the active contacts among ``slots`` (every active one: :func:`slots_in_reach`). Returns the
+    elastic energy stored in the contact springs, J."""
     dt = par[P_DT]
     beta = par[P_BETA]
     mu = par[P_MU]
     strain = 0.0
-    for s in range(sl_i.shape[0]):
+    for k in range(slots.shape[0]):
+        s = slots[k]
         e = sl_edge[s]
         if e < 0:
             continue
@@ -335,17 +397,18 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     Returns the ground acceleration used, m/s^2."""
     state, mass, inertia, free = packed.state, packed.mass, packed.inertia, packed.free
     force, dforce, record = work.force, work.dforce, work.record
-    vw, edir = work.vw, work.edir
+    vw, edir, slots = work.vw, work.edir, work.slots
+    vstart, sl_i, sl_edge, sl_f = packed.vstart, packed.sl_i, packed.sl_edge, packed.sl_f
     dt = par[P_DT]
     g = par[P_G]
     alpha = par[P_ALPHA]
     nbk = state.shape[0]
-    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
-    update_contacts(vw, edir, packed.vstart, packed.sl_i, packed.sl_edge, packed.sl_f, par, acc)
+    world_vertices(state, packed.vloc, vstart, vw, edir)
+    update_contacts(state, packed.radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, par, acc)
     force[:, :] = 0.0
     dforce[:, :] = 0.0
-    acc[A_SE] = contact_forces(state, vw, edir, packed.sl_i, packed.sl_edge, packed.sl_f, par,
-                               acc, force, dforce)
+    acc[A_SE] = contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force,
+                               dforce)
     ag = ground_acceleration(kind, gparams, t) if ground_on else 0.0
     vb_old = acc[A_VB]
     vb_new = vb_old + ag * dt
@@ -514,8 +577,11 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     dt = par[P_DT]
     g = par[P_G]
     nv = packed.vloc.shape[0]
-    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
-                   np.zeros((nv, 2)), np.zeros((nv, 3)))
+    vw = np.zeros((nv, 2))
+    edir = np.zeros((nv, 3))
+    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
+    slots = slots_in_reach(state, radius, free, vw, packed.sl_i, par, margin)
+    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)), vw, edir, slots)
     record = work.record
     out_every = span.out_every
     out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.written
