@@ -68,8 +68,11 @@ class Packed(NamedTuple):
 
 class Scratch(NamedTuple):
     """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
-    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3), and ``slots``, the contact slots the
-    step looks at (increasing; every slot, or those :func:`slots_in_reach` keeps)."""
+    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3), ``slots``, the contact slots the
+    step looks at (increasing; every slot, or those :func:`slots_in_reach` keeps), and
+    ``cand`` (as many), the free corners a step scans, and ``blocker`` (a slot's index
+    into the packed slots), the active slot whose corner a free corner last coincided with
+    (-1: none yet)."""
 
     force: np.ndarray
     dforce: np.ndarray
@@ -77,6 +80,8 @@ class Scratch(NamedTuple):
     vw: np.ndarray
     edir: np.ndarray
     slots: np.ndarray
+    cand: np.ndarray
+    blocker: np.ndarray
 
 
 class Span(NamedTuple):
@@ -104,9 +109,10 @@ class Output(NamedTuple):
 
 def scratch(packed: Packed) -> Scratch:
     """Zeroed work arrays for ``packed``, looking at every contact slot."""
-    nbk, nv = packed.state.shape[0], packed.vloc.shape[0]
+    nbk, nv, ns = packed.state.shape[0], packed.vloc.shape[0], packed.sl_i.shape[0]
     return Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
-                   np.zeros((nv, 2)), np.zeros((nv, 3)), np.arange(packed.sl_i.shape[0], dtype=np.int64))
+                   np.zeros((nv, 2)), np.zeros((nv, 3)), np.arange(ns, dtype=np.int64),
+                   np.zeros(ns, dtype=np.int64), np.full(ns, -1, dtype=np.int64))
 
 
 #: A vertex may touch an edge only if neither of its own edges dips into the face by more than
@@ -200,19 +206,20 @@ def _edge_frame(vw, edir, e, px, py):
 
 
 @nb.njit(cache=True, inline="always")
-def _coincides(px, py, s, vw, sl_i, sl_edge, tol):
-    """Whether point p lies within ``tol`` of a corner of the other block that is in contact
-    with slot s's block (an active slot among s's reverse slots)."""
+def _coinciding(px, py, s, vw, sl_i, sl_edge, tol):
+    """The first active slot among s's reverse slots whose corner (of the other block, in
+    contact with s's block) lies within ``tol`` of point p; -1 if none."""
     for r in range(sl_i[s, 3], sl_i[s, 4]):
         if sl_edge[r] >= 0:
             q = sl_i[r, 0]
             if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
-                return True
-    return False
+                return r
+    return -1
 
 
 @nb.njit(cache=True)
-def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, par, acc):
+def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, cand, blocker,
+                    par, acc):
     """Drop contacts that opened or slid off their edge; create new ones (two passes, the
     lower-numbered block's vertices first; a vertex coinciding with an active vertex of the
     other block is skipped, so an edge-to-edge contact carries one contact per end).
@@ -253,9 +260,39 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
             sl_edge[s] = -1
             sl_f[s, F_FS] = 0.0
             sl_f[s, F_FN] = 0.0
+    # the free corners to scan: with the broad phase, those within reach of the other block and
+    # not on one of its active corners (contacts are only added below, so a corner skipped
+    # here would be skipped there too)
+    nc = 0
+    for k in range(slots.shape[0]):
+        s = slots[k]
+        if sl_edge[s] >= 0:
+            continue
+        if broad:
+            v = sl_i[s, 0]
+            b = sl_i[s, 2]
+            px = vw[v, 0]
+            py = vw[v, 1]
+            dx = px - state[b, 0]
+            dy = py - state[b, 1]
+            reach = radius[b] + dmax + tol
+            if dx * dx + dy * dy > reach * reach:
+                continue
+            # the corner that blocked it last time first (then the others: the same answer)
+            r = blocker[s]
+            if r >= 0 and sl_edge[r] >= 0:
+                q = sl_i[r, 0]
+                if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
+                    continue
+            r = _coinciding(px, py, s, vw, sl_i, sl_edge, tol)
+            if r >= 0:
+                blocker[s] = r
+                continue
+        cand[nc] = s
+        nc += 1
     for pas in range(2):
-        for k in range(slots.shape[0]):
-            s = slots[k]
+        for k in range(nc):
+            s = cand[k]
             if sl_edge[s] >= 0:
                 continue
             v = sl_i[s, 0]
@@ -265,14 +302,6 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
                 continue
             px = vw[v, 0]
             py = vw[v, 1]
-            if broad:
-                dx = px - state[b, 0]
-                dy = py - state[b, 1]
-                reach = radius[b] + dmax + tol
-                if dx * dx + dy * dy > reach * reach:
-                    continue
-                if _coincides(px, py, s, vw, sl_i, sl_edge, tol):
-                    continue
             vp = _prev_vertex(v, a, vstart)
             best = -1
             best_score = 0.0
@@ -294,7 +323,7 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
                         best_len = length
             if best < 0:
                 continue
-            if not broad and _coincides(px, py, s, vw, sl_i, sl_edge, tol):
+            if _coinciding(px, py, s, vw, sl_i, sl_edge, tol) >= 0:
                 continue
             # tributary length: half the shorter of the touched edge and the facing edge of a
             tx = edir[best, 0]
@@ -404,7 +433,8 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     alpha = par[P_ALPHA]
     nbk = state.shape[0]
     world_vertices(state, packed.vloc, vstart, vw, edir)
-    update_contacts(state, packed.radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, par, acc)
+    update_contacts(state, packed.radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, work.cand,
+                    work.blocker, par, acc)
     force[:, :] = 0.0
     dforce[:, :] = 0.0
     acc[A_SE] = contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force,
@@ -581,7 +611,9 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     edir = np.zeros((nv, 3))
     world_vertices(state, packed.vloc, packed.vstart, vw, edir)
     slots = slots_in_reach(state, radius, free, vw, packed.sl_i, par, margin)
-    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)), vw, edir, slots)
+    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)), vw, edir, slots,
+                   np.zeros(slots.shape[0], dtype=np.int64),
+                   np.full(packed.sl_i.shape[0], -1, dtype=np.int64))
     record = work.record
     out_every = span.out_every
     out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.written
