@@ -136,7 +136,7 @@ def _prev_vertex(v, b, vstart):
     return w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def world_vertices(state, vloc, vstart, vw, edir):
     """World coordinates of every vertex (vw, (nv, 2)) and every edge's unit tangent and
     length (edir, (nv, 3)); edge e runs from vertex e to the next vertex of its block."""
@@ -217,7 +217,7 @@ def _coinciding(px, py, s, vw, sl_i, sl_edge, tol):
     return -1
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, cand, blocker,
                     par, acc):
     """Drop contacts that opened or slid off their edge; create new ones (two passes, the
@@ -339,7 +339,7 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
             sl_f[s, F_FN] = 0.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force, dforce):
     """Add the contact forces to ``force`` (elastic + friction) and ``dforce`` (viscous part of
     the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid, for
@@ -408,7 +408,7 @@ def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force,
     return strain
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     """One central-difference step from t_n: contacts at x^n, forces with the lagged velocities
     v^(n-1/2), then v^(n+1/2) and x^(n+1). ``work.record[i] = (x, y, theta, vx, vy, omega)``
