@@ -68,11 +68,10 @@ class Packed(NamedTuple):
 
 class Scratch(NamedTuple):
     """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
-    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3), ``slots``, the contact slots the
-    step looks at (increasing; every slot, or those :func:`slots_in_reach` keeps), and
-    ``cand`` (as many), the free corners a step scans, and ``blocker`` (a slot's index
-    into the packed slots), the active slot whose corner a free corner last coincided with
-    (-1: none yet)."""
+    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3); ``slots``, the contact slots the
+    step looks at (increasing: every slot, or those :func:`slots_in_reach` keeps); ``cand``
+    (as long), room for the free corners a step scans; ``blocker`` (ns,), for each slot the
+    active slot whose corner it last coincided with (-1: none yet)."""
 
     force: np.ndarray
     dforce: np.ndarray
@@ -166,8 +165,10 @@ def slots_in_reach(state, radius, free, vw, sl_i, par, margin):
 
     Between rebuilds no free block moves by more than margin/2 (:func:`run`'s check, the
     neighbour lists' own assumption), so a corner farther than radius + dmax + tol + margin
-    from the other free block's centroid cannot reach it (2 margin is kept). Active contacts
-    are within reach, so every one is kept."""
+    from the other free block's centroid cannot come within reach; slots are kept up to
+    radius + dmax + tol + 2 margin, twice the margin needed. Active contacts are within
+    reach, so every one is kept. Slots of a base block are all kept (the base's own motion
+    is not part of the rebuild check)."""
     ns = sl_i.shape[0]
     out = np.empty(ns, dtype=np.int64)
     broad = par[P_BROAD] != 0.0
@@ -588,7 +589,8 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     ``span.out_every`` steps into ``out``. Returns (next global step, status): STATUS_DONE,
     STATUS_COLLAPSE (first output sample meeting a collapse criterion, when stopping at
     collapse) or STATUS_REBUILD (some block moved more than margin/2 from ``ref`` since the
-    neighbour lists were built).
+    neighbour lists were built). The steps look at the slots :func:`slots_in_reach` keeps for
+    the positions at the call (those of ``ref``).
 
     Parameters
     ----------
