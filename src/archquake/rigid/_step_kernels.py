@@ -824,7 +824,17 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             break
     sweeps = 0
     change = 0.0
-    if not accepted:
+    if accepted and mu > 0.0 and not _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
+        # a joint's tangential impulse outside its Coulomb cone: the joint slips. Gauss-Seidel
+        # with the clamp, from the no-slip impulses clamped into the cones
+        _clamp_to_cone(nrows, rows_j, rows_k, p, mu)
+        _copy3(v, v_free)
+        for r in range(nrows):
+            if p[r] != 0.0:
+                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
+        sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
+                              inv_i, tol, max_iter, mu, target)
+    elif not accepted:
         # Gauss-Seidel from the previous step's impulses, not from the last set tried (after
         # many sets those can be far off, and the sweeps then take thousands of passes)
         for r in range(nrows):
@@ -842,6 +852,47 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     if work is not None:
         work[0] = _correction_work(nrows, p, target)
     return solves + sweeps, change
+
+
+@nb.njit(cache=True, inline="always")
+def _joint_normal(r, rows_j, rows_k, p):
+    """The normal impulse p_N0 + p_N1 (N s) of the joint of tangential row ``r``: the sum over
+    the normal rows just before it (the rows are in joint order, normals first)."""
+    j = rows_j[r]
+    pn = 0.0
+    s = r - 1
+    while s >= 0 and rows_j[s] == j and rows_k[s] < 2:
+        pn += p[s]
+        s -= 1
+    return pn
+
+
+@nb.njit(cache=True)
+def _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
+    """Every active joint's tangential impulse lies in its Coulomb cone, |p_T| <= mu p_N
+    (p_N = p_N0 + p_N1, N s), to the solve's accuracy ``tol`` / W_TT (``tol`` m/s, W_TT the
+    tangential row's Delassus diagonal): the no-slip solution then sticks at every joint, and
+    satisfies Coulomb's law (:func:`project_direct`)."""
+    for r in range(nrows):
+        if rows_k[r] == 2:
+            pn = _joint_normal(r, rows_j, rows_k, p)
+            if abs(p[r]) > mu * max(pn, 0.0) + tol / diag[r]:
+                return False
+    return True
+
+
+@nb.njit(cache=True)
+def _clamp_to_cone(nrows, rows_j, rows_k, p, mu):
+    """Project the impulses ``p`` (nrows,) in place: normal ones to p_N >= 0, then each
+    tangential one to |p_T| <= mu p_N of its joint (Gauss-Seidel's start after a failed stick
+    test)."""
+    for r in range(nrows):
+        if rows_k[r] < 2 and p[r] < 0.0:
+            p[r] = 0.0
+    for r in range(nrows):
+        if rows_k[r] == 2:
+            bound = mu * _joint_normal(r, rows_j, rows_k, p)
+            p[r] = min(max(p[r], -bound), bound)
 
 
 @nb.njit(cache=True)
@@ -881,7 +932,7 @@ def advance(chain, cfg, state, acc_k, ws):
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
         vf[i, 1] -= h * cfg.g
-    if cfg.method == METHOD_DIRECT and cfg.mu <= 0.0:
+    if cfg.method == METHOD_DIRECT:
         sweeps, res = _direct_into(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb, ws.gaps,
                                    ws.nrm, ws.tan, ws.pts, cfg.gap_tol, state.p_warm, cfg.tol,
                                    cfg.max_iter, cfg.mu, ACTIVE_SET_ITERATIONS, cfg.h_corr,
