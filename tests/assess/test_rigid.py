@@ -219,3 +219,44 @@ def test_the_quick_rigid_scan_finds_the_band_below_its_first_magnitude():
                              settings=Mode(True).rigid_domain_settings(0.0488, 0.15),
                              governing_only=True, model="rigid").domain
     assert abs(float(dom.collapse_g[0]) - 0.0659) <= 0.01
+
+
+def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path, monkeypatch):
+    """The DEM reads "survives" only after a still window (:func:`archquake.dem.result.settled`:
+    REST_WINDOW sqrt(L/g)) that begins once the ground motion has ended. The governing record
+    is therefore cut where 95 % of its Arias intensity has arrived and run 3 s past the cut;
+    a window that ended before the record did could only give collapse or indeterminate.
+    Oracle: ``settled`` itself, on a run still (zero kinetic energy) over the whole window the
+    DEM check asks for."""
+    from pathlib import Path
+
+    from archquake.assess import sections
+    from archquake.assess.sections import Context, Mode, section_dem, strong_motion_end
+    from archquake.constants import STANDARD_GRAVITY
+    from archquake.dem.assembly import dem_assembly
+    from archquake.dem.result import settled
+    from archquake.ground.suites import load_suite
+
+    asked = []
+    monkeypatch.setattr(sections, "_dem_outcome",
+                        lambda arch, motion, duration: asked.append((motion, duration))
+                        or "survives")
+    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    arch = cfg.build_arch()
+    rec = load_suite("near-field-pulse").records[0]
+    pga = rec.peak / STANDARD_GRAVITY
+    prior = {"static": {"collapse_acceleration_g": 0.0491},
+             "records": {"governing": {"record": rec.name, "index": 0,
+                                       "first_collapse_g": 0.05, "survives_below_g": 0.048,
+                                       "pga_unscaled_g": pga}}}
+    ctx = Context(cfg, arch, Mode(True), tmp_path, tmp_path, prior)
+    data = section_dem(ctx).data
+    ((motion, window),) = asked
+    assert motion.duration < rec.duration  # cut: the record goes on after its strong motion
+    assert motion.duration == pytest.approx(strong_motion_end(rec), abs=rec.dt)
+    assert data["record_cut_s"] == motion.duration
+    assert window == pytest.approx(motion.duration + 3.0)
+    times = np.linspace(0.0, window, 2001)
+    assert settled(dem_assembly(arch), STANDARD_GRAVITY, times, np.zeros_like(times),
+                   motion.duration)
+    assert data["cases"][0]["runs"][0]["dem_outcome"] == "survives"

@@ -143,6 +143,36 @@ def test_kernel_equals_numpy_reference(case):
         assert fk[:, 4].max() > 0  # the block did slide
 
 
+@pytest.mark.parametrize("case", ["collapse", "sliding"])
+def test_broad_phase_changes_no_bit(case):
+    """The broad phase (``P_BROAD``: corners out of reach of the other block, or coinciding
+    with one of its active corners, are not scanned; slots out of reach until the next
+    rebuild are not looked at) only leaves out what the exhaustive scan would reject.
+    Oracle: the exhaustive scan, on Oppenheim's voussoir arch collapsing (blocks fly apart, new
+    contacts form between corners and edges far from the joints, the neighbour lists are
+    rebuilt) and on the arch cut at its hinges with joints that slide (mu 0.4 against a
+    friction demand of 0.55: contacts slide off their edges); tolerance zero, as the claim is
+    exactness."""
+    arch = Arch(10.0, 1.5, math.radians(157.5), 7)  # Oppenheim's arch
+    motion = StepImpulse.from_g(1.0, 0.27)
+    if case == "collapse":
+        body, settings = arch, DemSettings(duration=3.3, output_interval=0.002)
+    else:
+        body = build_arch_assembly(arch, cut_joints=(0, 3, 5, 7))
+        settings = DemSettings(contact=ContactLaw(friction=0.4), duration=1.5,
+                               output_interval=0.002)
+    fast = simulate_dem(body, motion, settings)
+    slow = simulate_dem(body, motion, settings, broad_phase=False)
+    if case == "collapse":
+        assert fast.outcome.value == "collapse"
+    else:
+        assert fast.friction[-1] > 0.0  # the joints slid
+    for name in ("times", "positions", "velocities", "kinetic", "strain", "friction",
+                 "damping", "input_work", "impact_times"):
+        assert getattr(fast, name).tobytes() == getattr(slow, name).tobytes(), name
+    assert fast.collapse_time == slow.collapse_time
+
+
 def test_settings_validate_with_one_line_errors():
     with pytest.raises(InvalidParameterError, match="safety"):
         DemSettings(safety=1.5)

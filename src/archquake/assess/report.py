@@ -175,8 +175,10 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                         f"step pulse on the {who}'s domain boundary and the record whose first "
                         "collapse is nearest the fragility median, run at fractions of the "
                         f"{who}'s collapse level (where it survives)."
-                   + (f" The record is run to 3 s after 95 % of its Arias intensity "
-                      f"({d['record_window_s']:.1f} s)." if "record_window_s" in d else "")))
+                   + (f" The record is cut where 95 % of its Arias intensity has arrived "
+                      f"({d['record_cut_s']:.1f} s), and both models run it to 3 s after the "
+                      f"cut ({d['record_window_s']:.1f} s), so that the DEM can come to rest."
+                      if "record_cut_s" in d else "")))
         if rep.quick:
             el.append(("p", f"Quick mode: one DEM run per case, at 0.85 x the {who}'s level; "
                             "the full mode runs 1.0, 0.85 and 0.7 x."))

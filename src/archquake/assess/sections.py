@@ -512,11 +512,17 @@ def section_dem(ctx: Context) -> StudyResult:
         suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
                            units=cfg.units)
         rec = suite.records[gov["index"]]
-        end = min(float(rec.duration), strong_motion_end(rec) + 3.0)
+        # the record cut where 95 % of its Arias intensity has arrived, and run 3 s past the
+        # cut: a window that ends after the motion does, so the DEM can find the arch at rest
+        # (survives), not only collapsed; the model runs the same cut record
+        cut = min(float(rec.duration), strong_motion_end(rec))
+        rec = rec.truncated(cut)
+        end = float(rec.duration) + 3.0
         for f in ctx.mode.dem_factors:
             level = f * gov["first_collapse_g"]
             jobs.append((f"record {gov['record']}", f, rec.scaled(level / gov["pga_unscaled_g"]),
                          end, level))
+        data["record_cut_s"] = float(rec.duration)
         data["record_window_s"] = end
     ctx.say(f"  {len(jobs)} DEM runs")
     # the model's own verdict at each level run, beside the DEM's: a level below the model's

@@ -33,8 +33,8 @@ import numpy as np
 from archquake.ground._kernel import ground_acceleration
 
 # parameter indices
-P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX = range(9)
-N_PAR = 9
+P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX, P_BROAD = range(10)
+N_PAR = 10
 # accumulator indices
 A_VB, A_XB, A_DAMP, A_FRIC, A_WIN, A_KE, A_SE, A_KEPREV = range(8)
 N_ACC = 8
@@ -68,13 +68,19 @@ class Packed(NamedTuple):
 
 class Scratch(NamedTuple):
     """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
-    vertices ``vw`` (nv, 2) and edge frames ``edir`` (nv, 3)."""
+    vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3); ``slots``, the contact slots the
+    step looks at (increasing: every slot, or those :func:`slots_in_reach` keeps); ``cand``
+    (as long), room for the free corners a step scans; ``blocker`` (ns,), for each slot the
+    active slot whose corner it last coincided with (-1: none yet)."""
 
     force: np.ndarray
     dforce: np.ndarray
     record: np.ndarray
     vw: np.ndarray
     edir: np.ndarray
+    slots: np.ndarray
+    cand: np.ndarray
+    blocker: np.ndarray
 
 
 class Span(NamedTuple):
@@ -101,10 +107,13 @@ class Output(NamedTuple):
 
 
 def scratch(packed: Packed) -> Scratch:
-    """Zeroed work arrays for ``packed``."""
-    nbk, nv = packed.state.shape[0], packed.vloc.shape[0]
+    """Zeroed work arrays for ``packed``, looking at every contact slot."""
+    nbk, nv, ns = packed.state.shape[0], packed.vloc.shape[0], packed.sl_i.shape[0]
     return Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
-                   np.zeros((nv, 2)), np.zeros((nv, 3)))
+                   np.zeros((nv, 2)), np.zeros((nv, 3)), np.arange(ns, dtype=np.int64),
+                   np.zeros(ns, dtype=np.int64), np.full(ns, -1, dtype=np.int64))
+
+
 #: A vertex may touch an edge only if neither of its own edges dips into the face by more than
 #: this (sine of the angle; about 3 deg).
 ANGLE_TOL = 0.05
@@ -126,7 +135,7 @@ def _prev_vertex(v, b, vstart):
     return w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def world_vertices(state, vloc, vstart, vw, edir):
     """World coordinates of every vertex (vw, (nv, 2)) and every edge's unit tangent and
     length (edir, (nv, 3)); edge e runs from vertex e to the next vertex of its block."""
@@ -147,6 +156,40 @@ def world_vertices(state, vloc, vstart, vw, edir):
             edir[e, 2] = length
 
 
+@nb.njit(cache=True)
+def slots_in_reach(state, radius, free, vw, sl_i, par, margin):
+    """The contact slots (increasing) a step looks at until the neighbour lists are rebuilt,
+    for the world vertices ``vw`` of ``state``: every slot with ``par[P_BROAD]`` = 0; else
+    every slot of a base block, and those whose corner may come within reach of the other
+    block (:func:`update_contacts`) before then.
+
+    Between rebuilds no free block moves by more than margin/2 (:func:`run`'s check, the
+    neighbour lists' own assumption), so a corner farther than radius + dmax + tol + margin
+    from the other free block's centroid cannot come within reach; slots are kept up to
+    radius + dmax + tol + 2 margin, twice the margin needed. Active contacts are within
+    reach, so every one is kept. Slots of a base block are all kept (the base's own motion
+    is not part of the rebuild check)."""
+    ns = sl_i.shape[0]
+    out = np.empty(ns, dtype=np.int64)
+    broad = par[P_BROAD] != 0.0
+    tol = par[P_TOL]
+    dmax = par[P_DMAX]
+    k = 0
+    for s in range(ns):
+        a = sl_i[s, 1]
+        b = sl_i[s, 2]
+        if broad and free[a] != 0 and free[b] != 0:
+            v = sl_i[s, 0]
+            dx = vw[v, 0] - state[b, 0]
+            dy = vw[v, 1] - state[b, 1]
+            reach = radius[b] + dmax + tol + 2.0 * margin
+            if dx * dx + dy * dy > reach * reach:
+                continue
+        out[k] = s
+        k += 1
+    return out[:k].copy()
+
+
 @nb.njit(cache=True, inline="always")
 def _edge_frame(vw, edir, e, px, py):
     """Overlap of point p behind edge e (> 0 inside), its edge parameter in [0, 1] along
@@ -163,8 +206,21 @@ def _edge_frame(vw, edir, e, px, py):
     return overlap, spar, nx, ny, tx, ty, length
 
 
-@nb.njit(cache=True)
-def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
+@nb.njit(cache=True, inline="always")
+def _coinciding(px, py, s, vw, sl_i, sl_edge, tol):
+    """The first active slot among s's reverse slots whose corner (of the other block, in
+    contact with s's block) lies within ``tol`` of point p; -1 if none."""
+    for r in range(sl_i[s, 3], sl_i[s, 4]):
+        if sl_edge[r] >= 0:
+            q = sl_i[r, 0]
+            if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
+                return r
+    return -1
+
+
+@nb.njit(cache=True, inline="always")
+def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, cand, blocker,
+                    par, acc):
     """Drop contacts that opened or slid off their edge; create new ones (two passes, the
     lower-numbered block's vertices first; a vertex coinciding with an active vertex of the
     other block is skipped, so an edge-to-edge contact carries one contact per end).
@@ -174,11 +230,21 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
     best faces one of the two edges meeting at the vertex (most
     negative dot product of their directions; first such edge on ties): a corner lying in
     a corner of the other block touches the face it rests on, not the side it grazes.
+
+    With ``par[P_BROAD]`` = 1 a free corner is first tested against the other block's reach
+    (its bounding circle, ``radius`` about the centroid in ``state``, widened by dmax and the
+    contact tolerance: an accepted edge puts the corner within dmax of a point of that edge),
+    and a corner coinciding with an active corner of the other block is skipped before its
+    edges are scanned. Both only leave out corners that the scan would reject, so the contacts,
+    and every number after them, are the same bits as with 0 (every edge of every candidate
+    scanned, as :mod:`archquake.dem._reference` does). Only the slots listed in ``slots`` are
+    looked at (:func:`slots_in_reach`).
     """
     tol = par[P_TOL]
     dmax = par[P_DMAX]
-    ns = sl_i.shape[0]
-    for s in range(ns):
+    broad = par[P_BROAD] != 0.0
+    for k in range(slots.shape[0]):
+        s = slots[k]
         e = sl_edge[s]
         if e < 0:
             continue
@@ -195,8 +261,39 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
             sl_edge[s] = -1
             sl_f[s, F_FS] = 0.0
             sl_f[s, F_FN] = 0.0
+    # the free corners to scan: with the broad phase, those within reach of the other block and
+    # not on one of its active corners (contacts are only added below, so a corner skipped
+    # here would be skipped there too)
+    nc = 0
+    for k in range(slots.shape[0]):
+        s = slots[k]
+        if sl_edge[s] >= 0:
+            continue
+        if broad:
+            v = sl_i[s, 0]
+            b = sl_i[s, 2]
+            px = vw[v, 0]
+            py = vw[v, 1]
+            dx = px - state[b, 0]
+            dy = py - state[b, 1]
+            reach = radius[b] + dmax + tol
+            if dx * dx + dy * dy > reach * reach:
+                continue
+            # the corner that blocked it last time first (then the others: the same answer)
+            r = blocker[s]
+            if r >= 0 and sl_edge[r] >= 0:
+                q = sl_i[r, 0]
+                if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
+                    continue
+            r = _coinciding(px, py, s, vw, sl_i, sl_edge, tol)
+            if r >= 0:
+                blocker[s] = r
+                continue
+        cand[nc] = s
+        nc += 1
     for pas in range(2):
-        for s in range(ns):
+        for k in range(nc):
+            s = cand[k]
             if sl_edge[s] >= 0:
                 continue
             v = sl_i[s, 0]
@@ -227,14 +324,7 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
                         best_len = length
             if best < 0:
                 continue
-            blocked = False
-            for r in range(sl_i[s, 3], sl_i[s, 4]):
-                if sl_edge[r] >= 0:
-                    q = sl_i[r, 0]
-                    if math.sqrt((px - vw[q, 0]) ** 2 + (py - vw[q, 1]) ** 2) < tol:
-                        blocked = True
-                        break
-            if blocked:
+            if _coinciding(px, py, s, vw, sl_i, sl_edge, tol) >= 0:
                 continue
             # tributary length: half the shorter of the touched edge and the facing edge of a
             tx = edir[best, 0]
@@ -250,16 +340,18 @@ def update_contacts(vw, edir, vstart, sl_i, sl_edge, sl_f, par, acc):
             sl_f[s, F_FN] = 0.0
 
 
-@nb.njit(cache=True)
-def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce):
+@nb.njit(cache=True, inline="always")
+def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force, dforce):
     """Add the contact forces to ``force`` (elastic + friction) and ``dforce`` (viscous part of
-    the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid.
-    Returns the elastic energy stored in the contact springs, J."""
+    the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid, for
+    the active contacts among ``slots`` (every active one: :func:`slots_in_reach`). Returns the
+    elastic energy stored in the contact springs, J."""
     dt = par[P_DT]
     beta = par[P_BETA]
     mu = par[P_MU]
     strain = 0.0
-    for s in range(sl_i.shape[0]):
+    for k in range(slots.shape[0]):
+        s = slots[k]
         e = sl_edge[s]
         if e < 0:
             continue
@@ -317,7 +409,7 @@ def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce
     return strain
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     """One central-difference step from t_n: contacts at x^n, forces with the lagged velocities
     v^(n-1/2), then v^(n+1/2) and x^(n+1). ``work.record[i] = (x, y, theta, vx, vy, omega)``
@@ -335,17 +427,19 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     Returns the ground acceleration used, m/s^2."""
     state, mass, inertia, free = packed.state, packed.mass, packed.inertia, packed.free
     force, dforce, record = work.force, work.dforce, work.record
-    vw, edir = work.vw, work.edir
+    vw, edir, slots = work.vw, work.edir, work.slots
+    vstart, sl_i, sl_edge, sl_f = packed.vstart, packed.sl_i, packed.sl_edge, packed.sl_f
     dt = par[P_DT]
     g = par[P_G]
     alpha = par[P_ALPHA]
     nbk = state.shape[0]
-    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
-    update_contacts(vw, edir, packed.vstart, packed.sl_i, packed.sl_edge, packed.sl_f, par, acc)
+    world_vertices(state, packed.vloc, vstart, vw, edir)
+    update_contacts(state, packed.radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, work.cand,
+                    work.blocker, par, acc)
     force[:, :] = 0.0
     dforce[:, :] = 0.0
-    acc[A_SE] = contact_forces(state, vw, edir, packed.sl_i, packed.sl_edge, packed.sl_f, par,
-                               acc, force, dforce)
+    acc[A_SE] = contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force,
+                               dforce)
     ag = ground_acceleration(kind, gparams, t) if ground_on else 0.0
     vb_old = acc[A_VB]
     vb_new = vb_old + ag * dt
@@ -495,7 +589,8 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     ``span.out_every`` steps into ``out``. Returns (next global step, status): STATUS_DONE,
     STATUS_COLLAPSE (first output sample meeting a collapse criterion, when stopping at
     collapse) or STATUS_REBUILD (some block moved more than margin/2 from ``ref`` since the
-    neighbour lists were built).
+    neighbour lists were built). The steps look at the slots :func:`slots_in_reach` keeps for
+    the positions at the call (those of ``ref``).
 
     Parameters
     ----------
@@ -514,8 +609,13 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     dt = par[P_DT]
     g = par[P_G]
     nv = packed.vloc.shape[0]
-    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)),
-                   np.zeros((nv, 2)), np.zeros((nv, 3)))
+    vw = np.zeros((nv, 2))
+    edir = np.zeros((nv, 3))
+    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
+    slots = slots_in_reach(state, radius, free, vw, packed.sl_i, par, margin)
+    work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)), vw, edir, slots,
+                   np.zeros(slots.shape[0], dtype=np.int64),
+                   np.full(packed.sl_i.shape[0], -1, dtype=np.int64))
     record = work.record
     out_every = span.out_every
     out_t, out_state, out_energy, out_count = out.times, out.states, out.energies, out.written

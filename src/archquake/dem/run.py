@@ -119,7 +119,8 @@ def build_slots(packed: Packed, pairs: list[tuple[int, int]]) -> Packed:
     return packed._replace(sl_i=sl_i, sl_edge=sl_edge, sl_f=sl_f)
 
 
-def _params(assembly: Assembly, settings: DemSettings, dt: float, g: float) -> np.ndarray:
+def _params(assembly: Assembly, settings: DemSettings, dt: float, g: float, *,
+            broad_phase: bool = True) -> np.ndarray:
     law = settings.contact
     par = np.zeros(K.N_PAR)
     par[K.P_DT] = dt
@@ -130,6 +131,7 @@ def _params(assembly: Assembly, settings: DemSettings, dt: float, g: float) -> n
     par[K.P_KS] = float(law.shear_stiffness or law.normal_stiffness) * assembly.depth
     par[K.P_TOL] = contact_tolerance(assembly)
     par[K.P_DMAX] = 0.25 * assembly.min_edge
+    par[K.P_BROAD] = 1.0 if broad_phase else 0.0  # (K.update_contacts, K.slots_in_reach)
     return par
 
 
@@ -289,6 +291,7 @@ def simulate_dem(
     settings: DemSettings | None = None,
     *,
     g: float = STANDARD_GRAVITY,
+    broad_phase: bool = True,
 ) -> DemResult:
     """Run the distinct-element model of an arch (or any block assembly) under ``motion``.
 
@@ -302,6 +305,11 @@ def simulate_dem(
         Default ``DemSettings()`` (the paper's stiffness and damping).
     g : float
         Gravity, m/s^2.
+    broad_phase : bool
+        Leave out of the contact search the corners that cannot touch the other block (out of
+        its reach, or on one of its active corners). False scans every corner against every
+        edge of each neighbouring block: the same numbers, bit for bit, slower (for tests and
+        benchmarks).
 
     Returns
     -------
@@ -355,7 +363,7 @@ def simulate_dem(
     packed = pack(assembly)
     margin = 0.2 * float(packed.radius[packed.free == 1].min())
     packed = build_slots(packed, neighbour_pairs(packed, margin))
-    par = _params(assembly, settings, dt, g)
+    par = _params(assembly, settings, dt, g, broad_phase=broad_phase)
     acc = np.zeros(K.N_ACC)
     # the crown's drop is measured from its height at t = 0, after settling (set below)
     cpar = collapse_parameters(assembly, settings, math.nan)

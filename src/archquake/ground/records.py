@@ -229,6 +229,23 @@ class Record:
         f = require_finite("scale factor", factor)
         return replace(self, accelerations=f * self.accelerations, scale=f * self.scale)
 
+    def truncated(self, end: float) -> Record:
+        """The record's samples at t <= ``end`` (s, at least the first two); the acceleration
+        is zero after the last one kept. An ``end`` at or past ``duration`` keeps them all.
+
+        Examples
+        --------
+        >>> r = Record([0.0, 1.0, -2.0, 0.5], 0.5, name="toy")
+        >>> float(r.truncated(1.2).duration), float(r.truncated(9.0).duration)
+        (1.0, 1.5)
+        """
+        end = require_finite("end", end)
+        keep = max(2, min(self.points, int(math.floor(end / self.dt + 1e-9)) + 1))
+        if keep == self.points:
+            return self
+        return replace(self, accelerations=self.accelerations[:keep],
+                       metadata={**self.metadata, "truncated_at_s": self.dt * (keep - 1)})
+
     def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
         """Summary for JSON (the samples themselves are not included)."""
         return {
