@@ -260,3 +260,31 @@ def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path
     assert settled(dem_assembly(arch), STANDARD_GRAVITY, times, np.zeros_like(times),
                    motion.duration)
     assert data["cases"][0]["runs"][0]["dem_outcome"] == "survives"
+
+
+def test_the_rigid_ida_stops_at_the_scan_ceiling(tmp_path, monkeypatch):
+    """Under the rigid chain the assessment's IDA fills levels only up to
+    :func:`rigid_scan_ceiling` (1 g on the bridge: lambda 0.049 g, site PGA 0.15 g), not the
+    IDA's own 5 g. Measured on the bridge's 28 records (docs/notes/measurements.md): the same
+    28 first-collapse brackets and the same 5 records with resurrections at 1 g as at 5 g, with
+    1444 runs instead of 2324."""
+    from pathlib import Path
+
+    import archquake.ida as ida
+    from archquake.assess.sections import Context, Mode, rigid_scan_ceiling, run_ida
+
+    asked = {}
+
+    class Stop(Exception):
+        pass
+
+    def fake(*args, **kwargs):
+        asked.update(kwargs)
+        raise Stop
+
+    monkeypatch.setattr(ida, "incremental_dynamic_analysis", fake)
+    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    ctx = Context(cfg, cfg.build_arch(), Mode(True), tmp_path, tmp_path, {})
+    with pytest.raises(Stop):
+        run_ida(ctx, None)
+    assert asked["ceiling"] == rigid_scan_ceiling(0.0488, 0.15) == 1.0

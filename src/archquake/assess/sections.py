@@ -29,8 +29,14 @@ ASSUMPTIONS = ("rigid blocks", "no tension at the joints", "infinite compressive
 
 
 def rigid_scan_ceiling(lam_g: float, site_g: float | None) -> float:
-    """The ceiling of the rigid chain's domain scan in an assessment, g: max(1 g, 4 x the site
-    PGA, 6 lambda), at most 5 g (5 g without a site PGA).
+    """The ceiling of the rigid chain's scans in an assessment (its pulse domains and its IDA),
+    g: max(1 g, 4 x the site PGA, 6 lambda), at most 5 g (5 g without a site PGA).
+
+    In the IDA, every level above the first collapse is filled up to the ceiling (hunt-and-fill
+    looks for resurrections): up to 5 g that was 32 of the 40 levels of a record on the bridge
+    example (first collapse 0.107 g), 13 of them above 1 g, where nothing bears on a verdict at
+    a site PGA of 0.15 g. A record that does not collapse up to the ceiling is censored there
+    by the fragility fit, as before at 5 g.
 
     The coarse scan is geometric from lambda to its ceiling with a fixed number of magnitudes,
     so the ceiling sets its spacing. Up to 5 g, 8 magnitudes on the bridge example (lambda =
@@ -375,9 +381,15 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
     if cfg.model == "rigid":  # one threaded batch of verdicts per round, in this process
+        from archquake.limit import hinges_of
+        from archquake.limit.static import collapse_state
+
+        lam = float(collapse_state(hinges_of(ctx.arch))[0])
         with ResultStore(store_path) as store:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
-                                               model=cfg.model, **ctx.mode.ida)
+                                               model=cfg.model,
+                                               ceiling=rigid_scan_ceiling(lam, ctx.site),
+                                               **ctx.mode.ida)
     else:
         n = workers()
         with ResultStore(store_path) as store, interruptible_pool(n) as executor:
