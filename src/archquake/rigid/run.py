@@ -230,8 +230,11 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     solver : {"direct", "pgs", "events"}
         The contact step's solver: "direct" (default) solves the guessed active set exactly and
         falls back to Gauss-Seidel when the guess fails (``_step_kernels.project_direct``);
-        "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction`` the step
-        is always Gauss-Seidel. "events": the same model integrated from contact event to
+        "pgs", projected Gauss-Seidel alone, the plain reference. With ``friction``,
+        "direct" keeps the exact no-slip solution of a step where every joint's tangential
+        impulse lies in its Coulomb cone (every joint sticks) and runs Gauss-Seidel with the
+        Coulomb clamp only where a joint slips; "pgs" runs the clamped Gauss-Seidel at every
+        step. "events": the same model integrated from contact event to
         contact event (:mod:`archquake.rigid.events`; no friction, from rest;
         ``time_step`` and ``chunk`` are not used).
     until_rest : float, optional
