@@ -11,6 +11,9 @@ STAMP_RUN  := $(VENV)/.installed-run
 STAMP_TEST := $(VENV)/.installed-test
 # pytest-xdist workers for make test (one per core of the 2-core machines it is sized for)
 TEST_WORKERS ?= 2
+# archquake warm's workloads in two halves of about equal compile time, one process each
+WARM_A := events dem measures
+WARM_B := rigid verdicts four-link domains ida
 
 .PHONY: demo test bench lint clean
 
@@ -38,11 +41,15 @@ test: $(STAMP_TEST)
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null) || \
 		echo "note: chromium could not be installed; the report's browser test will skip"
 	$(BIN)/ruff check src tests benchmarks examples
-	@# mypy runs beside the suite (the last test files leave a core idle); both must pass
+	@# mypy runs beside everything else (it fills the cores the others leave idle); numba's
+	@# kernels are compiled once, by archquake warm in two processes (their workloads balanced),
+	@# before the test workers start: otherwise each worker compiles every kernel it calls
 	$(BIN)/mypy src/archquake > .mypy.out 2>&1 & mypy=$$!; \
+	$(BIN)/archquake warm --only $(WARM_A) & warm=$$!; \
+	$(BIN)/archquake warm --only $(WARM_B); warmed=$$?; wait $$warm || warmed=1; \
 	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile; tests=$$?; \
 	wait $$mypy; typing=$$?; cat .mypy.out; rm -f .mypy.out; \
-	test $$tests = 0 && test $$typing = 0
+	test $$warmed = 0 && test $$tests = 0 && test $$typing = 0
 
 bench: $(STAMP_RUN)
 	$(BIN)/python benchmarks/run_all.py

@@ -1,12 +1,19 @@
 """The quick assessment of examples/bridge.toml: every section present in the three outputs,
 every number checked against the API run again on the same input (the oracle: the library's
 own functions called directly, not through the assessment), the full mode's static numbers
-equal to the quick mode's, and a rerun served from the cache."""
+equal to the quick mode's, and a rerun served from the cache. The HTML report in headless
+Chromium, with the reproduction's browser helper: the seven sections in the DOM, every figure
+embedded as a PNG, a screenshot that is not blank (in this file, so that one test worker builds
+the assessment they share)."""
 
 from __future__ import annotations
 
+import base64
 import json
 import math
+import re
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,6 +22,11 @@ from archquake.assess import load_config
 from archquake.assess.sections import Context, Mode, prepared_mechanism, section_arch, section_static
 
 from .conftest import EXAMPLES
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reproduce"))
+from test_browser import CHROMIUM, _chromium  # noqa: E402  (the reproduction's helper)
+
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed")
 
 SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity", "codecheck")
 TITLES = ("1. The arch", "2. Static capacity", "3. Pulses", "4. Records", "5. The DEM check",
@@ -198,3 +210,32 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     for e in ida:
         assert f"{e['p_collapse_at_site']:.3f}" in md
     assert "P(collapse) of the records is" in res["verdict"]["text"]
+
+
+# ------------------------------------------------------------------ the report in a browser
+@needs_chromium
+def test_dom_has_every_section_and_embedded_figures(tmp_path, bridge):
+    _, _, out, _ = bridge
+    run = _chromium(tmp_path, "--dump-dom", (out / "report.html").as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    dom = run.stdout
+    for sid in ("arch", "static", "pulses", "records", "dem", "validity", "verdict"):
+        assert f'<section id="{sid}">' in dom, sid
+    srcs = re.findall(r'<img[^>]*src="(data:image/png;base64,[^"]+)"', dom)
+    assert len(srcs) == 6  # the five figures of the dynamics, and the code check's capacity curve
+    for s in srcs:
+        assert base64.b64decode(s.split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "src=\"figures/" not in dom and "http" not in dom.split("<body>")[1][:200]
+
+
+@needs_chromium
+def test_screenshot_is_not_blank(tmp_path, bridge):
+    from PIL import Image
+
+    _, _, out, _ = bridge
+    shot = tmp_path / "shot.png"
+    run = _chromium(tmp_path, f"--screenshot={shot}", "--window-size=1200,1600",
+                    (out / "report.html").as_uri())
+    assert run.returncode == 0 and shot.is_file(), run.stderr[-2000:]
+    img = np.asarray(Image.open(shot).convert("L"), dtype=float)
+    assert img.std() > 10 and len(np.unique(img)) > 50

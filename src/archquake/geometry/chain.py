@@ -244,12 +244,17 @@ def _overlap(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
     if np.any(hi - lo <= tol):
         return False
     for a, b in ((p, q), (q, p)):
-        inside = _points_inside(a, b, tol)
+        # a point farther than tol inside b lies farther than tol inside b's bounding box: only
+        # those points are tested (the same answer, far less work for the thousands of vertices
+        # of a sampled face)
+        near = np.all((a > b.min(axis=0) + tol) & (a < b.max(axis=0) - tol), axis=1)
+        inside = _points_inside(a[near], b, tol)
         if np.any(inside):
             return True
-    # proper crossings of edges
-    a0, a1 = p, np.roll(p, -1, axis=0)
-    b0, b1 = q, np.roll(q, -1, axis=0)
+    # proper crossings of edges: a crossing point lies on both edges, so in the boxes' overlap;
+    # only edges whose own box meets it (with a margin of tol for rounding) can cross
+    a0, a1 = _edges_meeting(p, lo - tol, hi + tol)
+    b0, b1 = _edges_meeting(q, lo - tol, hi + tol)
     da = (a1 - a0)[:, None, :]
     db = (b1 - b0)[None, :, :]
     w = b0[None, :, :] - a0[:, None, :]
@@ -259,6 +264,14 @@ def _overlap(p: np.ndarray, q: np.ndarray, tol: float) -> bool:
         u = (w[..., 0] * da[..., 1] - w[..., 1] * da[..., 0]) / den
     eps = 1e-9
     return bool(np.any((np.abs(den) > 0) & (s > eps) & (s < 1 - eps) & (u > eps) & (u < 1 - eps)))
+
+
+def _edges_meeting(poly: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The edges of ``poly`` (start points, end points) whose bounding boxes meet the box
+    [lo, hi]."""
+    end = np.roll(poly, -1, axis=0)
+    meets = np.all((np.maximum(poly, end) >= lo) & (np.minimum(poly, end) <= hi), axis=1)
+    return poly[meets], end[meets]
 
 
 def _points_inside(points: np.ndarray, poly: np.ndarray, tol: float) -> np.ndarray:

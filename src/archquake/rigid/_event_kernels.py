@@ -110,6 +110,8 @@ ZENO_WINDOW = 0.01
 #: Active sets the exact impact solve may try before Gauss-Seidel (its guess: every touching
 #: corner pushes, and an impact releases many of them).
 IMPACT_ACTIVE_SETS = 30
+#: Gauss-Seidel sweeps the contact solves (onset and impacts) may run after their active sets.
+SOLVE_SWEEPS = 100_000
 #: Resuming from block positions: a joint open by more than RESUME_GAP L is a hinge; a closed
 #: joint whose corners move at more than RESUME_SPEED sqrt(g L) relative to each other too.
 RESUME_GAP = 1.0e-7
@@ -1055,6 +1057,12 @@ def run(chain, span, state, output, written):
     weight = g * S0[n]
     ftol = 1e-9
     ang_tol = 1e-13
+    # the contact solve's limits as run-time integers: a literal constant argument would compile
+    # a copy of the solver specialised to it (11 s each), where these share the one compiled
+    # for the onset search of :mod:`archquake.rigid.events`
+    max_sweeps = np.int64(SOLVE_SWEEPS)
+    onset_sets = np.int64(RK.ACTIVE_SET_ITERATIONS)
+    impact_sets = np.int64(IMPACT_ACTIVE_SETS)
     gap_tol = 1e-9 * lref
     ev_ring = np.full(CHATTER_EVENTS, -math.inf)
     ev_pos = 0
@@ -1116,7 +1124,7 @@ def run(chain, span, state, output, written):
         if K == 0:
             t_on = onset_time(kind, gp, t, t_end, lam_pos, lam_neg)
             t_stop = min(t_on, t_end)
-            written, col = _emit(t_stop, written, cap, dt_out, y, f0, y, f0, t, 0.0, 0, jh, ch,
+            written, col = _emit(t_stop, written, cap, dt_out, y, f0, y, f0, t, 0.0, K, jh, ch,
                                  p0, lg0, lm, li, X0, ws, n, g, diag, out_q, out_v, out_e,
                                  state_all, freemap, free, cpar, stop_at_collapse, yo)
             if t_on >= t_end:
@@ -1138,14 +1146,15 @@ def run(chain, span, state, output, written):
             gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
             acc, imp, _, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
                                                gap_tol, np.zeros((nj, 3)),
-                                               1e-13 * math.sqrt(g * lref), 100000, 0.0)
+                                               1e-13 * math.sqrt(g * lref), max_sweeps, 0.0,
+                                               onset_sets)
             beta_j[:] = 0.0
             K2, ok = modes_after_projection(qf, acc, beta_j, sg, ja, jb, arm_a, arm_b, nrm, 1e-7,
                                             1e-7 * (g + abs(ax)), jh2, ch2, rates,
                                             1e-9 * g / lref)
             counters[N_ONSETS] += 1
             if not ok or K2 > MX:
-                return STATUS_FALLBACK, _fallback(0, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
+                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
                                                   WHY_SEPARATION, t, tt, st, diag), written
             if K2 < kmin:
                 t += 1e-9  # no motion after all (at the threshold): keep scanning
@@ -1342,8 +1351,8 @@ def run(chain, span, state, output, written):
                 # the tensile ones)
                 vn, imp, nsolve, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm,
                                                        tan, pts, gap_tol, p_guess,
-                                                       1e-11 * math.sqrt(g * lref), 100000, 0.0,
-                                                       IMPACT_ACTIVE_SETS)
+                                                       1e-11 * math.sqrt(g * lref), max_sweeps,
+                                                       0.0, impact_sets)
                 counters[N_SOLVES] += nsolve
                 K2, ok = modes_after_projection(qf, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm,
                                                 1e-8, 1e-7 * max(vscale, 1e-300), jh2, ch2,

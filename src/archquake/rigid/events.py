@@ -143,7 +143,7 @@ class EventModel:
         acc, _, _, _ = RK.project_direct(q, a, 1.0 / self.mb, 1.0 / self.ib, r.ja, r.jb, gaps,
                                          nrm, tan, pts, 1e-9 * self.lref,
                                          np.zeros((len(r.ja), 3)), 1e-13 * math.sqrt(self.lref),
-                                         100_000, 0.0)
+                                         EK.SOLVE_SWEEPS, 0.0, RK.ACTIVE_SET_ITERATIONS)
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
         k, _ = EK.modes_after_projection(q, acc, np.zeros(nj), self.sg, r.ja, r.jb, r.arm_a,
