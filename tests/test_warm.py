@@ -157,3 +157,14 @@ def test_after_warm_every_kernel_is_cached_and_no_command_compiles(tmp_path):
         assert "[cache] index loaded" in trace, argv  # the command ran a kernel
         compiled = [line for line in trace.splitlines() if "data saved" in line]
         assert compiled == [], (argv, compiled)
+
+
+def test_make_test_warms_every_workload_once():
+    """``make test`` warms numba's cache in two processes before the test workers start
+    (``WARM_A`` and ``WARM_B`` in the Makefile): together they name every workload of
+    :data:`archquake.warm.WORKLOADS`, each once, so a new workload cannot be left out."""
+    text = (Path(__file__).resolve().parents[1] / "Makefile").read_text()
+    halves = [re.search(rf"^{name}\s*:=\s*(.*)$", text, re.M) for name in ("WARM_A", "WARM_B")]
+    assert all(halves), "WARM_A and WARM_B are defined in the Makefile"
+    names = [n for m in halves if m for n in m.group(1).split()]
+    assert sorted(names) == sorted(warm_module.WORKLOADS)
