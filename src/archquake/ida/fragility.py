@@ -29,7 +29,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special, stats
 
 from archquake._validate import require_int, require_range
 from archquake.errors import InvalidParameterError
@@ -194,7 +194,10 @@ def _mle_fraction(levels: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[flo
     def nll(p):
         mu, lb = p
         s = (lx - mu) / math.exp(lb)
-        return -float(np.sum(z * stats.norm.logcdf(s) + (n - z) * stats.norm.logsf(s)))
+        # log Phi(s) and log(1 - Phi(s)): scipy.stats.norm's logcdf and logsf are these
+        # ufuncs behind a generic wrapper that cost 10x more (the bootstrap refits this
+        # likelihood some 80 000 times)
+        return -float(np.sum(z * special.log_ndtr(s) + (n - z) * special.log_ndtr(-s)))
 
     res = optimize.minimize(nll, [mu0, math.log(beta0)], method="Nelder-Mead",
                             options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
