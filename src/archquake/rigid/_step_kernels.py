@@ -840,16 +840,12 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             break
     sweeps = 0
     change = 0.0
+    sweep = False
     if accepted and mu > 0.0 and not _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
         # a joint's tangential impulse outside its Coulomb cone: the joint slips. Gauss-Seidel
         # with the clamp, from the no-slip impulses clamped into the cones
         _clamp_to_cone(nrows, rows_j, rows_k, p, mu)
-        _copy3(v, v_free)
-        for r in range(nrows):
-            if p[r] != 0.0:
-                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
-        sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
-                              inv_i, tol, max_iter, mu, target)
+        sweep = True
     elif not accepted:
         # Gauss-Seidel from the previous step's impulses, not from the last set tried (after
         # many sets those can be far off, and the sweeps then take thousands of passes)
@@ -857,6 +853,8 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
             p[r] = pw[r]
             if rows_k[r] < 2 and p[r] < 0.0:
                 p[r] = 0.0
+        sweep = True
+    if sweep:
         _copy3(v, v_free)
         for r in range(nrows):
             if p[r] != 0.0:
