@@ -241,3 +241,49 @@ def test_a_position_beyond_the_span_is_refused():
     with pytest.raises(InvalidParameterError, match="traffic position must be from 0 to the "
                                                     "clear span"):
         traffic_capacity(BRIDGE, Loads(), Traffic(1e3, 20.0))
+
+
+# ------------------------------------------------------------------ surveys and study files
+def test_a_surveyed_arch_carries_the_same_loads():
+    """Oracle: the same arch given as blocks (a survey) and as the circular closed form: the
+    same lambda and capacity with a fill level and a point load by position (1e-6: the survey's
+    outlines are the sampled arcs, its mass properties the polygons')."""
+    from archquake.geometry.survey import chain_from_polygons
+
+    survey = chain_from_polygons(BRIDGE.block_polygons, depth=1.0, density=1800.0)
+    level = BRIDGE.extrados_radius + 0.7
+    for arch in (BRIDGE, survey):
+        assert Loads(fill=Fill(level=level)).fill.surface(arch) == pytest.approx(level)
+    loads_a = Loads(fill=Fill(depth=0.7), point_loads=(PointLoad(6.5, 20e3),))
+    loads_s = Loads(fill=Fill(level=level), point_loads=(PointLoad(6.5, 20e3),))
+    a = limit_analysis(BRIDGE, method="both", loads=loads_a)
+    s = limit_analysis(survey, method="both", loads=loads_s)
+    assert s.collapse_acceleration_g == pytest.approx(a.collapse_acceleration_g, rel=1e-6)
+    assert s.mechanism.joints == a.mechanism.joints
+    ca = traffic_capacity(BRIDGE, loads_a, Traffic(80e3, 3.0, dispersion=30.0))
+    cs = traffic_capacity(survey, loads_s, Traffic(80e3, 3.0, dispersion=30.0))
+    assert cs.multiplier == pytest.approx(ca.multiplier, rel=1e-6)
+    with pytest.raises(InvalidParameterError, match="fill level must be at or above"):
+        Fill(level=level - 1.0).surface(survey)
+
+
+def test_a_loads_table_reads_the_clis_units():
+    from archquake.errors import StudyFileError
+    from archquake.geometry.loads import loads_from_table
+
+    loads = loads_from_table({
+        "fill_depth": 1.0, "fill_density": 1900, "backing": 1.2, "backing_right": 0.8,
+        "point_loads": [{"position": 7.0, "load_kN": 30.0, "moves_with_arch": False}],
+        "distributed_loads": [{"start": 1.0, "end": 3.0, "load_kN_m": 10.0}],
+        "traffic": {"patch_kN": 100.0, "patch_length": 0.3, "position": 2.5,
+                    "dispersion_deg": 26.57}})
+    assert loads.fill == Fill(depth=1.0, density=1900.0)
+    assert loads.backing == Backing(1.2, 0.8)
+    assert loads.point_loads == (PointLoad(7.0, 30e3, False),)
+    assert loads.distributed_loads == (DistributedLoad(1.0, 3.0, 10e3),)
+    assert loads.traffic == Traffic(100e3, 2.5, 0.3, 26.57)
+    for table, key in (({"fill_depth": -1}, "fill depth"), ({"fil_depth": 1}, "fil_depth"),
+                       ({"traffic": {"axle_kN": 1, "patch_kN": 2}}, "traffic"),
+                       ({"point_loads": [{"position": 1}]}, "point_loads")):
+        with pytest.raises(StudyFileError, match=r"\[loads\].*" + key):
+            loads_from_table(table)

@@ -563,7 +563,121 @@ def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
     return force, moment, [(a, b)]
 
 
+# ---------------------------------------------------------------------------------------------
+# A study file's [loads] table
+# ---------------------------------------------------------------------------------------------
+
+#: The keys of a study file's ``[loads]`` table (units as on the command line).
+LOADS_KEYS = ("fill_depth", "fill_level", "fill_density", "backing", "backing_right",
+              "point_loads", "distributed_loads", "traffic")
+#: Keys of ``[loads] traffic``.
+TRAFFIC_KEYS = ("axle_kN", "patch_kN", "patch_length", "position", "dispersion_deg")
+
+
+def loads_from_table(table: object, *, source: str = "study file") -> Loads:
+    """The loads of a study file's ``[loads]`` table, in the command line's units::
+
+        [loads]
+        fill_depth = 1.0          # m over the crown's extrados (or fill_level = y, m)
+        fill_density = 1800       # kg/m^3 (default 1800)
+        backing = 1.2             # m above each springing (backing_right = m if it differs)
+        point_loads = [{position = 7.0, load_kN = 30.0, moves_with_arch = false}]
+        distributed_loads = [{start = 1.0, end = 3.0, load_kN_m = 10.0}]
+        traffic = {axle_kN = 100.0, position = 2.5, dispersion_deg = 26.57}
+
+    Loads are per metre of barrel width. Every problem is one
+    :class:`~archquake.errors.StudyFileError` naming the key as the file spells it.
+
+    Examples
+    --------
+    >>> loads_from_table({"fill_depth": 1.0, "traffic": {"axle_kN": 100.0}}).traffic.load
+    100000.0
+    """
+    from archquake.errors import ArchquakeError, StudyFileError
+
+    def fail(key: str, what: str) -> StudyFileError:
+        return StudyFileError(f"{source}: [loads] {key}: {what}")
+
+    if not isinstance(table, dict):
+        raise StudyFileError(f"{source}: [loads] must be a table")
+    unknown = sorted(set(table) - set(LOADS_KEYS))
+    if unknown:
+        raise fail(unknown[0], f"unknown key; the keys are {', '.join(LOADS_KEYS)}")
+
+    def num(key: str, value: object) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise fail(key, f"expected a number, got {value!r}")
+        return float(value)
+
+    def entries(key: str, keys: tuple[str, ...], required: tuple[str, ...]) -> list[dict]:
+        items = table.get(key, [])  # type: ignore[union-attr]
+        if not isinstance(items, list) or not all(isinstance(i, dict) for i in items):
+            raise fail(key, "expected a list of tables")
+        for i, item in enumerate(items):
+            extra = sorted(set(item) - set(keys))
+            missing = [k for k in required if k not in item]
+            if extra or missing:
+                raise fail(f"{key}[{i}]", f"expected the keys {', '.join(keys)}"
+                           + (f"; {missing[0]} is missing" if missing else ""))
+        return items
+
+    try:
+        fill = None
+        density = num("fill_density", table.get("fill_density", 1800.0))
+        if "fill_depth" in table and "fill_level" in table:
+            raise fail("fill_depth", "give fill_depth or fill_level, not both")
+        if "fill_depth" in table:
+            fill = Fill(depth=num("fill_depth", table["fill_depth"]), density=density)
+        elif "fill_level" in table:
+            fill = Fill(level=num("fill_level", table["fill_level"]), density=density)
+        elif "fill_density" in table:
+            raise fail("fill_density", "applies to a fill: add fill_depth")
+        backing = None
+        if "backing" in table:
+            right = table.get("backing_right")
+            backing = Backing(num("backing", table["backing"]),
+                              None if right is None else num("backing_right", right))
+        elif "backing_right" in table:
+            raise fail("backing_right", "needs backing (the left one's height)")
+        points = tuple(
+            PointLoad(num("point_loads position", p["position"]),
+                      1e3 * num("point_loads load_kN", p["load_kN"]),
+                      bool(p.get("moves_with_arch", True)))
+            for p in entries("point_loads", ("position", "load_kN", "moves_with_arch"),
+                             ("position", "load_kN")))
+        spread = tuple(
+            DistributedLoad(num("distributed_loads start", d["start"]),
+                            num("distributed_loads end", d["end"]),
+                            1e3 * num("distributed_loads load_kN_m", d["load_kN_m"]),
+                            bool(d.get("moves_with_arch", True)))
+            for d in entries("distributed_loads", ("start", "end", "load_kN_m",
+                                                   "moves_with_arch"),
+                             ("start", "end", "load_kN_m")))
+        traffic = None
+        if "traffic" in table:
+            t = table["traffic"]
+            if not isinstance(t, dict) or set(t) - set(TRAFFIC_KEYS):
+                raise fail("traffic", f"expected a table of {', '.join(TRAFFIC_KEYS)}")
+            if ("axle_kN" in t) == ("patch_kN" in t):
+                raise fail("traffic", "give axle_kN or patch_kN (with patch_length)")
+            if "patch_kN" in t and "patch_length" not in t:
+                raise fail("traffic", "patch_kN needs patch_length (m)")
+            load = num("traffic", t.get("axle_kN", t.get("patch_kN")))
+            disp = t.get("dispersion_deg")
+            traffic = Traffic(1e3 * load, num("traffic position", t.get("position", 0.0)),
+                              num("traffic patch_length", t.get("patch_length", 0.0)),
+                              None if disp is None else num("traffic dispersion_deg", disp))
+    except StudyFileError:
+        raise
+    except ArchquakeError as exc:
+        raise StudyFileError(f"{source}: [loads] {exc}") from None
+    return Loads(fill, backing, points, spread, traffic)
+
+
 __all__ = [
+    "LOADS_KEYS",
+    "TRAFFIC_KEYS",
+    "loads_from_table",
     "Backing",
     "BlockExtras",
     "DistributedLoad",
