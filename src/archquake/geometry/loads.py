@@ -610,7 +610,7 @@ def loads_from_table(table: object, *, source: str = "study file") -> Loads:
         return float(value)
 
     def entries(key: str, keys: tuple[str, ...], required: tuple[str, ...]) -> list[dict]:
-        items = table.get(key, [])  # type: ignore[union-attr]
+        items = table.get(key, [])
         if not isinstance(items, list) or not all(isinstance(i, dict) for i in items):
             raise fail(key, "expected a list of tables")
         for i, item in enumerate(items):
