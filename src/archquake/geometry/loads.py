@@ -43,6 +43,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -272,10 +273,10 @@ class Loads:
 # ---------------------------------------------------------------------------------------------
 
 
-def _extrados_path(arch: VoussoirChain, k: int) -> np.ndarray:
-    """The extrados edge of block k, from the extrados end of joint k to that of joint k+1
-    (the block outline's vertices between them), m, shape (m, 2)."""
-    poly = np.asarray(arch.block_polygons[k], dtype=float)
+def _extrados_path(arch: VoussoirChain, k: int, outline: np.ndarray) -> np.ndarray:
+    """The extrados edge of block k (``outline``), from the extrados end of joint k to that of
+    joint k+1 (the outline's vertices between them), m, shape (m, 2)."""
+    poly = np.asarray(outline, dtype=float)
     if polygon_area(poly) < 0:
         poly = poly[::-1]
     ep = arch.extrados_points
@@ -311,10 +312,20 @@ class Extrados:
 
     @classmethod
     def of(cls, arch: VoussoirChain) -> Extrados:
+        """The extrados of ``arch`` (built once per arch: arches are frozen)."""
+        try:
+            hash(arch)
+        except TypeError:
+            return cls._build(arch)
+        return _memoised_extrados(arch)
+
+    @classmethod
+    def _build(cls, arch: VoussoirChain) -> Extrados:
         if arch.__class__.__name__ == "OnPiers":
             raise InvalidParameterError("loads on an arch standing on piers are not modelled; "
                                         "leave the piers out")
-        paths = tuple(_extrados_path(arch, k) for k in range(arch.voussoirs))
+        outlines = arch.block_polygons
+        paths = tuple(_extrados_path(arch, k, outlines[k]) for k in range(arch.voussoirs))
         x = np.concatenate([p[:, 0] for p in paths])
         if np.any(np.diff(x) < -1e-9 * max(1.0, float(np.ptp(x)))):
             raise InvalidParameterError(
@@ -359,6 +370,13 @@ class Extrados:
         xs = np.unique(np.concatenate([[a, b], pts[(pts[:, 0] > a) & (pts[:, 0] < b), 0]]))
         ys = np.interp(xs, pts[:, 0], pts[:, 1])
         return float(np.trapezoid(ys, xs) / (b - a))
+
+
+def _extrados_of(arch: VoussoirChain) -> Extrados:
+    return Extrados._build(arch)
+
+
+_memoised_extrados = functools.lru_cache(maxsize=32)(_extrados_of)
 
 
 # ---------------------------------------------------------------------------------------------
