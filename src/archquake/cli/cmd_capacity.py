@@ -61,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidParameterError("--positions sets a scan; drop it with --position")
     scan = None
     if args.position is not None:
-        result = traffic_capacity(arch, loads, _at(traffic, args), method=args.method)
+        result = traffic_capacity(arch, loads, _at(arch, traffic, args), method=args.method)
     else:
         scan = capacity_scan(arch, loads, traffic, args.positions or 50, method=args.method)
         result = scan.critical
@@ -78,11 +78,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _at(traffic, args):
+def _at(arch, traffic, args):
     from archquake._validate import check_range
-    from archquake.geometry.loads import MAX_LOAD_LENGTH_M
+    from archquake.geometry.loads import Extrados
 
-    check_range("--position", args.position, 0.0, MAX_LOAD_LENGTH_M, "m")
+    span = Extrados.of(arch).clear_span
+    check_range("--position", args.position, 0.0, span, "m",
+                hint=f"positions run along the clear span, {span:.4g} m, from the left "
+                     "springing of the intrados")
     return traffic.at(args.position)
 
 

@@ -23,7 +23,7 @@ import numpy as np
 
 from archquake._validate import require_instance
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import InvalidParameterError
+from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.geometry.loads import BlockExtras, Extrados, Loads, Traffic, block_extras, traffic_actions
@@ -161,8 +161,10 @@ class CapacityScan:
     positions_m : ndarray, shape (p,)
         Along the clear span from the left intrados springing, m.
     multipliers : ndarray, shape (p,)
+        inf where the load drives no mechanism (near a springing it only lifts the arch:
+        no multiplier collapses it).
     hinges : ndarray of int, shape (p, 4)
-        The collapse mechanism's joints at each position.
+        The collapse mechanism's joints at each position (-1 where there is none).
     critical : TrafficCapacity
         At the position of least multiplier, with both bounds checked where the kinematic
         method applies.
@@ -186,7 +188,9 @@ class CapacityScan:
         return {"critical_position_m": self.critical.traffic.position,
                 "adequacy_factor": self.adequacy_factor,
                 "critical": self.critical.to_dict(),
-                "scan": {"position_m": self.positions_m, "multiplier": self.multipliers,
+                "scan": {"position_m": self.positions_m,
+                         "multiplier": [float(m) if np.isfinite(m) else None
+                                        for m in self.multipliers],
                          "hinge_joints": self.hinges}}
 
 
@@ -195,16 +199,28 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
                   g: float = STANDARD_GRAVITY) -> CapacityScan:
     """The multiplier of ``traffic`` moved along the span.
 
-    Parameters
-    ----------
-    positions : int or array_like
-        Positions along the clear span, m, or how many evenly spaced ones from one springing
-        to the other.
-
     The dead loads and the mechanisms are built once; at each position the kinematic
     enumeration (up to :data:`~archquake.limit.kinematic.MAX_KINEMATIC_VOUSSOIRS` voussoirs)
     or the linear program gives mu. The critical position is then analysed again by
     :func:`traffic_capacity` (both bounds where they apply).
+
+    Parameters
+    ----------
+    arch : VoussoirChain
+    loads : Loads
+        The dead loads (a traffic in it is ignored).
+    traffic : Traffic
+        The load moved; its own position is ignored.
+    positions : int or array_like
+        Positions along the clear span, m, or how many evenly spaced ones from one springing
+        to the other.
+    method : {"auto", "static", "kinematic", "both"}
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    CapacityScan
     """
     require_instance("loads", loads, Loads, "a Loads")
     require_instance("traffic", traffic, Traffic, "a Traffic")
@@ -236,17 +252,27 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
         live_f, live_m, _ = traffic_actions(arch, dead, traffic.at(float(s)))
         case = LoadCase(arch, base.dead_force, base.dead_moment, live_f, live_m, base.held)
         if chosen == "static":
-            res = loaded_collapse(case, "static")
+            try:
+                res = loaded_collapse(case, "static")
+            except ArchquakeError as exc:
+                if "no collapse mechanism" not in str(exc):
+                    raise
+                mus[i], hinges[i] = np.inf, -1
+                continue
             mus[i], hinges[i] = res.multiplier, res.mechanism.joints
             continue
         p_live = _powers(mechs, live_f, live_m)
         ok = p_live > 1e-12 * float(np.max(np.abs(p_live), initial=0.0))
-        if not np.any(ok):
-            raise InvalidParameterError(f"no mechanism is driven by the traffic at {s:g} m")
+        if not np.any(ok):  # the load only lifts or holds every mechanism: it cannot collapse
+            mus[i], hinges[i] = np.inf, -1
+            continue
         cand = np.where(ok, -p_dead / np.where(ok, p_live, 1.0), np.inf)
         k = int(np.argmin(cand))
         mus[i], _ = collapse_forces(case, mechs.mechanism(k, arch))
         hinges[i] = mechs.joints[k]
+    if not np.any(np.isfinite(mus)):
+        raise ArchquakeError("the traffic load cannot collapse the arch at any position of the "
+                             "scan (every mechanism it drives is held by the dead loads)")
     crit = traffic_capacity(arch, dead, traffic.at(float(pos[int(np.argmin(mus))])),
                             method=chosen, g=g)
     return CapacityScan(pos, mus, hinges, crit)
