@@ -74,3 +74,14 @@ def test_bad_loads_exit_2_with_one_line(capsys, argv, message):
     assert cli_main.main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_check_with_fill_counts_the_fill(capsys):
+    """archquake check with --fill-depth: alpha0 is the loaded collapse multiplier and the
+    JSON lists the loads (C8.7.1: every carried mass)."""
+    out = _json(capsys, ["check", *BRIDGE, "--fill-depth", "1", "--code", "ntc2018", "--ag",
+                         "0.15", "--f0", "2.45", "--tc-star", "0.3", "--soil", "B"])
+    api = limit_analysis(ARCH, method="both", loads=Loads(fill=Fill(depth=1.0)))
+    assert out["capacity_curve"]["alpha0"] == pytest.approx(api.collapse_acceleration_g,
+                                                            rel=1e-10)
+    assert out["loads"]["fill"]["depth_m"] == 1.0
