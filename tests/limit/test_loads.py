@@ -287,3 +287,18 @@ def test_a_loads_table_reads_the_clis_units():
                        ({"point_loads": [{"position": 1}]}, "point_loads")):
         with pytest.raises(StudyFileError, match=r"\[loads\].*" + key):
             loads_from_table(table)
+
+
+def test_min_thickness_with_fill():
+    """Oracle: the bare minimum thickness without loads (to the bisection's 1e-7), and the
+    definition: at t_min a line of thrust fits with the fill, 0.1 % thinner it does not."""
+    from archquake.limit import min_thickness
+    from archquake.limit.loaded import seismic_case, stands
+
+    bare = min_thickness(BRIDGE)
+    assert min_thickness(BRIDGE, loads=Loads()) == pytest.approx(bare, rel=1e-6)
+    loads = fill(1.0)
+    t_min = min_thickness(BRIDGE, loads=loads)
+    assert t_min < 0.9 * bare  # the haunch fill helps this semicircle (0.087 R against 0.106 R)
+    assert stands(seismic_case(BRIDGE.with_thickness(t_min), loads))
+    assert not stands(seismic_case(BRIDGE.with_thickness(0.999 * t_min), loads))
