@@ -27,7 +27,7 @@ def test_static_with_fill_is_the_api_in_the_clis_units(capsys):
     out = _json(capsys, ["static", *BRIDGE, "--fill-depth", "1", "--fill-density", "1800"])
     api = limit_analysis(ARCH, method="both", loads=Loads(fill=Fill(depth=1.0, density=1800.0)))
     assert out["collapse_acceleration_g"] == pytest.approx(api.collapse_acceleration_g, rel=1e-12)
-    assert out["loads"]["passive_pressure"] == "not modelled"
+    assert out["loads"]["passive_pressure"] == "off (not modelled)"
     assert out["collapse_acceleration_towards_minus_x_g"] == pytest.approx(
         api.collapse_acceleration_g, rel=1e-9)
     assert len(out["carried"]["carried_mass_kg"]) == 15
@@ -69,6 +69,13 @@ def test_capacity_scan_reports_the_critical_position(capsys, tmp_path):
     (["capacity", *BRIDGE, "--axle", "100", "--dispersion", "90"], "--dispersion must be in"),
     (["capacity", *BRIDGE, "--axle", "100", "--position", "1", "--positions", "5"],
      "--positions sets a scan"),
+    (["static", *BRIDGE, "--passive", "0.3"], "--passive needs a fill"),
+    (["static", *BRIDGE, "--fill-depth", "1", "--fill-friction", "30"],
+     "--fill-friction applies to --passive"),
+    (["static", *BRIDGE, "--fill-depth", "1", "--passive", "1.5"], "--passive must be in (0, 1]"),
+    (["check", *BRIDGE, "--fill-depth", "1", "--passive", "0.3", "--code", "ntc2018", "--ag",
+      "0.15", "--f0", "2.45", "--tc-star", "0.3", "--soil", "B"],
+     "the code check does not model passive fill pressure"),
 ])
 def test_bad_loads_exit_2_with_one_line(capsys, argv, message):
     assert cli_main.main(argv) == 2
@@ -96,3 +103,15 @@ def test_min_thickness_with_fill(capsys):
     assert out["min_thickness_m"] == pytest.approx(
         min_thickness(probe, loads=Loads(fill=Fill(depth=1.0))), rel=1e-12)
     assert cli_main.main(["min-thickness", "--fill-depth", "1"]) == 2
+
+
+def test_passive_pressure_is_stated_and_used(capsys):
+    from archquake.geometry.loads import Passive
+
+    out = _json(capsys, ["static", *BRIDGE, "--fill-depth", "0.5", "--passive", "0.33"])
+    api = limit_analysis(ARCH, method="both",
+                         loads=Loads(fill=Fill(depth=0.5), passive=Passive(0.33, 30.0)))
+    assert out["collapse_acceleration_g"] == pytest.approx(api.collapse_acceleration_g, rel=1e-12)
+    assert out["loads"]["passive_pressure"]["fraction_of_kp"] == 0.33
+    off = _json(capsys, ["static", *BRIDGE, "--fill-depth", "0.5"])
+    assert off["loads"]["passive_pressure"] == "off (not modelled)"

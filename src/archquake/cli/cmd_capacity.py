@@ -14,7 +14,12 @@ from archquake.cli.common import (
     print_json,
     ranged_whole,
 )
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args, traffic_from_args
+from archquake.cli.loads_options import (
+    add_loads_arguments,
+    loads_from_args,
+    passive_text,
+    traffic_from_args,
+)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.loads import Loads
 from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS
@@ -29,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
             "The multiplier on a traffic load (an axle or a patch, kN per metre of barrel "
             "width) that turns the arch, with its fill, backing and loads, into a four-hinge "
             "mechanism (rigid blocks, no tension, no sliding, no crushing; the fill is dead "
-            "weight, without passive pressure, so the capacity is on the safe side of it). "
+            "weight, and resists passively only with --passive). "
             "With --position: at that position; otherwise the load is moved along the clear "
             "span and the critical position is reported, with its multiplier: the adequacy "
             "factor. Positions in m from the left springing of the intrados."),
@@ -119,5 +124,5 @@ def format_capacity(result, scan=None) -> str:
     if held:
         lines.append(f"joints held by the backing: {held}")
     lines.append("assumptions: rigid blocks, no tension, no sliding or crushing; fill as dead "
-                 "weight in columns; passive fill pressure not modelled")
+                 f"weight in columns; {passive_text(result.loads)}")
     return "\n".join(lines)

@@ -6,7 +6,7 @@ import argparse
 import math
 
 from archquake.cli.common import number, print_json, whole
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args
+from archquake.cli.loads_options import add_loads_arguments, loads_from_args, passive_text
 from archquake.errors import InvalidParameterError
 from archquake.geometry.checks import (
     MAX_EMBRACE_DEG,
@@ -96,7 +96,7 @@ def _run_shape(args: argparse.Namespace) -> int:
         print_json(out)
         return 0
     carried = "self-weight only" if loads is None else (
-        "self-weight and the loads it carries; passive fill pressure not modelled")
+        f"self-weight and the loads it carries; {passive_text(loads)}")
     print(f"minimum thickness: t_min = {t_min:.5g} m (t_min / R = {t_min / arch.radius:.5f}, R = "
           f"{arch.radius:.5g} m the characteristic length; {carried})")
     if args.thickness is not None:

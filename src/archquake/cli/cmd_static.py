@@ -11,7 +11,7 @@ from archquake.cli.common import (
     describe_arch,
     print_json,
 )
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args
+from archquake.cli.loads_options import add_loads_arguments, loads_from_args, passive_text
 from archquake.errors import InvalidParameterError
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
@@ -118,6 +118,6 @@ def loads_lines(result) -> list[str]:
                    + ("" if d.moves_with_arch else " (its mass does not move)"))
     out.append(f"mass carried by the blocks (fill and loads that move with the arch): "
                f"{carried.mass.sum():.6g} kg, beside the ring's {result.arch.mass:.6g} kg")
-    out.append("passive fill pressure: not modelled")
+    out.append(passive_text(loads))
     return out
 

@@ -17,6 +17,7 @@ from archquake.geometry.loads import (
     DistributedLoad,
     Fill,
     Loads,
+    Passive,
     PointLoad,
     Traffic,
 )
@@ -56,7 +57,7 @@ def add_loads_arguments(parser: argparse.ArgumentParser, *, traffic: bool = Fals
     g = parser.add_argument_group(
         "loads the arch carries (m, kg/m^3; loads in kN per metre of barrel width; positions "
         "along the clear span from the left springing of the intrados; passive fill pressure "
-        "is not modelled)")
+        "off unless --passive)")
     g.add_argument("--fill-depth", type=number, default=None, metavar="M",
                    help="fill over the arch: depth of its horizontal surface above the crown of "
                         f"the extrados, m (0 to {MAX_LOAD_LENGTH_M:g}); each block carries the "
@@ -82,6 +83,13 @@ def add_loads_arguments(parser: argparse.ArgumentParser, *, traffic: bool = Fals
                    metavar="START,END,KN_M[,still]",
                    help="a uniform vertical load on the extrados from START to END m, kN/m per m "
                         "of width ('still' as for --point-load; repeatable)")
+    g.add_argument("--passive", type=number, default=None, metavar="FRACTION",
+                   help="passive fill pressure where the arch sways into the fill: the "
+                        "mobilised fraction of Rankine's K_p, in (0, 1] (default: off; "
+                        "Grandjean takes 0.33)")
+    g.add_argument("--fill-friction", type=number, default=None, metavar="DEG",
+                   help="the fill's friction angle for --passive, degrees, in [0, 60) "
+                        "(default 30)")
     if not traffic:
         return
     t = parser.add_argument_group("traffic (kN per metre of barrel width)")
@@ -134,8 +142,27 @@ def loads_from_args(args: argparse.Namespace) -> Loads | None:
         check_range("--distributed-load end", b, a, MAX_LOAD_LENGTH_M, "m", low_open=True)
         check_range("--distributed-load load", kn, -MAX_LOAD_KN, MAX_LOAD_KN, "kN/m")
         spread.append(DistributedLoad(a, b, kn * 1e3, not still))
-    loads = Loads(fill, backing, tuple(points), tuple(spread))
+    passive = None
+    if args.fill_friction is not None and args.passive is None:
+        raise InvalidParameterError("--fill-friction applies to --passive")
+    if args.passive is not None:
+        if fill is None:
+            raise InvalidParameterError("--passive needs a fill: add --fill-depth")
+        check_range("--passive", args.passive, 0.0, 1.0, "of K_p", low_open=True)
+        phi = 30.0 if args.fill_friction is None else args.fill_friction
+        check_range("--fill-friction", phi, 0.0, 60.0, "degrees", high_open=True)
+        passive = Passive(args.passive, phi)
+    loads = Loads(fill, backing, tuple(points), tuple(spread), None, passive)
     return None if loads.empty else loads
+
+
+def passive_text(loads: Loads | None) -> str:
+    """How the passive fill pressure was taken, for the text outputs."""
+    if loads is None or loads.passive is None:
+        return "passive fill pressure off"
+    p = loads.passive
+    return (f"passive fill pressure {p.fraction:g} K_p (fill friction {p.friction:g} deg, "
+            f"K_p = {p.kp:.3f}) where the arch moves into the fill")
 
 
 def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffic:
@@ -160,4 +187,4 @@ def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffi
     return Traffic(load * 1e3, position, length, args.dispersion)
 
 
-__all__ = ["add_loads_arguments", "loads_from_args", "traffic_from_args"]
+__all__ = ["add_loads_arguments", "loads_from_args", "passive_text", "traffic_from_args"]

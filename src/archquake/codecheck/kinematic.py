@@ -537,6 +537,10 @@ class LoadedFourHingeMechanism:
         from archquake.limit import limit_analysis
 
         dead = loads.without_traffic()
+        if dead.passive is not None:
+            raise InvalidParameterError(
+                "the code check does not model passive fill pressure (C8.7.1 counts the "
+                "masses, not the fill's resistance); leave the passive pressure out")
         mech = limit_analysis(arch, method="static", loads=dead, g=g).mechanism
         if mech.load_direction < 0:
             raise InvalidParameterError(

@@ -28,7 +28,10 @@ Conventions (SI; forces per metre of barrel width are multiplied by the arch's `
   delta on the extrados (the 2:1 slope is 26.57 degrees); parts spread beyond the extrados's
   ends go into the abutments. Traffic is a statics load only (its multiplier is the
   capacity) and never carries mass.
-- **Passive fill pressure** is not modelled: every result that reads the loads says so.
+- **Passive fill pressure** (:class:`Passive`) is off unless given, and every result that
+  reads the loads says which: a mobilised fraction of Rankine's K_p on the extrados, per
+  block and face one resultant that the fill may mobilise from 0 to its limit, towards the
+  ring (so it resists only where the arch moves into the fill).
 
 Examples
 --------
@@ -223,6 +226,45 @@ class Traffic:
 
 
 @dataclass(frozen=True)
+class Passive:
+    """Passive fill pressure where the arch sways into the fill (off unless given).
+
+    A mobilised fraction of Rankine's passive pressure, sigma_h(z) = fraction K_p gamma z,
+    K_p = tan^2(45 deg + phi/2), z the depth below the fill surface, on the extrados as RING and
+    Grandjean (2010) take it. Per block, the extrados facing left and the extrados facing
+    right each have one resultant (the pressure integrated over the face's height, at its
+    centre of pressure); the fill pushes on the block with any horizontal force from 0 up to
+    that resultant, towards the ring: so it resists only where the arch moves into the fill.
+
+    Parameters
+    ----------
+    fraction : float
+        Mobilised fraction m_p of K_p, in (0, 1] (Grandjean: 0.33; Gilbert et al.: realistic
+        loads need the mobilised, not the peak, strength).
+    friction : float
+        The fill's friction angle phi, degrees, in [0, 60) (default 30).
+    """
+
+    fraction: float
+    friction: float = 30.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "fraction", require_range(
+            "passive fraction", self.fraction, 0.0, 1.0, low_open=True, high_open=False))
+        object.__setattr__(self, "friction", require_range(
+            "fill friction angle", self.friction, 0.0, 60.0, "degrees", low_open=False,
+            high_open=True))
+
+    @property
+    def kp(self) -> float:
+        """Rankine's passive coefficient tan^2(45 deg + phi/2)."""
+        return math.tan(math.radians(45.0 + 0.5 * self.friction)) ** 2
+
+    def to_dict(self) -> dict:
+        return {"fraction_of_kp": self.fraction, "friction_deg": self.friction, "kp": self.kp}
+
+
+@dataclass(frozen=True)
 class Loads:
     """Everything an arch carries (each part optional). Passive fill pressure is not modelled."""
 
@@ -231,8 +273,13 @@ class Loads:
     point_loads: tuple[PointLoad, ...] = field(default_factory=tuple)
     distributed_loads: tuple[DistributedLoad, ...] = field(default_factory=tuple)
     traffic: Traffic | None = None
+    passive: Passive | None = None
 
     def __post_init__(self) -> None:
+        if self.passive is not None:
+            require_instance("passive", self.passive, Passive, "a Passive")
+            if self.fill is None or self.fill.density == 0.0:
+                raise InvalidParameterError("passive fill pressure needs a fill with a density")
         if self.fill is not None:
             require_instance("fill", self.fill, Fill, "a Fill")
         if self.backing is not None:
@@ -249,13 +296,15 @@ class Loads:
     def empty(self) -> bool:
         """True if the arch carries nothing."""
         return (self.fill is None and self.backing is None and not self.point_loads
-                and not self.distributed_loads and self.traffic is None)
+                and not self.distributed_loads and self.traffic is None and self.passive is None)
 
     def without_traffic(self) -> Loads:
-        return Loads(self.fill, self.backing, self.point_loads, self.distributed_loads, None)
+        return Loads(self.fill, self.backing, self.point_loads, self.distributed_loads, None,
+                     self.passive)
 
     def with_traffic(self, traffic: Traffic) -> Loads:
-        return Loads(self.fill, self.backing, self.point_loads, self.distributed_loads, traffic)
+        return Loads(self.fill, self.backing, self.point_loads, self.distributed_loads, traffic,
+                     self.passive)
 
     def to_dict(self) -> dict:
         return {
@@ -264,7 +313,8 @@ class Loads:
             "point_loads": [p.to_dict() for p in self.point_loads],
             "distributed_loads": [d.to_dict() for d in self.distributed_loads],
             "traffic": None if self.traffic is None else self.traffic.to_dict(),
-            "passive_pressure": "not modelled",
+            "passive_pressure": ("off (not modelled)" if self.passive is None
+                                 else self.passive.to_dict()),
         }
 
 
@@ -548,6 +598,57 @@ def block_extras(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD_GRAVI
                        surface)
 
 
+def passive_resultants(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD_GRAVITY
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The largest passive forces the fill can put on each block (:class:`Passive`).
+
+    Returns
+    -------
+    blocks : ndarray of int, shape (s,)
+    points : ndarray, shape (s, 2)
+        Centres of pressure, m.
+    directions : ndarray, shape (s,)
+        +1 where the fill pushes the block towards +x (its extrados faces left), else -1.
+    limits : ndarray, shape (s,)
+        The mobilised passive resultant, N (over the arch's depth).
+    """
+    empty = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0), np.zeros(0))
+    if loads.passive is None or loads.fill is None:
+        return empty
+    ex = Extrados.of(arch)
+    ys = loads.fill.surface(arch)
+    k = loads.passive.fraction * loads.passive.kp * loads.fill.density * g * arch.depth
+    blocks, points, dirs, limits = [], [], [], []
+    for b, path in enumerate(ex.paths):
+        y1, y2 = path[:-1, 1], path[1:, 1]
+        x1, x2 = path[:-1, 0], path[1:, 0]
+        for sign in (1.0, -1.0):  # faces left (rising, dy > 0), faces right (falling)
+            take = sign * (y2 - y1) > 0
+            if not np.any(take):
+                continue
+            lo, hi = np.minimum(y1, y2)[take], np.maximum(y1, y2)[take]
+            # int (ys - y) dy and int y (ys - y) dy over each segment's height
+            f = ys * (hi - lo) - 0.5 * (hi**2 - lo**2)
+            fy = 0.5 * ys * (hi**2 - lo**2) - (hi**3 - lo**3) / 3.0
+            force = float(f.sum())
+            if force <= 0.0:
+                continue
+            yc = float(fy.sum()) / force
+            # x of the centre of pressure on the face (where the face is at height yc)
+            xs, yv = np.concatenate([x1[take], x2[take][-1:]]), np.concatenate(
+                [y1[take], y2[take][-1:]])
+            order = np.argsort(yv)
+            xc = float(np.interp(yc, yv[order], xs[order]))
+            blocks.append(b)
+            points.append((xc, yc))
+            dirs.append(sign)
+            limits.append(k * force)
+    if not blocks:
+        return empty
+    return (np.array(blocks, dtype=np.int64), np.array(points), np.array(dirs),
+            np.array(limits))
+
+
 def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
                     ) -> tuple[np.ndarray, np.ndarray, list[tuple[float, float]]]:
     """The traffic load on each block: forces (n, 2) N, moments about the origin (n,) N m,
@@ -587,7 +688,7 @@ def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
 
 #: The keys of a study file's ``[loads]`` table (units as on the command line).
 LOADS_KEYS = ("fill_depth", "fill_level", "fill_density", "backing", "backing_right",
-              "point_loads", "distributed_loads", "traffic")
+              "point_loads", "distributed_loads", "traffic", "passive", "fill_friction_deg")
 #: Keys of ``[loads] traffic``.
 TRAFFIC_KEYS = ("axle_kN", "patch_kN", "patch_length", "position", "dispersion_deg")
 
@@ -602,6 +703,8 @@ def loads_from_table(table: object, *, source: str = "study file") -> Loads:
         point_loads = [{position = 7.0, load_kN = 30.0, moves_with_arch = false}]
         distributed_loads = [{start = 1.0, end = 3.0, load_kN_m = 10.0}]
         traffic = {axle_kN = 100.0, position = 2.5, dispersion_deg = 26.57}
+        passive = 0.33            # mobilised fraction of K_p (default: off)
+        fill_friction_deg = 30    # the fill's friction angle for passive
 
     Loads are per metre of barrel width. Every problem is one
     :class:`~archquake.errors.StudyFileError` naming the key as the file spells it.
@@ -685,14 +788,22 @@ def loads_from_table(table: object, *, source: str = "study file") -> Loads:
             traffic = Traffic(1e3 * load, num("traffic position", t.get("position", 0.0)),
                               num("traffic patch_length", t.get("patch_length", 0.0)),
                               None if disp is None else num("traffic dispersion_deg", disp))
+        passive = None
+        if "passive" in table:
+            passive = Passive(num("passive", table["passive"]),
+                              num("fill_friction_deg", table.get("fill_friction_deg", 30.0)))
+        elif "fill_friction_deg" in table:
+            raise fail("fill_friction_deg", "applies to passive")
+        return Loads(fill, backing, points, spread, traffic, passive)
     except StudyFileError:
         raise
     except ArchquakeError as exc:
         raise StudyFileError(f"{source}: [loads] {exc}") from None
-    return Loads(fill, backing, points, spread, traffic)
 
 
 __all__ = [
+    "Passive",
+    "passive_resultants",
     "LOADS_KEYS",
     "TRAFFIC_KEYS",
     "loads_from_table",

@@ -24,7 +24,7 @@ so it carries no linear-program tolerance; both bounds must agree with it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -32,7 +32,14 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError, InvalidParameterError, SolverError
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
-from archquake.geometry.loads import BlockExtras, Loads, Traffic, block_extras, traffic_actions
+from archquake.geometry.loads import (
+    BlockExtras,
+    Loads,
+    Traffic,
+    block_extras,
+    passive_resultants,
+    traffic_actions,
+)
 from archquake.geometry.planar import cross, perp
 from archquake.limit.static import MAX_MULTIPLIER, _solve
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces, moments_about_origin
@@ -51,6 +58,11 @@ class LoadCase:
         About the origin, N m.
     held : ndarray of bool, shape (n+1,)
         Joints that cannot hinge (backing).
+    passive_block, passive_point, passive_direction, passive_limit : ndarray
+        The passive forces the fill may put on the blocks (s of them): block, point (m),
+        direction (+1 towards +x) and largest value (N)
+        (:func:`~archquake.geometry.loads.passive_resultants`); each takes any value from 0
+        to its limit.
     """
 
     arch: VoussoirChain
@@ -59,6 +71,10 @@ class LoadCase:
     live_force: np.ndarray
     live_moment: np.ndarray
     held: np.ndarray
+    passive_block: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    passive_point: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    passive_direction: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    passive_limit: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def weight(self) -> float:
@@ -92,7 +108,16 @@ def seismic_case(arch: VoussoirChain, loads: Loads | None = None, *, direction: 
     live_f = own + extra
     live_m = (moments_about_origin(own, arch.voussoir_centroids)
               + moments_about_origin(extra, extras.centroid))
-    return LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held)
+    return _with_passive(LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held), loads, g)
+
+
+def _with_passive(case: LoadCase, loads: Loads, g: float) -> LoadCase:
+    if loads.passive is None:
+        return case
+    blocks, points, dirs, limits = passive_resultants(case.arch, loads, g=g)
+    keep = ~(case.held[blocks] & case.held[blocks + 1])  # blocks the backing holds need none
+    return replace(case, passive_block=blocks[keep], passive_point=points[keep],
+                   passive_direction=dirs[keep], passive_limit=limits[keep])
 
 
 def traffic_case(arch: VoussoirChain, loads: Loads, traffic: Traffic | None = None, *,
@@ -105,7 +130,7 @@ def traffic_case(arch: VoussoirChain, loads: Loads, traffic: Traffic | None = No
     extras = block_extras(arch, loads, g=g)
     dead_f, dead_m = _dead(arch, extras, g)
     live_f, live_m, _ = traffic_actions(arch, loads, traffic)
-    return LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held)
+    return _with_passive(LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held), loads, g)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -129,6 +154,12 @@ def _unit_actions(case: LoadCase) -> tuple[np.ndarray, np.ndarray, np.ndarray, f
         (zero_f, zero_m, (0.0, 0.0), 1.0),
         (case.live_force / scale_f, case.live_moment / (scale_f * scale_l), (0.0, 0.0), 0.0),
     ]
+    for b, pt, d in zip(case.passive_block, case.passive_point, case.passive_direction,
+                        strict=True):  # one unit passive force each (force scale: 1 = W)
+        f, m = zero_f.copy(), zero_m.copy()
+        f[b, 0] = d
+        m[b] = moments_about_origin(f[b], pt / scale_l)
+        cases.append((f, m, (0.0, 0.0), 0.0))
     res = [joint_forces(pts, f, m, np.array(r), r_m) for f, m, r, r_m in cases]
     return (np.array([r.normal for r in res]), np.array([r.moment for r in res]),
             res[0].half_widths, scale_f, scale_l)
@@ -136,7 +167,7 @@ def _unit_actions(case: LoadCase) -> tuple[np.ndarray, np.ndarray, np.ndarray, f
 
 def _constraints(case: LoadCase) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     normal, moment, half, _, _ = _unit_actions(case)
-    rows = np.empty((5, 2 * normal.shape[1]))
+    rows = np.empty((normal.shape[0], 2 * normal.shape[1]))
     rows[:, 0::2] = moment - half * normal
     rows[:, 1::2] = -moment - half * normal
     keep = np.repeat(~case.held, 2)
@@ -157,8 +188,9 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
         is not a four-hinge mechanism.
     """
     a_ub, b_ub, index = _constraints(case)
-    res = _solve(np.array([0.0, 0.0, 0.0, -1.0]), a_ub, b_ub,
-                 [(None, None)] * 3 + [(None, MAX_MULTIPLIER)])
+    passive = _passive_bounds(case)
+    res = _solve(np.concatenate([[0.0, 0.0, 0.0, -1.0], np.zeros(len(passive))]), a_ub, b_ub,
+                 [(None, None)] * 3 + [(None, MAX_MULTIPLIER)] + passive)
     if res.status == 2:
         raise _unstable(case)
     mu = float(res.x[3])
@@ -181,6 +213,12 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
     return mu, HingeMechanism(case.arch, joints, faces)  # type: ignore[arg-type]
 
 
+def _passive_bounds(case: LoadCase) -> list[tuple[float, float]]:
+    """0 <= p_s <= limit_s, over the force scale of :func:`_unit_actions`."""
+    scale_f = case.weight if case.weight > 0 else float(np.abs(case.live_force).sum())
+    return [(0.0, float(lim) / scale_f) for lim in case.passive_limit]
+
+
 def _unstable(case: LoadCase) -> ArchquakeError:
     from archquake.errors import UnstableArchError
 
@@ -193,7 +231,10 @@ def _unstable(case: LoadCase) -> ArchquakeError:
 def stands(case: LoadCase) -> bool:
     """True if a line of thrust fits under the dead loads alone."""
     a_ub, b_ub, _ = _constraints(case)
-    return _solve(np.zeros(3), a_ub[:, :3], b_ub, [(None, None)] * 3).status == 0
+    a_ub = np.delete(a_ub, 3, axis=1)  # no live load
+    passive = _passive_bounds(case)
+    return _solve(np.zeros(3 + len(passive)), a_ub, b_ub,
+                  [(None, None)] * 3 + passive).status == 0
 
 
 # ---------------------------------------------------------------------------------------------
@@ -218,6 +259,49 @@ def _powers(mechs, force: np.ndarray, moment: np.ndarray) -> np.ndarray:
             + w_cd * (m_cd - cross(pd, f_cd)))
 
 
+def _passive_resistance(mechs, case: LoadCase, chunk: int = 200_000) -> np.ndarray:
+    """The power the passive forces absorb in every mechanism's opening motion (>= 0): each
+    at its limit where its point moves into the fill (d v_x < 0), else 0, shape (m,)."""
+    out = np.zeros(len(mechs))
+    if case.passive_limit.size == 0:
+        return out
+    blk, pts = case.passive_block, case.passive_point
+    for start in range(0, len(mechs), chunk):
+        sl = slice(start, start + chunk)
+        j = mechs.joints[sl]
+        p = mechs.points[sl]
+        w = mechs.rates[sl]
+        vb_x = -w[:, 0] * (p[:, 1, 1] - p[:, 0, 1])
+        k = blk[None, :]
+        y = pts[None, :, 1]
+        on_ab = (k >= j[:, 0:1]) & (k < j[:, 1:2])
+        on_bc = (k >= j[:, 1:2]) & (k < j[:, 2:3])
+        on_cd = (k >= j[:, 2:3]) & (k < j[:, 3:4])
+        vx = np.where(on_ab, -w[:, 0:1] * (y - p[:, 0, 1:2]), 0.0)
+        vx = np.where(on_bc, vb_x[:, None] - w[:, 1:2] * (y - p[:, 1, 1:2]), vx)
+        vx = np.where(on_cd, -w[:, 2:3] * (y - p[:, 3, 1:2]), vx)
+        into = np.maximum(0.0, -case.passive_direction[None, :] * vx)
+        out[sl] = into @ case.passive_limit
+    return out
+
+
+def _mechanism_passive_forces(case: LoadCase, mechanism: HingeMechanism) -> np.ndarray:
+    """The passive forces of ``mechanism``'s collapse state: each at its limit where its point
+    moves into the fill, else 0, N, shape (s,)."""
+    if case.passive_limit.size == 0:
+        return np.zeros(0)
+    from archquake.limit.kinematic import MechanismSet
+
+    one = MechanismSet(np.array([mechanism.joints]),
+                       np.array([[1 if f is Face.EXTRADOS else 0 for f in mechanism.faces]]),
+                       mechanism.points[None], mechanism.rates[None])
+    absorbed = np.zeros(case.passive_limit.size)
+    for s in range(case.passive_limit.size):
+        unit = replace(case, passive_limit=np.where(np.arange(absorbed.size) == s, 1.0, 0.0))
+        absorbed[s] = _passive_resistance(one, unit)[0]
+    return np.where(absorbed > 0.0, case.passive_limit, 0.0)
+
+
 def kinematic_multiplier(case: LoadCase) -> tuple[float, HingeMechanism]:
     """Least virtual-work multiplier over the four-hinge mechanisms at joints not held."""
     from archquake.limit.kinematic import admissible_mechanisms
@@ -225,7 +309,7 @@ def kinematic_multiplier(case: LoadCase) -> tuple[float, HingeMechanism]:
     mechs = admissible_mechanisms(case.arch)
     allowed = ~case.held[mechs.joints].any(axis=1)
     mechs = mechs.subset(allowed)
-    p_dead = _powers(mechs, case.dead_force, case.dead_moment)
+    p_dead = _powers(mechs, case.dead_force, case.dead_moment) - _passive_resistance(mechs, case)
     p_live = _powers(mechs, case.live_force, case.live_moment)
     scale = float(np.max(np.abs(p_live), initial=0.0))
     ok = p_live > 1e-12 * scale
@@ -246,12 +330,24 @@ def collapse_forces(case: LoadCase, mechanism: HingeMechanism, *, scale: float =
                     ) -> tuple[float, JointForces]:
     """The multiplier and the joint resultants (N, N m) of the equilibrium whose line of thrust
     passes through the four hinges of ``mechanism``."""
+    if case.passive_limit.size:  # the passive forces of this mechanism become dead loads
+        forces = _mechanism_passive_forces(case, mechanism)
+        f, m = case.dead_force.copy(), case.dead_moment.copy()
+        for b, pt, d, p in zip(case.passive_block, case.passive_point, case.passive_direction,
+                               forces, strict=True):
+            push = np.array([d * p, 0.0])
+            f[b] += push
+            m[b] += moments_about_origin(push, pt)
+        case = replace(case, dead_force=f, dead_moment=m, passive_block=case.passive_block[:0],
+                       passive_point=case.passive_point[:0],
+                       passive_direction=case.passive_direction[:0],
+                       passive_limit=case.passive_limit[:0])
     normal, moment, half, scale_f, scale_l = _unit_actions(case)
     rows, rhs = [], []
     for j, face in zip(mechanism.joints, mechanism.faces, strict=True):
         e = half[j] if face is Face.EXTRADOS else -half[j]
         coeff = moment[:, j] + e * normal[:, j]
-        rows.append(coeff[1:])
+        rows.append(coeff[1:5])
         rhs.append(-coeff[0])
     x = np.linalg.solve(np.array(rows), np.array(rhs))
     mu = float(x[3])
