@@ -368,3 +368,20 @@ def test_passive_pressure_against_a_hand_calculation(fraction):
     cap = traffic_capacity(BRIDGE, loads, Traffic(100e3, 2.5), method="both")
     assert cap.static_multiplier == pytest.approx(cap.kinematic_multiplier, rel=1e-7)
     assert cap.multiplier > cap_off.multiplier
+
+
+def test_passive_pressure_can_make_a_five_hinge_collapse():
+    """With passive pressure the fill's resistance is convex in the motion, so a load at the
+    crown collapses the arch by two four-hinge mechanisms at once. Oracles: the lower-bound
+    theorem (the program's line of thrust at its multiplier is admissible everywhere) and the
+    upper bound (the least four-hinge mechanism is not below it)."""
+    from archquake.geometry.loads import Passive
+
+    loads = Loads(fill=Fill(depth=0.5), passive=Passive(0.33, 30.0))
+    cap = traffic_capacity(BRIDGE, loads, Traffic(100e3, 4.7, dispersion=26.57), method="both")
+    assert cap.hinge_count == 5
+    assert cap.kinematic_multiplier > cap.static_multiplier * (1 + 1e-4)
+    assert cap.multiplier == cap.static_multiplier
+    assert cap.joint_forces.admissible(rtol=1e-6)
+    with pytest.raises(InvalidParameterError, match="more than four hinges"):
+        traffic_capacity(BRIDGE, loads, Traffic(100e3, 4.7), method="kinematic")

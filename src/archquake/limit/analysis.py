@@ -119,6 +119,10 @@ class LimitAnalysis:
         The loads as each block carries them (masses, centroids, held joints).
     opposite_collapse_acceleration_g : float or None
         With loads, lambda for a load towards -x (loads need not be symmetric), g.
+    hinge_count : int or None
+        With loads, the hinges of the collapse: 4, or more where passive pressure makes the
+        collapse combine two mechanisms (then ``mechanism`` is the least four-hinge one, an
+        upper bound, and lambda is the line-of-thrust program's).
     """
 
     arch: VoussoirChain
@@ -132,6 +136,7 @@ class LimitAnalysis:
     loads: Loads | None = None
     carried: BlockExtras | None = None
     opposite_collapse_acceleration_g: float | None = None
+    hinge_count: int | None = None
 
     @property
     def symmetric(self) -> bool:
@@ -190,6 +195,7 @@ class LimitAnalysis:
             return {}
         assert self.carried is not None
         return {"loads": self.loads.to_dict(), "carried": self.carried.to_dict(),
+                "collapse_hinge_count": self.hinge_count,
                 "collapse_acceleration_towards_minus_x_g": self.opposite_collapse_acceleration_g}
 
 
@@ -309,6 +315,7 @@ def _loaded_analysis(arch: VoussoirChain, method: Method, g: float, loads: Loads
         loads=loads,
         carried=block_extras(arch, dead, g=g),
         opposite_collapse_acceleration_g=opposite.multiplier,
+        hinge_count=res.hinge_count,
     )
 
 

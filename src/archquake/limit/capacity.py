@@ -16,7 +16,7 @@ continuous by construction.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -29,8 +29,9 @@ from archquake.geometry.hinges import HingeMechanism
 from archquake.geometry.loads import BlockExtras, Extrados, Loads, Traffic, block_extras, traffic_actions
 from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS
 from archquake.limit.loaded import (
-    LoadCase,
     LoadedCollapse,
+    _lp,
+    _passive_resistance,
     _powers,
     _unstable,
     collapse_forces,
@@ -77,6 +78,7 @@ class TrafficCapacity:
     kinematic_multiplier: float | None
     carried: BlockExtras
     extent_m: tuple[float, float]
+    hinge_count: int = 4
 
     @property
     def collapse_load_N_m(self) -> float:
@@ -99,6 +101,7 @@ class TrafficCapacity:
             "static_multiplier": self.static_multiplier,
             "kinematic_multiplier": self.kinematic_multiplier,
             "hinges": [h.to_dict() for h in self.mechanism.hinges],
+            "collapse_hinge_count": self.hinge_count,
             "loaded_extent_x_m": list(self.extent_m),
             "carried": self.carried.to_dict(),
             "joints": {"thrust_x": jf.thrust_points[:, 0], "thrust_y": jf.thrust_points[:, 1],
@@ -149,7 +152,7 @@ def _capacity(res: LoadedCollapse, dead: Loads, traffic: Traffic, carried: Block
               extent: tuple[float, float]) -> TrafficCapacity:
     return TrafficCapacity(res.case.arch, dead, traffic, res.multiplier, res.mechanism,
                            res.joint_forces, res.static_multiplier, res.kinematic_multiplier,
-                           carried, (float(extent[0]), float(extent[1])))
+                           carried, (float(extent[0]), float(extent[1])), res.hinge_count)
 
 
 @dataclass(frozen=True)
@@ -164,7 +167,8 @@ class CapacityScan:
         inf where the load drives no mechanism (near a springing it only lifts the arch:
         no multiplier collapses it).
     hinges : ndarray of int, shape (p, 4)
-        The collapse mechanism's joints at each position (-1 where there is none).
+        The collapse mechanism's joints at each position (-1 where there is none, or where
+        the collapse needs more than four hinges).
     critical : TrafficCapacity
         At the position of least multiplier, with both bounds checked where the kinematic
         method applies.
@@ -238,28 +242,32 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
             raise InvalidParameterError(f"give 1 to {MAX_POSITIONS} positions, got {pos.size}")
     chosen = _method(arch, method)
     base = traffic_case(arch, dead, traffic.at(float(pos[0])), g=g)
+    scan_method = "static" if base.passive_limit.size else chosen  # see loaded._passive_collapse
     if not stands(base):
         raise _unstable(base)
     mus = np.empty(pos.size)
     hinges = np.empty((pos.size, 4), dtype=np.int64)
-    if chosen != "static":
+    if scan_method != "static":
         from archquake.limit.kinematic import admissible_mechanisms
 
         mechs = admissible_mechanisms(arch)
         mechs = mechs.subset(~base.held[mechs.joints].any(axis=1))
-        p_dead = _powers(mechs, base.dead_force, base.dead_moment)
+        p_dead = (_powers(mechs, base.dead_force, base.dead_moment)
+                  - _passive_resistance(mechs, base))
     for i, s in enumerate(pos):
         live_f, live_m, _ = traffic_actions(arch, dead, traffic.at(float(s)))
-        case = LoadCase(arch, base.dead_force, base.dead_moment, live_f, live_m, base.held)
-        if chosen == "static":
+        case = replace(base, live_force=live_f, live_moment=live_m)
+        if scan_method == "static":
             try:
                 res = loaded_collapse(case, "static")
+                mus[i], hinges[i] = res.multiplier, res.mechanism.joints
             except ArchquakeError as exc:
-                if "no collapse mechanism" not in str(exc):
+                if "no collapse mechanism" in str(exc):
+                    mus[i], hinges[i] = np.inf, -1
+                elif "hinges" in str(exc):  # more than four: the program's multiplier stands
+                    mus[i], hinges[i] = float(_lp(case)[0].x[3]), -1
+                else:
                     raise
-                mus[i], hinges[i] = np.inf, -1
-                continue
-            mus[i], hinges[i] = res.multiplier, res.mechanism.joints
             continue
         p_live = _powers(mechs, live_f, live_m)
         ok = p_live > 1e-12 * float(np.max(np.abs(p_live), initial=0.0))

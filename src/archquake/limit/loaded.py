@@ -175,6 +175,17 @@ def _constraints(case: LoadCase) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return rows[1:, keep].T.copy(), -rows[0, keep], index
 
 
+class _Tie(SolverError):
+    """The linear program's optimum marks more than four hinges (a tie between mechanisms)."""
+
+    def __init__(self, message: str, multiplier: float):
+        super().__init__(message)
+        self.multiplier = multiplier
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.multiplier))
+
+
 def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, HingeMechanism]:
     """Largest mu for which a line of thrust fits in every joint not held (the linear
     program), and the hinges its duals mark.
@@ -202,8 +213,8 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
     order = np.argsort(duals)[::-1]
     active = sorted(int(index[i]) for i in order if duals[i] > rtol * duals[order[0]])
     if len(active) != 4:
-        raise SolverError(f"the collapse state has {len(active)} active hinges instead of 4 (a "
-                          "tie between mechanisms); use the kinematic method")
+        raise _Tie(f"the collapse state has {len(active)} active hinges instead of 4 (a tie "
+                   "between mechanisms); use the kinematic method", mu)
     joints = tuple(i // 2 for i in active)
     if len(set(joints)) < 4:
         raise ArchquakeError(
@@ -371,15 +382,94 @@ class LoadedCollapse:
     joint_forces: JointForces
     static_multiplier: float | None
     kinematic_multiplier: float | None
+    hinge_count: int = 4
+
+    @property
+    def four_hinges(self) -> bool:
+        """False where the collapse needs more than four hinges (possible with passive
+        pressure): ``mechanism`` is then the least four-hinge mechanism, an upper bound."""
+        return self.hinge_count == 4
+
+
+def _lp(case: LoadCase):
+    """The line-of-thrust program's optimum (raises where the arch cannot stand or never
+    collapses) and the constraint rows' joint-face indices."""
+    a_ub, b_ub, index = _constraints(case)
+    passive = _passive_bounds(case)
+    res = _solve(np.concatenate([[0.0, 0.0, 0.0, -1.0], np.zeros(len(passive))]), a_ub, b_ub,
+                 [(None, None)] * 3 + [(None, MAX_MULTIPLIER)] + passive)
+    if res.status == 2:
+        raise _unstable(case)
+    mu = float(res.x[3])
+    if res.status == 3 or mu >= MAX_MULTIPLIER * (1 - 1e-9):
+        raise ArchquakeError(
+            f"no collapse mechanism: a line of thrust fits for any multiplier up to "
+            f"{MAX_MULTIPLIER:g}")
+    return res, index
+
+
+def _passive_collapse(case: LoadCase, method: str, rtol: float = 1e-7) -> LoadedCollapse:
+    """With passive pressure the fill's resistance is a convex, piecewise linear function of
+    the motion, so the collapse may combine two four-hinge mechanisms (five hinges or more).
+    The line-of-thrust program is then the exact multiplier of the block model; the least
+    four-hinge mechanism is an upper bound that equals it where the program marks four
+    hinges."""
+    if method == "kinematic":
+        raise InvalidParameterError(
+            "with passive fill pressure the collapse may need more than four hinges: use the "
+            "static method (or both)")
+    res, index = _lp(case)
+    mu_s = float(res.x[3])
+    duals = np.abs(res.ineqlin.marginals)
+    top = float(np.max(duals))
+    active = sorted(int(index[i]) for i in np.flatnonzero(duals > rtol * top))
+    mech: HingeMechanism | None = None
+    joints = tuple(i // 2 for i in active)
+    if len(active) == 4 and len(set(joints)) == 4:
+        faces = tuple(Face.INTRADOS if i % 2 == 0 else Face.EXTRADOS for i in active)
+        mech = HingeMechanism(case.arch, joints, faces)  # type: ignore[arg-type]
+    mu_k = None
+    if method == "both":
+        mu_k, mech_k = kinematic_multiplier(case)
+        if mech is not None and abs(mu_k - mu_s) > 1e-6 * max(1.0, abs(mu_k)):
+            raise SolverError(f"static ({mu_s:.9g}) and kinematic ({mu_k:.9g}) collapse "
+                              "multipliers disagree")
+        if mu_k < mu_s - 1e-6 * max(1.0, abs(mu_k)):
+            raise SolverError(f"the upper bound ({mu_k:.9g}) is below the lower bound "
+                              f"({mu_s:.9g})")
+        mech = mech or mech_k
+    if mech is None:
+        raise ArchquakeError(
+            f"the collapse ({mu_s:.4g}) needs {len(active)} hinges; use the method 'both' to "
+            "name the least four-hinge mechanism beside it")
+    # the joint resultants of the program's own equilibrium (its passive forces included)
+    scale_f = case.weight if case.weight > 0 else float(np.abs(case.live_force).sum())
+    push = res.x[4:] * scale_f * case.passive_direction
+    f, m = case.dead_force.copy(), case.dead_moment.copy()
+    for b, pt, p in zip(case.passive_block, case.passive_point, push, strict=True):
+        f[b, 0] += p
+        m[b] += moments_about_origin(np.array([p, 0.0]), pt)
+    jf = joint_forces(arch_joint_points(case.arch), f + mu_s * case.live_force,
+                      m + mu_s * case.live_moment, res.x[:2] * scale_f,
+                      float(res.x[2]) * scale_f * case.arch.radius)
+    return LoadedCollapse(case, mu_s, mech, jf, mu_s, mu_k, len(active))
 
 
 def loaded_collapse(case: LoadCase, method: str = "both") -> LoadedCollapse:
     """Collapse of ``case`` by the static ("static"), kinematic ("kinematic") or both methods
-    ("both": they must agree to 1e-6 relative)."""
+    ("both": they must agree to 1e-6 relative). With passive pressure see
+    :func:`_passive_collapse`: the program's multiplier is reported."""
+    if case.passive_limit.size:
+        return _passive_collapse(case, method)
     mu_s = mu_k = None
     mech: HingeMechanism | None = None
     if method in ("static", "both"):
-        mu_s, mech = static_multiplier(case)
+        try:
+            mu_s, mech = static_multiplier(case)
+        except _Tie as tie:  # the kinematic method names the mechanism
+            if method == "static":
+                raise
+            mu_s = tie.multiplier
     if method in ("kinematic", "both"):
         if method == "kinematic" and not stands(case):
             raise _unstable(case)
