@@ -120,6 +120,10 @@ def format_capacity(result, scan=None) -> str:
     for label, h in zip("ABCD", result.mechanism.hinges, strict=True):
         lines.append(f"  {label}  joint {h.joint:>3d}  {h.face.value:<8s}  x = {h.x:9.4f} m  "
                      f"y = {h.y:9.4f} m")
+    if result.hinge_count > 4:
+        lines.append(f"the collapse needs {result.hinge_count} hinges (two mechanisms at once, "
+                     "with the passive pressure): the four shown are the least four-hinge "
+                     f"mechanism, an upper bound at {result.kinematic_multiplier:.4f}")
     held = [int(j) for j in result.carried.held.nonzero()[0]]
     if held:
         lines.append(f"joints held by the backing: {held}")

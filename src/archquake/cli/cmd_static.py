@@ -119,5 +119,9 @@ def loads_lines(result) -> list[str]:
     out.append(f"mass carried by the blocks (fill and loads that move with the arch): "
                f"{carried.mass.sum():.6g} kg, beside the ring's {result.arch.mass:.6g} kg")
     out.append(passive_text(loads))
+    if result.hinge_count is not None and result.hinge_count > 4:
+        out.append(f"the collapse needs {result.hinge_count} hinges (two mechanisms at once, "
+                   "with the passive pressure): the four shown are the least four-hinge "
+                   f"mechanism, an upper bound at {result.kinematic_collapse_acceleration_g:.4f} g")
     return out
 

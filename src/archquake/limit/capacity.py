@@ -261,6 +261,8 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
             try:
                 res = loaded_collapse(case, "static")
                 mus[i], hinges[i] = res.multiplier, res.mechanism.joints
+                if res.hinge_count > 4:
+                    hinges[i] = -1
             except ArchquakeError as exc:
                 if "no collapse mechanism" in str(exc):
                     mus[i], hinges[i] = np.inf, -1

@@ -439,9 +439,14 @@ def _passive_collapse(case: LoadCase, method: str, rtol: float = 1e-7) -> Loaded
                               f"({mu_s:.9g})")
         mech = mech or mech_k
     if mech is None:
-        raise ArchquakeError(
-            f"the collapse ({mu_s:.4g}) needs {len(active)} hinges; use the method 'both' to "
-            "name the least four-hinge mechanism beside it")
+        from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS
+
+        if case.arch.voussoirs > MAX_KINEMATIC_VOUSSOIRS:
+            raise ArchquakeError(
+                f"the collapse ({mu_s:.4g}) needs {len(active)} hinges, and no four-hinge "
+                f"mechanism can be enumerated beside it above {MAX_KINEMATIC_VOUSSOIRS} "
+                "voussoirs to draw it")
+        mu_k, mech = kinematic_multiplier(case)  # the least four-hinge mechanism, to draw
     # the joint resultants of the program's own equilibrium (its passive forces included)
     scale_f = case.weight if case.weight > 0 else float(np.abs(case.live_force).sum())
     push = res.x[4:] * scale_f * case.passive_direction
