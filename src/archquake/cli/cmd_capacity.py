@@ -16,6 +16,7 @@ from archquake.cli.common import (
 )
 from archquake.cli.loads_options import (
     add_loads_arguments,
+    check_loads_on,
     loads_from_args,
     passive_text,
     traffic_from_args,
@@ -61,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
 
     arch = arch_from_args(args)
     loads = loads_from_args(args) or Loads()
+    check_loads_on(arch, loads)
     traffic = traffic_from_args(args)
     if args.position is not None and args.positions is not None:
         raise InvalidParameterError("--positions sets a scan; drop it with --position")

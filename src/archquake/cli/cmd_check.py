@@ -15,7 +15,7 @@ from archquake.cli.common import (
     print_json,
     ranged,
 )
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args
+from archquake.cli.loads_options import add_loads_arguments, check_loads_on, loads_from_args
 from archquake.cli.site_options import add_site_options, spectrum_from_args
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
@@ -152,6 +152,7 @@ def run(args: argparse.Namespace) -> int:
             "--procedure 2009 is implemented at the ground only (--height 0); use 2019")
     arch = arch_from_args(args)
     loads = loads_from_args(args)
+    check_loads_on(arch, loads)
     if loads is None:
         curve = capacity_curve(arch)
     else:

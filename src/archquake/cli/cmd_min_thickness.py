@@ -6,7 +6,12 @@ import argparse
 import math
 
 from archquake.cli.common import number, print_json, whole
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args, passive_text
+from archquake.cli.loads_options import (
+    add_loads_arguments,
+    check_loads_on,
+    loads_from_args,
+    passive_text,
+)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.checks import (
     MAX_EMBRACE_DEG,
@@ -84,6 +89,7 @@ def _run_shape(args: argparse.Namespace) -> int:
         if args.thickness is None:  # a probe: only the shape matters for t_min
             ns.thickness = 0.01 * args.span
     arch = arch_from_args(ns)
+    check_loads_on(arch, loads)
     t_min = min_thickness(arch, loads=loads)
     out = {"arch": arch.describe(), "min_thickness_m": t_min,
            "min_thickness_ratio": t_min / arch.radius, "length_scale_m": arch.radius}

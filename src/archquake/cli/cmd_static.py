@@ -11,7 +11,12 @@ from archquake.cli.common import (
     describe_arch,
     print_json,
 )
-from archquake.cli.loads_options import add_loads_arguments, loads_from_args, passive_text
+from archquake.cli.loads_options import (
+    add_loads_arguments,
+    check_loads_on,
+    loads_from_args,
+    passive_text,
+)
 from archquake.errors import InvalidParameterError
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
@@ -46,6 +51,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
     loads = loads_from_args(args)
+    check_loads_on(arch, loads)
     method = args.method
     if method == "auto":
         method = "both" if arch.voussoirs <= MAX_KINEMATIC_VOUSSOIRS else "static"

@@ -148,12 +148,38 @@ def loads_from_args(args: argparse.Namespace) -> Loads | None:
     if args.passive is not None:
         if fill is None:
             raise InvalidParameterError("--passive needs a fill: add --fill-depth")
+        if fill.density == 0.0:
+            raise InvalidParameterError("--passive needs a fill that weighs: --fill-density > 0")
         check_range("--passive", args.passive, 0.0, 1.0, "of K_p", low_open=True)
         phi = 30.0 if args.fill_friction is None else args.fill_friction
         check_range("--fill-friction", phi, 0.0, 60.0, "degrees", high_open=True)
         passive = Passive(args.passive, phi)
     loads = Loads(fill, backing, tuple(points), tuple(spread), None, passive)
     return None if loads.empty else loads
+
+
+def check_loads_on(arch, loads: Loads | None) -> None:
+    """Check ``loads`` against ``arch``, each problem one line naming the option as typed."""
+    if loads is None:
+        return
+    from archquake.geometry.loads import Extrados
+
+    try:
+        ex = Extrados.of(arch)
+    except InvalidParameterError as exc:
+        given = "--pier-height" if "piers" in str(exc) else "--embrace"
+        raise InvalidParameterError(f"{given}: {exc}") from None
+    span = ex.clear_span
+    hint = f"positions run along the clear span, {span:.4g} m, from the left intrados springing"
+    for p in loads.point_loads:
+        check_range("--point-load position", p.position, 0.0, span, "m", hint=hint)
+    for d in loads.distributed_loads:
+        check_range("--distributed-load start", d.start, 0.0, span, "m", hint=hint)
+        check_range("--distributed-load end", d.end, 0.0, span, "m", hint=hint)
+    if loads.fill is not None and loads.fill.level is not None:
+        top = float(max(arch.extrados_points[:, 1].max(), arch.crown_point[1]))
+        check_range("--fill-level", loads.fill.level, top, MAX_LOAD_LENGTH_M, "m",
+                    hint="the fill surface lies at or above the extrados's highest point")
 
 
 def passive_text(loads: Loads | None) -> str:
@@ -187,4 +213,4 @@ def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffi
     return Traffic(load * 1e3, position, length, args.dispersion)
 
 
-__all__ = ["add_loads_arguments", "loads_from_args", "passive_text", "traffic_from_args"]
+__all__ = ["add_loads_arguments", "check_loads_on", "loads_from_args", "passive_text", "traffic_from_args"]

@@ -281,8 +281,8 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
         mus[i], _ = collapse_forces(case, mechs.mechanism(k, arch))
         hinges[i] = mechs.joints[k]
     if not np.any(np.isfinite(mus)):
-        raise ArchquakeError("the traffic load cannot collapse the arch at any position of the "
-                             "scan (every mechanism it drives is held by the dead loads)")
+        raise ArchquakeError("no collapse mechanism: the traffic load cannot collapse the arch "
+                             "at any position of the scan")
     crit = traffic_capacity(arch, dead, traffic.at(float(pos[int(np.argmin(mus))])),
                             method=chosen, g=g)
     return CapacityScan(pos, mus, hinges, crit)

@@ -234,8 +234,8 @@ def _unstable(case: LoadCase) -> ArchquakeError:
     from archquake.errors import UnstableArchError
 
     return UnstableArchError(
-        "the arch cannot stand under its own weight and the loads it carries: no line of "
-        "thrust fits inside it; lighten the loads or thicken the ring",
+        "the arch is too thin to stand under its own weight and the loads it carries: no "
+        "line of thrust fits inside it; lighten the loads or thicken the ring",
         min_thickness_ratio=None)
 
 
