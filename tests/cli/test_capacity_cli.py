@@ -115,3 +115,23 @@ def test_passive_pressure_is_stated_and_used(capsys):
     assert out["loads"]["passive_pressure"]["fraction_of_kp"] == 0.33
     off = _json(capsys, ["static", *BRIDGE, "--fill-depth", "0.5"])
     assert off["loads"]["passive_pressure"] == "off (not modelled)"
+
+
+def test_a_surveyed_arch_with_a_fill_level_and_a_wall(capsys, tmp_path):
+    """Blocks from a file carry a fill given by its level and a point load by position: the
+    same lambda and capacity as the closed-form arch with the same loads (1e-6)."""
+    from archquake.geometry.loads import PointLoad
+
+    blocks = tmp_path / "arch.json"
+    blocks.write_text(json.dumps({"blocks": [p.tolist() for p in ARCH.block_polygons]}))
+    level = str(ARCH.extrados_radius + 0.8)
+    out = _json(capsys, ["static", "--blocks", str(blocks), "--density", "1800", "--fill-level",
+                         level, "--point-load", "6.5,20"])
+    loads = Loads(fill=Fill(depth=0.8), point_loads=(PointLoad(6.5, 20e3),))
+    api = limit_analysis(ARCH, method="both", loads=loads)
+    assert out["collapse_acceleration_g"] == pytest.approx(api.collapse_acceleration_g, rel=1e-6)
+    cap = _json(capsys, ["capacity", "--blocks", str(blocks), "--density", "1800",
+                         "--fill-level", level, "--point-load", "6.5,20", "--axle", "100",
+                         "--position", "3"])
+    assert cap["multiplier"] == pytest.approx(
+        traffic_capacity(ARCH, loads, Traffic(100e3, 3.0)).multiplier, rel=1e-6)
