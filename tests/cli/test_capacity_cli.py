@@ -95,13 +95,13 @@ def test_check_with_fill_counts_the_fill(capsys):
 
 
 def test_min_thickness_with_fill(capsys):
-    from archquake.limit import min_thickness
+    from archquake.limit.loaded import min_thickness_loaded
 
     out = _json(capsys, ["min-thickness", "--radius", "5", "--embrace", "180", "--voussoirs",
                          "15", "--density", "1800", "--fill-depth", "1"])
     probe = Arch(5.0, 2.5, math.pi, 15, 1.0, 1800.0)
     assert out["min_thickness_m"] == pytest.approx(
-        min_thickness(probe, loads=Loads(fill=Fill(depth=1.0))), rel=1e-12)
+        min_thickness_loaded(probe, Loads(fill=Fill(depth=1.0))), rel=1e-12)
     assert cli_main.main(["min-thickness", "--fill-depth", "1"]) == 2
 
 

@@ -300,12 +300,12 @@ def test_min_thickness_with_fill():
     """Oracle: the bare minimum thickness without loads (to the bisection's 1e-7), and the
     definition: at t_min a line of thrust fits with the fill, 0.1 % thinner it does not."""
     from archquake.limit import min_thickness
-    from archquake.limit.loaded import seismic_case, stands
+    from archquake.limit.loaded import min_thickness_loaded, seismic_case, stands
 
     bare = min_thickness(BRIDGE)
-    assert min_thickness(BRIDGE, loads=Loads()) == pytest.approx(bare, rel=1e-6)
+    assert min_thickness_loaded(BRIDGE, Loads()) == pytest.approx(bare, rel=1e-6)
     loads = fill(1.0)
-    t_min = min_thickness(BRIDGE, loads=loads)
+    t_min = min_thickness_loaded(BRIDGE, loads)
     assert t_min < 0.9 * bare  # the haunch fill helps this semicircle (0.087 R against 0.106 R)
     assert stands(seismic_case(BRIDGE.with_thickness(t_min), loads))
     assert not stands(seismic_case(BRIDGE.with_thickness(0.999 * t_min), loads))

@@ -90,7 +90,12 @@ def _run_shape(args: argparse.Namespace) -> int:
             ns.thickness = 0.01 * args.span
     arch = arch_from_args(ns)
     check_loads_on(arch, loads)
-    t_min = min_thickness(arch, loads=loads)
+    if loads is None:
+        t_min = min_thickness(arch)
+    else:
+        from archquake.limit.loaded import min_thickness_loaded
+
+        t_min = min_thickness_loaded(arch, loads)
     out = {"arch": arch.describe(), "min_thickness_m": t_min,
            "min_thickness_ratio": t_min / arch.radius, "length_scale_m": arch.radius}
     if loads is not None:

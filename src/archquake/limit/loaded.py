@@ -41,7 +41,7 @@ from archquake.geometry.loads import (
     traffic_actions,
 )
 from archquake.geometry.planar import cross, perp
-from archquake.limit.static import MAX_MULTIPLIER, _solve
+from archquake.limit.static import MAX_MULTIPLIER, _solve, _thickness_bisection
 from archquake.limit.thrust import JointForces, arch_joint_points, joint_forces, moments_about_origin
 
 
@@ -488,7 +488,29 @@ def loaded_collapse(case: LoadCase, method: str = "both") -> LoadedCollapse:
     return LoadedCollapse(case, mu, mech, jf, mu_s, mu_k)
 
 
+def min_thickness_loaded(arch: VoussoirChain, loads: Loads, *, rtol: float = 1e-7,
+                         g: float = STANDARD_GRAVITY) -> float:
+    """Least ring thickness, m, for which ``arch`` (its shape kept) stands under its own weight
+    and the loads it carries (traffic left out), by bisection on the line-of-thrust program's
+    feasibility. A fill keeps its depth over the crown of each thickness tried (or its
+    level), a backing its height.
+
+    Examples
+    --------
+    >>> import math
+    >>> from archquake.geometry import Arch
+    >>> from archquake.geometry.loads import Fill
+    >>> arch = Arch(5.0, 0.6, math.pi, 15, 1.0, 1800.0)
+    >>> round(min_thickness_loaded(arch, Loads(fill=Fill(depth=1.0))) / 5.0, 4)
+    0.0869
+    """
+    dead = loads.without_traffic()
+    return _thickness_bisection(
+        arch, lambda t: stands(seismic_case(arch.with_thickness(t), dead, g=g)), rtol)
+
+
 __all__ = [
+    "min_thickness_loaded",
     "LoadCase",
     "LoadedCollapse",
     "collapse_forces",

@@ -168,16 +168,14 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
     return high
 
 
-def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7, loads=None) -> float:
+def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     """Least ring thickness, m, for which ``arch`` (its shape, joints, voussoirs and piers
     kept; :meth:`~archquake.geometry.VoussoirChain.with_thickness`) stands under its own weight.
 
     Bisection on the feasibility of the static program with lambda = 0, as
     :func:`min_thickness_ratio` (which it equals times R for a circular :class:`Arch`).
 
-    With ``loads`` (:class:`~archquake.geometry.loads.Loads`, its traffic left out) the arch
-    must stand under its own weight and the loads it carries; a fill keeps its depth over the
-    crown of each thickness tried (or its level), a backing its height.
+    With loads: :func:`archquake.limit.loaded.min_thickness_loaded`.
 
     Raises
     ------
@@ -192,18 +190,15 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7, loads=None) -> flo
     0.107
     """
     require_instance("arch", arch, VoussoirChain, "an arch of archquake.geometry (e.g. Arch)")
-    if isinstance(arch, Arch) and loads is None:
+    if isinstance(arch, Arch):
         return min_thickness_ratio(arch.embrace, arch.voussoirs, rtol=rtol) * arch.radius
+    return _thickness_bisection(arch, lambda t: stands(arch.with_thickness(t)), rtol)
+
+
+def _thickness_bisection(arch: VoussoirChain, ok, rtol: float) -> float:
+    """Least ring thickness of ``arch``'s shape for which ``ok(t)`` holds, m (bisection)."""
     require_range("rtol", rtol, MIN_RTOL, 0.5, low_open=False, high_open=False)
     t0 = arch.thickness
-
-    def ok(t: float) -> bool:
-        if loads is None:
-            return stands(arch.with_thickness(t))
-        from archquake.limit.loaded import seismic_case
-        from archquake.limit.loaded import stands as stands_loaded
-
-        return stands_loaded(seismic_case(arch.with_thickness(t), loads.without_traffic()))
 
     low, high = 0.0, t0
     while not ok(high):
