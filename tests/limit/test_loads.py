@@ -385,3 +385,13 @@ def test_passive_pressure_can_make_a_five_hinge_collapse():
     assert cap.joint_forces.admissible(rtol=1e-6)
     with pytest.raises(InvalidParameterError, match="more than four hinges"):
         traffic_capacity(BRIDGE, loads, Traffic(100e3, 4.7), method="kinematic")
+
+
+def test_friction_demand_leaves_out_the_joints_the_backing_holds():
+    res = limit_analysis(BRIDGE, method="both", loads=Loads(fill=Fill(depth=1.0),
+                                                                backing=Backing(1.5)))
+    held = np.flatnonzero(res.carried.held)
+    assert held.size and np.all(np.isnan(res.friction_ratios[held]))
+    assert res.min_friction_joint not in held
+    free = np.delete(res.joint_forces.friction_ratio, held)
+    assert res.min_friction == pytest.approx(float(np.max(free)), rel=1e-15)

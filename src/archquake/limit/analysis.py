@@ -152,19 +152,23 @@ class LimitAnalysis:
 
     @property
     def friction_ratios(self) -> np.ndarray:
-        """|V| / N at every joint at collapse, shape (n+1,)."""
-        return self.joint_forces.friction_ratio
+        """|V| / N at every joint at collapse, shape (n+1,); nan at joints a backing holds
+        (inside the backing, they do not slide)."""
+        ratios = self.joint_forces.friction_ratio
+        if self.carried is not None and np.any(self.carried.held):
+            return np.where(self.carried.held, np.nan, ratios)
+        return ratios
 
     @property
     def min_friction(self) -> float:
         """Static friction demand: the largest |V| / N over the joints at the onset of motion
         (the friction coefficient needed to exclude sliding; paper p. 2131: 0.50)."""
-        return float(np.max(self.friction_ratios))
+        return float(np.nanmax(self.friction_ratios))
 
     @property
     def min_friction_joint(self) -> int:
         """The joint where the friction demand is largest."""
-        return int(np.argmax(self.friction_ratios))
+        return int(np.nanargmax(self.friction_ratios))
 
     def to_dict(self) -> dict:
         jf = self.joint_forces
