@@ -55,7 +55,7 @@ import numpy as np
 from archquake._validate import require_finite, require_instance, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.geometry.chain import MAX_DENSITY, VoussoirChain
+from archquake.geometry.chain import MAX_DENSITY, OnPiers, VoussoirChain
 from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 
 #: Largest fill depth over the crown, backing height and load extent, m.
@@ -371,7 +371,7 @@ class Extrados:
 
     @classmethod
     def _build(cls, arch: VoussoirChain) -> Extrados:
-        if arch.__class__.__name__ == "OnPiers":
+        if isinstance(arch, OnPiers):
             raise InvalidParameterError("loads on an arch standing on piers are not modelled; "
                                         "leave the piers out")
         outlines = arch.block_polygons
