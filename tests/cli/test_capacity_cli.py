@@ -69,6 +69,7 @@ def test_capacity_scan_reports_the_critical_position(capsys, tmp_path):
     (["capacity", *BRIDGE, "--axle", "100", "--dispersion", "90"], "--dispersion must be in"),
     (["capacity", *BRIDGE, "--axle", "100", "--position", "1", "--positions", "5"],
      "--positions sets a scan"),
+    (["capacity", *BRIDGE, "--axle", "100", "--dispersion", "flamant"], "--dispersion"),
     (["static", *BRIDGE, "--passive", "0.3"], "--passive needs a fill"),
     (["static", *BRIDGE, "--fill-depth", "1", "--fill-friction", "30"],
      "--fill-friction applies to --passive"),
@@ -135,3 +136,12 @@ def test_a_surveyed_arch_with_a_fill_level_and_a_wall(capsys, tmp_path):
                          "--position", "3"])
     assert cap["multiplier"] == pytest.approx(
         traffic_capacity(ARCH, loads, Traffic(100e3, 3.0)).multiplier, rel=1e-6)
+
+
+def test_capacity_with_boussinesq(capsys):
+    out = _json(capsys, ["capacity", *BRIDGE, "--fill-depth", "0.5", "--axle", "100",
+                         "--dispersion", "boussinesq", "--position", "2.5"])
+    api = traffic_capacity(ARCH, Loads(fill=Fill(depth=0.5)),
+                           Traffic(100e3, 2.5, boussinesq=True))
+    assert out["multiplier"] == pytest.approx(api.multiplier, rel=1e-12)
+    assert out["traffic"]["boussinesq"] is True

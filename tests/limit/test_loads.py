@@ -395,3 +395,42 @@ def test_friction_demand_leaves_out_the_joints_the_backing_holds():
     assert res.min_friction_joint not in held
     free = np.delete(res.joint_forces.friction_ratio, held)
     assert res.min_friction == pytest.approx(float(np.max(free)), rel=1e-15)
+
+
+# ------------------------------------------------------------------ Boussinesq dispersion
+def test_boussinesq_spread_against_quadrature():
+    """Oracle: Flamant's sigma_z = 2 P z^3 / (pi (d^2 + z^2)^2) at the extrados's depth,
+    integrated by adaptive quadrature over each block's column on the circle and scaled to the
+    whole load (1e-4: the 400-point trapezoid); every newton of the axle reaches the arch."""
+    from archquake.geometry.loads import traffic_actions
+
+    loads = fill(0.5)
+    traffic = Traffic(100e3, 3.1, boussinesq=True)
+    force, moment, _ = traffic_actions(BRIDGE, loads, traffic)
+    assert -force[:, 1].sum() == pytest.approx(100e3, rel=1e-12)
+    re = BRIDGE.extrados_radius
+    ys = re + 0.5
+    x0 = BRIDGE.intrados_points[0, 0] + 3.1
+    edges = BRIDGE.extrados_points[:, 0]
+
+    def sigma(x):
+        z = ys - math.sqrt(max(re * re - x * x, 0.0))
+        return 2 / math.pi * z**3 / ((x - x0) ** 2 + z * z) ** 2
+
+    parts = [quad(sigma, a, b, epsabs=1e-12, limit=200)[0] for a, b in zip(edges[:-1], edges[1:])]
+    arms = [quad(lambda x: x * sigma(x), a, b, epsabs=1e-12, limit=200)[0]
+            for a, b in zip(edges[:-1], edges[1:])]
+    share = 100e3 * np.array(parts) / sum(parts)
+    np.testing.assert_allclose(-force[:, 1], share, rtol=1e-4, atol=1e-3)
+    np.testing.assert_allclose(-moment, 100e3 * np.array(arms) / sum(parts), rtol=1e-4, atol=1e-2)
+
+
+def test_boussinesq_capacity_bounds_and_symmetry():
+    """Both bounds agree; a load and its mirror image along the span give one multiplier."""
+    loads = fill(0.5)
+    a = traffic_capacity(BRIDGE, loads, Traffic(100e3, 2.0, boussinesq=True), method="both")
+    b = traffic_capacity(BRIDGE, loads, Traffic(100e3, 9.4 - 2.0, boussinesq=True))
+    assert a.static_multiplier == pytest.approx(a.kinematic_multiplier, rel=1e-7)
+    assert a.multiplier == pytest.approx(b.multiplier, rel=1e-9)
+    with pytest.raises(InvalidParameterError, match="not both"):
+        Traffic(100e3, dispersion=30.0, boussinesq=True)

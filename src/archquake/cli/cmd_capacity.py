@@ -100,7 +100,8 @@ def format_capacity(result, scan=None) -> str:
     """Text summary of a traffic capacity (and its scan)."""
     t = result.traffic
     kind = "axle" if t.length == 0 else f"patch {t.length:g} m long"
-    spread = ("not spread" if t.dispersion is None
+    spread = ("spread through the fill by Boussinesq (Flamant)" if t.boussinesq else
+              "not spread" if t.dispersion is None
               else f"spread through the fill at {t.dispersion:g} deg")
     lines = [f"arch: {describe_arch(result.arch)}",
              f"traffic: {kind}, {t.load / 1e3:g} kN per m of width, {spread}"]

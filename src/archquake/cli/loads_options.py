@@ -51,6 +51,13 @@ def distributed_load(text: str) -> tuple[list[float], bool]:
     return _items(text, 3, 3, f"START (m),END (m),LOAD (kN/m per m of width)[,{STILL}]")
 
 
+def dispersion(text: str) -> float | str:
+    """argparse type: an angle in degrees, or the word 'boussinesq'."""
+    if text.strip().lower() == "boussinesq":
+        return "boussinesq"
+    return number(text)
+
+
 def add_loads_arguments(parser: argparse.ArgumentParser, *, traffic: bool = False) -> None:
     """--fill-depth/--fill-level, --fill-density, --backing, --backing-right, --point-load,
     --distributed-load; with ``traffic`` also --axle/--patch, --patch-length, --dispersion."""
@@ -99,10 +106,11 @@ def add_loads_arguments(parser: argparse.ArgumentParser, *, traffic: bool = Fals
                    help="a patch load, kN per m of width in all, over --patch-length")
     t.add_argument("--patch-length", type=number, default=None, metavar="M",
                    help="length of the --patch along the span, m (> 0)")
-    t.add_argument("--dispersion", type=number, default=None, metavar="DEG",
+    t.add_argument("--dispersion", type=dispersion, default=None, metavar="DEG|boussinesq",
                    help="spread the traffic through the fill at this angle from the vertical, "
                         f"degrees (0 to {MAX_DISPERSION_DEG:g}; 26.57 is the 2:1 slope, 30 "
-                        "Grandjean's; default: no spread)")
+                        "Grandjean's), or 'boussinesq': Flamant's elastic stress at the "
+                        "extrados's depth, all of it on the arch (default: no spread)")
 
 
 def loads_from_args(args: argparse.Namespace) -> Loads | None:
@@ -208,6 +216,8 @@ def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffi
         check_range("--patch-length", args.patch_length, 0.0, MAX_LOAD_LENGTH_M, "m",
                     low_open=True)
         load, length = args.patch, args.patch_length
+    if args.dispersion == "boussinesq":
+        return Traffic(load * 1e3, position, length, None, True)
     if args.dispersion is not None:
         check_range("--dispersion", args.dispersion, 0.0, MAX_DISPERSION_DEG, "degrees")
     return Traffic(load * 1e3, position, length, args.dispersion)

@@ -196,14 +196,20 @@ class DistributedLoad:
 class Traffic:
     """An axle (``length`` 0) or a patch: ``load`` N per metre of barrel width in all, centred
     at ``position`` m along the span, spread through the fill at ``dispersion`` degrees from
-    the vertical (None: not spread)."""
+    the vertical (None: not spread), or with ``boussinesq`` by Flamant's 2-D elastic stress
+    (see :func:`traffic_actions`)."""
 
     load: float
     position: float = 0.0
     length: float = 0.0
     dispersion: float | None = None
+    boussinesq: bool = False
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "boussinesq", bool(self.boussinesq))
+        if self.boussinesq and self.dispersion is not None:
+            raise InvalidParameterError("traffic dispersion: give an angle or Boussinesq, not "
+                                        "both")
         load = require_range("traffic load", self.load, 0.0, MAX_LOAD_N_M, "N/m",
                              low_open=True, high_open=False)
         object.__setattr__(self, "load", load)
@@ -218,11 +224,11 @@ class Traffic:
 
     def at(self, position: float) -> Traffic:
         """The same load at another position, m."""
-        return Traffic(self.load, position, self.length, self.dispersion)
+        return Traffic(self.load, position, self.length, self.dispersion, self.boussinesq)
 
     def to_dict(self) -> dict:
         return {"load_N_m": self.load, "position_m": self.position, "length_m": self.length,
-                "dispersion_deg": self.dispersion}
+                "dispersion_deg": self.dispersion, "boussinesq": self.boussinesq}
 
 
 @dataclass(frozen=True)
@@ -649,13 +655,48 @@ def passive_resultants(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD
             np.array(limits))
 
 
+#: Sample points per block column, and line loads per patch, of the Flamant integration.
+_FLAMANT_POINTS = 400
+_FLAMANT_LINES = 21
+
+
+def _flamant(ex: Extrados, surface: float, x0: float, length: float, total: float, n: int
+             ) -> tuple[np.ndarray, np.ndarray, list[tuple[float, float]]]:
+    """Flamant's vertical stress of a line load P on an elastic half-space, at depth z,
+    sigma_z = 2 P z^3 / (pi ((x - x0)^2 + z^2)^2), taken at the extrados's own depth below
+    the fill surface, z(x) = surface - y_e(x); a patch as uniform line loads across its length.
+    The stress over each block's column gives its force and line of action; all is scaled so
+    that the whole load reaches the extrados (what the half-space would carry past its ends
+    is put back on the arch: on the safe side)."""
+    force, moment = np.zeros((n, 2)), np.zeros(n)
+    sources = (np.array([x0]) if length <= 0.0 else
+               x0 + length * (np.arange(_FLAMANT_LINES) + 0.5) / _FLAMANT_LINES - 0.5 * length)
+    per_block = []
+    for k in range(n):
+        xs = np.linspace(ex.edges[k], ex.edges[k + 1], _FLAMANT_POINTS)
+        z = np.maximum(surface - ex.y_at(xs), 1e-12)
+        d = xs[:, None] - sources[None, :]
+        sigma = (2.0 / np.pi) * (z[:, None] ** 3 / (d * d + z[:, None] ** 2) ** 2).mean(axis=1)
+        f = float(np.trapezoid(sigma, xs))
+        fx = float(np.trapezoid(sigma * xs, xs))
+        per_block.append((f, fx))
+    whole = sum(f for f, _ in per_block)
+    for k, (f, fx) in enumerate(per_block):
+        share = total * f / whole
+        force[k, 1] = -share
+        moment[k] = -share * (fx / f if f > 0 else 0.0)
+    return force, moment, [(float(ex.edges[0]), float(ex.edges[-1]))]
+
+
 def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
                     ) -> tuple[np.ndarray, np.ndarray, list[tuple[float, float]]]:
     """The traffic load on each block: forces (n, 2) N, moments about the origin (n,) N m,
     and the extent [x_a, x_b] (m) it covers on the extrados (a point: x_a = x_b).
 
     The load, spread through the fill when ``traffic.dispersion`` is given (module
-    docstring), acts downwards on the extrados.
+    docstring) or by Flamant's elastic stress with ``traffic.boussinesq``
+    (:func:`_flamant`; undispersed where there is no fill over the load), acts downwards on
+    the extrados.
     """
     n = arch.voussoirs
     ex = Extrados.of(arch)
@@ -668,6 +709,8 @@ def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
     if traffic.dispersion is not None:
         spread += 2.0 * h * math.tan(math.radians(traffic.dispersion))
     force, moment = np.zeros((n, 2)), np.zeros(n)
+    if traffic.boussinesq and h > 0.0 and loads.fill is not None:
+        return _flamant(ex, loads.fill.surface(arch), x, traffic.length, total, n)
     if spread <= 0.0:
         k = ex.block_at(x)
         force[k, 1] = -total
@@ -690,7 +733,8 @@ def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
 LOADS_KEYS = ("fill_depth", "fill_level", "fill_density", "backing", "backing_right",
               "point_loads", "distributed_loads", "traffic", "passive", "fill_friction_deg")
 #: Keys of ``[loads] traffic``.
-TRAFFIC_KEYS = ("axle_kN", "patch_kN", "patch_length", "position", "dispersion_deg")
+TRAFFIC_KEYS = ("axle_kN", "patch_kN", "patch_length", "position", "dispersion_deg",
+                "boussinesq")
 
 
 def loads_from_table(table: object, *, source: str = "study file") -> Loads:
@@ -787,7 +831,8 @@ def loads_from_table(table: object, *, source: str = "study file") -> Loads:
             disp = t.get("dispersion_deg")
             traffic = Traffic(1e3 * load, num("traffic position", t.get("position", 0.0)),
                               num("traffic patch_length", t.get("patch_length", 0.0)),
-                              None if disp is None else num("traffic dispersion_deg", disp))
+                              None if disp is None else num("traffic dispersion_deg", disp),
+                              bool(t.get("boussinesq", False)))
         passive = None
         if "passive" in table:
             passive = Passive(num("passive", table["passive"]),
