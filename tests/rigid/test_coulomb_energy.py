@@ -180,3 +180,43 @@ def test_a_chain_that_never_moves_dissipates_nothing():
     mgl = float(model.mass.sum()) * G * 10.0
     assert abs(e.contacts_J) < 1e-9 * mgl and abs(e.input_work_J) < 1e-9 * mgl
     assert run.to_dict(joint_forces=False)["dissipated_contacts_J"] == e.contacts_J
+
+
+def test_the_balance_warns_and_names_the_term_that_is_off():
+    """Synthetic books (oracle: arithmetic). A balanced run has no warning; 10 % of the input
+    work missing from the contacts' work from t = 0.5 s on is a residual of 0.1 of the scale,
+    and the warning names that term and that time; contacts that did 5 % of the scale's work
+    (a kinetic energy with no input) are named as such; a run with no motion at all has scale 0
+    and residual 0."""
+    from archquake.rigid.run import energy_balance
+
+    t = np.linspace(0.0, 1.0, 11)
+    w = 100.0 * t  # input work, J
+    kin = 50.0 * np.sin(math.pi * t)
+    pot = np.zeros_like(t)
+    d = w - kin
+    zero = np.zeros_like(t)
+    assert energy_balance(t, kin, pot, d, zero, w).warning is None
+    broken = np.where(t >= 0.5, d - 10.0, d)
+    e = energy_balance(t, kin, pot, broken, zero, w)
+    assert e.residual == pytest.approx(0.1) and e.scale_J == pytest.approx(100.0)
+    assert "the work done on the contacts" in e.warning and "t = 0.5 s" in e.warning
+    gain = energy_balance(t, 5.0 * t, pot, -5.0 * t, zero, zero, ground_kinetic=100.0)
+    assert gain.residual == 0.0 and "positive work" in gain.warning
+    still = energy_balance(t, zero, zero, zero, zero, zero)
+    assert still.scale_J == 0.0 and still.residual == 0.0 and still.warning is None
+
+
+def test_the_json_reports_the_contacts_work_not_damping():
+    """``to_dict`` of a rigid run: the contacts' work and its two parts, the balance's scale
+    and residual; no ``dissipated_damping_J`` (the chain has no damping)."""
+    run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(0.5 * G, 0.2), duration=0.3,
+                         time_step=1e-4, friction=0.3)
+    out = run.to_dict(joint_forces=False)
+    assert "dissipated_damping_J" not in out
+    e = run.energy
+    assert out["dissipated_contacts_J"] == e.contacts_J > 0.0
+    assert out["dissipated_friction_J"] == e.friction_J > 0.0
+    assert out["dissipated_impacts_J"] == e.impacts_J
+    assert out["energy_error"] == e.residual and out["energy_scale_J"] == e.scale_J > 0.0
+    assert out["input_work_J"] == e.input_work_J and out["energy_warning"] is None

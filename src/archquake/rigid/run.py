@@ -336,8 +336,9 @@ class EnergyBalance:
     V(0)|, 1/2 M max |x_g'|^2) over the run (:func:`energy_balance`), 0 only without
     excitation and motion; ``residual``: max |T + V + D - W - E(0)| /
     ``scale_J`` (0 when nothing moved); ``warning``: a sentence when ``residual`` exceeds
-    :data:`ENERGY_WARNING` or a dissipation is negative, naming the term that is off, else
-    None."""
+    :data:`ENERGY_WARNING` or a dissipation is negative, else None. A broken balance is
+    located at the sample where it jumps most, and the sentence names the term whose change
+    there departs most from its changes at the ten samples around it."""
 
     input_work_J: float
     peak_kinetic_J: float
@@ -380,11 +381,20 @@ def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray
     d_c, d_f = float(contacts[-1]), float(friction[-1])
     warning = None
     if residual > ENERGY_WARNING:
-        # the sample where the balance jumps most, and the term that moves most there
+        # the sample where the balance jumps most, and the term whose change there departs
+        # most from its changes at the samples around it
         k = int(np.argmax(np.abs(np.diff(total)))) + 1 if times.size > 1 else 0
         terms = {"the kinetic energy": kinetic, "the potential energy": potential,
                  "the work done on the contacts": contacts, "the input work": input_work}
-        name, arr = max(terms.items(), key=lambda kv: abs(kv[1][k] - kv[1][k - 1]) if k else 0)
+
+        def anomaly(arr: np.ndarray) -> float:
+            if k == 0:
+                return 0.0
+            inc = np.diff(arr)
+            around = np.r_[inc[max(0, k - 6):k - 1], inc[k:k + 5]]
+            return abs(inc[k - 1] - (float(np.median(around)) if around.size else 0.0))
+
+        name, arr = max(terms.items(), key=lambda kv: anomaly(kv[1]))
         warning = (f"the energy balance is off by {residual:.1%} of {scale:.3g} J: it jumps by "
                    f"{total[k] - total[k - 1]:.3g} J at t = {times[k]:.4g} s, where "
                    f"{name} changes by {arr[k] - arr[k - 1]:.3g} J")
