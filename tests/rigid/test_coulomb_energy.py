@@ -209,7 +209,9 @@ def test_the_balance_warns_and_names_the_term_that_is_off():
 
 def test_the_json_reports_the_contacts_work_not_damping():
     """``to_dict`` of a rigid run: the contacts' work and its two parts, the balance's scale
-    and residual; no ``dissipated_damping_J`` (the chain has no damping)."""
+    and residual; no ``dissipated_damping_J`` (the chain has no damping). ``to_table`` (the
+    ``--history`` CSV): the contacts' work and its friction part in place of the DEM's
+    strain, damping and friction columns."""
     run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(0.5 * G, 0.2), duration=0.3,
                          time_step=1e-4, friction=0.3)
     out = run.to_dict(joint_forces=False)
@@ -220,3 +222,7 @@ def test_the_json_reports_the_contacts_work_not_damping():
     assert out["dissipated_impacts_J"] == e.impacts_J
     assert out["energy_error"] == e.residual and out["energy_scale_J"] == e.scale_J > 0.0
     assert out["input_work_J"] == e.input_work_J and out["energy_warning"] is None
+    table = run.to_table()  # what --history writes
+    assert not {"damping_J", "strain_J", "friction_J"} & set(table)
+    np.testing.assert_array_equal(table["dissipated_contacts_J"], run.contact_work)
+    np.testing.assert_array_equal(table["dissipated_friction_J"], run.friction_work)

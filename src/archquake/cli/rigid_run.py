@@ -60,7 +60,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if verdict is not None:
         out = with_verdict(out, verdict)
     return emit_block_run(args, arch, motion, result.result, out, _print_text,
-                          label="rigid chain")
+                          label="rigid chain", history=result)
 
 
 def with_verdict(out: dict, verdict) -> dict:

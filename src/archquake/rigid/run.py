@@ -181,8 +181,16 @@ class RigidRun:
 
     def to_table(self) -> dict[str, np.ndarray]:
         """Columns for a tabular export: ``result.to_table()``
-        (:data:`archquake.result.TABLE_COLUMNS` first), then the friction demand."""
+        (:data:`archquake.result.TABLE_COLUMNS` first) with the contacts' work in place of the
+        DEM's sinks (``dissipated_contacts_J``, ``dissipated_friction_J``: its part on slipping
+        joints; :attr:`energy`), then the friction demand."""
         out = self.result.to_table()
+        for key in ("strain_J", "damping_J", "friction_J"):
+            del out[key]
+        contacts = self.result.damping if self.contact_work is None else self.contact_work
+        out["dissipated_contacts_J"] = contacts
+        out["dissipated_friction_J"] = (np.zeros_like(contacts) if self.friction_work is None
+                                        else self.friction_work)
         if self.friction_demand.shape == self.result.times.shape:
             out["friction_demand"] = self.friction_demand
         return out
