@@ -148,12 +148,13 @@ def run(args: argparse.Namespace, arch, motion) -> int:
 
 
 def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
-                   print_text, label: str | None = None) -> int:
+                   print_text, label: str | None = None, history=None) -> int:
     """The output of a block-model run (the DEM, or the rigid chain read by the DEM's own
     post-processing, ``result`` a :class:`~archquake.dem.DemResult`): the ``--plot``,
     ``--animate`` and ``--history`` files, then ``out`` (the run's ``to_dict()``, completed with
     the arch and the excitation) as JSON with ``--json``, else ``print_text(out)`` and the files
-    written. Returns the exit status."""
+    written. ``history``: the run whose ``to_csv`` writes ``--history`` (default ``result``).
+    Returns the exit status."""
     if args.plot:
         from archquake.plotting.compare import save_dem_rotation
 
@@ -166,7 +167,7 @@ def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
 
         animate_dem(result, args.animate, fps=15)
     if args.history:
-        result.to_csv(args.history)
+        (result if history is None else history).to_csv(args.history)
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
     if args.json:

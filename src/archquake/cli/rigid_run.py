@@ -60,7 +60,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if verdict is not None:
         out = with_verdict(out, verdict)
     return emit_block_run(args, arch, motion, result.result, out, _print_text,
-                          label="rigid chain")
+                          label="rigid chain", history=result)
 
 
 def with_verdict(out: dict, verdict) -> dict:
@@ -118,8 +118,17 @@ def _print_text(out: dict) -> None:
               f"{jf['max_friction_demand_joint']}, t = {jf['max_friction_demand_time_s']:.3f} s "
               f"({jf['indeterminate_samples']} indeterminate and {jf['impulsive_samples']} impact "
               f"samples of {jf['samples']} left out)")
-    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated at the "
-          f"contacts {out['dissipated_damping_J']:.4g} J")
+    if out["energy_scale_J"] > 0.0:
+        print(f"energy balance      residual {out['energy_error']:.1e} of {out['energy_scale_J']:.4g} J "
+              f"(the largest of the input work, the kinetic and potential energy and the ground's "
+              f"kinetic energy); input work "
+              f"{out['input_work_J']:.4g} J")
+        print(f"dissipated          at the contacts {out['dissipated_contacts_J']:.4g} J: impacts "
+              f"{out['dissipated_impacts_J']:.4g} J, friction {out['dissipated_friction_J']:.4g} J")
+    else:
+        print("energy balance      nothing moved relative to the ground: no work, no dissipation")
+    if out["energy_warning"]:
+        print(f"warning             {out['energy_warning']}")
 
 
 __all__ = ["run"]

@@ -48,11 +48,12 @@ def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: floa
 def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
                    settings=None, time_step: float | None = None, tail: float = 4.0,
                    solver_tolerance: float | None = None, solver: str = "direct",
-                   g: float = STANDARD_GRAVITY) -> bool:
+                   g: float = STANDARD_GRAVITY, friction: float | None = None) -> bool:
     """Whether ``model`` ("dem" or "rigid") collapses under StepImpulse(magnitude_g, tp),
     run for 3 t_p + ``tail`` s (the DEM's collapses in the second half cycle come 3.6-4.7 s
-    after the start on Oppenheim's arch: its default 3 s duration misses them). ``solver``:
-    the rigid chain's (:func:`~archquake.rigid.simulate_rigid`)."""
+    after the start on Oppenheim's arch: its default 3 s duration misses them). ``solver``
+    and ``friction`` (the joints' Coulomb coefficient, None: no sliding): the rigid chain's
+    (:func:`~archquake.rigid.simulate_rigid`)."""
     from archquake.ground import StepImpulse
 
     motion = StepImpulse.from_g(magnitude_g, tp, g=g)
@@ -69,7 +70,8 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
     run = simulate_rigid(arch, motion, duration=3 * tp + tail, output_interval=2e-3,
                          time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g,
                          solver_tolerance=(SOLVER_TOLERANCE if solver_tolerance is None
-                                           else solver_tolerance), solver=solver)
+                                           else solver_tolerance), solver=solver,
+                         friction=friction)
     return run.result.outcome.value == "collapse"
 
 

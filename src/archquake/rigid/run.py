@@ -57,6 +57,10 @@ class RigidRun:
     ``friction_demand``: (nt,) largest |p_T| / p_N of any joint since the previous sample;
     ``max_sweeps``: most Gauss-Seidel sweeps of a step; ``residual``: largest velocity
     correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
+    ``contact_work``, ``friction_work``: (nt,) J, the work done on the contacts since t = 0
+    (``_step_kernels.D_CONTACT_WORK``, the energy they dissipate: what closes the balance,
+    :attr:`energy`) and its part on the slipping joints (``D_FRICTION_WORK``); None for the
+    event integrator, whose ``damping`` column is its impacts' loss;
     ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
     motion it was run with; ``events``: with ``solver="events"``, the event integrator's
     record (:func:`archquake.rigid.events.run_events`: counters, the event log, the
@@ -75,6 +79,20 @@ class RigidRun:
     motion: object = field(default=None, repr=False, compare=False)
     correction_work: float = 0.0
     events: dict | None = field(default=None, repr=False, compare=False)
+    contact_work: np.ndarray | None = field(default=None, repr=False, compare=False)
+    friction_work: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def energy(self) -> EnergyBalance:
+        """The run's energy balance (:class:`EnergyBalance`, :func:`energy_balance`)."""
+        res = self.result
+        contacts = res.damping if self.contact_work is None else self.contact_work
+        friction = np.zeros_like(contacts) if self.friction_work is None else self.friction_work
+        asm = res.assembly
+        free_mass = float(np.sum(asm.masses[~np.asarray(asm.base, dtype=bool)]))
+        ground = 0.5 * free_mass * float(np.max(np.abs(res.base_velocity), initial=0.0)) ** 2
+        return energy_balance(res.times, res.kinetic, res.potential, contacts, friction,
+                              res.input_work, ground_kinetic=ground)
 
     @property
     def max_friction_demand(self) -> float:
@@ -163,8 +181,16 @@ class RigidRun:
 
     def to_table(self) -> dict[str, np.ndarray]:
         """Columns for a tabular export: ``result.to_table()``
-        (:data:`archquake.result.TABLE_COLUMNS` first), then the friction demand."""
+        (:data:`archquake.result.TABLE_COLUMNS` first) with the contacts' work in place of the
+        DEM's sinks (``dissipated_contacts_J``, ``dissipated_friction_J``: its part on slipping
+        joints; :attr:`energy`), then the friction demand."""
         out = self.result.to_table()
+        for key in ("strain_J", "damping_J", "friction_J"):
+            del out[key]
+        contacts = self.result.damping if self.contact_work is None else self.contact_work
+        out["dissipated_contacts_J"] = contacts
+        out["dissipated_friction_J"] = (np.zeros_like(contacts) if self.friction_work is None
+                                        else self.friction_work)
         if self.friction_demand.shape == self.result.times.shape:
             out["friction_demand"] = self.friction_demand
         return out
@@ -180,6 +206,8 @@ class RigidRun:
         stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
         forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
         out = self.result.to_dict()
+        del out["dissipated_damping_J"], out["dissipated_friction_J"]  # the DEM's sinks
+        out.update(self.energy.to_dict())
         out["model"] = "rigid"
         out["friction_coefficient"] = self.friction
         if joint_forces and self.motion is not None:
@@ -289,7 +317,101 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=s.max_sweeps,
                     residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=s.wall_s,
                     friction=friction, motion=motion,
-                    correction_work=float(da[-1, RK.D_CORRECTION]))
+                    correction_work=float(da[-1, RK.D_CORRECTION]),
+                    contact_work=da[:, RK.D_CONTACT_WORK].copy(),
+                    friction_work=da[:, RK.D_FRICTION_WORK].copy())
+
+
+#: A residual of the energy balance above this fraction of its scale is a warning on the run.
+ENERGY_WARNING = 0.03
+
+
+@dataclass(frozen=True)
+class EnergyBalance:
+    """The energy balance of a rigid-chain run, in the ground's frame (relative motion).
+
+    The input is the work of the inertial load -m x_g'' on the relative velocities, W(t) =
+    -int x_g'' sum m_i x_i' dt: in this frame the ground's own velocity and displacement,
+    including what a record leaves behind at its end (a residual velocity, a drift), do no work.
+    The balance T + V + D - W = T(0) + V(0), T the kinetic energy of the relative motion, V the
+    gravitational energy, D the work done on the contacts (the energy they dissipate), holds
+    for the Moreau-Jean step exactly (module docstring of ``_step_kernels``, "Energy"), so its
+    ``residual`` is the rounding of the sums and the sampling, unless something is off.
+
+    ``input_work_J``, ``peak_kinetic_J``, ``contacts_J`` (D at the end), ``friction_J`` (its
+    part on slipping joints), ``impacts_J`` (the rest: plastic impacts, the step's loss in
+    persistent contact and the position correction's work), ``scale_J`` = max(|W|, T, |V -
+    V(0)|, 1/2 M max |x_g'|^2) over the run (:func:`energy_balance`), 0 only without
+    excitation and motion; ``residual``: max |T + V + D - W - E(0)| /
+    ``scale_J`` (0 when nothing moved); ``warning``: a sentence when ``residual`` exceeds
+    :data:`ENERGY_WARNING` or a dissipation is negative, else None. A broken balance is
+    located at the sample where it jumps most, and the sentence names the term whose change
+    there departs most from its changes at the ten samples around it."""
+
+    input_work_J: float
+    peak_kinetic_J: float
+    contacts_J: float
+    impacts_J: float
+    friction_J: float
+    scale_J: float
+    residual: float
+    warning: str | None
+
+    def to_dict(self) -> dict:
+        """The JSON keys: ``energy_error`` (the residual, a fraction of ``energy_scale_J``),
+        ``energy_scale_J``, ``input_work_J``, ``peak_kinetic_J``, ``dissipated_contacts_J``,
+        ``dissipated_impacts_J``, ``dissipated_friction_J``, ``energy_warning``."""
+        return {"energy_error": self.residual, "energy_scale_J": self.scale_J,
+                "input_work_J": self.input_work_J, "peak_kinetic_J": self.peak_kinetic_J,
+                "dissipated_contacts_J": self.contacts_J,
+                "dissipated_impacts_J": self.impacts_J,
+                "dissipated_friction_J": self.friction_J, "energy_warning": self.warning}
+
+
+def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray,
+                   contacts: np.ndarray, friction: np.ndarray, input_work: np.ndarray, *,
+                   ground_kinetic: float = 0.0) -> EnergyBalance:
+    """The :class:`EnergyBalance` of the samples (each (nt,), J; ``times`` s): ``contacts`` the
+    work done on the contacts since t = 0, ``friction`` its part on slipping joints;
+    ``ground_kinetic`` J, 1/2 M max |x_g'|^2 (M the free blocks' mass), the kinetic energy the
+    ground's motion gives the arch carried along with it: a scale that only vanishes without
+    excitation, so that a run in which almost nothing moves relative to the ground is not
+    judged against its own rounding."""
+    if times.size == 0:
+        return EnergyBalance(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, None)
+    total = kinetic + potential + contacts - input_work
+    drift = np.abs(total - total[0])
+    scale = max(float(np.max(np.abs(input_work))), float(np.max(kinetic)),
+                float(np.max(np.abs(potential - potential[0]))), float(ground_kinetic))
+    residual = float(np.max(drift)) / scale if scale > 0.0 else 0.0
+    if not math.isfinite(residual):
+        residual = math.inf
+    d_c, d_f = float(contacts[-1]), float(friction[-1])
+    warning = None
+    if residual > ENERGY_WARNING:
+        # the sample where the balance jumps most, and the term whose change there departs
+        # most from its changes at the samples around it
+        k = int(np.argmax(np.abs(np.diff(total)))) + 1 if times.size > 1 else 0
+        terms = {"the kinetic energy": kinetic, "the potential energy": potential,
+                 "the work done on the contacts": contacts, "the input work": input_work}
+
+        def anomaly(arr: np.ndarray) -> float:
+            if k == 0:
+                return 0.0
+            inc = np.diff(arr)
+            around = np.r_[inc[max(0, k - 6):k - 1], inc[k:k + 5]]
+            return abs(inc[k - 1] - (float(np.median(around)) if around.size else 0.0))
+
+        name, arr = max(terms.items(), key=lambda kv: anomaly(kv[1]))
+        warning = (f"the energy balance is off by {residual:.1%} of {scale:.3g} J: it jumps by "
+                   f"{total[k] - total[k - 1]:.3g} J at t = {times[k]:.4g} s, where "
+                   f"{name} changes by {arr[k] - arr[k - 1]:.3g} J")
+    elif min(d_c, d_c - d_f, d_f) < -ENERGY_WARNING * scale:
+        warning = (f"the contacts did positive work: dissipated {d_c:.4g} J "
+                   f"({d_c - d_f:.4g} J in impacts, {d_f:.4g} J in friction)")
+    return EnergyBalance(input_work_J=float(input_work[-1]), peak_kinetic_J=float(np.max(kinetic)),
+                         contacts_J=d_c, impacts_J=d_c - d_f, friction_J=d_f, scale_J=scale,
+                         residual=residual, warning=warning)
 
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
@@ -369,4 +491,4 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
 
 
 
-__all__ = ["RigidRun", "simulate_rigid"]
+__all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "simulate_rigid"]
