@@ -52,15 +52,22 @@ def test_section_is_the_library_check(tmp_path):
     ({"hazard": HAZARD, "ag_g": 0.2}, "[site] hazard and ag_g exclude each other"),
     ({"ag_g": 0.2}, "[site] f0 is missing"),
     ({}, "[site] ag_g is missing"),
-    ({"hazard": HAZARD, "knowledge": "LC4"}, "[site] knowledge must be one of"),
-    ({"hazard": HAZARD, "height_m": 30, "building_height_m": 20, "building_period_s": 0.5},
+    ({"hazard": HAZARD, "soil": "B", "knowledge": "LC4"}, "[site] knowledge must be one of"),
+    ({"hazard": HAZARD, "soil": "B", "height_m": 30, "building_height_m": 20, "building_period_s": 0.5},
      "[site] height_m must be in [0, 20] m"),
-    ({"hazard": HAZARD, "height_m": 5}, "[site] height_m > 0 needs building_height_m"),
-    ({"hazard": HAZARD, "building_period_s": 0.5}, "[site] building_period_s applies only"),
-    ({"hazard": [[475, 0.15, 2.45, 0.30], [975, 0.19, 2.5, 0.31]]},
-     "SLD needs the return period 50 years"),
+    ({"hazard": HAZARD, "soil": "B", "height_m": 5}, "[site] height_m > 0 needs building_height_m"),
+    ({"hazard": HAZARD, "soil": "B", "building_period_s": 0.5}, "[site] building_period_s applies only"),
+    ({"hazard": [[975, 0.19, 2.5, 0.31], [2475, 0.25, 2.5, 0.33]], "soil": "B"},
+     "[site] hazard must span the SLV's return period, which sets the site's demand on the "
+     "dynamic sections: the SLV needs the return period 475 years"),
+    ({"hazard": HAZARD}, "[site] soil is missing"),
+    ({"code": "ec8", "ag_g": 0.2}, "[site] ground is missing"),
+    ({"hazard": HAZARD, "soil": "B", "limit_state": "SLC"}, "[site] limit_state applies to one "
+                                                            "spectrum"),
+    ({"ag_g": 0.2, "f0": 2.4, "tc_star_s": 0.3, "soil": "B", "limit_state": "SLO"},
+     "[site] limit_state must be one of"),
     ({"code": "ec8", "ag_g": 0.2, "soil": "B"}, "[site] soil does not apply"),
-    ({"hazard": HAZARD, "procedure": "2009", "height_m": 5, "building_height_m": 20,
+    ({"hazard": HAZARD, "soil": "B", "procedure": "2009", "height_m": 5, "building_height_m": 20,
       "building_period_s": 0.5}, "[site] procedure '2009' is implemented at the ground only"),
 ])
 def test_bad_site_is_one_line(table, words):
@@ -82,5 +89,81 @@ def test_a_file_without_site_keeps_its_digest():
                      "voussoirs": 15, "friction": 0.6}, "seismic": {"site_pga_g": 0.15}}
     plain = parse_config(base)
     assert "site" not in plain.canonical()
-    with_site = parse_config({**base, "site": {"hazard": HAZARD, "soil": "B"}})
+    with_site = parse_config({**base, "site": {"hazard": HAZARD, "soil": "B"}, "seismic":
+                              {"site_pga_g": 0.18}})
     assert with_site.digest != plain.digest
+
+
+# ----------------------------------------------------------------- one site, one demand
+ARCH = {"radius": 5.0, "thickness_ratio": 0.12, "embrace_deg": 180, "voussoirs": 15,
+        "friction": 0.6}
+
+
+def test_site_table_sets_the_dynamic_demand_on_soil():
+    """Oracle: NTC 2018 eq. 3.2.2 at T = 0 and Tab. 3.2.IV by hand. At the SLV (T_R 474.6 y,
+    V_N 50, class II) the hazard gives a_g = 0.1499 g (log-log between 50 and 475 years), F0
+    2.4499; soil B: S_S = 1.40 - 0.40 F0 a_g = 1.253, clipped to 1.20; T1: S_T = 1. The
+    dynamic sections run at a_g S_S S_T = 0.1799 g, not the rock 0.15 g."""
+    cfg = parse_config({"arch": ARCH, "site": {"hazard": HAZARD, "soil": "B"}})
+    spec = cfg.site.spectra()["SLV"]
+    ag = spec.ag / spec.g
+    assert ag == pytest.approx(0.15, rel=2e-3)
+    assert cfg.site_pga_g == pytest.approx(ag * 1.2 * 1.0, rel=1e-12)
+    assert "a_g S_S S_T" in cfg.site_pga_source and "x 1.2 x 1 =" in cfg.site_pga_source
+    # on a ridge (T3: S_T = 1.2) the topography enters too
+    top = parse_config({"arch": ARCH, "site": {"hazard": HAZARD, "soil": "B",
+                                               "topography": "T3"}})
+    assert top.site_pga_g == pytest.approx(ag * 1.2 * 1.2, rel=1e-12)
+
+
+def test_example_bridge_runs_at_the_soil_pga():
+    cfg = load_config(EXAMPLE)
+    assert cfg.site_pga_g == pytest.approx(0.1799, abs=1e-4)
+
+
+@pytest.mark.parametrize("given, ok", [(0.1799, True), (0.18, True), (0.15, False)])
+def test_site_pga_beside_the_site_table_must_agree(given, ok):
+    data = {"arch": ARCH, "seismic": {"site_pga_g": given},
+            "site": {"hazard": HAZARD, "soil": "B"}}
+    if ok:
+        assert parse_config(data).site_pga_g == given
+        return
+    with pytest.raises(StudyFileError) as exc:
+        parse_config(data, source="x.toml")
+    text = str(exc.value)
+    assert text.startswith("x.toml: [seismic] site_pga_g = 0.15 g differs from the [site] "
+                           "table's a_g S_S S_T")
+    assert "site_pga_override" in text and "\n" not in text
+
+
+def test_stated_override_is_used_and_printed():
+    cfg = parse_config({"arch": ARCH, "seismic": {"site_pga_g": 0.15, "site_pga_override": True},
+                        "site": {"hazard": HAZARD, "soil": "B"}})
+    assert cfg.site_pga_g == 0.15
+    assert any("overrides the [site] table's 0.1799 g" in n for n in cfg.notes)
+    with pytest.raises(StudyFileError, match=r"site_pga_override applies only with a \[site\]"):
+        parse_config({"arch": ARCH, "seismic": {"site_pga_g": 0.15, "site_pga_override": True}})
+
+
+def test_each_limit_state_only_at_its_own_hazard():
+    """Points at 50 and 475 years span the SLD (50.3 y) and the SLV (474.6 y), not the SLC
+    (974.8 y): the SLC is not checked, and never against the SLV's a_g."""
+    site = parse_site({"hazard": HAZARD[:2], "soil": "B"})
+    assert sorted(site.spectra()) == ["SLD", "SLV"]
+    assert "975 years" in site.not_checked()["SLC"]
+    one = parse_site({"ag_g": 0.15, "f0": 2.45, "tc_star_s": 0.3, "soil": "B"})
+    assert list(one.spectra()) == ["SLV"] and sorted(one.not_checked()) == ["SLC", "SLD"]
+    sld = parse_site({"ag_g": 0.05, "f0": 2.5, "tc_star_s": 0.26, "soil": "B",
+                      "limit_state": "SLD"})
+    assert list(sld.spectra()) == ["SLD"] and sld.dynamic_limit_state == "SLD"
+
+
+def test_section_reports_the_limit_states_not_checked(tmp_path):
+    cfg = parse_config({"arch": ARCH, "site": {"hazard": HAZARD[:2], "soil": "B"}})
+    ctx = SimpleNamespace(config=cfg, arch=cfg.build_arch(), figures=tmp_path)
+    res = section_code_check(ctx)
+    assert {c["limit_state"] for c in res.data["limit_states"]} == {"SLD", "SLV"}
+    el: list = []
+    report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
+    items = next(e[1] for e in el if e[0] == "ul")
+    assert any(i.startswith("SLC: not checked") for i in items)

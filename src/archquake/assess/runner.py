@@ -144,7 +144,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
         va = results["validity"]
         results["validity"] = replace(va, data=with_dem_warnings(
             va.data, results["dem"].data if "dem" in results else None, config.model))
-    v = verdict(config, {n: r.data for n, r in results.items()})
+    v = verdict(config, {n: r.data for n, r in results.items()}, quick=quick)
     rep = Assessment(config, results, cached, v, quick, out, time.perf_counter() - t0)
     if report:
         from archquake.assess.report import write_html, write_markdown

@@ -319,7 +319,7 @@ def section_pulses(ctx: Context) -> StudyResult:
                                                           else f"c_v = {cv:.3g}"))
             if ctx.site is not None:
                 ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
-                           label=f"site PGA {ctx.site:g} g")
+                           label=f"site PGA {ctx.site:.3g} g")
                 ax.legend(loc="upper right", fontsize=7)
             save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
             figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
@@ -432,7 +432,7 @@ def section_records(ctx: Context) -> StudyResult:
         if ctx.site is not None:
             for ax in (a1, a2):
                 (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
-                                                          label=f"site PGA {ctx.site:g} g")
+                                                          label=f"site PGA {ctx.site:.3g} g")
             data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
             if fit is not None:
                 data["p_collapse_at_site"] = float(fit.probability(ctx.site))
@@ -877,9 +877,26 @@ def _p_level(p: float) -> str:
     return "collapse likely" if p >= 0.5 else "at risk" if p >= 0.1 else "rocks but survives"
 
 
-# ----------------------------------------------------------------------------- 7. verdict
-def verdict(config, prior: dict) -> dict:
-    """The one-paragraph verdict and the numbers it rests on (from the sections' data)."""
+# ----------------------------------------------------------------------------- 8. verdict
+#: The validity warnings that can only make collapse likelier than the verdict says (the joints
+#: slide; the DEM, or the model itself, collapses below the reported level): with the verdict
+#: already "collapse likely" they do not make it inconclusive.
+COLLAPSE_LIKELIER = ("friction_collapse", "dem", "model_below_level", "sliding")
+#: The colour of the verdict by outcome: "fails" (collapse likely, or the code check fails),
+#: "at-risk", "passes" (stands, or rocks but survives, and the code check passes or is not
+#: run), "open" (capacity only).
+OUTCOMES = ("fails", "at-risk", "passes", "open")
+
+
+def verdict(config, prior: dict, *, quick: bool = False) -> dict:
+    """The one-paragraph verdict and the numbers it rests on (from the sections' data).
+
+    The text opens with the level word (``'Collapse likely'``, ``'At risk'``, ``'Rocks but
+    survives'``, ``'Stands'``, ...), the code check's outcome with a ``[site]`` table, and
+    "indicative" in quick mode; ``outcome`` (:data:`OUTCOMES`) follows the outcome, not the
+    certainty. A serious validity warning makes it not conclusive, unless the verdict is
+    already "collapse likely" and the warning can only make collapse likelier
+    (:data:`COLLAPSE_LIKELIER`)."""
     site = config.site_pga_g
     st = prior["static"]
     lam = st["collapse_acceleration_g"]
@@ -896,16 +913,16 @@ def verdict(config, prior: dict) -> dict:
         parts.append(f"No site PGA was given: the arch starts to rock at lambda = {lam:.3f} g.")
     elif site <= lam:
         level = "stands"
-        parts.append(f"The site PGA ({site:g} g) is below the static collapse acceleration "
+        parts.append(f"The site PGA ({site:.3g} g) is below the static collapse acceleration "
                      f"lambda = {lam:.3f} g: the arch moves rigidly with the ground and does "
                      "not even start to rock.")
     elif "pulses" not in prior:
         level = "rocks: dynamics not assessed"
-        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+        parts.append(f"The site PGA ({site:.3g} g) is {site / lam:.1f} times the static collapse "
                      f"acceleration lambda = {lam:.3f} g: the arch rocks, and whether it "
                      "collapses was not assessed (the dynamic sections were not run).")
     else:
-        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+        parts.append(f"The site PGA ({site:.3g} g) is {site / lam:.1f} times the static collapse "
                      f"acceleration lambda = {lam:.3f} g: the arch rocks; whether it collapses "
                      "depends on the duration of the motion.")
         pulses_collapse = [f for f in ("step", "sine") if pul.get(f, {}).get("collapses_at_site")]
@@ -962,13 +979,59 @@ def verdict(config, prior: dict) -> dict:
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
                      f" > {config.friction:g}).")
+    if site is not None and getattr(config, "site_pga_source", None):
+        parts.insert(0, f"Site PGA {site:.3g} g: {config.site_pga_source}.")
+    code = prior.get("codecheck")
+    code_fails = False
+    head_code = ""
+    if code is not None:
+        gov = [c for c in code["limit_states"] if c["governing"]]
+        failing = [c["limit_state"] for c in gov if not c["passes"]]
+        code_fails = bool(failing)
+        worst = min(gov, key=lambda c: c["ratio"])
+        head_code = (f"; code check FAILS at {', '.join(failing)}" if failing
+                     else "; code check passes")
+        missing = code.get("not_checked", {})
+        numbers["code_check_passes"] = not code_fails
+        numbers["code_check_least_ratio"] = worst["ratio"]
+        parts.append("Code check (kinematic analysis, NTC 2018 §8.7.1, section 7): "
+                     + (f"FAILS at {', '.join(failing)}" if failing else "passes at "
+                        + ", ".join(c["limit_state"] for c in gov))
+                     + f" (least ratio capacity a_g / site a_g {worst['ratio']:.3f}, "
+                       f"{worst['limit_state']} {worst['method']})"
+                     + (f"; {', '.join(missing)} not checked (no hazard of its own)"
+                        if missing else "") + ".")
+    indicative = bool(quick and site is not None and site > lam and "pulses" in prior)
+    if indicative:
+        what = (f"P(collapse) from {len(rec['records_used'])} of the "
+                f"{rec['records_in_suite']} records, " if rec is not None else "")
+        parts.append(f"Indicative only: quick mode ({what}coarse domains); run without --quick "
+                     "before relying on it.")
     serious = [w for w in val.get("warnings", []) if w["serious"]]
-    certain = not serious
+    likelier = [w for w in serious if w["key"] in COLLAPSE_LIKELIER]
+    blocking = [w for w in serious if not (level == "collapse likely"
+                                           and w["key"] in COLLAPSE_LIKELIER)]
+    certain = not blocking
     if not certain:
         parts.insert(0, "NOT CONCLUSIVE: the models are outside their validity here ("
-                     + "; ".join(w["warning"] for w in serious) + ").")
+                     + "; ".join(w["warning"] for w in blocking) + ").")
+    elif likelier and level == "collapse likely":
+        parts.append("What the models leave out can only make collapse likelier here ("
+                     + "; ".join(w["warning"] for w in likelier) + ").")
     parts.append("Assumptions: " + ", ".join(ASSUMPTIONS) + ".")
-    return {"level": level, "certain": certain, "text": " ".join(parts), "numbers": numbers}
+    if level in ("collapse likely",) or code_fails:
+        outcome = "fails"
+    elif level in ("at risk", "rocks: dynamics not assessed"):
+        outcome = "at-risk"
+    elif level == "capacity only":
+        outcome = "open"
+    else:
+        outcome = "passes"
+    headline = (level[0].upper() + level[1:] + (", indicative" if indicative else "")
+                + ("" if certain else ", NOT CONCLUSIVE") + head_code)
+    return {"level": level, "certain": certain, "outcome": outcome, "indicative": indicative,
+            "headline": headline, "text": headline + ". " + " ".join(parts),
+            "numbers": numbers}
 
 
 SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
@@ -976,7 +1039,7 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("records", section_records), ("dem", section_dem), ("validity", section_validity),
     ("codecheck", section_code_check))
 
-__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
+__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "OUTCOMES", "Context", "Mode", "SECTIONS", "dynamics_refusal",
            "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",
            "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]

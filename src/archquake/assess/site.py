@@ -7,18 +7,26 @@
     code = "ntc2018"            # or "ec8"
     # NTC 2018: the hazard at the limit states' return periods ...
     hazard = [[50, 0.08, 2.45, 0.27], [475, 0.25, 2.40, 0.30], [975, 0.32, 2.45, 0.32]]
-                                # (T_R years, a_g g, F0, T_C* s), two or more points
+                                # (T_R years, a_g g, F0, T_C* s): points whose return periods
+                                # span each limit state's (V_N 50, class II: SLD 50, SLV 475,
+                                # SLC 975 years); a limit state outside them is not checked
     nominal_life_years = 50     # V_N (default 50)
     use_class = "II"            # I..IV (default II)
-    # ... or one spectrum for every limit state: ag_g, f0, tc_star_s
-    soil = "B"                  # A..E (default A)
+    # ... or the spectrum of one limit state: ag_g, f0, tc_star_s, limit_state
+    soil = "B"                  # A..E (required: A is rock)
     topography = "T1"           # T1..T4 (default T1)
-    # EN 1998-1 (one spectrum for every limit state): ag_g, spectrum_type, ground, importance
+    # EN 1998-1 (the spectrum of one limit state): ag_g, spectrum_type, ground (required),
+    # importance, limit_state
+    limit_state = "SLV"         # with one spectrum: the limit state it is for (default SLV)
     knowledge = "LC1"           # LC1, LC2, LC3: FC 1.35, 1.20, 1.00 (default LC1)
     procedure = "2019"          # or "2009" (default 2019)
     height_m = 0.0              # Z, the arch's springings above the building's foundation
     building_height_m = 12.0    # H (with height_m > 0)
     building_period_s = 0.4     # T1 (with height_m > 0)
+
+The site's demand on the dynamic sections (pulses, records, P(collapse), the DEM check) is
+the peak ground acceleration of the SLV spectrum (of the one spectrum, at its limit state):
+a_g S_S S_T (EN 1998-1: gamma_I a_gR S), :meth:`SiteConfig.site_pga_g`.
 
 Every problem is one line naming the key (``[site] ag_g``), raised as
 :class:`~archquake.errors.StudyFileError`.
@@ -33,8 +41,11 @@ from typing import Any
 from archquake.errors import ArchquakeError, StudyFileError
 
 SITE_KEYS = ("code", "hazard", "nominal_life_years", "use_class", "ag_g", "f0", "tc_star_s",
-             "soil", "topography", "spectrum_type", "ground", "importance", "knowledge",
-             "procedure", "height_m", "building_height_m", "building_period_s")
+             "soil", "topography", "spectrum_type", "ground", "importance", "limit_state",
+             "knowledge", "procedure", "height_m", "building_height_m", "building_period_s")
+#: The limit state whose demand the dynamic sections take (hazard form): the code's
+#: life-safety check, the one every existing masonry building must pass (NTC 2018 §8.3).
+DYNAMIC_LIMIT_STATE = "SLV"
 _NTC_ONLY = ("hazard", "nominal_life_years", "use_class", "f0", "tc_star_s", "soil", "topography")
 _EC8_ONLY = ("spectrum_type", "ground", "importance")
 
@@ -60,31 +71,74 @@ class SiteConfig:
     height_m: float
     building_height_m: float | None
     building_period_s: float | None
+    limit_state: str | None = None
 
     def canonical(self) -> dict:
         d = asdict(self)
         d["hazard"] = None if self.hazard is None else [list(p) for p in self.hazard]
         return d
 
-    def spectra(self) -> dict:
-        """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC')."""
-        from archquake.codecheck.check import LIMIT_STATES, limit_state_spectra
+    def _spectra_and_missing(self) -> tuple[dict, dict]:
+        from archquake.codecheck.check import LIMIT_STATES, hazard_spectra
         from archquake.codes.spectra import NTCHazard, ec8_spectrum, ntc2018_spectrum
 
+        if self.hazard is not None:
+            return hazard_spectra(NTCHazard(self.hazard),
+                                  nominal_life_years=self.nominal_life_years,
+                                  use_class=self.use_class, soil=self.soil,
+                                  topography=self.topography)
         if self.code == "ec8":
             assert self.ag_g is not None
             spec = ec8_spectrum(ag_g=self.ag_g, spectrum_type=self.spectrum_type,
                                 ground=self.ground, importance=self.importance)
-            return {s: spec for s in LIMIT_STATES}
-        if self.hazard is not None:
-            return limit_state_spectra(NTCHazard(self.hazard),
-                                       nominal_life_years=self.nominal_life_years,
-                                       use_class=self.use_class, soil=self.soil,
-                                       topography=self.topography)
-        assert self.ag_g is not None and self.f0 is not None and self.tc_star_s is not None
-        spec = ntc2018_spectrum(ag_g=self.ag_g, f0=self.f0, tc_star_s=self.tc_star_s,
-                                soil=self.soil, topography=self.topography)
-        return {s: spec for s in LIMIT_STATES}
+        else:
+            assert self.ag_g is not None and self.f0 is not None and self.tc_star_s is not None
+            spec = ntc2018_spectrum(ag_g=self.ag_g, f0=self.f0, tc_star_s=self.tc_star_s,
+                                    soil=self.soil, topography=self.topography)
+        state = self.limit_state or DYNAMIC_LIMIT_STATE
+        return {state: spec}, {s: f"has no spectrum of its own (the one given is the {state}'s)"
+                               for s in LIMIT_STATES if s != state}
+
+    def spectra(self) -> dict:
+        """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC'): only those with a
+        hazard of their own (:meth:`not_checked` says why the others have none)."""
+        return self._spectra_and_missing()[0]
+
+    def not_checked(self) -> dict:
+        """The limit states without a hazard of their own, each with a phrase saying why."""
+        return self._spectra_and_missing()[1]
+
+    @property
+    def dynamic_limit_state(self) -> str:
+        """The limit state whose demand the dynamic sections take: the SLV with a hazard, the
+        one spectrum's own limit state otherwise."""
+        return DYNAMIC_LIMIT_STATE if self.hazard is not None else (
+            self.limit_state or DYNAMIC_LIMIT_STATE)
+
+    def site_pga_g(self) -> float:
+        """The site's peak ground acceleration at :attr:`dynamic_limit_state`, g: a_g S_S S_T
+        (NTC 2018 eq. 3.2.2 at T = 0), gamma_I a_gR S (EN 1998-1)."""
+        spec = self.spectra()[self.dynamic_limit_state]
+        return float(spec.pga / spec.g)
+
+    def describe_pga(self) -> str:
+        """Where :meth:`site_pga_g` comes from, in words with its factors."""
+        spec = self.spectra()[self.dynamic_limit_state]
+        g = spec.g
+        state = self.dynamic_limit_state
+        if self.code == "ec8":
+            return (f"a_g S = {spec.ag / g:.4g} g x {spec.S:.3g} = {spec.pga / g:.4g} g "
+                    f"(EN 1998-1 ground {self.ground}, the {state}'s spectrum of [site])")
+        p = spec.params
+        from archquake.codes.spectra import ntc2018_soil_factors
+
+        s_s = ntc2018_soil_factors(self.soil, ag_g=p["ag_g"], f0=p["f0"],
+                                   tc_star_s=p["tc_star_s"])[0]
+        where = ("" if self.hazard is None else
+                 f", T_R {_return_period(state, self.nominal_life_years, self.use_class):.0f} y")
+        return (f"a_g S_S S_T = {spec.ag / g:.4g} g x {s_s:.3g} x {spec.S / s_s:.3g} = "
+                f"{spec.pga / g:.4g} g ({state}{where}, soil {self.soil}, {self.topography}, "
+                "from [site])")
 
     def position(self):
         from archquake.codecheck.check import Position
@@ -95,13 +149,20 @@ class SiteConfig:
         """One line: where the spectra come from."""
         if self.code == "ec8":
             return (f"EN 1998-1 type {self.spectrum_type}, ground {self.ground}, a_gR "
-                    f"{self.ag_g:g} g, gamma_I {self.importance:g} (one spectrum for every "
-                    "limit state)")
+                    f"{self.ag_g:g} g, gamma_I {self.importance:g} (the "
+                    f"{self.dynamic_limit_state}'s spectrum)")
         if self.hazard is None:
             return (f"NTC 2018, a_g {self.ag_g:g} g, F0 {self.f0:g}, T_C* {self.tc_star_s:g} s, "
-                    f"soil {self.soil}, {self.topography} (one spectrum for every limit state)")
+                    f"soil {self.soil}, {self.topography} (the {self.dynamic_limit_state}'s "
+                    "spectrum)")
         return (f"NTC 2018 hazard ({len(self.hazard)} points), V_N {self.nominal_life_years:g} "
                 f"y, use class {self.use_class}, soil {self.soil}, {self.topography}")
+
+
+def _return_period(state: str, life: float, use: str) -> float:
+    from archquake.codes.spectra import return_period_years
+
+    return return_period_years(state, life, use)
 
 
 def _fail(source: str, key: str, what: str) -> StudyFileError:
@@ -209,6 +270,18 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
         raise _fail(source, "procedure", f"must be '2019' or '2009', got {procedure!r}")
     if procedure == "2009" and height > 0.0:
         raise _fail(source, "procedure", "'2009' is implemented at the ground only (height_m 0)")
+    if code == "ntc2018" and "soil" not in table:
+        raise _fail(source, "soil", "is missing: the subsoil category A..E (NTC 2018 Tab. "
+                                    "3.2.II; A is rock, S_S = 1)")
+    if code == "ec8" and "ground" not in table:
+        raise _fail(source, "ground", "is missing: the ground type A..E (EN 1998-1 Tab. 3.1; "
+                                      "A is rock, S = 1)")
+    limit_state = None
+    if "limit_state" in table:
+        if hazard is not None:
+            raise _fail(source, "limit_state", "applies to one spectrum (ag_g) only: the hazard "
+                                               "gives each limit state its own")
+        limit_state = _word(source, "limit_state", table["limit_state"], ("SLD", "SLV", "SLC"))
     site = SiteConfig(
         code=code, hazard=hazard,
         nominal_life_years=_num(source, "nominal_life_years", table.get("nominal_life_years", 50),
@@ -223,11 +296,17 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
                         low_open=False),
         knowledge=_word(source, "knowledge", table.get("knowledge", "LC1"),
                         ("LC1", "LC2", "LC3")),
-        procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt)
+        procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt,
+        limit_state=limit_state)
     try:
-        site.spectra()
+        spectra = site.spectra()
     except ArchquakeError as exc:
         raise _fail(source, "hazard" if hazard is not None else "ag_g", f"is invalid: {exc}") from None
+    state = site.dynamic_limit_state
+    if state not in spectra:
+        why = site.not_checked()[state]
+        raise _fail(source, "hazard", f"must span the {state}'s return period, which sets the "
+                                      f"site's demand on the dynamic sections: the {state} {why}")
     return site
 
 
@@ -248,6 +327,7 @@ def section_code_check(ctx):
     data = result.to_dict()
     data["site"] = site.describe()
     data["verdicts"] = [c.verdict() for c in result.governing]
+    data["not_checked"] = site.not_checked()
     return StudyResult("codecheck", "Code check", (),
                        (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
                                "(C8.7.1.3) against the site's demand spectra at each limit "
@@ -258,7 +338,7 @@ def section_code_check(ctx):
 def report_code_check(el: list, rep, data: dict) -> None:
     """The report's "Code check" section from the section's data."""
     g = data["capacity_curve"]["g"]
-    el.append(("h2", "codecheck", "8. Code check (NTC 2018 §8.7.1, Circolare "
+    el.append(("h2", "codecheck", "7. Code check (NTC 2018 §8.7.1, Circolare "
                                   f"{data['procedure']} C8.7.1.2)"))
     pos = data["position"]
     where = ("at the ground" if not pos["height_m"] else
@@ -292,7 +372,9 @@ def report_code_check(el: list, rep, data: dict) -> None:
     el.append(("table", ["limit state", "check", "capacity", "demand at the site", "read at",
                          "capacity a_g", "site a_g", "ratio", ""], rows))
     el.append(("fig", "codecheck.png", rep.sections["codecheck"].figures[0].caption))
-    el.append(("ul", list(data["verdicts"])))
+    missing = data.get("not_checked", {})
+    el.append(("ul", list(data["verdicts"]) + [
+        f"{state}: not checked, no hazard of its own: it {why}" for state, why in missing.items()]))
     formulas = sorted({f"{k}: {v}" for c in data["limit_states"] for k, v in c["formulas"].items()})
     el.append(("p", "Where each number comes from: " + "; ".join(formulas) + "."))
 
