@@ -11,6 +11,8 @@ Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg`
 from __future__ import annotations
 
 import math
+import threading
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -123,9 +125,65 @@ class Context:
         if self.progress is not None:
             self.progress(line)
 
+    def counter(self, what: str, total: int) -> Progress:
+        """A :class:`Progress` of ``total`` items (``what``: their name) through :meth:`say`."""
+        return Progress(self.say if self.progress is not None else None, what, total)
+
     @property
     def site(self) -> float | None:
         return self.config.site_pga_g
+
+
+class Progress:
+    """Progress of one step on the ``say`` line: ``what: done/total, about N s left``, once the
+    step has run for :attr:`QUIET_S` seconds and then at most every :attr:`EVERY_S` seconds,
+    and when it ends; nothing for a step shorter than that. The time left is the time per item
+    so far times the items left (``total`` may be an estimate, raised if passed, and said to
+    be one).
+
+    Call it with the number of items done (and the total, if it changed)."""
+
+    QUIET_S = 2.0
+    EVERY_S = 10.0
+
+    def __init__(self, say: Callable[[str], None] | None, what: str, total: int,
+                 *, estimate: bool = False, clock: Callable[[], float] | None = None):
+        self._say = say
+        self._what = what
+        self._total = max(int(total), 1)
+        self._estimate = estimate
+        self._clock = time.perf_counter if clock is None else clock
+        self._start = self._clock()
+        self._last = -math.inf  # the first line comes once QUIET_S has passed
+        self._lock = threading.Lock()
+
+    def __call__(self, done: int, total: int | None = None) -> None:
+        if self._say is None:
+            return
+        with self._lock:
+            if total is not None:
+                self._total = max(int(total), 1)
+            if done > self._total:  # an estimate passed: the rest is unknown, say so
+                self._total = int(done * 1.25) + 1
+                self._estimate = True
+            now = self._clock()
+            elapsed = now - self._start
+            end = done >= self._total and not self._estimate
+            if elapsed < self.QUIET_S or (now - self._last < self.EVERY_S and not end):
+                return
+            self._last = now
+            line = f"  {self._what}: {done}/{'~' if self._estimate else ''}{self._total}"
+            if end:
+                line += f", done in {elapsed:.0f} s"
+            elif done > 0:
+                left = elapsed / done * (self._total - done)
+                line += f", about {_duration(left)} left"
+            self._say(line)
+
+
+def _duration(seconds: float) -> str:
+    """``'45 s'``, ``'3 min'``, for a time left."""
+    return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.0f} min"
 
 
 def prepared_mechanism(arch, impact: str = "paper"):
@@ -284,10 +342,16 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
 
         lam = float(collapse_state(hinges_of(ctx.arch))[0])
         settings = ctx.mode.rigid_domain_settings(lam, ctx.site)
-        return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
-                                        settings=settings,
-                                        governing_only=True, model="rigid").domain
-                for fam in ("step", "sine")}
+        n = ctx.mode.durations.size
+        guess = n * (settings.coarse_points + 2 * settings.fine_points)  # about, per family
+        out = {}
+        for fam in ("step", "sine"):
+            tick = Progress(ctx.say if ctx.progress is not None else None,
+                            f"{fam} domain time histories", guess, estimate=True)
+            out[fam] = dem_failure_domain(ctx.arch, fam, ctx.mode.durations, settings=settings,
+                                          governing_only=True, model="rigid",
+                                          progress=tick).domain
+        return out
     from archquake.domains import failure_domain
 
     prep = prepared_mechanism(ctx.arch, ctx.config.impact)
@@ -351,6 +415,14 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
     return float(lo), float(hi)
 
 
+def _ida_progress(ctx: Context) -> Callable[[int, int, int], None]:
+    """The IDA's ``progress(stored, total_so_far, round)`` as a :class:`Progress` of runs (the
+    total grows as hunt-and-fill proposes levels: an estimate)."""
+    tick = Progress(ctx.say if ctx.progress is not None else None, "IDA runs", 1,
+                    estimate=True)
+    return lambda done, total, rounds: tick(done, total)
+
+
 def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None):
     """The IDA in PGA of the mode's records (all, or four in quick mode) with the
     configuration's model (the four-link model at ``restitution``, None: the impact law's
@@ -389,13 +461,13 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model,
                                                ceiling=rigid_scan_ceiling(lam, ctx.site),
-                                               **ctx.mode.ida)
+                                               progress=_ida_progress(ctx), **ctx.mode.ida)
     else:
         n = workers()
         with ResultStore(store_path) as store, interruptible_pool(n) as executor:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model, executor=executor, workers=n,
-                                               **ctx.mode.ida)
+                                               progress=_ida_progress(ctx), **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
@@ -484,6 +556,12 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
             for m, w in zip(motions, windows, strict=True)]
 
 
+def _bump(count: list) -> int:
+    """Add one to ``count[0]`` and return it (a done-callback's counter)."""
+    count[0] += 1
+    return count[0]
+
+
 def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
     """Time at which the record's Arias intensity reaches ``fraction`` of its total, s."""
     from archquake.ground.measures import piecewise_samples
@@ -551,6 +629,9 @@ def section_dem(ctx: Context) -> StudyResult:
     else:
         with interruptible_pool(min(workers(), len(jobs))) as pool:
             futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+            tick, ran = ctx.counter("DEM runs", len(jobs)), [0]
+            for fu in futures:
+                fu.add_done_callback(lambda _: tick(_bump(ran)))
             model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
             outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}
@@ -778,11 +859,19 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     h = verdict_time_step(ctx.arch)
     mu = ctx.config.friction
     fine = min(h, DEFAULT_TIME_STEP)
+    tick = ctx.counter("sensitivity runs", 3 * len(motions))
+    done = [0]
     with interruptible_pool(min(workers(), len(motions))) as pool:
         # Coulomb joints at the verdict's step, in worker processes while the verdicts run
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h) for m in motions]
+        for fu in futures:
+            fu.add_done_callback(lambda _: tick(_bump(done)))
         default = rigid_verdicts(ctx.arch, motions, time_step=h)
+        done[0] += len(motions) - 1
+        tick(_bump(done))
         half = rigid_verdicts(ctx.arch, motions, time_step=0.5 * h)
+        done[0] += len(motions) - 1
+        tick(_bump(done))
         slid = [fu.result() for fu in futures]
         slid_steps = [h] * len(motions)
         # a friction verdict that differs from the no-slip chain's (one the report warns about
@@ -1039,7 +1128,8 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("records", section_records), ("dem", section_dem), ("validity", section_validity),
     ("codecheck", section_code_check))
 
-__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "OUTCOMES", "Context", "Mode", "SECTIONS", "dynamics_refusal",
+__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "OUTCOMES", "Context", "Mode", "Progress",
+           "SECTIONS", "dynamics_refusal",
            "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",
            "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]
