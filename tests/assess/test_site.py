@@ -44,7 +44,37 @@ def test_section_is_the_library_check(tmp_path):
     el: list = []
     report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
     assert el[0][0] == "h2" and "Code check" in el[0][2]
-    assert sum(1 for e in el if e[0] == "table") == 2
+    assert sum(1 for e in el if e[0] == "table") == 3  # numbers, blocks, limit states
+
+
+def test_block_table_reconciles_alpha0_e_star_and_the_masses(tmp_path):
+    """Oracle: the static analysis (the limit-analysis LP, an independent computation) for
+    alpha0 = sum m delta_y / sum m delta_x; the curve's own e* and M for the block sums; and
+    the masses of section 1: M is the moving blocks' part of the arch's total."""
+    from archquake.limit import limit_analysis
+
+    cfg = load_config(EXAMPLE)
+    arch = cfg.build_arch()
+    res = section_code_check(SimpleNamespace(config=cfg, arch=arch, figures=tmp_path))
+    blocks = res.data["blocks"]
+    sx = sum(b["m_dx_kg_m"] for b in blocks)
+    sy = sum(b["m_dy_kg_m"] for b in blocks)
+    sxx = sum(b["m_dx2_kg_m2"] for b in blocks)
+    mass = sum(b["mass_kg"] for b in blocks)
+    assert sy / sx == pytest.approx(limit_analysis(arch).collapse_acceleration_g, rel=1e-6)
+    assert sx * sx / (mass * sxx) == pytest.approx(res.data["e_star"], rel=1e-12)
+    assert mass == pytest.approx(res.data["mass_kg"], rel=1e-12)
+    assert res.data["m_star_kg"] < mass < res.data["arch_mass_kg"]
+    assert res.data["arch_mass_kg"] == pytest.approx(float(sum(arch.voussoir_masses)))
+    masses = list(arch.voussoir_masses)
+    for b in blocks:  # numbered as section 1 numbers them
+        assert b["mass_kg"] == pytest.approx(masses[b["block"] - 1], rel=1e-12)
+    el: list = []
+    report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
+    text = " ".join(e[1] for e in el if e[0] == "p")
+    assert f"{res.data['arch_mass_kg']:.0f} kg, section 1" in " ".join(
+        str(c) for e in el if e[0] == "table" for row in e[2] for c in row)
+    assert f"= {sy / sx:.4f};" in text
 
 
 @pytest.mark.parametrize("table, words", [

@@ -161,8 +161,9 @@ class Progress:
         if self._say is None:
             return
         with self._lock:
-            if total is not None:
-                self._total = max(int(total), 1)
+            if total is not None:  # an estimate is only raised by the work found
+                self._total = (max(int(total), self._total) if self._estimate
+                               else max(int(total), 1))
             if done > self._total:  # an estimate passed: the rest is unknown, say so
                 self._total = int(done * 1.25) + 1
                 self._estimate = True
@@ -415,11 +416,18 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
     return float(lo), float(hi)
 
 
-def _ida_progress(ctx: Context) -> Callable[[int, int, int], None]:
-    """The IDA's ``progress(stored, total_so_far, round)`` as a :class:`Progress` of runs (the
-    total grows as hunt-and-fill proposes levels: an estimate)."""
-    tick = Progress(ctx.say if ctx.progress is not None else None, "IDA runs", 1,
-                    estimate=True)
+#: About how many runs the IDA takes per record (hunt, bracket and fill), quick and full: 94
+#: runs for the bridge's four records in quick mode, 1444 for its 28 in full mode at a 1 g
+#: ceiling (docs/notes/measurements.md). Only the progress lines' estimate of the time left.
+IDA_RUNS_PER_RECORD = {True: 24, False: 52}
+
+
+def _ida_progress(ctx: Context, records: int) -> Callable[[int, int, int], None]:
+    """The IDA's ``progress(stored, total_so_far, round)`` as a :class:`Progress` of runs:
+    the total grows as hunt-and-fill proposes levels, so the line's total is an estimate
+    (:data:`IDA_RUNS_PER_RECORD`), raised when the work found passes it."""
+    tick = Progress(ctx.say if ctx.progress is not None else None, "IDA runs",
+                    records * IDA_RUNS_PER_RECORD[ctx.mode.quick], estimate=True)
     return lambda done, total, rounds: tick(done, total)
 
 
@@ -461,13 +469,15 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model,
                                                ceiling=rigid_scan_ceiling(lam, ctx.site),
-                                               progress=_ida_progress(ctx), **ctx.mode.ida)
+                                               progress=_ida_progress(ctx, len(records)),
+                                               **ctx.mode.ida)
     else:
         n = workers()
         with ResultStore(store_path) as store, interruptible_pool(n) as executor:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model, executor=executor, workers=n,
-                                               progress=_ida_progress(ctx), **ctx.mode.ida)
+                                               progress=_ida_progress(ctx, len(records)),
+                                               **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits

@@ -314,6 +314,8 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
 def section_code_check(ctx):
     """The code check of the arch's collapse mechanism (:func:`archquake.codecheck.kinematic_check`)
     with the ``[site]`` table; its capacity curve against the demand in a figure."""
+    import numpy as np
+
     from archquake.codecheck.check import kinematic_check
     from archquake.codecheck.kinematic import capacity_curve
     from archquake.plotting.codecheck import save_code_check
@@ -328,6 +330,8 @@ def section_code_check(ctx):
     data["site"] = site.describe()
     data["verdicts"] = [c.verdict() for c in result.governing]
     data["not_checked"] = site.not_checked()
+    data["blocks"] = curve.block_table()
+    data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
     return StudyResult("codecheck", "Code check", (),
                        (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
                                "(C8.7.1.3) against the site's demand spectra at each limit "
@@ -350,14 +354,36 @@ def report_code_check(el: list, rep, data: dict) -> None:
                     "local mechanism; each limit state is reported as the capacity a_g (the "
                     "least a_g on rock at which the demand reaches the capacity, the site's "
                     "spectral shape held) against the site's a_g."))
+    blocks = data.get("blocks")
+    moving = ("" if not blocks else
+              f" (blocks {blocks[0]['block']}-{blocks[-1]['block']}, the blocks that move; "
+              f"the arch's total is {data['arch_mass_kg']:.0f} kg, section 1)")
     el.append(("table", ["quantity", "value", "from"], [
         ["activation multiplier alpha0", f"{data['alpha0']:.4f}", "C8.7.1.1 (static analysis)"],
         ["participating mass fraction e*", f"{data['e_star']:.4f}", "C8.7.1.5"],
-        ["participating mass M*", f"{data['m_star_kg']:.0f} kg of {data['mass_kg']:.0f} kg",
-         "e* M"],
+        ["participating mass M*", f"{data['m_star_kg']:.0f} kg of M = {data['mass_kg']:.0f} kg"
+         + moving, "e* M"],
         ["a0* = alpha0 g / (e* FC)", f"{data['a0_star_g']:.4f} g", "C8.7.1.3"],
         ["d0 (capacity curve reaches zero)", f"{data['d0_m']:.4f} m", "C8.7.1.4"],
     ]))
+    if blocks:
+        sx = sum(b["m_dx_kg_m"] for b in blocks)
+        sy = sum(b["m_dy_kg_m"] for b in blocks)
+        sxx = sum(b["m_dx2_kg_m2"] for b in blocks)
+        mass = sum(b["mass_kg"] for b in blocks)
+        el.append(("p", "The moving blocks behind alpha0, e* and M*: each block's mass and the "
+                        "virtual displacements of its centroid per unit rotation of the "
+                        "mechanism at the onset (delta_x horizontal, delta_y vertical, up "
+                        f"positive). alpha0 = sum m delta_y / sum m delta_x = {sy:.1f} / "
+                        f"{sx:.1f} = {sy / sx:.4f}; e* = (sum m delta_x)^2 / (M sum m "
+                        f"delta_x^2) = {sx:.1f}^2 / ({mass:.0f} x {sxx:.1f}) = "
+                        f"{sx * sx / (mass * sxx):.4f}."))
+        el.append(("table", ["block", "mass m (kg)", "delta_x (m/rad)", "delta_y (m/rad)",
+                             "m delta_x", "m delta_y", "m delta_x^2"],
+                   [[b["block"], f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
+                     f"{b['dy_m_rad']:.4f}", f"{b['m_dx_kg_m']:.1f}", f"{b['m_dy_kg_m']:.1f}",
+                     f"{b['m_dx2_kg_m2']:.1f}"] for b in blocks]
+                   + [["sum", f"{mass:.1f}", "", "", f"{sx:.1f}", f"{sy:.1f}", f"{sxx:.1f}"]]))
     rows = []
     for c in data["limit_states"]:
         if "capacity_m" in c:
