@@ -19,7 +19,7 @@ from archquake.assess.sections import OUTCOMES, verdict
 
 
 def _config(site=0.18):
-    return SimpleNamespace(site_pga_g=site, friction=0.6, source="arch.toml",
+    return SimpleNamespace(site_pga_g=site, friction=0.6, source="arch.toml", site=object(),
                            site_pga_source="a_g S_S S_T = 0.15 g x 1.2 x 1 = 0.18 g (SLV)",
                            notes=())
 

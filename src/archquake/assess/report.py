@@ -121,11 +121,13 @@ def _pulses(el: list, rep, cfg, pu: dict) -> None:
                     "the governing boundary the arch survives; above it, it collapses (except "
                     "in non-monotonic bands)."))
     rows = []
+    governing_only = pu.get("restitution_cv") is None  # the rigid chain's search
     for fam in ("step", "sine"):
         d = pu[fam]
         for t, c, f1 in zip(d["durations_s"], d["collapse_g"], d["first_half_cycle_g"],
                             strict=True):
-            rows.append([fam, f"{t:.3f}", _f(c), _f(f1)])
+            rows.append([fam, f"{t:.3f}", "none found" if _f(c) == "none" else _f(c),
+                         "not searched" if governing_only and _f(f1) == "none" else _f(f1)])
     el.append(("table", ["pulse", "duration (s)", "collapse (g)", "1st half cycle (g)"], rows))
     items: list = []
     for fam in ("step", "sine"):

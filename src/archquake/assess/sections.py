@@ -483,6 +483,53 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     return suite, records, res, fits
 
 
+def records_axis_top(first_g, site_g: float | None, ceiling_g: float) -> float:
+    """The top of the records figure's PGA axes, g: where the first collapses and the site PGA
+    are (1.25 x the largest first collapse, at least 1.5 x the site PGA), not the IDA's
+    ceiling, at most that ceiling. Without a first collapse, the ceiling.
+
+    Examples
+    --------
+    >>> records_axis_top([0.08, 0.11, float("nan")], 0.18, 1.0)
+    0.27
+    >>> records_axis_top([float("nan")], 0.18, 1.0)
+    1.0
+    """
+    first = np.asarray(first_g, dtype=float)
+    finite = first[np.isfinite(first)]
+    if finite.size == 0:
+        return float(ceiling_g)
+    top = 1.25 * float(finite.max())
+    if site_g is not None:
+        top = max(top, 1.5 * float(site_g))
+    return float(min(top, ceiling_g))
+
+
+def _fit_records_axes(a1, a2, res, site: float | None, named: int = 3) -> float:
+    """The records figure read at a glance: PGA axes fitted to the data
+    (:func:`records_axis_top`), the ``named`` records that collapse first named at their first
+    collapse, legends below the axes. Returns the axes' top, g."""
+    first = np.asarray(res.first_collapse_levels, dtype=float)
+    top = records_axis_top(first, site, res.ceiling)
+    a1.set_ylim(0.0, 1.02 * top)
+    a2.set_xlim(0.0, 1.02 * top)
+    order = [int(i) for i in np.argsort(np.where(np.isfinite(first), first, np.inf))
+             if np.isfinite(first[i])][:named]
+    placed: list[float] = []
+    for i in order:
+        y = float(first[i])
+        while any(abs(y - p) < 0.045 * top for p in placed):
+            y += 0.045 * top
+        placed.append(y)
+        a1.annotate(res.records[i].name, xy=(1.0, float(first[i])), xytext=(0.55, y),
+                    fontsize=6.5, va="center", ha="right",
+                    arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6})
+    for ax in (a1, a2):
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7,
+                  frameon=False)
+    return top
+
+
 def section_records(ctx: Context) -> StudyResult:
     from matplotlib.figure import Figure as MplFigure
 
@@ -494,7 +541,7 @@ def section_records(ctx: Context) -> StudyResult:
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
     with DRAWING:  # the figures of sections run side by side, one at a time
-        fig = MplFigure(figsize=(12, 4.8))
+        fig = MplFigure(figsize=(12, 6.0))
         a1, a2 = fig.subplots(1, 2)
         plot_ida_curves(res, a1)
         plot_fragility(res, fits, a2)
@@ -521,6 +568,7 @@ def section_records(ctx: Context) -> StudyResult:
                 ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
                 data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
                 data["p_collapse_confidence"] = 0.9
+        data["axis_top_g"] = _fit_records_axes(a1, a2, res, ctx.site)
         save(fig, ctx.figures / "records.png", dpi=110)
     governing = None
     if fit is not None and np.any(np.isfinite(first)):
@@ -535,8 +583,10 @@ def section_records(ctx: Context) -> StudyResult:
     data["governing"] = governing
     return StudyResult("records", "4. Records", (),
                        (Figure("records.png", "IDA curves (left: PGA against peak rotation over "
-                               "the crest rotation) and the fragility curves (right), site PGA "
-                               "dashed."),), (), data)
+                               "the crest rotation; the records that collapse first named) and "
+                               "the fragility curves (right), site PGA dashed; PGA axes cut at "
+                               f"{data['axis_top_g']:.3g} g (the IDA ran up to "
+                               f"{res.ceiling:.3g} g)."),), (), data)
 
 
 # ----------------------------------------------------------------------------- 5. DEM
@@ -1078,7 +1128,8 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
                      f" > {config.friction:g}).")
-    if site is not None and getattr(config, "site_pga_source", None):
+    if site is not None and getattr(config, "site", None) is not None and getattr(
+            config, "site_pga_source", None):  # the site PGA from (or against) a [site] table
         parts.insert(0, f"Site PGA {site:.3g} g: {config.site_pga_source}.")
     code = prior.get("codecheck")
     code_fails = False

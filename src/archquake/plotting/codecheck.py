@@ -60,14 +60,16 @@ def plot_code_check(result, ax=None):
     ax.set_xlabel("spectral displacement d (m)")
     ax.set_ylabel("spectral acceleration a (g)")
     ax.set_title(f"Code check, Circolare {result.procedure.value}: capacity curve and demand")
-    ax.legend(fontsize=7, loc="upper right")
+    # below the axes: inside, it hid the demand spectra where they cross the capacity's range
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
+              frameon=False)
     ax.grid(alpha=0.3)
     return ax
 
 
 def save_code_check(result, path: str | Path) -> Path:
     """Draw :func:`plot_code_check` into a new figure and save it to ``path``."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig, ax = plt.subplots(figsize=(7.5, 6.0))
     plot_code_check(result, ax)
     return save(fig, path, dpi=150)
 
