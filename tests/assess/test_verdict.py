@@ -128,3 +128,40 @@ def test_report_lists_its_sections_in_their_order_and_colours_the_verdict(tmp_pa
     assert '<p class="verdict fails"><b>Verdict: Collapse likely, indicative; code check ' \
            'FAILS at SLV, SLC.</b>' in page
     assert "verdict certain" not in page
+
+
+def _colour_pixels(png, rgb, tol=12) -> int:
+    import numpy as np
+    from PIL import Image
+
+    img = np.asarray(Image.open(png).convert("RGB"), dtype=int)
+    return int(np.sum(np.all(np.abs(img - np.array(rgb)) <= tol, axis=-1)))
+
+
+@pytest.mark.parametrize("p, code_passes, red", [(0.95, False, True), (0.02, True, False)])
+def test_the_verdict_bar_is_red_for_collapse_in_a_real_browser(p, code_passes, red, tmp_path):
+    """Chromium renders the report: the verdict's bar is red (#c0392b) where collapse is likely
+    and the code check fails, green (#2e7d32) where the arch survives and the code check
+    passes (it was green at P(collapse) = 0.95: coloured by certainty, not outcome)."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reproduce"))
+    from test_browser import CHROMIUM, _chromium
+
+    if CHROMIUM is None:
+        pytest.skip("chromium is not installed")
+    rep = _report(tmp_path)
+    rep.verdict = verdict(rep.config, _prior(p, code_passes=code_passes), quick=True)
+    (tmp_path / "figures").mkdir()
+    for f in ("arch.png", "static.png"):
+        (tmp_path / "figures" / f).write_bytes(b"\x89PNG\r\n\x1a\n")
+    page = write_html(rep, tmp_path / "report.html")
+    shot = tmp_path / "shot.png"
+    run = _chromium(tmp_path, f"--screenshot={shot}", "--window-size=1000,700", page.as_uri())
+    assert run.returncode == 0 and shot.is_file(), run.stderr[-2000:]
+    red_px = _colour_pixels(shot, (0xC0, 0x39, 0x2B))
+    green_px = _colour_pixels(shot, (0x2E, 0x7D, 0x32))
+    if red:
+        assert red_px > 300 and green_px == 0
+    else:
+        assert green_px > 300 and red_px == 0
