@@ -117,3 +117,66 @@ def test_bad_site_is_one_line(capsys, argv, words):
     assert cli_main.main(["check", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and words in err
+
+
+def test_time_history_route_beside_the_static_one(capsys, monkeypatch):
+    """The route's plumbing through the real entry point, with the rigid chain replaced by a
+    stand-in that collapses the arch once a record's PGA passes 0.08 g and leaves it at rest
+    below (the chain itself is held to the capacity curve in tests/codecheck/test_timehistory.py).
+    Oracle: then the capacity a_g is the a_g at which the strongest scaled record reaches
+    0.08 g, bracketed: it must lie in the reported bracket, the records must be 7 distinct ones
+    of the far-field set, scaled to the SLV spectrum within the code's band."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import archquake.codecheck.timehistory as th
+    from archquake.ground.suites import fema_available
+
+    if not fema_available():
+        pytest.skip("needs the FEMA P695 records")
+    peaks: list[float] = []
+
+    def stand_in(arch, motion):
+        pga = float(np.max(np.abs(motion.accelerations))) / 9.80665
+        peaks.append(pga)
+        if pga > 0.08:
+            return SimpleNamespace(outcome="collapse")
+        cen = arch.voussoir_centroids
+        pos = np.zeros((3, 2 + len(cen), 3))
+        pos[:, 2:, :2] = cen[None, :, :]
+        return SimpleNamespace(outcome="no_hinging", positions=pos,
+                               base_displacement=np.zeros(3))
+
+    monkeypatch.setattr(th, "_default_run", stand_in)
+    argv = ["check", *SITE, "--time-history", "far-field", "--bisections", "1", "--json",
+            "--no-progress"]
+    assert cli_main.main(argv) == 0
+    data = json.loads(capsys.readouterr().out)
+    (route,) = data["time_history"]  # one spectrum: the SLV's
+    assert route["limit_state"] == "SLV" and len(set(route["records"])) == 7
+    assert route["compatible"] and route["site_ag_g"] == pytest.approx(0.25)
+    lo, hi = route["capacity"]["bracket_g"]
+    levels = route["capacity"]["levels"]
+    assert [lv["passes"] for lv in levels if lv["ag_g"] <= lo] == \
+        [True] * sum(lv["ag_g"] <= lo for lv in levels)
+    assert all(not lv["passes"] for lv in levels if lv["ag_g"] >= hi)
+    assert lo < route["capacity_ag_g"] < hi
+    assert route["static_capacity_ag_g"] == pytest.approx(next(
+        c["capacity_ag_g"] for c in data["limit_states"]
+        if c["limit_state"] == "SLV" and c["method"] == "nonlinear"))
+    assert cli_main.main(["check", *SITE, "--time-history", "far-field", "--bisections", "0",
+                          "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "time-history route (C8.7.1.2.1.9)" in out and "(static route" in out
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--time-history", "no-such-set"], "--time-history no-such-set"),
+    (["--time-history", "far-field", "--bisections", "9"], "--bisections must be in [0, 8]"),
+    (["--time-history", "far-field", "--limit-state", "SLD"], "--time-history checks the SLV"),
+])
+def test_time_history_bad_input_is_one_line(capsys, argv, words):
+    assert cli_main.main(["check", *SITE, *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and words in err

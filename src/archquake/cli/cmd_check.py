@@ -89,6 +89,20 @@ def register(sub: argparse._SubParsersAction) -> None:
                      type=ranged(*BUILDING_PERIOD_RANGE_S, unit="s", low_open=True),
                      help="the building's fundamental period T1, s (with --height; NTC eq. "
                           "7.3.6 or a pushover)")
+    th = p.add_argument_group(
+        "time-history route (Circolare 2019 C8.7.1.2.1.9), beside the static one")
+    th.add_argument("--time-history", metavar="SUITE",
+                    help="also check the SLV and the SLC by time histories of the chain of rigid "
+                         "voussoirs: 7 records of SUITE (a FEMA P695 set, e.g. far-field, or a "
+                         "folder of .AT2 files) chosen and scaled to the site's spectrum of "
+                         "each, then scaled with a_g until no record may take the arch beyond d0 "
+                         "and the mean peak displacement stays below d_SLV (d_SLC): the capacity "
+                         "a_g of this route. Minutes: each level is 7 time histories")
+    th.add_argument("--bisections", metavar="N", type=int, default=2,
+                    help="halvings of the capacity's bracket once found (default 2: within "
+                         "about 12 %% of itself; each costs one level)")
+    th.add_argument("--no-progress", action="store_true",
+                    help="no progress lines on stderr for the time-history route")
     add_output_arguments(p)
     p.set_defaults(func=run)
 
@@ -186,6 +200,7 @@ def run(args: argparse.Namespace) -> int:
     curve = capacity_curve(arch)
     result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
                              position=position)
+    routes = _time_history(args, result, curve) if args.time_history is not None else []
     if args.plot is not None:
         from archquake.plotting.codecheck import save_code_check
 
@@ -195,12 +210,74 @@ def run(args: argparse.Namespace) -> int:
         out["arch"] = arch.describe()
         out["site"] = source
         out["not_checked"] = missing
+        if args.time_history is not None:
+            out["time_history"] = [r.to_dict() for r in routes]
         print_json(out)
         return 0
     print(format_result(result, arch, source, missing))
+    if args.time_history is not None:
+        print(format_time_history(routes, args.time_history))
     if args.plot is not None:
         print(f"figure written to {args.plot}")
     return 0
+
+
+def _time_history(args: argparse.Namespace, result, curve) -> list:
+    """The time-history route of the SLV and SLC checked (:func:`time_history_route`), each
+    starting from its static capacity; the suite read and checked first (one line naming
+    --time-history)."""
+    import sys
+
+    from archquake.assess.sections import strong_motion_end
+    from archquake.codecheck.timehistory import time_history_route
+    from archquake.errors import ArchquakeError
+    from archquake.ground.suites import load_suite
+
+    if args.bisections < 0 or args.bisections > 8:
+        raise InvalidParameterError(f"--bisections must be in [0, 8], got {args.bisections}")
+    if result.procedure.value != "2019":
+        raise InvalidParameterError("--time-history applies to --procedure 2019 (C8.7.1.2.1.9)")
+    states = [c for c in result.governing if c.method == "nonlinear"]
+    if not states:
+        raise InvalidParameterError("--time-history checks the SLV and the SLC: the site gives "
+                                    "neither (see --limit-state, --hazard)")
+    try:
+        suite = list(load_suite(args.time_history))
+    except ArchquakeError as exc:
+        raise InvalidParameterError(f"--time-history {args.time_history}: {exc}") from None
+
+    def trim(record):  # the strong part and 2 s after it: the rest adds almost no energy
+        return record.truncated(min(float(record.duration), strong_motion_end(record) + 2.0))
+
+    routes = []
+    for c in states:
+        def say(line: str, state: str = c.limit_state) -> None:
+            if not args.no_progress:
+                print(f"[check] {state} time histories, {line}", file=sys.stderr, flush=True)
+
+        assert c.period_s is not None
+        routes.append(time_history_route(curve, result.spectra[c.limit_state], suite,
+                                         c.limit_state, c.capacity_ag_g, c.period_s,
+                                         bisections=args.bisections, trim=trim,
+                                         progress=say))
+    return routes
+
+
+def format_time_history(routes: list, suite: str) -> str:
+    """The time-history route as text: per limit state its records and their scale factors,
+    and the capacity a_g beside the static route's."""
+    lines = [f"time-history route (C8.7.1.2.1.9), records of {suite} on the chain of rigid "
+             "voussoirs:"]
+    for r in routes:
+        lines.append(f"  {r.limit_state}: {len(r.records)} records scaled to the site's "
+                     f"spectrum over {r.periods_s[0]:g}-{r.periods_s[1]:.3g} s"
+                     + ("" if r.compatible else " (NOT compatible with the code's band)") + ": "
+                     + ", ".join(f"{n} x {f:.3g}" for n, f in zip(r.records, r.scale_factors,
+                                                                   strict=True)))
+        for level, ag in zip(r.capacity.levels, r.capacity.ag_g, strict=True):
+            lines.append(f"    a_g {ag:.4f} g: {level.verdict()}")
+        lines.append("  " + r.verdict())
+    return "\n".join(lines)
 
 
 def format_result(result, arch, source: str, missing: dict | None = None) -> str:
