@@ -197,3 +197,50 @@ def test_section_reports_the_limit_states_not_checked(tmp_path):
     report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
     items = next(e[1] for e in el if e[0] == "ul")
     assert any(i.startswith("SLC: not checked") for i in items)
+
+
+def test_time_history_route_in_the_code_check_section(tmp_path, monkeypatch):
+    """[site] time_history runs the route beside the static one in the section and the report
+    (the rigid chain replaced by a stand-in that collapses the arch once a record's PGA passes
+    0.06 g: the plumbing, not the physics, which tests/codecheck/test_timehistory.py holds)."""
+    import numpy as np
+
+    import archquake.codecheck.timehistory as th
+    from archquake.assess.sections import Mode
+    from archquake.ground.suites import fema_available
+
+    if not fema_available():
+        pytest.skip("needs the FEMA P695 records")
+
+    def stand_in(arch, motion):
+        if float(np.max(np.abs(motion.accelerations))) / 9.80665 > 0.06:
+            return SimpleNamespace(outcome="collapse")
+        pos = np.zeros((2, 2 + len(arch.voussoir_centroids), 3))
+        pos[:, 2:, :2] = arch.voussoir_centroids[None, :, :]
+        return SimpleNamespace(outcome="no_hinging", positions=pos,
+                               base_displacement=np.zeros(2))
+
+    monkeypatch.setattr(th, "_default_run", stand_in)
+    cfg = parse_config({"arch": ARCH, "site": {"hazard": HAZARD, "soil": "B",
+                                               "time_history": "far-field"}})
+    assert cfg.site.time_history == "fema-p695-far-field"
+    lines: list[str] = []
+    ctx = SimpleNamespace(config=cfg, arch=cfg.build_arch(), figures=tmp_path,
+                          mode=Mode(True), say=lines.append)
+    res = section_code_check(ctx)
+    routes = res.data["time_history"]
+    assert [r["limit_state"] for r in routes] == ["SLV", "SLC"]
+    for r in routes:
+        lo, hi = r["capacity"]["bracket_g"]
+        assert lo < r["capacity_ag_g"] < hi and len(r["records"]) == 7
+    assert any("SLV time-history route" in line for line in lines)
+    el: list = []
+    report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
+    items = [i for e in el if e[0] == "ul" for i in e[1]]
+    assert any(i.startswith("SLV (time histories): capacity a_g") for i in items)
+
+
+def test_time_history_suite_is_checked_with_the_file(tmp_path):
+    with pytest.raises(StudyFileError, match=r"\[site\] time_history 'nowhere' is not a file"):
+        parse_config({"arch": ARCH, "site": {"hazard": HAZARD, "soil": "B",
+                                             "time_history": "nowhere"}}, base_dir=tmp_path)

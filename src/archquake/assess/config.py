@@ -298,6 +298,16 @@ def parse_config(data: dict, *, source: str = "assessment",
     if not isinstance(dem, bool):
         raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
     site_table = None if "site" not in data else parse_site(data["site"], source=source)
+    if site_table is not None and "time_history" in data["site"]:
+        key = "[site] time_history"
+        th = _suite(source, data["site"]["time_history"], base_dir, key=key)
+        if not isinstance(th, str):
+            raise _fail(source, key, "must be one set name or path (a FEMA P695 set, a folder "
+                                     "or a .list file)")
+        check_suite(source, th, units, base_dir, key=key)
+        from dataclasses import replace as _replace
+
+        site_table = _replace(site_table, time_history=th)
     site, site_source = _site_pga(source, site, override, site_table, notes)
     for key, value in (("[seismic] site_pga_g", site),
                        ("[site] ag_g", None if site_table is None else site_table.ag_g)):
@@ -342,7 +352,7 @@ def _site_pga(source: str, given: float | None, override: bool, site: SiteConfig
 
 
 def check_suite(source: str, suite: str | tuple[str, ...], units: str | None,
-                base_dir: Path) -> None:
+                base_dir: Path, *, key: str = "[seismic] suite") -> None:
     """Read every record of the suite as the records section will, so that a malformed file or
     a missing ``units`` stops the run before anything is computed, in one line naming the key
     and the file as the assessment file names it (relative to it)."""
@@ -354,16 +364,15 @@ def check_suite(source: str, suite: str | tuple[str, ...], units: str | None,
         text = str(exc)
         for root in {str(base_dir.resolve()), str(base_dir)}:
             text = text.replace(root.rstrip("/") + "/", "")
-        key = "[seismic] units" if "units of" in text and "must be given" in text else \
-            "[seismic] suite"
-        raise _fail(source, key, f"is invalid: {text}") from None
+        which = "[seismic] units" if "units of" in text and "must be given" in text else key
+        raise _fail(source, which, f"is invalid: {text}") from None
 
 
-def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:
+def _suite(source: str, value: Any, base_dir: Path, *,
+           key: str = "[seismic] suite") -> str | tuple[str, ...] | None:
     """The suite as load_suite takes it, with every path checked to exist (absolute)."""
     if value is None:
         return None
-    key = "[seismic] suite"
     if isinstance(value, list):
         if not value or not all(isinstance(v, str) for v in value):
             raise _fail(source, key, "must be a set name, a path, or a non-empty list of paths")

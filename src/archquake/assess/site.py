@@ -18,6 +18,8 @@
     # EN 1998-1 (the spectrum of one limit state): ag_g, spectrum_type, ground (required),
     # importance, limit_state
     limit_state = "SLV"         # with one spectrum: the limit state it is for (default SLV)
+    time_history = "far-field"  # also the time-history route (C8.7.1.2.1.9) with 7 records of
+                                # this suite (a FEMA P695 set, a folder, a .list file)
     knowledge = "LC1"           # LC1, LC2, LC3: FC 1.35, 1.20, 1.00 (default LC1)
     procedure = "2019"          # or "2009" (default 2019)
     height_m = 0.0              # Z, the arch's springings above the building's foundation
@@ -42,7 +44,8 @@ from archquake.errors import ArchquakeError, StudyFileError
 
 SITE_KEYS = ("code", "hazard", "nominal_life_years", "use_class", "ag_g", "f0", "tc_star_s",
              "soil", "topography", "spectrum_type", "ground", "importance", "limit_state",
-             "knowledge", "procedure", "height_m", "building_height_m", "building_period_s")
+             "knowledge", "procedure", "height_m", "building_height_m", "building_period_s",
+             "time_history")
 #: The limit state whose demand the dynamic sections take (hazard form): the code's
 #: life-safety check, the one every existing masonry building must pass (NTC 2018 §8.3).
 DYNAMIC_LIMIT_STATE = "SLV"
@@ -72,6 +75,7 @@ class SiteConfig:
     building_height_m: float | None
     building_period_s: float | None
     limit_state: str | None = None
+    time_history: str | None = None
 
     def canonical(self) -> dict:
         d = asdict(self)
@@ -298,6 +302,10 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
                         ("LC1", "LC2", "LC3")),
         procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt,
         limit_state=limit_state)
+    if "time_history" in table:
+        if procedure != "2019":
+            raise _fail(source, "time_history", "applies to procedure '2019' (C8.7.1.2.1.9)")
+        # the suite is resolved and read by the assessment file's loader (paths, units)
     try:
         spectra = site.spectra()
     except ArchquakeError as exc:
@@ -327,6 +335,9 @@ def section_code_check(ctx):
                              procedure=site.procedure, position=site.position())
     save_code_check(result, ctx.figures / "codecheck.png")
     data = result.to_dict()
+    if site.time_history is not None:
+        data["time_history_suite"] = site.time_history
+        data["time_history"] = [r.to_dict() for r in _time_history_routes(ctx, result, curve)]
     data["site"] = site.describe()
     data["verdicts"] = [c.verdict() for c in result.governing]
     data["not_checked"] = site.not_checked()
@@ -337,6 +348,37 @@ def section_code_check(ctx):
                                "(C8.7.1.3) against the site's demand spectra at each limit "
                                "state's damping; dots: the displacement capacities."),),
                        (), data)
+
+
+def _time_history_routes(ctx, result, curve) -> list:
+    """The time-history route (:func:`archquake.codecheck.timehistory.time_history_route`) of
+    each nonlinear limit state checked, with the ``[site] time_history`` suite's records cut to
+    their strong part plus 2 s; quick mode bisects the bracket once, the full mode three
+    times."""
+    from archquake.assess.sections import strong_motion_end
+    from archquake.codecheck.timehistory import time_history_route
+    from archquake.ground.suites import load_suite
+
+    site: SiteConfig = ctx.config.site
+    assert site.time_history is not None  # called only with one
+    suite = list(load_suite(site.time_history, units=ctx.config.units))
+
+    def trim(record):
+        return record.truncated(min(float(record.duration), strong_motion_end(record) + 2.0))
+
+    routes = []
+    for c in result.governing:
+        if c.method != "nonlinear" or c.period_s is None:
+            continue
+        ctx.say(f"  {c.limit_state} time-history route: 7 records of {site.time_history}, "
+                "each level 7 time histories")
+        def say(line: str, state: str = c.limit_state) -> None:
+            ctx.say(f"  {state} {line}")
+
+        routes.append(time_history_route(
+            curve, result.spectra[c.limit_state], suite, c.limit_state, c.capacity_ag_g,
+            c.period_s, bisections=1 if ctx.mode.quick else 3, trim=trim, progress=say))
+    return routes
 
 
 def report_code_check(el: list, rep, data: dict) -> None:
@@ -401,8 +443,43 @@ def report_code_check(el: list, rep, data: dict) -> None:
     missing = data.get("not_checked", {})
     el.append(("ul", list(data["verdicts"]) + [
         f"{state}: not checked, no hazard of its own: it {why}" for state, why in missing.items()]))
+    routes = data.get("time_history")
+    if routes is not None:
+        el.append(("p", "The time-history route (C8.7.1.2.1.9) beside the static one: for each "
+                        "limit state, seven records of "
+                        f"{data.get('time_history_suite')} chosen and scaled so that their mean "
+                        "spectrum meets the code's band around the site's spectrum, cut to their "
+                        "strong part plus 2 s, run on the chain of rigid voussoirs, and scaled "
+                        "together with a_g until a record takes the arch beyond d0 or the mean "
+                        "peak displacement exceeds d_SLV (d_SLC)."))
+        rows = []
+        for r in routes:
+            rows += [[r["limit_state"], n, f"{f:.3f}"] for n, f in zip(r["records"],
+                                                                      r["scale_factors"],
+                                                                      strict=True)]
+        el.append(("table", ["limit state", "record", "scale factor to the site's spectrum"],
+                   rows))
+        el.append(("table", ["limit state", "a_g run (g)", "mean peak d (m)",
+                             "records beyond d0", "check"],
+                   [[r["limit_state"], f"{lv['ag_g']:.4f}",
+                     _peak(lv["mean_peak_displacement_m"]), len(lv["records_beyond_d0"]),
+                     "passes" if lv["passes"] else "FAILS"]
+                    for r in routes for lv in r["capacity"]["levels"]]))
+        el.append(("ul", [
+            f"{r['limit_state']} (time histories): capacity a_g {r['capacity_ag_g']:.4f} g "
+            f"(between {r['capacity']['bracket_g'][0]:.4f} and "
+            f"{r['capacity']['bracket_g'][1]:.4f} g), site {r['site_ag_g']:.4f} g, ratio "
+            f"{r['ratio']:.3f}: {'passes' if r['passes'] else 'FAILS'}; the static route "
+            f"{r['static_capacity_ag_g']:.4f} g"
+            + ("" if r["compatible"] else "; the records do NOT meet the code's band")
+            for r in routes]))
     formulas = sorted({f"{k}: {v}" for c in data["limit_states"] for k, v in c["formulas"].items()})
     el.append(("p", "Where each number comes from: " + "; ".join(formulas) + "."))
+
+
+def _peak(x) -> str:
+    return "inf (collapse)" if x is None or (isinstance(x, float) and math.isinf(x)) else \
+        f"{x:.4f}"
 
 
 __all__ = ["SITE_KEYS", "SiteConfig", "parse_site", "report_code_check", "section_code_check"]
