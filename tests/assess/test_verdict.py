@@ -84,8 +84,21 @@ def test_a_warning_that_only_makes_collapse_likelier_keeps_collapse_likely_concl
     # ... but not a verdict of survival, nor a warning that cuts both ways
     assert not verdict(_config(), _prior(0.02, [FRICTION]))["certain"]
     both = verdict(_config(), _prior(0.99, [FRICTION, STEP]))
-    assert not both["certain"] and both["text"].startswith("Collapse likely, NOT CONCLUSIVE")
+    assert not both["certain"] and both["text"].startswith("Collapse likely, NOT CONCLUSIVE.")
+    assert both["text"].count("NOT CONCLUSIVE") == 1
     assert both["outcome"] == "fails"  # the colour follows the outcome, not the certainty
+
+
+def test_at_risk_from_the_pulses_alone_stays_conclusive_under_friction():
+    """The nave example: no records, pulses of the site PGA collapse it (at risk, the highest
+    level the pulses give), and Coulomb joints collapse it under one more pulse: the friction
+    check can only make collapse likelier, not change the level."""
+    prior = _prior(0.3, [FRICTION])
+    del prior["records"]
+    v = verdict(_config(), prior)
+    assert v["level"] == "at risk" and v["certain"] and v["outcome"] == "at-risk"
+    # with records, at risk could still become collapse likely: not conclusive
+    assert not verdict(_config(), _prior(0.3, [FRICTION]))["certain"]
 
 
 def _report(tmp_path: Path, quick=True):

@@ -1044,7 +1044,8 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
     survives'``, ``'Stands'``, ...), the code check's outcome with a ``[site]`` table, and
     "indicative" in quick mode; ``outcome`` (:data:`OUTCOMES`) follows the outcome, not the
     certainty. A serious validity warning makes it not conclusive, unless the verdict is
-    already "collapse likely" and the warning can only make collapse likelier
+    already as high as that warning can raise it ("collapse likely", or "at risk" from the
+    pulses with no records) and the warning can only make collapse likelier
     (:data:`COLLAPSE_LIKELIER`)."""
     site = config.site_pga_g
     st = prior["static"]
@@ -1159,13 +1160,16 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
                      "before relying on it.")
     serious = [w for w in val.get("warnings", []) if w["serious"]]
     likelier = [w for w in serious if w["key"] in COLLAPSE_LIKELIER]
-    blocking = [w for w in serious if not (level == "collapse likely"
-                                           and w["key"] in COLLAPSE_LIKELIER)]
+    # the verdict's level already as high as these can raise it: collapse likely, or at risk
+    # from the pulses alone (with no records there is no higher level)
+    top = level == "collapse likely" or (level == "at risk" and numbers.get(
+        "p_collapse_at_site") is None)
+    blocking = [w for w in serious if not (top and w["key"] in COLLAPSE_LIKELIER)]
     certain = not blocking
     if not certain:
-        parts.insert(0, "NOT CONCLUSIVE: the models are outside their validity here ("
+        parts.insert(0, "The models are outside their validity here ("
                      + "; ".join(w["warning"] for w in blocking) + ").")
-    elif likelier and level == "collapse likely":
+    elif likelier and top:
         parts.append("What the models leave out can only make collapse likelier here ("
                      + "; ".join(w["warning"] for w in likelier) + ").")
     parts.append("Assumptions: " + ", ".join(ASSUMPTIONS) + ".")
