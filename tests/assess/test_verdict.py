@@ -178,3 +178,12 @@ def test_the_verdict_bar_is_red_for_collapse_in_a_real_browser(p, code_passes, r
         assert red_px > 300 and green_px == 0
     else:
         assert green_px > 300 and red_px == 0
+
+
+def test_sections_are_numbered_as_they_come(tmp_path):
+    """Without records, the DEM check or a code check the report's sections are 1 to 5, in
+    order, with no gap where an absent section would be."""
+    rep = _report(tmp_path)
+    heads = [e[2] for e in elements(rep) if e[0] == "h2"]
+    assert [h.split(". ")[0] for h in heads] == [str(n) for n in range(1, len(heads) + 1)]
+    assert heads[-1].endswith("Verdict")

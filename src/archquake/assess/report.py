@@ -92,7 +92,12 @@ def elements(rep) -> list[tuple]:
                                               for k, x in v["numbers"].items()]))
     el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
                     "between the blocks; the ground moves horizontally in the arch's plane."))
-    # the list of sections, from the headings themselves: the list and the order agree
+    # numbered as they come (a file without records or a [site] table has fewer sections), and
+    # the list of sections made from the headings themselves: the list and the order agree
+    heads = [k for k, e in enumerate(el) if e[0] == "h2"]
+    for n, k in enumerate(heads, 1):
+        kind, sid, text = el[k]
+        el[k] = (kind, sid, f"{n}. {text.split('. ', 1)[1]}")
     titles = [e[2].split(" (")[0] for e in el if e[0] == "h2"]
     el.insert(1, ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode"
                        f"{' (indicative)' if rep.quick else ''}, computed in {rep.seconds:.0f} s"

@@ -1081,9 +1081,10 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
             for f in pulses_collapse:
                 durs = pul[f]["durations_collapsing_at_site_s"]
                 sym = "t_p" if f == "step" else "T"
-                which.append(f"{f} pulses with {sym} from {min(durs):.3g} s to {max(durs):.3g} s"
-                             f" ({len(durs)} of the {len(pul[f]['durations_s'])} durations "
-                             "scanned)")
+                span = (f"{sym} = {min(durs):.3g} s" if min(durs) == max(durs) else
+                        f"{sym} from {min(durs):.3g} s to {max(durs):.3g} s")
+                which.append(f"{f} pulses with {span} ({len(durs)} of the "
+                             f"{len(pul[f]['durations_s'])} durations scanned)")
             parts.append("Pulses of the site PGA collapse it: " + "; ".join(which) + ".")
         else:
             parts.append("No step or sine pulse of the site PGA in the scanned durations "
@@ -1145,7 +1146,7 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
         missing = code.get("not_checked", {})
         numbers["code_check_passes"] = not code_fails
         numbers["code_check_least_ratio"] = worst["ratio"]
-        parts.append("Code check (kinematic analysis, NTC 2018 §8.7.1, section 7): "
+        parts.append("Code check (kinematic analysis, NTC 2018 §8.7.1): "
                      + (f"FAILS at {', '.join(failing)}" if failing else "passes at "
                         + ", ".join(c["limit_state"] for c in gov))
                      + f" (least ratio capacity a_g / site a_g {worst['ratio']:.3f}, "
