@@ -50,6 +50,27 @@ def test_an_estimate_is_said_and_raised_when_passed():
     assert lines == ["  step domain time histories: 10/~13, about 1 s left"]
 
 
+def test_a_heartbeat_while_no_item_has_finished(monkeypatch):
+    """Inside ``with``, a line every EVERY_S seconds says the count and how long the step has
+    run, even when nothing finished since (the first DEM run may take minutes)."""
+    import threading
+
+    lines: list[str] = []
+    clock = Clock()
+    said = threading.Event()
+
+    def say(line):
+        lines.append(line)
+        said.set()
+
+    monkeypatch.setattr(Progress, "EVERY_S", 0.01)
+    tick = Progress(say, "DEM runs", 2, clock=clock)
+    clock.t = 30.0
+    with tick:
+        assert said.wait(5.0)
+    assert lines[0] == "  DEM runs: 0/2, running for 30 s"
+
+
 def test_silent_without_a_line_to_say():
     Progress(None, "x", 3)(2)  # no error, nothing to print to
 

@@ -156,11 +156,31 @@ class Progress:
         self._start = self._clock()
         self._last = -math.inf  # the first line comes once QUIET_S has passed
         self._lock = threading.Lock()
+        self._done = 0
+
+    def __enter__(self) -> Progress:
+        """While the step runs, a line every :attr:`EVERY_S` seconds even when no item has
+        finished since (the first items of a step may take minutes: a line that says how many
+        are done and for how long the step has run)."""
+        self._stop = threading.Event()
+
+        def beat() -> None:
+            while not self._stop.wait(self.EVERY_S):
+                self(self._done)
+
+        if self._say is not None:
+            threading.Thread(target=beat, daemon=True, name="progress").start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
 
     def __call__(self, done: int, total: int | None = None) -> None:
         if self._say is None:
             return
         with self._lock:
+            self._done = max(self._done, int(done))
+            done = self._done
             if total is not None:  # an estimate is only raised by the work found
                 self._total = (max(int(total), self._total) if self._estimate
                                else max(int(total), 1))
@@ -179,6 +199,8 @@ class Progress:
             elif done > 0:
                 left = elapsed / done * (self._total - done)
                 line += f", about {_duration(left)} left"
+            else:
+                line += f", running for {_duration(elapsed)}"
             self._say(line)
 
 
@@ -347,11 +369,11 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
         guess = n * (settings.coarse_points + 2 * settings.fine_points)  # about, per family
         out = {}
         for fam in ("step", "sine"):
-            tick = Progress(ctx.say if ctx.progress is not None else None,
-                            f"{fam} domain time histories", guess, estimate=True)
-            out[fam] = dem_failure_domain(ctx.arch, fam, ctx.mode.durations, settings=settings,
-                                          governing_only=True, model="rigid",
-                                          progress=tick).domain
+            with Progress(ctx.say if ctx.progress is not None else None,
+                          f"{fam} domain time histories", guess, estimate=True) as tick:
+                out[fam] = dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
+                                              settings=settings, governing_only=True,
+                                              model="rigid", progress=tick).domain
         return out
     from archquake.domains import failure_domain
 
@@ -690,10 +712,11 @@ def section_dem(ctx: Context) -> StudyResult:
         with interruptible_pool(min(workers(), len(jobs))) as pool:
             futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
             tick, ran = ctx.counter("DEM runs", len(jobs)), [0]
-            for fu in futures:
-                fu.add_done_callback(lambda _: tick(_bump(ran)))
-            model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
-            outcomes = [fu.result() for fu in futures]
+            with tick:
+                for fu in futures:
+                    fu.add_done_callback(lambda _: tick(_bump(ran)))
+                model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
+                outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}
     for (case, f, _, dur, level), outcome, mine in zip(jobs, outcomes, model, strict=True):
         c = by_case.setdefault(case, {"case": case, "runs": []})
@@ -921,7 +944,7 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     fine = min(h, DEFAULT_TIME_STEP)
     tick = ctx.counter("sensitivity runs", 3 * len(motions))
     done = [0]
-    with interruptible_pool(min(workers(), len(motions))) as pool:
+    with tick, interruptible_pool(min(workers(), len(motions))) as pool:
         # Coulomb joints at the verdict's step, in worker processes while the verdicts run
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h) for m in motions]
         for fu in futures:
@@ -939,10 +962,12 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         # and that one is kept
         again = [k for k in range(len(motions))
                  if fine < h and slid[k] != default[k].outcome.value]
+        tick(done[0], 3 * len(motions) + len(again))
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine)
                    for k in again]
         for k, fu in zip(again, futures, strict=True):
             slid[k], slid_steps[k] = fu.result(), fine
+            tick(_bump(done))
     out = []
     for k, (case, _) in enumerate(cases):
         out.append({"case": case, "time_step_s": h, "friction_coefficient": ctx.config.friction,
