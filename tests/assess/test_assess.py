@@ -46,6 +46,7 @@ def test_every_section_is_present(bridge):
         assert (out / "figures" / fig).is_file() and f"figures/{fig}" in md
     assert "Verdict" in md and "Assumptions" in md
     assert res["verdict"]["text"] in md.replace("> **Verdict:** ", "")
+    assert "4 of the 28 records, so this probability is indicative" in md  # quick mode
     # the list of sections in the header is the headings, in their order
     assert "Sections: " + ", ".join(t.split(" (")[0] for t in TITLES) + "." in md
     assert [md.index(f"## {t}") for t in TITLES] == sorted(md.index(f"## {t}") for t in TITLES)

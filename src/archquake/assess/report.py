@@ -176,6 +176,9 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                      + (f" (90 % bootstrap interval over the records {ci[0]:.3f} to {ci[1]:.3f})"
                         if ci else "") + f"; fraction of the records collapsing at that level "
                      f"{r['fraction_collapsing_at_site']:.2f}.")
+        if rep.quick and len(r["records_used"]) < r["records_in_suite"]:
+            text += (f" Quick mode: {len(r['records_used'])} of the {r['records_in_suite']} "
+                     "records, so this probability is indicative; the full mode runs them all.")
         el.append(("p", text))
         el.append(("table", ["record", "first collapse PGA (g)"],
                    [[n, _f(x)] for n, x in zip(r["records_used"], r["first_collapse_g"],
