@@ -54,6 +54,9 @@ def test_every_section_is_present(bridge):
 
 def test_keys_carry_units(bridge):
     _, res, _, _ = bridge
+    assert res["input"]["site_pga_g"] == pytest.approx(SITE)
+    assert res["site_pga_source"].startswith("a_g S_S S_T = 0.1499 g x 1.2 x 1")
+    assert res["input_warnings"] == []
     st = res["sections"]["static"]
     assert {"collapse_acceleration_g", "min_thickness_m", "thickness_m"} <= set(st)
     block = res["sections"]["arch"]["blocks"][0]

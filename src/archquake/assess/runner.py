@@ -56,6 +56,8 @@ class Assessment:
             "model": self.config.model,
             "input": self.config.canonical(),
             "source": self.config.source,
+            "site_pga_source": self.config.site_pga_source,
+            "input_warnings": list(self.config.notes),
             "quick": self.quick,
             "seconds": self.seconds,
             "sections": {k: dict(v.data, seconds=v.seconds, cached=self.cached[k],

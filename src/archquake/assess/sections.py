@@ -22,6 +22,7 @@ import numpy as np
 
 from archquake.assess.site import section_code_check
 from archquake.constants import STANDARD_GRAVITY
+from archquake.ground.measures import strong_motion_end
 from archquake.parallel import interruptible_pool, usable_cores
 from archquake.reproduce.core import Figure, StudyResult
 
@@ -642,15 +643,6 @@ def _bump(count: list) -> int:
     """Add one to ``count[0]`` and return it (a done-callback's counter)."""
     count[0] += 1
     return count[0]
-
-
-def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
-    """Time at which the record's Arias intensity reaches ``fraction`` of its total, s."""
-    from archquake.ground.measures import piecewise_samples
-
-    t, a = piecewise_samples(motion)
-    sq = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] ** 2 + a[:-1] ** 2) * np.diff(t))])
-    return float(np.interp(fraction * sq[-1], sq, t))
 
 
 def section_dem(ctx: Context) -> StudyResult:

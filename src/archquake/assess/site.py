@@ -355,8 +355,8 @@ def _time_history_routes(ctx, result, curve) -> list:
     each nonlinear limit state checked, with the ``[site] time_history`` suite's records cut to
     their strong part plus 2 s; quick mode bisects the bracket once, the full mode three
     times."""
-    from archquake.assess.sections import strong_motion_end
     from archquake.codecheck.timehistory import time_history_route
+    from archquake.ground.measures import strong_motion_end
     from archquake.ground.suites import load_suite
 
     site: SiteConfig = ctx.config.site

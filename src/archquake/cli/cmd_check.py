@@ -228,9 +228,9 @@ def _time_history(args: argparse.Namespace, result, curve) -> list:
     --time-history)."""
     import sys
 
-    from archquake.assess.sections import strong_motion_end
     from archquake.codecheck.timehistory import time_history_route
     from archquake.errors import ArchquakeError
+    from archquake.ground.measures import strong_motion_end
     from archquake.ground.suites import load_suite
 
     if args.bisections < 0 or args.bisections > 8:
