@@ -196,11 +196,12 @@ def run(args: argparse.Namespace) -> int:
     if args.procedure == "2009" and not position.at_ground:
         raise InvalidParameterError(
             "--procedure 2009 is implemented at the ground only (--height 0); use 2019")
+    suite = _time_history_suite(args)  # read and checked before anything is computed
     arch = arch_from_args(args)
     curve = capacity_curve(arch)
     result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
                              position=position)
-    routes = _time_history(args, result, curve) if args.time_history is not None else []
+    routes = _time_history(args, result, curve, suite) if suite is not None else []
     if args.plot is not None:
         from archquake.plotting.codecheck import save_code_check
 
@@ -222,29 +223,36 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _time_history(args: argparse.Namespace, result, curve) -> list:
+def _time_history_suite(args: argparse.Namespace) -> list | None:
+    """The records of ``--time-history`` (None without it), read and checked with its options
+    before anything is computed (one line naming the option)."""
+    from archquake.errors import ArchquakeError
+    from archquake.ground.suites import load_suite
+
+    if args.time_history is None:
+        return None
+    if args.bisections < 0 or args.bisections > 8:
+        raise InvalidParameterError(f"--bisections must be in [0, 8], got {args.bisections}")
+    if args.procedure != "2019":
+        raise InvalidParameterError("--time-history applies to --procedure 2019 (C8.7.1.2.1.9)")
+    try:
+        return list(load_suite(args.time_history))
+    except ArchquakeError as exc:
+        raise InvalidParameterError(f"--time-history {args.time_history}: {exc}") from None
+
+
+def _time_history(args: argparse.Namespace, result, curve, suite: list) -> list:
     """The time-history route of the SLV and SLC checked (:func:`time_history_route`), each
-    starting from its static capacity; the suite read and checked first (one line naming
-    --time-history)."""
+    starting from its static capacity."""
     import sys
 
     from archquake.codecheck.timehistory import time_history_route
-    from archquake.errors import ArchquakeError
     from archquake.ground.measures import strong_motion_end
-    from archquake.ground.suites import load_suite
 
-    if args.bisections < 0 or args.bisections > 8:
-        raise InvalidParameterError(f"--bisections must be in [0, 8], got {args.bisections}")
-    if result.procedure.value != "2019":
-        raise InvalidParameterError("--time-history applies to --procedure 2019 (C8.7.1.2.1.9)")
     states = [c for c in result.governing if c.method == "nonlinear"]
     if not states:
         raise InvalidParameterError("--time-history checks the SLV and the SLC: the site gives "
                                     "neither (see --limit-state, --hazard)")
-    try:
-        suite = list(load_suite(args.time_history))
-    except ArchquakeError as exc:
-        raise InvalidParameterError(f"--time-history {args.time_history}: {exc}") from None
 
     def trim(record):  # the strong part and 2 s after it: the rest adds almost no energy
         return record.truncated(min(float(record.duration), strong_motion_end(record) + 2.0))
