@@ -17,8 +17,8 @@ from archquake.cli.common import (
 )
 from archquake.cli.site_options import (
     add_site_options,
+    implausible_pga,
     spectrum_from_args,
-    warn_implausible_pga,
 )
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
@@ -157,7 +157,6 @@ def site_spectra(args: argparse.Namespace) -> tuple[dict, str, dict]:
                 "a_g, F0 and T_C* at each limit state's return period)")
     _require_soil(args)
     hazard = NTCHazard(args.hazard)
-    warn_implausible_pga("--hazard a_g", max(p[1] for p in hazard.points))
     life = 50.0 if args.nominal_life is None else args.nominal_life
     use = args.use_class or "II"
     try:
@@ -214,13 +213,24 @@ def run(args: argparse.Namespace) -> int:
         if args.time_history is not None:
             out["time_history"] = [r.to_dict() for r in routes]
         print_json(out)
-        return 0
-    print(format_result(result, arch, source, missing))
-    if args.time_history is not None:
-        print(format_time_history(routes, args.time_history))
-    if args.plot is not None:
-        print(f"figure written to {args.plot}")
+    else:
+        print(format_result(result, arch, source, missing))
+        if args.time_history is not None:
+            print(format_time_history(routes, args.time_history))
+        if args.plot is not None:
+            print(f"figure written to {args.plot}")
+    _warn_implausible(args)
     return 0
+
+
+def _warn_implausible(args: argparse.Namespace) -> None:
+    """The site's a_g far outside practice, on stderr, once the check has succeeded."""
+    import sys
+
+    top = None if args.hazard is None else max(p[1] for p in args.hazard)
+    for note in (implausible_pga("--ag", args.ag), implausible_pga("--hazard a_g", top)):
+        if note is not None:
+            print(note, file=sys.stderr)
 
 
 def _time_history_suite(args: argparse.Namespace) -> list | None:
