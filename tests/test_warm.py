@@ -159,12 +159,18 @@ def test_after_warm_every_kernel_is_cached_and_no_command_compiles(tmp_path):
         assert compiled == [], (argv, compiled)
 
 
-def test_make_test_warms_every_workload_once():
-    """``make test`` warms numba's cache in two processes before the test workers start
-    (``WARM_A`` and ``WARM_B`` in the Makefile): together they name every workload of
-    :data:`archquake.warm.WORKLOADS`, each once, so a new workload cannot be left out."""
+def test_make_demo_and_make_test_warm_every_workload_once():
+    """``make demo`` and ``make test`` warm numba's cache in two processes, one a core
+    (``WARM_A`` and ``WARM_B`` in the Makefile): together the halves name every workload of
+    :data:`archquake.warm.WORKLOADS`, each once, so a new workload cannot be left out, and
+    both targets' recipes warm both halves."""
     text = (Path(__file__).resolve().parents[1] / "Makefile").read_text()
     halves = [re.search(rf"^{name}\s*:=\s*(.*)$", text, re.M) for name in ("WARM_A", "WARM_B")]
     assert all(halves), "WARM_A and WARM_B are defined in the Makefile"
     names = [n for m in halves if m for n in m.group(1).split()]
     assert sorted(names) == sorted(warm_module.WORKLOADS)
+    for target in ("demo", "test"):
+        recipe = re.search(rf"^{target}:.*\n((?:\t.*\n)+)", text, re.M)
+        assert recipe, f"make {target} has a recipe"
+        body = recipe.group(1)
+        assert "warm --only $(WARM_A) &" in body and "warm --only $(WARM_B)" in body, target

@@ -85,6 +85,7 @@ RUN_PAGES = (
     "docs/geometry.md",
     "docs/ground-motions.md",
     "docs/thrust-and-friction.md",
+    "docs/loads.md",
     "docs/domains.md",
     "docs/earthquakes.md",
     "docs/sweeps.md",

@@ -24,6 +24,7 @@ def run_example(*args: str) -> str:
     ("own_arch.py", ["hinging starts at", "t_p [s]", "c_v ="]),
     ("earthquake_record.py", ["synthetic:", "x1:"]),
     ("sweep.py", ["4 cases, 4 computed", "rerun: 0 computed, 4 already stored"]),
+    ("bridge_loads.py", ["bare ring: lambda 0.0488 g", "adequacy factor of a 100 kN/m axle"]),
 ])
 def test_example_runs_quick(script, expected):
     out = run_example(f"examples/{script}", "--quick")

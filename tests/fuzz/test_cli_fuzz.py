@@ -92,11 +92,31 @@ DEM_OPTIONS = {
     "--dem-assembly": st.sampled_from(["voussoirs", "hinges", "blocks"]),
 }
 
+LOADS = {
+    "--fill-depth": floats_in(0.0, 3.0),
+    "--fill-level": floats_in(4.0, 8.0),
+    "--fill-density": floats_in(0.0, 3000.0),
+    "--backing": floats_in(0.0, 3.0),
+    "--backing-right": floats_in(0.0, 3.0),
+    "--point-load": st.tuples(floats_in(0.0, 10.0), floats_in(-50.0, 200.0)).map(",".join),
+    "--distributed-load": st.tuples(floats_in(0.0, 5.0), floats_in(0.0, 10.0),
+                                    floats_in(0.0, 50.0)).map(",".join),
+    "--passive": floats_in(0.0, 1.0),
+    "--fill-friction": floats_in(0.0, 60.0),
+}
+BRIDGE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--voussoirs", "7"]
+
 #: command -> (base argv: valid, tiny, with --json; {option: cheap valid values})
 COMMANDS: dict[str, tuple[list[str], dict[str, st.SearchStrategy[str]]]] = {
     "static": (["static", "--voussoirs", "5", "--json"],
                {**ARCH, "--voussoirs": ints_in(3, 80),  # the kinematic method's limit is 60
                 "--method": st.sampled_from(["auto", "static", "kinematic", "both", "x"])}),
+    "static-loads": (["static", *BRIDGE, "--fill-depth", "0.5", "--json"], LOADS),
+    "capacity": (["capacity", *BRIDGE, "--fill-depth", "0.5", "--axle", "100", "--positions",
+                  "5", "--json"],
+                 {**LOADS, "--axle": floats_in(0.0, 500.0), "--dispersion": floats_in(0.0, 60.0),
+                  "--position": floats_in(0.0, 10.0), "--positions": ints_in(2, 8),
+                  "--patch-length": floats_in(0.0, 2.0)}),
     "min-thickness": (["min-thickness", "--voussoirs", "20", "--json"],
                       {"--embrace": floats_in(1.0, 240.0), "--voussoirs": ints_in(3, 40)}),
     "run": (["run", "--model", "fourlink", *PULSE, "--t-end", "1", "--voussoirs", "5", "--json"],

@@ -15,6 +15,7 @@ from archquake.cli.common import (
     print_json,
     ranged,
 )
+from archquake.cli.loads_options import add_loads_arguments, check_loads_on, loads_from_args
 from archquake.cli.site_options import (
     add_site_options,
     implausible_pga,
@@ -54,6 +55,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         ),
     )
     add_arch_arguments(p)
+    add_loads_arguments(p)
     add_site_options(p, required=False)
     grp = p.add_argument_group("code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)")
     grp.add_argument("--hazard", metavar="TR,AG,F0,TCSTAR", type=_hazard_point, action="append",
@@ -197,7 +199,14 @@ def run(args: argparse.Namespace) -> int:
             "--procedure 2009 is implemented at the ground only (--height 0); use 2019")
     suite = _time_history_suite(args)  # read and checked before anything is computed
     arch = arch_from_args(args)
-    curve = capacity_curve(arch)
+    loads = loads_from_args(args)
+    check_loads_on(arch, loads)
+    if loads is None:
+        curve = capacity_curve(arch)
+    else:
+        from archquake.codecheck.kinematic import LoadedFourHingeMechanism
+
+        curve = capacity_curve(LoadedFourHingeMechanism.of(arch, loads))
     result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
                              position=position)
     routes = _time_history(args, result, curve, suite) if suite is not None else []
@@ -208,6 +217,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         out = result.to_dict()
         out["arch"] = arch.describe()
+        if loads is not None:
+            out["loads"] = loads.to_dict()
         out["site"] = source
         out["not_checked"] = missing
         if args.time_history is not None:

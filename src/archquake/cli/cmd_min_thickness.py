@@ -6,6 +6,12 @@ import argparse
 import math
 
 from archquake.cli.common import number, print_json, whole
+from archquake.cli.loads_options import (
+    add_loads_arguments,
+    check_loads_on,
+    loads_from_args,
+    passive_text,
+)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.checks import (
     MAX_EMBRACE_DEG,
@@ -50,12 +56,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--pier-height", type=number, help="piers under the springings: height, m")
     g.add_argument("--pier-width", type=number, help="pier width, m")
     g.add_argument("--pier-courses", type=whole, help="courses in each pier (default 1)")
+    g.add_argument("--density", type=number, default=None,
+                   help="masonry density, kg/m^3 (default 2000; it matters only beside the "
+                        "density of a fill)")
+    add_loads_arguments(p)
     p.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     p.set_defaults(func=run)
 
 
 _SHAPE_OPTIONS = ("shape", "span", "rise", "eccentricity", "radius", "thickness", "pier_height",
-                  "pier_width", "pier_courses")
+                  "pier_width", "pier_courses", "density")
+_LOAD_OPTIONS = ("fill_depth", "fill_level", "fill_density", "backing", "backing_right",
+                 "point_load", "distributed_load")
 
 
 def _run_shape(args: argparse.Namespace) -> int:
@@ -64,7 +76,9 @@ def _run_shape(args: argparse.Namespace) -> int:
     from archquake.limit import min_thickness
 
     ns = argparse.Namespace(**vars(args))
-    ns.depth, ns.density, ns.blocks, ns._arch_defaults = 1.0, 2000.0, None, False
+    ns.depth, ns.blocks, ns._arch_defaults = 1.0, None, False
+    ns.density = 2000.0 if args.density is None else args.density
+    loads = loads_from_args(args)
     if args.shape in (None, "circular") and args.span is None:
         ns.radius = 1.0 if args.radius is None else args.radius
         ns.thickness = 0.5 * ns.radius if args.thickness is None else args.thickness
@@ -75,17 +89,27 @@ def _run_shape(args: argparse.Namespace) -> int:
         if args.thickness is None:  # a probe: only the shape matters for t_min
             ns.thickness = 0.01 * args.span
     arch = arch_from_args(ns)
-    t_min = min_thickness(arch)
+    check_loads_on(arch, loads)
+    if loads is None:
+        t_min = min_thickness(arch)
+    else:
+        from archquake.limit.loaded import min_thickness_loaded
+
+        t_min = min_thickness_loaded(arch, loads)
     out = {"arch": arch.describe(), "min_thickness_m": t_min,
            "min_thickness_ratio": t_min / arch.radius, "length_scale_m": arch.radius}
+    if loads is not None:
+        out["loads"] = loads.to_dict()
     if args.thickness is not None:
         out["thickness_m"] = args.thickness
         out["geometric_safety_factor"] = args.thickness / t_min if t_min > 0 else math.inf
     if args.json:
         print_json(out)
         return 0
+    carried = "self-weight only" if loads is None else (
+        f"self-weight and the loads it carries; {passive_text(loads)}")
     print(f"minimum thickness: t_min = {t_min:.5g} m (t_min / R = {t_min / arch.radius:.5f}, R = "
-          f"{arch.radius:.5g} m the characteristic length; self-weight only)")
+          f"{arch.radius:.5g} m the characteristic length; {carried})")
     if args.thickness is not None:
         print(f"geometric factor of safety: t / t_min = {out['geometric_safety_factor']:.3f} "
               f"({describe_arch(arch)})")
@@ -93,6 +117,10 @@ def _run_shape(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if any(getattr(args, k, None) is not None for k in _LOAD_OPTIONS) and args.radius is None \
+            and args.span is None:
+        raise InvalidParameterError("loads are in m and kN: give the arch's size too (--radius, "
+                                    "or --shape with --span and --rise)")
     if any(getattr(args, k, None) is not None for k in _SHAPE_OPTIONS) or args.joints != "radial":
         return _run_shape(args)
     check_embrace_deg(args.embrace, OPTIONS)

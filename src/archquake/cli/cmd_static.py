@@ -11,6 +11,12 @@ from archquake.cli.common import (
     describe_arch,
     print_json,
 )
+from archquake.cli.loads_options import (
+    add_loads_arguments,
+    check_loads_on,
+    loads_from_args,
+    passive_text,
+)
 from archquake.errors import InvalidParameterError
 from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
 
@@ -23,7 +29,10 @@ def register(sub: argparse._SubParsersAction) -> None:
             "Largest uniform horizontal ground acceleration (in g) the arch resists before it "
             "becomes a four-hinge mechanism (rigid voussoirs, no tension, no sliding), the hinges "
             "A, B, C, D and the friction coefficient needed against sliding at that instant. The "
-            "load acts towards +x; a load towards -x gives the mirror image. Angles in degrees."
+            "load acts towards +x; a load towards -x gives the mirror image. Angles in degrees. "
+            "With loads (fill, backing, loads on the extrados) every mass that moves with the "
+            "arch has its weight and its horizontal inertia at its own centroid, and both "
+            "directions are reported."
         ),
     )
     add_arch_arguments(p)
@@ -34,12 +43,15 @@ def register(sub: argparse._SubParsersAction) -> None:
              "both: check they agree; auto (default): both when the mechanisms can be "
              "enumerated, else static",
     )
+    add_loads_arguments(p)
     add_output_arguments(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     arch = arch_from_args(args)
+    loads = loads_from_args(args)
+    check_loads_on(arch, loads)
     method = args.method
     if method == "auto":
         method = "both" if arch.voussoirs <= MAX_KINEMATIC_VOUSSOIRS else "static"
@@ -47,7 +59,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidParameterError(
             f"--method {method} enumerates the mechanisms and needs --voussoirs <= "
             f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use --method static (or auto)")
-    result = limit_analysis(arch, method=method)
+    result = limit_analysis(arch, method=method, loads=loads)
     if args.plot is not None:
         from archquake.plotting.arch import save_limit_analysis
 
@@ -68,7 +80,8 @@ def format_result(result) -> str:
     lines = [
         f"arch: {describe_arch(arch)}",
         f"collapse acceleration: {result.collapse_acceleration_g:.4f} g "
-        "(horizontal, load towards +x; the mirror mechanism for -x)",
+        + ("(horizontal, load towards +x)" if result.loads is not None else
+           "(horizontal, load towards +x; the mirror mechanism for -x)"),
     ]
     lam_static, lam_kin = result.static_collapse_acceleration_g, result.kinematic_collapse_acceleration_g
     if lam_static is not None and lam_kin is not None:
@@ -81,6 +94,8 @@ def format_result(result) -> str:
         lines.append(
             f"  {label}  joint {h.joint:>3d}  {h.face.value:<8s}  x = {h.x:9.4f} m  y = {h.y:9.4f} m"
         )
+    if result.loads is not None:
+        lines.extend(loads_lines(result))
     j = result.min_friction_joint
     place = {0: ", the left springing", n: ", the right springing"}.get(j, "")
     lines.append(
@@ -88,3 +103,31 @@ def format_result(result) -> str:
         f"(largest |V|/N, at joint {j}{place})"
     )
     return "\n".join(lines)
+
+
+def loads_lines(result) -> list[str]:
+    """What the arch carries, and lambda towards -x (text lines)."""
+    loads, carried = result.loads, result.carried
+    out = [f"collapse acceleration towards -x: {result.opposite_collapse_acceleration_g:.4f} g"]
+    if loads.fill is not None:
+        out.append(f"fill: surface at y = {carried.surface:.4g} m, {loads.fill.density:g} kg/m^3 "
+                   "(column model: each block carries the fill above its extrados)")
+    if loads.backing is not None:
+        held = [int(j) for j in carried.held.nonzero()[0]]
+        out.append(f"backing: {loads.backing.left:g} m (left), {loads.backing.right:g} m "
+                   f"(right); joints held: {held or 'none'}")
+    for p in loads.point_loads:
+        out.append(f"point load: {p.load / 1e3:g} kN/m at {p.position:g} m"
+                   + ("" if p.moves_with_arch else " (its mass does not move)"))
+    for d in loads.distributed_loads:
+        out.append(f"distributed load: {d.pressure / 1e3:g} kN/m from {d.start:g} to {d.end:g} m"
+                   + ("" if d.moves_with_arch else " (its mass does not move)"))
+    out.append(f"mass carried by the blocks (fill and loads that move with the arch): "
+               f"{carried.mass.sum():.6g} kg, beside the ring's {result.arch.mass:.6g} kg")
+    out.append(passive_text(loads))
+    if result.hinge_count is not None and result.hinge_count > 4:
+        out.append(f"the collapse needs {result.hinge_count} hinges (two mechanisms at once, "
+                   "with the passive pressure): the four shown are the least four-hinge "
+                   f"mechanism, an upper bound at {result.kinematic_collapse_acceleration_g:.4f} g")
+    return out
+

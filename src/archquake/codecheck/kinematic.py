@@ -258,9 +258,12 @@ class ControlPoint:
         object.__setattr__(self, "point", np.asarray(self.point, dtype=float).reshape(2))
 
 
-def _alpha(motion: BlockMotion, masses: np.ndarray) -> float:
+def _alpha(motion: BlockMotion, masses: np.ndarray, weights: np.ndarray | None = None) -> float:
+    """sum W v_y / sum m g v_x (``weights`` W / g in kg; default the masses themselves)."""
     v = masses @ motion.centroid_rates
-    return float(v[1] / v[0])
+    if weights is None:
+        return float(v[1] / v[0])
+    return float((weights @ motion.centroid_rates[:, 1]) / v[0])
 
 
 @dataclass(frozen=True)
@@ -473,6 +476,9 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
     if isinstance(mechanism, VoussoirChain):
         mechanism = FourHingeMechanism.of(mechanism)
     masses = mechanism.masses
+    # gravity's share of each block, kg (loads that weigh but do not move with the arch are
+    # blocks of weight without mass: LoadedFourHingeMechanism.weights)
+    weights = getattr(mechanism, "weights", None)
     start = mechanism.motion(0.0)
     virtual_dx = start.centroid_rates[:, 0].copy()
     e_star, m_star = participation(masses, virtual_dx)
@@ -483,16 +489,16 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
     if abs(control_dx) <= 1e-12 * float(np.max(np.abs(virtual_dx))):
         raise InvalidParameterError(
             "the control point does not move horizontally at the onset; choose another")
-    alpha0 = _alpha(start, masses)
+    alpha0 = _alpha(start, masses, weights)
     # first zero of alpha(phi): scan, then Brent
     limit = mechanism.rotation_limit * (1.0 - 1e-9)
     phis = np.linspace(0.0, limit, _ROOT_SAMPLES + 1)
     prev = alpha0
     phi0 = math.nan
     for lo, hi in zip(phis[:-1], phis[1:], strict=True):
-        val = _alpha(mechanism.motion(hi), masses)
+        val = _alpha(mechanism.motion(hi), masses, weights)
         if prev > 0.0 >= val:
-            phi0 = float(brentq(lambda p: _alpha(mechanism.motion(p), masses), lo, hi,
+            phi0 = float(brentq(lambda p: _alpha(mechanism.motion(p), masses, weights), lo, hi,
                                 xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
             break
         prev = val
@@ -502,7 +508,7 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
     grid = np.linspace(0.0, phi0, CURVE_SAMPLES)
     d = np.array([_control_displacement(mechanism, control, p) for p in grid]) * s2 / (
         control_dx * s1)
-    alphas = np.array([_alpha(mechanism.motion(p), masses) for p in grid])
+    alphas = np.array([_alpha(mechanism.motion(p), masses, weights) for p in grid])
     alphas[-1] = 0.0
     if np.any(np.diff(d) <= 0.0):
         raise SolverError(
@@ -514,7 +520,112 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
         alphas=alphas, displacements_m=d, g=float(g))
 
 
+@dataclass(frozen=True)
+class LoadedFourHingeMechanism:
+    """The four-hinge mechanism of an arch with what it carries, as a :class:`LocalMechanism`.
+
+    The hinges are those of the equivalent static analysis with the loads
+    (:func:`archquake.limit.limit_analysis` with ``loads``). Each moving voussoir is two
+    blocks of one link: the voussoir, and what it carries that moves with it (its fill
+    column and the loads whose mass moves, lumped at their centroid,
+    :func:`archquake.geometry.loads.block_extras`); loads that weigh but do not move are
+    blocks of weight without mass. So alpha0, M*, e* and the capacity curve count every
+    carried mass (C8.7.1), and alpha0 equals the loaded collapse multiplier. Traffic is not
+    part of the seismic combination here.
+
+    Attributes
+    ----------
+    base : FourHingeMechanism
+        The four-link kinematics of the ring with the loaded hinges.
+    extras_mass : ndarray, shape (N,)
+        Carried mass of each moving voussoir, kg.
+    extras_centroid : ndarray, shape (N, 2)
+        Its centroid, m.
+    still_weight : ndarray, shape (N,)
+        Weight that does not move with each moving voussoir, over g (kg), at
+    still_point : ndarray, shape (N, 2)
+        the x of its resultant (and the voussoir's centroid's y), m.
+    """
+
+    base: FourHingeMechanism = field(repr=False)
+    extras_mass: np.ndarray
+    extras_centroid: np.ndarray
+    still_weight: np.ndarray
+    still_point: np.ndarray
+
+    @classmethod
+    def of(cls, arch: VoussoirChain, loads, *, g: float = STANDARD_GRAVITY
+           ) -> LoadedFourHingeMechanism:
+        """The mechanism of ``arch`` carrying ``loads`` (a
+        :class:`~archquake.geometry.loads.Loads`; its traffic is left out) opened by a load
+        towards +x."""
+        from archquake.geometry.loads import block_extras
+        from archquake.limit import limit_analysis
+
+        dead = loads.without_traffic()
+        if dead.passive is not None:
+            raise InvalidParameterError(
+                "the code check does not model passive fill pressure (C8.7.1 counts the "
+                "masses, not the fill's resistance); leave the passive pressure out")
+        mech = limit_analysis(arch, method="static", loads=dead, g=g).mechanism
+        if mech.load_direction < 0:
+            raise InvalidParameterError(
+                "the ring alone would be opened by the opposite load in this mechanism: the "
+                "code check of this loaded arch is not supported")
+        base = FourHingeMechanism(PreparedMechanism.build(mech))
+        extras = block_extras(arch, dead, g=g)
+        moving = base.voussoirs
+        still = -extras.weight_force[moving, 1] / g
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = np.where(still != 0.0, -extras.weight_moment[moving] / (still * g), 0.0)
+        still_point = np.column_stack([np.where(still != 0.0, x, arch.voussoir_centroids[moving, 0]),
+                                       arch.voussoir_centroids[moving, 1]])
+        return cls(base, extras.mass[moving].copy(), extras.centroid[moving].copy(), still,
+                   still_point)
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Voussoirs, then their carried masses, then the still loads (mass 0), kg, (3N,)."""
+        return np.concatenate([self.base.masses, self.extras_mass,
+                               np.zeros_like(self.still_weight)])
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Gravity's share of each block of :attr:`masses`, over g, kg, (3N,)."""
+        return np.concatenate([self.base.masses, self.extras_mass, self.still_weight])
+
+    @property
+    def rotation_limit(self) -> float:
+        return self.base.rotation_limit
+
+    def motion(self, phi: float) -> BlockMotion:
+        """The voussoirs (:meth:`FourHingeMechanism.motion`), and the points of their carried
+        masses and still loads fixed to them."""
+        m0 = self.base.motion(0.0)
+        m = m0 if phi == 0.0 else self.base.motion(phi)
+        parts = [m]
+        for points in (self.extras_centroid, self.still_point):
+            r0 = points - m0.centroids
+            c, s = np.cos(m.rotations), np.sin(m.rotations)
+            r = np.column_stack([c * r0[:, 0] - s * r0[:, 1], s * r0[:, 0] + c * r0[:, 1]])
+            w = m.rotation_rates
+            v = m.centroid_rates + w[:, None] * np.column_stack([-r[:, 1], r[:, 0]])
+            parts.append(BlockMotion(m.centroids + r, m.rotations, v, w))
+        return BlockMotion(np.vstack([p.centroids for p in parts]),
+                           np.concatenate([p.rotations for p in parts]),
+                           np.vstack([p.centroid_rates for p in parts]),
+                           np.concatenate([p.rotation_rates for p in parts]))
+
+    def describe(self) -> dict:
+        out = self.base.describe()
+        out["kind"] = "four-hinge, with the loads the arch carries"
+        out["carried_mass_kg"] = float(self.extras_mass.sum())
+        out["still_load_kN"] = float(self.still_weight.sum() * STANDARD_GRAVITY / 1e3)
+        return out
+
+
 __all__ = [
+    "LoadedFourHingeMechanism",
     "CURVE_SAMPLES",
     "BlockMotion",
     "CapacityCurve",

@@ -57,6 +57,7 @@ from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import Face, HingeMechanism
+from archquake.geometry.loads import BlockExtras, Loads
 from archquake.limit.kinematic import MAX_KINEMATIC_VOUSSOIRS, kinematic_collapse
 from archquake.limit.static import (
     MAX_MULTIPLIER,
@@ -110,6 +111,18 @@ class LimitAnalysis:
     method : Method
     g : float
         Gravity used for the forces, m/s^2.
+    loads : Loads or None
+        What the arch carries (None: the bare arch). With loads, lambda, the hinges and the
+        joint forces are those of the arch with its fill and carried loads
+        (:mod:`archquake.limit.loaded`); traffic is not part of the earthquake load.
+    carried : BlockExtras or None
+        The loads as each block carries them (masses, centroids, held joints).
+    opposite_collapse_acceleration_g : float or None
+        With loads, lambda for a load towards -x (loads need not be symmetric), g.
+    hinge_count : int or None
+        With loads, the hinges of the collapse: 4, or more where passive pressure makes the
+        collapse combine two mechanisms (then ``mechanism`` is the least four-hinge one, an
+        upper bound, and lambda is the line-of-thrust program's).
     """
 
     arch: VoussoirChain
@@ -120,6 +133,10 @@ class LimitAnalysis:
     kinematic_collapse_acceleration_g: float | None
     method: Method
     g: float
+    loads: Loads | None = None
+    carried: BlockExtras | None = None
+    opposite_collapse_acceleration_g: float | None = None
+    hinge_count: int | None = None
 
     @property
     def symmetric(self) -> bool:
@@ -135,19 +152,23 @@ class LimitAnalysis:
 
     @property
     def friction_ratios(self) -> np.ndarray:
-        """|V| / N at every joint at collapse, shape (n+1,)."""
-        return self.joint_forces.friction_ratio
+        """|V| / N at every joint at collapse, shape (n+1,); nan at joints a backing holds
+        (inside the backing, they do not slide)."""
+        ratios = self.joint_forces.friction_ratio
+        if self.carried is not None and np.any(self.carried.held):
+            return np.where(self.carried.held, np.nan, ratios)
+        return ratios
 
     @property
     def min_friction(self) -> float:
         """Static friction demand: the largest |V| / N over the joints at the onset of motion
         (the friction coefficient needed to exclude sliding; paper p. 2131: 0.50)."""
-        return float(np.max(self.friction_ratios))
+        return float(np.nanmax(self.friction_ratios))
 
     @property
     def min_friction_joint(self) -> int:
         """The joint where the friction demand is largest."""
-        return int(np.argmax(self.friction_ratios))
+        return int(np.nanargmax(self.friction_ratios))
 
     def to_dict(self) -> dict:
         jf = self.joint_forces
@@ -171,7 +192,15 @@ class LimitAnalysis:
                 "eccentricity_m": jf.eccentricity,
                 "friction_ratio": self.friction_ratios,
             },
-        }
+        } | self._loads_dict()
+
+    def _loads_dict(self) -> dict:
+        if self.loads is None:
+            return {}
+        assert self.carried is not None
+        return {"loads": self.loads.to_dict(), "carried": self.carried.to_dict(),
+                "collapse_hinge_count": self.hinge_count,
+                "collapse_acceleration_towards_minus_x_g": self.opposite_collapse_acceleration_g}
 
 
 def collapse_joint_forces(
@@ -194,7 +223,8 @@ def collapse_joint_forces(
 
 
 def limit_analysis(
-    arch: VoussoirChain, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY
+    arch: VoussoirChain, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY,
+    loads: Loads | None = None,
 ) -> LimitAnalysis:
     """Equivalent static analysis of ``arch`` under a horizontal acceleration towards +x.
 
@@ -206,6 +236,11 @@ def limit_analysis(
         "static" (any n), "kinematic" (n <= 60), or "both" (checks that they agree).
     g : float, optional
         Gravity, m/s^2 (only scales the joint forces; lambda is in g).
+    loads : Loads, optional
+        What the arch carries (:mod:`archquake.geometry.loads`): the fill's and the carried
+        loads' weight and horizontal inertia act at their centroids, the backing holds the
+        joints below its top. Its traffic, if any, is left out (see
+        :func:`~archquake.limit.capacity.traffic_capacity`).
 
     Returns
     -------
@@ -233,6 +268,8 @@ def limit_analysis(
             f"the kinematic method enumerates mechanisms and needs voussoirs <= "
             f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use method='static'"
         )
+    if loads is not None:
+        return _loaded_analysis(arch, method, g, loads)
     lam_static = lam_kin = None
     if method is not Method.KINEMATIC:
         lam_static, mech = static_collapse(arch)  # raises UnstableArchError
@@ -258,6 +295,31 @@ def limit_analysis(
         kinematic_collapse_acceleration_g=lam_kin,
         method=method,
         g=float(g),
+    )
+
+
+def _loaded_analysis(arch: VoussoirChain, method: Method, g: float, loads: Loads
+                     ) -> LimitAnalysis:
+    from archquake.geometry.loads import block_extras
+    from archquake.limit.loaded import loaded_collapse, seismic_case
+
+    require_instance("loads", loads, Loads, "a Loads (archquake.geometry.loads)")
+    dead = loads.without_traffic()
+    res = loaded_collapse(seismic_case(arch, dead, g=g), method.value)
+    opposite = loaded_collapse(seismic_case(arch, dead, direction=-1, g=g), method.value)
+    return LimitAnalysis(
+        arch=arch,
+        collapse_acceleration_g=res.multiplier,
+        mechanism=res.mechanism,
+        joint_forces=res.joint_forces,
+        static_collapse_acceleration_g=res.static_multiplier,
+        kinematic_collapse_acceleration_g=res.kinematic_multiplier,
+        method=method,
+        g=float(g),
+        loads=loads,
+        carried=block_extras(arch, dead, g=g),
+        opposite_collapse_acceleration_g=opposite.multiplier,
+        hinge_count=res.hinge_count,
     )
 
 

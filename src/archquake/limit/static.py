@@ -175,6 +175,8 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     Bisection on the feasibility of the static program with lambda = 0, as
     :func:`min_thickness_ratio` (which it equals times R for a circular :class:`Arch`).
 
+    With loads: :func:`archquake.limit.loaded.min_thickness_loaded`.
+
     Raises
     ------
     InvalidParameterError
@@ -190,11 +192,13 @@ def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     require_instance("arch", arch, VoussoirChain, "an arch of archquake.geometry (e.g. Arch)")
     if isinstance(arch, Arch):
         return min_thickness_ratio(arch.embrace, arch.voussoirs, rtol=rtol) * arch.radius
+    return _thickness_bisection(arch, lambda t: stands(arch.with_thickness(t)), rtol)
+
+
+def _thickness_bisection(arch: VoussoirChain, ok, rtol: float) -> float:
+    """Least ring thickness of ``arch``'s shape for which ``ok(t)`` holds, m (bisection)."""
     require_range("rtol", rtol, MIN_RTOL, 0.5, low_open=False, high_open=False)
     t0 = arch.thickness
-
-    def ok(t: float) -> bool:
-        return stands(arch.with_thickness(t))
 
     low, high = 0.0, t0
     while not ok(high):

@@ -156,8 +156,13 @@ def plot_limit_analysis(result, ax=None):
     """
     arch = result.arch
     ax = plot_arch(arch, ax, hinges=result.mechanism.hinges, thrust_line=result.thrust_line)
-    # the horizontal load, drawn at the crown
-    crown = np.array([0.0, float(arch.crown_point[1]) + 0.12 * arch.radius])
+    if getattr(result, "carried", None) is not None:
+        draw_loads(ax, arch, result.carried, result.loads)
+    # the horizontal load, drawn at the crown (above the fill)
+    top = float(arch.crown_point[1])
+    if getattr(result, "carried", None) is not None and result.carried.surface is not None:
+        top = max(top, result.carried.surface)
+    crown = np.array([0.0, top + 0.12 * arch.radius])
     ax.annotate("", crown + [0.12 * arch.radius, 0.0], crown,
                 arrowprops={"arrowstyle": "-|>", "color": "0.2", "linewidth": 1.5})
     ax.text(crown[0] - 0.02 * arch.radius, crown[1], rf"$\lambda g$ = {result.collapse_acceleration_g:.3f} g",
@@ -172,6 +177,39 @@ def plot_limit_analysis(result, ax=None):
     lo, hi = ax.get_ylim()
     ax.set_ylim(lo, max(hi, crown[1] + 0.05 * arch.radius))
     ax.legend(loc="lower center", fontsize=9, frameon=False)
+    return ax
+
+
+def draw_loads(ax, arch, carried, loads=None, extent=None):
+    """Shade the fill columns (``carried.fill_columns``), draw the fill surface, the backing's
+    top, the point loads and the traffic's loaded length (``extent``, x from/to, m)."""
+    for col in carried.fill_columns:
+        if col.size:
+            ax.add_patch(Polygon(col, closed=True, facecolor="#e8d9b5", edgecolor="#cdb98a",
+                                 linewidth=0.4, zorder=0))
+    if carried.surface is not None:
+        xs = [c[:, 0] for c in carried.fill_columns if c.size]
+        if xs:
+            x_all = np.concatenate(xs)
+            ax.plot([x_all.min(), x_all.max()], [carried.surface] * 2, color="#8a6d3b",
+                    linewidth=1.0, label="fill surface")
+    if loads is not None and loads.backing is not None:
+        ep = arch.extrados_points
+        for end, h, out in ((0, loads.backing.left, -1), (-1, loads.backing.right, 1)):
+            if h > 0:
+                y = float(arch.intrados_points[end, 1]) + h
+                x = float(ep[end, 0])
+                ax.plot([x, x + out * 0.15 * arch.radius], [y, y], color="0.3", linewidth=1.5,
+                        label="backing" if end == 0 else None)
+    if extent is not None:
+        a, b = extent
+        top = carried.surface if carried.surface is not None else float(arch.crown_point[1])
+        y = top + 0.08 * arch.radius
+        if b - a > 1e-9:
+            ax.plot([a, b], [y, y], color="tab:red", linewidth=3, label="traffic (spread)")
+        else:
+            ax.annotate("", (a, top), (a, y + 0.1 * arch.radius),
+                        arrowprops={"arrowstyle": "-|>", "color": "tab:red", "linewidth": 2})
     return ax
 
 
@@ -214,5 +252,5 @@ def save_limit_analysis(result, path: str | Path) -> Path:
     return save(fig, path, dpi=150)
 
 
-__all__ = ["arch_title", "moved_outline", "plot_arch", "plot_limit_analysis", "plot_shapes",
+__all__ = ["arch_title", "draw_loads", "moved_outline", "plot_arch", "plot_limit_analysis", "plot_shapes",
            "save_limit_analysis"]
