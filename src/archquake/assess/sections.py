@@ -546,6 +546,7 @@ def _fit_records_axes(a1, a2, res, site: float | None, named: int = 3) -> float:
         placed.append(y)
         a1.annotate(res.records[i].name, xy=(1.0, float(first[i])), xytext=(0.55, y),
                     fontsize=6.5, va="center", ha="right",
+                    bbox={"fc": "white", "ec": "0.7", "lw": 0.5, "pad": 1.5, "alpha": 0.9},
                     arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6})
     for ax in (a1, a2):
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7,
