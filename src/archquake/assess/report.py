@@ -30,7 +30,9 @@ def _f(x, digits: int = 3) -> str:
 
 def elements(rep) -> list[tuple]:
     """The report as (kind, ...) tuples: ("h1", text), ("h2", id, text), ("p", text),
-    ("table", headers, rows), ("fig", file, caption), ("ul", items), ("verdict", text, certain)."""
+    ("table", headers, rows), ("fig", file, caption), ("ul", items),
+    ("verdict", text, certain, outcome). The sections are numbered as they come, and the
+    header lists them from their headings."""
     cfg = rep.config
     s = {k: v.data for k, v in rep.sections.items()}
     v = rep.verdict
