@@ -244,3 +244,11 @@ def test_time_history_suite_is_checked_with_the_file(tmp_path):
     with pytest.raises(StudyFileError, match=r"\[site\] time_history 'nowhere' is not a file"):
         parse_config({"arch": ARCH, "site": {"hazard": HAZARD, "soil": "B",
                                              "time_history": "nowhere"}}, base_dir=tmp_path)
+
+
+def test_ec8_site_pga_is_gamma_i_a_gr_s():
+    """Oracle: EN 1998-1 §3.2.2.2, a_g = gamma_I a_gR and ground C's S = 1.15 (Tab. 3.2)."""
+    cfg = parse_config({"arch": ARCH, "site": {"code": "ec8", "ag_g": 0.2, "ground": "C",
+                                               "importance": 1.2}})
+    assert cfg.site_pga_g == pytest.approx(1.2 * 0.2 * 1.15, rel=1e-12)
+    assert cfg.site_pga_source.startswith("gamma_I a_gR S = 1.2 x 0.2 g x 1.15 = 0.276 g")

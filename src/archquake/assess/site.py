@@ -131,8 +131,9 @@ class SiteConfig:
         g = spec.g
         state = self.dynamic_limit_state
         if self.code == "ec8":
-            return (f"a_g S = {spec.ag / g:.4g} g x {spec.S:.3g} = {spec.pga / g:.4g} g "
-                    f"(EN 1998-1 ground {self.ground}, the {state}'s spectrum of [site])")
+            return (f"gamma_I a_gR S = {self.importance:g} x {self.ag_g:.4g} g x {spec.S:.3g} = "
+                    f"{spec.pga / g:.4g} g (EN 1998-1 ground {self.ground}, the {state}'s "
+                    "spectrum of [site])")
         p = spec.params
         from archquake.codes.spectra import ntc2018_soil_factors
 
