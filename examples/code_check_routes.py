@@ -48,7 +48,7 @@ def _strong_part(record, tail_s: float = 2.0):
     """The record up to its 95 % Arias time plus ``tail_s`` seconds."""
     from dataclasses import replace
 
-    from archquake.assess.sections import strong_motion_end
+    from archquake.ground.measures import strong_motion_end
 
     n = min(record.points, int(math.ceil((strong_motion_end(record) + tail_s) / record.dt)) + 1)
     return replace(record, accelerations=record.accelerations[:n])

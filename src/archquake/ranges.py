@@ -82,6 +82,12 @@ WORKERS_RANGE = (1, 10**9)
 #: above 0 and up to 3 g (the national hazard maps stay below 0.5 g; the kinematic check
 #: solves for a capacity a_g that may lie far above them).
 SITE_AG_RANGE_G = (0.0, 3.0)
+#: Where an input leaves engineering practice, it is accepted with a one-line warning naming the
+#: option (the usual slip is a unit: m/s^2 typed as g, ms as s, radians as degrees): a peak
+#: ground acceleration or a_g above 1.5 g (the largest recorded PGAs are about 1-3 g, design
+#: values stay below 0.5 g), an arch's radius below 0.2 m.
+PLAUSIBLE_PGA_G = 1.5
+PLAUSIBLE_RADIUS_M = 0.2
 #: NTC 2018 F0, the plateau's amplification on rock: the code sets its minimum at 2.2 (§3.2.3.2.1);
 #: the hazard grid holds about 2.2-3.0, the upper bound 4.0 is ours and generous.
 NTC_F0_RANGE = (2.2, 4.0)
@@ -126,6 +132,8 @@ __all__ = [
     "BUILDING_PERIOD_RANGE_S",
     "MECHANISM_HEIGHT_RANGE_M",
     "SITE_AG_RANGE_G",
+    "PLAUSIBLE_PGA_G",
+    "PLAUSIBLE_RADIUS_M",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",
     "NTC_SOILS",

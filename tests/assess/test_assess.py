@@ -30,7 +30,9 @@ needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not in
 
 SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity", "codecheck")
 TITLES = ("1. The arch", "2. Static capacity", "3. Pulses", "4. Records", "5. The DEM check",
-          "6. Validity", "7. Verdict", "8. Code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)")
+          "6. Validity", "7. Code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)", "8. Verdict")
+#: The bridge's site PGA: a_g S_S S_T at the SLV of its [site] table (0.1499 g x 1.2 x 1).
+SITE = load_config(EXAMPLES / "bridge.toml").site_pga_g
 
 
 def test_every_section_is_present(bridge):
@@ -44,10 +46,17 @@ def test_every_section_is_present(bridge):
         assert (out / "figures" / fig).is_file() and f"figures/{fig}" in md
     assert "Verdict" in md and "Assumptions" in md
     assert res["verdict"]["text"] in md.replace("> **Verdict:** ", "")
+    assert "4 of the 28 records, so this probability is indicative" in md  # quick mode
+    # the list of sections in the header is the headings, in their order
+    assert "Sections: " + ", ".join(t.split(" (")[0] for t in TITLES) + "." in md
+    assert [md.index(f"## {t}") for t in TITLES] == sorted(md.index(f"## {t}") for t in TITLES)
 
 
 def test_keys_carry_units(bridge):
     _, res, _, _ = bridge
+    assert res["input"]["site_pga_g"] == pytest.approx(SITE)
+    assert res["site_pga_source"].startswith("a_g S_S S_T = 0.1499 g x 1.2 x 1")
+    assert res["input_warnings"] == []
     st = res["sections"]["static"]
     assert {"collapse_acceleration_g", "min_thickness_m", "thickness_m"} <= set(st)
     block = res["sections"]["arch"]["blocks"][0]
@@ -89,7 +98,8 @@ def test_pulse_domain_equals_the_api(bridge):
                        [pu["step"]["durations_s"][k]], settings=Mode(True).domain_settings,
                        restitution=0.8)
     assert pu["step"]["collapse_g"][k] == pytest.approx(float(d.collapse_g[0]), rel=1e-12)
-    site = 0.15
+    site = SITE
+    assert site == pytest.approx(0.1799, abs=1e-4)
     coll = np.array([np.nan if x is None else x for x in pu["step"]["collapse_g"]], dtype=float)
     assert pu["step"]["collapses_at_site"] == bool(np.any(coll <= site))
 
@@ -102,7 +112,7 @@ def test_records_numbers_follow_from_the_fit(bridge):
     _, res, _, _ = bridge
     r = res["sections"]["records"]
     fit = r["fragility"]["first_collapse"]
-    p = LognormalFit(fit["median_g"], fit["beta"], "first_collapse", fit["records"]).probability(0.15)
+    p = LognormalFit(fit["median_g"], fit["beta"], "first_collapse", fit["records"]).probability(SITE)
     assert r["p_collapse_at_site"] == pytest.approx(float(p), rel=1e-12)
     first = np.array([np.nan if x is None else x for x in r["first_collapse_g"]])
     again = fit_first_collapse(first, ceiling=r["ceiling_g"], bootstrap=0)
@@ -135,7 +145,8 @@ def test_verdict_is_not_certain_when_a_serious_warning_is_raised(bridge):
     prior["validity"] = dict(prior["validity"], warnings=[
         {"key": "x", "warning": "outside", "meaning": "m", "serious": True}])
     v = verdict(rep.config, prior)
-    assert not v["certain"] and v["text"].startswith("NOT CONCLUSIVE")
+    assert not v["certain"] and f"{v['level']}, NOT CONCLUSIVE".lower() in v["text"].lower()
+    assert v["text"].lower().startswith(v["level"])
     assert res["verdict"]["certain"] == (not any(w["serious"] for w in
                                                res["sections"]["validity"]["warnings"]))
 
@@ -167,7 +178,7 @@ def test_rerun_is_served_from_the_cache(bridge):
 def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     """P(collapse | site PGA) of the records at c_v = 0.7, 0.8 and 0.9: three values, the middle
     one the records section's own; the c_v = 0.9 one equal to the library's IDA of the same four
-    records run here again (serially, a fresh store) and its first-collapse fit at 0.15 g.
+    records run here again (serially, a fresh store) and its first-collapse fit at the site PGA.
     Physics: a larger c_v keeps more kinetic energy through each impact, so P(collapse) should
     not fall as c_v grows; where it does, the validity section must say so (warning
     restitution_ida_order), and only then."""
@@ -191,7 +202,7 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     assert ordered or "restitution_ida_order" in keys
     assert ordered != ("restitution_ida_order" in keys)
     for e in ida:  # each P is a lognormal CDF at the site PGA: below 1/2 iff the median is above
-        assert (e["p_collapse_at_site"] < 0.5) == (e["fragility_median_g"] > 0.15)
+        assert (e["p_collapse_at_site"] < 0.5) == (e["fragility_median_g"] > SITE)
     cfg = rep_config = load_config(EXAMPLES / "bridge.toml")
     suite = load_suite(cfg.suite)
     records = Mode(True).records(suite.records)
@@ -204,7 +215,7 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
                                              **Mode(True).ida)
     fit = fit_first_collapse(list(again.first_collapse_levels), ceiling=again.ceiling,
                              bootstrap=0)
-    assert ida[2]["p_collapse_at_site"] == pytest.approx(float(fit.probability(0.15)), rel=1e-9)
+    assert ida[2]["p_collapse_at_site"] == pytest.approx(float(fit.probability(SITE)), rel=1e-9)
     md = (out / "report.md").read_text()
     assert "Restitution sensitivity of the records" in md
     for e in ida:
@@ -219,7 +230,7 @@ def test_dom_has_every_section_and_embedded_figures(tmp_path, bridge):
     run = _chromium(tmp_path, "--dump-dom", (out / "report.html").as_uri())
     assert run.returncode == 0, run.stderr[-2000:]
     dom = run.stdout
-    for sid in ("arch", "static", "pulses", "records", "dem", "validity", "verdict"):
+    for sid in ("arch", "static", "pulses", "records", "dem", "validity", "codecheck", "verdict"):
         assert f'<section id="{sid}">' in dom, sid
     srcs = re.findall(r'<img[^>]*src="(data:image/png;base64,[^"]+)"', dom)
     assert len(srcs) == 6  # the five figures of the dynamics, and the code check's capacity curve

@@ -78,6 +78,7 @@ RUN_PAGES = (
     "docs/guide/site.md",
     "docs/guide/records.md",
     "docs/guide/report.md",
+    "docs/guide/reading.md",
     "docs/models/rigid.md",
     "docs/models/fourlink.md",
     "docs/models/dem.md",

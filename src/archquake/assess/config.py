@@ -16,9 +16,11 @@ computation.
     # with only depth, density and friction beside it
 
     [seismic]
-    site_pga_g = 0.15                # the site's peak ground acceleration, g
+    site_pga_g = 0.15                # the site's peak ground acceleration, g (without [site]:
+                                     # with it, a_g S_S S_T of the SLV spectrum is the site PGA)
+    site_pga_override = false        # true: site_pga_g replaces the [site] table's PGA
     suite = "near-field-pulse"       # a FEMA P695 set, a folder, a .list file, or a list of files
-    units = "g"                      # units of CSV records (g, m/s2, cm/s2)
+    units = "g"                      # units of CSV records (g, m/s2, cm/s2): required with them
 
     [options]
     model = "rigid"         # the model of every verdict: "rigid" (default, the chain of rigid
@@ -28,7 +30,11 @@ computation.
     dem = true              # run the distinct-element check
 
 Every problem is one line naming the key as the file spells it (``[arch] radius``), raised as
-:class:`~archquake.errors.StudyFileError` (exit status 2 on the command line).
+:class:`~archquake.errors.StudyFileError` (exit status 2 on the command line). Every record
+file of the suite is read and checked here, before anything is computed. A value far outside
+practice (a PGA above 1.5 g, a radius below 0.2 m) is accepted with a one-line note naming the
+key (:attr:`AssessConfig.notes`); one that can only be a mistake (an embrace in radians) is
+refused.
 """
 
 from __future__ import annotations
@@ -47,7 +53,7 @@ from archquake.errors import ArchquakeError, StudyFileError
 ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "density", "shape",
              "span", "rise", "thickness", "joints", "pier_height", "pier_width", "pier_courses",
              "blocks", "friction")
-SEISMIC_KEYS = ("site_pga_g", "suite", "units")
+SEISMIC_KEYS = ("site_pga_g", "site_pga_override", "suite", "units")
 OPTION_KEYS = ("model", "impact", "restitution", "dem")
 #: The models an assessment's verdicts may rest on (the DEM is its check, ``dem = true``).
 ASSESS_MODELS = ("rigid", "fourlink")
@@ -87,6 +93,12 @@ class AssessConfig:
     site : SiteConfig or None
         The ``[site]`` table (:mod:`archquake.assess.site`): the code check's site, knowledge
         level and position.
+    site_pga_source : str or None
+        Where ``site_pga_g`` comes from, in words (the [site] table's a_g S_S S_T with its
+        factors, or ``[seismic] site_pga_g``).
+    notes : tuple of str
+        One line per input far outside practice, and per override stated (printed before the
+        run and in the report).
     """
 
     arch: Any
@@ -100,6 +112,8 @@ class AssessConfig:
     source: str = "assessment"
     model: str = "rigid"
     site: SiteConfig | None = None
+    site_pga_source: str | None = None
+    notes: tuple[str, ...] = ()
 
     def canonical(self) -> dict:
         """Everything that determines the results (the cache key's input). The ``[site]``
@@ -197,6 +211,18 @@ def parse_config(data: dict, *, source: str = "assessment",
             kwargs[key] = value
         else:
             kwargs[key] = _number(source, f"[arch] {key}", value)
+    notes: list[str] = []
+    embrace = kwargs.get("embrace_deg")
+    if isinstance(embrace, float) and 0.0 < embrace <= 2.0 * math.pi + 1e-9:
+        raise _fail(source, "[arch] embrace_deg", f"= {embrace:g} looks like radians "
+                                                  f"({math.degrees(embrace):.4g} degrees): the "
+                                                  "key is in degrees, e.g. 180 for a semicircle")
+    from archquake.ranges import PLAUSIBLE_PGA_G, PLAUSIBLE_RADIUS_M
+
+    radius = kwargs.get("radius")
+    if isinstance(radius, float) and 0.0 < radius < PLAUSIBLE_RADIUS_M:
+        notes.append(f"[arch] radius = {radius:g} m is below {PLAUSIBLE_RADIUS_M:g} m, "
+                     "smaller than any masonry arch: is it in m?")
     try:
         spec = ArchSpec(**kwargs)
         arch = spec.build()
@@ -208,7 +234,15 @@ def parse_config(data: dict, *, source: str = "assessment",
         raise _fail(source, f"[arch] {bad}" if bad else "[arch]", f"is invalid: {text}") from None
     from archquake.limit import stands
     if not stands(arch):
-        from archquake.limit.static import unstable_error
+        from archquake.limit.static import min_pier_width, unstable_error
+        if "pier_width" in kwargs and stands(arch.arch):
+            wide = min_pier_width(arch)
+            raise _fail(source, "[arch] pier_width",
+                        f"= {kwargs['pier_width']:g} m is too narrow: the piers cannot stand "
+                        "under the arch's thrust"
+                        + ("" if wide is None else f"; piers "
+                           f"{math.ceil(wide * 1000.0) / 1000.0:.3f} m wide would stand")
+                        + " (or lower pier_height)")
         raise _fail(source, "[arch]", f"is invalid: {unstable_error(arch)}")
 
     seismic = data.get("seismic", {})
@@ -217,6 +251,10 @@ def parse_config(data: dict, *, source: str = "assessment",
         site = _number(source, "[seismic] site_pga_g", seismic["site_pga_g"])
         if not 0 < site <= 5:
             raise _fail(source, "[seismic] site_pga_g", f"must be in (0, 5] g, got {site:g}")
+    override = seismic.get("site_pga_override", False)
+    if not isinstance(override, bool):
+        raise _fail(source, "[seismic] site_pga_override", f"must be true or false, got "
+                                                           f"{override!r}")
     units = seismic.get("units")
     if units is not None:
         from archquake.ground.records import UNITS
@@ -226,6 +264,8 @@ def parse_config(data: dict, *, source: str = "assessment",
     if site is None and suite is None and "site" not in data:
         raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set), "
                                          "or a [site] table")
+    if suite is not None:
+        check_suite(source, suite, units, base_dir)
 
     options = data.get("options", {})
     from archquake.sweeps.cases import model_of
@@ -258,15 +298,81 @@ def parse_config(data: dict, *, source: str = "assessment",
     if not isinstance(dem, bool):
         raise _fail(source, "[options] dem", f"must be true or false, got {dem!r}")
     site_table = None if "site" not in data else parse_site(data["site"], source=source)
+    if site_table is not None and "time_history" in data["site"]:
+        key = "[site] time_history"
+        th = _suite(source, data["site"]["time_history"], base_dir, key=key)
+        if not isinstance(th, str):
+            raise _fail(source, key, "must be one set name or path (a FEMA P695 set, a folder "
+                                     "or a .list file)")
+        check_suite(source, th, units, base_dir, key=key)
+        from dataclasses import replace as _replace
+
+        site_table = _replace(site_table, time_history=th)
+    site, site_source = _site_pga(source, site, override, site_table, notes)
+    for key, value in (("[seismic] site_pga_g", site),
+                       ("[site] ag_g", None if site_table is None else site_table.ag_g)):
+        if value is not None and value > PLAUSIBLE_PGA_G:
+            notes.append(f"{key} = {value:g} g is above {PLAUSIBLE_PGA_G:g} g, beyond design "
+                         "practice: is it in g (not m/s^2)?")
+    if site_table is not None and site_table.hazard is not None:
+        top = max(p[1] for p in site_table.hazard)
+        if top > PLAUSIBLE_PGA_G:
+            notes.append(f"[site] hazard has a_g = {top:g} g, above {PLAUSIBLE_PGA_G:g} g, "
+                         "beyond design practice: is it in g (not m/s^2)?")
     return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
-                        model=model, site=site_table)
+                        model=model, site=site_table, site_pga_source=site_source,
+                        notes=tuple(notes))
 
 
-def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | None:
+def _site_pga(source: str, given: float | None, override: bool, site: SiteConfig | None,
+              notes: list[str]) -> tuple[float | None, str | None]:
+    """The site PGA of the dynamic sections (g) and where it comes from: with a ``[site]``
+    table its a_g S_S S_T (:meth:`SiteConfig.site_pga_g`); a ``[seismic] site_pga_g`` beside
+    it must agree (to 0.5 %), or be stated to override it (a note says so)."""
+    if site is None:
+        if override:
+            raise _fail(source, "[seismic] site_pga_override", "applies only with a [site] "
+                                                               "table (whose PGA it overrides)")
+        return given, None if given is None else "[seismic] site_pga_g"
+    derived = site.site_pga_g()
+    words = site.describe_pga()
+    if given is None:
+        return derived, words
+    if math.isclose(given, derived, rel_tol=5e-3, abs_tol=5e-4):
+        return given, f"[seismic] site_pga_g, as the [site] table's {words}"
+    if not override:
+        raise _fail(source, "[seismic] site_pga_g",
+                    f"= {given:g} g differs from the [site] table's {words}: leave site_pga_g "
+                    "out (the [site] table sets the site PGA), or state site_pga_override = "
+                    f"true to run the dynamic sections at {given:g} g")
+    notes.append(f"[seismic] site_pga_g = {given:g} g overrides the [site] table's "
+                 f"{derived:.4g} g (site_pga_override = true): the dynamic sections run at "
+                 f"{given:g} g, the code check at the [site] table's spectra")
+    return given, f"[seismic] site_pga_g (overriding the [site] table's {words})"
+
+
+def check_suite(source: str, suite: str | tuple[str, ...], units: str | None,
+                base_dir: Path, *, key: str = "[seismic] suite") -> None:
+    """Read every record of the suite as the records section will, so that a malformed file or
+    a missing ``units`` stops the run before anything is computed, in one line naming the key
+    and the file as the assessment file names it (relative to it)."""
+    from archquake.ground.suites import load_suite
+
+    try:
+        load_suite(list(suite) if isinstance(suite, tuple) else suite, units=units)
+    except ArchquakeError as exc:
+        text = str(exc)
+        for root in {str(base_dir.resolve()), str(base_dir)}:
+            text = text.replace(root.rstrip("/") + "/", "")
+        which = "[seismic] units" if "units of" in text and "must be given" in text else key
+        raise _fail(source, which, f"is invalid: {text}") from None
+
+
+def _suite(source: str, value: Any, base_dir: Path, *,
+           key: str = "[seismic] suite") -> str | tuple[str, ...] | None:
     """The suite as load_suite takes it, with every path checked to exist (absolute)."""
     if value is None:
         return None
-    key = "[seismic] suite"
     if isinstance(value, list):
         if not value or not all(isinstance(v, str) for v in value):
             raise _fail(source, key, "must be a set name, a path, or a non-empty list of paths")
@@ -295,4 +401,5 @@ def _suite(source: str, value: Any, base_dir: Path) -> str | tuple[str, ...] | N
                              f"({known})")
 
 
-__all__ = ["ARCH_KEYS", "ASSESS_MODELS", "AssessConfig", "load_config", "parse_config"]
+__all__ = ["ARCH_KEYS", "ASSESS_MODELS", "AssessConfig", "check_suite", "load_config",
+           "parse_config"]

@@ -13,9 +13,13 @@ from archquake.assess.sections import ASSUMPTIONS
 from archquake.assess.site import report_code_check
 from archquake.reproduce.report import REPORT_CSS, image_data_uri, md_cell
 
+#: The verdict's colour follows its outcome (archquake.assess.sections.OUTCOMES), never its
+#: certainty; a verdict that is not conclusive gets a dashed border in its outcome's colour.
 _EXTRA_CSS = (".verdict{font-size:1.05em;padding:0.8em;border-left:6px solid #888;"
-              "background:#f7f7f7}.verdict.uncertain{border-color:#c0392b;background:#fbecea}"
-              ".verdict.certain{border-color:#2e7d32}li.serious{color:#8a1010}")
+              "background:#f7f7f7}.verdict.fails{border-color:#c0392b;background:#fbecea}"
+              ".verdict.at-risk{border-color:#e67e22;background:#fdf2e6}"
+              ".verdict.passes{border-color:#2e7d32;background:#edf7ee}"
+              ".verdict.inconclusive{border-left-style:dashed}li.serious{color:#8a1010}")
 
 
 def _f(x, digits: int = 3) -> str:
@@ -26,27 +30,28 @@ def _f(x, digits: int = 3) -> str:
 
 def elements(rep) -> list[tuple]:
     """The report as (kind, ...) tuples: ("h1", text), ("h2", id, text), ("p", text),
-    ("table", headers, rows), ("fig", file, caption), ("ul", items), ("verdict", text, certain)."""
+    ("table", headers, rows), ("fig", file, caption), ("ul", items),
+    ("verdict", text, certain, outcome). The sections are numbered as they come, and the
+    header lists them from their headings."""
     cfg = rep.config
     s = {k: v.data for k, v in rep.sections.items()}
-    el: list[tuple] = [("h1", f"Assessment of {cfg.source}"),
-                       ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode, "
-                             f"computed in {rep.seconds:.0f} s"
-                             f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
-                             "Sections: the arch, static capacity"
-                             + (", pulses" if "pulses" in s else "")
-                             + (", records" if "records" in s else "")
-                             + (", the DEM check" if "dem" in s else "")
-                             + ", validity, verdict.")]
     v = rep.verdict
-    el.append(("verdict", v["text"], v["certain"]))
+    verdict_el = ("verdict", v["text"], v["certain"], v.get("outcome", "open"))
+    el: list[tuple] = [("h1", f"Assessment of {cfg.source}"), verdict_el]
 
     a = s["arch"]
     el.append(("h2", "arch", "1. The arch"))
+    site = ("" if cfg.site_pga_g is None else
+            f" Site PGA of the dynamic sections {cfg.site_pga_g:.3g} g: "
+            f"{getattr(cfg, 'site_pga_source', None) or '[seismic] site_pga_g'}.")
     el.append(("p", "Input: " + ", ".join(f"{k} = {val}" for k, val in cfg.arch.canonical().items())
                + f"; friction coefficient {cfg.friction:g}. Total mass "
                f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m), overall "
-               f"{a['overall_width_m']:.2f} m wide and {a['overall_height_m']:.2f} m high."))
+               f"{a['overall_width_m']:.2f} m wide and {a['overall_height_m']:.2f} m high."
+               + site))
+    notes = getattr(cfg, "notes", ())
+    if notes:
+        el.append(("ul", [(f"Input warning: {n}", True) for n in notes]))
     el.append(("fig", "arch.png", rep.sections["arch"].figures[0].caption))
     el.append(("table", ["block", "mass (kg)", "centroid x (m)", "centroid y (m)"],
                [[b["block"], f"{b['mass_kg']:.1f}", f"{b['centroid_x_m']:.3f}",
@@ -80,15 +85,26 @@ def elements(rep) -> list[tuple]:
     else:
         _pulses(el, rep, cfg, pu)
     _records_dem_validity(el, rep, cfg, s, pu)
-    el.append(("h2", "verdict", "7. Verdict"))
-    el.append(("verdict", v["text"], v["certain"]))
+    if "codecheck" in s:
+        report_code_check(el, rep, s["codecheck"])
+    el.append(("h2", "verdict", "8. Verdict"))
+    el.append(verdict_el)
     el.append(("table", ["number", "value"], [[k, _f(x) if not isinstance(x, list) else
                                                ", ".join(_f(y) for y in x)]
                                               for k, x in v["numbers"].items()]))
     el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
                     "between the blocks; the ground moves horizontally in the arch's plane."))
-    if "codecheck" in s:
-        report_code_check(el, rep, s["codecheck"])
+    # numbered as they come (a file without records or a [site] table has fewer sections), and
+    # the list of sections made from the headings themselves: the list and the order agree
+    heads = [k for k, e in enumerate(el) if e[0] == "h2"]
+    for n, k in enumerate(heads, 1):
+        kind, sid, text = el[k]
+        el[k] = (kind, sid, f"{n}. {text.split('. ', 1)[1]}")
+    titles = [e[2].split(" (")[0] for e in el if e[0] == "h2"]
+    el.insert(1, ("p", f"archquake {__version__}, {'quick' if rep.quick else 'full'} mode"
+                       f"{' (indicative)' if rep.quick else ''}, computed in {rep.seconds:.0f} s"
+                       f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
+                       "Sections: " + ", ".join(titles) + "."))
     return el
 
 
@@ -112,11 +128,13 @@ def _pulses(el: list, rep, cfg, pu: dict) -> None:
                     "the governing boundary the arch survives; above it, it collapses (except "
                     "in non-monotonic bands)."))
     rows = []
+    governing_only = pu.get("restitution_cv") is None  # the rigid chain's search
     for fam in ("step", "sine"):
         d = pu[fam]
         for t, c, f1 in zip(d["durations_s"], d["collapse_g"], d["first_half_cycle_g"],
                             strict=True):
-            rows.append([fam, f"{t:.3f}", _f(c), _f(f1)])
+            rows.append([fam, f"{t:.3f}", "none found" if _f(c) == "none" else _f(c),
+                         "not searched" if governing_only and _f(f1) == "none" else _f(f1)])
     el.append(("table", ["pulse", "duration (s)", "collapse (g)", "1st half cycle (g)"], rows))
     items: list = []
     for fam in ("step", "sine"):
@@ -124,9 +142,9 @@ def _pulses(el: list, rep, cfg, pu: dict) -> None:
         text = f"{fam}: lowest collapse magnitude {_f(d['min_collapse_g'])} g"
         if cfg.site_pga_g is not None:
             cs = d["durations_collapsing_at_site_s"]
-            text += (f"; at the site PGA {cfg.site_pga_g:g} g the durations "
+            text += (f"; at the site PGA {cfg.site_pga_g:.3g} g the durations "
                      + ", ".join(f"{x:.3g}" for x in cs) + " s collapse it" if cs else
-                     f"; no duration scanned collapses it at the site PGA {cfg.site_pga_g:g} g")
+                     f"; no duration scanned collapses it at the site PGA {cfg.site_pga_g:.3g} g")
         bands = d["non_monotonic_bands"]
         text += (f"; {len(bands)} non-monotonic band(s): " + ", ".join(
             f"{b['duration_s']:.3g} s: {b['lower_g']:.3f}-{b['upper_g']:.3f} g ({b['criterion']})"
@@ -156,10 +174,13 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                      + f", beta {fit['beta']:.2f}.")
         if "p_collapse_at_site" in r:
             ci = r.get("p_collapse_at_site_ci")
-            text += (f" P(collapse | PGA = {cfg.site_pga_g:g} g) = {r['p_collapse_at_site']:.3f}"
+            text += (f" P(collapse | PGA = {cfg.site_pga_g:.3g} g) = {r['p_collapse_at_site']:.3f}"
                      + (f" (90 % bootstrap interval over the records {ci[0]:.3f} to {ci[1]:.3f})"
                         if ci else "") + f"; fraction of the records collapsing at that level "
                      f"{r['fraction_collapsing_at_site']:.2f}.")
+        if rep.quick and len(r["records_used"]) < r["records_in_suite"]:
+            text += (f" Quick mode: {len(r['records_used'])} of the {r['records_in_suite']} "
+                     "records, so this probability is indicative; the full mode runs them all.")
         el.append(("p", text))
         el.append(("table", ["record", "first collapse PGA (g)"],
                    [[n, _f(x)] for n, x in zip(r["records_used"], r["first_collapse_g"],
@@ -243,7 +264,7 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
         which = ("the two scanned durations of each family whose boundary is nearest it"
                  if rep.quick else "every scanned duration")
         el.append(("p", f"What the verdicts rest on: each pulse of the site PGA "
-                        f"({cfg.site_pga_g:g} g) at {which} (and the governing "
+                        f"({cfg.site_pga_g:.3g} g) at {which} (and the governing "
                         f"record scaled to it) run at the time step "
                         f"{steps[0]['time_step_s']:.3g} s, at half of it, and with Coulomb "
                         f"joints of mu = {steps[0]['friction_coefficient']:g} at the same step "
@@ -270,7 +291,7 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
     if ida:
         el.append(("p", f"Restitution sensitivity of the records: the IDA of the same records "
                         f"rerun at c_v +- 0.1 (clipped to [0, 1]), P(collapse | PGA = "
-                        f"{cfg.site_pga_g:g} g) from each first-collapse fit."))
+                        f"{cfg.site_pga_g:.3g} g) from each first-collapse fit."))
         el.append(("table", ["c_v", "P(collapse | site PGA)", "fragility median (g)",
                              "records collapsing"],
                    [[f"{e['restitution_cv']:.3g}" + (" (used)" if e["section"] == "records"
@@ -290,7 +311,7 @@ def write_markdown(rep, path: Path) -> Path:
         elif kind == "p":
             lines += [e[1], ""]
         elif kind == "verdict":
-            lines += [f"> **Verdict{'' if e[2] else ' (not conclusive)'}:** {e[1]}", ""]
+            lines += [f"> **Verdict:** {e[1]}", ""]
         elif kind == "ul":
             lines += [f"- {x[0] if isinstance(x, tuple) else x}" for x in e[1]] + [""]
         elif kind == "table":
@@ -327,9 +348,10 @@ def write_html(rep, path: Path) -> Path:
         elif kind == "p":
             parts.append(f"<p>{esc(e[1])}</p>")
         elif kind == "verdict":
-            cls = "certain" if e[2] else "uncertain"
-            label = "Verdict" if e[2] else "Verdict (not conclusive)"
-            parts.append(f'<p class="verdict {cls}"><b>{label}:</b> {esc(e[1])}</p>')
+            cls = e[3] + ("" if e[2] else " inconclusive")
+            head, _, rest = e[1].partition(". ")
+            parts.append(f'<p class="verdict {cls}"><b>Verdict: {esc(head)}.</b> '
+                         f"{esc(rest)}</p>")
         elif kind == "ul":
             parts.append("<ul>" + "".join(
                 f'<li class="{_serious(x[1])}">{esc(x[0])}</li>'

@@ -56,6 +56,8 @@ class Assessment:
             "model": self.config.model,
             "input": self.config.canonical(),
             "source": self.config.source,
+            "site_pga_source": self.config.site_pga_source,
+            "input_warnings": list(self.config.notes),
             "quick": self.quick,
             "seconds": self.seconds,
             "sections": {k: dict(v.data, seconds=v.seconds, cached=self.cached[k],
@@ -144,7 +146,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
         va = results["validity"]
         results["validity"] = replace(va, data=with_dem_warnings(
             va.data, results["dem"].data if "dem" in results else None, config.model))
-    v = verdict(config, {n: r.data for n, r in results.items()})
+    v = verdict(config, {n: r.data for n, r in results.items()}, quick=quick)
     rep = Assessment(config, results, cached, v, quick, out, time.perf_counter() - t0)
     if report:
         from archquake.assess.report import write_html, write_markdown

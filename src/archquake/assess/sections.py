@@ -11,6 +11,8 @@ Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg`
 from __future__ import annotations
 
 import math
+import threading
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +22,7 @@ import numpy as np
 
 from archquake.assess.site import section_code_check
 from archquake.constants import STANDARD_GRAVITY
+from archquake.ground.measures import strong_motion_end
 from archquake.parallel import interruptible_pool, usable_cores
 from archquake.reproduce.core import Figure, StudyResult
 
@@ -123,9 +126,88 @@ class Context:
         if self.progress is not None:
             self.progress(line)
 
+    def counter(self, what: str, total: int) -> Progress:
+        """A :class:`Progress` of ``total`` items (``what``: their name) through :meth:`say`."""
+        return Progress(self.say if self.progress is not None else None, what, total)
+
     @property
     def site(self) -> float | None:
         return self.config.site_pga_g
+
+
+class Progress:
+    """Progress of one step on the ``say`` line: ``what: done/total, about N s left``, once the
+    step has run for :attr:`QUIET_S` seconds and then at most every :attr:`EVERY_S` seconds,
+    and when it ends; nothing for a step shorter than that. The time left is the time per item
+    so far times the items left (``total`` may be an estimate, raised if passed, and said to
+    be one).
+
+    Call it with the number of items done (and the total, if it changed)."""
+
+    QUIET_S = 2.0
+    EVERY_S = 10.0
+
+    def __init__(self, say: Callable[[str], None] | None, what: str, total: int,
+                 *, estimate: bool = False, clock: Callable[[], float] | None = None):
+        self._say = say
+        self._what = what
+        self._total = max(int(total), 1)
+        self._estimate = estimate
+        self._clock = time.perf_counter if clock is None else clock
+        self._start = self._clock()
+        self._last = -math.inf  # the first line comes once QUIET_S has passed
+        self._lock = threading.Lock()
+        self._done = 0
+
+    def __enter__(self) -> Progress:
+        """While the step runs, a line every :attr:`EVERY_S` seconds even when no item has
+        finished since (the first items of a step may take minutes: a line that says how many
+        are done and for how long the step has run)."""
+        self._stop = threading.Event()
+
+        def beat() -> None:
+            while not self._stop.wait(self.EVERY_S):
+                self(self._done)
+
+        if self._say is not None:
+            threading.Thread(target=beat, daemon=True, name="progress").start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
+
+    def __call__(self, done: int, total: int | None = None) -> None:
+        if self._say is None:
+            return
+        with self._lock:
+            self._done = max(self._done, int(done))
+            done = self._done
+            if total is not None:  # an estimate is only raised by the work found
+                self._total = (max(int(total), self._total) if self._estimate
+                               else max(int(total), 1))
+            if done > self._total:  # an estimate passed: the rest is unknown, say so
+                self._total = int(done * 1.25) + 1
+                self._estimate = True
+            now = self._clock()
+            elapsed = now - self._start
+            end = done >= self._total and not self._estimate
+            if elapsed < self.QUIET_S or (now - self._last < self.EVERY_S and not end):
+                return
+            self._last = now
+            line = f"  {self._what}: {done}/{'~' if self._estimate else ''}{self._total}"
+            if end:
+                line += f", done in {elapsed:.0f} s"
+            elif done > 0:
+                left = elapsed / done * (self._total - done)
+                line += f", about {_duration(left)} left"
+            else:
+                line += f", running for {_duration(elapsed)}"
+            self._say(line)
+
+
+def _duration(seconds: float) -> str:
+    """``'45 s'``, ``'3 min'``, for a time left."""
+    return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.0f} min"
 
 
 def prepared_mechanism(arch, impact: str = "paper"):
@@ -284,10 +366,16 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
 
         lam = float(collapse_state(hinges_of(ctx.arch))[0])
         settings = ctx.mode.rigid_domain_settings(lam, ctx.site)
-        return {fam: dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
-                                        settings=settings,
-                                        governing_only=True, model="rigid").domain
-                for fam in ("step", "sine")}
+        n = ctx.mode.durations.size
+        guess = n * (settings.coarse_points + 2 * settings.fine_points)  # about, per family
+        out = {}
+        for fam in ("step", "sine"):
+            with Progress(ctx.say if ctx.progress is not None else None,
+                          f"{fam} domain time histories", guess, estimate=True) as tick:
+                out[fam] = dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
+                                              settings=settings, governing_only=True,
+                                              model="rigid", progress=tick).domain
+        return out
     from archquake.domains import failure_domain
 
     prep = prepared_mechanism(ctx.arch, ctx.config.impact)
@@ -319,7 +407,7 @@ def section_pulses(ctx: Context) -> StudyResult:
                                                           else f"c_v = {cv:.3g}"))
             if ctx.site is not None:
                 ax.axhline(ctx.site, color="crimson", ls="--", lw=1.5,
-                           label=f"site PGA {ctx.site:g} g")
+                           label=f"site PGA {ctx.site:.3g} g")
                 ax.legend(loc="upper right", fontsize=7)
             save(fig, ctx.figures / f"domain_{fam}.png", dpi=120)
             figs.append(Figure(f"domain_{fam}.png", f"Failure domain of the {fam} pulse (magnitude "
@@ -349,6 +437,21 @@ def _p_at_site_ci(first: np.ndarray, ceiling: float, site: float, n: int,
     q = [50 * (1 - confidence), 50 * (1 + confidence)]
     lo, hi = np.percentile(ps, q)
     return float(lo), float(hi)
+
+
+#: About how many runs the IDA takes per record (hunt, bracket and fill), quick and full: 94
+#: runs for the bridge's four records in quick mode, 1444 for its 28 in full mode at a 1 g
+#: ceiling (docs/notes/measurements.md). Only the progress lines' estimate of the time left.
+IDA_RUNS_PER_RECORD = {True: 24, False: 52}
+
+
+def _ida_progress(ctx: Context, records: int) -> Callable[[int, int, int], None]:
+    """The IDA's ``progress(stored, total_so_far, round)`` as a :class:`Progress` of runs:
+    the total grows as hunt-and-fill proposes levels, so the line's total is an estimate
+    (:data:`IDA_RUNS_PER_RECORD`), raised when the work found passes it."""
+    tick = Progress(ctx.say if ctx.progress is not None else None, "IDA runs",
+                    records * IDA_RUNS_PER_RECORD[ctx.mode.quick], estimate=True)
+    return lambda done, total, rounds: tick(done, total)
 
 
 def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None):
@@ -389,16 +492,66 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model,
                                                ceiling=rigid_scan_ceiling(lam, ctx.site),
+                                               progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
     else:
         n = workers()
         with ResultStore(store_path) as store, interruptible_pool(n) as executor:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model, executor=executor, workers=n,
+                                               progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
+
+
+def records_axis_top(first_g, site_g: float | None, ceiling_g: float) -> float:
+    """The top of the records figure's PGA axes, g: where the first collapses and the site PGA
+    are (1.25 x the largest first collapse, at least 1.5 x the site PGA), not the IDA's
+    ceiling, at most that ceiling. Without a first collapse, the ceiling.
+
+    Examples
+    --------
+    >>> records_axis_top([0.08, 0.11, float("nan")], 0.18, 1.0)
+    0.27
+    >>> records_axis_top([float("nan")], 0.18, 1.0)
+    1.0
+    """
+    first = np.asarray(first_g, dtype=float)
+    finite = first[np.isfinite(first)]
+    if finite.size == 0:
+        return float(ceiling_g)
+    top = 1.25 * float(finite.max())
+    if site_g is not None:
+        top = max(top, 1.5 * float(site_g))
+    return float(min(top, ceiling_g))
+
+
+def _fit_records_axes(a1, a2, res, site: float | None, named: int = 3) -> float:
+    """The records figure read at a glance: PGA axes fitted to the data
+    (:func:`records_axis_top`), the ``named`` records that collapse first named at their first
+    collapse, legends below the axes. Returns the axes' top, g."""
+    first = np.asarray(res.first_collapse_levels, dtype=float)
+    top = records_axis_top(first, site, res.ceiling)
+    a1.set_ylim(0.0, 1.02 * top)
+    a2.set_xlim(0.0, 1.02 * top)
+    order = [int(i) for i in np.argsort(np.where(np.isfinite(first), first, np.inf))
+             if np.isfinite(first[i])][:named]
+    placed: list[float] = []
+    for i in order:
+        y = float(first[i])
+        while any(abs(y - p) < 0.045 * top for p in placed):
+            y += 0.045 * top
+        placed.append(y)
+        a1.annotate(res.records[i].name, xy=(1.0, float(first[i])), xytext=(0.55, y),
+                    fontsize=6.5, va="center", ha="right",
+                    bbox={"fc": "white", "ec": "0.7", "lw": 0.5, "pad": 1.5, "alpha": 0.9},
+                    arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6})
+    for ax in (a1, a2):
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7,
+                  frameon=False)
+    return top
 
 
 def section_records(ctx: Context) -> StudyResult:
@@ -412,7 +565,7 @@ def section_records(ctx: Context) -> StudyResult:
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
     with DRAWING:  # the figures of sections run side by side, one at a time
-        fig = MplFigure(figsize=(12, 4.8))
+        fig = MplFigure(figsize=(12, 6.0))
         a1, a2 = fig.subplots(1, 2)
         plot_ida_curves(res, a1)
         plot_fragility(res, fits, a2)
@@ -432,13 +585,14 @@ def section_records(ctx: Context) -> StudyResult:
         if ctx.site is not None:
             for ax in (a1, a2):
                 (ax.axhline if ax is a1 else ax.axvline)(ctx.site, color="crimson", ls="--",
-                                                          label=f"site PGA {ctx.site:g} g")
+                                                          label=f"site PGA {ctx.site:.3g} g")
             data["fraction_collapsing_at_site"] = float(res.collapse_fraction([ctx.site])[0])
             if fit is not None:
                 data["p_collapse_at_site"] = float(fit.probability(ctx.site))
                 ci = _p_at_site_ci(first, res.ceiling, ctx.site, ctx.mode.bootstrap)
                 data["p_collapse_at_site_ci"] = None if ci is None else list(ci)
                 data["p_collapse_confidence"] = 0.9
+        data["axis_top_g"] = _fit_records_axes(a1, a2, res, ctx.site)
         save(fig, ctx.figures / "records.png", dpi=110)
     governing = None
     if fit is not None and np.any(np.isfinite(first)):
@@ -453,8 +607,10 @@ def section_records(ctx: Context) -> StudyResult:
     data["governing"] = governing
     return StudyResult("records", "4. Records", (),
                        (Figure("records.png", "IDA curves (left: PGA against peak rotation over "
-                               "the crest rotation) and the fragility curves (right), site PGA "
-                               "dashed."),), (), data)
+                               "the crest rotation; the records that collapse first named) and "
+                               "the fragility curves (right), site PGA dashed; PGA axes cut at "
+                               f"{data['axis_top_g']:.3g} g (the IDA ran up to "
+                               f"{res.ceiling:.3g} g)."),), (), data)
 
 
 # ----------------------------------------------------------------------------- 5. DEM
@@ -484,13 +640,10 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
             for m, w in zip(motions, windows, strict=True)]
 
 
-def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
-    """Time at which the record's Arias intensity reaches ``fraction`` of its total, s."""
-    from archquake.ground.measures import piecewise_samples
-
-    t, a = piecewise_samples(motion)
-    sq = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] ** 2 + a[:-1] ** 2) * np.diff(t))])
-    return float(np.interp(fraction * sq[-1], sq, t))
+def _bump(count: list) -> int:
+    """Add one to ``count[0]`` and return it (a done-callback's counter)."""
+    count[0] += 1
+    return count[0]
 
 
 def section_dem(ctx: Context) -> StudyResult:
@@ -551,8 +704,12 @@ def section_dem(ctx: Context) -> StudyResult:
     else:
         with interruptible_pool(min(workers(), len(jobs))) as pool:
             futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
-            model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
-            outcomes = [fu.result() for fu in futures]
+            tick, ran = ctx.counter("DEM runs", len(jobs)), [0]
+            with tick:
+                for fu in futures:
+                    fu.add_done_callback(lambda _: tick(_bump(ran)))
+                model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
+                outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}
     for (case, f, _, dur, level), outcome, mine in zip(jobs, outcomes, model, strict=True):
         c = by_case.setdefault(case, {"case": case, "runs": []})
@@ -778,11 +935,19 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     h = verdict_time_step(ctx.arch)
     mu = ctx.config.friction
     fine = min(h, DEFAULT_TIME_STEP)
-    with interruptible_pool(min(workers(), len(motions))) as pool:
+    tick = ctx.counter("sensitivity runs", 3 * len(motions))
+    done = [0]
+    with tick, interruptible_pool(min(workers(), len(motions))) as pool:
         # Coulomb joints at the verdict's step, in worker processes while the verdicts run
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h) for m in motions]
+        for fu in futures:
+            fu.add_done_callback(lambda _: tick(_bump(done)))
         default = rigid_verdicts(ctx.arch, motions, time_step=h)
+        done[0] += len(motions) - 1
+        tick(_bump(done))
         half = rigid_verdicts(ctx.arch, motions, time_step=0.5 * h)
+        done[0] += len(motions) - 1
+        tick(_bump(done))
         slid = [fu.result() for fu in futures]
         slid_steps = [h] * len(motions)
         # a friction verdict that differs from the no-slip chain's (one the report warns about
@@ -790,10 +955,12 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         # and that one is kept
         again = [k for k in range(len(motions))
                  if fine < h and slid[k] != default[k].outcome.value]
+        tick(done[0], 3 * len(motions) + len(again))
         futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine)
                    for k in again]
         for k, fu in zip(again, futures, strict=True):
             slid[k], slid_steps[k] = fu.result(), fine
+            tick(_bump(done))
     out = []
     for k, (case, _) in enumerate(cases):
         out.append({"case": case, "time_step_s": h, "friction_coefficient": ctx.config.friction,
@@ -877,9 +1044,27 @@ def _p_level(p: float) -> str:
     return "collapse likely" if p >= 0.5 else "at risk" if p >= 0.1 else "rocks but survives"
 
 
-# ----------------------------------------------------------------------------- 7. verdict
-def verdict(config, prior: dict) -> dict:
-    """The one-paragraph verdict and the numbers it rests on (from the sections' data)."""
+# ----------------------------------------------------------------------------- 8. verdict
+#: The validity warnings that can only make collapse likelier than the verdict says (the joints
+#: slide; the DEM, or the model itself, collapses below the reported level): with the verdict
+#: already "collapse likely" they do not make it inconclusive.
+COLLAPSE_LIKELIER = ("friction_collapse", "dem", "model_below_level", "sliding")
+#: The colour of the verdict by outcome: "fails" (collapse likely, or the code check fails),
+#: "at-risk", "passes" (stands, or rocks but survives, and the code check passes or is not
+#: run), "open" (capacity only).
+OUTCOMES = ("fails", "at-risk", "passes", "open")
+
+
+def verdict(config, prior: dict, *, quick: bool = False) -> dict:
+    """The one-paragraph verdict and the numbers it rests on (from the sections' data).
+
+    The text opens with the level word (``'Collapse likely'``, ``'At risk'``, ``'Rocks but
+    survives'``, ``'Stands'``, ...), the code check's outcome with a ``[site]`` table, and
+    "indicative" in quick mode; ``outcome`` (:data:`OUTCOMES`) follows the outcome, not the
+    certainty. A serious validity warning makes it not conclusive, unless the verdict is
+    already as high as that warning can raise it ("collapse likely", or "at risk" from the
+    pulses with no records) and the warning can only make collapse likelier
+    (:data:`COLLAPSE_LIKELIER`)."""
     site = config.site_pga_g
     st = prior["static"]
     lam = st["collapse_acceleration_g"]
@@ -896,16 +1081,16 @@ def verdict(config, prior: dict) -> dict:
         parts.append(f"No site PGA was given: the arch starts to rock at lambda = {lam:.3f} g.")
     elif site <= lam:
         level = "stands"
-        parts.append(f"The site PGA ({site:g} g) is below the static collapse acceleration "
+        parts.append(f"The site PGA ({site:.3g} g) is below the static collapse acceleration "
                      f"lambda = {lam:.3f} g: the arch moves rigidly with the ground and does "
                      "not even start to rock.")
     elif "pulses" not in prior:
         level = "rocks: dynamics not assessed"
-        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+        parts.append(f"The site PGA ({site:.3g} g) is {site / lam:.1f} times the static collapse "
                      f"acceleration lambda = {lam:.3f} g: the arch rocks, and whether it "
                      "collapses was not assessed (the dynamic sections were not run).")
     else:
-        parts.append(f"The site PGA ({site:g} g) is {site / lam:.1f} times the static collapse "
+        parts.append(f"The site PGA ({site:.3g} g) is {site / lam:.1f} times the static collapse "
                      f"acceleration lambda = {lam:.3f} g: the arch rocks; whether it collapses "
                      "depends on the duration of the motion.")
         pulses_collapse = [f for f in ("step", "sine") if pul.get(f, {}).get("collapses_at_site")]
@@ -914,9 +1099,10 @@ def verdict(config, prior: dict) -> dict:
             for f in pulses_collapse:
                 durs = pul[f]["durations_collapsing_at_site_s"]
                 sym = "t_p" if f == "step" else "T"
-                which.append(f"{f} pulses with {sym} from {min(durs):.3g} s to {max(durs):.3g} s"
-                             f" ({len(durs)} of the {len(pul[f]['durations_s'])} durations "
-                             "scanned)")
+                span = (f"{sym} = {min(durs):.3g} s" if min(durs) == max(durs) else
+                        f"{sym} from {min(durs):.3g} s to {max(durs):.3g} s")
+                which.append(f"{f} pulses with {span} ({len(durs)} of the "
+                             f"{len(pul[f]['durations_s'])} durations scanned)")
             parts.append("Pulses of the site PGA collapse it: " + "; ".join(which) + ".")
         else:
             parts.append("No step or sine pulse of the site PGA in the scanned durations "
@@ -962,13 +1148,63 @@ def verdict(config, prior: dict) -> dict:
     if st.get("sliding"):
         parts.append(f"The joints would slide (friction demand {st['static_friction_demand']:.3f}"
                      f" > {config.friction:g}).")
+    if site is not None and getattr(config, "site", None) is not None and getattr(
+            config, "site_pga_source", None):  # the site PGA from (or against) a [site] table
+        parts.insert(0, f"Site PGA {site:.3g} g: {config.site_pga_source}.")
+    code = prior.get("codecheck")
+    code_fails = False
+    head_code = ""
+    if code is not None:
+        gov = [c for c in code["limit_states"] if c["governing"]]
+        failing = [c["limit_state"] for c in gov if not c["passes"]]
+        code_fails = bool(failing)
+        worst = min(gov, key=lambda c: c["ratio"])
+        head_code = (f"; code check FAILS at {', '.join(failing)}" if failing
+                     else "; code check passes")
+        missing = code.get("not_checked", {})
+        numbers["code_check_passes"] = not code_fails
+        numbers["code_check_least_ratio"] = worst["ratio"]
+        parts.append("Code check (kinematic analysis, NTC 2018 §8.7.1): "
+                     + (f"FAILS at {', '.join(failing)}" if failing else "passes at "
+                        + ", ".join(c["limit_state"] for c in gov))
+                     + f" (least ratio capacity a_g / site a_g {worst['ratio']:.3f}, "
+                       f"{worst['limit_state']} {worst['method']})"
+                     + (f"; {', '.join(missing)} not checked (no hazard of its own)"
+                        if missing else "") + ".")
+    indicative = bool(quick and site is not None and site > lam and "pulses" in prior)
+    if indicative:
+        what = (f"P(collapse) from {len(rec['records_used'])} of the "
+                f"{rec['records_in_suite']} records, " if rec is not None else "")
+        parts.append(f"Indicative only: quick mode ({what}coarse domains); run without --quick "
+                     "before relying on it.")
     serious = [w for w in val.get("warnings", []) if w["serious"]]
-    certain = not serious
+    likelier = [w for w in serious if w["key"] in COLLAPSE_LIKELIER]
+    # the verdict's level already as high as these can raise it: collapse likely, or at risk
+    # from the pulses alone (with no records there is no higher level)
+    top = level == "collapse likely" or (level == "at risk" and numbers.get(
+        "p_collapse_at_site") is None)
+    blocking = [w for w in serious if not (top and w["key"] in COLLAPSE_LIKELIER)]
+    certain = not blocking
     if not certain:
-        parts.insert(0, "NOT CONCLUSIVE: the models are outside their validity here ("
-                     + "; ".join(w["warning"] for w in serious) + ").")
+        parts.insert(0, "The models are outside their validity here ("
+                     + "; ".join(w["warning"] for w in blocking) + ").")
+    elif likelier and top:
+        parts.append("What the models leave out can only make collapse likelier here ("
+                     + "; ".join(w["warning"] for w in likelier) + ").")
     parts.append("Assumptions: " + ", ".join(ASSUMPTIONS) + ".")
-    return {"level": level, "certain": certain, "text": " ".join(parts), "numbers": numbers}
+    if level in ("collapse likely",) or code_fails:
+        outcome = "fails"
+    elif level in ("at risk", "rocks: dynamics not assessed"):
+        outcome = "at-risk"
+    elif level == "capacity only":
+        outcome = "open"
+    else:
+        outcome = "passes"
+    headline = (level[0].upper() + level[1:] + (", indicative" if indicative else "")
+                + ("" if certain else ", NOT CONCLUSIVE") + head_code)
+    return {"level": level, "certain": certain, "outcome": outcome, "indicative": indicative,
+            "headline": headline, "text": headline + ". " + " ".join(parts),
+            "numbers": numbers}
 
 
 SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
@@ -976,7 +1212,8 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("records", section_records), ("dem", section_dem), ("validity", section_validity),
     ("codecheck", section_code_check))
 
-__all__ = ["ASSUMPTIONS", "Context", "Mode", "SECTIONS", "dynamics_refusal",
+__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "OUTCOMES", "Context", "Mode", "Progress",
+           "SECTIONS", "dynamics_refusal",
            "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",
            "strong_motion_end", "used_restitution", "verdict", "with_dem_warnings"]

@@ -7,18 +7,28 @@
     code = "ntc2018"            # or "ec8"
     # NTC 2018: the hazard at the limit states' return periods ...
     hazard = [[50, 0.08, 2.45, 0.27], [475, 0.25, 2.40, 0.30], [975, 0.32, 2.45, 0.32]]
-                                # (T_R years, a_g g, F0, T_C* s), two or more points
+                                # (T_R years, a_g g, F0, T_C* s): points whose return periods
+                                # span each limit state's (V_N 50, class II: SLD 50, SLV 475,
+                                # SLC 975 years); a limit state outside them is not checked
     nominal_life_years = 50     # V_N (default 50)
     use_class = "II"            # I..IV (default II)
-    # ... or one spectrum for every limit state: ag_g, f0, tc_star_s
-    soil = "B"                  # A..E (default A)
+    # ... or the spectrum of one limit state: ag_g, f0, tc_star_s, limit_state
+    soil = "B"                  # A..E (required: A is rock)
     topography = "T1"           # T1..T4 (default T1)
-    # EN 1998-1 (one spectrum for every limit state): ag_g, spectrum_type, ground, importance
+    # EN 1998-1 (the spectrum of one limit state): ag_g, spectrum_type, ground (required),
+    # importance, limit_state
+    limit_state = "SLV"         # with one spectrum: the limit state it is for (default SLV)
+    time_history = "far-field"  # also the time-history route (C8.7.1.2.1.9) with 7 records of
+                                # this suite (a FEMA P695 set, a folder, a .list file)
     knowledge = "LC1"           # LC1, LC2, LC3: FC 1.35, 1.20, 1.00 (default LC1)
     procedure = "2019"          # or "2009" (default 2019)
     height_m = 0.0              # Z, the arch's springings above the building's foundation
     building_height_m = 12.0    # H (with height_m > 0)
     building_period_s = 0.4     # T1 (with height_m > 0)
+
+The site's demand on the dynamic sections (pulses, records, P(collapse), the DEM check) is
+the peak ground acceleration of the SLV spectrum (of the one spectrum, at its limit state):
+a_g S_S S_T (EN 1998-1: gamma_I a_gR S), :meth:`SiteConfig.site_pga_g`.
 
 Every problem is one line naming the key (``[site] ag_g``), raised as
 :class:`~archquake.errors.StudyFileError`.
@@ -33,8 +43,12 @@ from typing import Any
 from archquake.errors import ArchquakeError, StudyFileError
 
 SITE_KEYS = ("code", "hazard", "nominal_life_years", "use_class", "ag_g", "f0", "tc_star_s",
-             "soil", "topography", "spectrum_type", "ground", "importance", "knowledge",
-             "procedure", "height_m", "building_height_m", "building_period_s")
+             "soil", "topography", "spectrum_type", "ground", "importance", "limit_state",
+             "knowledge", "procedure", "height_m", "building_height_m", "building_period_s",
+             "time_history")
+#: The limit state whose demand the dynamic sections take (hazard form): the code's
+#: life-safety check, the one every existing masonry building must pass (NTC 2018 §8.3).
+DYNAMIC_LIMIT_STATE = "SLV"
 _NTC_ONLY = ("hazard", "nominal_life_years", "use_class", "f0", "tc_star_s", "soil", "topography")
 _EC8_ONLY = ("spectrum_type", "ground", "importance")
 
@@ -60,31 +74,76 @@ class SiteConfig:
     height_m: float
     building_height_m: float | None
     building_period_s: float | None
+    limit_state: str | None = None
+    time_history: str | None = None
 
     def canonical(self) -> dict:
         d = asdict(self)
         d["hazard"] = None if self.hazard is None else [list(p) for p in self.hazard]
         return d
 
-    def spectra(self) -> dict:
-        """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC')."""
-        from archquake.codecheck.check import LIMIT_STATES, limit_state_spectra
+    def _spectra_and_missing(self) -> tuple[dict, dict]:
+        from archquake.codecheck.check import LIMIT_STATES, hazard_spectra
         from archquake.codes.spectra import NTCHazard, ec8_spectrum, ntc2018_spectrum
 
+        if self.hazard is not None:
+            return hazard_spectra(NTCHazard(self.hazard),
+                                  nominal_life_years=self.nominal_life_years,
+                                  use_class=self.use_class, soil=self.soil,
+                                  topography=self.topography)
         if self.code == "ec8":
             assert self.ag_g is not None
             spec = ec8_spectrum(ag_g=self.ag_g, spectrum_type=self.spectrum_type,
                                 ground=self.ground, importance=self.importance)
-            return {s: spec for s in LIMIT_STATES}
-        if self.hazard is not None:
-            return limit_state_spectra(NTCHazard(self.hazard),
-                                       nominal_life_years=self.nominal_life_years,
-                                       use_class=self.use_class, soil=self.soil,
-                                       topography=self.topography)
-        assert self.ag_g is not None and self.f0 is not None and self.tc_star_s is not None
-        spec = ntc2018_spectrum(ag_g=self.ag_g, f0=self.f0, tc_star_s=self.tc_star_s,
-                                soil=self.soil, topography=self.topography)
-        return {s: spec for s in LIMIT_STATES}
+        else:
+            assert self.ag_g is not None and self.f0 is not None and self.tc_star_s is not None
+            spec = ntc2018_spectrum(ag_g=self.ag_g, f0=self.f0, tc_star_s=self.tc_star_s,
+                                    soil=self.soil, topography=self.topography)
+        state = self.limit_state or DYNAMIC_LIMIT_STATE
+        return {state: spec}, {s: f"has no spectrum of its own (the one given is the {state}'s)"
+                               for s in LIMIT_STATES if s != state}
+
+    def spectra(self) -> dict:
+        """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC'): only those with a
+        hazard of their own (:meth:`not_checked` says why the others have none)."""
+        return self._spectra_and_missing()[0]
+
+    def not_checked(self) -> dict:
+        """The limit states without a hazard of their own, each with a phrase saying why."""
+        return self._spectra_and_missing()[1]
+
+    @property
+    def dynamic_limit_state(self) -> str:
+        """The limit state whose demand the dynamic sections take: the SLV with a hazard, the
+        one spectrum's own limit state otherwise."""
+        return DYNAMIC_LIMIT_STATE if self.hazard is not None else (
+            self.limit_state or DYNAMIC_LIMIT_STATE)
+
+    def site_pga_g(self) -> float:
+        """The site's peak ground acceleration at :attr:`dynamic_limit_state`, g: a_g S_S S_T
+        (NTC 2018 eq. 3.2.2 at T = 0), gamma_I a_gR S (EN 1998-1)."""
+        spec = self.spectra()[self.dynamic_limit_state]
+        return float(spec.pga / spec.g)
+
+    def describe_pga(self) -> str:
+        """Where :meth:`site_pga_g` comes from, in words with its factors."""
+        spec = self.spectra()[self.dynamic_limit_state]
+        g = spec.g
+        state = self.dynamic_limit_state
+        if self.code == "ec8":
+            return (f"gamma_I a_gR S = {self.importance:g} x {self.ag_g:.4g} g x {spec.S:.3g} = "
+                    f"{spec.pga / g:.4g} g (EN 1998-1 ground {self.ground}, the {state}'s "
+                    "spectrum of [site])")
+        p = spec.params
+        from archquake.codes.spectra import ntc2018_soil_factors
+
+        s_s = ntc2018_soil_factors(self.soil, ag_g=p["ag_g"], f0=p["f0"],
+                                   tc_star_s=p["tc_star_s"])[0]
+        where = ("" if self.hazard is None else
+                 f", T_R {_return_period(state, self.nominal_life_years, self.use_class):.0f} y")
+        return (f"a_g S_S S_T = {spec.ag / g:.4g} g x {s_s:.3g} x {spec.S / s_s:.3g} = "
+                f"{spec.pga / g:.4g} g ({state}{where}, soil {self.soil}, {self.topography}, "
+                "from [site])")
 
     def position(self):
         from archquake.codecheck.check import Position
@@ -95,13 +154,20 @@ class SiteConfig:
         """One line: where the spectra come from."""
         if self.code == "ec8":
             return (f"EN 1998-1 type {self.spectrum_type}, ground {self.ground}, a_gR "
-                    f"{self.ag_g:g} g, gamma_I {self.importance:g} (one spectrum for every "
-                    "limit state)")
+                    f"{self.ag_g:g} g, gamma_I {self.importance:g} (the "
+                    f"{self.dynamic_limit_state}'s spectrum)")
         if self.hazard is None:
             return (f"NTC 2018, a_g {self.ag_g:g} g, F0 {self.f0:g}, T_C* {self.tc_star_s:g} s, "
-                    f"soil {self.soil}, {self.topography} (one spectrum for every limit state)")
+                    f"soil {self.soil}, {self.topography} (the {self.dynamic_limit_state}'s "
+                    "spectrum)")
         return (f"NTC 2018 hazard ({len(self.hazard)} points), V_N {self.nominal_life_years:g} "
                 f"y, use class {self.use_class}, soil {self.soil}, {self.topography}")
+
+
+def _return_period(state: str, life: float, use: str) -> float:
+    from archquake.codes.spectra import return_period_years
+
+    return return_period_years(state, life, use)
 
 
 def _fail(source: str, key: str, what: str) -> StudyFileError:
@@ -209,6 +275,18 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
         raise _fail(source, "procedure", f"must be '2019' or '2009', got {procedure!r}")
     if procedure == "2009" and height > 0.0:
         raise _fail(source, "procedure", "'2009' is implemented at the ground only (height_m 0)")
+    if code == "ntc2018" and "soil" not in table:
+        raise _fail(source, "soil", "is missing: the subsoil category A..E (NTC 2018 Tab. "
+                                    "3.2.II; A is rock, S_S = 1)")
+    if code == "ec8" and "ground" not in table:
+        raise _fail(source, "ground", "is missing: the ground type A..E (EN 1998-1 Tab. 3.1; "
+                                      "A is rock, S = 1)")
+    limit_state = None
+    if "limit_state" in table:
+        if hazard is not None:
+            raise _fail(source, "limit_state", "applies to one spectrum (ag_g) only: the hazard "
+                                               "gives each limit state its own")
+        limit_state = _word(source, "limit_state", table["limit_state"], ("SLD", "SLV", "SLC"))
     site = SiteConfig(
         code=code, hazard=hazard,
         nominal_life_years=_num(source, "nominal_life_years", table.get("nominal_life_years", 50),
@@ -223,11 +301,21 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
                         low_open=False),
         knowledge=_word(source, "knowledge", table.get("knowledge", "LC1"),
                         ("LC1", "LC2", "LC3")),
-        procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt)
+        procedure=procedure, height_m=height, building_height_m=bh, building_period_s=bt,
+        limit_state=limit_state)
+    if "time_history" in table:
+        if procedure != "2019":
+            raise _fail(source, "time_history", "applies to procedure '2019' (C8.7.1.2.1.9)")
+        # the suite is resolved and read by the assessment file's loader (paths, units)
     try:
-        site.spectra()
+        spectra = site.spectra()
     except ArchquakeError as exc:
         raise _fail(source, "hazard" if hazard is not None else "ag_g", f"is invalid: {exc}") from None
+    state = site.dynamic_limit_state
+    if state not in spectra:
+        why = site.not_checked()[state]
+        raise _fail(source, "hazard", f"must span the {state}'s return period, which sets the "
+                                      f"site's demand on the dynamic sections: the {state} {why}")
     return site
 
 
@@ -235,6 +323,8 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
 def section_code_check(ctx):
     """The code check of the arch's collapse mechanism (:func:`archquake.codecheck.kinematic_check`)
     with the ``[site]`` table; its capacity curve against the demand in a figure."""
+    import numpy as np
+
     from archquake.codecheck.check import kinematic_check
     from archquake.codecheck.kinematic import capacity_curve
     from archquake.plotting.codecheck import save_code_check
@@ -246,8 +336,14 @@ def section_code_check(ctx):
                              procedure=site.procedure, position=site.position())
     save_code_check(result, ctx.figures / "codecheck.png")
     data = result.to_dict()
+    if site.time_history is not None:
+        data["time_history_suite"] = site.time_history
+        data["time_history"] = [r.to_dict() for r in _time_history_routes(ctx, result, curve)]
     data["site"] = site.describe()
     data["verdicts"] = [c.verdict() for c in result.governing]
+    data["not_checked"] = site.not_checked()
+    data["blocks"] = curve.block_table()
+    data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
     return StudyResult("codecheck", "Code check", (),
                        (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
                                "(C8.7.1.3) against the site's demand spectra at each limit "
@@ -255,10 +351,41 @@ def section_code_check(ctx):
                        (), data)
 
 
+def _time_history_routes(ctx, result, curve) -> list:
+    """The time-history route (:func:`archquake.codecheck.timehistory.time_history_route`) of
+    each nonlinear limit state checked, with the ``[site] time_history`` suite's records cut to
+    their strong part plus 2 s; quick mode bisects the bracket once, the full mode three
+    times."""
+    from archquake.codecheck.timehistory import time_history_route
+    from archquake.ground.measures import strong_motion_end
+    from archquake.ground.suites import load_suite
+
+    site: SiteConfig = ctx.config.site
+    assert site.time_history is not None  # called only with one
+    suite = list(load_suite(site.time_history, units=ctx.config.units))
+
+    def trim(record):
+        return record.truncated(min(float(record.duration), strong_motion_end(record) + 2.0))
+
+    routes = []
+    for c in result.governing:
+        if c.method != "nonlinear" or c.period_s is None:
+            continue
+        ctx.say(f"  {c.limit_state} time-history route: 7 records of {site.time_history}, "
+                "each level 7 time histories")
+        def say(line: str, state: str = c.limit_state) -> None:
+            ctx.say(f"  {state} {line}")
+
+        routes.append(time_history_route(
+            curve, result.spectra[c.limit_state], suite, c.limit_state, c.capacity_ag_g,
+            c.period_s, bisections=1 if ctx.mode.quick else 3, trim=trim, progress=say))
+    return routes
+
+
 def report_code_check(el: list, rep, data: dict) -> None:
     """The report's "Code check" section from the section's data."""
     g = data["capacity_curve"]["g"]
-    el.append(("h2", "codecheck", "8. Code check (NTC 2018 §8.7.1, Circolare "
+    el.append(("h2", "codecheck", "7. Code check (NTC 2018 §8.7.1, Circolare "
                                   f"{data['procedure']} C8.7.1.2)"))
     pos = data["position"]
     where = ("at the ground" if not pos["height_m"] else
@@ -270,14 +397,36 @@ def report_code_check(el: list, rep, data: dict) -> None:
                     "local mechanism; each limit state is reported as the capacity a_g (the "
                     "least a_g on rock at which the demand reaches the capacity, the site's "
                     "spectral shape held) against the site's a_g."))
+    blocks = data.get("blocks")
+    moving = ("" if not blocks else
+              f" (blocks {blocks[0]['block']}-{blocks[-1]['block']}, the blocks that move; "
+              f"the arch's total is {data['arch_mass_kg']:.0f} kg, section 1)")
     el.append(("table", ["quantity", "value", "from"], [
         ["activation multiplier alpha0", f"{data['alpha0']:.4f}", "C8.7.1.1 (static analysis)"],
         ["participating mass fraction e*", f"{data['e_star']:.4f}", "C8.7.1.5"],
-        ["participating mass M*", f"{data['m_star_kg']:.0f} kg of {data['mass_kg']:.0f} kg",
-         "e* M"],
+        ["participating mass M*", f"{data['m_star_kg']:.0f} kg of M = {data['mass_kg']:.0f} kg"
+         + moving, "e* M"],
         ["a0* = alpha0 g / (e* FC)", f"{data['a0_star_g']:.4f} g", "C8.7.1.3"],
         ["d0 (capacity curve reaches zero)", f"{data['d0_m']:.4f} m", "C8.7.1.4"],
     ]))
+    if blocks:
+        sx = sum(b["m_dx_kg_m"] for b in blocks)
+        sy = sum(b["m_dy_kg_m"] for b in blocks)
+        sxx = sum(b["m_dx2_kg_m2"] for b in blocks)
+        mass = sum(b["mass_kg"] for b in blocks)
+        el.append(("p", "The moving blocks behind alpha0, e* and M*: each block's mass and the "
+                        "virtual displacements of its centroid per unit rotation of the "
+                        "mechanism at the onset (delta_x horizontal, delta_y vertical, up "
+                        f"positive). alpha0 = sum m delta_y / sum m delta_x = {sy:.1f} / "
+                        f"{sx:.1f} = {sy / sx:.4f}; e* = (sum m delta_x)^2 / (M sum m "
+                        f"delta_x^2) = {sx:.1f}^2 / ({mass:.0f} x {sxx:.1f}) = "
+                        f"{sx * sx / (mass * sxx):.4f}."))
+        el.append(("table", ["block", "mass m (kg)", "delta_x (m/rad)", "delta_y (m/rad)",
+                             "m delta_x", "m delta_y", "m delta_x^2"],
+                   [[b["block"], f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
+                     f"{b['dy_m_rad']:.4f}", f"{b['m_dx_kg_m']:.1f}", f"{b['m_dy_kg_m']:.1f}",
+                     f"{b['m_dx2_kg_m2']:.1f}"] for b in blocks]
+                   + [["sum", f"{mass:.1f}", "", "", f"{sx:.1f}", f"{sy:.1f}", f"{sxx:.1f}"]]))
     rows = []
     for c in data["limit_states"]:
         if "capacity_m" in c:
@@ -292,9 +441,46 @@ def report_code_check(el: list, rep, data: dict) -> None:
     el.append(("table", ["limit state", "check", "capacity", "demand at the site", "read at",
                          "capacity a_g", "site a_g", "ratio", ""], rows))
     el.append(("fig", "codecheck.png", rep.sections["codecheck"].figures[0].caption))
-    el.append(("ul", list(data["verdicts"])))
+    missing = data.get("not_checked", {})
+    el.append(("ul", list(data["verdicts"]) + [
+        f"{state}: not checked, no hazard of its own: it {why}" for state, why in missing.items()]))
+    routes = data.get("time_history")
+    if routes is not None:
+        el.append(("p", "The time-history route (C8.7.1.2.1.9) beside the static one: for each "
+                        "limit state, seven records of "
+                        f"{data.get('time_history_suite')} chosen and scaled so that their mean "
+                        "spectrum meets the code's band around the site's spectrum, cut to their "
+                        "strong part plus 2 s, run on the chain of rigid voussoirs, and scaled "
+                        "together with a_g until a record takes the arch beyond d0 or the mean "
+                        "peak displacement exceeds d_SLV (d_SLC)."))
+        rows = []
+        for r in routes:
+            rows += [[r["limit_state"], n, f"{f:.3f}"] for n, f in zip(r["records"],
+                                                                      r["scale_factors"],
+                                                                      strict=True)]
+        el.append(("table", ["limit state", "record", "scale factor to the site's spectrum"],
+                   rows))
+        el.append(("table", ["limit state", "a_g run (g)", "mean peak d (m)",
+                             "records beyond d0", "check"],
+                   [[r["limit_state"], f"{lv['ag_g']:.4f}",
+                     _peak(lv["mean_peak_displacement_m"]), len(lv["records_beyond_d0"]),
+                     "passes" if lv["passes"] else "FAILS"]
+                    for r in routes for lv in r["capacity"]["levels"]]))
+        el.append(("ul", [
+            f"{r['limit_state']} (time histories): capacity a_g {r['capacity_ag_g']:.4f} g "
+            f"(between {r['capacity']['bracket_g'][0]:.4f} and "
+            f"{r['capacity']['bracket_g'][1]:.4f} g), site {r['site_ag_g']:.4f} g, ratio "
+            f"{r['ratio']:.3f}: {'passes' if r['passes'] else 'FAILS'}; the static route "
+            f"{r['static_capacity_ag_g']:.4f} g"
+            + ("" if r["compatible"] else "; the records do NOT meet the code's band")
+            for r in routes]))
     formulas = sorted({f"{k}: {v}" for c in data["limit_states"] for k, v in c["formulas"].items()})
     el.append(("p", "Where each number comes from: " + "; ".join(formulas) + "."))
+
+
+def _peak(x) -> str:
+    return "inf (collapse)" if x is None or (isinstance(x, float) and math.isinf(x)) else \
+        f"{x:.4f}"
 
 
 __all__ = ["SITE_KEYS", "SiteConfig", "parse_site", "report_code_check", "section_code_check"]

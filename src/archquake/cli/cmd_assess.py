@@ -33,18 +33,21 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "paper's four-link mechanism (needs a restitution the arch may not have)")
     p.add_argument("--force", action="store_true", help="recompute sections cached in DIR/cache/")
     p.add_argument("--json", action="store_true", help="print results.json on stdout")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress lines on stderr (warnings about the input still print)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     return assess(args.file, args.out, quick=args.quick, force=args.force, json=args.json,
-                  model=args.model)
+                  model=args.model, progress=not args.no_progress)
 
 
 def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = False,
-           prefix: str = "assess", model: str | None = None) -> int:
+           prefix: str = "assess", model: str | None = None, progress: bool = True) -> int:
     """Validate ``file``, run the assessment into ``out``, print where the report is;
-    ``model`` (``--model``) replaces the file's [options] model."""
+    ``model`` (``--model``) replaces the file's [options] model; ``progress``: the progress
+    lines on stderr (the input's warnings print either way)."""
     from dataclasses import replace
 
     from archquake.assess import load_config
@@ -64,15 +67,18 @@ def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = Fals
         config = replace(config, model=word)
     from archquake.assess import run_assessment
 
-    def progress(line: str) -> None:
+    for note in config.notes:
+        print(f"[{prefix}] warning: {config.source}: {note}", file=sys.stderr, flush=True)
+
+    def say(line: str) -> None:
         print(f"[{prefix}] {line}", file=sys.stderr, flush=True)
 
-    rep = run_assessment(config, out, quick=quick, force=force, progress=progress)
+    rep = run_assessment(config, out, quick=quick, force=force,
+                         progress=say if progress else None)
     if json:
         print_json(rep.to_dict())
         return 0
     v = rep.verdict
-    print(f"[{prefix}] verdict ({v['level']}{'' if v['certain'] else ', NOT conclusive'}): "
-          f"{v['text']}")
+    print(f"[{prefix}] verdict: {v['text']}")
     print(f"[{prefix}] report: {Path(out) / 'report.html'} (and report.md, results.json)")
     return 0

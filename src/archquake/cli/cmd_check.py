@@ -16,7 +16,11 @@ from archquake.cli.common import (
     ranged,
 )
 from archquake.cli.loads_options import add_loads_arguments, check_loads_on, loads_from_args
-from archquake.cli.site_options import add_site_options, spectrum_from_args
+from archquake.cli.site_options import (
+    add_site_options,
+    implausible_pga,
+    spectrum_from_args,
+)
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     BUILDING_PERIOD_RANGE_S,
@@ -43,9 +47,11 @@ def register(sub: argparse._SubParsersAction) -> None:
             "per limit state the capacity a_g (the least peak ground acceleration on rock the "
             "mechanism fails at, the site's spectral shape held) against the site's a_g. "
             "SLD: activation; SLV: linear (q = 2) and nonlinear (0.4 d0); SLC: nonlinear "
-            "(0.6 d0). The site's spectrum is given by the site options; with --hazard the "
-            "limit states get their own spectra at their return periods (--nominal-life, "
-            "--use-class). Accelerations in g, lengths in m, periods in s."
+            "(0.6 d0). The site's spectrum is given by the site options and is the spectrum "
+            "of one limit state (--limit-state, default SLV); with --hazard each limit state "
+            "whose return period the points span gets its own spectrum (--nominal-life, "
+            "--use-class). A limit state without a hazard of its own is not checked, and the "
+            "output says so. Accelerations in g, lengths in m, periods in s."
         ),
     )
     add_arch_arguments(p)
@@ -53,10 +59,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_site_options(p, required=False)
     grp = p.add_argument_group("code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)")
     grp.add_argument("--hazard", metavar="TR,AG,F0,TCSTAR", type=_hazard_point, action="append",
-                     help="NTC hazard point: return period (years), a_g (g), F0, T_C* (s); give "
-                          "two or more (e.g. the grid's 50, 475 and 975 years) to check each "
-                          "limit state at its own return period (with --code ntc2018; replaces "
+                     help="NTC hazard point: return period (years), a_g (g), F0, T_C* (s); "
+                          "give points whose return periods span each limit state's (V_N 50 y, "
+                          "class II: SLD 50, SLV 475, SLC 975 years, e.g. the grid's 50, 475 "
+                          "and 975 years): each is checked at its own return period, one "
+                          "outside the points is not checked (with --code ntc2018; replaces "
                           "--ag, --f0, --tc-star)")
+    grp.add_argument("--limit-state", type=str.upper, choices=("SLD", "SLV", "SLC"),
+                     help="the limit state whose spectrum --ag (--f0, --tc-star) gives "
+                          "(default SLV); the others are not checked")
     grp.add_argument("--nominal-life", metavar="YEARS", type=ranged(*NOMINAL_LIFE_RANGE_YEARS,
                                                                     unit="years"),
                      help="nominal life V_N with --hazard, years (default 50)")
@@ -80,6 +91,20 @@ def register(sub: argparse._SubParsersAction) -> None:
                      type=ranged(*BUILDING_PERIOD_RANGE_S, unit="s", low_open=True),
                      help="the building's fundamental period T1, s (with --height; NTC eq. "
                           "7.3.6 or a pushover)")
+    th = p.add_argument_group(
+        "time-history route (Circolare 2019 C8.7.1.2.1.9), beside the static one")
+    th.add_argument("--time-history", metavar="SUITE",
+                    help="also check the SLV and the SLC by time histories of the chain of rigid "
+                         "voussoirs: 7 records of SUITE (a FEMA P695 set, e.g. far-field, or a "
+                         "folder of .AT2 files) chosen and scaled to the site's spectrum of "
+                         "each, then scaled with a_g until no record may take the arch beyond d0 "
+                         "and the mean peak displacement stays below d_SLV (d_SLC): the capacity "
+                         "a_g of this route. Minutes: each level is 7 time histories")
+    th.add_argument("--bisections", metavar="N", type=int, default=2,
+                    help="halvings of the capacity's bracket once found (default 2: within "
+                         "about 12 %% of itself; each costs one level)")
+    th.add_argument("--no-progress", action="store_true",
+                    help="no progress lines on stderr for the time-history route")
     add_output_arguments(p)
     p.set_defaults(func=run)
 
@@ -104,9 +129,10 @@ def _position(args: argparse.Namespace):
     return Position(z, h, t1)
 
 
-def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
-    """The spectra by limit state the options describe, and a line saying where they come from."""
-    from archquake.codecheck.check import limit_state_spectra
+def site_spectra(args: argparse.Namespace) -> tuple[dict, str, dict]:
+    """The spectra by limit state the options describe, a line saying where they come from,
+    and the limit states not checked (each with a phrase saying why)."""
+    from archquake.codecheck.check import LIMIT_STATES, hazard_spectra
     from archquake.codes.spectra import NTCHazard, return_period_years
 
     if args.hazard is None:
@@ -115,30 +141,51 @@ def site_spectra(args: argparse.Namespace) -> tuple[dict, str]:
                 raise InvalidParameterError(f"{name} applies only with --hazard")
         if args.code is None:
             raise InvalidParameterError(
-                "the site is needed: --code ntc2018 --ag G --f0 F --tc-star S [--soil X], "
-                "--code ec8 --ag G, or --code ntc2018 --hazard TR,AG,F0,TCSTAR (two or more)")
+                "the site is needed: --code ntc2018 --ag G --f0 F --tc-star S --soil X, "
+                "--code ec8 --ag G --ground X, or --code ntc2018 --soil X --hazard "
+                "TR,AG,F0,TCSTAR (points spanning each limit state's return period)")
+        _require_soil(args)
         spectrum = spectrum_from_args(args)
-        return ({state: spectrum for state in ("SLD", "SLV", "SLC")},
-                f"one spectrum for every limit state: {spectrum.label()}")
+        state = args.limit_state or "SLV"
+        missing = {s: f"has no spectrum of its own (--ag gives the {state}'s; --hazard gives "
+                      "each limit state its own)" for s in LIMIT_STATES if s != state}
+        return {state: spectrum}, f"the {state}'s spectrum: {spectrum.label()}", missing
     if args.code != "ntc2018":
         raise InvalidParameterError("--hazard needs --code ntc2018 (the NTC hazard grid)")
-    for name in ("ag", "f0", "tc_star"):
+    for name in ("ag", "f0", "tc_star", "limit_state"):
         if getattr(args, name) is not None:
             raise InvalidParameterError(
                 f"--{name.replace('_', '-')} and --hazard exclude each other (the hazard gives "
                 "a_g, F0 and T_C* at each limit state's return period)")
+    _require_soil(args)
     hazard = NTCHazard(args.hazard)
     life = 50.0 if args.nominal_life is None else args.nominal_life
     use = args.use_class or "II"
     try:
-        spectra = limit_state_spectra(hazard, nominal_life_years=life, use_class=use,
-                                      soil=args.soil or "A", topography=args.topography or "T1",
-                                      component=args.component)
+        spectra, missing = hazard_spectra(hazard, nominal_life_years=life, use_class=use,
+                                          soil=args.soil, topography=args.topography or "T1",
+                                          component=args.component)
     except InvalidParameterError as exc:
         raise InvalidParameterError(f"--hazard: {exc}") from None
+    if not spectra:
+        periods = ", ".join(f"{s} {return_period_years(s, life, use):.0f}" for s in LIMIT_STATES)
+        raise InvalidParameterError(
+            f"--hazard points ({hazard.points[0][0]:g} to {hazard.points[-1][0]:g} years) span "
+            f"no limit state's return period ({periods} years): give points on both sides of "
+            "at least one")
     lines = [f"{state} T_R {return_period_years(state, life, use):.0f} y a_g "
              f"{spectrum.ag / spectrum.g:.4f} g" for state, spectrum in spectra.items()]
-    return spectra, f"NTC hazard, V_N {life:g} y, class {use}: " + "; ".join(lines)
+    return spectra, f"NTC hazard, V_N {life:g} y, class {use}: " + "; ".join(lines), missing
+
+
+def _require_soil(args: argparse.Namespace) -> None:
+    """The site's ground must be stated: rock (A) is a finding, not a default."""
+    if args.code == "ntc2018" and args.soil is None:
+        raise InvalidParameterError("--code ntc2018 needs --soil A|B|C|D|E (the subsoil "
+                                    "category, NTC 2018 Tab. 3.2.II; A is rock)")
+    if args.code == "ec8" and args.ground is None:
+        raise InvalidParameterError("--code ec8 needs --ground A|B|C|D|E (the ground type, "
+                                    "EN 1998-1 Tab. 3.1; A is rock)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -146,10 +193,11 @@ def run(args: argparse.Namespace) -> int:
     from archquake.codecheck.kinematic import capacity_curve
 
     position = _position(args)
-    spectra, source = site_spectra(args)
+    spectra, source, missing = site_spectra(args)
     if args.procedure == "2009" and not position.at_ground:
         raise InvalidParameterError(
             "--procedure 2009 is implemented at the ground only (--height 0); use 2019")
+    suite = _time_history_suite(args)  # read and checked before anything is computed
     arch = arch_from_args(args)
     loads = loads_from_args(args)
     check_loads_on(arch, loads)
@@ -161,6 +209,7 @@ def run(args: argparse.Namespace) -> int:
         curve = capacity_curve(LoadedFourHingeMechanism.of(arch, loads))
     result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
                              position=position)
+    routes = _time_history(args, result, curve, suite) if suite is not None else []
     if args.plot is not None:
         from archquake.plotting.codecheck import save_code_check
 
@@ -171,16 +220,98 @@ def run(args: argparse.Namespace) -> int:
         if loads is not None:
             out["loads"] = loads.to_dict()
         out["site"] = source
+        out["not_checked"] = missing
+        if args.time_history is not None:
+            out["time_history"] = [r.to_dict() for r in routes]
         print_json(out)
-        return 0
-    print(format_result(result, arch, source))
-    if args.plot is not None:
-        print(f"figure written to {args.plot}")
+    else:
+        print(format_result(result, arch, source, missing))
+        if args.time_history is not None:
+            print(format_time_history(routes, args.time_history))
+        if args.plot is not None:
+            print(f"figure written to {args.plot}")
+    _warn_implausible(args)
     return 0
 
 
-def format_result(result, arch, source: str) -> str:
-    """The check as text: the mechanism's numbers, then one line per limit state."""
+def _warn_implausible(args: argparse.Namespace) -> None:
+    """The site's a_g far outside practice, on stderr, once the check has succeeded."""
+    import sys
+
+    top = None if args.hazard is None else max(p[1] for p in args.hazard)
+    for note in (implausible_pga("--ag", args.ag), implausible_pga("--hazard a_g", top)):
+        if note is not None:
+            print(note, file=sys.stderr)
+
+
+def _time_history_suite(args: argparse.Namespace) -> list | None:
+    """The records of ``--time-history`` (None without it), read and checked with its options
+    before anything is computed (one line naming the option)."""
+    from archquake.errors import ArchquakeError
+    from archquake.ground.suites import load_suite
+
+    if args.time_history is None:
+        return None
+    if args.bisections < 0 or args.bisections > 8:
+        raise InvalidParameterError(f"--bisections must be in [0, 8], got {args.bisections}")
+    if args.procedure != "2019":
+        raise InvalidParameterError("--time-history applies to --procedure 2019 (C8.7.1.2.1.9)")
+    try:
+        return list(load_suite(args.time_history))
+    except ArchquakeError as exc:
+        raise InvalidParameterError(f"--time-history {args.time_history}: {exc}") from None
+
+
+def _time_history(args: argparse.Namespace, result, curve, suite: list) -> list:
+    """The time-history route of the SLV and SLC checked (:func:`time_history_route`), each
+    starting from its static capacity."""
+    import sys
+
+    from archquake.codecheck.timehistory import time_history_route
+    from archquake.ground.measures import strong_motion_end
+
+    states = [c for c in result.governing if c.method == "nonlinear"]
+    if not states:
+        raise InvalidParameterError("--time-history checks the SLV and the SLC: the site gives "
+                                    "neither (see --limit-state, --hazard)")
+
+    def trim(record):  # the strong part and 2 s after it: the rest adds almost no energy
+        return record.truncated(min(float(record.duration), strong_motion_end(record) + 2.0))
+
+    routes = []
+    for c in states:
+        def say(line: str, state: str = c.limit_state) -> None:
+            if not args.no_progress:
+                print(f"[check] {state} time histories, {line}", file=sys.stderr, flush=True)
+
+        assert c.period_s is not None
+        routes.append(time_history_route(curve, result.spectra[c.limit_state], suite,
+                                         c.limit_state, c.capacity_ag_g, c.period_s,
+                                         bisections=args.bisections, trim=trim,
+                                         progress=say))
+    return routes
+
+
+def format_time_history(routes: list, suite: str) -> str:
+    """The time-history route as text: per limit state its records and their scale factors,
+    and the capacity a_g beside the static route's."""
+    lines = [f"time-history route (C8.7.1.2.1.9), records of {suite} on the chain of rigid "
+             "voussoirs:"]
+    for r in routes:
+        lines.append(f"  {r.limit_state}: {len(r.records)} records scaled to the site's "
+                     f"spectrum over {r.periods_s[0]:g}-{r.periods_s[1]:.3g} s"
+                     + ("" if r.compatible else " (NOT compatible with the code's band)") + ": "
+                     + ", ".join(f"{n} x {f:.3g}" for n, f in zip(r.records, r.scale_factors,
+                                                                   strict=True)))
+        for level, ag in zip(r.capacity.levels, r.capacity.ag_g, strict=True):
+            lines.append(f"    a_g {ag:.4f} g: {level.verdict()}")
+        lines.append("  " + r.verdict())
+    return "\n".join(lines)
+
+
+def format_result(result, arch, source: str, missing: dict | None = None) -> str:
+    """The check as text: the mechanism's numbers, then one line per limit state (and one per
+    limit state not checked, ``missing``: why)."""
     curve = result.curve
     g = curve.g
     pos = result.position
@@ -208,8 +339,12 @@ def format_result(result, arch, source: str) -> str:
         else:
             lines.append(f"    a capacity {c.capacity / g:.4f} g, demand at the site "
                          f"{c.demand / g:.4f} g")
+    for state, why in (missing or {}).items():
+        lines.append(f"{state}: not checked: it {why}")
     worst = min(governing, key=lambda c: c.ratio)
     ratio = "inf" if math.isinf(worst.ratio) else f"{worst.ratio:.3f}"
+    checked = ", ".join(c.limit_state for c in governing)
     lines.append(f"verdict: {'passes' if result.passes else 'FAILS'} "
-                 f"(least ratio {ratio}, {worst.limit_state} {worst.method})")
+                 f"(least ratio {ratio}, {worst.limit_state} {worst.method}; "
+                 f"{'checked: ' + checked if missing else 'every limit state checked'})")
     return "\n".join(lines)

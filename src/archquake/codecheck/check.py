@@ -464,15 +464,60 @@ def limit_state_spectra(hazard: NTCHazard, *, nominal_life_years: float = 50.0,
     InvalidParameterError
         A return period outside the hazard's points (one line naming the limit state).
     """
-    out = {}
+    out, missing = hazard_spectra(hazard, nominal_life_years=nominal_life_years,
+                                  use_class=use_class, **site)
+    if missing:
+        state, why = next(iter(missing.items()))
+        raise InvalidParameterError(f"{state} {why}")
+    return out
+
+
+def hazard_spectra(hazard: NTCHazard, *, nominal_life_years: float = 50.0,
+                   use_class: str = "II", **site) -> tuple[dict[str, ElasticSpectrum],
+                                                            dict[str, str]]:
+    """The site's NTC 2018 spectra at the limit states whose return period the hazard's points
+    span, and why each other limit state has none.
+
+    Each limit state's return period T_R (eq. 3.2.0) must lie between two of the hazard's
+    points, where Allegato A interpolates a_g, F0 and T_C* (linear in log p against log T_R);
+    a limit state outside them has no hazard of its own and is not checked (never against
+    another limit state's a_g). With V_N = 50 years and use class II the periods are 50.3
+    (SLD), 474.6 (SLV) and 974.8 years (SLC): the grid's points at 50, 475 and 975 years span
+    all three, points at 50 and 475 years the SLD and the SLV.
+
+    Parameters
+    ----------
+    hazard, nominal_life_years, use_class, **site
+        As :func:`limit_state_spectra`.
+
+    Returns
+    -------
+    (dict of str to ElasticSpectrum, dict of str to str)
+        The spectra by limit state, and for each limit state without one a phrase saying why
+        (``'needs the return period 975 years (...)'``).
+
+    Examples
+    --------
+    >>> hz = NTCHazard([(50, 0.05, 2.5, 0.26), (475, 0.15, 2.45, 0.30)])
+    >>> spectra, missing = hazard_spectra(hz, soil="B")
+    >>> sorted(spectra), missing["SLC"]
+    (['SLD', 'SLV'], 'needs the return period 975 years, outside the hazard points (50 to 475 years)')
+    """
+    out: dict[str, ElasticSpectrum] = {}
+    missing: dict[str, str] = {}
+    lo, hi = hazard.points[0][0], hazard.points[-1][0]
     for state in LIMIT_STATES:
         t_r = return_period_years(state, nominal_life_years, use_class)
+        if not lo <= t_r <= hi:
+            missing[state] = (f"needs the return period {t_r:.0f} years, outside the hazard "
+                              f"points ({lo:g} to {hi:g} years)")
+            continue
         try:
             out[state] = hazard.spectrum(t_r, **site)
         except InvalidParameterError as exc:
             raise InvalidParameterError(
-                f"{state} needs the return period {t_r:.0f} years ({exc})") from None
-    return out
+                f"{state} at the return period {t_r:.0f} years: {exc}") from None
+    return out, missing
 
 
 def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum], *,
@@ -549,6 +594,7 @@ __all__ = [
     "BEHAVIOUR_FACTOR",
     "LIMIT_STATES",
     "limit_state_spectra",
+    "hazard_spectra",
     "NONLINEAR",
     "CodeCheck",
     "KnowledgeLevel",

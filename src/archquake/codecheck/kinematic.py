@@ -352,6 +352,32 @@ class CapacityCurve:
         """a0* = alpha0 g / (e* FC), m/s^2: the spectral acceleration of activation."""
         return self.alpha0 * self.g / (self.e_star * confidence_factor)
 
+    def block_table(self) -> list[dict]:
+        """The moving blocks behind alpha0, e* and M*: per block its mass m_k (kg) and the
+        horizontal and vertical virtual displacements of its centroid per unit rotation of the
+        mechanism at the onset, delta_x,k and delta_y,k (m/rad), with m_k delta_x,k,
+        m_k delta_y,k (kg m/rad) and m_k delta_x,k^2 (kg m^2/rad^2). Their sums give
+        alpha0 = sum m delta_y / sum m delta_x (virtual work of weight against the horizontal
+        load, C8.7.1.1) and e* = (sum m delta_x)^2 / (M sum m delta_x^2) (C8.7.1.5).
+
+        ``block`` is the block's number in the arch, counted from 1 at the left (its index in
+        the chain plus one), where the mechanism says which blocks move; else from 1.
+
+        Examples
+        --------
+        >>> rows = capacity_curve(RockingBlock.on_base(0.5, 5.0)).block_table()
+        >>> len(rows), round(rows[0]["m_dy_kg_m"] / rows[0]["m_dx_kg_m"], 12)
+        (1, 0.1)
+        """
+        masses = np.asarray(self.mechanism.masses, dtype=float)
+        rates = self.mechanism.motion(0.0).centroid_rates
+        numbers = getattr(self.mechanism, "voussoirs", None)
+        numbers = np.arange(masses.size) if numbers is None else np.asarray(numbers)
+        return [{"block": int(n) + 1, "mass_kg": float(m), "dx_m_rad": float(v[0]),
+                 "dy_m_rad": float(v[1]), "m_dx_kg_m": float(m * v[0]),
+                 "m_dy_kg_m": float(m * v[1]), "m_dx2_kg_m2": float(m * v[0] ** 2)}
+                for n, m, v in zip(numbers, masses, rates, strict=True)]
+
     def to_dict(self) -> dict:
         return {
             "mechanism": self.mechanism.describe(),

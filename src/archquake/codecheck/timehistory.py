@@ -285,5 +285,130 @@ def time_history_capacity(curve: CapacityCurve, records: Sequence, site_ag_g: fl
     return TimeHistoryCapacity(limit_state, 0.5 * (lo + hi), (lo, hi), tuple(levels), tuple(ags))
 
 
+@dataclass(frozen=True)
+class TimeHistoryRoute:
+    """The time-history route of one limit state beside the static one: the records chosen
+    from a suite to match the site's spectrum, their scale factors, and the capacity a_g they
+    give (:func:`time_history_route`).
+
+    Attributes
+    ----------
+    limit_state : {'SLV', 'SLC'}
+    records : tuple of str
+        The chosen records' names.
+    scale_factors : tuple of float
+        Each record's factor to the site's spectrum at ``site_ag_g``.
+    compatible : bool
+        Whether the set's mean spectrum meets the code's band (NTC 2018 §3.2.3.6: -10 % / +30 %
+        of the target over the periods checked).
+    periods_s : (float, float)
+        The band's periods, s.
+    site_ag_g : float
+        The site's a_g at the limit state, g.
+    static_capacity_ag_g : float
+        The static route's capacity a_g, g (where the bracketing starts).
+    capacity : TimeHistoryCapacity
+    """
+
+    limit_state: str
+    records: tuple[str, ...]
+    scale_factors: tuple[float, ...]
+    compatible: bool
+    periods_s: tuple[float, float]
+    site_ag_g: float
+    static_capacity_ag_g: float
+    capacity: TimeHistoryCapacity
+
+    @property
+    def ratio(self) -> float:
+        """capacity a_g / site a_g (>= 1 passes)."""
+        return self.capacity.capacity_ag_g / self.site_ag_g
+
+    @property
+    def passes(self) -> bool:
+        return self.ratio >= 1.0
+
+    def verdict(self) -> str:
+        lo, hi = self.capacity.bracket_g
+        return (f"{self.limit_state} (time histories, {len(self.records)} records): capacity a_g "
+                f"{self.capacity.capacity_ag_g:.4f} g (between {lo:.4f} and {hi:.4f} g), site "
+                f"{self.site_ag_g:.4f} g, ratio {self.ratio:.3f}: "
+                f"{'passes' if self.passes else 'FAILS'} (static route "
+                f"{self.static_capacity_ag_g:.4f} g)")
+
+    def to_dict(self) -> dict:
+        return {"limit_state": self.limit_state, "records": list(self.records),
+                "scale_factors": list(self.scale_factors), "compatible": self.compatible,
+                "periods_s": list(self.periods_s), "site_ag_g": self.site_ag_g,
+                "static_capacity_ag_g": self.static_capacity_ag_g,
+                "capacity_ag_g": self.capacity.capacity_ag_g, "ratio": self.ratio,
+                "passes": self.passes, "capacity": self.capacity.to_dict()}
+
+
+def time_history_route(curve: CapacityCurve, spectrum, suite: Sequence, limit_state: str,
+                       static_capacity_ag_g: float, period_s: float, *,
+                       count: int = MIN_RECORDS, bisections: int = 2,
+                       trim: Callable | None = None, run: Callable | None = None,
+                       progress: Callable[[str], None] | None = None) -> TimeHistoryRoute:
+    """The time-history route of C8.7.1.2.1.9 for one limit state, from a suite of records.
+
+    ``count`` records of ``suite`` are chosen and scaled so that their mean spectrum meets the
+    NTC band around ``spectrum`` (:func:`archquake.ground.selection.select_records`, over
+    0.1 s to 1.2 ``period_s``, the limit state's period T_SLV or T_SLC of the static route),
+    then scaled together with a_g until the check of :func:`time_history_check` fails
+    (:func:`time_history_capacity`, starting at the static route's capacity).
+
+    Parameters
+    ----------
+    curve : CapacityCurve
+    spectrum : ElasticSpectrum
+        The site's spectrum at ``limit_state``.
+    suite : sequence of Record
+        The candidates (e.g. a FEMA P695 set).
+    limit_state : {'SLV', 'SLC'}
+    static_capacity_ag_g : float
+        The static route's capacity a_g, g.
+    period_s : float
+        The static route's period of the limit state, s.
+    count : int
+        Records in the set (at least :data:`MIN_RECORDS`).
+    bisections : int
+        As :func:`time_history_capacity`.
+    trim : callable, optional
+        ``trim(record) -> record`` applied to each chosen record before it is scaled (e.g. its
+        strong part, to save time).
+    run, progress : callable, optional
+        As :func:`time_history_capacity`.
+
+    Returns
+    -------
+    TimeHistoryRoute
+    """
+    from archquake.ground.response_spectra import record_spectra
+    from archquake.ground.selection import select_records
+
+    if limit_state not in NONLINEAR:
+        raise InvalidParameterError(f"limit state must be SLV or SLC, got {limit_state!r}")
+    records = list(suite)
+    if len(records) < count:
+        raise InvalidParameterError(
+            f"the time-history route chooses {count} records, the suite has {len(records)}")
+    band = (0.1, 1.2 * float(period_s))
+    periods = np.geomspace(band[0], max(band[1], 2.0 * band[0]), 25)
+    sel = select_records(record_spectra(records, periods), lambda t: spectrum.sa(t),
+                         count=count)
+    chosen = []
+    for i, f in zip(sel.indices, sel.scale_factors, strict=True):
+        rec = records[int(i)] if trim is None else trim(records[int(i)])
+        chosen.append(rec.scaled(float(f)))
+    site_ag = spectrum.ag / spectrum.g
+    cap = time_history_capacity(curve, chosen, site_ag, static_capacity_ag_g, limit_state,
+                                bisections=bisections, run=run, progress=progress)
+    return TimeHistoryRoute(limit_state, tuple(records[int(i)].name for i in sel.indices),
+                            tuple(float(f) for f in sel.scale_factors), bool(sel.compatible),
+                            band, float(site_ag), float(static_capacity_ag_g), cap)
+
+
 __all__ = ["MIN_RECORDS", "RecordResponse", "TimeHistoryCapacity", "TimeHistoryCheck",
-           "chain_displacement", "time_history_capacity", "time_history_check"]
+           "TimeHistoryRoute", "chain_displacement", "time_history_capacity",
+           "time_history_check", "time_history_route"]

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
@@ -104,6 +105,7 @@ def dem_failure_domain(
     governing_only: bool = False,
     model: str = "dem",
     solver: str = "direct",
+    progress: Callable[[int], None] | None = None,
 ) -> DemDomain:
     """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
     through the analytical domain search.
@@ -140,6 +142,8 @@ def dem_failure_domain(
         ``first_half_cycle_g`` is then NaN and ``collapse_half_cycle`` 0: not searched.
     solver : {'direct', 'events'}
         With ``model='rigid'``: how the chain is integrated (``simulate_rigid``'s ``solver``).
+    progress : callable, optional
+        Called with the number of runs so far as the search goes.
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
         chain of rigid blocks (:func:`archquake.rigid.simulate_rigid`; only
@@ -181,7 +185,7 @@ def dem_failure_domain(
         tail_s = tail * math.sqrt(arch.radius / g)
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
                                governing_only and not first_only, model, solver,
-                               threads=n if batched else None)
+                               threads=n if batched else None, progress=progress)
         dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
     finally:
         if own is not None:

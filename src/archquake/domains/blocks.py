@@ -8,6 +8,7 @@ threaded batch of verdicts (:func:`archquake.rigid.rigid_verdicts`).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
@@ -111,6 +112,8 @@ class DemPulseEvaluator:
         threaded), not time histories through ``executor``.
     threads : int, optional
         Threads of that batch (default: the usable cores).
+    progress : callable, optional
+        Called with the number of runs so far after each call that ran some.
 
     Notes
     -----
@@ -129,6 +132,7 @@ class DemPulseEvaluator:
     model: str = "dem"
     solver: str = "direct"
     threads: int | None = None
+    progress: Callable[[int], None] | None = None
     runs: int = 0
     seconds: float = 0.0
     _memo: dict = field(default_factory=dict, repr=False)
@@ -153,6 +157,8 @@ class DemPulseEvaluator:
                 results = list(self.executor.map(block_pulse_outcome, *zip(*args)))
             self._memo.update(zip(todo, results))
             self.runs += len(todo)
+            if self.progress is not None:
+                self.progress(self.runs)
         self.seconds += time.perf_counter() - t0
         out = np.array([self._memo[k][0] for k in keys], dtype=object)
         half = np.array([self._memo[k][1] for k in keys], dtype=np.int64)

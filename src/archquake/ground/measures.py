@@ -334,6 +334,15 @@ def significant_duration(motion, start: float = 0.05, end: float = 0.95) -> floa
     return _significant_duration(t, _sq_integrals(t, a), start, end)
 
 
+def strong_motion_end(motion, fraction: float = 0.95, g: float = STANDARD_GRAVITY) -> float:
+    """Time at which the record's Arias intensity reaches ``fraction`` of its total, s (the
+    squared acceleration integrated by the trapezoidal rule; the assessment cuts records there
+    for the DEM check, the code check's time-history route after it)."""
+    t, a = piecewise_samples(motion)
+    sq = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] ** 2 + a[:-1] ** 2) * np.diff(t))])
+    return float(np.interp(fraction * sq[-1], sq, t))
+
+
 # -------------------------------------------------------------------------------------
 # the piecewise-linear history
 # -------------------------------------------------------------------------------------

@@ -234,14 +234,59 @@ def geometric_safety_factor(arch: VoussoirChain) -> float:
     return math.inf if t_min == 0.0 else arch.thickness / t_min
 
 
+def min_pier_width(arch: VoussoirChain, *, rtol: float = 1e-4) -> float | None:
+    """Least width of an arch's piers (m) at which it stands under its own weight, its height,
+    courses and arch held; None if the arch has no piers, or none up to 64 times the given
+    width (or twice the pier height, if larger) stand.
+
+    Bisection on :func:`stands` between a width that does not stand and one that does (a
+    wider pier is heavier and its base longer: the line of thrust fits more easily).
+
+    Examples
+    --------
+    >>> from archquake.geometry import Arch, OnPiers, Piers
+    >>> arch = OnPiers(Arch.from_ratio(0.15, math.pi, 9), Piers(6.0, 0.3, 3))
+    >>> stands(arch), round(min_pier_width(arch), 3)
+    (False, 0.367)
+    """
+    from archquake.geometry.chain import OnPiers, Piers
+
+    piers = getattr(arch, "piers", None)
+    if piers is None:
+        return None
+    inner = arch.arch  # type: ignore[attr-defined]
+
+    def ok(width: float) -> bool:
+        try:
+            return stands(OnPiers(inner, Piers(piers.height, width, piers.courses)))
+        except ArchquakeError:  # narrower than the springing joint
+            return False
+
+    if ok(piers.width):
+        return float(piers.width)
+    lo, hi = piers.width, piers.width
+    top = max(64.0 * piers.width, 2.0 * piers.height)
+    while not ok(hi):
+        lo, hi = hi, 2.0 * hi
+        if hi > top:
+            return None
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
+    return float(hi)
+
+
 def unstable_error(arch: VoussoirChain) -> UnstableArchError:
     """The one-line error for an arch too thin to stand, naming its minimum thickness."""
     piers = getattr(arch, "piers", None)
     if piers is not None and stands(arch.arch):  # type: ignore[attr-defined]
+        wide = min_pier_width(arch)
+        would = ("" if wide is None else
+                 f"; piers {math.ceil(wide * 1000.0) / 1000.0:.3f} m wide would stand")
         return UnstableArchError(
             f"the piers are too slender to stand under the arch's thrust ({piers.height:g} m "
-            f"high, {piers.width:g} m wide): no line of thrust fits inside them; increase "
-            "--pier-width or lower --pier-height",
+            f"high, {piers.width:g} m wide): no line of thrust fits inside them{would}; "
+            "increase --pier-width or lower --pier-height",
             min_thickness_ratio=None,
         )
     if not isinstance(arch, Arch):
@@ -361,6 +406,7 @@ __all__ = [
     "geometric_safety_factor",
     "min_thickness",
     "min_thickness_ratio",
+    "min_pier_width",
     "stands",
     "static_collapse",
     "unstable_error",

@@ -34,8 +34,10 @@ def plot_code_check(result, ax=None):
             label=f"capacity a(d) = alpha(d) g / (e* FC), FC = {fc:.2f}")
     top = result.a0_star / g
     periods = [c.period_s for c in result.checks if c.period_s is not None]
-    t_max = 1.5 * max(periods) if periods else 4.0
-    t = np.linspace(1e-3, t_max, 400)
+    # long periods too: in the window of the capacity curve (accelerations up to about a0*)
+    # the demand spectra are their long-period branches, which stopped short of it at 1.5 T
+    t_max = max(1.5 * max(periods), 10.0) if periods else 10.0
+    t = np.linspace(1e-3, t_max, 2000)
     for c in result.checks:
         colour = _COLOURS.get(c.limit_state, "tab:blue")
         spec = result.spectra[c.limit_state]
@@ -60,14 +62,16 @@ def plot_code_check(result, ax=None):
     ax.set_xlabel("spectral displacement d (m)")
     ax.set_ylabel("spectral acceleration a (g)")
     ax.set_title(f"Code check, Circolare {result.procedure.value}: capacity curve and demand")
-    ax.legend(fontsize=7, loc="upper right")
+    # below the axes: inside, it hid the demand spectra where they cross the capacity's range
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
+              frameon=False)
     ax.grid(alpha=0.3)
     return ax
 
 
 def save_code_check(result, path: str | Path) -> Path:
     """Draw :func:`plot_code_check` into a new figure and save it to ``path``."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig, ax = plt.subplots(figsize=(7.5, 6.0))
     plot_code_check(result, ax)
     return save(fig, path, dpi=150)
 

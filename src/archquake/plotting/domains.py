@@ -53,7 +53,9 @@ def plot_domain(domain: FailureDomain, ax=None, *, regions: bool = True, bands: 
                             label=f"indeterminate: impact law {domain.impact_law} "
                                   f"{domain.impact_validity.replace('_', ' ')}")
         ax.fill_between(d, f_top, top, color=_REGION_COLOURS["collapse in 1st half cycle"], lw=0)
-    ax.plot(d, first, "-", color="firebrick", lw=1.8, label="failure during 1st half cycle")
+    searched = bool(np.any(np.isfinite(first)))  # governing-only searches leave it NaN
+    ax.plot(d, first, "-", color="firebrick", lw=1.8,
+            label="failure during 1st half cycle" if searched else None)
     if domain.impact_described:
         ax.plot(d, coll, "-", color="darkorange", lw=1.8, label="failure (governing; " +
                 later.replace("collapse in ", "") + ")")
