@@ -2,7 +2,10 @@
 
 - :mod:`archquake.validation.paper`: every number De Lorenzis, DeJong & Ochsendorf (2007) state,
   with its tolerance, the reason for it and its page; Oppenheim's arch; the figures' parameters;
-- :mod:`archquake.validation.housner`: the closed forms of a rigid rocking block (Housner 1963).
+- :mod:`archquake.validation.housner`: the closed forms of a rigid rocking block (Housner 1963);
+- :mod:`archquake.validation.trl_bridges`: TRL's full-scale load tests to collapse of masonry arch
+  bridges, what is published of each bridge with its source, and archquake's collapse load for
+  Prestwood (docs/loads.md, "Against the full-scale tests").
 
 ``archquake reproduce`` and the tests under ``tests/paper`` read them from here.
 """
