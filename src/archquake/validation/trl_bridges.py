@@ -16,7 +16,8 @@ tests/limit/test_trl_bridges.py.
 Sources
 -------
 - TRL report abstracts (trl.co.uk/reports): RR110 (Page 1987, Preston and Prestwood), RR159
-  (Page 1988, Torksey and Shinafoot), RR201 (Page 1989, Strathmashie and Barlae).
+  (Page 1988, Torksey and Shinafoot), RR201 (Page, Strathmashie and Barlae; its year is not in
+  the abstract).
 - Simoncello N, Zampieri P, Gonzalez-Libreros J, Perboni S, Pellegrino C (2020). Numerical
   analysis of an FRP-strengthened masonry arch bridge. Front. Built Environ. 6:7,
   doi:10.3389/fbuil.2020.00007 (open access): Prestwood's span, rise, ring thickness and width
@@ -39,8 +40,8 @@ RR110 = ("Page J (1987). Load tests to collapse on two arch bridges at Preston, 
          "Prestwood, Staffordshire. TRRL Research Report 110 (abstract)")
 RR159 = ("Page J (1988). Load tests to collapse on two arch bridges at Torksey and Shinafoot. "
          "TRRL Research Report 159 (abstract)")
-RR201 = ("Page J (1989). Load tests to collapse on two arch bridges at Strathmashie and Barlae. "
-         "TRRL Research Report 201 (abstract)")
+RR201 = ("TRRL Research Report 201 (J. Page; abstract at trl.co.uk/reports/RR201): load tests "
+         "to collapse on the Strathmashie and Barlae bridges")
 SIMONCELLO = ("Simoncello N et al. (2020). Numerical analysis of an FRP-strengthened masonry "
               "arch bridge. Front. Built Environ. 6:7, doi:10.3389/fbuil.2020.00007")
 
