@@ -43,9 +43,11 @@ from archquake.ranges import (  # the one place of every range
     FIGURE_SUFFIXES,
     MAGNITUDE_RANGE_G,
     MAX_DURATIONS,
+    MAX_SPECTRUM_PERIODS,
     PULSE_TIME_RANGE_S,
     RECORD_DT_RANGE_S,
     SCALE_RANGE,
+    SPECTRUM_PERIOD_RANGE_S,
     T_END_RANGE_S,
 )
 
@@ -663,6 +665,35 @@ def ground_motion_from_args(args: argparse.Namespace, *,
 DEFAULT_PERIOD_STEP_S = 0.05
 
 
+#: A run of the rigid chain estimated above this many seconds says so on stderr before it
+#: starts (what it integrates and about how long), so that a long run is never silent.
+ANNOUNCE_WORK_S = 10.0
+
+
+def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
+               passes: int = 1) -> None:
+    """The one work estimate of every command that integrates the chain of rigid voussoirs
+    (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
+    line naming the options to change, with the time it would take, above
+    ``ranges.RIGID_MAX_WORK``; below it, a run estimated above :data:`ANNOUNCE_WORK_S` prints
+    one line on stderr first. A motion that never reaches the onset of hinging costs nothing
+    (:func:`archquake.rigid.events.stays_at_rest`: no step is taken)."""
+    from archquake.rigid.events import stays_at_rest
+    from archquake.rigid.model import check_work
+    from archquake.rigid.verdict import rigid_model
+
+    model = rigid_model(arch)
+    if stays_at_rest(model, motion):
+        return
+    seconds = check_work(model.n_bodies, duration, time_step, passes=passes,
+                         change="give fewer --voussoirs or a shorter --t-end")
+    if seconds > ANNOUNCE_WORK_S:
+        steps = math.ceil(duration / time_step)
+        print(f"archquake: {command}: {model.n_bodies} voussoirs over {steps:,} time steps of "
+              f"{time_step:.3g} s" + (f", {passes} times" if passes > 1 else "")
+              + f": about {seconds / 60:.2g} min", file=sys.stderr, flush=True)
+
+
 def periods_list(text: str) -> tuple[float, ...]:
     """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1', or a grid
     START:STOP:STEP (s; STOP included), e.g. '0:4:0.02'; START:STOP steps by 0.05 s."""
@@ -689,9 +720,14 @@ def periods_list(text: str) -> tuple[float, ...]:
             raise argparse.ArgumentTypeError(
                 f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
             ) from None
-        if not (value >= 0 and value < float("inf")):
-            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
+        low, high = SPECTRUM_PERIOD_RANGE_S
+        if not low <= value <= high:  # NaN fails too
+            raise argparse.ArgumentTypeError(
+                f"periods must be {low:g} to {high:g} s, got {tok!r}")
         out.append(value)
+    if len(out) > MAX_SPECTRUM_PERIODS:
+        raise argparse.ArgumentTypeError(
+            f"{len(out)} periods; at most {MAX_SPECTRUM_PERIODS}")
     return tuple(out)
 
 
@@ -747,6 +783,7 @@ __all__ = [
     "number",
     "parse_durations",
     "periods_list",
+    "rigid_work",
     "print_json",
     "record_from_args",
     "to_jsonable",

@@ -35,24 +35,33 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if solver == "events" and args.friction is not None:
         raise InvalidParameterError(
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
-    from archquake.cli.dem_run import block_duration
+    from archquake.cli.common import rigid_work
+    from archquake.compare.histories import rigid_window
+    from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    duration = block_duration(args, arch, motion, "--model rigid",
-                              "the rigid chain steps 1e-4 s")
     verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
         if args.friction is None and solver == "direct":  # the guarded verdict, its step
             from archquake.rigid import rigid_verdict
+            from archquake.rigid.verdict import verdict_time_step
 
+            step = verdict_time_step(arch)
+            # the verdict, then the recorded history, each up to the window's end
+            rigid_work("run", arch, motion, rigid_window(arch, motion)[1], step, passes=2)
             verdict = rigid_verdict(arch, motion)
             result = rigid_to_verdict(arch, motion, solver=solver,
                                       time_step=verdict.time_step_s)
         else:
+            if solver == "direct":
+                rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
+                           DEFAULT_TIME_STEP)
             result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
     else:  # a given --t-end is run as given
-        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
+        if solver == "direct":
+            rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
+        result = simulate_rigid(arch, motion, duration=args.t_end, friction=args.friction,
                                 solver=solver)
     from archquake.cli.dem_run import emit_block_run
 
@@ -83,7 +92,10 @@ def _print_text(out: dict) -> None:
           "plastic contacts, "
           + ("no sliding" if out["friction_coefficient"] is None
              else f"Coulomb friction mu = {out['friction_coefficient']:g}"))
-    if rig["solver"] == "events":
+    if rig.get("below_onset"):
+        print(f"integration         none: the ground acceleration stays below the onset of "
+              f"hinging both ways, so the chain stays at rest ({out['end_time_s']:.2f} s)")
+    elif rig["solver"] == "events":
         ev = rig["events"]
         print(f"integrator          from event to event: {ev['closures']} closures, "
               f"{ev['openings']} openings, {len(ev['handovers_s'])} hand-overs to time steps; "

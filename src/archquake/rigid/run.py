@@ -31,7 +31,13 @@ from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion
 from archquake.outcome import Outcome
 from archquake.result import write_csv
-from archquake.rigid.events import EventModel, events_summary, ground_kinematics, run_events
+from archquake.rigid.events import (
+    EventModel,
+    events_summary,
+    ground_kinematics,
+    run_events,
+    stays_at_rest,
+)
 from archquake.rigid.forces import joint_forces as _joint_forces
 from archquake.rigid.model import (
     DEFAULT_TIME_STEP,
@@ -61,7 +67,9 @@ class RigidRun:
     motion it was run with; ``events``: with ``solver="events"``, the event integrator's
     record (:func:`archquake.rigid.events.run_events`: counters, the event log, the
     times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
-    adaptive).
+    adaptive); ``at_rest``: the motion never reaches the onset of hinging
+    (:func:`archquake.rigid.events.stays_at_rest`), so no step was taken: the samples are the
+    chain at rest on the moving ground.
     """
 
     result: DemResult
@@ -75,6 +83,7 @@ class RigidRun:
     motion: object = field(default=None, repr=False, compare=False)
     correction_work: float = 0.0
     events: dict | None = field(default=None, repr=False, compare=False)
+    at_rest: bool = False
 
     @property
     def max_friction_demand(self) -> float:
@@ -87,6 +96,10 @@ class RigidRun:
         :func:`archquake.rigid.forces.joint_forces`, with its reporting rule."""
         if self.motion is None:
             raise InvalidParameterError("this run does not know its ground motion")
+        if self.at_rest:  # the locked arch: indeterminate at every sample (forces module)
+            from archquake.rigid.forces import joint_forces_at_rest
+
+            return joint_forces_at_rest(self, self.motion)
         every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
         return _joint_forces(self, self.motion, every=every)
 
@@ -189,7 +202,7 @@ class RigidRun:
                         "max_penetration_m": self.max_penetration_m,
                         "correction_work_j": self.correction_work,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
-                        "wall_s": self.wall_s}
+                        "wall_s": self.wall_s, "below_onset": self.at_rest}
         if self.events is not None:
             out["rigid"]["events"] = events_summary(self.events)
         return out
@@ -259,19 +272,23 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     mu = 0.0 if friction is None else float(friction)
     if friction is not None and not (mu > 0 and math.isfinite(mu)):
         raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
-    if solver == "events":
-        if friction is not None or initial is not None:
-            raise InvalidParameterError(
-                "solver='events' runs the no-slip chain from rest: leave friction and initial "
-                "unset, or use solver='direct'")
-        return _simulate_events(model, motion, settings, duration=duration,
-                                output_interval=output_interval, g=g, until_rest=until_rest)
-    if solver not in METHODS:
+    if solver == "events" and (friction is not None or initial is not None):
+        raise InvalidParameterError(
+            "solver='events' runs the no-slip chain from rest: leave friction and initial "
+            "unset, or use solver='direct'")
+    if solver not in (*METHODS, "events"):
         raise InvalidParameterError(
             f"solver must be 'direct', 'pgs' or 'events', got {solver!r}")
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    if friction is None and initial is None and stays_at_rest(model, motion, g=g):
+        return _at_rest(model, motion, settings, duration=duration,
+                        output_interval=output_interval, g=g,
+                        time_step=math.nan if solver == "events" else h)
+    if solver == "events":
+        return _simulate_events(model, motion, settings, duration=duration,
+                                output_interval=output_interval, g=g, until_rest=until_rest)
     check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest), h)
     s = run_steps(model, motion, settings, duration=duration, time_step=h,
                   output_interval=output_interval, initial=initial, g=g, chunk=chunk,
@@ -290,6 +307,40 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                     residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=s.wall_s,
                     friction=friction, motion=motion,
                     correction_work=float(da[-1, RK.D_CORRECTION]))
+
+
+#: Most samples of a run at rest (:func:`_at_rest`): its history is constant, so a long
+#: window is sampled more coarsely than ``output_interval``.
+REST_SAMPLES = 10_000
+
+
+def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: float,
+             output_interval: float, g: float, time_step: float) -> RigidRun:
+    """The run of a chain that the motion never moves (:func:`stays_at_rest`): at rest relative
+    to the ground over ``duration`` s, sampled every ``output_interval`` s (at most
+    :data:`REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
+    no work on a body that does not move relative to the ground), read by the same
+    post-processing as a stepped run: ``no_hinging``."""
+    import time as _time
+
+    start = _time.perf_counter()
+    interval = max(output_interval, duration / REST_SAMPLES)
+    n = max(1, int(math.ceil(duration / interval - 1e-9)))
+    times = np.minimum(np.arange(n + 1) * interval, duration)
+    q0, v0 = model.rest()
+    q = np.broadcast_to(q0, (n + 1, *q0.shape)).copy()
+    v = np.zeros((n + 1, *v0.shape))
+    ug, vg = ground_kinematics(motion, times, step=max(1e-4, duration / 1e6))
+    zeros = np.zeros(n + 1)
+    h = time_step if math.isfinite(time_step) else output_interval
+    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
+                             output_interval=interval, n_steps=0, times=times, q=q, v=v,
+                             dissipated=zeros, input_work=zeros, ground_displacement=ug,
+                             ground_velocity=vg)
+    return RigidRun(result=res, time_step=time_step, max_penetration_m=0.0,
+                    friction_demand=zeros.copy(), max_sweeps=0, residual=0.0,
+                    wall_s=_time.perf_counter() - start, friction=None, motion=motion,
+                    at_rest=True)
 
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
