@@ -153,13 +153,14 @@ def _unlink_numba_lock() -> None:
         return
     lock = getattr(numba_parallel, "_backend_init_process_lock", None)
     name = getattr(getattr(lock, "_semlock", None), "name", None)
-    if not name:
+    unlink = getattr(synchronize, "sem_unlink", None)  # POSIX only
+    if not name or unlink is None:
         return
     for finalizer in list(getattr(mp_util, "_finalizer_registry", {}).values()):
         if getattr(finalizer, "_args", None) == (name,):
             finalizer.cancel()  # its unlink is done here
     with contextlib.suppress(OSError):
-        synchronize.sem_unlink(name)
+        unlink(name)
     resource_tracker.unregister(name, "semaphore")
 
 
