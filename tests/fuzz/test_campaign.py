@@ -235,3 +235,21 @@ def test_sigterm_with_two_workers_leaks_no_semaphore(tmp_path):
     proc.terminate()
     _, err = proc.communicate(timeout=120)
     assert "leaked semaphore" not in err, err
+
+
+@pytest.mark.slow
+def test_a_long_record_is_judged_to_its_end(scratch):
+    """A 200 s record whose only strong part (two cycles of 0.6 g, above the onset of 0.37 g)
+    comes in its last second: the verdict's window no longer ends with the record (its own
+    default stops at 120 s or the record's end), where the arch still rocks; it goes on, as
+    --help says, to the end of the excitation + 60 sqrt(R/g), and sees the arch at rest."""
+    path = scratch / "late.csv"
+    path.write_text("time,acc\n" + "\n".join(
+        f"{0.01 * i:.2f},"
+        f"{0.6 * math.sin(2 * math.pi * 0.01 * i / 0.4) if 19900 < i < 19980 else 0.0:.6f}"
+        for i in range(20001)) + "\n")
+    result = call(["run", "--record", str(path), "--json"], 300.0)
+    assert problem(result) is None and result.code == 0, (problem(result), result.err)
+    out = json.loads(result.out)
+    assert out["rigid_verdict"]["onset_time_s"] > 199.0
+    assert out["outcome"] == "survives", out["verdict"]

@@ -22,7 +22,7 @@ import argparse
 
 from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
-from archquake.ranges import FRICTION_RANGE
+from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
 
 def run(args: argparse.Namespace, arch, motion) -> int:
@@ -48,9 +48,13 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             from archquake.rigid.verdict import verdict_time_step
 
             step = verdict_time_step(arch)
+            window = rigid_window(arch, motion)[1]
             # the verdict, then the recorded history, each up to the window's end
-            rigid_work("run", arch, motion, rigid_window(arch, motion)[1], step, passes=2)
-            verdict = rigid_verdict(arch, motion)
+            rigid_work("run", arch, motion, window, step, passes=2)
+            # the verdict's own default window stops at 120 s (its batches' bound); a run
+            # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
+            verdict = rigid_verdict(arch, motion,
+                                    duration=window if window > DEM_T_END_MAX_S else None)
             result = rigid_to_verdict(arch, motion, solver=solver,
                                       time_step=verdict.time_step_s)
         else:
