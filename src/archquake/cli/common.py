@@ -675,19 +675,20 @@ def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
     """The one work estimate of every command that integrates the chain of rigid voussoirs
     (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
     line naming the options to change, with the time it would take, above
-    ``ranges.RIGID_MAX_WORK``; below it, a run estimated above :data:`ANNOUNCE_WORK_S` prints
-    one line on stderr first. A motion that never reaches the onset of hinging costs nothing
-    (:func:`archquake.rigid.events.stays_at_rest`: no step is taken)."""
+    ``ranges.RIGID_MAX_WORK`` (at once: before the onset test, whose projections of the whole
+    chain cost seconds for hundreds of voussoirs); below it, a run estimated above
+    :data:`ANNOUNCE_WORK_S` prints one line on stderr first, unless the motion never reaches the
+    onset of hinging (:func:`archquake.rigid.events.stays_at_rest`: no step is taken)."""
     from archquake.rigid.events import stays_at_rest
     from archquake.rigid.model import check_work
     from archquake.rigid.verdict import rigid_model
 
     model = rigid_model(arch)
-    if stays_at_rest(model, motion):
-        return
+    # the bound first: it is arithmetic, while the onset test projects the whole chain (seconds
+    # for hundreds of voussoirs)
     seconds = check_work(model.n_bodies, duration, time_step, passes=passes,
                          change="give fewer --voussoirs or a shorter --t-end")
-    if seconds > ANNOUNCE_WORK_S:
+    if seconds > ANNOUNCE_WORK_S and not stays_at_rest(model, motion):
         steps = math.ceil(duration / time_step)
         print(f"archquake: {command}: {model.n_bodies} voussoirs over {steps:,} time steps of "
               f"{time_step:.3g} s" + (f", {passes} times" if passes > 1 else "")

@@ -282,6 +282,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
+    if solver != "events":  # the bound first (arithmetic; the onset test projects the chain)
+        check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest),
+                   h)
     if friction is None and initial is None and stays_at_rest(model, motion, g=g):
         return _at_rest(model, motion, settings, duration=duration,
                         output_interval=output_interval, g=g,
@@ -289,7 +292,6 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     if solver == "events":
         return _simulate_events(model, motion, settings, duration=duration,
                                 output_interval=output_interval, g=g, until_rest=until_rest)
-    check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest), h)
     s = run_steps(model, motion, settings, duration=duration, time_step=h,
                   output_interval=output_interval, initial=initial, g=g, chunk=chunk,
                   solver_tolerance=solver_tolerance, friction=mu, solver=solver,
