@@ -61,6 +61,11 @@ WHY = {EK.WHY_NONE: "", EK.WHY_TENSILE_HINGE: "a hinge's reaction became tensile
 #: The onset bisection's last bracket, g: an arch that stays at rest under this ground
 #: acceleration has no onset the package looks for (its ``onset_g`` is inf).
 ONSET_CEILING_G = 1.0e6
+#: An arch that moves under every ground acceleration down to this one, g, is taken to move
+#: under its own weight: its onset is 0 (the bisection's bound is relative: towards 0 it would
+#: halve about 1,100 times). An arch that moves at 0 (a chain at its least thickness, read
+#: through the projection's tolerances) is found so by one projection first.
+ONSET_FLOOR_G = 1.0e-9
 
 _MODELS: dict[int, EventModel] = {}
 
@@ -160,7 +165,7 @@ class EventModel:
         """(lambda_+, lambda_-): the ground accelerations, in g, towards +x and -x at which the
         locked arch starts to move (the no-slip rigid chain's collapse multipliers), by
         bisection on the Gauss projection to 1e-12 (bracketed by 20 g, doubled while the arch
-        stays); inf above :data:`ONSET_CEILING_G`. :meth:`onset_near`
+        stays); inf above :data:`ONSET_CEILING_G`, 0 below :data:`ONSET_FLOOR_G`. :meth:`onset_near`
         gives the same numbers with fewer projections when they are known roughly."""
         return self._bisect(1.0), self._bisect(-1.0)
 
@@ -209,12 +214,16 @@ class EventModel:
                 return True
             return self._moves(sgn * x)
 
+        if stays == 0.0 and self._moves(0.0):  # moves under its own weight: no bracket
+            return 0.0
         lo, hi = 0.0, 20.0
         while not moving(hi):  # a stout arch: double the bracket, up to ONSET_CEILING_G
             if hi >= ONSET_CEILING_G:
                 return math.inf
             lo, hi = hi, 2.0 * hi
         while hi - lo > 1e-12 * hi:
+            if lo == 0.0 and hi < ONSET_FLOOR_G:  # indistinguishable from its own weight
+                return 0.0
             mid = 0.5 * (lo + hi)
             if moving(mid):
                 hi = mid
