@@ -197,8 +197,11 @@ class RigidRun:
         out["friction_coefficient"] = self.friction
         if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
-        out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
-                        "time_step_s": (None if self.events is not None else self.time_step),
+        solver = ("none: below the onset" if self.at_rest
+                  else "events" if self.events is not None else "time stepping")
+        out["rigid"] = {"solver": solver,
+                        "time_step_s": (None if self.events is not None or self.at_rest
+                                        else self.time_step),
                         "max_penetration_m": self.max_penetration_m,
                         "correction_work_j": self.correction_work,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
