@@ -45,7 +45,12 @@ BASES: dict[str, tuple[list[str], list[str]]] = {
                ["--thickness", "--embrace", "--durations", "--max-magnitude", "--precision"]),
     "spectrum": (["spectrum", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star",
                   "0.3", "--json"], ["--ag", "--periods", "--damping"]),
-    "record": (["record", "quake.csv", "--json"], ["--scale"]),
+    "record": (["record", "quake.csv", "--json"], ["--scale", "--periods"]),
+    "min-thickness": (["min-thickness", "--voussoirs", "20", "--json"],
+                      ["--embrace", "--voussoirs"]),
+    "check": (["check", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3",
+               "--json"], ["--ag", "--thickness", "--embrace", "--height", "--building-height",
+                           "--building-period"]),
 }
 
 #: Whole arches at the ends of the geometry (thin, thick, flat, deep): each under the base.
@@ -60,7 +65,7 @@ def campaign() -> list[tuple[str, list[str]]]:
         for option in options:
             for text in DEGENERATE:
                 cases.append((name, [*base, f"{option}={text}"]))
-        if name in ("run", "friction", "thrust", "static"):
+        if name in ("run", "friction", "thrust", "static", "check"):
             for arch in ARCHES:
                 cases.append((name, [*base, *arch]))
     cases.append(("run", ["run", "--record", "long.csv", "--json"]))
