@@ -258,3 +258,26 @@ def test_a_long_record_is_judged_to_its_end(scratch):
     out = json.loads(result.out)
     assert out["rigid_verdict"]["onset_time_s"] > 199.0
     assert out["outcome"] == "survives", out["verdict"]
+
+
+def test_a_long_run_below_the_bound_says_so_and_its_progress(capsys):
+    """Below the work bound a run estimated above 10 s prints its estimate, then a line at each
+    quarter of its steps (the progress simulate_rigid reports after each chunk); a short one
+    prints nothing. Oracle: the estimate's arithmetic, 400,000 steps x 31^3 x 1.1e-9 s."""
+    from archquake.cli.common import rigid_work
+    from archquake.geometry import Arch
+    from archquake.ground import StepImpulse
+
+    arch = Arch(10.0, 1.5, math.radians(157.5), 30)
+    motion = StepImpulse.from_g(0.45, 0.2)
+    progress = rigid_work("run", arch, motion, 40.0, 1e-4)
+    assert progress is not None
+    for done in range(0, 400_001, 20_000):
+        progress(done, 400_000)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("archquake: run: 30 voussoirs over 400,000 time steps")
+    assert f"about {400_000 * 31**3 * 1.1e-9 / 60:.2g} min" in lines[0]
+    assert [line.split(": ")[-1] for line in lines[1:]] == [
+        f"{k:,} of at most 400,000 time steps" for k in (100_000, 200_000, 300_000)]
+    assert rigid_work("run", arch, motion, 1.0, 1e-4) is None
+    assert capsys.readouterr().err == ""

@@ -119,8 +119,9 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     from archquake.limit import limit_analysis
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    rigid_work("friction", arch, motion, rigid_window(arch, motion)[1], DEFAULT_TIME_STEP)
-    run = rigid_to_verdict(arch, motion)
+    progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
+                          DEFAULT_TIME_STEP)
+    run = rigid_to_verdict(arch, motion, progress=progress)
     forces = run.joint_forces
     summary = forces.summary()
     during = forces.friction_demand[forces.times <= motion.duration]

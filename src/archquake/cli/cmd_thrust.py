@@ -109,8 +109,8 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     duration = max(max(args.times), 1e-3) + 1e-3
-    rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP)
-    run = simulate_rigid(arch, motion, duration=duration)
+    progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP)
+    run = simulate_rigid(arch, motion, duration=duration, progress=progress)
     collapse = run.result.collapse_time
     if collapse is not None and max(args.times) > collapse:
         raise InvalidParameterError(

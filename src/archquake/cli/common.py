@@ -669,14 +669,16 @@ ANNOUNCE_WORK_S = 10.0
 
 
 def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
-               passes: int = 1) -> None:
+               passes: int = 1):
     """The one work estimate of every command that integrates the chain of rigid voussoirs
     (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
     line naming the options to change, with the time it would take, above
     ``ranges.RIGID_MAX_WORK`` (at once: before the onset test, whose projections of the whole
     chain cost seconds for hundreds of voussoirs); below it, a run estimated above
     :data:`ANNOUNCE_WORK_S` prints one line on stderr first, unless the motion never reaches the
-    onset of hinging (:func:`archquake.rigid.events.stays_at_rest`: no step is taken)."""
+    onset of hinging (:func:`archquake.rigid.events.stays_at_rest`: no step is taken), and
+    returns a ``progress(steps_done, steps_at_most)`` for ``simulate_rigid`` that prints a line
+    at each quarter of the steps (None for a short run)."""
     from archquake.rigid.events import stays_at_rest
     from archquake.rigid.model import check_work
     from archquake.rigid.verdict import rigid_model
@@ -686,11 +688,22 @@ def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
     # for hundreds of voussoirs)
     seconds = check_work(model.n_bodies, duration, time_step, passes=passes,
                          change="give fewer --voussoirs or a shorter --t-end")
-    if seconds > ANNOUNCE_WORK_S and not stays_at_rest(model, motion):
-        steps = math.ceil(duration / time_step)
-        print(f"archquake: {command}: {model.n_bodies} voussoirs over {steps:,} time steps of "
-              f"{time_step:.3g} s" + (f", {passes} times" if passes > 1 else "")
-              + f": about {seconds / 60:.2g} min", file=sys.stderr, flush=True)
+    if seconds <= ANNOUNCE_WORK_S or stays_at_rest(model, motion):
+        return None
+    steps = math.ceil(duration / time_step)
+    print(f"archquake: {command}: {model.n_bodies} voussoirs over {steps:,} time steps of "
+          f"{time_step:.3g} s" + (f", {passes} times" if passes > 1 else "")
+          + f": about {seconds / 60:.2g} min at most", file=sys.stderr, flush=True)
+    said: set[int] = set()
+
+    def progress(done: int, total: int) -> None:
+        quarter = 4 * done // max(total, 1)
+        if 0 < quarter < 4 and quarter not in said:
+            said.add(quarter)
+            print(f"archquake: {command}: {done:,} of at most {total:,} time steps",
+                  file=sys.stderr, flush=True)
+
+    return progress
 
 
 def periods_list(text: str) -> tuple[float, ...]:

@@ -50,23 +50,26 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             step = verdict_time_step(arch)
             window = rigid_window(arch, motion)[1]
             # the verdict, then the recorded history, each up to the window's end
-            rigid_work("run", arch, motion, window, step, passes=2)
+            progress = rigid_work("run", arch, motion, window, step, passes=2)
             # the verdict's own default window stops at 120 s (its batches' bound); a run
             # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
             verdict = rigid_verdict(arch, motion,
                                     duration=window if window > DEM_T_END_MAX_S else None)
             result = rigid_to_verdict(arch, motion, solver=solver,
-                                      time_step=verdict.time_step_s)
+                                      time_step=verdict.time_step_s, progress=progress)
         else:
+            progress = None
             if solver == "direct":
-                rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
-                           DEFAULT_TIME_STEP)
-            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
+                progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
+                                      DEFAULT_TIME_STEP)
+            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
+                                      progress=progress)
     else:  # a given --t-end is run as given
+        progress = None
         if solver == "direct":
-            rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
+            progress = rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
         result = simulate_rigid(arch, motion, duration=args.t_end, friction=args.friction,
-                                solver=solver)
+                                solver=solver, progress=progress)
     from archquake.cli.dem_run import emit_block_run
 
     out = result.to_dict()

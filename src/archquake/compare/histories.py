@@ -99,7 +99,7 @@ def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVIT
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
-                     time_step: float | None = None):
+                     time_step: float | None = None, progress=None):
     """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
@@ -124,6 +124,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
     time_step : float, optional
         The stepper's step, s (default: ``simulate_rigid``'s).
+    progress : callable, optional
+        ``simulate_rigid``'s.
 
     Returns
     -------
@@ -139,9 +141,10 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     d, cap = rigid_window(arch, motion, g=g)
     if time_step is None:
         return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                              settings=settings, solver=solver)
+                              settings=settings, solver=solver, progress=progress)
     return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings, solver=solver, time_step=time_step)
+                          settings=settings, solver=solver, time_step=time_step,
+                          progress=progress)
 
 
 # ----------------------------------------------------------------------------- comparison

@@ -218,7 +218,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
                    friction: float | None = None, solver: str = "direct",
-                   until_rest: float | None = None) -> RigidRun:
+                   until_rest: float | None = None, progress=None) -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -258,6 +258,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
         reached. Without it (default) the run ends at ``duration``; the verdict is
         ``indeterminate`` if the arch is still moving then.
+    progress : callable, optional
+        With the time stepper: ``progress(steps_done, steps_at_most)`` after each ``chunk``
+        (the command line prints a long run's progress with it).
     """
     g = require_gravity(g)
     check_motion(motion, needs=("acceleration", "duration", "breakpoints"))  # what the steps read
@@ -298,7 +301,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     s = run_steps(model, motion, settings, duration=duration, time_step=h,
                   output_interval=output_interval, initial=initial, g=g, chunk=chunk,
                   solver_tolerance=solver_tolerance, friction=mu, solver=solver,
-                  until_rest=until_rest)
+                  until_rest=until_rest, progress=progress)
     da = s.diag
     res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
                              output_interval=s.output_interval, n_steps=s.n_steps,
