@@ -129,11 +129,39 @@ def _start_worker(parent: int, ignore_sigint: bool, workers: int = 1) -> None:
     # per thread in numba: set here, in the thread that runs the pool's tasks (a fresh worker's
     # count is numba's maximum, NUMBA_NUM_THREADS, which set_num_threads may not exceed)
     numba.set_num_threads(min(threads_per_worker(workers), numba.get_num_threads()))
+    _unlink_numba_lock()
     if ignore_sigint:
         import signal
 
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     _watch_parent(parent)
+
+
+def _unlink_numba_lock() -> None:
+    """Unlink the name of the semaphore numba's threading layer makes in each worker (a
+    multiprocessing RLock, made under any start method whose name contains "fork"), and take
+    it off the resource tracker's list. The lock is this worker's own: no other process opens
+    it by name, and an unlinked semaphore lives on until the worker ends. A worker ended by
+    SIGTERM (an interrupted command, :func:`stop_workers`) runs no clean-up, and the tracker
+    then warned at exit of "2 leaked semaphore objects" (and unlinked them itself)."""
+    import multiprocessing.util as mp_util
+    from multiprocessing import resource_tracker, synchronize
+
+    try:
+        from numba.np.ufunc import parallel as numba_parallel
+    except ImportError:  # pragma: no cover - numba moved it
+        return
+    lock = getattr(numba_parallel, "_backend_init_process_lock", None)
+    name = getattr(getattr(lock, "_semlock", None), "name", None)
+    unlink = getattr(synchronize, "sem_unlink", None)  # POSIX only
+    if not name or unlink is None:
+        return
+    for finalizer in list(getattr(mp_util, "_finalizer_registry", {}).values()):
+        if getattr(finalizer, "_args", None) == (name,):
+            finalizer.cancel()  # its unlink is done here
+    with contextlib.suppress(OSError):
+        unlink(name)
+    resource_tracker.unregister(name, "semaphore")
 
 
 def _watch_parent(parent: int) -> None:

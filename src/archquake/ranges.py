@@ -115,6 +115,10 @@ SPECTRUM_COMPONENTS = ("horizontal", "vertical")
 SPECTRUM_DAMPING_RANGE = (0.0, 1.0)
 #: Periods of a spectrum, s (--periods): 0 (the PGA) to 20 s.
 SPECTRUM_PERIOD_RANGE_S = (0.0, 20.0)
+#: Shortest positive period, s (1 kHz): below it a record's spectrum needs more sub-steps than
+#: any record has samples (T / 100 each), and 2 pi / T overflows near 1e-308; every spectrum is
+#: flat at the peak acceleration long before it.
+SPECTRUM_MIN_PERIOD_S = 1e-3
 #: Number of periods a spectrum may be asked at (--periods START:STOP:STEP).
 MAX_SPECTRUM_PERIODS = 10000
 #: Height Z of a local mechanism's base and a building's height H, m; a building's period T1, s
@@ -146,6 +150,7 @@ __all__ = [
     "IMPORTANCE_RANGE",
     "SPECTRUM_COMPONENTS",
     "SPECTRUM_DAMPING_RANGE",
+    "SPECTRUM_MIN_PERIOD_S",
     "SPECTRUM_PERIOD_RANGE_S",
     "MAX_SPECTRUM_PERIODS",
     "ANIMATION_SUFFIXES",

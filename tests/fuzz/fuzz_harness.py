@@ -94,3 +94,16 @@ def problem(result: Outcome, option: str | None = None) -> str | None:
     if option is not None and option not in line:
         return f"does not name {option}: {line}"
     return None
+
+
+def numba_lock_on_disk() -> tuple[str | None, bool]:
+    """In a pool worker: the name of numba's per-process lock, and whether the name is still
+    linked (a named POSIX semaphore shows in /dev/shm as sem.NAME). Here so that a worker can
+    import it by name."""
+    from pathlib import Path
+
+    from numba.np.ufunc import parallel
+
+    lock = parallel._backend_init_process_lock
+    name = getattr(getattr(lock, "_semlock", None), "name", None)
+    return name, bool(name) and Path("/dev/shm", "sem." + name.lstrip("/")).exists()

@@ -38,5 +38,5 @@ def test_the_command_line_says_it_in_one_line_and_exits_2():
                         "--duration", "0.2"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 2, p.stderr
     lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and "use fewer voussoirs or a shorter duration" in lines[0]
+    assert len(lines) == 1 and "give fewer --voussoirs or a shorter --t-end" in lines[0]
     assert "Traceback" not in p.stderr

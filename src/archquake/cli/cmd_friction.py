@@ -113,10 +113,15 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict."""
     import numpy as np
 
+    from archquake.cli.common import rigid_work
     from archquake.compare import rigid_to_verdict
+    from archquake.compare.histories import rigid_window
     from archquake.limit import limit_analysis
+    from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    run = rigid_to_verdict(arch, motion)
+    progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
+                          DEFAULT_TIME_STEP)
+    run = rigid_to_verdict(arch, motion, progress=progress)
     forces = run.joint_forces
     summary = forces.summary()
     during = forces.friction_demand[forces.times <= motion.duration]

@@ -52,7 +52,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                                 "~0.4 ms a history for fourlink")
     p.add_argument("--integrator", choices=("steps", "events"), default=None,
                    help="with --model rigid: how the chain of rigid voussoirs is integrated: "
-                        "'steps' (default), Moreau-Jean time steps of 1e-4 s; 'events', from "
+                        "'steps' (default), Moreau-Jean time steps (to a verdict, the step "
+                        "scaled with the voussoirs' thickness, 1e-3 s on Oppenheim's arch; with "
+                        "--t-end or --friction, 1e-4 s); 'events', from "
                         "contact event to contact event, the precise option (energy conserved "
                         "between impacts, every hinge opening and closure located and listed; "
                         "no --friction)")

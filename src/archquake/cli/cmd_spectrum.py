@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--damping", metavar="PCT", type=ranged(low, high, "%", high_open=True),
                    default=5.0, help="viscous damping, percent of critical (default 5)")
     p.add_argument("--periods", type=periods_list, metavar="START:STOP:STEP",
-                   help="periods, s: a grid START:STOP:STEP or a list T,T,... (default "
+                   help="periods, s (0, or 0.001 to 20): a grid START:STOP:STEP or a list T,T,... (default "
                         f"{DEFAULT_GRID_S[0]:g}:{DEFAULT_GRID_S[1]:g}:{DEFAULT_GRID_S[2]:g})")
     add_output_arguments(p)
     p.set_defaults(func=run)

@@ -104,9 +104,13 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     """``--model rigid``: the chain of rigid voussoirs run to the last time asked (or its
     collapse), its joints at the recorded sample nearest each time
     (:meth:`archquake.rigid.forces.JointForceHistory.state_at`)."""
+    from archquake.cli.common import rigid_work
     from archquake.rigid import simulate_rigid
+    from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    run = simulate_rigid(arch, motion, duration=max(max(args.times), 1e-3) + 1e-3)
+    duration = max(max(args.times), 1e-3) + 1e-3
+    progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP)
+    run = simulate_rigid(arch, motion, duration=duration, progress=progress)
     collapse = run.result.collapse_time
     if collapse is not None and max(args.times) > collapse:
         raise InvalidParameterError(

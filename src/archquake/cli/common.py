@@ -37,7 +37,7 @@ from archquake.geometry.checks import (  # the one place where an arch is checke
     check_voussoirs,
 )
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
-from archquake.ground.periods import period_grid
+from archquake.ground.periods import check_periods, period_grid
 from archquake.ground.records import UNITS
 from archquake.ranges import (  # the one place of every range
     FIGURE_SUFFIXES,
@@ -663,6 +663,49 @@ def ground_motion_from_args(args: argparse.Namespace, *,
 DEFAULT_PERIOD_STEP_S = 0.05
 
 
+#: A run of the rigid chain estimated above this many seconds says so on stderr before it
+#: starts (what it integrates and about how long), so that a long run is never silent.
+ANNOUNCE_WORK_S = 10.0
+
+
+def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
+               passes: int = 1):
+    """The one work estimate of every command that integrates the chain of rigid voussoirs
+    (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
+    line naming the options to change, with the time it would take, above
+    ``ranges.RIGID_MAX_WORK`` (at once: before the onset test, whose projections of the whole
+    chain cost seconds for hundreds of voussoirs); below it, a run estimated above
+    :data:`ANNOUNCE_WORK_S` prints one line on stderr first, unless the motion never reaches the
+    onset of hinging (:func:`archquake.rigid.events.stays_at_rest`: no step is taken), and
+    returns a ``progress(steps_done, steps_at_most)`` for ``simulate_rigid`` that prints a line
+    at each quarter of the steps (None for a short run)."""
+    from archquake.rigid.events import stays_at_rest
+    from archquake.rigid.model import check_work
+    from archquake.rigid.verdict import rigid_model
+
+    model = rigid_model(arch)
+    # the bound first: it is arithmetic, while the onset test projects the whole chain (seconds
+    # for hundreds of voussoirs)
+    seconds = check_work(model.n_bodies, duration, time_step, passes=passes,
+                         change="give fewer --voussoirs or a shorter --t-end")
+    if seconds <= ANNOUNCE_WORK_S or stays_at_rest(model, motion):
+        return None
+    steps = math.ceil(duration / time_step)
+    print(f"archquake: {command}: {model.n_bodies} voussoirs over {steps:,} time steps of "
+          f"{time_step:.3g} s" + (f", {passes} times" if passes > 1 else "")
+          + f": about {seconds / 60:.2g} min at most", file=sys.stderr, flush=True)
+    said: set[int] = set()
+
+    def progress(done: int, total: int) -> None:
+        quarter = 4 * done // max(total, 1)
+        if 0 < quarter < 4 and quarter not in said:
+            said.add(quarter)
+            print(f"archquake: {command}: {done:,} of at most {total:,} time steps",
+                  file=sys.stderr, flush=True)
+
+    return progress
+
+
 def periods_list(text: str) -> tuple[float, ...]:
     """argparse type: comma-separated periods in s (>= 0), e.g. '0.2,0.5,1', or a grid
     START:STOP:STEP (s; STOP included), e.g. '0:4:0.02'; START:STOP steps by 0.05 s."""
@@ -684,15 +727,15 @@ def periods_list(text: str) -> tuple[float, ...]:
     out = []
     for tok in (t for t in text.replace(" ", "").split(",") if t):
         try:
-            value = float(tok)
+            out.append(float(tok))
         except ValueError:
             raise argparse.ArgumentTypeError(
                 f"expected periods in s separated by commas (e.g. 0.2,0.5,1), got {text!r}"
             ) from None
-        if not (value >= 0 and value < float("inf")):
-            raise argparse.ArgumentTypeError(f"periods must be >= 0 s, got {tok!r}")
-        out.append(value)
-    return tuple(out)
+    try:
+        return tuple(float(t) for t in check_periods(out))
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def parse_durations(text: str) -> np.ndarray:
@@ -747,6 +790,7 @@ __all__ = [
     "number",
     "parse_durations",
     "periods_list",
+    "rigid_work",
     "print_json",
     "record_from_args",
     "to_jsonable",

@@ -22,7 +22,7 @@ import argparse
 
 from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
-from archquake.ranges import FRICTION_RANGE
+from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
 
 def run(args: argparse.Namespace, arch, motion) -> int:
@@ -35,25 +35,41 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if solver == "events" and args.friction is not None:
         raise InvalidParameterError(
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
-    from archquake.cli.dem_run import block_duration
+    from archquake.cli.common import rigid_work
+    from archquake.compare.histories import rigid_window
+    from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    duration = block_duration(args, arch, motion, "--model rigid",
-                              "the rigid chain steps 1e-4 s")
     verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
         if args.friction is None and solver == "direct":  # the guarded verdict, its step
             from archquake.rigid import rigid_verdict
+            from archquake.rigid.verdict import verdict_time_step
 
-            verdict = rigid_verdict(arch, motion)
+            step = verdict_time_step(arch)
+            window = rigid_window(arch, motion)[1]
+            # the verdict, then the recorded history, each up to the window's end
+            progress = rigid_work("run", arch, motion, window, step, passes=2)
+            # the verdict's own default window stops at 120 s (its batches' bound); a run
+            # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
+            verdict = rigid_verdict(arch, motion,
+                                    duration=window if window > DEM_T_END_MAX_S else None)
             result = rigid_to_verdict(arch, motion, solver=solver,
-                                      time_step=verdict.time_step_s)
+                                      time_step=verdict.time_step_s, progress=progress)
         else:
-            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
+            progress = None
+            if solver == "direct":
+                progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
+                                      DEFAULT_TIME_STEP)
+            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
+                                      progress=progress)
     else:  # a given --t-end is run as given
-        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
-                                solver=solver)
+        progress = None
+        if solver == "direct":
+            progress = rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
+        result = simulate_rigid(arch, motion, duration=args.t_end, friction=args.friction,
+                                solver=solver, progress=progress)
     from archquake.cli.dem_run import emit_block_run
 
     out = result.to_dict()
@@ -83,7 +99,10 @@ def _print_text(out: dict) -> None:
           "plastic contacts, "
           + ("no sliding" if out["friction_coefficient"] is None
              else f"Coulomb friction mu = {out['friction_coefficient']:g}"))
-    if rig["solver"] == "events":
+    if rig.get("below_onset"):
+        print(f"integration         none: the ground acceleration stays below the onset of "
+              f"hinging both ways, so the chain stays at rest ({out['end_time_s']:.2f} s)")
+    elif rig["solver"] == "events":
         ev = rig["events"]
         print(f"integrator          from event to event: {ev['closures']} closures, "
               f"{ev['openings']} openings, {len(ev['handovers_s'])} hand-overs to time steps; "

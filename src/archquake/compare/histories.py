@@ -83,14 +83,28 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     return result
 
 
+def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVITY
+                 ) -> tuple[float, float]:
+    """The window of :func:`rigid_to_verdict`, s: its first run (:func:`default_dem_duration`,
+    the end of the excitation + 5 sqrt(R/g)) and the latest it goes on to while the arch
+    still moves (the fixed-hinge model's default end, the end of the excitation + 60
+    sqrt(R/g)). Its length is bounded only by the work it costs
+    (:func:`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
+    nothing it needs."""
+    from archquake.mechanism.simulate import default_t_end
+
+    d = default_dem_duration(arch, motion, g=g)
+    return d, max(d, float(default_t_end(np.asarray(motion.duration), arch.radius, g)))
+
+
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
-                     time_step: float | None = None):
+                     time_step: float | None = None, progress=None):
     """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
-    model's default end (the end of the excitation + 60 sqrt(R/g)) or
-    ``ranges.DEM_T_END_MAX_S``, whichever comes first. The rigid chain resumes where it
+    model's default end (the end of the excitation + 60 sqrt(R/g); :func:`rigid_window`),
+    however long the record. The rigid chain resumes where it
     stopped (unlike the DEM, :func:`dem_to_verdict`), so a long tail costs only its own steps.
 
     The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
@@ -110,6 +124,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
     time_step : float, optional
         The stepper's step, s (default: ``simulate_rigid``'s).
+    progress : callable, optional
+        ``simulate_rigid``'s.
 
     Returns
     -------
@@ -118,23 +134,17 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     Raises
     ------
     InvalidParameterError
-        If that first window exceeds ``ranges.DEM_T_END_MAX_S`` (the chain steps 1e-4 s).
+        If its work exceeds ``ranges.RIGID_MAX_WORK`` (:func:`archquake.rigid.model.check_work`).
     """
-    from archquake.mechanism.simulate import default_t_end
-    from archquake.ranges import DEM_T_END_MAX_S
     from archquake.rigid import simulate_rigid
 
-    d = default_dem_duration(arch, motion, g=g)
-    if d > DEM_T_END_MAX_S:
-        raise InvalidParameterError(
-            f"the rigid chain's run of {d:g} s is longer than {DEM_T_END_MAX_S:g} s (it steps "
-            "1e-4 s): shorten the excitation or give an end time")
-    cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
+    d, cap = rigid_window(arch, motion, g=g)
     if time_step is None:
         return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                              settings=settings, solver=solver)
+                              settings=settings, solver=solver, progress=progress)
     return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings, solver=solver, time_step=time_step)
+                          settings=settings, solver=solver, time_step=time_step,
+                          progress=progress)
 
 
 # ----------------------------------------------------------------------------- comparison

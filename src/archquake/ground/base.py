@@ -169,5 +169,33 @@ def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
     return str(d.get("name", getattr(motion, "name", "record")))
 
 
-__all__ = ["GroundMotion", "check_motion", "motion_label", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED",
-           "TIME_RESOLUTION", "check_time_resolution", "time_floor"]
+def acceleration_peaks(motion: object) -> tuple[float, float] | None:
+    """The largest ground acceleration towards +x and towards -x over the whole motion, m/s^2
+    (each >= 0), exactly, from its ``kernel_spec`` (module docstring): the step impulse's two
+    levels, the sine's magnitude both ways, a record's extreme samples (it is linear between
+    them and zero outside). None for a motion that does not describe itself so.
+
+    >>> from archquake.ground.pulses import StepImpulse
+    >>> acceleration_peaks(StepImpulse(2.0, 0.1, direction=-1))
+    (1.0, 2.0)
+    """
+    spec = getattr(motion, "kernel_spec", None)
+    if spec is None:
+        return None
+    kind, params = spec()
+    params = np.asarray(params, dtype=float)
+    if kind == KIND_STEP:
+        a = float(params[2] * params[0])
+        levels = np.array([a, -0.5 * a, 0.0])
+    elif kind == KIND_SINE:
+        a = abs(float(params[0]))
+        levels = np.array([a, -a])
+    elif kind == KIND_SAMPLED:
+        levels = np.r_[params[2:], 0.0]
+    else:
+        return None
+    return max(float(levels.max()), 0.0), max(float(-levels.min()), 0.0)
+
+
+__all__ = ["GroundMotion", "acceleration_peaks", "check_motion", "motion_label", "KIND_STEP",
+           "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION", "check_time_resolution", "time_floor"]

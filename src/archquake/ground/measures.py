@@ -47,6 +47,7 @@ import numpy as np
 from archquake._validate import require_finite, require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ranges import SPECTRUM_MIN_PERIOD_S
 
 #: Damping ratio of the response spectrum unless stated (5 % of critical).
 DEFAULT_DAMPING = 0.05
@@ -466,6 +467,10 @@ def _periods(periods: Iterable[float]) -> np.ndarray:
         raise InvalidParameterError("periods must be numbers of seconds >= 0") from None
     if p.ndim != 1 or not np.all(np.isfinite(p)) or np.any(p < 0):
         raise InvalidParameterError(f"periods must be finite numbers of seconds >= 0, got {p}")
+    if np.any((p > 0) & (p < SPECTRUM_MIN_PERIOD_S)):  # sub-steps of T/100: unbounded
+        raise InvalidParameterError(
+            f"periods must be 0 or at least {SPECTRUM_MIN_PERIOD_S:g} s, got "
+            f"{float(p[(p > 0) & (p < SPECTRUM_MIN_PERIOD_S)][0]):g}")
     return p
 
 

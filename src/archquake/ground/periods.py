@@ -9,10 +9,36 @@ import numpy as np
 
 from archquake._validate import require_finite, require_positive
 from archquake.errors import InvalidParameterError
-from archquake.ranges import MAX_SPECTRUM_PERIODS, SPECTRUM_PERIOD_RANGE_S
+from archquake.ranges import MAX_SPECTRUM_PERIODS, SPECTRUM_MIN_PERIOD_S, SPECTRUM_PERIOD_RANGE_S
 
 #: Period grid of a spectrum unless the user gives one: start, stop, step (s).
 DEFAULT_PERIOD_GRID_S = (0.0, 4.0, 0.02)
+
+
+def check_periods(periods) -> np.ndarray:
+    """The periods of a spectrum (s), checked: each 0 (the peak acceleration) or from
+    :data:`~archquake.ranges.SPECTRUM_MIN_PERIOD_S` to the upper bound of
+    :data:`~archquake.ranges.SPECTRUM_PERIOD_RANGE_S`, at most
+    :data:`~archquake.ranges.MAX_SPECTRUM_PERIODS` of them.
+
+    >>> check_periods([0.0, 0.5, 20.0]).tolist()
+    [0.0, 0.5, 20.0]
+    """
+    try:
+        p = np.atleast_1d(np.asarray(periods, dtype=float))
+    except (TypeError, ValueError):
+        raise InvalidParameterError("periods must be numbers of seconds") from None
+    if p.ndim != 1:
+        raise InvalidParameterError("periods must be a list of numbers of seconds")
+    low, high = SPECTRUM_PERIOD_RANGE_S
+    ok = ((p >= SPECTRUM_MIN_PERIOD_S) & (p <= high)) | (p == low)  # NaN is not ok
+    if not ok.all():
+        raise InvalidParameterError(
+            f"periods must be {low:g} or {SPECTRUM_MIN_PERIOD_S:g} to {high:g} s, got "
+            f"{float(p[~ok][0]):g}")
+    if p.size > MAX_SPECTRUM_PERIODS:
+        raise InvalidParameterError(f"{p.size} periods; at most {MAX_SPECTRUM_PERIODS}")
+    return p
 
 
 def period_grid(start: float, stop: float, step: float) -> np.ndarray:
@@ -53,7 +79,7 @@ def period_grid(start: float, stop: float, step: float) -> np.ndarray:
     if stop - grid[-1] > 1e-9 * max(1.0, stop):
         grid = np.append(grid, stop)
     grid[-1] = min(grid[-1], stop)
-    return grid
+    return check_periods(grid)
 
 
-__all__ = ["DEFAULT_PERIOD_GRID_S", "period_grid"]
+__all__ = ["DEFAULT_PERIOD_GRID_S", "check_periods", "period_grid"]

@@ -58,6 +58,15 @@ WHY = {EK.WHY_NONE: "", EK.WHY_TENSILE_HINGE: "a hinge's reaction became tensile
        EK.WHY_TOO_MANY_HINGES: f"more than {EK.MAX_HINGES} hinges"}
 
 
+#: The onset bisection's last bracket, g: an arch that stays at rest under this ground
+#: acceleration has no onset the package looks for (its ``onset_g`` is inf).
+ONSET_CEILING_G = 1.0e6
+#: An arch that moves under every ground acceleration down to this one, g, is taken to move
+#: under its own weight: its onset is 0 (the bisection's bound is relative: towards 0 it would
+#: halve about 1,100 times). An arch that moves at 0 (a chain at its least thickness, read
+#: through the projection's tolerances) is found so by one projection first.
+ONSET_FLOOR_G = 1.0e-9
+
 _MODELS: dict[int, EventModel] = {}
 
 
@@ -155,7 +164,8 @@ class EventModel:
     def onset_g(self) -> tuple[float, float]:
         """(lambda_+, lambda_-): the ground accelerations, in g, towards +x and -x at which the
         locked arch starts to move (the no-slip rigid chain's collapse multipliers), by
-        bisection on the Gauss projection to 1e-12; inf above 20 g. :meth:`onset_near`
+        bisection on the Gauss projection to 1e-12 (bracketed by 20 g, doubled while the arch
+        stays); inf above :data:`ONSET_CEILING_G`, 0 below :data:`ONSET_FLOOR_G`. :meth:`onset_near`
         gives the same numbers with fewer projections when they are known roughly."""
         return self._bisect(1.0), self._bisect(-1.0)
 
@@ -204,16 +214,65 @@ class EventModel:
                 return True
             return self._moves(sgn * x)
 
+        if stays == 0.0 and self._moves(0.0):  # moves under its own weight: no bracket
+            return 0.0
         lo, hi = 0.0, 20.0
-        if not moving(hi):
-            return math.inf
+        while not moving(hi):  # a stout arch: double the bracket, up to ONSET_CEILING_G
+            if hi >= ONSET_CEILING_G:
+                return math.inf
+            lo, hi = hi, 2.0 * hi
         while hi - lo > 1e-12 * hi:
+            if lo == 0.0 and hi < ONSET_FLOOR_G:  # indistinguishable from its own weight
+                return 0.0
             mid = 0.5 * (lo + hi)
             if moving(mid):
                 hi = mid
             else:
                 lo = mid
         return hi
+
+
+def stays_at_rest(model: RigidModel, motion, *, g: float = STANDARD_GRAVITY) -> bool:
+    """Whether the chain, at rest, stays at rest through the whole of ``motion``: the exact
+    onset test.
+
+    The ground accelerations a under which the locked chain is in equilibrium (contact forces
+    inside their cones balancing gravity and the inertia force -m a) form an interval, since
+    the conditions are linear in the forces and in a. So the chain stays at rest through the
+    whole motion exactly when it stays under the motion's largest acceleration towards +x and
+    its largest towards -x (:func:`archquake.ground.base.acceleration_peaks`): two Gauss
+    projections (:meth:`EventModel._moves`, the test of :attr:`EventModel.onset_g`), whatever
+    the motion's length. Then the time stepper's every step projects the free velocity back to
+    zero, and the event integrator never finds an onset.
+
+    Parameters
+    ----------
+    model : RigidModel
+        No sliding (the paper's joints; Coulomb joints may slip below the onset of hinging).
+    motion : GroundMotion
+        Ground acceleration, m/s^2.
+    g : float
+        m/s^2.
+
+    Returns
+    -------
+    bool
+        False also where the test does not apply (a motion that does not describe its peaks, a
+        model that is not a single chain, a peak beyond :data:`ONSET_CEILING_G`).
+    """
+    from archquake.ground.base import acceleration_peaks
+
+    peaks = acceleration_peaks(motion)
+    if peaks is None:
+        return False
+    try:
+        em = EventModel.of(model)
+    except InvalidParameterError:  # not a single chain
+        return False
+    plus, minus = peaks[0] / g, peaks[1] / g
+    if not (plus <= ONSET_CEILING_G and minus <= ONSET_CEILING_G):
+        return False
+    return not em._moves(plus) and (minus == plus == 0.0 or not em._moves(-minus))
 
 
 def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
@@ -415,5 +474,6 @@ def events_summary(raw: dict) -> dict:
                      "joint": int(j), "hinges_after": int(n)} for t, k, j, n in raw["log"]]}
 
 
-__all__ = ["EVENT_ATOL", "EVENT_KINDS", "EVENT_RTOL", "EventModel", "MAX_STEP", "events_summary",
-           "ground_kinematics", "run_events"]
+__all__ = ["EVENT_ATOL", "EVENT_KINDS", "EVENT_RTOL", "EventModel", "MAX_STEP",
+           "ONSET_CEILING_G", "events_summary", "ground_kinematics", "run_events",
+           "stays_at_rest"]

@@ -231,8 +231,9 @@ def _setup(run, motion, g: float | None, every: int) -> dict:
     sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
     t = times[:, None] + h * sub[None, :]
     acc = np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(t.shape).mean(1)
+    base = res.assembly.base  # the model's joints: those not between two base blocks
     depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
-                      for jt in res.assembly.joints])
+                      for jt in res.assembly.joints if not (base[jt.left] and base[jt.right])])
     return {"res": res, "g": g, "model": model, "h": h, "lref": lref, "correction": correction,
             "hold": hold, "gap_tol": GAP_TOLERANCE * lref,
             "tol": SOLVER_TOLERANCE * np.sqrt(g * lref),
@@ -346,6 +347,43 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     return _history(s, imp, unique, impulsive)
 
 
+def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
+                         ) -> JointForceHistory:
+    """:func:`joint_forces` of a run at rest (``run.at_rest``: the motion never reaches the
+    onset of hinging), with three projections instead of one a sample.
+
+    The locked arch is statically indeterminate (3(n + 1) independent rows or more for 3n
+    velocities, module docstring), so no sample's forces are unique and none is reported, as
+    the rank test of every sample would find. The forces themselves are one admissible
+    distribution, as the probe's: the projection's at no ground acceleration and at the
+    motion's two peaks, and at any sample the convex combination of the two that bracket its
+    acceleration, which balances the sample's load exactly (equilibrium is linear in the
+    forces and the load) and keeps every contact force inside its cone (a convex set)."""
+    import archquake.rigid._force_kernels as FK
+
+    s = _setup(run, motion, g, every)
+    model = s["model"]
+    acc = s["acc"]
+    nt = acc.size
+    levels = np.array([0.0, max(float(acc.max(initial=0.0)), 0.0),
+                       min(float(acc.min(initial=0.0)), 0.0)])
+    q0, v0 = model.rest()
+    pos = np.broadcast_to(q0, (3, *q0.shape)).copy()
+    vel = np.broadcast_to(v0, (3, *v0.shape)).copy()
+    zeros = np.zeros(3)
+    imp3 = FK.probe(pos, vel, zeros, zeros, levels, model.mass, model.inertia, model.ja,
+                    model.jb, model.arm_a, model.arm_b, model.n0, model.t0, s["h"], s["g"],
+                    s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"], s["correction"], s["hold"],
+                    s["lref"], IMPULSIVE)[0]
+    up = acc >= 0.0
+    peak = np.where(up, levels[1], levels[2])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w = np.where(peak != 0.0, acc / peak, 0.0)
+    far = np.where(up[:, None, None], imp3[1][None], imp3[2][None])
+    imp = (1.0 - w)[:, None, None] * imp3[0][None] + w[:, None, None] * far
+    return _history(s, imp, np.zeros(nt, dtype=bool), np.zeros(nt, dtype=bool))
+
+
 def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 1
                            ) -> JointForceHistory:
     """:func:`joint_forces` by a plain loop over the samples (one projection and one rank test
@@ -386,4 +424,4 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
 
 
 __all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces",
-           "joint_forces_reference"]
+           "joint_forces_at_rest", "joint_forces_reference"]

@@ -117,14 +117,17 @@ class RigidModel:
         body = np.full(len(base), -1, dtype=np.int64)
         body[free_blocks] = np.arange(free_blocks.size)
         cents = np.asarray(asm.centroids, dtype=float)
-        nj = len(asm.joints)
+        # a joint between two base blocks (a base that takes in voussoirs: the arch cut at its
+        # analytical hinges with a hinge above the springing) moves nothing: left out
+        joints = [jt for jt in asm.joints if not (base[jt.left] and base[jt.right])]
+        nj = len(joints)
         ja = np.zeros(nj, np.int64)
         jb = np.zeros(nj, np.int64)
         arm_a = np.zeros((nj, 2, 2))
         arm_b = np.zeros((nj, 2, 2))
         n0 = np.zeros((nj, 2))
         t0 = np.zeros((nj, 2))
-        for j, joint in enumerate(asm.joints):
+        for j, joint in enumerate(joints):
             p = np.asarray(joint.points, dtype=float)
             tan = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
             nrm = np.array([tan[1], -tan[0]])
@@ -249,7 +252,8 @@ __all__ = ["ACC_SAMPLES", "DEFAULT_TIME_STEP", "FORCE_SAMPLES", "GAP_TOLERANCE",
            "MAX_SWEEPS", "SOLVER_TOLERANCE", "RigidModel", "absolute_states", "mean_acceleration"]
 
 
-def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 1) -> None:
+def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 1,
+               passes: int = 1, change: str = "use fewer voussoirs or a shorter duration") -> float:
     """Refuse a run of the chain whose work exceeds :data:`archquake.ranges.RIGID_MAX_WORK`.
 
     Parameters
@@ -261,7 +265,18 @@ def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 
     time_step : float
         Its time step, s.
     runs : int
-        Histories of this size in the call (a batch of verdicts counts each one).
+        Histories of this size in the call (a batch of verdicts: each one is checked).
+    passes : int
+        Times one history is integrated in a row (a command that finds the verdict, then
+        records the history): their sum is checked.
+    change : str
+        What the refusal tells the user to change (the command line names its options).
+
+    Returns
+    -------
+    float
+        The estimated time of the whole call, s (the work of every run and pass times
+        :data:`archquake.ranges.RIGID_SECONDS_PER_WORK`), when it is accepted.
 
     Raises
     ------
@@ -269,13 +284,14 @@ def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 
         With the estimate and what to change, before any step is taken.
     """
     steps = math.ceil(duration / time_step)
-    work = float(steps) * (n_bodies + 1) ** 3
+    work = float(steps) * (n_bodies + 1) ** 3 * passes
     if work > RIGID_MAX_WORK:
         raise InvalidParameterError(
-            f"{n_bodies} blocks over {steps:,} time steps of {time_step:.3g} s are {work:.3g} "
-            f"units of work (steps x (blocks + 1)^3), more than {RIGID_MAX_WORK:.0e}: about "
-            f"{work * RIGID_SECONDS_PER_WORK / 60:.3g} min"
+            f"{n_bodies} blocks over {steps:,} time steps of {time_step:.3g} s"
+            + (f", {passes} times," if passes > 1 else "")
+            + f" are {work:.3g} units of work (steps x (blocks + 1)^3), more than "
+            f"{RIGID_MAX_WORK:.0e}: about {work * RIGID_SECONDS_PER_WORK / 60:.3g} min"
             + (f" for each of {runs} histories" if runs > 1 else "")
             + " (each step solves every joint's contacts together, so the cost grows as the "
-            "cube of the blocks): use fewer voussoirs or a shorter duration "
-            f"(now {duration:g} s)")
+            f"cube of the blocks): {change} (now {duration:g} s)")
+    return work * runs * RIGID_SECONDS_PER_WORK

@@ -31,7 +31,13 @@ from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion
 from archquake.outcome import Outcome
 from archquake.result import write_csv
-from archquake.rigid.events import EventModel, events_summary, ground_kinematics, run_events
+from archquake.rigid.events import (
+    EventModel,
+    events_summary,
+    ground_kinematics,
+    run_events,
+    stays_at_rest,
+)
 from archquake.rigid.forces import joint_forces as _joint_forces
 from archquake.rigid.model import (
     DEFAULT_TIME_STEP,
@@ -65,7 +71,9 @@ class RigidRun:
     motion it was run with; ``events``: with ``solver="events"``, the event integrator's
     record (:func:`archquake.rigid.events.run_events`: counters, the event log, the
     times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
-    adaptive).
+    adaptive); ``at_rest``: the motion never reaches the onset of hinging
+    (:func:`archquake.rigid.events.stays_at_rest`), so no step was taken: the samples are the
+    chain at rest on the moving ground.
     """
 
     result: DemResult
@@ -81,6 +89,7 @@ class RigidRun:
     events: dict | None = field(default=None, repr=False, compare=False)
     contact_work: np.ndarray | None = field(default=None, repr=False, compare=False)
     friction_work: np.ndarray | None = field(default=None, repr=False, compare=False)
+    at_rest: bool = False
 
     @cached_property
     def energy(self) -> EnergyBalance:
@@ -105,6 +114,10 @@ class RigidRun:
         :func:`archquake.rigid.forces.joint_forces`, with its reporting rule."""
         if self.motion is None:
             raise InvalidParameterError("this run does not know its ground motion")
+        if self.at_rest:  # the locked arch: indeterminate at every sample (forces module)
+            from archquake.rigid.forces import joint_forces_at_rest
+
+            return joint_forces_at_rest(self, self.motion)
         every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
         return _joint_forces(self, self.motion, every=every)
 
@@ -212,12 +225,15 @@ class RigidRun:
         out["friction_coefficient"] = self.friction
         if joint_forces and self.motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
-        out["rigid"] = {"solver": "events" if self.events is not None else "time stepping",
-                        "time_step_s": (None if self.events is not None else self.time_step),
+        solver = ("none: below the onset" if self.at_rest
+                  else "events" if self.events is not None else "time stepping")
+        out["rigid"] = {"solver": solver,
+                        "time_step_s": (None if self.events is not None or self.at_rest
+                                        else self.time_step),
                         "max_penetration_m": self.max_penetration_m,
                         "correction_work_j": self.correction_work,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
-                        "wall_s": self.wall_s}
+                        "wall_s": self.wall_s, "below_onset": self.at_rest}
         if self.events is not None:
             out["rigid"]["events"] = events_summary(self.events)
         return out
@@ -230,7 +246,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
                    friction: float | None = None, solver: str = "direct",
-                   until_rest: float | None = None) -> RigidRun:
+                   until_rest: float | None = None, progress=None) -> RigidRun:
     """Run the rigid-block chain under ``motion`` (ground acceleration, m/s^2) from rest.
 
     Parameters
@@ -270,6 +286,9 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
         reached. Without it (default) the run ends at ``duration``; the verdict is
         ``indeterminate`` if the arch is still moving then.
+    progress : callable, optional
+        With the time stepper: ``progress(steps_done, steps_at_most)`` after each ``chunk``
+        (the command line prints a long run's progress with it).
     """
     g = require_gravity(g)
     check_motion(motion, needs=("acceleration", "duration", "breakpoints"))  # what the steps read
@@ -287,24 +306,30 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     mu = 0.0 if friction is None else float(friction)
     if friction is not None and not (mu > 0 and math.isfinite(mu)):
         raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
-    if solver == "events":
-        if friction is not None or initial is not None:
-            raise InvalidParameterError(
-                "solver='events' runs the no-slip chain from rest: leave friction and initial "
-                "unset, or use solver='direct'")
-        return _simulate_events(model, motion, settings, duration=duration,
-                                output_interval=output_interval, g=g, until_rest=until_rest)
-    if solver not in METHODS:
+    if solver == "events" and (friction is not None or initial is not None):
+        raise InvalidParameterError(
+            "solver='events' runs the no-slip chain from rest: leave friction and initial "
+            "unset, or use solver='direct'")
+    if solver not in (*METHODS, "events"):
         raise InvalidParameterError(
             f"solver must be 'direct', 'pgs' or 'events', got {solver!r}")
     h = float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
-    check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest), h)
+    if solver != "events":  # the bound first (arithmetic; the onset test projects the chain)
+        check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest),
+                   h)
+    if friction is None and initial is None and stays_at_rest(model, motion, g=g):
+        return _at_rest(model, motion, settings, duration=duration,
+                        output_interval=output_interval, g=g,
+                        time_step=math.nan if solver == "events" else h)
+    if solver == "events":
+        return _simulate_events(model, motion, settings, duration=duration,
+                                output_interval=output_interval, g=g, until_rest=until_rest)
     s = run_steps(model, motion, settings, duration=duration, time_step=h,
                   output_interval=output_interval, initial=initial, g=g, chunk=chunk,
                   solver_tolerance=solver_tolerance, friction=mu, solver=solver,
-                  until_rest=until_rest)
+                  until_rest=until_rest, progress=progress)
     da = s.diag
     res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
                              output_interval=s.output_interval, n_steps=s.n_steps,
@@ -412,6 +437,40 @@ def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray
     return EnergyBalance(input_work_J=float(input_work[-1]), peak_kinetic_J=float(np.max(kinetic)),
                          contacts_J=d_c, impacts_J=d_c - d_f, friction_J=d_f, scale_J=scale,
                          residual=residual, warning=warning)
+
+
+#: Most samples of a run at rest (:func:`_at_rest`): its history is constant, so a long
+#: window is sampled more coarsely than ``output_interval``.
+REST_SAMPLES = 10_000
+
+
+def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: float,
+             output_interval: float, g: float, time_step: float) -> RigidRun:
+    """The run of a chain that the motion never moves (:func:`stays_at_rest`): at rest relative
+    to the ground over ``duration`` s, sampled every ``output_interval`` s (at most
+    :data:`REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
+    no work on a body that does not move relative to the ground), read by the same
+    post-processing as a stepped run: ``no_hinging``."""
+    import time as _time
+
+    start = _time.perf_counter()
+    interval = max(output_interval, duration / REST_SAMPLES)
+    n = max(1, int(math.ceil(duration / interval - 1e-9)))
+    times = np.minimum(np.arange(n + 1) * interval, duration)
+    q0, v0 = model.rest()
+    q = np.broadcast_to(q0, (n + 1, *q0.shape)).copy()
+    v = np.zeros((n + 1, *v0.shape))
+    ug, vg = ground_kinematics(motion, times, step=max(1e-4, duration / 1e6))
+    zeros = np.zeros(n + 1)
+    h = time_step if math.isfinite(time_step) else output_interval
+    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
+                             output_interval=interval, n_steps=0, times=times, q=q, v=v,
+                             dissipated=zeros, input_work=zeros, ground_displacement=ug,
+                             ground_velocity=vg)
+    return RigidRun(result=res, time_step=time_step, max_penetration_m=0.0,
+                    friction_demand=zeros.copy(), max_sweeps=0, residual=0.0,
+                    wall_s=_time.perf_counter() - start, friction=None, motion=motion,
+                    at_rest=True)
 
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,

@@ -82,7 +82,7 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
               time_step: float, output_interval: float,
               initial: tuple[np.ndarray, np.ndarray] | None, g: float, chunk: float,
               solver_tolerance: float, friction: float, solver: str,
-              until_rest: float | None) -> SteppedSamples:
+              until_rest: float | None, progress=None) -> SteppedSamples:
     """Step the chain from ``initial`` (default rest) over ``motion``.
 
     Parameters
@@ -104,6 +104,8 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
     solver : {"direct", "pgs"}
     until_rest : float, optional
         s: go on past ``duration`` until rest or this time.
+    progress : callable, optional
+        ``progress(steps_done, steps_at_most)``, called after each chunk.
     """
     import archquake.dem._kernels as DK
 
@@ -168,6 +170,8 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
             vg.append(vg_steps[k])
         u_cur, v_cur = float(ug_steps[-1]), float(vg_steps[-1])
         step += n
+        if progress is not None:
+            progress(step, n_cap)
         if settings.stop_at_collapse and n_out:
             last = absolute_states(model, oq[-1:], ov[-1:], ug[-1][-1:], vg[-1][-1:])[0]
             collapsed = bool(DK.collapsed(last, free, cpar))

@@ -78,6 +78,34 @@ class CaseRecord:
     elapsed_s: float = 0.0
 
 
+def _unwritable(path: Path) -> str:
+    """Why a store that exists cannot be written, as the end of a sentence (the file, or its
+    folder, where SQLite writes its journal beside it)."""
+    folder = path.resolve().parent
+    if not os.access(path, os.W_OK):
+        return ("is read-only: make it writable (the results in it are kept), or give another "
+                "--store")
+    if not os.access(folder, os.W_OK):
+        return (f"is in a read-only folder ({str(folder)!r}; SQLite writes its journal beside "
+                "the store): copy it to a writable folder and give that --store (the results "
+                "in it are kept)")
+    return "cannot be written: give another --store"
+
+
+def _not_damaged(path: Path, exc: sqlite3.DatabaseError) -> str | None:
+    """The true reason, as the end of a sentence, when SQLite's error ``exc`` on opening a store
+    says nothing about its contents: another process holds a lock on the database, or the file
+    or its folder is read-only. None: the file may be damaged or not a store."""
+    text = str(exc).lower()
+    if "locked" in text or "busy" in text:
+        return ("is locked by another process (SQLite: database is locked): wait for it to "
+                "finish, then rerun (the results in it are kept), or give another --store")
+    if ("readonly" in text or "read-only" in text or "unable to open" in text
+            or not os.access(path, os.W_OK) or not os.access(path.resolve().parent, os.W_OK)):
+        return _unwritable(path)
+    return None
+
+
 class ResultStore:
     """A sweep's SQLite store. Use as a context manager; only the driving process writes.
 
@@ -119,6 +147,9 @@ class ResultStore:
             (schema,) = self._db.execute("SELECT value FROM meta WHERE key='schema'").fetchone()
         except sqlite3.DatabaseError as exc:
             self.close()
+            reason = _not_damaged(self.path, exc)
+            if reason is not None:
+                raise ArchquakeError(f"sweep store {where} {reason}") from None
             raise CorruptStoreError(f"sweep store {where} cannot be read ({exc}); it is damaged "
                                     "or not a sweep store: use a new --store file") from None
         except ArchquakeError:
@@ -132,7 +163,11 @@ class ResultStore:
     def _lock(self) -> None:
         """Hold an exclusive lock on the store file for as long as it is open, so that two
         sweeps never write one store at once (the second is refused, in one line)."""
-        fd = os.open(self.path, os.O_RDWR)
+        try:
+            fd = os.open(self.path, os.O_RDWR)
+        except PermissionError:
+            raise ArchquakeError(f"sweep store {str(self.path)!r} "
+                                 f"{_unwritable(self.path)}") from None
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
