@@ -157,15 +157,22 @@ VOUSSOIRS = 30
 UNIT_LOAD_N_M = 100e3
 
 
+def _known(value: Sourced | None) -> float:
+    """The number of a sourced value that the comparison needs (Prestwood has them all)."""
+    if value is None:
+        raise ValueError("this bridge lacks a value the comparison needs")
+    return value.value
+
+
 def prestwood_arch(voussoirs: int = VOUSSOIRS) -> Arch:
     """Prestwood's ring as a circular arch: the intrados through the springings 6.55 m apart
     and 1.428 m below the crown, so the centreline radius is the intrados's plus t/2; depth
     the 3.8 m barrel width, so the collapse load comes out in kN over the whole width."""
-    span, rise, t = PRESTWOOD.span.value, PRESTWOOD.rise.value, PRESTWOOD.thickness.value
+    span, rise, t = _known(PRESTWOOD.span), _known(PRESTWOOD.rise), _known(PRESTWOOD.thickness)
     r_intrados = (0.25 * span * span + rise * rise) / (2.0 * rise)
     half = math.asin(0.5 * span / r_intrados)
-    return Arch(r_intrados + 0.5 * t, t, 2.0 * half, voussoirs, PRESTWOOD.width.value,
-                PRESTWOOD.masonry_density.value)
+    return Arch(r_intrados + 0.5 * t, t, 2.0 * half, voussoirs, _known(PRESTWOOD.width),
+                _known(PRESTWOOD.masonry_density))
 
 
 def prestwood_capacity(fill_depth: float, *, spread: bool, passive: bool,
@@ -177,11 +184,11 @@ def prestwood_capacity(fill_depth: float, *, spread: bool, passive: bool,
 
     ``.collapse_load_N_m * width`` is the total load on the barrel, to set beside 228 kN.
     """
-    passive_ = (Passive(PASSIVE_FRACTION, PRESTWOOD.fill_friction.value) if passive else None)
-    loads = Loads(fill=Fill(depth=fill_depth, density=PRESTWOOD.fill_density.value),
+    passive_ = (Passive(PASSIVE_FRACTION, _known(PRESTWOOD.fill_friction)) if passive else None)
+    loads = Loads(fill=Fill(depth=fill_depth, density=_known(PRESTWOOD.fill_density)),
                   passive=passive_)
-    traffic = Traffic(UNIT_LOAD_N_M, PRESTWOOD.load_at.value * PRESTWOOD.span.value,
-                      PRESTWOOD.load_length.value, SPREAD_2_TO_1 if spread else None)
+    traffic = Traffic(UNIT_LOAD_N_M, PRESTWOOD.load_at.value * _known(PRESTWOOD.span),
+                      _known(PRESTWOOD.load_length), SPREAD_2_TO_1 if spread else None)
     return traffic_capacity(prestwood_arch(voussoirs), loads, traffic)
 
 
