@@ -470,7 +470,7 @@ def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: floa
     return RigidRun(result=res, time_step=time_step, max_penetration_m=0.0,
                     friction_demand=zeros.copy(), max_sweeps=0, residual=0.0,
                     wall_s=_time.perf_counter() - start, friction=None, motion=motion,
-                    at_rest=True)
+                    contact_work=zeros.copy(), friction_work=zeros.copy(), at_rest=True)
 
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
