@@ -42,6 +42,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         ),
     )
     add_arch_arguments(p)
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_ground_motion_arguments(p)
     add_impact_arguments(p)
     p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
@@ -78,12 +81,13 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     refuse_dem_options(args, friction_too=model is not Model.RIGID)
     impact = impact_from_args(args)
+    loads = block_loads_from_args(args, arch, model)
     if model is Model.DEM:
-        return _run_dem(args, arch, motion)
+        return _run_dem(args, arch, motion, loads)
     if model is Model.RIGID:
         from archquake.cli import rigid_run
 
-        return rigid_run.run(args, arch, motion)
+        return rigid_run.run(args, arch, motion, loads)
     from archquake.mechanism import PreparedMechanism
     from archquake.mechanism.simulate import (
         simulate,  # the function (the module of its name can shadow it on the package)
@@ -166,7 +170,35 @@ def _print_text(result, motion, g: float) -> None:
         print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
 
 
-def _run_dem(args, arch, motion) -> int:
+def block_loads_from_args(args: argparse.Namespace, arch, model):
+    """The loads of the command line for a dynamic ``model`` (None without), checked against
+    ``arch``; the four-link model refuses them in one line."""
+    from archquake.cli.loads_options import check_loads_on, loads_from_args
+    from archquake.sweeps.cases import Model
+
+    loads = loads_from_args(args)
+    if loads is None:
+        return None
+    check_loads_on(arch, loads)
+    if Model(model) is Model.FOURLINK:
+        raise InvalidParameterError(
+            "--model fourlink does not carry fill, backing or loads yet: use --model rigid "
+            "(the default) or --model dem")
+    if loads.passive is not None:
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        raise InvalidParameterError(f"--passive: {PASSIVE_LEFT_OUT}; leave it out")
+    if any(not p.moves_with_arch for p in loads.point_loads):
+        raise InvalidParameterError("--point-load ...,still: a weight without mass is statics "
+                                    "only; the dynamic models carry loads that move with the arch")
+    if any(not d.moves_with_arch for d in loads.distributed_loads):
+        raise InvalidParameterError("--distributed-load ...,still: a weight without mass is "
+                                    "statics only; the dynamic models carry loads that move with "
+                                    "the arch")
+    return loads
+
+
+def _run_dem(args, arch, motion, loads=None) -> int:
     try:
         from archquake.dem import simulate_dem  # noqa: F401
     except ImportError:
@@ -175,4 +207,4 @@ def _run_dem(args, arch, motion) -> int:
         ) from None
     from archquake.cli import dem_run
 
-    return dem_run.run(args, arch, motion)
+    return dem_run.run(args, arch, motion, loads)

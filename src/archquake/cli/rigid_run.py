@@ -25,8 +25,9 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import FRICTION_RANGE
 
 
-def run(args: argparse.Namespace, arch, motion) -> int:
-    """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
+def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
+    """Run the rigid chain for ``arch`` (carrying ``loads``) under ``motion``; print, plot,
+    animate as asked."""
     from archquake.rigid import simulate_rigid
 
     if args.friction is not None:
@@ -39,6 +40,11 @@ def run(args: argparse.Namespace, arch, motion) -> int:
 
     duration = block_duration(args, arch, motion, "--model rigid",
                               "the rigid chain steps 1e-4 s")
+    body = arch
+    if loads is not None:
+        from archquake.dem.assembly import build_arch_assembly
+
+        body = build_arch_assembly(arch, loads=loads)
     verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
@@ -46,13 +52,14 @@ def run(args: argparse.Namespace, arch, motion) -> int:
         if args.friction is None and solver == "direct":  # the guarded verdict, its step
             from archquake.rigid import rigid_verdict
 
-            verdict = rigid_verdict(arch, motion)
+            verdict = rigid_verdict(body, motion)
             result = rigid_to_verdict(arch, motion, solver=solver,
-                                      time_step=verdict.time_step_s)
+                                      time_step=verdict.time_step_s, loads=loads)
         else:
-            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver)
+            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
+                                      loads=loads)
     else:  # a given --t-end is run as given
-        result = simulate_rigid(arch, motion, duration=duration, friction=args.friction,
+        result = simulate_rigid(body, motion, duration=duration, friction=args.friction,
                                 solver=solver)
     from archquake.cli.dem_run import emit_block_run
 

@@ -25,6 +25,8 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
     ASSEMBLIES,
     HINGES,
     VOUSSOIRS,
+    Assembly,
+    build_arch_assembly,
     dem_assembly,
     three_voussoir_assembly,
 )
@@ -85,7 +87,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
-                     time_step: float | None = None):
+                     time_step: float | None = None, loads=None):
     """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
@@ -110,6 +112,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
     time_step : float, optional
         The stepper's step, s (default: ``simulate_rigid``'s).
+    loads : Loads, optional
+        What the arch carries (:func:`archquake.dem.assembly.build_arch_assembly`).
 
     Returns
     -------
@@ -130,10 +134,13 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
             f"the rigid chain's run of {d:g} s is longer than {DEM_T_END_MAX_S:g} s (it steps "
             "1e-4 s): shorten the excitation or give an end time")
     cap = min(float(default_t_end(np.asarray(motion.duration), arch.radius, g)), DEM_T_END_MAX_S)
+    body: Arch | Assembly = arch
+    if loads is not None and not loads.empty:
+        body = build_arch_assembly(arch, loads=loads)
     if time_step is None:
-        return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+        return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
                               settings=settings, solver=solver)
-    return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+    return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
                           settings=settings, solver=solver, time_step=time_step)
 
 

@@ -143,6 +143,14 @@ class Assembly:
         return len(self.polygons)
 
     @property
+    def radius(self) -> float | None:
+        """The arch's radius, m, for an arch's assembly (default run windows scale with
+        sqrt(R/g)); None for any other assembly."""
+        arch = self.meta.get("arch")
+        radius = arch.get("radius_m") if isinstance(arch, dict) else None
+        return None if radius is None else float(radius)
+
+    @property
     def free_blocks(self) -> np.ndarray:
         return np.flatnonzero(~self.base)
 

@@ -1,0 +1,83 @@
+"""``archquake run`` with what the arch carries, through the real entry point: the rigid chain
+(default) and the DEM carry the fill; the four-link model and the loads the dynamics do not
+carry are refused in one line with exit status 2.
+
+Oracle: lambda of the static analysis with the loads (:mod:`archquake.limit.loaded`): the
+example bridge's semicircle with 1 m of fill, 0.0819 g (bare: 0.0490 g). A long step pulse
+10 % below it leaves the filled arch still (it rocks the bare arch), 30 % above it rocks it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from archquake.cli import main as cli_main
+from archquake.geometry import Arch
+from archquake.geometry.loads import Fill, Loads, block_extras
+from archquake.limit.loaded import loaded_collapse, seismic_case
+
+BRIDGE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--voussoirs", "15",
+          "--density", "1800"]
+ARCH = Arch(5.0, 0.6, math.pi, 15, 1.0, 1800.0)
+FILL = Loads(fill=Fill(depth=1.0, density=1800.0))
+LAMBDA = loaded_collapse(seismic_case(ARCH, FILL)).multiplier
+
+
+def _json(capsys, argv):
+    assert cli_main.main(["run", *BRIDGE, *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_lambda_of_the_oracle():
+    assert LAMBDA == pytest.approx(0.0819, abs=1e-4)
+
+
+@pytest.mark.parametrize("model", ["rigid", "dem"])
+def test_below_the_loaded_lambda_the_filled_arch_stays_still(capsys, model):
+    step = ["--pulse", "step", "--magnitude", f"{0.9 * LAMBDA:.6f}", "--duration", "0.3",
+            "--t-end", "0.5", "--model", model]
+    bare = _json(capsys, step)
+    filled = _json(capsys, [*step, "--fill-depth", "1"])
+    assert bare["onset_time_s"] is not None  # 0.074 g > 0.049 g: the bare arch rocks
+    assert filled["outcome"] == "no_hinging" and filled["onset_time_s"] is None
+    assert "masses" not in bare["assembly"] and "loads" not in bare["assembly"]
+    masses = filled["assembly"]["masses"]
+    assert masses["carried_mass_kg"] == pytest.approx(float(block_extras(ARCH, FILL).mass.sum()),
+                                                      rel=1e-12)
+    assert masses["masonry_mass_kg"] == pytest.approx(ARCH.mass, rel=1e-12)
+    assert "not modelled" in masses["passive_pressure"]
+    assert filled["assembly"]["loads"]["fill"]["depth_m"] == 1.0
+
+
+@pytest.mark.parametrize("model", ["rigid", "dem"])
+def test_above_the_loaded_lambda_the_filled_arch_rocks(capsys, model):
+    out = _json(capsys, ["--pulse", "step", "--magnitude", f"{1.3 * LAMBDA:.6f}",
+                         "--duration", "0.3", "--t-end", "0.5", "--model", model,
+                         "--fill-depth", "1"])
+    assert out["onset_time_s"] is not None
+
+
+def test_the_text_output_names_the_carried_mass_and_the_passive_pressure(capsys):
+    assert cli_main.main(["run", *BRIDGE, "--pulse", "step", "--magnitude", "0.05",
+                          "--duration", "0.1", "--t-end", "0.3", "--fill-depth", "1"]) == 0
+    text = capsys.readouterr().out
+    assert "carried mass        40781.4 kg on 16964.6 kg of masonry" in text
+    assert "passive fill pressure not modelled in the dynamics" in text
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--fill-depth", "1", "--model", "fourlink"], "--model fourlink does not carry"),
+    (["--fill-depth", "1", "--passive", "0.33"], "--passive: passive fill pressure not modelled"),
+    (["--point-load", "3,10,still"], "--point-load ...,still"),
+    (["--distributed-load", "1,3,10,still"], "--distributed-load ...,still"),
+    (["--point-load", "30,10"], "--point-load position"),
+    (["--fill-depth", "1", "--model", "dem", "--dem-assembly", "hinges"], "for bare arches"),
+])
+def test_loads_the_dynamics_do_not_carry_exit_2_with_one_line(capsys, extra, message):
+    assert cli_main.main(["run", *BRIDGE, "--pulse", "step", "--magnitude", "0.3",
+                          "--duration", "0.1", *extra]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err
