@@ -81,3 +81,33 @@ def test_loads_the_dynamics_do_not_carry_exit_2_with_one_line(capsys, extra, mes
                           "--duration", "0.1", *extra]) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+THICK = ["--radius", "5", "--thickness", "0.75", "--embrace", "180", "--voussoirs", "15",
+         "--density", "1800", "--fill-depth", "1", "--backing", "1.5", "--pulse", "step",
+         "--magnitude", "0.6", "--duration", "0.1"]
+
+
+def test_thrust_with_fill_and_backing_numbers_the_arch_joints(capsys):
+    """The joints inside the backing (0, 1 and 14, 15: their extrados ends below 1.5 m) carry
+    no line of thrust; the others keep the arch's joint numbers."""
+    assert cli_main.main(["thrust", *THICK, "--times", "0.05", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    state = out["states"][0]
+    assert len(state["relative_eccentricity"]) == 16
+    assert [j for j, e in enumerate(state["relative_eccentricity"]) if e is None] == [0, 1, 14, 15]
+    assert all(2 <= j <= 13 for j in state["face_joints"])
+    assert out["assembly"]["masses"]["held_by_backing"] == [0, 1, 13, 14]
+
+
+def test_friction_with_loads_sets_the_loaded_statics_beside_it(capsys):
+    from archquake.geometry.loads import Backing
+    from archquake.limit import limit_analysis
+
+    assert cli_main.main(["friction", *THICK, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    loads = Loads(fill=Fill(depth=1.0, density=1800.0), backing=Backing(1.5))
+    static = limit_analysis(Arch(5.0, 0.75, math.pi, 15, 1.0, 1800.0), loads=loads)
+    assert out["static_friction_demand"] == pytest.approx(static.min_friction, rel=1e-9)
+    assert 2 <= out["joint"] <= 13
+    assert out["assembly"]["loads"]["backing"] == {"left_m": 1.5, "right_m": 1.5}

@@ -40,11 +40,7 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
 
     duration = block_duration(args, arch, motion, "--model rigid",
                               "the rigid chain steps 1e-4 s")
-    body = arch
-    if loads is not None:
-        from archquake.dem.assembly import build_arch_assembly
-
-        body = build_arch_assembly(arch, loads=loads)
+    body = loaded_body(arch, loads)
     verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
@@ -68,6 +64,43 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
         out = with_verdict(out, verdict)
     return emit_block_run(args, arch, motion, result.result, out, _print_text,
                           label="rigid chain")
+
+
+def loaded_body(arch, loads):
+    """What the rigid chain runs: ``arch`` itself, or its assembly carrying ``loads``."""
+    if loads is None:
+        return arch
+    from archquake.dem.assembly import build_arch_assembly
+
+    return build_arch_assembly(arch, loads=loads)
+
+
+def joint_numbers(run) -> list[int] | None:
+    """The arch's joint number of each joint the run records, or None where they are all of
+    them in order (the joints inside a backing are not recorded)."""
+    asm = run.result.assembly
+    cuts = asm.meta.get("cut_joints")
+    numbers = [int(cuts[j.index]) for j in asm.joints] if cuts else None
+    return None if numbers is None or numbers == list(range(len(numbers))) else numbers
+
+
+def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dict:
+    """A joint-force state or summary (:mod:`archquake.rigid.forces`) with its joints numbered
+    as the arch's (``numbers`` from :func:`joint_numbers`; the joints not recorded get None)."""
+    if numbers is None:
+        return state
+    out = dict(state)
+    for key in ("relative_eccentricity", "friction_demand"):
+        if key in out:
+            full: list = [None] * n_joints
+            for j, v in zip(numbers, out[key], strict=True):
+                full[j] = v
+            out[key] = full
+    if "face_joints" in out:
+        out["face_joints"] = [numbers[j] for j in out["face_joints"]]
+    if out.get("max_friction_demand_joint") is not None:
+        out["max_friction_demand_joint"] = numbers[out["max_friction_demand_joint"]]
+    return out
 
 
 def with_verdict(out: dict, verdict) -> dict:
