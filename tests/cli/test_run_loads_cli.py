@@ -111,3 +111,37 @@ def test_friction_with_loads_sets_the_loaded_statics_beside_it(capsys):
     assert out["static_friction_demand"] == pytest.approx(static.min_friction, rel=1e-9)
     assert 2 <= out["joint"] <= 13
     assert out["assembly"]["loads"]["backing"] == {"left_m": 1.5, "right_m": 1.5}
+
+
+def test_domain_with_fill_starts_at_the_loaded_lambda_and_says_what_the_chain_does(capsys):
+    """The rigid chain's domain of the filled bridge at t_p = 0.3 s: no hinging below the
+    loaded lambda (1e-12), and single runs of the same chain either side of the boundary
+    (0.01 g brackets) collapse above it and not below."""
+    from archquake.compare.domains import DOMAIN_TAIL
+    from archquake.constants import STANDARD_GRAVITY as G
+    from archquake.dem.assembly import build_arch_assembly
+    from archquake.ground import StepImpulse
+    from archquake.rigid import rigid_verdict
+
+    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--durations", "0.3",
+                          "--workers", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    point = out["governing"]["points"][0]
+    assert point["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
+    assert out["assembly"]["masses"]["carried_mass_kg"] > 0
+    asm = build_arch_assembly(ARCH, loads=FILL)
+    window = 3 * 0.3 + DOMAIN_TAIL * math.sqrt(ARCH.radius / G)
+
+    def outcome(magnitude):
+        return rigid_verdict(asm, StepImpulse.from_g(magnitude, 0.3), duration=window
+                             ).outcome.value
+
+    assert outcome(point["collapse_g"]) == "collapse"
+    assert outcome(point["collapse_g"] - 0.01) != "collapse"
+
+
+def test_domain_with_loads_refuses_the_four_link_model_and_the_figure(capsys, tmp_path):
+    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--model", "fourlink"]) == 2
+    assert "--model fourlink does not carry" in capsys.readouterr().err
+    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--plot", str(tmp_path / "d.png")]) == 2
+    assert "--plot" in capsys.readouterr().err

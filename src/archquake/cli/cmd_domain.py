@@ -76,6 +76,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="with --model rigid or dem: worker processes for the block "
                         "model's runs (default: all cores)")
     add_impact_arguments(p)
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_output_arguments(p)
     p.add_argument("--csv", type=output_file(*CSV_SUFFIXES), metavar="FILE",
                    help="write the domain as CSV to FILE (.csv)")
@@ -92,8 +95,11 @@ def run(args: argparse.Namespace) -> int:
                   "with --model rigid or dem (the four-link domain runs in this process); "
                   "leave it out")
     impact = impact_from_args(args)
+    from archquake.cli.cmd_run import block_loads_from_args
+
+    loads = block_loads_from_args(args, arch, model)
     if model is not Model.FOURLINK:
-        return _run_dem(args, arch, model.value)
+        return _run_dem(args, arch, model.value, loads)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
     args.scan = 60 if args.scan is None else args.scan
@@ -146,15 +152,21 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
-    """The magnitude search's options, in g, against each other and the arch's onset."""
+def _check_search(arch, scan: int, precision: float, ceiling: float, loads=None) -> None:
+    """The magnitude search's options, in g, against each other and the arch's onset (with
+    ``loads``, the loaded arch's)."""
     from archquake.cli.common import check_range, check_whole
     from archquake.mechanism import PreparedMechanism
 
     check_whole("--scan", scan, *SCAN_RANGE)
     check_range("--precision", precision, *PRECISION_RANGE_G, "g")
     check_range("--max-magnitude", ceiling, *MAGNITUDE_RANGE_G, "g", low_open=True)
-    lam = PreparedMechanism.build(arch).collapse_acceleration_g
+    if loads is None:
+        lam = PreparedMechanism.build(arch).collapse_acceleration_g
+    else:
+        from archquake.limit.loaded import loaded_collapse, seismic_case
+
+        lam = loaded_collapse(seismic_case(arch, loads)).multiplier
     if not ceiling > lam:
         raise InvalidParameterError(
             f"--max-magnitude must exceed the arch's no-hinging limit {lam:.4f} g, got {ceiling:g}")
@@ -163,7 +175,7 @@ def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
             f"--precision must be below --max-magnitude ({ceiling:g} g), got {precision:g} g")
 
 
-def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
+def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> int:
     """``--model rigid`` (the default) or ``dem``: the block model's failure domain beside the
     four-link one (paper Figures 6 and 11), through :func:`archquake.compare.compare_domains`,
     searched the same way on the same assemblies for either model."""
@@ -176,7 +188,10 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     scan = DEM_DOMAIN_SETTINGS.coarse_points if args.scan is None else args.scan
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
-    _check_search(arch, scan, precision, ceiling)
+    _check_search(arch, scan, precision, ceiling, loads)
+    if loads is not None and args.plot:
+        raise InvalidParameterError("--plot draws the block model beside the four-link model, "
+                                    "which carries no loads: leave it out (--csv, --json)")
     flag = f"--model {model}"
     who = "DEM" if model == "dem" else "rigid"
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
@@ -197,6 +212,8 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
         workers, note = cap_workers(workers, 2 * len(durations))
         if note is not None:
             print(f"archquake: --workers: {note}", file=sys.stderr)
+    if loads is not None:
+        return _loaded_domain(args, arch, model, loads, durations, settings, workers)
     comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers,
                            model=model)
     rows = comp.rows()
@@ -249,3 +266,53 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
             print(f"wrote {f}")
     return 0
 
+
+def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations, settings,
+                   workers) -> int:
+    """The block model's domain of the arch carrying ``loads``: every voussoir a block with
+    what it carries, searched from the loaded arch's lambda (the four-link model and the arch
+    cut at its hinges carry no loads, so there is nothing beside it)."""
+    import csv
+
+    from archquake.compare import dem_failure_domain
+    from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+
+    who = "DEM" if model == "dem" else "rigid"
+    dd = dem_failure_domain(arch, args.pulse, durations, assembly=VOUSSOIRS, settings=settings,
+                            workers=workers, model=model, loads=loads)
+    dom = dd.domain
+    assembly = dem_assembly(arch, VOUSSOIRS, loads=loads).to_dict()
+    if args.csv:
+        with open(args.csv, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["duration_s", "no_hinging_g", "first_half_cycle_g", "collapse_g"])
+            for i, d in enumerate(dom.durations):
+                w.writerow([f"{d:.6g}", *("" if not math.isfinite(x) else f"{x:.4f}" for x in (
+                    dom.no_hinging_g[i], dom.first_half_cycle_g[i], dom.collapse_g[i]))])
+    if args.json:
+        print_json({"model": model, "loads": loads.to_dict(), "assembly": assembly,
+                    "governing": dd.to_dict()})
+        return 0
+    sym = dom.family.duration_symbol
+    print(f"failure domain, {dom.family.value} pulse, "
+          + ("distinct-element" if model == "dem" else "rigid chain")
+          + f" with every voussoir a block carrying its loads; arch R = {arch.radius:g} m, "
+          f"t/R = {arch.thickness_ratio:.3f}, embrace {math.degrees(arch.embrace):g} deg, "
+          f"{arch.voussoirs} voussoirs")
+    print(f"{who} search: {settings.coarse_points} + {settings.fine_points} magnitudes, "
+          f"brackets {settings.precision_g:g} g; no hinging below {dom.no_hinging_g[0]:.3f} g "
+          "(the static analysis with the loads); the four-link model carries no loads")
+    print(f"{sym + ' [s]':>9} {'1st half cycle':>15} {'collapse':>10}  (g)")
+
+    def fmt(x, width):
+        return f"{x:{width}.3f}" if math.isfinite(x) else f"{'-':>{width}}"
+
+    for i, d in enumerate(dom.durations):
+        print(f"{d:9.4g} {fmt(dom.first_half_cycle_g[i], 15)} {fmt(dom.collapse_g[i], 10)}")
+    print(f"{who} voussoirs: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")
+    from archquake.cli.dem_run import print_loads
+
+    print_loads(assembly)
+    if args.csv:
+        print(f"wrote {args.csv}")
+    return 0

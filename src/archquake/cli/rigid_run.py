@@ -60,6 +60,9 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
     from archquake.cli.dem_run import emit_block_run
 
     out = result.to_dict()
+    if out.get("joint_forces"):
+        out["joint_forces"] = on_arch_joints(out["joint_forces"], joint_numbers(result),
+                                             arch.voussoirs + 1)
     if verdict is not None:
         out = with_verdict(out, verdict)
     return emit_block_run(args, arch, motion, result.result, out, _print_text,

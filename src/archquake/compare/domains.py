@@ -104,6 +104,7 @@ def dem_failure_domain(
     governing_only: bool = False,
     model: str = "dem",
     solver: str = "direct",
+    loads=None,
 ) -> DemDomain:
     """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
     through the analytical domain search.
@@ -140,6 +141,10 @@ def dem_failure_domain(
         ``first_half_cycle_g`` is then NaN and ``collapse_half_cycle`` 0: not searched.
     solver : {'direct', 'events'}
         With ``model='rigid'``: how the chain is integrated (``simulate_rigid``'s ``solver``).
+    loads : Loads, optional
+        What the arch carries (``assembly='voussoirs'`` only): the blocks carry it
+        (:func:`~archquake.dem.assembly.build_arch_assembly`) and the search starts at the
+        loaded arch's lambda.
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
         chain of rigid blocks (:func:`archquake.rigid.simulate_rigid`; only
@@ -159,7 +164,7 @@ def dem_failure_domain(
         raise InvalidParameterError(f"solver must be 'direct' or 'events', got {solver!r}")
     fam = PulseFamily.parse(family)
     first_only = (assembly == HINGES) if first_only is None else bool(first_only)
-    asm = dem_assembly(arch, assembly)
+    asm = dem_assembly(arch, assembly, loads=loads)
     dst = DemSettings() if dem_settings is None else dem_settings
     n_dur = int(np.atleast_1d(durations).size)
     t0 = time.perf_counter()
@@ -182,7 +187,8 @@ def dem_failure_domain(
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
                                governing_only and not first_only, model, solver,
                                threads=n if batched else None)
-        dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
+        dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev,
+                             loads=loads)
     finally:
         if own is not None:
             own.shutdown()
