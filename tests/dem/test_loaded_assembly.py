@@ -6,7 +6,7 @@ voussoirs and the fill columns taken apart (total mass, first and second moments
 origin, 1e-12 relative); the statics with loads (:mod:`archquake.limit.loaded`, both bounds):
 the chain's onset of rocking is the loaded arch's lambda in each direction (1e-6 relative, the
 onset bisection's tolerance), and the onset is unchanged when the masonry and fill densities
-are scaled together.
+are scaled together; the event integrator conserves energy before the first impact.
 """
 
 from __future__ import annotations
@@ -124,6 +124,22 @@ def test_scaling_both_densities_leaves_the_onset_unchanged():
         onsets.append(EventModel.of(RigidModel.build(build_arch_assembly(arch, loads=loads))
                                     ).onset_g[0])
     assert onsets[1] == pytest.approx(onsets[0], rel=1e-6)
+
+
+def test_the_event_integrator_conserves_energy_with_the_fill():
+    """From event to event the chain's equations are integrated exactly: with the fill's
+    masses, centroids and inertias, kinetic plus potential energy equals the ground's work
+    to 1e-8 of it over the first 0.1 s of a 0.12 g step pulse (the arch rocks, one hinge
+    opens on the way, no impact yet; measured 1.8e-10, the bare arch 4.0e-10)."""
+    from archquake.ground import StepImpulse
+    from archquake.rigid import simulate_rigid
+
+    arch, loads = CASES["bridge, 1 m of fill"]
+    run = simulate_rigid(build_arch_assembly(arch, loads=loads), StepImpulse.from_g(0.12, 0.08),
+                         duration=0.1, solver="events")
+    events = run.to_dict()["rigid"]["events"]
+    assert run.result.onset_time is not None and events["closures"] == 0
+    assert abs(run.result.energy_error) < 1e-8
 
 
 def test_loads_the_dynamics_do_not_carry_are_refused_in_one_line():
