@@ -69,7 +69,6 @@ def test_the_text_output_names_the_carried_mass_and_the_passive_pressure(capsys)
 
 
 @pytest.mark.parametrize("extra, message", [
-    (["--fill-depth", "1", "--model", "fourlink"], "--model fourlink does not carry"),
     (["--fill-depth", "1", "--passive", "0.33"], "--passive: passive fill pressure not modelled"),
     (["--point-load", "3,10,still"], "--point-load ...,still"),
     (["--distributed-load", "1,3,10,still"], "--distributed-load ...,still"),
@@ -140,8 +139,28 @@ def test_domain_with_fill_starts_at_the_loaded_lambda_and_says_what_the_chain_do
     assert outcome(point["collapse_g"] - 0.01) != "collapse"
 
 
-def test_domain_with_loads_refuses_the_four_link_model_and_the_figure(capsys, tmp_path):
-    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--model", "fourlink"]) == 2
-    assert "--model fourlink does not carry" in capsys.readouterr().err
-    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--plot", str(tmp_path / "d.png")]) == 2
+def test_domain_with_loads_refuses_the_figure_beside_the_four_link_model(capsys, tmp_path):
+    assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--plot",
+                          str(tmp_path / "d.png")]) == 2
     assert "--plot" in capsys.readouterr().err
+
+
+def test_the_four_link_model_carries_the_fill_on_its_links(capsys):
+    """run and domain with --model fourlink: lambda is the loaded statics' (1e-12), the links'
+    masses add up to the masonry and the fill, and a step 10 % below lambda leaves it still."""
+    out = _json(capsys, ["--model", "fourlink", "--fill-depth", "1", "--pulse", "step",
+                         "--magnitude", f"{0.9 * LAMBDA:.6f}", "--duration", "0.3"])
+    assert out["outcome"] == "no_hinging"
+    masses = out["masses"]
+    assert sum(masses["voussoir_masses_kg"]) == pytest.approx(
+        ARCH.mass + float(block_extras(ARCH, FILL).mass.sum()), rel=1e-12)
+    assert "not modelled" in masses["passive_pressure"] and out["loads"]["fill"]["depth_m"] == 1
+    assert cli_main.main(["domain", *BRIDGE, "--model", "fourlink", "--fill-depth", "1",
+                          "--durations", "0.3", "--scan", "10", "--precision", "0.01",
+                          "--json"]) == 0
+    dom = json.loads(capsys.readouterr().out)
+    assert dom["rows"][0]["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
+    assert dom["masses"]["carried_mass_kg"] == pytest.approx(masses["carried_mass_kg"])
+    assert cli_main.main(["thrust", *BRIDGE, "--model", "fourlink", "--fill-depth", "1",
+                          "--pulse", "step", "--magnitude", "0.3", "--duration", "0.1"]) == 2
+    assert "--model fourlink does not carry" in capsys.readouterr().err

@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
     impact = impact_from_args(args)
     from archquake.cli.cmd_run import block_loads_from_args
 
-    loads = block_loads_from_args(args, arch, model)
+    loads = block_loads_from_args(args, arch, model, fourlink=True)
     if model is not Model.FOURLINK:
         return _run_dem(args, arch, model.value, loads)
     if args.durations is None:
@@ -105,10 +105,16 @@ def run(args: argparse.Namespace) -> int:
     args.scan = 60 if args.scan is None else args.scan
     args.precision = 1e-3 if args.precision is None else args.precision
     args.max_magnitude = 5.0 if args.max_magnitude is None else args.max_magnitude
-    _check_search(arch, args.scan, args.precision, args.max_magnitude)
+    _check_search(arch, args.scan, args.precision, args.max_magnitude, loads)
     settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
                               fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
-    dom = failure_domain(arch, args.pulse, args.durations, settings=settings, **impact, model="fourlink")
+    subject = arch
+    if loads is not None:  # the links carry the loads, on the loaded arch's hinges
+        from archquake.mechanism import PreparedMechanism
+
+        subject = PreparedMechanism.build(arch, impact["impact"], loads=loads)
+    dom = failure_domain(subject, args.pulse, args.durations, settings=settings, **impact,
+                         model="fourlink")
     if args.csv:
         dom.write_csv(args.csv)
     if args.plot:
@@ -116,7 +122,12 @@ def run(args: argparse.Namespace) -> int:
 
         save_domain(dom, args.plot)
     if args.json:
-        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict()})
+        extra = {}
+        if loads is not None:
+            from archquake.cli.cmd_run import link_masses
+
+            extra = {"loads": loads.to_dict(), "masses": link_masses(subject)}
+        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict(), **extra})
         return 0
     sym = dom.family.duration_symbol
     print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "
@@ -146,6 +157,11 @@ def run(args: argparse.Namespace) -> int:
                   f"{b.lower_g:.3f} to {b.upper_g:.3f} g" + (" (to the ceiling)" if b.upper_open else ""))
     else:
         print("non-monotonic bands: none found at this scan resolution")
+    if loads is not None:
+        from archquake.cli.cmd_run import link_masses
+        from archquake.cli.dem_run import print_loads
+
+        print_loads({"masses": link_masses(subject)})
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")
