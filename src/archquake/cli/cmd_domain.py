@@ -95,9 +95,9 @@ def run(args: argparse.Namespace) -> int:
                   "with --model rigid or dem (the four-link domain runs in this process); "
                   "leave it out")
     impact = impact_from_args(args)
-    from archquake.cli.cmd_run import block_loads_from_args
+    from archquake.cli.loads_options import dynamic_loads_from_args
 
-    loads = block_loads_from_args(args, arch, model, fourlink=True)
+    loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
     if model is not Model.FOURLINK:
         return _run_dem(args, arch, model.value, loads)
     if args.durations is None:
@@ -124,9 +124,9 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         extra = {}
         if loads is not None:
-            from archquake.cli.cmd_run import link_masses
+            from archquake.cli.loads_options import fourlink_masses
 
-            extra = {"loads": loads.to_dict(), "masses": link_masses(subject)}
+            extra = {"loads": loads.to_dict(), "masses": fourlink_masses(subject)}
         print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict(), **extra})
         return 0
     sym = dom.family.duration_symbol
@@ -158,10 +158,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         print("non-monotonic bands: none found at this scan resolution")
     if loads is not None:
-        from archquake.cli.cmd_run import link_masses
         from archquake.cli.dem_run import print_loads
+        from archquake.cli.loads_options import fourlink_masses
 
-        print_loads({"masses": link_masses(subject)})
+        print_loads({"masses": fourlink_masses(subject)})
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")

@@ -86,9 +86,9 @@ def run(args: argparse.Namespace) -> int:
     model = model_from_args(args, models=("rigid", "fourlink"))
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    from archquake.cli.cmd_run import block_loads_from_args
+    from archquake.cli.loads_options import dynamic_loads_from_args
 
-    loads = block_loads_from_args(args, arch, model)
+    loads = dynamic_loads_from_args(args, arch, model)
     if model is Model.RIGID:
         return _run_rigid(args, arch, motion, loads)
     with _progress_bar(arch.voussoirs) as progress:

@@ -81,7 +81,9 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     refuse_dem_options(args, friction_too=model is not Model.RIGID)
     impact = impact_from_args(args)
-    loads = block_loads_from_args(args, arch, model, fourlink=True)
+    from archquake.cli.loads_options import dynamic_loads_from_args, fourlink_masses
+
+    loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
     if model is Model.DEM:
         return _run_dem(args, arch, motion, loads)
     if model is Model.RIGID:
@@ -115,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
     out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
-    masses = None if loads is None else link_masses(prepared)
+    masses = None if loads is None else fourlink_masses(prepared)
     if masses is not None:
         out["loads"] = loads.to_dict()
         out["masses"] = masses
@@ -176,56 +178,6 @@ def _print_text(result, motion, g: float) -> None:
     if result.peak_rotation.size:
         shown = ", ".join(f"{p:.4f}" for p in result.peak_rotation[:6])
         print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
-
-
-def link_masses(prepared) -> dict:
-    """The masses of a four-link mechanism whose voussoirs carry loads (for JSON): the masonry's
-    and the carried, in all and per link AB, BC, CD, kg; passive pressure left out."""
-    import numpy as np
-
-    from archquake.dem.assembly import PASSIVE_LEFT_OUT
-    from archquake.geometry.loads import held_joints
-
-    chain = prepared.mechanism.arch
-    carried = chain.voussoir_masses - chain.base.voussoir_masses
-    held = held_joints(chain.base, chain.loads.backing)
-    links = prepared.mechanism.link_voussoirs
-    return {"masonry_mass_kg": float(chain.base.mass), "carried_mass_kg": float(carried.sum()),
-            "link_masses_kg": [float(chain.voussoir_masses[list(r)].sum()) for r in links],
-            "link_carried_masses_kg": [float(carried[list(r)].sum()) for r in links],
-            "voussoir_masses_kg": [float(m) for m in chain.voussoir_masses],
-            "carried_masses_kg": [float(m) for m in carried],
-            "held_by_backing": [int(k) for k in np.flatnonzero(held[:-1] | held[1:])],
-            "passive_pressure": PASSIVE_LEFT_OUT}
-
-
-def block_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: bool = False):
-    """The loads of the command line for a dynamic ``model`` (None without), checked against
-    ``arch``; the four-link model refuses them in one line unless ``fourlink`` (the commands
-    that carry them on its links)."""
-    from archquake.cli.loads_options import check_loads_on, loads_from_args
-    from archquake.sweeps.cases import Model
-
-    loads = loads_from_args(args)
-    if loads is None:
-        return None
-    check_loads_on(arch, loads)
-    if Model(model) is Model.FOURLINK and not fourlink:
-        raise InvalidParameterError(
-            "--model fourlink does not carry fill, backing or loads yet: use --model rigid "
-            "(the default) or --model dem")
-    if loads.passive is not None:
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
-
-        raise InvalidParameterError(f"--passive: {PASSIVE_LEFT_OUT}; leave it out")
-    if any(not p.moves_with_arch for p in loads.point_loads):
-        raise InvalidParameterError("--point-load ...,still: a weight without mass is statics "
-                                    "only; the dynamic models carry loads that move with the arch")
-    if any(not d.moves_with_arch for d in loads.distributed_loads):
-        raise InvalidParameterError("--distributed-load ...,still: a weight without mass is "
-                                    "statics only; the dynamic models carry loads that move with "
-                                    "the arch")
-    return loads
 
 
 def _run_dem(args, arch, motion, loads=None) -> int:

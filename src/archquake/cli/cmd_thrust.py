@@ -79,9 +79,9 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     if min(args.times) < 0:
         raise InvalidParameterError(f"--times must be >= 0 s, got {min(args.times):g}")
-    from archquake.cli.cmd_run import block_loads_from_args
+    from archquake.cli.loads_options import dynamic_loads_from_args
 
-    loads = block_loads_from_args(args, arch, model)
+    loads = dynamic_loads_from_args(args, arch, model)
     if model is Model.RIGID:
         return _run_rigid(args, arch, motion, loads)
     snapshots = states(arch, motion, args.times, **impact_from_args(args))
