@@ -148,7 +148,7 @@ def prepared_mechanism(arch: ArchSpec, impact: str | None = None, loads=None):
 
 
 @lru_cache(maxsize=256)
-def mechanism_limits(arch: ArchSpec) -> tuple[float, float]:
+def mechanism_limits(arch: ArchSpec, loads=None) -> tuple[float, float]:
     """The arch's equivalent static collapse acceleration (g) and the critical rotation of its
     four-hinge mechanism (rad: the crest of its potential), with no impact law: defined on any
     arch, symmetric or not (:func:`prepared_mechanism` needs the mirror-image mechanism of a
@@ -163,7 +163,16 @@ def mechanism_limits(arch: ArchSpec) -> tuple[float, float]:
     from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
     from archquake.mechanism.prepared import pack_mechanism
 
-    mech = hinges_of(arch.build())
+    if loads is not None and not loads.empty:  # the links carrying the loads, loaded hinges
+        from archquake.geometry.carrying import CarryingChain
+        from archquake.geometry.hinges import HingeMechanism
+        from archquake.limit.loaded import loaded_collapse, seismic_case
+
+        built = arch.build()
+        found = loaded_collapse(seismic_case(built, loads)).mechanism
+        mech = HingeMechanism(CarryingChain(built, loads), found.joints, found.faces)
+    else:
+        mech = hinges_of(arch.build())
     if mech.load_direction < 0:
         mech = mech.mirrored()
     packed = pack_mechanism(mech)
