@@ -149,5 +149,16 @@ def test_loads_the_dynamics_do_not_carry_are_refused_in_one_line():
                         (Loads(fill=fill, passive=Passive(0.33)), "passive")):
         with pytest.raises(InvalidParameterError, match=word):
             build_arch_assembly(BRIDGE, loads=loads)
-    with pytest.raises(InvalidParameterError, match="bare arches"):
-        dem_assembly(BRIDGE, "hinges", loads=Loads(fill=fill))
+
+
+def test_the_arch_cut_at_the_loaded_hinges():
+    """The three-voussoir arch with loads: cut at the loaded arch's hinges (2, 7, 12, 15 for
+    the filled bridge; the bare one's are 3, 7, 12, 15), its blocks carrying the loads (the
+    moving blocks' masses are their voussoirs' with what those carry, 1e-12)."""
+    arch, loads = CASES["bridge, 1 m of fill"]
+    asm = dem_assembly(arch, "hinges", loads=loads)
+    assert asm.meta["cut_joints"] == [0, 2, 7, 12, 15] and asm.meta["held_voussoirs"] == [0, 1]
+    ex = block_extras(arch, loads)
+    moving = arch.voussoir_masses[2:] + ex.mass[2:]
+    np.testing.assert_allclose(asm.masses[~asm.base], [moving[0:5].sum(), moving[5:10].sum(),
+                                                       moving[10:13].sum()], rtol=1e-12)

@@ -205,9 +205,11 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
     _check_search(arch, scan, precision, ceiling, loads)
-    if loads is not None and args.plot:
+    beside = loads is None or _symmetric_with(arch, loads)
+    if not beside and args.plot:
         raise InvalidParameterError("--plot draws the block model beside the four-link model, "
-                                    "which carries no loads: leave it out (--csv, --json)")
+                                    "which needs loads symmetric about the crown: leave it out "
+                                    "(--csv, --json)")
     flag = f"--model {model}"
     who = "DEM" if model == "dem" else "rigid"
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
@@ -228,10 +230,10 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
         workers, note = cap_workers(workers, 2 * len(durations))
         if note is not None:
             print(f"archquake: --workers: {note}", file=sys.stderr)
-    if loads is not None:
+    if not beside:
         return _loaded_domain(args, arch, model, loads, durations, settings, workers)
     comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers,
-                           model=model)
+                           model=model, loads=loads)
     rows = comp.rows()
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
@@ -246,8 +248,14 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
         from archquake.plotting.compare import domain_comparison_figure
 
         domain_comparison_figure([comp], args.plot)
+    assembly = None
+    if loads is not None:
+        from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+
+        assembly = dem_assembly(arch, VOUSSOIRS, loads=loads).to_dict()
     if args.json:
-        print_json({"model": model, **comp.to_dict()})
+        extra = {} if assembly is None else {"loads": loads.to_dict(), "assembly": assembly}
+        print_json({"model": model, **comp.to_dict(), **extra})
         return 0
     an = comp.analytical
     sym = an.family.duration_symbol
@@ -277,17 +285,29 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
     if bands:
         print(f"{who} non-monotonic bands: " + "; ".join(
             f"{sym} = {b.duration:.3g} s {b.criterion} {b.lower_g:.3f}-{b.upper_g:.3f} g" for b in bands))
+    if assembly is not None:
+        from archquake.cli.dem_run import print_loads
+
+        print_loads(assembly)
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")
     return 0
 
 
+def _symmetric_with(arch, loads) -> bool:
+    """True if ``arch`` carrying ``loads`` is its own mirror image (what the four-link model's
+    impacts need)."""
+    from archquake.geometry.carrying import CarryingChain
+
+    return bool(arch.symmetric and CarryingChain(arch, loads).symmetric)
+
+
 def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations, settings,
                    workers) -> int:
-    """The block model's domain of the arch carrying ``loads``: every voussoir a block with
-    what it carries, searched from the loaded arch's lambda (the four-link model and the arch
-    cut at its hinges carry no loads, so there is nothing beside it)."""
+    """The block model's domain of the arch carrying loads that break its symmetry: every
+    voussoir a block with what it carries, searched from the loaded arch's lambda (the
+    four-link model needs symmetric loads, so there is nothing beside it)."""
     import csv
 
     from archquake.compare import dem_failure_domain
@@ -317,7 +337,8 @@ def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations,
           f"{arch.voussoirs} voussoirs")
     print(f"{who} search: {settings.coarse_points} + {settings.fine_points} magnitudes, "
           f"brackets {settings.precision_g:g} g; no hinging below {dom.no_hinging_g[0]:.3f} g "
-          "(the static analysis with the loads); the four-link model carries no loads")
+          "(the static analysis with the loads); the four-link model needs loads symmetric "
+          "about the crown")
     print(f"{sym + ' [s]':>9} {'1st half cycle':>15} {'collapse':>10}  (g)")
 
     def fmt(x, width):

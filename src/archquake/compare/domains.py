@@ -20,6 +20,7 @@ import math
 import time
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -255,12 +256,19 @@ def compare_domains(
     label: str = "",
     g: float = STANDARD_GRAVITY,
     model: str = "dem",
+    loads=None,
 ) -> DomainComparison:
     """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
     of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
-    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`)."""
-    an = failure_domain(arch, family, durations, g=g, model="fourlink")
+    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`). With ``loads`` every model
+    carries them (the four-link links and both assemblies, on the loaded arch's hinges)."""
+    subject: Any = arch
+    if loads is not None and not loads.empty:
+        from archquake.mechanism import PreparedMechanism
+
+        subject = PreparedMechanism.build(arch, loads=loads)
+    an = failure_domain(subject, family, durations, g=g, model="fourlink")
     pool = executor
     own = None
     if pool is None and (workers is None or workers > 1):
@@ -269,7 +277,7 @@ def compare_domains(
             own = pool = process_pool(n)
     try:
         kw = dict(settings=settings, dem_settings=dem_settings, g=g, executor=pool,
-                  workers=1 if pool is None else None, model=model)
+                  workers=1 if pool is None else None, model=model, loads=loads)
         f = dem_failure_domain(arch, family, durations, assembly=HINGES, **kw) if first else None
         gov = dem_failure_domain(arch, family, durations, assembly=VOUSSOIRS, **kw) if governing else None
     finally:

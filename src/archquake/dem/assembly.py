@@ -423,7 +423,7 @@ def build_arch_assembly(
     )
 
 
-def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
+def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) -> Assembly:
     """The arch cut only at its hinges (:func:`archquake.limit.hinges_of`): the
     paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
 
@@ -441,6 +441,11 @@ def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
     >>> b.meta["cut_joints"], int((~b.base).sum()), b.meta["held_voussoirs"]
     ([0, 3, 7, 12, 15], 3, [0, 1, 2])
     """
+    if loads is not None and not loads.empty:  # the loaded arch's hinges, its loaded blocks
+        mech = loaded_voussoirs(arch, loads).mechanism
+        cuts = tuple(sorted({0, *mech.joints, arch.voussoirs}))
+        return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech,
+                                   hold_outside_hinges=True, loads=loads)
     mech = hinges_of(arch)
     cuts = tuple(sorted({0, *mech.joints, arch.voussoirs}))
     return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech, hold_outside_hinges=True)
@@ -448,16 +453,13 @@ def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
 
 def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS, *,
                  loads: Loads | None = None) -> Assembly:
-    """The DEM assembly of ``arch``: ``'voussoirs'`` (every voussoir a block,
-    :func:`build_arch_assembly`, with the ``loads`` it carries) or ``'hinges'`` (cut at the
-    hinges, :func:`three_voussoir_assembly`; bare arches only)."""
+    """The DEM assembly of ``arch`` carrying ``loads``: ``'voussoirs'`` (every voussoir a
+    block, :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
+    :func:`three_voussoir_assembly`)."""
     if assembly == VOUSSOIRS:
         return build_arch_assembly(arch, loads=loads)
-    if loads is not None and not loads.empty:
-        raise InvalidParameterError(
-            f"the DEM assembly {assembly!r} is for bare arches: with loads use {VOUSSOIRS!r}")
     if assembly == HINGES:
-        return three_voussoir_assembly(arch)
+        return three_voussoir_assembly(arch, loads=loads)
     raise InvalidParameterError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
 
 
