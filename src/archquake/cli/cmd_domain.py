@@ -76,6 +76,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="with --model rigid or dem: worker processes for the block "
                         "model's runs (default: all cores)")
     add_impact_arguments(p)
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_output_arguments(p)
     p.add_argument("--csv", type=output_file(*CSV_SUFFIXES), metavar="FILE",
                    help="write the domain as CSV to FILE (.csv)")
@@ -92,17 +95,26 @@ def run(args: argparse.Namespace) -> int:
                   "with --model rigid or dem (the four-link domain runs in this process); "
                   "leave it out")
     impact = impact_from_args(args)
+    from archquake.cli.loads_options import dynamic_loads_from_args
+
+    loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
     if model is not Model.FOURLINK:
-        return _run_dem(args, arch, model.value)
+        return _run_dem(args, arch, model.value, loads)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
     args.scan = 60 if args.scan is None else args.scan
     args.precision = 1e-3 if args.precision is None else args.precision
     args.max_magnitude = 5.0 if args.max_magnitude is None else args.max_magnitude
-    _check_search(arch, args.scan, args.precision, args.max_magnitude)
+    _check_search(arch, args.scan, args.precision, args.max_magnitude, loads)
     settings = DomainSettings(max_magnitude_g=args.max_magnitude, coarse_points=args.scan,
                               fine_points=max(2 * args.scan // 3, 1), precision_g=args.precision)
-    dom = failure_domain(arch, args.pulse, args.durations, settings=settings, **impact, model="fourlink")
+    subject = arch
+    if loads is not None:  # the links carry the loads, on the loaded arch's hinges
+        from archquake.mechanism import PreparedMechanism
+
+        subject = PreparedMechanism.build(arch, impact["impact"], loads=loads)
+    dom = failure_domain(subject, args.pulse, args.durations, settings=settings, **impact,
+                         model="fourlink")
     if args.csv:
         dom.write_csv(args.csv)
     if args.plot:
@@ -110,7 +122,12 @@ def run(args: argparse.Namespace) -> int:
 
         save_domain(dom, args.plot)
     if args.json:
-        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict()})
+        extra = {}
+        if loads is not None:
+            from archquake.cli.loads_options import fourlink_masses
+
+            extra = {"loads": loads.to_dict(), "masses": fourlink_masses(subject)}
+        print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict(), **extra})
         return 0
     sym = dom.family.duration_symbol
     print(f"failure domain, {dom.family.value} pulse; arch R = {arch.radius:g} m, "
@@ -140,21 +157,32 @@ def run(args: argparse.Namespace) -> int:
                   f"{b.lower_g:.3f} to {b.upper_g:.3f} g" + (" (to the ceiling)" if b.upper_open else ""))
     else:
         print("non-monotonic bands: none found at this scan resolution")
+    if loads is not None:
+        from archquake.cli.dem_run import print_loads
+        from archquake.cli.loads_options import fourlink_masses
+
+        print_loads({"masses": fourlink_masses(subject)})
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")
     return 0
 
 
-def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
-    """The magnitude search's options, in g, against each other and the arch's onset."""
+def _check_search(arch, scan: int, precision: float, ceiling: float, loads=None) -> None:
+    """The magnitude search's options, in g, against each other and the arch's onset (with
+    ``loads``, the loaded arch's)."""
     from archquake.cli.common import check_range, check_whole
     from archquake.mechanism import PreparedMechanism
 
     check_whole("--scan", scan, *SCAN_RANGE)
     check_range("--precision", precision, *PRECISION_RANGE_G, "g")
     check_range("--max-magnitude", ceiling, *MAGNITUDE_RANGE_G, "g", low_open=True)
-    lam = PreparedMechanism.build(arch).collapse_acceleration_g
+    if loads is None:
+        lam = PreparedMechanism.build(arch).collapse_acceleration_g
+    else:
+        from archquake.limit.loaded import loaded_collapse, seismic_case
+
+        lam = loaded_collapse(seismic_case(arch, loads)).multiplier
     if not ceiling > lam:
         raise InvalidParameterError(
             f"--max-magnitude must exceed the arch's no-hinging limit {lam:.4f} g, got {ceiling:g}")
@@ -163,7 +191,7 @@ def _check_search(arch, scan: int, precision: float, ceiling: float) -> None:
             f"--precision must be below --max-magnitude ({ceiling:g} g), got {precision:g} g")
 
 
-def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
+def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> int:
     """``--model rigid`` (the default) or ``dem``: the block model's failure domain beside the
     four-link one (paper Figures 6 and 11), through :func:`archquake.compare.compare_domains`,
     searched the same way on the same assemblies for either model."""
@@ -176,7 +204,12 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     scan = DEM_DOMAIN_SETTINGS.coarse_points if args.scan is None else args.scan
     precision = DEM_DOMAIN_SETTINGS.precision_g if args.precision is None else args.precision
     ceiling = DEM_DOMAIN_SETTINGS.max_magnitude_g if args.max_magnitude is None else args.max_magnitude
-    _check_search(arch, scan, precision, ceiling)
+    _check_search(arch, scan, precision, ceiling, loads)
+    beside = loads is None or _symmetric_with(arch, loads)
+    if not beside and args.plot:
+        raise InvalidParameterError("--plot draws the block model beside the four-link model, "
+                                    "which needs loads symmetric about the crown: leave it out "
+                                    "(--csv, --json)")
     flag = f"--model {model}"
     who = "DEM" if model == "dem" else "rigid"
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
@@ -197,8 +230,10 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
         workers, note = cap_workers(workers, 2 * len(durations))
         if note is not None:
             print(f"archquake: --workers: {note}", file=sys.stderr)
+    if not beside:
+        return _loaded_domain(args, arch, model, loads, durations, settings, workers)
     comp = compare_domains(arch, args.pulse, durations, settings=settings, workers=workers,
-                           model=model)
+                           model=model, loads=loads)
     rows = comp.rows()
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
@@ -213,8 +248,14 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
         from archquake.plotting.compare import domain_comparison_figure
 
         domain_comparison_figure([comp], args.plot)
+    assembly = None
+    if loads is not None:
+        from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+
+        assembly = dem_assembly(arch, VOUSSOIRS, loads=loads).to_dict()
     if args.json:
-        print_json({"model": model, **comp.to_dict()})
+        extra = {} if assembly is None else {"loads": loads.to_dict(), "assembly": assembly}
+        print_json({"model": model, **comp.to_dict(), **extra})
         return 0
     an = comp.analytical
     sym = an.family.duration_symbol
@@ -244,8 +285,71 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem") -> int:
     if bands:
         print(f"{who} non-monotonic bands: " + "; ".join(
             f"{sym} = {b.duration:.3g} s {b.criterion} {b.lower_g:.3f}-{b.upper_g:.3f} g" for b in bands))
+    if assembly is not None:
+        from archquake.cli.dem_run import print_loads
+
+        print_loads(assembly)
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")
     return 0
 
+
+def _symmetric_with(arch, loads) -> bool:
+    """True if ``arch`` carrying ``loads`` is its own mirror image (what the four-link model's
+    impacts need)."""
+    from archquake.geometry.carrying import CarryingChain
+
+    return bool(arch.symmetric and CarryingChain(arch, loads).symmetric)
+
+
+def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations, settings,
+                   workers) -> int:
+    """The block model's domain of the arch carrying loads that break its symmetry: every
+    voussoir a block with what it carries, searched from the loaded arch's lambda (the
+    four-link model needs symmetric loads, so there is nothing beside it)."""
+    import csv
+
+    from archquake.compare import dem_failure_domain
+    from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+
+    who = "DEM" if model == "dem" else "rigid"
+    dd = dem_failure_domain(arch, args.pulse, durations, assembly=VOUSSOIRS, settings=settings,
+                            workers=workers, model=model, loads=loads)
+    dom = dd.domain
+    assembly = dem_assembly(arch, VOUSSOIRS, loads=loads).to_dict()
+    if args.csv:
+        with open(args.csv, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["duration_s", "no_hinging_g", "first_half_cycle_g", "collapse_g"])
+            for i, d in enumerate(dom.durations):
+                w.writerow([f"{d:.6g}", *("" if not math.isfinite(x) else f"{x:.4f}" for x in (
+                    dom.no_hinging_g[i], dom.first_half_cycle_g[i], dom.collapse_g[i]))])
+    if args.json:
+        print_json({"model": model, "loads": loads.to_dict(), "assembly": assembly,
+                    "governing": dd.to_dict()})
+        return 0
+    sym = dom.family.duration_symbol
+    print(f"failure domain, {dom.family.value} pulse, "
+          + ("distinct-element" if model == "dem" else "rigid chain")
+          + f" with every voussoir a block carrying its loads; arch R = {arch.radius:g} m, "
+          f"t/R = {arch.thickness_ratio:.3f}, embrace {math.degrees(arch.embrace):g} deg, "
+          f"{arch.voussoirs} voussoirs")
+    print(f"{who} search: {settings.coarse_points} + {settings.fine_points} magnitudes, "
+          f"brackets {settings.precision_g:g} g; no hinging below {dom.no_hinging_g[0]:.3f} g "
+          "(the static analysis with the loads); the four-link model needs loads symmetric "
+          "about the crown")
+    print(f"{sym + ' [s]':>9} {'1st half cycle':>15} {'collapse':>10}  (g)")
+
+    def fmt(x, width):
+        return f"{x:{width}.3f}" if math.isfinite(x) else f"{'-':>{width}}"
+
+    for i, d in enumerate(dom.durations):
+        print(f"{d:9.4g} {fmt(dom.first_half_cycle_g[i], 15)} {fmt(dom.collapse_g[i], 10)}")
+    print(f"{who} voussoirs: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")
+    from archquake.cli.dem_run import print_loads
+
+    print_loads(assembly)
+    if args.csv:
+        print(f"wrote {args.csv}")
+    return 0

@@ -37,6 +37,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_arch_arguments(p)
     add_ground_motion_arguments(p)
     add_model_argument(p, models=("rigid", "fourlink"))
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_impact_arguments(p)
     add_output_arguments(p, plot=False)
     p.set_defaults(func=run)
@@ -83,8 +86,11 @@ def run(args: argparse.Namespace) -> int:
     model = model_from_args(args, models=("rigid", "fourlink"))
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
+    from archquake.cli.loads_options import dynamic_loads_from_args
+
+    loads = dynamic_loads_from_args(args, arch, model)
     if model is Model.RIGID:
-        return _run_rigid(args, arch, motion)
+        return _run_rigid(args, arch, motion, loads)
     with _progress_bar(arch.voussoirs) as progress:
         result = friction_demand(arch, motion, progress=progress, **impact_from_args(args))
     if args.json:
@@ -108,12 +114,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
+def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     """``--model rigid``: the friction demand of the chain of rigid voussoirs' joint forces
-    (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict."""
+    (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict; with ``loads``
+    the chain carries them and the static analysis beside it too."""
     import numpy as np
 
     from archquake.cli.common import rigid_work
+    from archquake.cli.rigid_run import joint_numbers, on_arch_joints
     from archquake.compare import rigid_to_verdict
     from archquake.compare.histories import rigid_window
     from archquake.limit import limit_analysis
@@ -121,13 +129,13 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
 
     progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
                           DEFAULT_TIME_STEP)
-    run = rigid_to_verdict(arch, motion, progress=progress)
+    run = rigid_to_verdict(arch, motion, progress=progress, loads=loads)
     forces = run.joint_forces
-    summary = forces.summary()
+    summary = on_arch_joints(forces.summary(), joint_numbers(run), arch.voussoirs + 1)
     during = forces.friction_demand[forces.times <= motion.duration]
     ground = (float(np.nanmax(during)) if during.size and np.any(np.isfinite(during))
               else None)
-    static = limit_analysis(arch)
+    static = limit_analysis(arch, loads=loads)
     out = {"model": "rigid", "outcome": run.outcome.value,
            "max_friction_demand": summary["max_friction_demand"],
            "joint": summary["max_friction_demand_joint"],
@@ -136,6 +144,8 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
            "static_friction_demand": static.min_friction,
            "static_joint": static.min_friction_joint,
            "joint_forces": summary, "arch": arch.describe(), "motion": motion.to_dict()}
+    if loads is not None:
+        out["assembly"] = run.result.assembly.to_dict()
     if args.json:
         print_json(out)
         return 0
@@ -156,4 +166,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     print(f"left out                           {summary['indeterminate_samples']} indeterminate "
           f"and {summary['impulsive_samples']} impact samples of {summary['samples']}, and "
           "joints carrying < 1 % of the weight")
+    from archquake.cli.dem_run import print_loads
+
+    print_loads(run.result.assembly.to_dict())
     return 0

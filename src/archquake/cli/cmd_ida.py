@@ -64,6 +64,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_model_argument(p, extra="rigid runs its verdicts as one compiled batch per round on "
                                 "every core's threads, fourlink likewise; dem a process per core")
     add_impact_arguments(p)
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     p.add_argument("--store", type=path_argument, metavar="FILE",
                    help="SQLite store of the runs (default: ida.sqlite here); rerun to resume")
     p.add_argument("--workers", type=whole, metavar="N",
@@ -133,6 +136,9 @@ def run(args: argparse.Namespace) -> int:
     except ArchquakeError as exc:
         raise InvalidParameterError(f"--records: {exc}") from None
     options = CaseOptions(**impact_from_args(args))
+    from archquake.cli.loads_options import dynamic_loads_from_args
+
+    loads = dynamic_loads_from_args(args, arch, _model(args), fourlink=True)
     store_path = args.store or Path("ida.sqlite")
     bar = _Bar(disable=args.no_progress)
     with ResultStore(store_path) as store:
@@ -141,7 +147,7 @@ def run(args: argparse.Namespace) -> int:
                 result = incremental_dynamic_analysis(
                     spec, suite.records, im, store, ceiling=args.ceiling,
                     precision=args.precision, fill=args.fill, model=_model(args),
-                    options=options, executor=executor, workers=n, progress=bar)
+                    options=options, executor=executor, workers=n, progress=bar, loads=loads)
         except KeyboardInterrupt:
             bar.close()
             print(f"archquake: interrupted: {store.count()} runs are stored in {store.path}; "
@@ -170,6 +176,10 @@ def run(args: argparse.Namespace) -> int:
             **{k: (None if fits[k] is None else fits[k].scaled(divisor[0]).to_dict("dimensionless"))
                for k in ("first_collapse", "collapse_fraction")}}
     out["dispersion_by_im"] = dispersion
+    if loads is not None:
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        out["passive_pressure"] = PASSIVE_LEFT_OUT
     if args.json:
         print_json(out)
         return 0
@@ -188,6 +198,11 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
              if result.settings["restitution"] is not None else "")
           + (f"; impact law {result.settings.get('impact', 'paper')}"
              if result.model.value == "fourlink" else ""))
+    if result.loads is not None:
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        print("loads: the arch carries its fill and loads in every run (lambda is the loaded "
+              f"arch's); {PASSIVE_LEFT_OUT}")
     indeterminate = sum(int(r.indeterminate.sum()) for r in result.records)
     if indeterminate:
         why = {"fourlink": "the verdict came after an impact the law does not describe",

@@ -42,6 +42,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         ),
     )
     add_arch_arguments(p)
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_ground_motion_arguments(p)
     add_impact_arguments(p)
     p.add_argument("--t-end", type=ranged(*T_END_RANGE_S, "s"), metavar="S",
@@ -80,18 +83,21 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     refuse_dem_options(args, friction_too=model is not Model.RIGID)
     impact = impact_from_args(args)
+    from archquake.cli.loads_options import dynamic_loads_from_args, fourlink_masses
+
+    loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
     if model is Model.DEM:
-        return _run_dem(args, arch, motion)
+        return _run_dem(args, arch, motion, loads)
     if model is Model.RIGID:
         from archquake.cli import rigid_run
 
-        return rigid_run.run(args, arch, motion)
+        return rigid_run.run(args, arch, motion, loads)
     from archquake.mechanism import PreparedMechanism
     from archquake.mechanism.simulate import (
         simulate,  # the function (the module of its name can shadow it on the package)
     )
 
-    prepared = PreparedMechanism.build(arch, impact["impact"])
+    prepared = PreparedMechanism.build(arch, impact["impact"], loads=loads)
     result = simulate(prepared, motion, restitution=impact["restitution"], t_end=args.t_end)
     assert result.history is not None  # simulate always records the history
     g = STANDARD_GRAVITY
@@ -113,10 +119,18 @@ def run(args: argparse.Namespace) -> int:
     out = result.to_dict()
     out["arch"] = arch.describe()
     out["excitation"] = motion.to_dict()
+    masses = None if loads is None else fourlink_masses(prepared)
+    if masses is not None:
+        out["loads"] = loads.to_dict()
+        out["masses"] = masses
     if args.json:
         print_json(out)
         return 0
     _print_text(result, motion, g)
+    if masses is not None:
+        from archquake.cli.dem_run import print_loads
+
+        print_loads({"masses": masses})
     for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
         if path:
             print(f"{what}: {path}")
@@ -168,7 +182,7 @@ def _print_text(result, motion, g: float) -> None:
         print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
 
 
-def _run_dem(args, arch, motion) -> int:
+def _run_dem(args, arch, motion, loads=None) -> int:
     try:
         from archquake.dem import simulate_dem  # noqa: F401
     except ImportError:
@@ -177,4 +191,4 @@ def _run_dem(args, arch, motion) -> int:
         ) from None
     from archquake.cli import dem_run
 
-    return dem_run.run(args, arch, motion)
+    return dem_run.run(args, arch, motion, loads)

@@ -138,6 +138,12 @@ def run(args: argparse.Namespace) -> int:
                       "computed again by the next run)", file=sys.stderr)
     summary = {"model": study.model.value, **report.to_dict()}
     summary["study"] = study.name
+    loads = study.cases[0].loads if study.cases else None
+    if loads is not None:  # [loads]: every case carries the same
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        summary["loads"] = loads.to_dict()
+        summary["passive_pressure"] = PASSIVE_LEFT_OUT
     if args.export is not None:
         summary["export"] = str(args.export)
     if args.json:
@@ -147,6 +153,9 @@ def run(args: argparse.Namespace) -> int:
         print(f"{study.name} ({study.model.value} model): {report.total} cases, "
               f"{report.computed} computed now, "
               f"{report.already_stored} already stored; outcomes: {outcomes}")
+        if loads is not None:
+            print(f"loads: every arch carries its [loads] (the cases' ids include them); "
+                  f"{summary['passive_pressure']}")
         print(f"store: {report.store}" + (f"; exported to {args.export}" if args.export else ""))
     return 0
 

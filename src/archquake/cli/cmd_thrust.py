@@ -59,6 +59,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--times", type=_times, default=[0.2, 0.5, 0.8, 1.1, 1.5, 2.22], metavar="T1,T2,...",
                    help="instants, s, comma-separated (default: Figure 8's 0.2,0.5,0.8,1.1,1.5,2.22)")
     add_model_argument(p, models=("rigid", "fourlink"))
+    from archquake.cli.loads_options import add_loads_arguments
+
+    add_loads_arguments(p)
     add_impact_arguments(p)
     add_output_arguments(p)
     p.set_defaults(func=run)
@@ -76,8 +79,11 @@ def run(args: argparse.Namespace) -> int:
     motion = ground_motion_from_args(args)
     if min(args.times) < 0:
         raise InvalidParameterError(f"--times must be >= 0 s, got {min(args.times):g}")
+    from archquake.cli.loads_options import dynamic_loads_from_args
+
+    loads = dynamic_loads_from_args(args, arch, model)
     if model is Model.RIGID:
-        return _run_rigid(args, arch, motion)
+        return _run_rigid(args, arch, motion, loads)
     snapshots = states(arch, motion, args.times, **impact_from_args(args))
     if args.plot is not None:
         from archquake.plotting.thrust import save_thrust_snapshots
@@ -100,28 +106,32 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
-    """``--model rigid``: the chain of rigid voussoirs run to the last time asked (or its
-    collapse), its joints at the recorded sample nearest each time
+def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
+    """``--model rigid``: the chain of rigid voussoirs (carrying ``loads``) run to the last time
+    asked (or its collapse), its joints at the recorded sample nearest each time
     (:meth:`archquake.rigid.forces.JointForceHistory.state_at`)."""
     from archquake.cli.common import rigid_work
+    from archquake.cli.rigid_run import joint_numbers, loaded_body, on_arch_joints
     from archquake.rigid import simulate_rigid
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     duration = max(max(args.times), 1e-3) + 1e-3
     progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP)
-    run = simulate_rigid(arch, motion, duration=duration, progress=progress)
+    run = simulate_rigid(loaded_body(arch, loads), motion, duration=duration, progress=progress)
     collapse = run.result.collapse_time
     if collapse is not None and max(args.times) > collapse:
         raise InvalidParameterError(
             f"--times must be before the collapse at t = {collapse:.3f} s, got "
             f"{max(args.times):g} s")
     forces = run.joint_forces
-    snaps = [forces.state_at(t) for t in args.times]
+    numbers = joint_numbers(run)
+    snaps = [on_arch_joints(forces.state_at(t), numbers, arch.voussoirs + 1)
+             for t in args.times]
     if args.json:
+        extra = {} if loads is None else {"assembly": run.result.assembly.to_dict()}
         print_json({"model": "rigid", "arch": arch.describe(), "motion": motion.to_dict(),
                     "outcome": run.outcome.value,
-                    "collapse_time_s": run.result.collapse_time, "states": snaps})
+                    "collapse_time_s": run.result.collapse_time, "states": snaps, **extra})
         return 0
     print(f"{motion.name} (chain of rigid voussoirs; the line of thrust as e / (d/2) per joint, "
           "+-1 at a face: an open hinge, or one about to open)")
@@ -134,4 +144,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
               + ("-" if fd is None else f"{fd:.3f} (joint {s['max_friction_demand_joint']})"))
     if run.result.collapse_time is not None:
         print(f"collapse at t = {run.result.collapse_time:.3f} s")
+    from archquake.cli.dem_run import print_loads
+
+    print_loads(run.result.assembly.to_dict())
     return 0

@@ -122,8 +122,9 @@ def settings_from_args(args: argparse.Namespace, duration: float):
     return DemSettings(contact=law, damping=damping, duration=duration)
 
 
-def run(args: argparse.Namespace, arch, motion) -> int:
-    """Run the DEM for ``arch`` under ``motion`` and print/plot/animate as the options say."""
+def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
+    """Run the DEM for ``arch`` (carrying ``loads``) under ``motion`` and print/plot/animate as
+    the options say."""
     from archquake.compare import dem_assembly
     from archquake.dem import simulate_dem
 
@@ -136,7 +137,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     duration = block_duration(args, arch, motion, "--model dem",
                               "the explicit DEM needs millions of steps")
     settings = settings_from_args(args, duration)
-    assembly = dem_assembly(arch, args.dem_assembly)
+    assembly = dem_assembly(arch, args.dem_assembly, loads=loads)
     if args.t_end is None:  # the default runs until a verdict (rest or collapse), or the cap
         from archquake.compare import dem_to_verdict
 
@@ -176,10 +177,24 @@ def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
         print_json(out)
         return 0
     print_text(out)
+    print_loads(out["assembly"])
     for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
         if path:
             print(f"{what}: {path}")
     return 0
+
+
+def print_loads(assembly: dict) -> None:
+    """The text lines of what a block model's arch carries (nothing for a bare arch)."""
+    masses = assembly.get("masses")
+    if masses is None:
+        return
+    held = masses["held_by_backing"]
+    print(f"carried mass        {masses['carried_mass_kg']:.6g} kg on "
+          f"{masses['masonry_mass_kg']:.6g} kg of masonry (fill columns and moving loads, at "
+          "their centroids)"
+          + (f"; voussoirs {', '.join(map(str, held))} held by the backing" if held else ""))
+    print(f"passive pressure    {masses['passive_pressure']}")
 
 
 def _print_text(out: dict, result) -> None:

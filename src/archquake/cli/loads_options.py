@@ -223,4 +223,54 @@ def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffi
     return Traffic(load * 1e3, position, length, args.dispersion)
 
 
-__all__ = ["add_loads_arguments", "check_loads_on", "loads_from_args", "passive_text", "traffic_from_args"]
+def fourlink_masses(prepared) -> dict:
+    """The masses of a four-link mechanism whose voussoirs carry loads (for JSON): the masonry's
+    and the carried, in all and per link AB, BC, CD, kg; passive pressure left out."""
+    import numpy as np
+
+    from archquake.dem.assembly import PASSIVE_LEFT_OUT
+    from archquake.geometry.loads import held_joints
+
+    chain = prepared.mechanism.arch
+    carried = chain.voussoir_masses - chain.base.voussoir_masses
+    held = held_joints(chain.base, chain.loads.backing)
+    links = prepared.mechanism.link_voussoirs
+    return {"masonry_mass_kg": float(chain.base.mass), "carried_mass_kg": float(carried.sum()),
+            "link_masses_kg": [float(chain.voussoir_masses[list(r)].sum()) for r in links],
+            "link_carried_masses_kg": [float(carried[list(r)].sum()) for r in links],
+            "voussoir_masses_kg": [float(m) for m in chain.voussoir_masses],
+            "carried_masses_kg": [float(m) for m in carried],
+            "held_by_backing": [int(k) for k in np.flatnonzero(held[:-1] | held[1:])],
+            "passive_pressure": PASSIVE_LEFT_OUT}
+
+
+def dynamic_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: bool = False):
+    """The loads of the command line for a dynamic ``model`` (None without), checked against
+    ``arch``; the four-link model refuses them in one line unless ``fourlink`` (the commands
+    that carry them on its links)."""
+    from archquake.sweeps.cases import Model
+
+    loads = loads_from_args(args)
+    if loads is None:
+        return None
+    check_loads_on(arch, loads)
+    if Model(model) is Model.FOURLINK and not fourlink:
+        raise InvalidParameterError(
+            "--model fourlink does not carry fill, backing or loads in this command: use "
+            "--model rigid (the default)")
+    if loads.passive is not None:
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        raise InvalidParameterError(f"--passive: {PASSIVE_LEFT_OUT}; leave it out")
+    if any(not p.moves_with_arch for p in loads.point_loads):
+        raise InvalidParameterError("--point-load ...,still: a weight without mass is statics "
+                                    "only; the dynamic models carry loads that move with the arch")
+    if any(not d.moves_with_arch for d in loads.distributed_loads):
+        raise InvalidParameterError("--distributed-load ...,still: a weight without mass is "
+                                    "statics only; the dynamic models carry loads that move with "
+                                    "the arch")
+    return loads
+
+
+__all__ = ["add_loads_arguments", "check_loads_on", "dynamic_loads_from_args", "fourlink_masses",
+           "loads_from_args", "passive_text", "traffic_from_args"]

@@ -25,8 +25,9 @@ from archquake.errors import InvalidParameterError
 from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
 
 
-def run(args: argparse.Namespace, arch, motion) -> int:
-    """Run the rigid chain for ``arch`` under ``motion``; print, plot, animate as asked."""
+def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
+    """Run the rigid chain for ``arch`` (carrying ``loads``) under ``motion``; print, plot,
+    animate as asked."""
     from archquake.rigid import simulate_rigid
 
     if args.friction is not None:
@@ -39,6 +40,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     from archquake.compare.histories import rigid_window
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
+    body = loaded_body(arch, loads)
     verdict = None
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
@@ -53,30 +55,71 @@ def run(args: argparse.Namespace, arch, motion) -> int:
             progress = rigid_work("run", arch, motion, window, step, passes=2)
             # the verdict's own default window stops at 120 s (its batches' bound); a run
             # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
-            verdict = rigid_verdict(arch, motion,
+            verdict = rigid_verdict(body, motion,
                                     duration=window if window > DEM_T_END_MAX_S else None)
             result = rigid_to_verdict(arch, motion, solver=solver,
-                                      time_step=verdict.time_step_s, progress=progress)
+                                      time_step=verdict.time_step_s, progress=progress,
+                                      loads=loads)
         else:
             progress = None
             if solver == "direct":
                 progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
                                       DEFAULT_TIME_STEP)
             result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
-                                      progress=progress)
+                                      progress=progress, loads=loads)
     else:  # a given --t-end is run as given
         progress = None
         if solver == "direct":
             progress = rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
-        result = simulate_rigid(arch, motion, duration=args.t_end, friction=args.friction,
+        result = simulate_rigid(body, motion, duration=args.t_end, friction=args.friction,
                                 solver=solver, progress=progress)
     from archquake.cli.dem_run import emit_block_run
 
     out = result.to_dict()
+    if out.get("joint_forces"):
+        out["joint_forces"] = on_arch_joints(out["joint_forces"], joint_numbers(result),
+                                             arch.voussoirs + 1)
     if verdict is not None:
         out = with_verdict(out, verdict)
     return emit_block_run(args, arch, motion, result.result, out, _print_text,
                           label="rigid chain", history=result)
+
+
+def loaded_body(arch, loads):
+    """What the rigid chain runs: ``arch`` itself, or its assembly carrying ``loads``."""
+    if loads is None:
+        return arch
+    from archquake.dem.assembly import build_arch_assembly
+
+    return build_arch_assembly(arch, loads=loads)
+
+
+def joint_numbers(run) -> list[int] | None:
+    """The arch's joint number of each joint the run records, or None where they are all of
+    them in order (the joints inside a backing are not recorded)."""
+    asm = run.result.assembly
+    cuts = asm.meta.get("cut_joints")
+    numbers = [int(cuts[j.index]) for j in asm.joints] if cuts else None
+    return None if numbers is None or numbers == list(range(len(numbers))) else numbers
+
+
+def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dict:
+    """A joint-force state or summary (:mod:`archquake.rigid.forces`) with its joints numbered
+    as the arch's (``numbers`` from :func:`joint_numbers`; the joints not recorded get None)."""
+    if numbers is None:
+        return state
+    out = dict(state)
+    for key in ("relative_eccentricity", "friction_demand"):
+        if key in out:
+            full: list = [None] * n_joints
+            for j, v in zip(numbers, out[key], strict=True):
+                full[j] = v
+            out[key] = full
+    if "face_joints" in out:
+        out["face_joints"] = [numbers[j] for j in out["face_joints"]]
+    if out.get("max_friction_demand_joint") is not None:
+        out["max_friction_demand_joint"] = numbers[out["max_friction_demand_joint"]]
+    return out
 
 
 def with_verdict(out: dict, verdict) -> dict:

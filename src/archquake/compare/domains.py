@@ -21,6 +21,7 @@ import time
 from collections.abc import Callable
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -106,6 +107,7 @@ def dem_failure_domain(
     model: str = "dem",
     solver: str = "direct",
     progress: Callable[[int], None] | None = None,
+    loads=None,
 ) -> DemDomain:
     """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
     through the analytical domain search.
@@ -144,6 +146,10 @@ def dem_failure_domain(
         With ``model='rigid'``: how the chain is integrated (``simulate_rigid``'s ``solver``).
     progress : callable, optional
         Called with the number of runs so far as the search goes.
+    loads : Loads, optional
+        What the arch carries (``assembly='voussoirs'`` only): the blocks carry it
+        (:func:`~archquake.dem.assembly.build_arch_assembly`) and the search starts at the
+        loaded arch's lambda.
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
         chain of rigid blocks (:func:`archquake.rigid.simulate_rigid`; only
@@ -163,7 +169,7 @@ def dem_failure_domain(
         raise InvalidParameterError(f"solver must be 'direct' or 'events', got {solver!r}")
     fam = PulseFamily.parse(family)
     first_only = (assembly == HINGES) if first_only is None else bool(first_only)
-    asm = dem_assembly(arch, assembly)
+    asm = dem_assembly(arch, assembly, loads=loads)
     dst = DemSettings() if dem_settings is None else dem_settings
     n_dur = int(np.atleast_1d(durations).size)
     t0 = time.perf_counter()
@@ -186,7 +192,8 @@ def dem_failure_domain(
         ev = DemPulseEvaluator(asm, fam, dst, tail_s, first_only, executor, g,
                                governing_only and not first_only, model, solver,
                                threads=n if batched else None, progress=progress)
-        dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev)
+        dom = failure_domain(arch, fam, durations, settings=settings, g=g, evaluate=ev,
+                             loads=loads)
     finally:
         if own is not None:
             own.shutdown()
@@ -253,12 +260,19 @@ def compare_domains(
     label: str = "",
     g: float = STANDARD_GRAVITY,
     model: str = "dem",
+    loads=None,
 ) -> DomainComparison:
     """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
     of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
-    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`)."""
-    an = failure_domain(arch, family, durations, g=g, model="fourlink")
+    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`). With ``loads`` every model
+    carries them (the four-link links and both assemblies, on the loaded arch's hinges)."""
+    subject: Any = arch
+    if loads is not None and not loads.empty:
+        from archquake.mechanism import PreparedMechanism
+
+        subject = PreparedMechanism.build(arch, loads=loads)
+    an = failure_domain(subject, family, durations, g=g, model="fourlink")
     pool = executor
     own = None
     if pool is None and (workers is None or workers > 1):
@@ -267,7 +281,7 @@ def compare_domains(
             own = pool = process_pool(n)
     try:
         kw = dict(settings=settings, dem_settings=dem_settings, g=g, executor=pool,
-                  workers=1 if pool is None else None, model=model)
+                  workers=1 if pool is None else None, model=model, loads=loads)
         f = dem_failure_domain(arch, family, durations, assembly=HINGES, **kw) if first else None
         gov = dem_failure_domain(arch, family, durations, assembly=VOUSSOIRS, **kw) if governing else None
     finally:

@@ -25,6 +25,8 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
     ASSEMBLIES,
     HINGES,
     VOUSSOIRS,
+    Assembly,
+    build_arch_assembly,
     dem_assembly,
     three_voussoir_assembly,
 )
@@ -99,7 +101,7 @@ def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVIT
 
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
-                     time_step: float | None = None, progress=None):
+                     time_step: float | None = None, progress=None, loads=None):
     """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
     verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
@@ -126,6 +128,8 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
         The stepper's step, s (default: ``simulate_rigid``'s).
     progress : callable, optional
         ``simulate_rigid``'s.
+    loads : Loads, optional
+        What the arch carries (:func:`archquake.dem.assembly.build_arch_assembly`).
 
     Returns
     -------
@@ -139,10 +143,13 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     from archquake.rigid import simulate_rigid
 
     d, cap = rigid_window(arch, motion, g=g)
+    body: Arch | Assembly = arch
+    if loads is not None and not loads.empty:
+        body = build_arch_assembly(arch, loads=loads)
     if time_step is None:
-        return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+        return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
                               settings=settings, solver=solver, progress=progress)
-    return simulate_rigid(arch, motion, duration=d, friction=friction, until_rest=cap, g=g,
+    return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
                           settings=settings, solver=solver, time_step=time_step,
                           progress=progress)
 

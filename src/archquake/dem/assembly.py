@@ -29,6 +29,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
+from archquake.geometry.loads import Loads, block_extras
 from archquake.geometry.polygon import polygon_mass_properties
 from archquake.limit import hinges_of
 
@@ -142,6 +143,14 @@ class Assembly:
         return len(self.polygons)
 
     @property
+    def radius(self) -> float | None:
+        """The arch's radius, m, for an arch's assembly (default run windows scale with
+        sqrt(R/g)); None for any other assembly."""
+        arch = self.meta.get("arch")
+        radius = arch.get("radius_m") if isinstance(arch, dict) else None
+        return None if radius is None else float(radius)
+
+    @property
     def free_blocks(self) -> np.ndarray:
         return np.flatnonzero(~self.base)
 
@@ -172,12 +181,105 @@ def _sorted_ccw(points: np.ndarray) -> np.ndarray:
     return points[np.argsort(ang)]
 
 
+#: How the dynamic models take passive fill pressure, stated in every result that carries a fill.
+PASSIVE_LEFT_OUT = ("passive fill pressure not modelled in the dynamics: the fill adds mass "
+                    "and weight, not resistance to the arch's sway")
+
+
+@dataclass(frozen=True)
+class LoadedVoussoirs:
+    """Each voussoir with what it carries, for the block models (n voussoirs).
+
+    Attributes
+    ----------
+    masses : ndarray, shape (n,)
+        The voussoir's mass plus its fill column's and the loads that move with it, kg.
+    centroids : ndarray, shape (n, 2)
+        Their combined centroid, m.
+    inertias : ndarray, shape (n,)
+        Rotational inertia about the combined centroid (each part's own plus the
+        parallel-axis term), kg m^2.
+    held : ndarray of bool, shape (n,)
+        Voussoirs the backing holds (a joint of theirs held: it cannot hinge, so nothing
+        frees them from the support): part of the support.
+    carried : ndarray, shape (n,)
+        The carried mass alone, kg.
+    mechanism : HingeMechanism
+        The loaded arch's hinges (the equivalent static analysis with the loads, a load
+        towards +x), which define the rotation measure.
+    """
+
+    masses: np.ndarray
+    centroids: np.ndarray
+    inertias: np.ndarray
+    held: np.ndarray
+    carried: np.ndarray
+    mechanism: HingeMechanism
+
+    def to_dict(self) -> dict:
+        return {
+            "masonry_mass_kg": float(np.sum(self.masses - self.carried)),
+            "carried_mass_kg": float(np.sum(self.carried)),
+            "voussoir_masses_kg": [float(m) for m in self.masses],
+            "carried_masses_kg": [float(m) for m in self.carried],
+            "held_by_backing": [int(k) for k in np.flatnonzero(self.held)],
+            "passive_pressure": PASSIVE_LEFT_OUT,
+        }
+
+
+def loaded_voussoirs(arch: VoussoirChain, loads: Loads) -> LoadedVoussoirs:
+    """The voussoirs of ``arch`` with the loads they carry, as the block models take them.
+
+    Each voussoir carries its fill column and the loads that move with the arch: their masses
+    add to its own, at the combined centroid, with the rotational inertia about it by the
+    parallel-axis theorem (a point load adds none of its own). The voussoirs the backing holds
+    belong to the support. The hinges are the loaded arch's
+    (:func:`archquake.limit.loaded.loaded_collapse`).
+
+    Loads whose mass does not move with the arch (a weight without inertia) need a force the
+    block models do not apply, traffic is a statics load, and passive fill pressure is left
+    out of the dynamics: the first two are refused, the last stated (:data:`PASSIVE_LEFT_OUT`).
+
+    Parameters
+    ----------
+    arch : VoussoirChain
+    loads : Loads
+
+    Returns
+    -------
+    LoadedVoussoirs
+    """
+    from archquake.limit.loaded import loaded_collapse, seismic_case
+
+    if any(not p.moves_with_arch for p in loads.point_loads) or any(
+            not d.moves_with_arch for d in loads.distributed_loads):
+        raise InvalidParameterError(
+            "loads marked 'still' (weight without mass) are statics only: the dynamic models "
+            "carry loads whose mass moves with the arch")
+    if loads.traffic is not None:
+        raise InvalidParameterError("traffic is a statics load (see capacity), not carried in "
+                                    "the dynamic models")
+    if loads.passive is not None:
+        raise InvalidParameterError(f"--passive: {PASSIVE_LEFT_OUT}; leave it out")
+    ex = block_extras(arch, loads)
+    vm, vc, vi = arch.voussoir_masses, arch.voussoir_centroids, arch.voussoir_inertias
+    m = vm + ex.mass
+    c = (vm[:, None] * vc + ex.mass[:, None] * ex.centroid) / m[:, None]
+    inertia = (vi + vm * np.sum((vc - c) ** 2, axis=1)
+               + ex.inertia + ex.mass * np.sum((ex.centroid - c) ** 2, axis=1))
+    # a held joint cannot hinge, so the voussoir on its far side is bonded to the support too
+    held = ex.held[:-1] | ex.held[1:]
+    mech = loaded_collapse(seismic_case(arch, loads, direction=1)).mechanism
+    return LoadedVoussoirs(m, c, inertia, held, ex.mass.copy(), mech)
+
+
 def build_arch_assembly(
     arch: VoussoirChain,
     *,
     cut_joints: tuple[int, ...] | None = None,
     mechanism: HingeMechanism | None = None,
     hold_outside_hinges: bool = False,
+    loads: Loads | None = None,
 ) -> Assembly:
     """The arch's voussoirs (or groups of them) on two abutments moving with the ground.
 
@@ -201,6 +303,11 @@ def build_arch_assembly(
         hinge A or D that is not at it) belong to the support: they are base blocks moving with
         the ground, as the analytical model assumes (they stay on the ground). The mechanism's
         hinges A and D must then be cut joints.
+    loads : Loads, optional
+        What the arch carries (:func:`loaded_voussoirs`): each voussoir's mass, centroid and
+        inertia include its fill column and carried loads, the voussoirs the backing holds
+        are base blocks, and the default mechanism is the loaded arch's. None or empty loads
+        give the bare arch's assembly, unchanged.
 
     Notes
     -----
@@ -223,8 +330,9 @@ def build_arch_assembly(
         raise InvalidParameterError(
             f"cut_joints must be strictly increasing joint indices from 0 to {n}, got {cut_joints!r}"
         )
+    loaded = None if loads is None or loads.empty else loaded_voussoirs(arch, loads)
     if mechanism is None:
-        mechanism = hinges_of(arch)
+        mechanism = hinges_of(arch) if loaded is None else loaded.mechanism
     ja, jb = mechanism.joints[0], mechanism.joints[1]
     if ja not in cuts or jb not in cuts:
         raise InvalidParameterError(
@@ -252,6 +360,9 @@ def build_arch_assembly(
         cents.append(c)
         base.append(True)
     vm, vc, vi = arch.voussoir_masses, arch.voussoir_centroids, arch.voussoir_inertias
+    held = np.zeros(n, dtype=bool)
+    if loaded is not None:
+        vm, vc, vi, held = loaded.masses, loaded.centroids, loaded.inertias, loaded.held
     block_of_voussoir = np.zeros(n, dtype=int)
     for g, (j0, j1) in enumerate(zip(cuts, cuts[1:])):
         ks = np.arange(j0, j1)
@@ -265,11 +376,13 @@ def build_arch_assembly(
         masses.append(m)
         inertias.append(inertia)
         cents.append(c)
-        base.append(j1 <= held_below or j0 >= held_above)
+        base.append(j1 <= held_below or j0 >= held_above or bool(np.all(held[ks])))
     joints = []
     for idx, j in enumerate(cuts):
         left = 0 if j == 0 else block_of_voussoir[j - 1]
         right = 1 if j == n else block_of_voussoir[j]
+        if loaded is not None and base[left] and base[right]:
+            continue  # inside the backing: no joint to record (the event integrator's chain)
         joints.append(Joint(idx, int(left), int(right), np.array([ip[j], ep[j]])))
     crown_v = min(n // 2, n - 1)
     sign = mechanism.opening_sign
@@ -281,6 +394,8 @@ def build_arch_assembly(
         int(sign),
     )
     n_free = int(len(base) - np.count_nonzero(base))
+    extra_meta = ({} if loaded is None or loads is None
+                  else {"loads": loads.to_dict(), "masses": loaded.to_dict()})
     return Assembly(
         polygons=tuple(polys),
         masses=np.array(masses),
@@ -299,14 +414,16 @@ def build_arch_assembly(
         meta={
             "arch": arch.describe(),
             "cut_joints": list(cuts),
-            "held_voussoirs": [int(k) for k in range(n) if k < held_below or k >= held_above],
+            "held_voussoirs": [int(k) for k in range(n)
+                               if k < held_below or k >= held_above or held[k]],
             "mechanism_joints": list(mechanism.joints),
             "mechanism_faces": [f.value for f in mechanism.faces],
+            **extra_meta,
         },
     )
 
 
-def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
+def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) -> Assembly:
     """The arch cut only at its hinges (:func:`archquake.limit.hinges_of`): the
     paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
 
@@ -324,19 +441,25 @@ def three_voussoir_assembly(arch: VoussoirChain) -> Assembly:
     >>> b.meta["cut_joints"], int((~b.base).sum()), b.meta["held_voussoirs"]
     ([0, 3, 7, 12, 15], 3, [0, 1, 2])
     """
+    if loads is not None and not loads.empty:  # the loaded arch's hinges, its loaded blocks
+        mech = loaded_voussoirs(arch, loads).mechanism
+        cuts = tuple(sorted({0, *mech.joints, arch.voussoirs}))
+        return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech,
+                                   hold_outside_hinges=True, loads=loads)
     mech = hinges_of(arch)
     cuts = tuple(sorted({0, *mech.joints, arch.voussoirs}))
     return build_arch_assembly(arch, cut_joints=cuts, mechanism=mech, hold_outside_hinges=True)
 
 
-def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS) -> Assembly:
-    """The DEM assembly of ``arch``: ``'voussoirs'`` (every voussoir a block,
-    :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
+def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS, *,
+                 loads: Loads | None = None) -> Assembly:
+    """The DEM assembly of ``arch`` carrying ``loads``: ``'voussoirs'`` (every voussoir a
+    block, :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
     :func:`three_voussoir_assembly`)."""
     if assembly == VOUSSOIRS:
-        return build_arch_assembly(arch)
+        return build_arch_assembly(arch, loads=loads)
     if assembly == HINGES:
-        return three_voussoir_assembly(arch)
+        return three_voussoir_assembly(arch, loads=loads)
     raise InvalidParameterError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
 
 
@@ -403,9 +526,12 @@ __all__ = [
     "VOUSSOIRS",
     "Assembly",
     "Joint",
+    "LoadedVoussoirs",
+    "PASSIVE_LEFT_OUT",
     "RotationLink",
     "block_on_base",
     "build_arch_assembly",
     "dem_assembly",
+    "loaded_voussoirs",
     "three_voussoir_assembly",
 ]

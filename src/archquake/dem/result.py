@@ -401,7 +401,8 @@ def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
     closed = np.where(hinge, np.argmin(opening, axis=2), -1)
     changed = np.ones(ks.size, dtype=bool)
     changed[1:] = np.any(closed[1:] != closed[:-1], axis=1)
-    joints = result.assembly.meta.get("cut_joints", list(range(opening.shape[1])))
+    cuts = result.assembly.meta.get("cut_joints", list(range(opening.shape[1])))
+    joints = [cuts[jt.index] for jt in result.assembly.joints]  # the recorded ones
     faces = [joint.faces for joint in result.assembly.joints]
     out: list[HingeSet] = []
     last = ""

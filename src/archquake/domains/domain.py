@@ -373,6 +373,7 @@ def failure_domain(
     evaluate: Callable[[np.ndarray, np.ndarray], PulseOutcomes] | None = None,
     model: str | None = None,
     threads: int | None = None,
+    loads=None,
 ) -> FailureDomain:
     """Failure domain of an arch for a pulse family (paper Figures 5, 6, 7, 11).
 
@@ -407,6 +408,10 @@ def failure_domain(
         batch :func:`~archquake.domains.evaluate_pulses`.
     threads : int, optional
         With ``model='rigid'``: threads of each batch (default: the usable cores).
+    loads : Loads, optional
+        What the arch carries, for another model's ``evaluate`` whose blocks carry them
+        (:func:`archquake.compare.dem_failure_domain`): lambda, the scan's start, is then the
+        static analysis's with the loads (:mod:`archquake.limit.loaded`).
 
     Returns
     -------
@@ -432,6 +437,10 @@ def failure_domain(
         model = "fourlink" if isinstance(arch, PreparedMechanism) else "rigid"
     if model not in ("rigid", "fourlink"):
         raise InvalidParameterError(f"model must be 'rigid' or 'fourlink', got {model!r}")
+    loaded = loads is not None and not loads.empty
+    if loaded and (evaluate is None or not isinstance(arch, VoussoirChain)):
+        raise InvalidParameterError("a domain with loads needs the block models' evaluation of "
+                                    "the loaded arch (archquake.compare.dem_failure_domain)")
     if evaluate is None and model == "rigid":
         evaluate = _rigid_evaluator(arch, family, restitution, impact, g, threads)
     if evaluate is not None and isinstance(arch, VoussoirChain):
@@ -445,6 +454,11 @@ def failure_domain(
         prepared = None
         cv = math.nan
         lam = float(packed[G0] / abs(packed[H0]))  # PreparedMechanism's lambda
+        if loaded:
+            from archquake.limit.loaded import loaded_collapse, seismic_case
+
+            collapse = loaded_collapse(seismic_case(arch, loads, g=g))
+            lam, mech0 = collapse.multiplier, collapse.mechanism
         radius = mech0.arch.radius
     else:
         prepared = PreparedMechanism.build(arch, impact)

@@ -218,6 +218,8 @@ class IdaResult:
     store: str = ""
     motions: tuple = field(default=(), repr=False, compare=False)
     guarded: int = 0
+    #: What the arch carries (None: bare).
+    loads: Any = None
 
     @property
     def unit_key(self) -> str:
@@ -269,6 +271,7 @@ class IdaResult:
         first = self.first_collapse_levels
         return {
             "arch": self.arch.canonical(),
+            **({} if self.loads is None else {"loads": self.loads.to_dict()}),
             "model": self.model.value,
             "im": self.im.label,
             "im_unit": self.im.unit,
@@ -325,6 +328,7 @@ def incremental_dynamic_analysis(
     workers: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int, int], None] | None = None,
+    loads=None,
 ) -> IdaResult:
     """Hunt-and-fill IDA of ``arch`` under every motion of ``motions``.
 
@@ -361,6 +365,9 @@ def incremental_dynamic_analysis(
         (one compiled call per worker and round, :func:`round_chunk_size`).
     progress : callable, optional
         ``progress(stored, total_so_far, round)`` after every stored batch.
+    loads : Loads, optional
+        What the arch carries, masses that move with it (:class:`~archquake.sweeps.Case`'s
+        ``loads``): every model carries them, and the levels start at the loaded lambda.
 
     Returns
     -------
@@ -390,7 +397,8 @@ def incremental_dynamic_analysis(
     g = options.g
     # the levels start at the static collapse acceleration; no impact law is asked of the
     # block models, which run on any arch, symmetric or not
-    lam, phi_crit = mechanism_limits(arch)
+    loads = None if loads is None or loads.empty else loads
+    lam, phi_crit = mechanism_limits(arch, loads)
     im0 = np.array([im_value(m, measure, g=g) for m in motions])
     pga0 = np.array([im_value(m, "pga", g=g) for m in motions])
     for name, v in zip(names, im0, strict=True):
@@ -417,7 +425,7 @@ def incremental_dynamic_analysis(
         factor = (level / im0[i]) ** (1.0 / k)
         return Case(arch, ExcitationSpec(ExcitationKind.RECORD, motion=motions[i],
                                          scale=float(factor), file_sha256=digests[i]),
-                    model, options)
+                    model, options, loads)
 
     batch: Callable[[Sequence[Case]], list[Any]] | None = None
     if model is Model.FOURLINK:
@@ -491,7 +499,7 @@ def incremental_dynamic_analysis(
             collapse_half_cycles=tuple(r.outputs.get("collapse_half_cycle") for r in recs),
             peak_rotation=np.array([_peak(r.outputs) for r in recs]),
             start=hf[i].start, ceiling=float(ceiling)))
-    return IdaResult(arch=arch, model=model, im=measure, records=tuple(records),
+    return IdaResult(arch=arch, model=model, im=measure, records=tuple(records), loads=loads,
                      settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
                      rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
                      store=str(store.path), motions=tuple(motions), guarded=guarded)

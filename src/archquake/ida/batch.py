@@ -51,9 +51,9 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
 
     out: list[Any] = [None] * len(cases)
     groups = _groups(cases, Model.FOURLINK, "the batch evaluator runs the four-link model", out)
-    for (arch, options), idx in groups.items():
+    for (arch, options, loads), idx in groups.items():
         try:
-            prepared = prepared_mechanism(arch, options.impact)
+            prepared = prepared_mechanism(arch, options.impact, loads)
         except ArchquakeError as exc:
             for i in idx:
                 out[i] = exc
@@ -89,9 +89,9 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
     out: list[Any] = [None] * len(cases)
     groups = _groups(cases, Model.RIGID, "the rigid batch evaluator runs the rigid chain", out,
                      refuse=_fourlink_options)
-    for (arch, options), idx in groups.items():
+    for (arch, options, loads), idx in groups.items():
         try:
-            built = arch.build()
+            built = _body(arch, loads)
             motions = [cases[i].excitation.build(g=options.g) for i in idx]
             verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
                                       guard=options.guard, threads=threads)
@@ -125,8 +125,8 @@ def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = Non
 
     out: list[Any] = [None] * len(cases)
     groups = _groups(cases, Model.RIGID, "the half-step rerun runs the rigid chain", out)
-    for (arch, options), idx in groups.items():
-        built = arch.build()
+    for (arch, options, loads), idx in groups.items():
+        built = _body(arch, loads)
         motions = [cases[i].excitation.build(g=options.g) for i in idx]
         half = 0.5 * verdict_time_step(built, g=options.g)
         verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
@@ -139,7 +139,7 @@ def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = Non
 def _groups(cases: Sequence[Case], model: Model, runs: str, out: list,
             refuse: Callable[[Case], ArchquakeError | None] | None = None
             ) -> dict[tuple, list[int]]:
-    """The indices of ``cases`` by (arch, options), one batch each; a case of another model is
+    """The indices of ``cases`` by (arch, options, loads), one batch each; a case of another model is
     refused with ``runs`` (what runs which model) "... only, got ...", and a case ``refuse``
     returns an error for gets that error in ``out`` and no batch."""
     groups: dict[tuple, list[int]] = {}
@@ -150,8 +150,18 @@ def _groups(cases: Sequence[Case], model: Model, runs: str, out: list,
         if error is not None:
             out[i] = error
         else:
-            groups.setdefault((case.arch, case.options), []).append(i)
+            groups.setdefault((case.arch, case.options, case.loads), []).append(i)
     return groups
+
+
+def _body(arch, loads):
+    """What the rigid chain runs for a case: the arch, or its blocks carrying ``loads``."""
+    built = arch.build()
+    if loads is None:
+        return built
+    from archquake.dem.assembly import build_arch_assembly
+
+    return build_arch_assembly(built, loads=loads)
 
 
 def _fourlink_options(case: Case) -> ArchquakeError | None:

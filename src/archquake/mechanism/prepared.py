@@ -392,15 +392,36 @@ class PreparedMechanism:
 
     @classmethod
     def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,
-              impact: str | None = None) -> PreparedMechanism:
+              impact: str | None = None, *, loads=None) -> PreparedMechanism:
         """Prepare an arch (its hinges: :func:`hinges_of`), a given mechanism (mirrored if a load
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
         towards -x opens), or take a prepared mechanism. ``impact`` is the impact law
         (:data:`archquake.mechanism.impact.IMPACT_LAWS`); None: a prepared mechanism's own, or
         :data:`DEFAULT_IMPACT_LAW`. A prepared mechanism under another law is re-solved for that law only
-        (the packed mechanism is kept)."""
+        (the packed mechanism is kept).
+
+        ``loads`` (a :class:`~archquake.geometry.loads.Loads`, with an arch): each link carries
+        its voussoirs' fill columns and moving loads
+        (:class:`~archquake.geometry.carrying.CarryingChain`: mass, combined centroid,
+        parallel-axis inertia, in the equation of motion and the impacts alike), and the hinges
+        are the loaded arch's (:func:`archquake.limit.loaded.loaded_collapse`, a load towards
+        +x)."""
         if impact is not None:
             check_impact_law(impact)
+        if loads is not None and not loads.empty:
+            if not isinstance(arch_or_mechanism, VoussoirChain):
+                raise InvalidParameterError("loads go with an arch, not with a mechanism")
+            from archquake.geometry.carrying import CarryingChain
+            from archquake.limit.loaded import loaded_collapse, seismic_case
+
+            chain = CarryingChain(arch_or_mechanism, loads)
+            if arch_or_mechanism.symmetric and not chain.symmetric:
+                raise InvalidParameterError(
+                    "the four-link model needs loads symmetric about the crown (its impacts "
+                    "hand the motion to the mirror-image mechanism): use the rigid chain or the "
+                    "DEM")
+            found = loaded_collapse(seismic_case(arch_or_mechanism, loads)).mechanism
+            arch_or_mechanism = HingeMechanism(chain, found.joints, found.faces)
         if isinstance(arch_or_mechanism, PreparedMechanism):
             prep = arch_or_mechanism
             if impact is None or impact == prep.impact.law:

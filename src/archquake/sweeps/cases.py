@@ -25,6 +25,7 @@ from archquake._json import canonical_json
 from archquake._validate import require_gravity, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.geometry.loads import Loads
 from archquake.geometry.spec import ArchSpec
 from archquake.ground.spec import (  # noqa: F401  (re-exported: a case's excitation)
     RECORD_UNITS,
@@ -182,6 +183,8 @@ class Case:
     excitation: ExcitationSpec
     model: Model = DEFAULT_MODEL
     options: CaseOptions = field(default_factory=CaseOptions)
+    #: What the arch carries (None: bare; it enters the id only when given).
+    loads: Loads | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.arch, ArchSpec):
@@ -193,14 +196,29 @@ class Case:
             raise InvalidParameterError(
                 f"options must be a CaseOptions, got {type(self.options).__name__}")
         _set(self, "model", model_of(self.model))
+        if self.loads is not None:
+            if not isinstance(self.loads, Loads):
+                raise InvalidParameterError(
+                    f"loads must be a Loads, got {type(self.loads).__name__}")
+            if self.loads.empty:
+                _set(self, "loads", None)
+            elif (self.loads.traffic is not None or self.loads.passive is not None
+                  or any(not p.moves_with_arch for p in self.loads.point_loads)
+                  or any(not d.moves_with_arch for d in self.loads.distributed_loads)):
+                raise InvalidParameterError(
+                    "a case's loads are masses that move with the arch: traffic, passive fill "
+                    "pressure and 'still' loads are statics only")
 
     def canonical(self) -> dict[str, Any]:
         """The inputs that define the case (what its id hashes), as plain JSON values. The
         four-link model is hashed under its earlier word, ``analytical`` (:data:`_ID_WORDS`),
         so stores written before it was named ``fourlink`` resume."""
-        return {"schema": CASE_SCHEMA, "model": _id_word(self.model),
-                "arch": self.arch.canonical(),
-                "excitation": self.excitation.canonical(), "options": self.options.canonical()}
+        out = {"schema": CASE_SCHEMA, "model": _id_word(self.model),
+               "arch": self.arch.canonical(),
+               "excitation": self.excitation.canonical(), "options": self.options.canonical()}
+        if self.loads is not None:
+            out["loads"] = self.loads.to_dict()
+        return out
 
     @property
     def canonical_json(self) -> str:
@@ -208,8 +226,10 @@ class Case:
         canonical JSON: the same string, byte for byte, since the top-level keys are written
         in sorted order with the same separators (a test holds the two equal). A grid of a
         million cases then costs one concatenation and one hash per case."""
+        loads = ("" if self.loads is None
+                 else f'"loads":{canonical_json(self.loads.to_dict())},')
         return (f'{{"arch":{self.arch.canonical_json},'
-                f'"excitation":{self.excitation.canonical_json},'
+                f'"excitation":{self.excitation.canonical_json},{loads}'
                 f'"model":{json.dumps(_id_word(self.model))},'
                 f'"options":{self.options.canonical_json},"schema":{json.dumps(CASE_SCHEMA)}}}')
 

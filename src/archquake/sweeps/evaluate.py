@@ -86,7 +86,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         from archquake.mechanism import SolverOptions
 
         # no time history is kept (the store holds summaries), which also saves its memory
-        result = simulate(prepared_mechanism(case.arch, case.options.impact), motion,
+        result = simulate(prepared_mechanism(case.arch, case.options.impact, case.loads), motion,
                           restitution=case.options.restitution,
                           t_end=case.options.t_end_s, options=SolverOptions(output_interval=0.0),
                           g=case.options.g)
@@ -101,20 +101,25 @@ def evaluate_case(case: Case) -> dict[str, Any]:
             raise InvalidParameterError(f"{key} applies to model fourlink only; {who} impacts "
                                         "follow from its contacts")
     arch = case.arch.build()
+    body: Any = arch  # the arch, or its blocks carrying the loads
+    if case.loads is not None:
+        from archquake.dem.assembly import build_arch_assembly
+
+        body = build_arch_assembly(arch, loads=case.loads)
     if case.model is Model.RIGID:
         if case.options.t_end_s is None:  # to a verdict, on the verdict path
             from archquake.rigid import rigid_verdict
 
-            return rigid_summary(rigid_verdict(arch, motion, g=case.options.g,
+            return rigid_summary(rigid_verdict(body, motion, g=case.options.g,
                                                guard=case.options.guard))
-        run = simulate(arch, motion, duration=case.options.t_end_s, g=case.options.g)
+        run = simulate(body, motion, duration=case.options.t_end_s, g=case.options.g)
         return run.to_dict(joint_forces=False)  # a store holds no histories' forces
     if case.options.t_end_s is None:  # run until a verdict (rest or collapse), or the cap
         from archquake.compare import dem_to_verdict
 
-        return dem_to_verdict(arch, motion, g=case.options.g).to_dict()
+        return dem_to_verdict(body, motion, g=case.options.g, radius=arch.radius).to_dict()
     duration = case.options.t_end_s or default_dem_duration(arch, motion, g=case.options.g)
-    result = simulate(arch, motion, DemSettings(duration=duration), g=case.options.g)
+    result = simulate(body, motion, DemSettings(duration=duration), g=case.options.g)
     return result.to_dict()
 
 
@@ -131,18 +136,19 @@ def rigid_summary(verdict) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=256)
-def prepared_mechanism(arch: ArchSpec, impact: str | None = None):
+def prepared_mechanism(arch: ArchSpec, impact: str | None = None, loads=None):
     """The arch's mechanism from the equivalent static analysis, packed for the kernels with
-    its impact solution under ``impact`` (None: "paper"). A pure function of the arch and the
-    law, memoised per process: a sweep usually runs many excitations on each arch, and this
-    limit analysis (and the chain law's impact) costs more than a case."""
+    its impact solution under ``impact`` (None: "paper"), its links carrying ``loads``. A pure
+    function of the arch, the law and the loads, memoised per process: a sweep usually runs
+    many excitations on each arch, and this limit analysis (and the chain law's impact) costs
+    more than a case."""
     from archquake.mechanism import PreparedMechanism
 
-    return PreparedMechanism.build(arch.build(), impact)
+    return PreparedMechanism.build(arch.build(), impact, loads=loads)
 
 
 @lru_cache(maxsize=256)
-def mechanism_limits(arch: ArchSpec) -> tuple[float, float]:
+def mechanism_limits(arch: ArchSpec, loads=None) -> tuple[float, float]:
     """The arch's equivalent static collapse acceleration (g) and the critical rotation of its
     four-hinge mechanism (rad: the crest of its potential), with no impact law: defined on any
     arch, symmetric or not (:func:`prepared_mechanism` needs the mirror-image mechanism of a
@@ -157,7 +163,16 @@ def mechanism_limits(arch: ArchSpec) -> tuple[float, float]:
     from archquake.mechanism.kinematics import G0, H0, PHI_CRIT
     from archquake.mechanism.prepared import pack_mechanism
 
-    mech = hinges_of(arch.build())
+    if loads is not None and not loads.empty:  # the links carrying the loads, loaded hinges
+        from archquake.geometry.carrying import CarryingChain
+        from archquake.geometry.hinges import HingeMechanism
+        from archquake.limit.loaded import loaded_collapse, seismic_case
+
+        built = arch.build()
+        found = loaded_collapse(seismic_case(built, loads)).mechanism
+        mech = HingeMechanism(CarryingChain(built, loads), found.joints, found.faces)
+    else:
+        mech = hinges_of(arch.build())
     if mech.load_direction < 0:
         mech = mech.mirrored()
     packed = pack_mechanism(mech)

@@ -29,6 +29,10 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     # files = ["a.AT2"]; units = "g"; scale = [0.5, 1, 2]   (record; paths relative to the study)
     direction = -1                      # optional: -1 (default for pulses) or +1, or [-1, 1]
 
+    [loads]                             # optional: what every arch carries, as in assess
+    fill_depth = 1.0                    # m over the crown (fill_density, backing, point_loads,
+                                        # distributed_loads: geometry.loads.loads_from_table)
+
     [options]                           # optional; axes like the others
     restitution = 0.9                   # c_v in [0, 1] (0 perfectly plastic); omitted: the law's
     impact = "chain"                    # "paper" (Eq. 4), "chain" or "mirror"; omitted: "paper"
@@ -63,7 +67,7 @@ from archquake.sweeps.cases import (
 )
 
 _AXIS = "a number, a list of numbers, or {start, stop, num}"
-_TABLES = ("study", "arches", "excitation", "options")
+_TABLES = ("study", "arches", "excitation", "options", "loads")
 _STUDY_KEYS = {"name": True, "model": False, "hinges": False}
 _ARCH_KEYS = {"radius": False, "thickness_ratio": False, "embrace_deg": False, "voussoirs": True,
               "depth": False, "density": False, "shape": False, "span": False, "rise": False,
@@ -223,6 +227,17 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
     options = p.grid("options", {k: v for k, v in options_table.items()
                                  if k not in _OPTION_WORDS}, CaseOptions, listed=option_words)
 
+    loads = None
+    if "loads" in data:
+        from archquake.geometry.loads import loads_from_table
+
+        loads = loads_from_table(data["loads"], source=p.source)
+        if (loads.traffic is not None or loads.passive is not None
+                or any(not q.moves_with_arch for q in loads.point_loads)
+                or any(not d.moves_with_arch for d in loads.distributed_loads)):
+            p.fail("loads", "a sweep's loads are masses that move with the arch: traffic, "
+                            "passive and moves_with_arch = false are statics only")
+
     total = len(arches) * len(excitations) * len(options)
     if total > MAX_CASES:
         p.fail("grid", f"has {total:,} cases (arches {len(arches):,} x excitations "
@@ -231,7 +246,7 @@ def parse_study(data: dict[str, Any], *, source: str = "study", base_dir: Path |
                        "(they may share one store with --store)")
     cases: dict[str, Case] = {}
     for arch, excitation, opts in itertools.product(arches, excitations, options):
-        case = Case(arch, excitation, model, opts)
+        case = Case(arch, excitation, model, opts, loads)
         cases.setdefault(case.case_id, case)
     return Study(name=name.strip(), model=model, path=path, cases=tuple(cases.values()))
 
