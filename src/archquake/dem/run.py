@@ -327,7 +327,7 @@ def simulate_dem(
     if not isinstance(settings, DemSettings):
         raise InvalidParameterError(f"settings must be a DemSettings, got {type(settings).__name__}")
     g = require_gravity(g)
-    kind, gparams = check_motion(motion).kernel_spec()
+    kind, gparams = check_motion(motion, vertical="the DEM").kernel_spec()
     gparams = np.ascontiguousarray(gparams, dtype=float)
     omega = float("nan")
     if settings.time_step is None:

@@ -27,6 +27,7 @@ import archquake.rigid._event_kernels as EK
 import archquake.rigid._step_kernels as RK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ground.base import refuse_vertical
 from archquake.rigid.model import (
     DEFAULT_TIME_STEP,
     GAP_TOLERANCE,
@@ -313,6 +314,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     settings = DemSettings() if settings is None else settings
     n = r.n_bodies
     lref = model.lref
+    refuse_vertical(motion, "the rigid chain")
     kind, gp = motion.kernel_spec()
     t_exc = excitation_end(motion)
     t_exc = math.inf if t_exc is None else float(t_exc)

@@ -55,6 +55,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import refuse_vertical
 from archquake.ground.pulses import RectangularPulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
@@ -193,6 +194,7 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
       equal, and so is their mean (a sum of 16 equal values is exact);
     * any other motion: all sub-samples, then ``mean``.
     """
+    refuse_vertical(motion, "the rigid chain")
     if isinstance(motion, Record):
         out = np.empty(n)
         IK.step_means(motion.kernel_spec()[1], float(t0), float(h), ACC_SAMPLES, out)

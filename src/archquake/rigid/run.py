@@ -272,7 +272,8 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         ``indeterminate`` if the arch is still moving then.
     """
     g = require_gravity(g)
-    check_motion(motion, needs=("acceleration", "duration", "breakpoints"))  # what the steps read
+    check_motion(motion, needs=("acceleration", "duration", "breakpoints"),  # what the steps read
+                 vertical="the rigid chain")
     duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
     output_interval = require_range("output_interval", output_interval, 0.0, MAX_DURATION, "s",
                                     high_open=False)
