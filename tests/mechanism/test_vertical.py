@@ -17,13 +17,14 @@ import pytest
 
 from archquake.cli.main import main
 from archquake.constants import STANDARD_GRAVITY as G
+from archquake.dem import simulate_dem
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import SinePulse, StepImpulse
 from archquake.ground._kernel import vertical_in_piece
 from archquake.limit import limit_analysis
 from archquake.mechanism import simulate
-from archquake.rigid.run import simulate_rigid
+from archquake.rigid import rigid_verdict
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
@@ -111,8 +112,11 @@ def test_lift_off_is_refused():
 
 
 def test_models_without_the_vertical_say_so():
-    with pytest.raises(InvalidParameterError, match="rigid chain does not take the vertical"):
-        simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.27, vertical=0.5))
+    motion = StepImpulse.from_g(1.0, 0.27, vertical=0.5)
+    with pytest.raises(InvalidParameterError, match="DEM does not take the vertical"):
+        simulate_dem(OPPENHEIM, motion)
+    with pytest.raises(InvalidParameterError, match="verdict .* does not take the vertical"):
+        rigid_verdict(OPPENHEIM, motion)
 
 
 def test_cli_vertical(capsys):
@@ -122,6 +126,6 @@ def test_cli_vertical(capsys):
     assert main(["run", "--model", "fourlink", "--pulse", "step", "--magnitude", "1",
                  "--duration", "0.27", "--vertical", "-1.5"]) == 2
     assert "--vertical -1.5" in capsys.readouterr().err
-    assert main(["run", "--pulse", "step", "--magnitude", "1", "--duration", "0.27",
-                 "--vertical", "0.5"]) == 2
+    assert main(["run", "--model", "dem", "--pulse", "step", "--magnitude", "1",
+                 "--duration", "0.27", "--vertical", "0.5"]) == 2
     assert "does not take the vertical" in capsys.readouterr().err

@@ -227,7 +227,7 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
         t = (k + 1) * h
         pristine = False
         computed += 1
-        sweeps, res = RK.advance(chain, cfg, state, acc[k], ws)
+        sweeps, res = RK.advance(chain, cfg, state, acc[k], ws, 0.0)
         if sweeps > worst:
             worst = sweeps
         closed = True

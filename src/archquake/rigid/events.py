@@ -261,7 +261,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
             cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0,
                               RK.METHOD_DIRECT, correction=False)
             RK.run(RK.pack_chain(r), cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
-                   acc, RK.Record(ns, oq, ov, od), dg)
+                   acc, np.empty(0), RK.Record(ns, oq, ov, od), dg)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
         i = k - 1

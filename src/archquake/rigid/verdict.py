@@ -54,6 +54,7 @@ from archquake.dem.result import (
 from archquake.dem.settings import DemSettings
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import refuse_vertical
 from archquake.ground.records import Record
 from archquake.outcome import Outcome
 from archquake.parallel import usable_cores
@@ -380,6 +381,7 @@ class _Job:
 
     def run(self, packed: _Packed) -> np.ndarray:
         """Prepare the steps and run the kernel: its ``out`` (:data:`VK.N_OUT`)."""
+        refuse_vertical(self.motion, "the rigid chain's verdict (a pulse search)")
         acc = mean_acceleration(self.motion, 0.0, self.h, self.n)
         pos = np.empty_like(acc)
         neg = np.empty_like(acc)
