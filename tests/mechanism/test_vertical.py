@@ -129,3 +129,25 @@ def test_cli_vertical(capsys):
     assert main(["run", "--model", "dem", "--pulse", "step", "--magnitude", "1",
                  "--duration", "0.27", "--vertical", "0.5"]) == 2
     assert "does not take the vertical" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ study files and the API
+def test_study_file_vertical_ratio_axis():
+    from archquake.ground.spec import ExcitationSpec
+    from archquake.sweeps.study import parse_study
+
+    study = parse_study({
+        "study": {"name": "s"},
+        "arches": {"radius": 10, "thickness_ratio": 0.15, "embrace_deg": 157.5, "voussoirs": 7},
+        "excitation": {"type": "step", "magnitude_g": 1.0, "duration_s": 0.27,
+                       "vertical_ratio": [0.0, 0.5, -0.5]},
+    })
+    motions = [c.excitation.build() for c in study.cases]
+    assert sorted(m.vertical for m in motions) == [-0.5, 0.0, 0.5]
+    assert len({c.case_id for c in study.cases}) == 3
+    # a case without a vertical keeps its id
+    plain = ExcitationSpec("step", magnitude_g=1.0, duration_s=0.27)
+    zero = [c for c in study.cases if not c.excitation.vertical_ratio][0]
+    assert zero.excitation.canonical() == plain.canonical()
+    with pytest.raises(InvalidParameterError, match="vertical_ratio does not apply"):
+        ExcitationSpec("record", file="x.AT2", vertical_ratio=0.5)

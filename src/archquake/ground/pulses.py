@@ -62,6 +62,11 @@ def _vertical_dict(vertical: float, steady: float, g: float) -> dict:
                else {}))
 
 
+def _vertical_repr(vertical: float, steady: float) -> str:
+    return ((f", vertical={vertical:g}" if vertical else "")
+            + (f", steady_vertical={steady:g} m/s^2" if steady else ""))
+
+
 def _steady(value: object) -> float:
     return require_finite("steady vertical", value, "m/s^2")
 
@@ -129,7 +134,7 @@ class StepImpulse:
     def __repr__(self) -> str:
         return (f"StepImpulse(magnitude={self.magnitude:g} m/s^2 "
                 f"({self.magnitude / STANDARD_GRAVITY:.3g} g), pulse_duration={self.pulse_duration:g} s, "
-                f"direction={self.direction:+d})")
+                f"direction={self.direction:+d}{_vertical_repr(self.vertical, self.steady_vertical)})")
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
@@ -218,7 +223,7 @@ class SinePulse:
     def __repr__(self) -> str:
         return (f"SinePulse(magnitude={self.magnitude:g} m/s^2 "
                 f"({self.magnitude / STANDARD_GRAVITY:.3g} g), period={self.period:g} s, "
-                f"direction={self.direction:+d})")
+                f"direction={self.direction:+d}{_vertical_repr(self.vertical, self.steady_vertical)})")
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
