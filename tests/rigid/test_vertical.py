@@ -79,3 +79,59 @@ def test_steady_vertical_time_similarity_quick():
 def test_steady_vertical_time_similarity(c, tp):
     assert _critical(tp, c, 18) == pytest.approx(
         (1 + c) * _critical(tp * math.sqrt(1 + c), 0.0, 18), rel=3e-3)
+
+
+# ------------------------------------------------------------------ records with a vertical
+def _records():
+    import numpy as np
+
+    from archquake.ground import Record
+
+    dt = 0.005
+    t = np.arange(0.0, 3.0 + dt / 2, dt)
+    x = np.where(t < 0.3, -0.8 * G, np.where(t < 0.9, 0.4 * G, 0.0))
+    x[-1] = 0.0
+    return Record(x, dt, name="h"), t, dt
+
+
+def test_a_constant_vertical_record_is_gravity_g_plus_c():
+    """Oracle: the same record under gravity g + c (simulate_rigid's g), to 1e-8 (the stepper's
+    tolerances scale with g, the equations do not differ)."""
+    import numpy as np
+
+    from archquake.ground import Record
+    from archquake.ground.vertical import WithVertical
+
+    h, t, dt = _records()
+    c = 0.3 * G
+    up = simulate_rigid(OPPENHEIM, WithVertical(h, Record(np.full(t.size, c), dt)), duration=3.0)
+    heavier = simulate_rigid(OPPENHEIM, h, duration=3.0, g=G + c)
+    assert up.outcome == heavier.outcome
+    assert up.to_dict()["max_rotation_rad"] == pytest.approx(
+        heavier.to_dict()["max_rotation_rad"], rel=1e-8)
+    assert up.energy.residual < 1e-8
+    zero = simulate_rigid(OPPENHEIM, WithVertical(h, Record(np.zeros(t.size), dt)), duration=3.0)
+    plain = simulate_rigid(OPPENHEIM, h, duration=3.0)
+    assert zero.to_dict()["max_rotation_rad"] == plain.to_dict()["max_rotation_rad"]
+
+
+def test_cli_record_vertical(tmp_path, capsys):
+    import numpy as np
+
+    from archquake.cli.main import main
+
+    h, t, _dt = _records()
+    np.savetxt(tmp_path / "h.csv", np.column_stack([t, h.accelerations / G]), delimiter=",")
+    np.savetxt(tmp_path / "v.csv", np.column_stack([t, np.full(t.size, 0.2)]), delimiter=",")
+    np.savetxt(tmp_path / "down.csv", np.column_stack([t, np.full(t.size, -0.6)]), delimiter=",")
+    base = ["run", "--record", str(tmp_path / "h.csv"), "--t-end", "2"]
+    assert main([*base, "--record-vertical", str(tmp_path / "v.csv"), "--json"]) == 0
+    out = capsys.readouterr().out
+    assert '"vertical": {' in out
+    # --scale scales both: 2 x -0.6 g lifts the arch off
+    assert main([*base, "--record-vertical", str(tmp_path / "down.csv"), "--scale", "2"]) == 2
+    assert "lifts the arch off" in capsys.readouterr().err
+    # the four-link model does not read a record's vertical: one line
+    assert main([*base, "--model", "fourlink", "--record-vertical",
+                 str(tmp_path / "v.csv")]) == 2
+    assert "--record-vertical" in capsys.readouterr().err

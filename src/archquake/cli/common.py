@@ -37,7 +37,7 @@ from archquake.geometry.checks import (  # the one place where an arch is checke
     check_voussoirs,
 )
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
-from archquake.ground.base import check_lift_off
+from archquake.ground.base import check_lift_off, check_motion_lift_off
 from archquake.ground.periods import period_grid
 from archquake.ground.pulses import MAX_VERTICAL_RATIO
 from archquake.ground.records import UNITS
@@ -563,6 +563,10 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
     grp.add_argument("--record", type=path_argument, metavar="FILE",
                      help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
                           "time (s), acceleration (units from --units); positive = towards +x")
+    grp.add_argument("--record-vertical", type=path_argument, metavar="FILE", default=None,
+                     help="the record's vertical component (same formats and --units; "
+                          "positive upward); --scale scales both, --mirror reverses the "
+                          "horizontal only. Read by the rigid chain's time stepper")
     grp.add_argument("--units", choices=RECORD_UNITS, default=None,
                      help="units of a CSV record's acceleration column (default g; .AT2 files "
                           "are always in g)")
@@ -641,11 +645,20 @@ def ground_motion_from_args(args: argparse.Namespace, *,
             raise InvalidParameterError("--vertical applies to --pulse (a pulse's vertical "
                                         "part), not to --record")
         motion = record_from_args(record, args.units, args.scale, g=g)
-        return motion.mirrored() if args.mirror else motion
-    for option in ("units", "scale"):
-        if getattr(args, option) is not None:
+        motion = motion.mirrored() if args.mirror else motion
+        up = getattr(args, "record_vertical", None)
+        if up is None:
+            return motion
+        from archquake.ground.vertical import WithVertical
+
+        both = WithVertical(motion, record_from_args(up, args.units, args.scale, g=g))
+        check_motion_lift_off(both, g)
+        return both
+    for option in ("units", "scale", "record_vertical"):
+        if getattr(args, option, None) is not None:
             raise InvalidParameterError(
-                f"--{option} applies to --record, not to --pulse; set the pulse with --magnitude"
+                f"--{option.replace('_', '-')} applies to --record, not to --pulse; set the "
+                "pulse with --magnitude (and its vertical with --vertical)"
             )
     if args.magnitude is None:
         raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")

@@ -105,8 +105,11 @@ def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
 
 
 def has_vertical(motion: object) -> bool:
-    """Whether ``motion`` carries a vertical ground acceleration (a pulse's R or steady c)."""
-    return bool(getattr(motion, "vertical", 0.0) or getattr(motion, "steady_vertical", 0.0))
+    """Whether ``motion`` carries a vertical ground acceleration (a pulse's R or steady c, or
+    a record's vertical component)."""
+    v = getattr(motion, "vertical", 0.0)
+    return (v is not None and not isinstance(v, (int, float))) or bool(
+        v or getattr(motion, "steady_vertical", 0.0))
 
 
 def refuse_vertical(motion: object, model: str) -> None:
@@ -177,6 +180,22 @@ def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
             "off its supports, outside every model; keep the downward vertical below g")
 
 
+def check_motion_lift_off(motion: object, g: float) -> None:
+    """:func:`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
+    component (its lowest sample)."""
+    if not has_vertical(motion):
+        return
+    vertical = getattr(motion, "vertical", None)
+    samples = getattr(vertical, "accelerations", None)
+    if samples is None:
+        kind, params = cast(GroundMotion, motion).kernel_spec()
+        check_lift_off(kind, params, g)
+    elif not g + float(np.min(samples)) > 0.0:
+        raise InvalidParameterError(
+            f"the vertical component reaches {-float(np.min(samples)) / g:.3g} g downward: "
+            "g + a_v <= 0 lifts the arch off its supports, outside every model; lower --scale")
+
+
 def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
     """One line naming a ground motion for text output: a pulse by its kind, magnitude (g)
     and duration or period (s), and the side of its first lobe when mirrored; a record by its
@@ -208,6 +227,7 @@ def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
     return str(d.get("name", getattr(motion, "name", "record")))
 
 
-__all__ = ["GroundMotion", "check_lift_off", "check_motion", "has_vertical", "refuse_vertical",
+__all__ = ["GroundMotion", "check_lift_off", "check_motion", "check_motion_lift_off", "has_vertical",
+           "refuse_vertical",
            "motion_label", "KIND_STEP", "KIND_SINE", "KIND_SAMPLED",
            "TIME_RESOLUTION", "check_time_resolution", "time_floor"]

@@ -184,10 +184,13 @@ def mean_vertical(motion, t0: float, h: float, n: int) -> np.ndarray:
     ``t0`` s, (n,); empty when the motion has no vertical (the stepper's gravity is then g).
 
     A pulse's vertical is R direction x_g''(t) + c (:mod:`archquake.ground.pulses`): the mean
-    of each step is R direction times :func:`mean_acceleration`'s, plus c.
+    of each step is R direction times :func:`mean_acceleration`'s, plus c. A record's vertical
+    component (:class:`~archquake.ground.vertical.WithVertical`) is averaged as a record.
     """
     if not has_vertical(motion):
         return np.empty(0)
+    if isinstance(motion.vertical, Record):  # a record's vertical component
+        return mean_acceleration(motion.vertical, t0, h, n)
     return (motion.vertical * motion.direction * mean_acceleration(motion, t0, h, n)
             + motion.steady_vertical)
 
@@ -207,6 +210,7 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
       equal, and so is their mean (a sum of 16 equal values is exact);
     * any other motion: all sub-samples, then ``mean``.
     """
+    motion = getattr(motion, "horizontal", motion)  # a record with its vertical
     if isinstance(motion, Record):
         out = np.empty(n)
         IK.step_means(motion.kernel_spec()[1], float(t0), float(h), ACC_SAMPLES, out)
