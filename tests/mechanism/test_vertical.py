@@ -24,7 +24,7 @@ from archquake.ground import SinePulse, StepImpulse
 from archquake.ground._kernel import vertical_in_piece
 from archquake.limit import limit_analysis
 from archquake.mechanism import simulate
-from archquake.rigid import rigid_verdict
+from archquake.rigid import simulate_rigid
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
@@ -115,8 +115,8 @@ def test_models_without_the_vertical_say_so():
     motion = StepImpulse.from_g(1.0, 0.27, vertical=0.5)
     with pytest.raises(InvalidParameterError, match="DEM does not take the vertical"):
         simulate_dem(OPPENHEIM, motion)
-    with pytest.raises(InvalidParameterError, match="verdict .* does not take the vertical"):
-        rigid_verdict(OPPENHEIM, motion)
+    with pytest.raises(InvalidParameterError, match="does not take the vertical"):
+        simulate_rigid(OPPENHEIM, motion, solver="events")
 
 
 def test_cli_vertical(capsys):

@@ -566,7 +566,7 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
     grp.add_argument("--record-vertical", type=path_argument, metavar="FILE", default=None,
                      help="the record's vertical component (same formats and --units; "
                           "positive upward); --scale scales both, --mirror reverses the "
-                          "horizontal only. Read by the rigid chain's time stepper")
+                          "horizontal only. Read by the rigid chain (the default model)")
     grp.add_argument("--units", choices=RECORD_UNITS, default=None,
                      help="units of a CSV record's acceleration column (default g; .AT2 files "
                           "are always in g)")
@@ -580,8 +580,8 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                      help="the pulse's vertical part: R a s(t) upward, s(t) the pulse's own "
                           "shape with its first lobe +1 (the step: +1 for t_p, -1/2 for 2 t_p); "
                           f"R in [-{MAX_VERTICAL_RATIO:g}, {MAX_VERTICAL_RATIO:g}], may be "
-                          "negative (default 0: none). Read by the four-link model "
-                          "(--model fourlink)")
+                          "negative (default 0: none). Read by the rigid chain (the default) "
+                          "and the four-link model")
 
 
 def record_from_args(path: Path, units: str | None, scale: float | None, *,

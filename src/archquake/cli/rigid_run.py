@@ -22,7 +22,6 @@ import argparse
 
 from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
-from archquake.ground.base import has_vertical
 from archquake.ranges import FRICTION_RANGE
 
 
@@ -44,8 +43,7 @@ def run(args: argparse.Namespace, arch, motion) -> int:
     if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
         from archquake.compare import rigid_to_verdict
 
-        if (args.friction is None and solver == "direct"  # the guarded verdict, its step
-                and not has_vertical(motion)):  # (it has no vertical: the recorded run's)
+        if args.friction is None and solver == "direct":  # the guarded verdict, its step
             from archquake.rigid import rigid_verdict
 
             verdict = rigid_verdict(arch, motion)

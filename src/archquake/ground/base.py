@@ -117,7 +117,8 @@ def refuse_vertical(motion: object, model: str) -> None:
     if has_vertical(motion):
         raise InvalidParameterError(
             f"{model} does not take the vertical ground acceleration yet: drop the pulse's "
-            "vertical (--vertical), or run the four-link model (--model fourlink)")
+            "vertical (--vertical), or run the rigid chain's time stepper (--model rigid) or the "
+            "four-link model (--model fourlink)")
 
 
 def time_floor(time_scale: float, duration: float) -> float:

@@ -29,9 +29,10 @@ class WithVertical:
 
     Notes
     -----
-    Read by the rigid chain's time stepper. A model that reads the motion only through its
-    compiled description (``kernel_spec``) does not take the vertical of a record yet, and
-    :meth:`kernel_spec` says so in one line rather than dropping the vertical silently.
+    Read by the rigid chain (its time stepper and its verdict path). A model that reads the
+    motion only through its compiled description (``kernel_spec``) does not take the vertical
+    of a record yet, and :meth:`kernel_spec` says so in one line rather than dropping the
+    vertical silently.
     """
 
     horizontal: Record
@@ -62,8 +63,8 @@ class WithVertical:
 
     def kernel_spec(self) -> tuple[int, np.ndarray]:
         raise InvalidParameterError(
-            "a record's vertical component is read by the rigid chain's time stepper only "
-            "(archquake run --model rigid, without --integrator events): leave "
+            "a record's vertical component is read by the rigid chain only (--model rigid, "
+            "without --integrator events): leave "
             "--record-vertical out for this model or command")
 
     def mirrored(self) -> WithVertical:
