@@ -324,7 +324,7 @@ def test_step_work_arrays_carry_nothing_between_steps():
     oq, ov = np.zeros((n, m.n_bodies, 3)), np.zeros((n, m.n_bodies, 3))
     run_p, run_slip = p_warm, slip
     cfg = RK.stepping(h, G, gap_tol, tol, MAX_SWEEPS, 0.0, RK.METHOD_DIRECT, True, hold)
-    RK.run(RK.pack_chain(m), cfg, RK.State(q, v, p_warm, slip), acc,
+    RK.run(RK.pack_chain(m), cfg, RK.State(q, v, p_warm, slip), acc, np.empty(0),
            RK.Record(1, oq, ov, np.zeros((n, RK.N_DIAG))), np.zeros(RK.N_DIAG))
     q, v = q0.copy(), v0.copy()
     p_warm = np.zeros((m.ja.size, 3))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from archquake._validate import require_range
 from archquake.cli.common import (
     add_arch_arguments,
     add_output_arguments,
@@ -18,7 +19,12 @@ from archquake.cli.loads_options import (
     passive_text,
 )
 from archquake.errors import InvalidParameterError
-from archquake.limit import MAX_KINEMATIC_VOUSSOIRS, limit_analysis
+from archquake.limit import (
+    MAX_KINEMATIC_VOUSSOIRS,
+    coupled_vertical_analysis,
+    limit_analysis,
+)
+from archquake.limit.analysis import MAX_VERTICAL_G
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -43,6 +49,18 @@ def register(sub: argparse._SubParsersAction) -> None:
              "both: check they agree; auto (default): both when the mechanisms can be "
              "enumerated, else static",
     )
+    vert = p.add_mutually_exclusive_group()
+    vert.add_argument(
+        "--vertical", type=float, default=0.0, metavar="K",
+        help="constant vertical ground acceleration, g, upward positive (> -1): every mass "
+             "that moves with the arch weighs (1 + K) times more, so the bare arch's lambda "
+             "scales by 1 + K. EN 1998-1's E_x + 0.3 E_z: K = -0.3 a_vg/g (default 0)",
+    )
+    vert.add_argument(
+        "--vertical-ratio", type=float, default=None, metavar="R",
+        help="a downward vertical R times the horizontal, acting together (EN 1998-5's "
+             "pseudo-static k_v = 0.5 k_h where a_vg/a_g > 0.6, else 0.33 k_h); in [0, 1]",
+    )
     add_loads_arguments(p)
     add_output_arguments(p)
     p.set_defaults(func=run)
@@ -59,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidParameterError(
             f"--method {method} enumerates the mechanisms and needs --voussoirs <= "
             f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use --method static (or auto)")
-    result = limit_analysis(arch, method=method, loads=loads)
+    result = _analysis(arch, method, loads, args)
     if args.plot is not None:
         from archquake.plotting.arch import save_limit_analysis
 
@@ -73,6 +91,17 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _analysis(arch, method: str, loads, args: argparse.Namespace):
+    if args.vertical_ratio is not None:
+        require_range("--vertical-ratio", args.vertical_ratio, 0.0, 1.0, low_open=False,
+                      high_open=False)
+        return coupled_vertical_analysis(arch, args.vertical_ratio, method=method, loads=loads)
+    if args.vertical:
+        require_range("--vertical", args.vertical, -1.0, MAX_VERTICAL_G, "g",
+                      high_open=False)
+    return limit_analysis(arch, method=method, loads=loads, vertical=args.vertical)
+
+
 def format_result(result) -> str:
     """Human-readable summary of a :class:`~archquake.limit.LimitAnalysis`."""
     arch = result.arch
@@ -83,6 +112,9 @@ def format_result(result) -> str:
         + ("(horizontal, load towards +x)" if result.loads is not None else
            "(horizontal, load towards +x; the mirror mechanism for -x)"),
     ]
+    if result.vertical_g:
+        lines.append(f"with a constant vertical ground acceleration of {result.vertical_g:+.4f} g "
+                     f"(upward positive): gravity {1 + result.vertical_g:.4f} g")
     lam_static, lam_kin = result.static_collapse_acceleration_g, result.kinematic_collapse_acceleration_g
     if lam_static is not None and lam_kin is not None:
         lines.append(

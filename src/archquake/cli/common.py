@@ -37,7 +37,9 @@ from archquake.geometry.checks import (  # the one place where an arch is checke
     check_voussoirs,
 )
 from archquake.ground import GroundMotion, Record, SinePulse, StepImpulse, read_record
+from archquake.ground.base import check_lift_off, check_motion_lift_off
 from archquake.ground.periods import check_periods, period_grid
+from archquake.ground.pulses import MAX_VERTICAL_RATIO
 from archquake.ground.records import UNITS
 from archquake.ranges import (  # the one place of every range
     FIGURE_SUFFIXES,
@@ -561,6 +563,10 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
     grp.add_argument("--record", type=path_argument, metavar="FILE",
                      help="recorded accelerogram: PEER .AT2 (in g) or .csv/.txt with two columns "
                           "time (s), acceleration (units from --units); positive = towards +x")
+    grp.add_argument("--record-vertical", type=path_argument, metavar="FILE", default=None,
+                     help="the record's vertical component (same formats and --units; "
+                          "positive upward); --scale scales both, --mirror reverses the "
+                          "horizontal only. Read by the rigid chain (the default model)")
     grp.add_argument("--units", choices=RECORD_UNITS, default=None,
                      help="units of a CSV record's acceleration column (default g; .AT2 files "
                           "are always in g)")
@@ -570,6 +576,12 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
     grp.add_argument("--mirror", action="store_true",
                      help="reverse the excitation: pulses start towards +x instead of -x; a "
                           "record is multiplied by -1")
+    grp.add_argument("--vertical", type=number, metavar="R", default=None,
+                     help="the pulse's vertical part: R a s(t) upward, s(t) the pulse's own "
+                          "shape with its first lobe +1 (the step: +1 for t_p, -1/2 for 2 t_p); "
+                          f"R in [-{MAX_VERTICAL_RATIO:g}, {MAX_VERTICAL_RATIO:g}], may be "
+                          "negative (default 0: none). Read by the rigid chain (the default) "
+                          "and the four-link model")
 
 
 def record_from_args(path: Path, units: str | None, scale: float | None, *,
@@ -629,18 +641,33 @@ def ground_motion_from_args(args: argparse.Namespace, *,
                 raise InvalidParameterError(
                     f"--{option} applies to --pulse, not to --record; scale a record with --scale"
                 )
+        if getattr(args, "vertical", None) is not None:
+            raise InvalidParameterError("--vertical applies to --pulse (a pulse's vertical "
+                                        "part), not to --record")
         motion = record_from_args(record, args.units, args.scale, g=g)
-        return motion.mirrored() if args.mirror else motion
-    for option in ("units", "scale"):
-        if getattr(args, option) is not None:
+        motion = motion.mirrored() if args.mirror else motion
+        up = getattr(args, "record_vertical", None)
+        if up is None:
+            return motion
+        from archquake.ground.vertical import WithVertical
+
+        both = WithVertical(motion, record_from_args(up, args.units, args.scale, g=g))
+        check_motion_lift_off(both, g)
+        return both
+    for option in ("units", "scale", "record_vertical"):
+        if getattr(args, option, None) is not None:
             raise InvalidParameterError(
-                f"--{option} applies to --record, not to --pulse; set the pulse with --magnitude"
+                f"--{option.replace('_', '-')} applies to --record, not to --pulse; set the "
+                "pulse with --magnitude (and its vertical with --vertical)"
             )
     if args.magnitude is None:
         raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")
     check_range("--magnitude", args.magnitude, *MAGNITUDE_RANGE_G, "g",
                 hint="use --mirror to reverse the pulse" if args.magnitude < 0 else "")
     direction = 1 if args.mirror else -1
+    vertical = getattr(args, "vertical", None)
+    vertical = 0.0 if vertical is None else vertical
+    check_range("--vertical", vertical, -MAX_VERTICAL_RATIO, MAX_VERTICAL_RATIO)
     if pulse == "step":
         if args.period is not None:
             raise InvalidParameterError("--period applies to --pulse sine; the step impulse "
@@ -649,14 +676,27 @@ def ground_motion_from_args(args: argparse.Namespace, *,
             raise InvalidParameterError("--pulse step needs --duration TP (s, > 0): the length "
                                         "t_p of its first lobe")
         check_range("--duration", args.duration, *PULSE_TIME_RANGE_S, "s")
-        return StepImpulse.from_g(args.magnitude, args.duration, direction, g=g)
+        return _lifts_off(StepImpulse.from_g(args.magnitude, args.duration, direction, g=g,
+                                             vertical=vertical), g)
     if args.duration is not None:
         raise InvalidParameterError("--duration applies to --pulse step; the sine pulse takes "
                                     "--period T (s)")
     if args.period is None:
         raise InvalidParameterError("--pulse sine needs --period T (s, > 0)")
     check_range("--period", args.period, *PULSE_TIME_RANGE_S, "s")
-    return SinePulse.from_g(args.magnitude, args.period, direction, g=g)
+    return _lifts_off(SinePulse.from_g(args.magnitude, args.period, direction, g=g,
+                                       vertical=vertical), g)
+
+
+def _lifts_off(motion: GroundMotion, g: float) -> GroundMotion:
+    """The pulse, unless its vertical part lifts the arch off (one line naming --vertical)."""
+    kind, params = motion.kernel_spec()
+    try:
+        check_lift_off(kind, params, g)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"--vertical {params[3]:g} with --magnitude "
+                                    f"{params[0] / g:g}: {exc}") from None
+    return motion
 
 
 #: Step of ``--periods START:STOP`` when none is given, s.

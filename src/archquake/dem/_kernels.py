@@ -30,7 +30,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from archquake.ground._kernel import ground_acceleration
+from archquake.ground._kernel import ground_acceleration, vertical_in_piece
 
 # parameter indices
 P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX, P_BROAD = range(10)
@@ -441,6 +441,9 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     acc[A_SE] = contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force,
                                dforce)
     ag = ground_acceleration(kind, gparams, t) if ground_on else 0.0
+    # a vertical ground acceleration, in the ground's vertical frame: gravity g + av on every
+    # free block (its input work -m av on the vertical velocities)
+    av = vertical_in_piece(kind, gparams, t, t) if ground_on else 0.0
     vb_old = acc[A_VB]
     vb_new = vb_old + ag * dt
     kinetic = 0.0
@@ -468,7 +471,7 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
         dforce[i, 1] -= alpha * m * uy
         dforce[i, 2] -= alpha * inert * w
         fx = force[i, 0] + dforce[i, 0]
-        fy = force[i, 1] + dforce[i, 1] - m * g
+        fy = force[i, 1] + dforce[i, 1] - m * (g + av)
         mz = force[i, 2] + dforce[i, 2]
         vx = state[i, 3] + dt * fx / m
         vy = state[i, 4] + dt * fy / m
@@ -482,7 +485,7 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
         my = 0.5 * (uy + vy)
         mw = 0.5 * (w + wn)
         p_damp += dforce[i, 0] * mx + dforce[i, 1] * my + dforce[i, 2] * mw
-        p_in += -m * ag * mx
+        p_in += -m * ag * mx - m * av * my
         record[i, 3] = 0.5 * (state[i, 3] + vx)
         record[i, 4] = my
         record[i, 5] = mw

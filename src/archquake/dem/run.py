@@ -35,7 +35,7 @@ from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
-from archquake.ground.base import GroundMotion, check_motion
+from archquake.ground.base import GroundMotion, check_lift_off, check_motion
 from archquake.ranges import DEM_MAX_BLOCK_STEPS, DEM_SECONDS_PER_BLOCK_STEP
 
 #: Most time steps a run may take (guards against absurd stiffness/duration choices).
@@ -328,6 +328,7 @@ def simulate_dem(
         raise InvalidParameterError(f"settings must be a DemSettings, got {type(settings).__name__}")
     g = require_gravity(g)
     kind, gparams = check_motion(motion).kernel_spec()
+    check_lift_off(kind, gparams, g)
     gparams = np.ascontiguousarray(gparams, dtype=float)
     omega = float("nan")
     if settings.time_step is None:

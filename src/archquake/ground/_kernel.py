@@ -73,6 +73,16 @@ def ground_in_piece(kind, params, t, t_left):
 
 
 @nb.njit(cache=True, nogil=True)
+def vertical_in_piece(kind, params, t, t_left):
+    """The upward ground acceleration a_v(t), m/s^2, like :func:`ground_in_piece`: a pulse's
+    vertical part R a s(t) (R its fourth parameter, when present) plus its steady vertical c
+    (its fifth, held through the whole run), else 0."""
+    if (kind == KIND_STEP or kind == KIND_SINE) and params.shape[0] > 3:
+        return params[3] * params[2] * ground_in_piece(kind, params, t, t_left) + params[4]
+    return 0.0
+
+
+@nb.njit(cache=True, nogil=True)
 def next_breakpoint(kind, params, t):
     """Smallest breakpoint of the excitation strictly after ``t`` (inf if none)."""
     eps = 1e-12 * (1.0 + abs(t))

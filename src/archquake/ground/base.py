@@ -11,11 +11,15 @@ Every motion also describes itself to the compiled kernels as ``(kind, params)``
 ==========  =================================  ==========================================
 kind        params (float64)                   x_g''(t)
 ==========  =================================  ==========================================
-0 step      [a, t_p, direction]                direction*a on [0, t_p), -direction*a/2 on
+0 step      [a, t_p, direction(, R)]           direction*a on [0, t_p), -direction*a/2 on
                                                [t_p, 3 t_p), 0 after (Oppenheim's impulse)
-1 sine      [a, T, direction]                  direction*a*sin(2 pi t/T) on [0, T), 0 after
+1 sine      [a, T, direction(, R)]             direction*a*sin(2 pi t/T) on [0, T), 0 after
 2 sampled   [t0, dt, x_0, x_1, ..., x_{N-1}]   linear between samples, 0 outside
 ==========  =================================  ==========================================
+
+A pulse with a vertical carries [R, c] as its fourth and fifth parameters: the upward ground
+acceleration is then a_v(t) = R * direction * x_g''(t) + c, the pulse's own shape (first lobe
++1) times R a, plus a steady c m/s^2 held through the whole run.
 """
 
 from __future__ import annotations
@@ -82,9 +86,12 @@ _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
                 KIND_SAMPLED: ("record time step DT", 1.0)}
 
 
-def check_motion(motion: object, needs: tuple[str, ...] | None = None) -> GroundMotion:
+def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
+                 vertical: str | None = None) -> GroundMotion:
     """``motion`` itself if it is a ground motion (or, given ``needs``, has those attributes:
-    what a model reads of it); else the one line that says what is."""
+    what a model reads of it); else the one line that says what is. A model that does not
+    read the vertical ground acceleration names itself in ``vertical``, and a motion with a
+    vertical is refused for it (:func:`refuse_vertical`)."""
     ok = (isinstance(motion, GroundMotion) if needs is None
           else all(hasattr(motion, name) for name in needs))
     if not ok:
@@ -92,7 +99,26 @@ def check_motion(motion: object, needs: tuple[str, ...] | None = None) -> Ground
             f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
             f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
             f"{type(motion).__name__}")
+    if vertical is not None:
+        refuse_vertical(motion, vertical)
     return cast(GroundMotion, motion)
+
+
+def has_vertical(motion: object) -> bool:
+    """Whether ``motion`` carries a vertical ground acceleration (a pulse's R or steady c, or
+    a record's vertical component)."""
+    v = getattr(motion, "vertical", 0.0)
+    return (v is not None and not isinstance(v, (int, float))) or bool(
+        v or getattr(motion, "steady_vertical", 0.0))
+
+
+def refuse_vertical(motion: object, model: str) -> None:
+    """The one line for a model that does not read the vertical ground acceleration yet."""
+    if has_vertical(motion):
+        raise InvalidParameterError(
+            f"{model} does not take the vertical ground acceleration yet: drop the pulse's "
+            "vertical (--vertical), or run the rigid chain's time stepper (--model rigid) or the "
+            "four-link model (--model fourlink)")
 
 
 def time_floor(time_scale: float, duration: float) -> float:
@@ -140,6 +166,37 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
             f"are below the integrator's time resolution), got {value:g}")
 
 
+def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
+    """Refuse a motion whose vertical part reaches g downward: with g + a_v(t) <= 0 the arch
+    leaves its supports, which no model here describes (the rigid-body equations assume the
+    blocks stay pressed together by gravity)."""
+    if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
+        return
+    a, r, c = float(params[0]), float(params[3]), float(params[4])
+    lowest = c + (min(r * a, -0.5 * r * a) if kind == KIND_STEP else -abs(r) * a)
+    if not g + lowest > 0.0:
+        raise InvalidParameterError(
+            f"the vertical ground acceleration (R = {r:g}, a = {a / g:.3g} g, steady "
+            f"{c / g:.3g} g) reaches {-lowest / g:.3g} g downward: g + a_v <= 0 lifts the arch "
+            "off its supports, outside every model; keep the downward vertical below g")
+
+
+def check_motion_lift_off(motion: object, g: float) -> None:
+    """:func:`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
+    component (its lowest sample)."""
+    if not has_vertical(motion):
+        return
+    vertical = getattr(motion, "vertical", None)
+    samples = getattr(vertical, "accelerations", None)
+    if samples is None:
+        kind, params = cast(GroundMotion, motion).kernel_spec()
+        check_lift_off(kind, params, g)
+    elif not g + float(np.min(samples)) > 0.0:
+        raise InvalidParameterError(
+            f"the vertical component reaches {-float(np.min(samples)) / g:.3g} g downward: "
+            "g + a_v <= 0 lifts the arch off its supports, outside every model; lower --scale")
+
+
 def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
     """One line naming a ground motion for text output: a pulse by its kind, magnitude (g)
     and duration or period (s), and the side of its first lobe when mirrored; a record by its
@@ -162,10 +219,12 @@ def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
     d = motion if isinstance(motion, Mapping) else motion.to_dict()
     # the default pulse's first lobe is towards -x (module docstring)
     towards = ", first towards +x (mirrored)" if d.get("direction", -1) > 0 else ""
+    up = (f", vertical {d['vertical_ratio']:g} a s(t)" if d.get("vertical_ratio") else "") + (
+        f", steady vertical {d['steady_vertical_g']:.3g} g" if d.get("steady_vertical_g") else "")
     if d.get("type") == "step":
-        return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s" + towards
+        return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s" + towards + up
     if d.get("type") == "sine":
-        return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s" + towards
+        return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s" + towards + up
     return str(d.get("name", getattr(motion, "name", "record")))
 
 
@@ -173,14 +232,15 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
     """The largest ground acceleration towards +x and towards -x over the whole motion, m/s^2
     (each >= 0), exactly, from its ``kernel_spec`` (module docstring): the step impulse's two
     levels, the sine's magnitude both ways, a record's extreme samples (it is linear between
-    them and zero outside). None for a motion that does not describe itself so.
+    them and zero outside). None for a motion that does not describe itself so, and for one with
+    a vertical ground acceleration (the onset then moves with g + a_v(t)).
 
     >>> from archquake.ground.pulses import StepImpulse
     >>> acceleration_peaks(StepImpulse(2.0, 0.1, direction=-1))
     (1.0, 2.0)
     """
     spec = getattr(motion, "kernel_spec", None)
-    if spec is None:
+    if spec is None or has_vertical(motion):  # the onset moves with g + a_v(t)
         return None
     kind, params = spec()
     params = np.asarray(params, dtype=float)
@@ -197,5 +257,7 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
     return max(float(levels.max()), 0.0), max(float(-levels.min()), 0.0)
 
 
-__all__ = ["GroundMotion", "acceleration_peaks", "check_motion", "motion_label", "KIND_STEP",
-           "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION", "check_time_resolution", "time_floor"]
+__all__ = ["GroundMotion", "acceleration_peaks", "check_lift_off", "check_motion",
+           "check_motion_lift_off", "has_vertical", "refuse_vertical", "motion_label",
+           "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION", "check_time_resolution",
+           "time_floor"]

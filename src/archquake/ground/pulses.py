@@ -28,6 +28,18 @@ def _direction(value: object) -> int:
     return 1 if value == 1 else -1
 
 
+def _vertical(value: object) -> float:
+    """The vertical ratio R, finite, in [-MAX_VERTICAL_RATIO, MAX_VERTICAL_RATIO]."""
+    from archquake._validate import require_range
+
+    return require_range("vertical ratio", value, -MAX_VERTICAL_RATIO, MAX_VERTICAL_RATIO,
+                         low_open=False, high_open=False)
+
+
+#: The largest |R| of a pulse's vertical part R a s(t).
+MAX_VERTICAL_RATIO = 2.0
+
+
 def _magnitude(value: object, unit: str) -> float:
     """A finite magnitude >= 0 in ``unit`` (the direction carries the sign)."""
     a = require_finite("magnitude", value, unit)
@@ -36,6 +48,27 @@ def _magnitude(value: object, unit: str) -> float:
             f"magnitude must be >= 0 {unit}, got {a:g}; use direction=+1/-1 for the sign"
         )
     return a
+
+
+def _with_vertical(params: list[float], vertical: float, steady: float) -> np.ndarray:
+    """A pulse's kernel parameters: [a, duration, direction], then [R, c] only when there is
+    a vertical (so that a pulse without one is described as before)."""
+    return np.array(params + [vertical, steady] if vertical or steady else params)
+
+
+def _vertical_dict(vertical: float, steady: float, g: float) -> dict:
+    return (({"vertical_ratio": vertical} if vertical else {})
+            | ({"steady_vertical_m_s2": steady, "steady_vertical_g": steady / g} if steady
+               else {}))
+
+
+def _vertical_repr(vertical: float, steady: float) -> str:
+    return ((f", vertical={vertical:g}" if vertical else "")
+            + (f", steady_vertical={steady:g} m/s^2" if steady else ""))
+
+
+def _steady(value: object) -> float:
+    return require_finite("steady vertical", value, "m/s^2")
 
 
 @dataclass(frozen=True)
@@ -55,6 +88,14 @@ class StepImpulse:
         t_p, s (> 0): length of the first lobe; the whole impulse lasts 3 t_p.
     direction : {-1, +1}
         Side of the first lobe; -1 (default) drives the paper's first mechanism.
+    vertical : float
+        R: the pulse's vertical part, R a s(t) m/s^2 upward, s(t) the pulse's own shape with
+        its first lobe +1 (+1 for t_p, -1/2 for 2 t_p, then 0); R may be negative, 0 (default)
+        is no vertical.
+    steady_vertical : float
+        c, m/s^2 upward: a constant vertical ground acceleration held through the whole run
+        (before, during and after the pulse), a code's pseudo-static k_v; 0 (default) is none.
+        Under it the arch behaves as under gravity g + c.
 
     Examples
     --------
@@ -67,19 +108,24 @@ class StepImpulse:
     pulse_duration: float
     direction: int = -1
     name: str = "step impulse"
+    vertical: float = 0.0
+    steady_vertical: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "magnitude", _magnitude(self.magnitude, "m/s^2"))
         t_p = require_positive("pulse duration t_p", self.pulse_duration, "s")
         object.__setattr__(self, "pulse_duration", t_p)
         object.__setattr__(self, "direction", _direction(self.direction))
+        object.__setattr__(self, "vertical", _vertical(self.vertical))
+        object.__setattr__(self, "steady_vertical", _steady(self.steady_vertical))
 
     @classmethod
     def from_g(cls, magnitude_g: float, duration: float, direction: int = -1, *,
-               g: float = STANDARD_GRAVITY) -> StepImpulse:
-        """Build from a magnitude in multiples of g (``duration`` is t_p, s)."""
+               g: float = STANDARD_GRAVITY, vertical: float = 0.0) -> StepImpulse:
+        """Build from a magnitude in multiples of g (``duration`` is t_p, s; ``vertical`` is
+        the ratio R of the vertical part)."""
         return cls(_magnitude(magnitude_g, "g") * require_gravity(g),
-                   duration, direction)
+                   duration, direction, vertical=vertical)
 
     @property
     def duration(self) -> float:
@@ -88,7 +134,7 @@ class StepImpulse:
     def __repr__(self) -> str:
         return (f"StepImpulse(magnitude={self.magnitude:g} m/s^2 "
                 f"({self.magnitude / STANDARD_GRAVITY:.3g} g), pulse_duration={self.pulse_duration:g} s, "
-                f"direction={self.direction:+d})")
+                f"direction={self.direction:+d}{_vertical_repr(self.vertical, self.steady_vertical)})")
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
@@ -98,23 +144,33 @@ class StepImpulse:
             np.where((t >= self.pulse_duration) & (t < 3 * self.pulse_duration), -0.5 * a, 0.0),
         )
 
+    def vertical_acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """The vertical ground acceleration R a s(t) + c at times ``t`` (s), m/s^2, upward."""
+        return self.vertical * self.direction * self.acceleration(t) + self.steady_vertical
+
     def breakpoints(self) -> np.ndarray:
         return np.array([0.0, self.pulse_duration, 3.0 * self.pulse_duration])
 
     def kernel_spec(self) -> tuple[int, np.ndarray]:
-        return KIND_STEP, np.array([self.magnitude, self.pulse_duration, float(self.direction)])
+        return KIND_STEP, _with_vertical(
+            [self.magnitude, self.pulse_duration, float(self.direction)], self.vertical,
+            self.steady_vertical)
 
     def mirrored(self) -> StepImpulse:
-        return StepImpulse(self.magnitude, self.pulse_duration, -self.direction, self.name)
+        return StepImpulse(self.magnitude, self.pulse_duration, -self.direction, self.name,
+                           self.vertical, self.steady_vertical)
 
     def scaled(self, factor: float) -> StepImpulse:
         f = require_finite("scale factor", factor)
         d = self.direction if f >= 0 else -self.direction
-        return StepImpulse(abs(f) * self.magnitude, self.pulse_duration, d, self.name)
+        r = self.vertical if f >= 0 else -self.vertical  # every acceleration times f
+        return StepImpulse(abs(f) * self.magnitude, self.pulse_duration, d, self.name, r,
+                           f * self.steady_vertical)
 
     def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
         return {"type": "step", "magnitude_m_s2": self.magnitude, "magnitude_g": self.magnitude / g,
-                "duration_s": self.pulse_duration, "direction": self.direction}
+                "duration_s": self.pulse_duration, "direction": self.direction
+                } | _vertical_dict(self.vertical, self.steady_vertical, g)
 
 
 @dataclass(frozen=True)
@@ -131,24 +187,34 @@ class SinePulse:
         T, s (> 0).
     direction : {-1, +1}
         Side of the first half cycle; -1 (default) drives the paper's first mechanism.
+    vertical : float
+        R: the pulse's vertical part, R a sin(2 pi t / T) m/s^2 upward on [0, T) (first half
+        cycle upward for R > 0); 0 (default) is no vertical.
+    steady_vertical : float
+        c, m/s^2 upward, held through the whole run (as for :class:`StepImpulse`).
     """
 
     magnitude: float
     period: float
     direction: int = -1
     name: str = "sine pulse"
+    vertical: float = 0.0
+    steady_vertical: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "magnitude", _magnitude(self.magnitude, "m/s^2"))
         object.__setattr__(self, "period", require_positive("period", self.period, "s"))
         object.__setattr__(self, "direction", _direction(self.direction))
+        object.__setattr__(self, "vertical", _vertical(self.vertical))
+        object.__setattr__(self, "steady_vertical", _steady(self.steady_vertical))
 
     @classmethod
     def from_g(cls, magnitude_g: float, period: float, direction: int = -1, *,
-               g: float = STANDARD_GRAVITY) -> SinePulse:
-        """Build from a magnitude in multiples of g."""
+               g: float = STANDARD_GRAVITY, vertical: float = 0.0) -> SinePulse:
+        """Build from a magnitude in multiples of g (``vertical`` is the ratio R of the
+        vertical part)."""
         return cls(_magnitude(magnitude_g, "g") * require_gravity(g),
-                   period, direction)
+                   period, direction, vertical=vertical)
 
     @property
     def duration(self) -> float:
@@ -157,7 +223,7 @@ class SinePulse:
     def __repr__(self) -> str:
         return (f"SinePulse(magnitude={self.magnitude:g} m/s^2 "
                 f"({self.magnitude / STANDARD_GRAVITY:.3g} g), period={self.period:g} s, "
-                f"direction={self.direction:+d})")
+                f"direction={self.direction:+d}{_vertical_repr(self.vertical, self.steady_vertical)})")
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         t = np.asarray(t, dtype=float)
@@ -165,23 +231,33 @@ class SinePulse:
         a = self.direction * self.magnitude
         return np.where(inside, a * np.sin(2 * math.pi * t / self.period), 0.0)
 
+    def vertical_acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """The vertical ground acceleration R a s(t) + c at times ``t`` (s), m/s^2, upward."""
+        return self.vertical * self.direction * self.acceleration(t) + self.steady_vertical
+
     def breakpoints(self) -> np.ndarray:
         return np.array([0.0, self.period])
 
     def kernel_spec(self) -> tuple[int, np.ndarray]:
-        return KIND_SINE, np.array([self.magnitude, self.period, float(self.direction)])
+        return KIND_SINE, _with_vertical(
+            [self.magnitude, self.period, float(self.direction)], self.vertical,
+            self.steady_vertical)
 
     def mirrored(self) -> SinePulse:
-        return SinePulse(self.magnitude, self.period, -self.direction, self.name)
+        return SinePulse(self.magnitude, self.period, -self.direction, self.name, self.vertical,
+                         self.steady_vertical)
 
     def scaled(self, factor: float) -> SinePulse:
         f = require_finite("scale factor", factor)
         d = self.direction if f >= 0 else -self.direction
-        return SinePulse(abs(f) * self.magnitude, self.period, d, self.name)
+        r = self.vertical if f >= 0 else -self.vertical  # every acceleration times f
+        return SinePulse(abs(f) * self.magnitude, self.period, d, self.name, r,
+                         f * self.steady_vertical)
 
     def to_dict(self, *, g: float = STANDARD_GRAVITY) -> dict:
         return {"type": "sine", "magnitude_m_s2": self.magnitude, "magnitude_g": self.magnitude / g,
-                "period_s": self.period, "direction": self.direction}
+                "period_s": self.period, "direction": self.direction
+                } | _vertical_dict(self.vertical, self.steady_vertical, g)
 
 
 @dataclass(frozen=True)
@@ -234,11 +310,13 @@ class PulseFamily(str, Enum):
             raise InvalidParameterError(
                 f"pulse family must be 'step' or 'sine', got {value!r}") from None
 
-    def motion(self, magnitude_g: float, duration: float, *, g: float = STANDARD_GRAVITY) -> GroundMotion:
-        """The pulse of magnitude ``magnitude_g`` (g) and duration (s), first lobe towards -x."""
+    def motion(self, magnitude_g: float, duration: float, *, g: float = STANDARD_GRAVITY,
+               vertical: float = 0.0) -> GroundMotion:
+        """The pulse of magnitude ``magnitude_g`` (g) and duration (s), first lobe towards -x,
+        with a vertical part R = ``vertical`` times its shape."""
         if self is PulseFamily.STEP:
-            return StepImpulse.from_g(magnitude_g, duration, g=g)
-        return SinePulse.from_g(magnitude_g, duration, g=g)
+            return StepImpulse.from_g(magnitude_g, duration, g=g, vertical=vertical)
+        return SinePulse.from_g(magnitude_g, duration, g=g, vertical=vertical)
 
     @property
     def kind(self) -> int:

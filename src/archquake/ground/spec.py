@@ -72,6 +72,9 @@ class ExcitationSpec:
         its name and the SHA-256 of its kernel description (:func:`motion_digest`), and
         ``units`` is then "m/s2". This is the case kind "a record scaled by a factor" of
         incremental dynamic analysis (:mod:`archquake.ida`).
+    vertical_ratio : float, optional
+        ``step`` and ``sine`` only: the pulse's vertical part R (its shape times R a, upward;
+        :class:`~archquake.ground.StepImpulse`), in [-2, 2]; omitted or 0: none.
     """
 
     kind: ExcitationKind
@@ -84,6 +87,7 @@ class ExcitationSpec:
     scale: float | None = None
     file_sha256: str | None = field(default=None, compare=False)
     motion: Any = field(default=None, compare=False, repr=False)
+    vertical_ratio: float | None = None
 
     def __post_init__(self) -> None:
         try:
@@ -94,10 +98,12 @@ class ExcitationSpec:
                 f"got {self.kind!r}"
             ) from None
         _set(self, "kind", kind)
-        allowed = {ExcitationKind.STEP: {"magnitude_g", "duration_s", "direction"},
-                   ExcitationKind.SINE: {"magnitude_g", "period_s", "direction"},
+        allowed = {ExcitationKind.STEP: {"magnitude_g", "duration_s", "direction",
+                                         "vertical_ratio"},
+                   ExcitationKind.SINE: {"magnitude_g", "period_s", "direction", "vertical_ratio"},
                    ExcitationKind.RECORD: {"file", "units", "scale", "direction"}}[kind]
-        for name in ("magnitude_g", "duration_s", "period_s", "file", "units", "scale"):
+        for name in ("magnitude_g", "duration_s", "period_s", "file", "units", "scale",
+                     "vertical_ratio"):
             if getattr(self, name) is not None and name not in allowed:
                 raise InvalidParameterError(f"{name} does not apply to a {kind.value} excitation")
         direction = -1 if self.direction is None and kind is not ExcitationKind.RECORD else (
@@ -139,6 +145,10 @@ class ExcitationSpec:
         _set(self, time_name, require_range(time_name, getattr(self, time_name),
                                             *PULSE_TIME_RANGE_S, "s", low_open=False,
                                             high_open=False))
+        if self.vertical_ratio is not None:
+            _set(self, "vertical_ratio", require_range("vertical_ratio", self.vertical_ratio,
+                                                       -2.0, 2.0, low_open=False,
+                                                       high_open=False) or None)
 
     def build(self, *, g: float = STANDARD_GRAVITY):
         """The :class:`~archquake.ground.GroundMotion` (SI)."""
@@ -147,10 +157,12 @@ class ExcitationSpec:
         assert self.direction is not None  # __post_init__ sets -1 or +1
         if self.kind is ExcitationKind.STEP:
             assert self.magnitude_g is not None and self.duration_s is not None
-            return StepImpulse.from_g(self.magnitude_g, self.duration_s, self.direction, g=g)
+            return StepImpulse.from_g(self.magnitude_g, self.duration_s, self.direction, g=g,
+                                      vertical=self.vertical_ratio or 0.0)
         if self.kind is ExcitationKind.SINE:
             assert self.magnitude_g is not None and self.period_s is not None
-            return SinePulse.from_g(self.magnitude_g, self.period_s, self.direction, g=g)
+            return SinePulse.from_g(self.magnitude_g, self.period_s, self.direction, g=g,
+                                    vertical=self.vertical_ratio or 0.0)
         if self.motion is not None:
             assert self.scale is not None  # __post_init__ sets it for a record
             return self.motion.scaled(self.scale * self.direction)
@@ -174,6 +186,8 @@ class ExcitationSpec:
             out.update(magnitude_g=self.magnitude_g, duration_s=self.duration_s)
         else:
             out.update(magnitude_g=self.magnitude_g, period_s=self.period_s)
+        if self.vertical_ratio:  # only when given: the ids of cases without one stay
+            out.update(vertical_ratio=self.vertical_ratio)
         return out
 
     @cached_property

@@ -10,6 +10,7 @@ from archquake.limit.analysis import (
     LimitAnalysis,
     Method,
     collapse_joint_forces,
+    coupled_vertical_analysis,
     hinges_of,
     limit_analysis,
 )
@@ -49,6 +50,7 @@ __all__ = [
     "joint_forces",
     "joint_frames",
     "kinematic_collapse",
+    "coupled_vertical_analysis",
     "limit_analysis",
     "locked_joint_forces",
     "mechanism_multipliers",

@@ -51,7 +51,12 @@ from enum import StrEnum
 
 import numpy as np
 
-from archquake._validate import require_choice, require_gravity, require_instance
+from archquake._validate import (
+    require_choice,
+    require_gravity,
+    require_instance,
+    require_range,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
@@ -82,6 +87,9 @@ class Method(StrEnum):
     STATIC = "static"
     KINEMATIC = "kinematic"
     BOTH = "both"
+
+#: The largest constant vertical ground acceleration the statics take, g (upward).
+MAX_VERTICAL_G = 5.0
 
 
 @dataclass(frozen=True)
@@ -123,6 +131,8 @@ class LimitAnalysis:
         With loads, the hinges of the collapse: 4, or more where passive pressure makes the
         collapse combine two mechanisms (then ``mechanism`` is the least four-hinge one, an
         upper bound, and lambda is the line-of-thrust program's).
+    vertical_g : float
+        The constant vertical ground acceleration of the analysis, g, upward positive (0: none).
     """
 
     arch: VoussoirChain
@@ -137,6 +147,7 @@ class LimitAnalysis:
     carried: BlockExtras | None = None
     opposite_collapse_acceleration_g: float | None = None
     hinge_count: int | None = None
+    vertical_g: float = 0.0
 
     @property
     def symmetric(self) -> bool:
@@ -192,7 +203,7 @@ class LimitAnalysis:
                 "eccentricity_m": jf.eccentricity,
                 "friction_ratio": self.friction_ratios,
             },
-        } | self._loads_dict()
+        } | self._loads_dict() | ({"vertical_g": self.vertical_g} if self.vertical_g else {})
 
     def _loads_dict(self) -> dict:
         if self.loads is None:
@@ -224,7 +235,7 @@ def collapse_joint_forces(
 
 def limit_analysis(
     arch: VoussoirChain, *, method: Method | str = Method.STATIC, g: float = STANDARD_GRAVITY,
-    loads: Loads | None = None,
+    loads: Loads | None = None, vertical: float = 0.0,
 ) -> LimitAnalysis:
     """Equivalent static analysis of ``arch`` under a horizontal acceleration towards +x.
 
@@ -241,6 +252,11 @@ def limit_analysis(
         loads' weight and horizontal inertia act at their centroids, the backing holds the
         joints below its top. Its traffic, if any, is left out (see
         :func:`~archquake.limit.capacity.traffic_capacity`).
+    vertical : float, optional
+        A constant vertical ground acceleration, in g, upward positive (> -1): every mass that
+        moves with the arch weighs m g (1 + vertical), the horizontal inertia stays m a. The
+        bare arch then collapses at (1 + vertical) times its lambda at 0 (only the direction
+        of the body force matters); loads whose mass does not move keep their weight.
 
     Returns
     -------
@@ -268,8 +284,11 @@ def limit_analysis(
             f"the kinematic method enumerates mechanisms and needs voussoirs <= "
             f"{MAX_KINEMATIC_VOUSSOIRS}, got {arch.voussoirs}; use method='static'"
         )
-    if loads is not None:
-        return _loaded_analysis(arch, method, g, loads)
+    if vertical:
+        vertical = require_range("vertical", vertical, -1.0, MAX_VERTICAL_G, "g",
+                                 high_open=False)
+    if loads is not None or vertical:
+        return _loaded_analysis(arch, method, g, loads, vertical)
     lam_static = lam_kin = None
     if method is not Method.KINEMATIC:
         lam_static, mech = static_collapse(arch)  # raises UnstableArchError
@@ -298,15 +317,23 @@ def limit_analysis(
     )
 
 
-def _loaded_analysis(arch: VoussoirChain, method: Method, g: float, loads: Loads
-                     ) -> LimitAnalysis:
+def _loaded_analysis(arch: VoussoirChain, method: Method, g: float, loads: Loads | None,
+                     vertical: float = 0.0) -> LimitAnalysis:
     from archquake.geometry.loads import block_extras
     from archquake.limit.loaded import loaded_collapse, seismic_case
 
+    if loads is None:  # the bare arch under a vertical: the same linear program, no loads
+        res = loaded_collapse(seismic_case(arch, None, g=g, vertical=vertical), method.value)
+        return LimitAnalysis(
+            arch=arch, collapse_acceleration_g=res.multiplier, mechanism=res.mechanism,
+            joint_forces=res.joint_forces, static_collapse_acceleration_g=res.static_multiplier,
+            kinematic_collapse_acceleration_g=res.kinematic_multiplier, method=method,
+            g=float(g), vertical_g=vertical)
     require_instance("loads", loads, Loads, "a Loads (archquake.geometry.loads)")
     dead = loads.without_traffic()
-    res = loaded_collapse(seismic_case(arch, dead, g=g), method.value)
-    opposite = loaded_collapse(seismic_case(arch, dead, direction=-1, g=g), method.value)
+    res = loaded_collapse(seismic_case(arch, dead, g=g, vertical=vertical), method.value)
+    opposite = loaded_collapse(seismic_case(arch, dead, direction=-1, g=g, vertical=vertical),
+                               method.value)
     return LimitAnalysis(
         arch=arch,
         collapse_acceleration_g=res.multiplier,
@@ -320,7 +347,47 @@ def _loaded_analysis(arch: VoussoirChain, method: Method, g: float, loads: Loads
         carried=block_extras(arch, dead, g=g),
         opposite_collapse_acceleration_g=opposite.multiplier,
         hinge_count=res.hinge_count,
+        vertical_g=vertical,
     )
+
+
+def coupled_vertical_analysis(
+    arch: VoussoirChain, ratio: float, *, method: Method | str = Method.STATIC,
+    g: float = STANDARD_GRAVITY, loads: Loads | None = None, xtol: float = 1e-10,
+) -> LimitAnalysis:
+    """The collapse under a horizontal acceleration lambda g with a concurrent downward
+    vertical ratio * lambda g (EN 1998-5's pseudo-static k_v = 0.5 k_h or 0.33 k_h, taken
+    with the sign that lightens the arch).
+
+    Solves lambda = lambda(vertical = -ratio * lambda) by Brent's method on [0, lambda(0)]; for
+    an arch whose loads are all body forces this is lambda(0) / (1 + ratio lambda(0)).
+
+    Parameters
+    ----------
+    ratio : float
+        k_v / k_h, in [0, 1].
+    method, g, loads
+        As in :func:`limit_analysis`.
+
+    Returns
+    -------
+    LimitAnalysis
+        With ``vertical_g`` = -ratio * lambda.
+    """
+    from scipy.optimize import brentq
+
+    ratio = require_range("vertical ratio", ratio, 0.0, 1.0, low_open=False, high_open=False)
+    base = limit_analysis(arch, method=method, g=g, loads=loads)
+    lam0 = base.collapse_acceleration_g
+    if ratio == 0.0:
+        return base
+
+    def gap(lam: float) -> float:
+        return limit_analysis(arch, method=method, g=g, loads=loads,
+                              vertical=-ratio * lam).collapse_acceleration_g - lam
+
+    lam = brentq(gap, 0.0, lam0, xtol=xtol)
+    return limit_analysis(arch, method=method, g=g, loads=loads, vertical=-ratio * lam)
 
 
 def hinges_of(arch: VoussoirChain) -> HingeMechanism:
@@ -441,6 +508,7 @@ __all__ = [
     "CERTIFIED_VOUSSOIRS",
     "LimitAnalysis",
     "certified_mechanism",
+    "coupled_vertical_analysis",
     "hinges_of",
     "Method",
     "collapse_joint_forces",

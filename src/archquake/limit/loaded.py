@@ -96,19 +96,25 @@ def _dead(arch: VoussoirChain, extras: BlockExtras, g: float) -> tuple[np.ndarra
 
 
 def seismic_case(arch: VoussoirChain, loads: Loads | None = None, *, direction: int = 1,
-                 g: float = STANDARD_GRAVITY) -> LoadCase:
+                 g: float = STANDARD_GRAVITY, vertical: float = 0.0) -> LoadCase:
     """Self-weight and the loads, with the horizontal inertia (towards ``direction`` x) of every
-    mass that moves with the arch as the live load: mu is lambda, in g."""
+    mass that moves with the arch as the live load: mu is lambda, in g.
+
+    ``vertical`` is a constant upward ground acceleration, in g (> -1): every mass that moves
+    with the arch then weighs m g (1 + vertical), and so does the fill behind the passive
+    pressure; loads whose mass does not move with the arch keep their weight."""
     loads = Loads() if loads is None else loads
     extras = block_extras(arch, loads, g=g)
-    dead_f, dead_m = _dead(arch, extras, g)
+    weigh = g * (1.0 + vertical) if vertical else g
+    dead_f, dead_m = _dead(arch, extras, weigh)
     n = arch.voussoirs
     own = np.column_stack([direction * arch.voussoir_masses * g, np.zeros(n)])
     extra = np.column_stack([direction * extras.mass * g, np.zeros(n)])
     live_f = own + extra
     live_m = (moments_about_origin(own, arch.voussoir_centroids)
               + moments_about_origin(extra, extras.centroid))
-    return _with_passive(LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held), loads, g)
+    return _with_passive(LoadCase(arch, dead_f, dead_m, live_f, live_m, extras.held), loads,
+                         weigh)
 
 
 def _with_passive(case: LoadCase, loads: Loads, g: float) -> LoadCase:

@@ -9,7 +9,8 @@ with the ground term negated).
 * ``side = 0``: locked. The arch moves rigidly with the ground until the ground acceleration
   opens a mechanism of row 0 (the limit-analysis mechanism): side +1 when
   ``-g G0 - a(t) H0 > 0``, side -1 when ``-g G0 + a(t) H0 > 0``. These are exactly
-  ``|a| > lambda g`` in the right direction.
+  ``|a| > lambda g`` in the right direction. With a vertical ground acceleration a_v(t)
+  (upward) every g here and below reads g + a_v(t).
 * ``side = +-1``: open, integrating ``m_eff phi'' = -1/2 m_eff' phi'^2 - g G - side a(t) H``
   of the current row. Steps never straddle a breakpoint of the excitation (where it jumps or
   kinks).
@@ -64,7 +65,12 @@ from archquake._dopri import (  # the Dormand-Prince 5(4) tableau
     E6,
     E7,
 )
-from archquake.ground._kernel import ground_duration, ground_in_piece, next_breakpoint
+from archquake.ground._kernel import (
+    ground_duration,
+    ground_in_piece,
+    next_breakpoint,
+    vertical_in_piece,
+)
 from archquake.ground.base import KIND_SAMPLED, KIND_STEP
 from archquake.mechanism.kinematics import (
     G0,
@@ -102,7 +108,8 @@ excitation_end = ground_duration
 
 @nb.njit(cache=True, nogil=True)
 def _rhs(mech, kind, params, side, g, t, t_left, phi, v):
-    return acceleration(mech, phi, v, side * ground_in_piece(kind, params, t, t_left), g)
+    return acceleration(mech, phi, v, side * ground_in_piece(kind, params, t, t_left),
+                        g + vertical_in_piece(kind, params, t, t_left))
 
 
 @nb.njit(cache=True, nogil=True)
@@ -209,8 +216,9 @@ def find_onset(mech, kind, params, t, t_limit, g):
             if j == nsub and kind == KIND_STEP:
                 break
             a = ground_in_piece(kind, params, tj, t_cur)
+            gv = g + vertical_in_piece(kind, params, tj, t_cur)
             for side in (1, -1):
-                f = _opening_force(mech, side, a, g)
+                f = _opening_force(mech, side, a, gv)
                 if f > 0.0:
                     if j == 0:
                         return tj, side
@@ -219,7 +227,8 @@ def find_onset(mech, kind, params, t, t_limit, g):
                     for _ in range(80):
                         mid = 0.5 * (lo + hi)
                         a_mid = ground_in_piece(kind, params, mid, t_cur)
-                        if _opening_force(mech, side, a_mid, g) > 0.0:
+                        g_mid = g + vertical_in_piece(kind, params, mid, t_cur)
+                        if _opening_force(mech, side, a_mid, g_mid) > 0.0:
                             hi = mid
                         else:
                             lo = mid
@@ -648,7 +657,9 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                     (mech, phi_crit, phi_toggle, meff0, kappa2, v_crest,
                      row_tail) = _row_terms(mechs, row, use_tail, v_toggle)
                 # peak rotation of the coming half cycle on a linear potential g G0 phi
-                peak_next = 0.5 * meff0 * v_after * v_after / (g * mech[G0])
+                # (gravity with the vertical ground acceleration at the impact)
+                g_imp = g + vertical_in_piece(kind, params, t, t_left)
+                peak_next = 0.5 * meff0 * v_after * v_after / (g_imp * mech[G0])
                 if peak_next < rest_rotation or n_imp >= max_impacts:
                     side = 0
                     phi = 0.0

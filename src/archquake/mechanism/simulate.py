@@ -62,7 +62,12 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.hinges import HingeMechanism
-from archquake.ground.base import GroundMotion, check_motion, check_time_resolution
+from archquake.ground.base import (
+    GroundMotion,
+    check_lift_off,
+    check_motion,
+    check_time_resolution,
+)
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
@@ -666,6 +671,7 @@ def simulate(
     mech = prepared.mechanism
     tau = math.sqrt(mech.arch.radius / g)
     check_time_resolution(kind, params, tau)
+    check_lift_off(kind, params, g)
     excitation = float(K.excitation_end(kind, params))
     if t_end is None:
         t_end = float(default_t_end(excitation, mech.arch.radius, g))

@@ -115,7 +115,7 @@ def rank_certificate(q, act, ja, jb, nrm, tan, pts, isq_m, isq_i):
 
 @nb.njit(cache=True)
 def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, h, g,
-          gap_tol, tol, max_sweeps, mu, correction, hold, lref, impulsive_factor):
+          gap_tol, tol, max_sweeps, mu, correction, hold, lref, impulsive_factor, vacc):
     """The joint impulses of the chain's next step at each sample, and what the rank test needs.
 
     Parameters
@@ -135,6 +135,9 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
         The assembly's reference length, m (a rotation rate's velocity).
     impulsive_factor : float
         A sample is impulsive when a velocity jumps by more than this times h (g + |acc|).
+    vacc : ndarray (nt,) or (0,)
+        The upward ground acceleration over each sample's step, m/s^2 (gravity reads
+        g + vacc); empty for none.
 
     Returns
     -------
@@ -178,9 +181,10 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
         qm = q + half_h * v
         gaps, nrm, tan, pts = RK.geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
         vf = v.copy()
+        gk = g + vacc[k] if vacc.shape[0] > 0 else g
         for b in range(nb_):
             vf[b, 0] -= h * acc[k]
-            vf[b, 1] -= h * g
+            vf[b, 1] -= h * gk
         for j in range(nj):
             for c in range(2):
                 active[k, j, c] = (gaps[j, c] <= gap_tol
@@ -193,7 +197,7 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
             dx = vn[b, 0] - v[b, 0]
             dy = vn[b, 1] - v[b, 1]
             jump = max(jump, math.hypot(dx, dy) + abs(vn[b, 2] - v[b, 2]) * lref)
-        impulsive[k] = jump > impulsive_factor * h * (g + abs(acc[k]))
+        impulsive[k] = jump > impulsive_factor * h * (gk + abs(acc[k]))
         imp_all[k] = imp
         qm_all[k] = qm
         nrm_all[k] = nrm

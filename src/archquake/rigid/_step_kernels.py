@@ -1012,9 +1012,10 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def advance(chain, cfg, state, acc_k, ws):
+def advance(chain, cfg, state, acc_k, ws, av_k):
     """One Moreau-Jean step of the :class:`Chain` ``chain`` from ``state`` (:class:`State`)
-    under the mean ground acceleration ``acc_k`` (m/s^2), with the settings ``cfg``
+    under the mean ground acceleration ``acc_k`` (m/s^2) and the mean upward ground
+    acceleration ``av_k`` (m/s^2, gravity reads g + av_k), with the settings ``cfg``
     (:class:`Stepping`): steps 1-4 of the module docstring. ``state.slip_ref`` is updated in
     place; ``state.q``, ``state.v`` and ``state.p_warm`` are not changed: the caller sets
     v = vn, q = qm + h/2 vn (step 5) and the warm start. The step writes into ``ws``
@@ -1035,7 +1036,7 @@ def advance(chain, cfg, state, acc_k, ws):
     _copy3(vf, v)
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
-        vf[i, 1] -= h * cfg.g
+        vf[i, 1] -= h * (cfg.g + av_k)
     if cfg.method == METHOD_DIRECT:
         sweeps, res = _direct_into(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb, ws.gaps,
                                    ws.nrm, ws.tan, ws.pts, cfg.gap_tol, state.p_warm, cfg.tol,
@@ -1050,9 +1051,10 @@ def advance(chain, cfg, state, acc_k, ws):
 
 
 @nb.njit(cache=True)
-def run(chain, cfg, state, acc, record, diag):
+def run(chain, cfg, state, acc, vacc, record, diag):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
-    m/s^2) of the :class:`Chain` ``chain`` with the settings ``cfg`` (:class:`Stepping`; its
+    m/s^2; ``vacc[k]``: the mean upward ground acceleration, or ``vacc`` empty for none; the
+    input work counts both) of the :class:`Chain` ``chain`` with the settings ``cfg`` (:class:`Stepping`; its
     ``h_corr`` and ``hold``: the position-level correction, module docstring; 0: the
     velocity-level scheme alone, as the event integrator's stepping windows), writing q, v,
     diagnostics after every ``record.out_every`` steps into row ``k // out_every`` of
@@ -1076,8 +1078,10 @@ def run(chain, cfg, state, acc, record, diag):
     gaps = ws.gaps
     qm = ws.qm
     m_max = mass.max()
+    vertical = vacc.shape[0] > 0
     for k in range(acc.shape[0]):
-        sweeps, res = advance(chain, cfg, state, acc[k], ws)
+        av = vacc[k] if vertical else 0.0
+        sweeps, res = advance(chain, cfg, state, acc[k], ws, av)
         t_free = 0.0
         t_new = 0.0
         w_in = 0.0
@@ -1085,6 +1089,8 @@ def run(chain, cfg, state, acc, record, diag):
             t_free += mass[i] * (vf[i, 0] ** 2 + vf[i, 1] ** 2) + inertia[i] * vf[i, 2] ** 2
             t_new += mass[i] * (vn[i, 0] ** 2 + vn[i, 1] ** 2) + inertia[i] * vn[i, 2] ** 2
             w_in -= acc[k] * mass[i] * 0.5 * h * (v[i, 0] + vn[i, 0])
+            if vertical:
+                w_in -= av * mass[i] * 0.5 * h * (v[i, 1] + vn[i, 1])
         diag[D_DISSIPATED] += 0.5 * (t_free - t_new)
         diag[D_CORRECTION] += ws.corr[0]
         diag[D_INPUT] += w_in

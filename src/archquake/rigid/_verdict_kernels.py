@@ -116,6 +116,11 @@ class Histories(NamedTuple):
     suffix_neg: np.ndarray
     starts: np.ndarray
     pars: np.ndarray
+    #: the steps' mean upward ground accelerations, m/s^2 (empty: none), and the horizontal
+    #: ones as the at-rest tests read them, acc g / (g + a_v) (the direction of the body force
+    #: decides whether a chain at rest moves; ``acc`` itself when there is no vertical)
+    vacc: np.ndarray
+    skip_acc: np.ndarray
 
 
 @nb.njit(cache=True, inline="always")
@@ -135,13 +140,14 @@ def _chord_angle(st, links_block, links_local, ell):
 
 
 @nb.njit(cache=True, nogil=True)
-def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
+def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc):
     """Run the chain (:class:`~._step_kernels.Chain` ``chain``, :class:`Frame` ``frame``)
     from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2) up to a verdict
     (module docstring) and write it into ``out`` (:data:`N_OUT`).
 
     ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
-    (magnitude) from step k to the end, m/s^2; ``par``: :data:`N_PAR` parameters (P_*)."""
+    (magnitude) from step k to the end, m/s^2; ``par``: :data:`N_PAR` parameters (P_*);
+    ``vacc``, ``skip_acc``: as :class:`Histories` (the suffix maxima are then skip_acc's)."""
     mass = chain.mass
     inertia = chain.inertia
     base_state = frame.base_state
@@ -214,7 +220,7 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
                 rest_proven = 1
                 final = 1
                 break
-            if pristine and -lim_n < acc[k] < lim_p:
+            if pristine and -lim_n < skip_acc[k] < lim_p:
                 skipped += 1
                 k += 1
                 t = k * h
@@ -227,7 +233,8 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out):
         t = (k + 1) * h
         pristine = False
         computed += 1
-        sweeps, res = RK.advance(chain, cfg, state, acc[k], ws)
+        sweeps, res = RK.advance(chain, cfg, state, acc[k], ws,
+                                 vacc[k] if vacc.shape[0] > 0 else 0.0)
         if sweeps > worst:
             worst = sweeps
         closed = True
@@ -341,5 +348,7 @@ def verdict_batch(chain, frame, hist, outs, first, last):
     for i in range(first, last):
         a = hist.starts[i]
         b = hist.starts[i + 1]
+        vertical = hist.vacc.shape[0] > 0
         verdict_run(chain, frame, hist.acc[a:b], hist.suffix_pos[a:b], hist.suffix_neg[a:b],
-                    hist.pars[i], outs[i])
+                    hist.pars[i], outs[i], hist.vacc[a:b] if vertical else hist.vacc,
+                    hist.skip_acc[a:b])

@@ -46,6 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
+from archquake.ground.base import has_vertical
 from archquake.rigid.model import (
     ACC_SAMPLES,
     DEFAULT_TIME_STEP,
@@ -232,13 +233,15 @@ def _setup(run, motion, g: float | None, every: int) -> dict:
     t = times[:, None] + h * sub[None, :]
     acc = np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(t.shape).mean(1)
     base = res.assembly.base  # the model's joints: those not between two base blocks
+    vacc = (np.asarray(motion.vertical_acceleration(t.ravel()), dtype=float).reshape(
+        t.shape).mean(1) if has_vertical(motion) else np.empty(0))
     depth = np.array([np.linalg.norm(np.asarray(jt.points[1]) - np.asarray(jt.points[0]))
                       for jt in res.assembly.joints if not (base[jt.left] and base[jt.right])])
     return {"res": res, "g": g, "model": model, "h": h, "lref": lref, "correction": correction,
             "hold": hold, "gap_tol": GAP_TOLERANCE * lref,
             "tol": SOLVER_TOLERANCE * np.sqrt(g * lref),
             "mu": 0.0 if run.friction is None else float(run.friction), "picks": picks,
-            "times": times, "acc": acc, "depth": depth}
+            "times": times, "acc": acc, "depth": depth, "vacc": vacc}
 
 
 def _history(s: dict, imp: np.ndarray, unique: np.ndarray, impulsive: np.ndarray
@@ -338,7 +341,7 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
         pos, vel, res.base_displacement[picks], res.base_velocity[picks], s["acc"],
         model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
         model.t0, s["h"], s["g"], s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"],
-        s["correction"], s["hold"], s["lref"], IMPULSIVE)
+        s["correction"], s["hold"], s["lref"], IMPULSIVE, s["vacc"])
     unique = certified == 1
     open_ = np.flatnonzero(certified < 0)  # not settled by the certificate: the SVD decides
     if open_.size:
@@ -374,7 +377,7 @@ def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
     imp3 = FK.probe(pos, vel, zeros, zeros, levels, model.mass, model.inertia, model.ja,
                     model.jb, model.arm_a, model.arm_b, model.n0, model.t0, s["h"], s["g"],
                     s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"], s["correction"], s["hold"],
-                    s["lref"], IMPULSIVE)[0]
+                    s["lref"], IMPULSIVE, s["vacc"])[0]
     up = acc >= 0.0
     peak = np.where(up, levels[1], levels[2])
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -408,8 +411,9 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
         gaps, nrm, tan, pts = RK.geometry(qm, model.ja, model.jb, model.arm_a, model.arm_b,
                                           model.n0, model.t0)
         vf = v.copy()
+        gk = g + s["vacc"][k] if s["vacc"].size else g
         vf[:, 0] -= h * acc[k]
-        vf[:, 1] -= h * g
+        vf[:, 1] -= h * gk
         vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan,
                                    pts, s["gap_tol"], p_warm, s["tol"], MAX_SWEEPS, s["mu"],
                                    s["correction"], hold)
@@ -418,7 +422,7 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
         p_warm = imp
         dv = vn - v
         jump = float(np.max(np.hypot(dv[:, 0], dv[:, 1]) + np.abs(dv[:, 2]) * lref))
-        impulsive[k] = jump > IMPULSIVE * h * (g + abs(acc[k]))
+        impulsive[k] = jump > IMPULSIVE * h * (gk + abs(acc[k]))
         imp_all[k] = imp
     return _history(s, imp_all, unique, impulsive)
 

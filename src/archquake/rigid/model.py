@@ -55,6 +55,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import has_vertical
 from archquake.ground.pulses import RectangularPulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
@@ -181,6 +182,22 @@ class RigidModel:
 
 
 
+def mean_vertical(motion, t0: float, h: float, n: int) -> np.ndarray:
+    """The upward ground acceleration, m/s^2, averaged over each of ``n`` steps of ``h`` s from
+    ``t0`` s, (n,); empty when the motion has no vertical (the stepper's gravity is then g).
+
+    A pulse's vertical is R direction x_g''(t) + c (:mod:`archquake.ground.pulses`): the mean
+    of each step is R direction times :func:`mean_acceleration`'s, plus c. A record's vertical
+    component (:class:`~archquake.ground.vertical.WithVertical`) is averaged as a record.
+    """
+    if not has_vertical(motion):
+        return np.empty(0)
+    if isinstance(motion.vertical, Record):  # a record's vertical component
+        return mean_acceleration(motion.vertical, t0, h, n)
+    return (motion.vertical * motion.direction * mean_acceleration(motion, t0, h, n)
+            + motion.steady_vertical)
+
+
 def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     """The ground acceleration, m/s^2, averaged over each of ``n`` steps of ``h`` s from ``t0``
     s (``ACC_SAMPLES`` mid-point sub-samples a step), (n,).
@@ -196,6 +213,7 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
       equal, and so is their mean (a sum of 16 equal values is exact);
     * any other motion: all sub-samples, then ``mean``.
     """
+    motion = getattr(motion, "horizontal", motion)  # a record with its vertical
     if isinstance(motion, Record):
         out = np.empty(n)
         IK.step_means(motion.kernel_spec()[1], float(t0), float(h), ACC_SAMPLES, out)
@@ -249,7 +267,8 @@ def absolute_states(model: RigidModel, q: np.ndarray, v: np.ndarray,
 
 
 __all__ = ["ACC_SAMPLES", "DEFAULT_TIME_STEP", "FORCE_SAMPLES", "GAP_TOLERANCE", "HOLD_TOLERANCE",
-           "MAX_SWEEPS", "SOLVER_TOLERANCE", "RigidModel", "absolute_states", "mean_acceleration"]
+           "MAX_SWEEPS", "SOLVER_TOLERANCE", "RigidModel", "absolute_states", "mean_acceleration",
+           "mean_vertical"]
 
 
 def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 1,

@@ -28,7 +28,7 @@ from archquake.dem.result import DemResult, HingeSet, excitation_end
 from archquake.dem.settings import MAX_DURATION, DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
-from archquake.ground.base import check_motion
+from archquake.ground.base import check_motion, check_motion_lift_off
 from archquake.outcome import Outcome
 from archquake.result import write_csv
 from archquake.rigid.events import (
@@ -292,6 +292,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     """
     g = require_gravity(g)
     check_motion(motion, needs=("acceleration", "duration", "breakpoints"))  # what the steps read
+    check_motion_lift_off(motion, g)
     duration = require_range("duration", duration, 0.0, MAX_DURATION, "s", high_open=False)
     output_interval = require_range("output_interval", output_interval, 0.0, MAX_DURATION, "s",
                                     high_open=False)

@@ -32,6 +32,7 @@ from archquake.rigid.model import (
     RigidModel,
     absolute_states,
     mean_acceleration,
+    mean_vertical,
 )
 
 #: The contact step's solvers (``simulate_rigid``'s ``solver``) -> the kernel's method code.
@@ -148,11 +149,12 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
         n -= n % out_every if n >= out_every else 0
         n = max(n, 1)
         acc = mean_acceleration(motion, step * h, h, n)
+        vacc = mean_vertical(motion, step * h, h, n)
         n_out = n // out_every
         oq = np.zeros((n_out, model.n_bodies, 3))
         ov = np.zeros_like(oq)
         od = np.zeros((n_out, RK.N_DIAG))
-        w = RK.run(chain, cfg, state, acc, RK.Record(out_every, oq, ov, od), diag)
+        w = RK.run(chain, cfg, state, acc, vacc, RK.Record(out_every, oq, ov, od), diag)
         worst = max(worst, int(w))
         if not np.all(np.isfinite(q)):
             raise SolverError("the rigid-chain state became non-finite")

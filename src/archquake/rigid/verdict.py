@@ -54,6 +54,7 @@ from archquake.dem.result import (
 from archquake.dem.settings import DemSettings
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
+from archquake.ground.base import check_motion_lift_off
 from archquake.ground.records import Record
 from archquake.outcome import Outcome
 from archquake.parallel import usable_cores
@@ -66,6 +67,7 @@ from archquake.rigid.model import (
     RigidModel,
     check_work,
     mean_acceleration,
+    mean_vertical,
 )
 
 #: The verdict's step, in sqrt(L / g) (L the reference length): 1.0e-3 s on Oppenheim's arch
@@ -381,11 +383,15 @@ class _Job:
     def run(self, packed: _Packed) -> np.ndarray:
         """Prepare the steps and run the kernel: its ``out`` (:data:`VK.N_OUT`)."""
         acc = mean_acceleration(self.motion, 0.0, self.h, self.n)
+        g = self.par[VK.P_G]
+        check_motion_lift_off(self.motion, g)
+        vacc = mean_vertical(self.motion, 0.0, self.h, self.n)
+        skip_acc = acc * (g / (g + vacc)) if vacc.size else acc
         pos = np.empty_like(acc)
         neg = np.empty_like(acc)
-        IK.suffix_maxima(acc, pos, neg)
+        IK.suffix_maxima(skip_acc, pos, neg)
         hist = VK.Histories(acc, pos, neg, np.array([0, acc.size], np.int64),
-                            self.par.reshape(1, -1))
+                            self.par.reshape(1, -1), vacc, skip_acc)
         out = np.zeros((1, VK.N_OUT))
         batch: Any = VK.verdict_batch  # a numba dispatcher
         batch(packed.chain, packed.frame, hist, out, 0, 1)

@@ -28,6 +28,7 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     # period_s = [0.5, 1.0]             # s (sine: T)
     # files = ["a.AT2"]; units = "g"; scale = [0.5, 1, 2]   (record; paths relative to the study)
     direction = -1                      # optional: -1 (default for pulses) or +1, or [-1, 1]
+    # vertical_ratio = [0, 0.5]         # optional (step, sine): the vertical part R a s(t), up
 
     [loads]                             # optional: what every arch carries, as in assess
     fill_depth = 1.0                    # m over the crown (fill_density, backing, point_loads,
@@ -76,8 +77,10 @@ _ARCH_KEYS = {"radius": False, "thickness_ratio": False, "embrace_deg": False, "
 #: Keys of [arches] whose values are words (a word or a list of words), not numbers.
 _ARCH_WORDS = ("shape", "joints", "blocks")
 _EXCITATION_KEYS = {
-    ExcitationKind.STEP: {"magnitude_g": True, "duration_s": True, "direction": False},
-    ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False},
+    ExcitationKind.STEP: {"magnitude_g": True, "duration_s": True, "direction": False,
+                          "vertical_ratio": False},
+    ExcitationKind.SINE: {"magnitude_g": True, "period_s": True, "direction": False,
+                          "vertical_ratio": False},
     ExcitationKind.RECORD: {"files": True, "units": False, "scale": False, "direction": False},
 }
 _OPTION_KEYS = {"restitution": False, "impact": False, "t_end_s": False}
