@@ -331,7 +331,13 @@ def section_code_check(ctx):
     from archquake.reproduce.core import Figure, StudyResult
 
     site: SiteConfig = ctx.config.site
-    curve = capacity_curve(ctx.arch)
+    loads = ctx.config.dead_loads
+    if loads is None:
+        curve = capacity_curve(ctx.arch)
+    else:  # every mass the arch carries (C8.7.1): its fill columns and loads on the extrados
+        from archquake.codecheck.kinematic import LoadedFourHingeMechanism
+
+        curve = capacity_curve(LoadedFourHingeMechanism.of(ctx.arch, loads))
     result = kinematic_check(curve, site.spectra(), knowledge=site.knowledge,
                              procedure=site.procedure, position=site.position())
     save_code_check(result, ctx.figures / "codecheck.png")
@@ -344,6 +350,10 @@ def section_code_check(ctx):
     data["not_checked"] = site.not_checked()
     data["blocks"] = curve.block_table()
     data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
+    if loads is not None:
+        from archquake.assess.sections import carried_masses
+
+        data["carried_mass_kg"] = carried_masses(ctx.arch, loads)["carried_mass_kg"]
     return StudyResult("codecheck", "Code check", (),
                        (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
                                "(C8.7.1.3) against the site's demand spectra at each limit "
@@ -400,7 +410,11 @@ def report_code_check(el: list, rep, data: dict) -> None:
     blocks = data.get("blocks")
     moving = ("" if not blocks else
               f" (blocks {blocks[0]['block']}-{blocks[-1]['block']}, the blocks that move; "
-              f"the arch's total is {data['arch_mass_kg']:.0f} kg, section 1)")
+              f"the arch's total is {data['arch_mass_kg']:.0f} kg"
+              + ("" if "carried_mass_kg" not in data else
+                 f" of masonry and {data['carried_mass_kg']:.0f} kg carried (fill and loads "
+                 "on the extrados, with their blocks)")
+              + ", section 1)")
     el.append(("table", ["quantity", "value", "from"], [
         ["activation multiplier alpha0", f"{data['alpha0']:.4f}", "C8.7.1.1 (static analysis)"],
         ["participating mass fraction e*", f"{data['e_star']:.4f}", "C8.7.1.5"],
