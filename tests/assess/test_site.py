@@ -46,6 +46,16 @@ def test_section_is_the_library_check(tmp_path):
     assert res.data["carried_mass_kg"] > 0
     assert res.data["alpha0"] == pytest.approx(ref.curve.alpha0, rel=1e-12)
     assert abs(res.data["alpha0"] / bare.curve.alpha0 - 1.0) > 0.1  # the loads change it
+    # the block table: each moving voussoir, then what it carries, numbered as the arch's blocks
+    blocks = res.data["blocks"]
+    voussoirs = [b for b in blocks if b["part"] == "voussoir"]
+    carried = [b for b in blocks if b["part"] == "carried"]
+    assert [b["block"] for b in voussoirs] == [b["block"] for b in carried]
+    assert sum(b["mass_kg"] for b in carried) == pytest.approx(
+        res.data["mass_kg"] - sum(float(arch.voussoir_masses[b["block"] - 1]) for b in voussoirs),
+        rel=1e-9)
+    sx = sum(b["m_dx_kg_m"] for b in blocks)
+    assert sum(b["m_dy_kg_m"] for b in blocks) / sx == pytest.approx(res.data["alpha0"], rel=1e-9)
     got = {(c["limit_state"], c["method"]): c["capacity_ag_g"] for c in res.data["limit_states"]}
     for c in ref.checks:
         assert got[(c.limit_state, c.method)] == pytest.approx(c.capacity_ag_g, rel=1e-12)

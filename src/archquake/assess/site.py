@@ -349,6 +349,11 @@ def section_code_check(ctx):
     data["verdicts"] = [c.verdict() for c in result.governing]
     data["not_checked"] = site.not_checked()
     data["blocks"] = curve.block_table()
+    if loads is not None:  # the moving voussoirs, then what each carries: numbered as the arch
+        numbers = [int(k) + 1 for k in curve.mechanism.base.voussoirs]
+        n = len(numbers)
+        data["blocks"] = [dict(row, block=numbers[i % n], part=("voussoir", "carried")[i // n])
+                          for i, row in enumerate(data["blocks"][:2 * n])]
     data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
     if loads is not None:
         from archquake.assess.sections import carried_masses
@@ -409,7 +414,9 @@ def report_code_check(el: list, rep, data: dict) -> None:
                     "spectral shape held) against the site's a_g."))
     blocks = data.get("blocks")
     moving = ("" if not blocks else
-              f" (blocks {blocks[0]['block']}-{blocks[-1]['block']}, the blocks that move; "
+              f" (blocks {min(b['block'] for b in blocks)}-{max(b['block'] for b in blocks)}, "
+              "the blocks that move" + (" with what they carry" if "carried_mass_kg" in data
+                                        else "") + "; "
               f"the arch's total is {data['arch_mass_kg']:.0f} kg"
               + ("" if "carried_mass_kg" not in data else
                  f" of masonry and {data['carried_mass_kg']:.0f} kg carried (fill and loads "
@@ -437,7 +444,8 @@ def report_code_check(el: list, rep, data: dict) -> None:
                         f"{sx * sx / (mass * sxx):.4f}."))
         el.append(("table", ["block", "mass m (kg)", "delta_x (m/rad)", "delta_y (m/rad)",
                              "m delta_x", "m delta_y", "m delta_x^2"],
-                   [[b["block"], f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
+                   [[f"{b['block']} (carried)" if b.get("part") == "carried" else b["block"],
+                     f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
                      f"{b['dy_m_rad']:.4f}", f"{b['m_dx_kg_m']:.1f}", f"{b['m_dy_kg_m']:.1f}",
                      f"{b['m_dx2_kg_m2']:.1f}"] for b in blocks]
                    + [["sum", f"{mass:.1f}", "", "", f"{sx:.1f}", f"{sy:.1f}", f"{sxx:.1f}"]]))
