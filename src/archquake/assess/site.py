@@ -337,7 +337,8 @@ def section_code_check(ctx):
     else:  # every mass the arch carries (C8.7.1): its fill columns and loads on the extrados
         from archquake.codecheck.kinematic import LoadedFourHingeMechanism
 
-        curve = capacity_curve(LoadedFourHingeMechanism.of(ctx.arch, loads))
+        mechanism = LoadedFourHingeMechanism.of(ctx.arch, loads)
+        curve = capacity_curve(mechanism)
     result = kinematic_check(curve, site.spectra(), knowledge=site.knowledge,
                              procedure=site.procedure, position=site.position())
     save_code_check(result, ctx.figures / "codecheck.png")
@@ -350,7 +351,7 @@ def section_code_check(ctx):
     data["not_checked"] = site.not_checked()
     data["blocks"] = curve.block_table()
     if loads is not None:  # the moving voussoirs, then what each carries: numbered as the arch
-        numbers = [int(k) + 1 for k in curve.mechanism.base.voussoirs]
+        numbers = [int(k) + 1 for k in mechanism.base.voussoirs]
         n = len(numbers)
         data["blocks"] = [dict(row, block=numbers[i % n], part=("voussoir", "carried")[i // n])
                           for i, row in enumerate(data["blocks"][:2 * n])]
