@@ -291,3 +291,25 @@ def test_quick_assessment_with_loads_runs_every_section(tmp_path):
         res["sections"]["traffic"]["adequacy_factor"])
     text = (tmp_path / "out" / "report.md").read_text()
     assert "What the arch carries" in text and "Traffic check" in text
+    carried = res["sections"]["arch"]["masses"]["carried_mass_kg"]
+    assert f"Mass of the masonry {res['sections']['arch']['total_mass_kg']:.0f} kg (depth 1 m), " \
+           f"carrying {carried:.0f} kg" in text
+
+
+def test_fourlink_model_carries_the_loads_on_its_links():
+    """Under model = "fourlink" the pulses, records and restitution use the mechanism whose
+    links carry the fill: its lambda is the loaded static analysis's (to 1e-9), not the bare
+    ring's."""
+    from archquake.assess.sections import prepared_mechanism, used_restitution
+    from archquake.limit import limit_analysis
+
+    data = {"arch": dict(ARCH), "seismic": {"site_pga_g": 0.15},
+            "options": {"model": "fourlink", "restitution": 0.8},
+            "loads": {"fill_depth": 0.8, "fill_density": 1900, "backing": 1.0}}
+    cfg = parse_config(data)
+    arch = cfg.build_arch()
+    prep = prepared_mechanism(arch, cfg.impact, cfg.dead_loads)
+    loaded = limit_analysis(arch, loads=cfg.dead_loads).collapse_acceleration_g
+    assert prep.collapse_acceleration_g == pytest.approx(loaded, rel=1e-9)
+    assert prep.collapse_acceleration_g > 1.1 * limit_analysis(arch).collapse_acceleration_g
+    assert used_restitution(cfg, arch)[0] == 0.8

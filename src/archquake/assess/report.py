@@ -45,8 +45,12 @@ def elements(rep) -> list[tuple]:
             f" Site PGA of the dynamic sections {cfg.site_pga_g:.3g} g: "
             f"{getattr(cfg, 'site_pga_source', None) or '[seismic] site_pga_g'}.")
     el.append(("p", "Input: " + ", ".join(f"{k} = {val}" for k, val in cfg.arch.canonical().items())
-               + f"; friction coefficient {cfg.friction:g}. Total mass "
-               f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m), overall "
+               + f"; friction coefficient {cfg.friction:g}. "
+               + ("Total mass " if "masses" not in a else "Mass of the masonry ")
+               + f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m)"
+               + ("" if "masses" not in a else
+                  f", carrying {a['masses']['carried_mass_kg']:.0f} kg (below)")
+               + ", overall "
                f"{a['overall_width_m']:.2f} m wide and {a['overall_height_m']:.2f} m high."
                + site))
     notes = getattr(cfg, "notes", ())
