@@ -70,7 +70,8 @@ def elements(rep) -> list[tuple]:
     rows = [["collapse acceleration lambda", f"{st['collapse_acceleration_g']:.4f} g"],
             ["hinges (load towards +x)", hinges],
             ["thickness t", f"{st['thickness_m']:.3f} m"],
-            ["minimum thickness t_min (same shape)",
+            ["minimum thickness t_min (same shape" + (", under the same fill and loads)"
+                                                       if "loads" in st else ")"),
              "not defined: " + str(st.get("min_thickness_note")) if st["min_thickness_m"] is None
              else f"{st['min_thickness_m']:.4f} m"],
             ["geometric factor of safety t / t_min", _f(st["geometric_safety_factor"])],

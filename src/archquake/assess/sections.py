@@ -801,8 +801,9 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
 
 def _windows(ctx: Context, motions: list, windows: list) -> list | None:
     """The rigid chain's window of each motion, s: as given, or the verdict's default
-    (:func:`archquake.rigid.verdict.default_window`, scaled by the arch's radius: a loaded
-    assembly has none of its own). None for the bare arch (the verdict path's own)."""
+    (the end of the excitation + the verdict's tail in sqrt(R/g), as
+    :func:`archquake.rigid.rigid_verdicts` takes it for an arch, scaled by the arch's radius: a
+    loaded assembly has none of its own). For the bare arch, ``windows`` as given."""
     if ctx.loads is None:
         return windows
     from archquake.rigid.verdict import _default_window
