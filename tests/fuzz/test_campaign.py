@@ -45,7 +45,7 @@ BASES: dict[str, tuple[list[str], list[str]]] = {
                ["--thickness", "--embrace", "--durations", "--max-magnitude", "--precision"]),
     "spectrum": (["spectrum", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star",
                   "0.3", "--json"], ["--ag", "--periods", "--damping"]),
-    "record": (["record", "quake.csv", "--json"], ["--scale", "--periods"]),
+    "record": (["record", "quake.csv", "--units", "g", "--json"], ["--scale", "--periods"]),
     "min-thickness": (["min-thickness", "--voussoirs", "20", "--json"],
                       ["--embrace", "--voussoirs"]),
     "check": (["check", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3",
@@ -68,8 +68,9 @@ def campaign() -> list[tuple[str, list[str]]]:
         if name in ("run", "friction", "thrust", "static", "check"):
             for arch in ARCHES:
                 cases.append((name, [*base, *arch]))
-    cases.append(("run", ["run", "--record", "long.csv", "--json"]))
-    cases.append(("run", ["run", "--record", "quake.csv", "--scale", "1e-320", "--json"]))
+    cases.append(("run", ["run", "--record", "long.csv", "--units", "g", "--json"]))
+    cases.append(("run", ["run", "--record", "quake.csv", "--units", "g", "--scale", "1e-320",
+                          "--json"]))
     return cases
 
 

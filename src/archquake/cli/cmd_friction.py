@@ -113,14 +113,14 @@ def _run_rigid(args: argparse.Namespace, arch, motion) -> int:
     (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict."""
     import numpy as np
 
-    from archquake.cli.common import rigid_work
+    from archquake.cli.common import length_option, rigid_work
     from archquake.compare import rigid_to_verdict
     from archquake.compare.histories import rigid_window
     from archquake.limit import limit_analysis
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
-                          DEFAULT_TIME_STEP)
+                          DEFAULT_TIME_STEP, length=length_option(args))
     run = rigid_to_verdict(arch, motion, progress=progress)
     forces = run.joint_forces
     summary = forces.summary()
