@@ -111,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
         print_json(summary)
         return 0
     signed = float(record.accelerations[int(round(record.time_of_peak / record.dt))])
-    units_note = summary["units_in_file"] + ("" if is_text else " (PEER .AT2)")
+    units_note = summary["units_in_file"]
     lines = [
         f"record     {record.name}",
         f"file       {record.source}",
