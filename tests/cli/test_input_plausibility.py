@@ -164,6 +164,13 @@ def test_a_run_too_long_for_its_pulse_names_the_pulse_option_and_its_step(pulse,
     assert f"time steps of {step:.3g} s" in line
 
 
+def test_a_dem_run_too_long_for_its_pulse_names_the_pulse_option(capsys):
+    """The DEM's default end is the excitation's (3 x 900 s) + 5 sqrt(R/g), above 120 s."""
+    assert cli_main.main(["run", "--model", "dem", "--pulse", "step", "--magnitude", "0.5",
+                          "--duration", "900"]) == 2
+    assert "give a shorter --duration, or a --t-end" in _refused(capsys)
+
+
 def test_a_given_t_end_is_still_the_option_named(capsys):
     assert cli_main.main(["run", "--pulse", "step", "--magnitude", "0.5", "--duration", "0.2",
                           "--voussoirs", "100", "--t-end", "900"]) == 2

@@ -710,10 +710,15 @@ def length_option(args: argparse.Namespace) -> str:
     ``--period``, ``--record``), whose end the run outlasts by its tail."""
     if getattr(args, "t_end", None) is not None:
         return "--t-end"
-    tail = " (the run lasts the excitation and then 60 sqrt(R/g))"
+    return excitation_option(args) + " (the run lasts the excitation and then 60 sqrt(R/g))"
+
+
+def excitation_option(args: argparse.Namespace) -> str:
+    """The option that sets how long the excitation of ``args`` lasts, as typed: ``--duration``
+    (step impulse), ``--period`` (sine pulse) or ``--record``."""
     if getattr(args, "record", None) is not None:
-        return "--record" + tail
-    return ("--period" if getattr(args, "pulse", None) == "sine" else "--duration") + tail
+        return "--record"
+    return "--period" if getattr(args, "pulse", None) == "sine" else "--duration"
 
 
 #: Step of ``--periods START:STOP`` when none is given, s.
@@ -849,6 +854,8 @@ __all__ = [
     "periods_list",
     "rigid_work",
     "print_json",
+    "excitation_option",
+    "length_option",
     "record_from_args",
     "suite_from_args",
     "to_jsonable",
