@@ -147,6 +147,19 @@ def test_a_pulse_longer_than_practice_is_warned(pulse, option, capsys):
                            f"{PLAUSIBLE_PULSE_S:g} s")
 
 
+def test_domain_durations_past_practice_are_warned(capsys):
+    from archquake.cli.common import parse_durations
+    from archquake.cli.input_warnings import take_input_warnings
+
+    take_input_warnings()
+    parse_durations("0.05:1.5:40")
+    assert take_input_warnings() == []
+    parse_durations("0.1:20:3")
+    assert take_input_warnings() == [
+        f"archquake: warning: --durations 0.1:20:3 reaches 20 s, longer than "
+        f"{PLAUSIBLE_PULSE_S:g} s, beyond any recorded pulse: is it in s (not ms)?"]
+
+
 @pytest.mark.parametrize("pulse, option", [("step", "--duration"), ("sine", "--period")])
 def test_a_run_too_long_for_its_pulse_names_the_pulse_option_and_its_step(pulse, option, capsys):
     """270 (ms typed as s) with 150 voussoirs: the run to a verdict would be twice the pulse

@@ -801,11 +801,18 @@ def periods_list(text: str) -> tuple[float, ...]:
 
 
 def parse_durations(text: str) -> np.ndarray:
-    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration."""
+    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration;
+    durations past ``ranges.PLAUSIBLE_PULSE_S`` are warned about (``--durations``)."""
     try:
-        return _durations(text)
+        values = _durations(text)
     except InvalidParameterError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+    longest = float(values.max())
+    if longest > PLAUSIBLE_PULSE_S:
+        warn_input("--durations", f"{text} reaches {longest:g} s, longer than "
+                                  f"{PLAUSIBLE_PULSE_S:g} s, beyond any recorded pulse: is it in "
+                                  "s (not ms)?")
+    return values
 
 
 def _durations(text: str) -> np.ndarray:
