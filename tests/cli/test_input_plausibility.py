@@ -100,6 +100,16 @@ def test_a_scale_past_the_plausible_pga_is_warned_naming_scale(cms_csv, capsys):
     assert line.startswith("archquake: warning: --scale 3 ") and "1.65 g" in line
 
 
+def test_a_peer_file_past_the_plausible_pga_is_warned_naming_the_file(tmp_path, capsys):
+    path = tmp_path / "strong.AT2"
+    path.write_text("PEER NGA STRONG MOTION DATABASE RECORD\nEVENT, STATION, 000\n"
+                    "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=     3, DT=   .0100 SEC\n"
+                    "  1.0000000E-01 -2.0000000E+00  2.0000000E-01\n")
+    assert cli_main.main(["record", str(path), "--json"]) == 0
+    (line,) = _warnings(capsys)
+    assert line.startswith("archquake: warning: strong.AT2 has a PGA of 2 g, above 1.5 g")
+
+
 def test_magnitude_in_m_s2_is_warned_and_the_run_goes_on(capsys):
     assert cli_main.main([*FOURLINK, "--pulse", "step", "--magnitude", "9.81",
                           "--duration", "0.1"]) == 0

@@ -624,10 +624,14 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
             f"{path}: peak {peak_g:g} g (after --scale {scale:g}) is above "
             f"{MAGNITUDE_RANGE_G[1]:g} g; lower --scale")
     if peak_g > PLAUSIBLE_PGA_G:
-        blame = f"--scale {scale:g}" if scale != 1.0 else (
-            f"--units {units}" if units is not None else str(path))
-        warn_input(blame, f"gives {path.name} a PGA of {peak_g:.3g} g, above "
-                          f"{PLAUSIBLE_PGA_G:g} g, beyond design practice: is it in g?")
+        what = (f"a PGA of {peak_g:.3g} g, above {PLAUSIBLE_PGA_G:g} g, beyond design practice: "
+                "is it in g?")
+        if scale != 1.0:
+            warn_input(f"--scale {scale:g}", f"gives {path.name} {what}")
+        elif units is not None:
+            warn_input(f"--units {units}", f"gives {path.name} {what}")
+        else:  # a PEER file, in g: its own values
+            warn_input(path.name, f"has {what}")
     return record
 
 
