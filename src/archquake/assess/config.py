@@ -238,11 +238,12 @@ def parse_config(data: dict, *, source: str = "assessment",
             kwargs[key] = _number(source, f"[arch] {key}", value)
     notes: list[str] = []
     embrace = kwargs.get("embrace_deg")
-    if isinstance(embrace, float) and 0.0 < embrace <= 2.0 * math.pi + 1e-9:
+    from archquake.ranges import PLAUSIBLE_PGA_G, PLAUSIBLE_RADIUS_M, RADIANS_EMBRACE_DEG
+
+    if isinstance(embrace, float) and 0.0 < embrace <= RADIANS_EMBRACE_DEG + 1e-9:
         raise _fail(source, "[arch] embrace_deg", f"= {embrace:g} looks like radians "
                                                   f"({math.degrees(embrace):.4g} degrees): the "
                                                   "key is in degrees, e.g. 180 for a semicircle")
-    from archquake.ranges import PLAUSIBLE_PGA_G, PLAUSIBLE_RADIUS_M
 
     radius = kwargs.get("radius")
     if isinstance(radius, float) and 0.0 < radius < PLAUSIBLE_RADIUS_M:
