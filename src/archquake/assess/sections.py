@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from archquake.assess.masses import carried_masses
 from archquake.assess.site import section_code_check
 from archquake.constants import STANDARD_GRAVITY
 from archquake.ground.measures import strong_motion_end
@@ -361,32 +362,6 @@ def section_arch(ctx: Context) -> StudyResult:
                                      "the traffic check moves it along the span)"
                                      if loads.traffic is not None else "") + ".")
     return StudyResult("arch", "1. The arch", (), (Figure("arch.png", caption),), (), data)
-
-
-def carried_masses(arch, loads) -> dict:
-    """The masses the models move, kg: the masonry's, and what its blocks carry (the fill
-    columns, the loads on the extrados that move with the arch), from
-    :func:`~archquake.geometry.loads.block_extras`; the blocks the backing holds (numbered
-    from 1) belong to the support. ``loads`` None: the bare arch."""
-    from archquake.geometry.loads import Loads, block_extras
-
-    masonry = float(np.sum(arch.voussoir_masses))
-    if loads is None:
-        return {"masonry_mass_kg": masonry, "fill_mass_kg": 0.0, "superimposed_mass_kg": 0.0,
-                "carried_mass_kg": 0.0, "held_blocks": []}
-    extras = block_extras(arch, loads)
-    fill = (0.0 if loads.fill is None else
-            float(block_extras(arch, Loads(fill=loads.fill, backing=loads.backing)).mass.sum()))
-    carried = float(extras.mass.sum())
-    held = np.asarray(extras.held, dtype=bool)
-    blocks = [int(k) + 1 for k in np.flatnonzero(held[:-1] & held[1:])]  # both joints held
-    still = np.zeros(arch.voussoirs, dtype=bool)
-    still[[b - 1 for b in blocks]] = True
-    return {"masonry_mass_kg": masonry, "fill_mass_kg": fill,
-            "superimposed_mass_kg": carried - fill, "carried_mass_kg": carried,
-            "held_joints": [int(j) for j in np.flatnonzero(held)], "held_blocks": blocks,
-            "held_mass_kg": float(np.sum(np.asarray(arch.voussoir_masses)[still])
-                                  + np.sum(extras.mass[still]))}
 
 
 def draw_traffic(ax, arch, carried, traffic) -> None:
@@ -806,9 +781,9 @@ def _windows(ctx: Context, motions: list, windows: list) -> list | None:
     loaded assembly has none of its own). For the bare arch, ``windows`` as given."""
     if ctx.loads is None:
         return windows
-    from archquake.rigid.verdict import _default_window
+    from archquake.rigid.verdict import default_window
 
-    return [_default_window(ctx.arch, m, STANDARD_GRAVITY) if w is None else w
+    return [default_window(ctx.arch, m, STANDARD_GRAVITY) if w is None else w
             for m, w in zip(motions, windows, strict=True)]
 
 
@@ -1401,7 +1376,7 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("codecheck", section_code_check))
 
 __all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "LOADS_ASSUMPTION", "TRAFFIC_POSITIONS",
-           "assumptions", "carried_masses", "OUTCOMES", "Context", "Mode", "Progress",
+           "assumptions", "OUTCOMES", "Context", "Mode", "Progress",
            "SECTIONS", "dynamics_refusal",
            "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",

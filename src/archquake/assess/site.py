@@ -357,7 +357,7 @@ def section_code_check(ctx):
                           for i, row in enumerate(data["blocks"][:2 * n])]
     data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
     if loads is not None:
-        from archquake.assess.sections import carried_masses
+        from archquake.assess.masses import carried_masses
 
         data["carried_mass_kg"] = carried_masses(ctx.arch, loads)["carried_mass_kg"]
     return StudyResult("codecheck", "Code check", (),

@@ -502,7 +502,7 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     rests = _per_motion(until_rest, n, "until_rest")
     for i, mo in enumerate(motions):
         if durs[i] is None:
-            durs[i] = _default_window(arch_or_model, mo, g)
+            durs[i] = default_window(arch_or_model, mo, g)
     for i in range(n):
         check_work(model.n_bodies, max(durs[i], rests[i] or 0.0), h, runs=n)
     packed = _packed(model, settings)
@@ -570,7 +570,7 @@ def _per_motion(value, n: int, name: str) -> list:
 WINDOW_TAIL = RUN_TAIL
 
 
-def _default_window(arch_or_model, motion, g: float) -> float:
+def default_window(arch_or_model, motion, g: float) -> float:
     """The default run window, s: the end of the excitation + :data:`WINDOW_TAIL` sqrt(R/g),
     at most ``ranges.DEM_T_END_MAX_S`` (the block models' cap); the run stops earlier at
     collapse or proven rest."""
@@ -599,5 +599,5 @@ def rigid_verdict(arch_or_model: VoussoirChain | Assembly | RigidModel, motion, 
                           threads=1)[0]
 
 
-__all__ = ["GUARD_LENGTHENING", "STEP_FACTOR", "RigidVerdict", "rigid_model", "rigid_verdict",
-           "rigid_verdicts", "verdict_time_step"]
+__all__ = ["GUARD_LENGTHENING", "STEP_FACTOR", "RigidVerdict", "default_window", "rigid_model",
+           "rigid_verdict", "rigid_verdicts", "verdict_time_step"]
