@@ -22,7 +22,7 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 ``failure_domain``,
 ``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, ``ModelResult`` (what
 the three models' results have in common), the error classes,
-the :mod:`~archquake.errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
+the `errors` module and ``g`` (standard gravity, m/s^2). Everything else lives
 in its subpackage (``archquake.domains``, ``archquake.dem``, ...).
 """
 

@@ -1,7 +1,7 @@
 """The Dormand-Prince 5(4) tableau (Dormand & Prince 1980; Hairer, Norsett & Wanner, *Solving
 Ordinary Differential Equations I*, Table 5.2): the one set of coefficients every embedded
-Runge-Kutta step of the package reads (the four-link model's, :mod:`archquake.mechanism._kernels`,
-and the rigid chain's event integrator, :mod:`archquake.rigid._event_kernels`).
+Runge-Kutta step of the package reads (the four-link model's, `archquake.mechanism._kernels`,
+and the rigid chain's event integrator, `archquake.rigid._event_kernels`).
 
 ``C`` nodes, ``A`` stage weights, ``B`` the fifth-order solution's weights (first same as
 last: ``B`` is the seventh stage's row), ``E`` the error estimate's weights, the difference

@@ -31,7 +31,7 @@ def to_jsonable(obj: Any) -> Any:
 
 def canonical_json(obj: Any) -> str:
     """Sorted keys, no whitespace, reals as floats (so 1 and 1.0 agree), NaN rejected: the text
-    a case's id hashes (:attr:`archquake.sweeps.Case.case_id`) and its specs cache.
+    a case's id hashes (`archquake.sweeps.Case.case_id`) and its specs cache.
 
     >>> canonical_json({"b": 1, "a": [-0.0, 2.5]})
     '{"a":[0.0,2.5],"b":1}'

@@ -4,11 +4,11 @@ Every kernel is compiled with ``cache=True``: numba writes the machine code besi
 (``__pycache__``) or, when the package directory is read-only (a system-wide install), in the
 user's cache directory (``$XDG_CACHE_HOME/numba`` or ``~/.cache/numba``). When neither is
 writable (a read-only install run by a user without a writable home, as in some containers),
-numba refuses to define a cached function at all and the import fails. :func:`ensure_cache_dir`
+numba refuses to define a cached function at all and the import fails. `ensure_cache_dir`
 then points ``NUMBA_CACHE_DIR`` at a per-user directory under the system's temporary
 directory, so the kernels still compile once and load afterwards. (It also corrects numba's
 reading of an empty ``XDG_CACHE_HOME``, which would put the cache in the working directory.) It runs when
-:mod:`archquake` is imported, before any kernel module imports numba, and costs a few
+`archquake` is imported, before any kernel module imports numba, and costs a few
 ``os.access`` calls; a ``NUMBA_CACHE_DIR`` the user set is never changed.
 """
 

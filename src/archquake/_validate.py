@@ -1,5 +1,5 @@
 """Small input checks shared by every frozen dataclass and public function: one line, the
-parameter, its range (from :mod:`archquake.ranges`)."""
+parameter, its range (from `archquake.ranges`)."""
 
 from __future__ import annotations
 
@@ -81,10 +81,10 @@ def require_int(name: str, value: object, minimum: int, maximum: int | None = No
 def check_range(option: str, value: float, low: float, high: float, unit: str = "", *,
                 low_open: bool = False, high_open: bool = False, hint: str = "") -> float:
     """``value`` of ``option`` (as the user typed it, e.g. ``--duration``) inside its range in the
-    user's units, or :class:`InvalidParameterError` naming both (``hint`` says what to do).
+    user's units, or `InvalidParameterError` naming both (``hint`` says what to do).
 
     The command line's wording: the unit follows the range bare (``--radius must be in
-    [0.001, 10000] m, got 0``); :func:`require_range` is the wording of arguments and study keys.
+    [0.001, 10000] m, got 0``); `require_range` is the wording of arguments and study keys.
     """
     ok = (value > low if low_open else value >= low) and (value < high if high_open else value <= high)
     if not (math.isfinite(value) and ok):
@@ -96,7 +96,7 @@ def check_range(option: str, value: float, low: float, high: float, unit: str = 
 
 def check_whole(option: str, value: int, low: int, high: int, hint: str = "") -> int:
     """A whole number ``value`` of ``option`` from ``low`` to ``high`` (the command line's
-    wording; :func:`require_int` is that of arguments and study keys)."""
+    wording; `require_int` is that of arguments and study keys)."""
     if not low <= value <= high:
         raise InvalidParameterError(f"{option} must be a whole number from {low} to {high}, got "
                                     f"{value}" + (f"; {hint}" if hint else ""))
@@ -113,13 +113,13 @@ def _u(unit: str) -> str:
 
 
 def require_gravity(value: object) -> float:
-    """Gravity ``g`` in m/s^2, inside :data:`archquake.ranges.GRAVITY_RANGE_MS2`."""
+    """Gravity ``g`` in m/s^2, inside `archquake.ranges.GRAVITY_RANGE_MS2`."""
     low, high = GRAVITY_RANGE_MS2
     return require_range("g", value, low, high, "m/s^2", low_open=False, high_open=False)
 
 
 def require_instance(name: str, value: object, types: type | tuple[type, ...], what: str) -> Any:
-    """``value`` itself if it is an instance of ``types``; else an :class:`InvalidTypeError`
+    """``value`` itself if it is an instance of ``types``; else an `InvalidTypeError`
     naming ``name`` and ``what`` it accepts (in words, e.g. "an Arch")."""
     if not isinstance(value, types):
         raise InvalidTypeError(f"{name} must be {what}, got {_short(value)}")
@@ -139,7 +139,7 @@ def require_choice(name: str, value: object, choices: type[E]) -> E:
 
 
 def require_path(name: str, value: object) -> Path:
-    """A file path given as ``str`` or :class:`os.PathLike` (of ``str``), not empty."""
+    """A file path given as ``str`` or `os.PathLike` (of ``str``), not empty."""
     if isinstance(value, (bytes, bytearray)) or not isinstance(value, (str, os.PathLike)):
         raise InvalidTypeError(f"{name} must be a path (str or pathlib.Path), got {_short(value)}")
     try:

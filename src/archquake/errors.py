@@ -1,7 +1,7 @@
 """The exceptions archquake raises for bad input and for physics it cannot honour.
 
 Every user-facing error message is one line that says what is wrong and how to fix it.
-The CLI prints ``str(error)`` and exits with status 2 for any :class:`ArchquakeError`;
+The CLI prints ``str(error)`` and exits with status 2 for any `ArchquakeError`;
 any other exception is a bug and keeps its traceback.
 """
 

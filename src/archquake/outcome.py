@@ -1,8 +1,8 @@
 """What became of the arch: the one outcome vocabulary of every model.
 
-Both the analytical rocking model (:func:`archquake.mechanism.simulate`) and the
-distinct-element model (:func:`archquake.dem.simulate_dem`) classify a run as one of these
-outcomes, and the failure-domain search (:mod:`archquake.domains`) brackets their
+Both the analytical rocking model (`archquake.mechanism.simulate`) and the
+distinct-element model (`archquake.dem.simulate_dem`) classify a run as one of these
+outcomes, and the failure-domain search (`archquake.domains`) brackets their
 boundaries whichever model is plugged in.
 
 Examples
@@ -24,10 +24,10 @@ class Outcome(str, Enum):
         exceeded the static collapse acceleration in either direction).
     ``survives``
         Hinges opened, and the arch did not collapse, and it is shown that it will not (the
-        analytical model, :func:`conclude`: it came to rest after the excitation, or after the
+        analytical model, `conclude`: it came to rest after the excitation, or after the
         excitation its energy fell below every crest barrier; the block models, the DEM and
         the rigid chain: it came to rest after the excitation,
-        :func:`archquake.dem.result.settled`).
+        `archquake.dem.result.settled`).
     ``collapse``
         The arch collapsed (each model states its criterion: the analytical model when the
         mechanism passes the crest of its potential energy after the excitation or reaches
@@ -35,8 +35,8 @@ class Outcome(str, Enum):
         below the springings or turned too far).
     ``indeterminate``
         The analytical model reached a verdict only through an impact its impact law cannot
-        describe (:func:`qualify` states the rule), or its run ended before the survival could be
-        shown (:func:`conclude`: ``t_end`` before the end of the excitation, or the arch still
+        describe (`qualify` states the rule), or its run ended before the survival could be
+        shown (`conclude`: ``t_end`` before the end of the excitation, or the arch still
         rocking with energy enough to reach a crest): neither collapse nor survival is claimed.
         A block model (DEM, rigid chain) returns it when hinges opened and the run ended with
         the arch still moving (``final_state`` ``moving``): run longer to decide.
@@ -62,11 +62,11 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
     * ``no_hinging`` never (no mechanism opened, no impact).
 
     If the verdict depends on an impact and the law does not describe the impacts
-    (:meth:`archquake.mechanism.impact.ImpactSolution.describes`: Eq. 4 creating energy or
+    (`archquake.mechanism.impact.ImpactSolution.describes`: Eq. 4 creating energy or
     giving c_v < 0; the chain law's response outside the four-hinge model), the verdict is
     ``indeterminate``; otherwise it stands. Describedness is per impact: the caller passes
     whether *every impact before the verdict* is described (each impact has the validity of
-    the mechanism that closed, :attr:`archquake.mechanism.prepared.PreparedMechanism.table`).
+    the mechanism that closed, `archquake.mechanism.prepared.PreparedMechanism.table`).
 
     Parameters
     ----------
@@ -113,11 +113,11 @@ def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_e
       unable to reach a crest again (``below_barrier``: an impact after the excitation left
       ``1/2 m_eff(0) phi'^2`` below the least crest barrier ``g [V(phi_crit) - V(0)]`` of the
       mechanism table and no row's impact gains energy,
-      :func:`archquake.mechanism._kernels.table_energies`); else it is ``indeterminate``.
+      `archquake.mechanism._kernels.table_energies`); else it is ``indeterminate``.
       ``unresolved`` (an impact left the tabulated mechanisms) is never shown safe here
-      (:func:`qualify` makes it indeterminate through the impact's validity as well).
+      (`qualify` makes it indeterminate through the impact's validity as well).
 
-    Apply :func:`qualify` to the result for the impacts the law does not describe.
+    Apply `qualify` to the result for the impacts the law does not describe.
 
     Parameters
     ----------
@@ -188,7 +188,7 @@ def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_e
 #: its own after them.
 #:
 #: ``model``: ``'rigid'``, ``'fourlink'`` or ``'dem'`` (as ``--model`` names them);
-#: ``outcome``: an :class:`Outcome` value; ``final_state``: how the run ended (fourlink:
+#: ``outcome``: an `Outcome` value; ``final_state``: how the run ended (fourlink:
 #: rest, moving, collapsed, stalled; the block models: collapsed, rest or moving);
 #: ``collapse_half_cycle``: 1 = before the first impact, 2 = after it, ... (None: no collapse);
 #: ``collapse_time_s``, ``onset_time_s`` (hinging starts): s or None; ``impact_times_s``: s,

@@ -85,18 +85,18 @@ def process_pool(workers: int, *, ignore_sigint: bool = False,
         should turn it into one line (``archquake assess``). Default: workers take it as
         ``KeyboardInterrupt``, as Python processes do.
     start_method : str, optional
-        ``"forkserver"`` or ``"spawn"`` (default :data:`START_METHOD`); ``"fork"`` is accepted
+        ``"forkserver"`` or ``"spawn"`` (default `START_METHOD`); ``"fork"`` is accepted
         for measurements only (benchmarks/bench_pool.py): it is unsafe after a threaded kernel.
 
     Each worker runs numba's threaded kernels on its share of the cores
-    (:func:`threads_per_worker`: ``workers x threads <= cores``, not ``workers x cores``), and
+    (`threads_per_worker`: ``workers x threads <= cores``, not ``workers x cores``), and
     watches this process and exits once it is gone, so that no orphan keeps running or holds
     the terminal's pipes (``archquake sweep ... | tee`` then ends).
 
     As with any pool not started by ``fork``, a script creating one must guard its work with
     ``if __name__ == "__main__":`` (workers import the main module), and the case function must
     be importable (not defined in an interactive session). With ``forkserver`` this sets the
-    process's fork-server preload to :data:`FORKSERVER_PRELOAD` before the server starts.
+    process's fork-server preload to `FORKSERVER_PRELOAD` before the server starts.
     """
     context = multiprocessing.get_context(start_method or START_METHOD)
     if isinstance(context, multiprocessing.context.ForkServerContext):
@@ -109,7 +109,7 @@ def process_pool(workers: int, *, ignore_sigint: bool = False,
 
 def threads_per_worker(workers: int, cores: int | None = None) -> int:
     """numba threads each of ``workers`` processes may run so that together they use at most
-    ``cores`` (default :func:`usable_cores`), at least one each.
+    ``cores`` (default `usable_cores`), at least one each.
 
     Without the cap every worker's threaded kernels (``prange``: the domains, the IDA's batch)
     start numba's default of one thread per core, ``workers x cores`` threads on ``cores``.
@@ -122,7 +122,7 @@ def threads_per_worker(workers: int, cores: int | None = None) -> int:
 
 def _start_worker(parent: int, ignore_sigint: bool, workers: int = 1) -> None:
     """Worker initializer: cap numba's threads at this worker's share of the cores
-    (:func:`threads_per_worker`, never above numba's own ``NUMBA_NUM_THREADS``), optionally
+    (`threads_per_worker`, never above numba's own ``NUMBA_NUM_THREADS``), optionally
     ignore SIGINT, and end when ``parent`` ends."""
     import numba
 
@@ -142,7 +142,7 @@ def _unlink_numba_lock() -> None:
     multiprocessing RLock, made under any start method whose name contains "fork"), and take
     it off the resource tracker's list. The lock is this worker's own: no other process opens
     it by name, and an unlinked semaphore lives on until the worker ends. A worker ended by
-    SIGTERM (an interrupted command, :func:`stop_workers`) runs no clean-up, and the tracker
+    SIGTERM (an interrupted command, `stop_workers`) runs no clean-up, and the tracker
     then warned at exit of "2 leaked semaphore objects" (and unlinked them itself)."""
     import multiprocessing.util as mp_util
     from multiprocessing import resource_tracker, synchronize
@@ -198,7 +198,7 @@ def _watch_parent(parent: int) -> None:
 
 @contextmanager
 def interruptible_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
-    """A :func:`process_pool` (not started by
+    """A `process_pool` (not started by
     ``fork``, since by the time the records run this process has run the domains' threaded
     kernels; workers end with this process), with workers ignoring SIGINT (a Ctrl-C reaches
     the whole process group; this process alone turns it into one line and exit status 130).
@@ -227,7 +227,7 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
 
 
 def executor_workers(executor: Executor | None) -> int | None:
-    """Parallel workers of an executor (1 for :class:`SerialExecutor`, a pool's processes, a
+    """Parallel workers of an executor (1 for `SerialExecutor`, a pool's processes, a
     Dask cluster's threads), None if unknown or no executor."""
     if executor is None:
         return None

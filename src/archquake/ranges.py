@@ -1,11 +1,11 @@
 """The range of every kind of value a user gives, in the user's units (g, s, m, degrees).
 
-One place: the command line (:mod:`archquake.cli.common`) and the study files
-(:mod:`archquake.geometry.spec`, :mod:`archquake.ground.spec`, :mod:`archquake.sweeps.cases`)
+One place: the command line (`archquake.cli.common`) and the study files
+(`archquake.geometry.spec`, `archquake.ground.spec`, `archquake.sweeps.cases`)
 check against these. Ranges come from what the computation
 represents without overflow or a time step below float resolution, and from what is physically
 meaningful (an impact cannot create energy). Geometry's ranges (radius, depth, density,
-thickness ratio, embrace, voussoirs) live with their checks in :mod:`archquake.geometry.checks`.
+thickness ratio, embrace, voussoirs) live with their checks in `archquake.geometry.checks`.
 """
 
 from __future__ import annotations
@@ -23,9 +23,9 @@ T_END_RANGE_S = (0.01, 1e4)
 #: How long a run goes on after the end of the excitation when no end is given, in units of
 #: sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking arch to come to rest
 #: or to be shown unable to reach a crest again. The four-link model's default end
-#: (:func:`archquake.mechanism.simulate.default_t_end`) and the rigid chain's verdict window.
+#: (`archquake.mechanism.simulate.default_t_end`) and the rigid chain's verdict window.
 RUN_TAIL = 60.0
-#: The four-link model's impact laws (``--impact``; :mod:`archquake.mechanism.impact`).
+#: The four-link model's impact laws (``--impact``; `archquake.mechanism.impact`).
 IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):
 #: the explicit DEM steps ~1e-5 s, so 120 s is already millions of steps.

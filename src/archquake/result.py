@@ -1,10 +1,10 @@
 """One result interface for the three models.
 
-:func:`archquake.simulate` (the paper's four-link model) returns a
-:class:`~archquake.mechanism.SimulationResult`, :func:`archquake.simulate_rigid` (the chain of
-rigid voussoirs) a :class:`~archquake.rigid.RigidRun` and :func:`archquake.simulate_dem` (the
-distinct-element model) a :class:`~archquake.dem.DemResult`. Each has its own extras, and all
-three satisfy :class:`ModelResult`: the same attributes, with the same meaning and units, so
+`archquake.simulate` (the paper's four-link model) returns a
+`SimulationResult`, `archquake.simulate_rigid` (the chain of
+rigid voussoirs) a `RigidRun` and `archquake.simulate_dem` (the
+distinct-element model) a `DemResult`. Each has its own extras, and all
+three satisfy `ModelResult`: the same attributes, with the same meaning and units, so
 that a notebook comparing the models reads them alike. The attributes are views of what the
 result holds (or computed from it on first use), not copies.
 
@@ -42,8 +42,8 @@ TABLE_COLUMNS = ("time_s", "crown_dx_m", "crown_dy_m", "rotation_rad", "kinetic_
 @runtime_checkable
 class HingeEvent(Protocol):
     """One change of the open hinges in a time history: the analytical model's
-    :class:`~archquake.mechanism.simulate.MechanismEvent`, the block models'
-    :class:`~archquake.dem.result.HingeSet`."""
+    `MechanismEvent`, the block models'
+    `HingeSet`."""
 
     @property
     def time_s(self) -> float:
@@ -68,7 +68,7 @@ class ModelResult(Protocol):
     Attributes
     ----------
     outcome : Outcome
-        The verdict (:class:`~archquake.outcome.Outcome`).
+        The verdict (`Outcome`).
     verdict_reason : str
         Why the verdict is what it is, in one sentence (the JSON key ``verdict``).
     times : ndarray (nt,)
@@ -80,7 +80,7 @@ class ModelResult(Protocol):
     rotation : ndarray (nt,)
         The mechanism's rotation, rad: > 0 while the first mechanism (the one a ground
         acceleration towards -x opens) is open, < 0 in its mirror image. The four-link
-        model's phi; the block models' chord rotation (:mod:`archquake.dem.result`).
+        model's phi; the block models' chord rotation (`archquake.dem.result`).
     kinetic, potential : ndarray (nt,)
         Kinetic energy relative to the ground and gravitational potential energy from the
         undisplaced arch, J.
@@ -142,17 +142,17 @@ class ModelResult(Protocol):
     def g(self) -> float: ...
 
     def to_dict(self) -> dict:
-        """The summary for JSON: the keys of :data:`archquake.outcome.RESULT_KEYS` first."""
+        """The summary for JSON: the keys of `archquake.outcome.RESULT_KEYS` first."""
 
     def to_table(self) -> dict[str, np.ndarray]:
-        """Equal-length columns (:data:`TABLE_COLUMNS` first), for ``pandas.DataFrame``."""
+        """Equal-length columns (`TABLE_COLUMNS` first), for ``pandas.DataFrame``."""
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write :meth:`to_table` as CSV (a header of column names, one row per sample)."""
+        """Write `to_table` as CSV (a header of column names, one row per sample)."""
 
 
 def shared_columns(result: ModelResult) -> dict[str, np.ndarray]:
-    """The :data:`TABLE_COLUMNS` of a result (its ``to_table()`` adds its own after them)."""
+    """The `TABLE_COLUMNS` of a result (its ``to_table()`` adds its own after them)."""
     crown = result.crown_displacement
     return {"time_s": result.times, "crown_dx_m": crown[:, 0], "crown_dy_m": crown[:, 1],
             "rotation_rad": result.rotation, "kinetic_J": result.kinetic,
@@ -160,7 +160,7 @@ def shared_columns(result: ModelResult) -> dict[str, np.ndarray]:
 
 
 def shared_keys(result: ModelResult, model: str, final_state: str) -> dict:
-    """The keys of :data:`archquake.outcome.RESULT_KEYS`, in that order, for a result's
+    """The keys of `archquake.outcome.RESULT_KEYS`, in that order, for a result's
     ``to_dict()`` (each model adds its own after them).
 
     Parameters

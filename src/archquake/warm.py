@@ -2,7 +2,7 @@
 
 Every kernel of the package is compiled with ``cache=True``: the first call of each compiles it
 (10-40 s per model) and writes the machine code to numba's cache, from which every later process
-loads it in milliseconds. :func:`warm` makes that first call on purpose, for each model on a
+loads it in milliseconds. `warm` makes that first call on purpose, for each model on a
 tiny problem (an arch of 7 voussoirs, a fraction of a second of motion), so that a user's first
 ``archquake run`` loads its kernels instead of compiling them. ``make demo`` runs it right after
 the install (``archquake warm``).
@@ -11,7 +11,7 @@ The workloads go through the same public functions as the commands, with the sam
 types (a sampled record is a read-only array, as the readers make it), so each kernel is
 compiled for the signature the commands call it with.
 
-Where the cache goes is numba's choice, see :mod:`archquake._kernel_cache`: ``NUMBA_CACHE_DIR``
+Where the cache goes is numba's choice, see `archquake._kernel_cache`: ``NUMBA_CACHE_DIR``
 if set; else ``__pycache__`` beside the kernels' sources if the install is writable; else the
 user's cache directory (``~/.cache/numba``). numba uses a cache directory only where it can
 write, so a read-only install warmed by its owner is compiled again by each other user (into
@@ -148,12 +148,12 @@ WORKLOADS: dict[str, Callable[[], None]] = {
 
 @dataclass(frozen=True)
 class WarmStep:
-    """One workload of :func:`warm`.
+    """One workload of `warm`.
 
     Attributes
     ----------
     name : str
-        Its key in :data:`WORKLOADS`.
+        Its key in `WORKLOADS`.
     seconds : float
         Wall time, s (compilation, or loading from the cache when already warm).
     compiled : int
@@ -170,7 +170,7 @@ class WarmStep:
 
 @dataclass(frozen=True)
 class WarmReport:
-    """What :func:`warm` did.
+    """What `warm` did.
 
     Attributes
     ----------
@@ -203,7 +203,7 @@ class WarmReport:
 
 
 def dispatchers() -> list:
-    """Every numba dispatcher the package defines, by importing :data:`KERNEL_MODULES`.
+    """Every numba dispatcher the package defines, by importing `KERNEL_MODULES`.
 
     Returns
     -------
@@ -248,9 +248,9 @@ def warm(only: Iterable[str] | None = None,
     Parameters
     ----------
     only : iterable of str, optional
-        Names of :data:`WORKLOADS` to run (default all).
+        Names of `WORKLOADS` to run (default all).
     progress : callable, optional
-        Called with each :class:`WarmStep` as it finishes.
+        Called with each `WarmStep` as it finishes.
 
     Returns
     -------

@@ -453,6 +453,30 @@ def test_manual_builds_strict(tmp_path):
     assert (tmp_path / "site" / "api" / "archquake" / "index.html").exists()
 
 
+def test_api_reference_prints_no_raw_sphinx_role(tmp_path):
+    """The API reference renders docstrings as Markdown (mkdocstrings), where a Sphinx role
+    (``:func:`x```) would print raw: the hook ``docs/hooks/roles.py`` makes each one a warning, so
+    the strict build fails on it. Oracle: a docstring written with a role, built strict."""
+    pkg = tmp_path / "src" / "rolepkg"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text('"""A module."""\n\n\ndef f():\n'
+                                     '    """See :func:`g`."""\n\n\ndef g():\n    """G."""\n')
+    (tmp_path / "docs" / "hooks").mkdir(parents=True)
+    shutil.copy(ROOT / "docs" / "hooks" / "roles.py", tmp_path / "docs" / "hooks" / "roles.py")
+    (tmp_path / "docs" / "index.md").write_text("# Roles\n\n::: rolepkg\n")
+    (tmp_path / "mkdocs.yml").write_text(
+        "site_name: roles\nexclude_docs: |\n  hooks/*.py\nhooks:\n  - docs/hooks/roles.py\n"
+        "plugins:\n  - mkdocstrings:\n      handlers:\n        python:\n          paths: [src]\n"
+        "          options:\n            docstring_style: numpy\n")
+    done = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode != 0 and "raw Sphinx role" in done.stderr, done.stderr[-2000:]
+    role = re.compile(r":(?:mod|func|class|meth|attr|data|exc|obj):`")
+    found = [f"{p.relative_to(ROOT)}:{n}" for p in sorted((ROOT / "src").rglob("*.py"))
+             for n, line in enumerate(p.read_text().splitlines(), 1) if role.search(line)]
+    assert found == [], found[:10]
+
+
 #: Words that belong to how the code was written, not to how it is used.
 PRIVATE_HISTORY = re.compile(r"\bissues? #?\d+|\b(?:next|this|previous|later) session\b", re.IGNORECASE)
 

@@ -2,7 +2,7 @@
 failure domains, records (IDA and fragility), the distinct-element check, the models' validity
 and a verdict, in one report (``archquake assess ARCH.toml --out DIR``).
 
-It sits beside :mod:`archquake.reproduce` and shares its result type, cache and report style.
+It sits beside `archquake.reproduce` and shares its result type, cache and report style.
 """
 
 from archquake.assess.config import AssessConfig, load_config, parse_config

@@ -38,10 +38,10 @@ computation.
     traffic = {axle_kN = 100.0, dispersion_deg = 26.57}      # the traffic check (statics only)
 
 Every problem is one line naming the key as the file spells it (``[arch] radius``), raised as
-:class:`~archquake.errors.StudyFileError` (exit status 2 on the command line). Every record
+`StudyFileError` (exit status 2 on the command line). Every record
 file of the suite is read and checked here, before anything is computed. A value far outside
 practice (a PGA above 1.5 g, a radius below 0.2 m) is accepted with a one-line note naming the
-key (:attr:`AssessConfig.notes`); one that can only be a mistake (an embrace in radians) is
+key (`AssessConfig.notes`); one that can only be a mistake (an embrace in radians) is
 refused.
 """
 
@@ -89,7 +89,7 @@ class AssessConfig:
     units : str or None
         Units of CSV/text records.
     impact : str
-        Impact law of the four-link model (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
+        Impact law of the four-link model (`archquake.mechanism.impact.IMPACT_LAWS`).
     restitution : float or None
         Prescribed c_v of the four-link model (overrides the impact law's), in (0, 1].
     dem : bool
@@ -98,9 +98,9 @@ class AssessConfig:
         The file read (for messages).
     model : str
         The model of the dynamic verdicts, "rigid" (default) or "fourlink"
-        (:data:`ASSESS_MODELS`).
+        (`ASSESS_MODELS`).
     site : SiteConfig or None
-        The ``[site]`` table (:mod:`archquake.assess.site`): the code check's site, knowledge
+        The ``[site]`` table (`archquake.assess.site`): the code check's site, knowledge
         level and position.
     site_pga_source : str or None
         Where ``site_pga_g`` comes from, in words (the [site] table's a_g S_S S_T with its
@@ -109,8 +109,8 @@ class AssessConfig:
         One line per input far outside practice, and per override stated (printed before the
         run and in the report).
     loads : Loads or None
-        The ``[loads]`` table (:func:`~archquake.geometry.loads.loads_from_table`): every
-        section carries its dead loads (:attr:`dead_loads`); its traffic is the traffic
+        The ``[loads]`` table (`loads_from_table`): every
+        section carries its dead loads (`dead_loads`); its traffic is the traffic
         check's.
     """
 
@@ -154,12 +154,12 @@ class AssessConfig:
 
     @property
     def digest(self) -> str:
-        """First 10 hex digits of the SHA-256 of :meth:`canonical` (names the cache entries)."""
+        """First 10 hex digits of the SHA-256 of `canonical` (names the cache entries)."""
         text = json.dumps(self.canonical(), sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()[:10]
 
     def build_arch(self):
-        """The arch (:meth:`ArchSpec.build`)."""
+        """The arch (`ArchSpec.build`)."""
         return self.arch.build()
 
 
@@ -193,7 +193,7 @@ def load_config(path: str | Path) -> AssessConfig:
 
 def parse_config(data: dict, *, source: str = "assessment",
                  base_dir: Path | None = None) -> AssessConfig:
-    """Validate the parsed TOML ``data`` (see :func:`load_config`); relative record paths are
+    """Validate the parsed TOML ``data`` (see `load_config`); relative record paths are
     relative to ``base_dir``."""
     from archquake.sweeps.cases import ArchSpec
 
@@ -353,7 +353,7 @@ def parse_config(data: dict, *, source: str = "assessment",
 
 
 def _loads(source: str, table: Any, arch) -> Any:
-    """The ``[loads]`` table read (:func:`~archquake.geometry.loads.loads_from_table`) and
+    """The ``[loads]`` table read (`loads_from_table`) and
     checked against ``arch``: an arch that can carry loads (no piers, an extrados running left
     to right), positions on its clear span, a fill surface at or above the extrados; and loads
     every section can carry: the dynamic models carry masses that move with the arch, so
@@ -405,7 +405,7 @@ def _loads(source: str, table: Any, arch) -> Any:
 def _site_pga(source: str, given: float | None, override: bool, site: SiteConfig | None,
               notes: list[str]) -> tuple[float | None, str | None]:
     """The site PGA of the dynamic sections (g) and where it comes from: with a ``[site]``
-    table its a_g S_S S_T (:meth:`SiteConfig.site_pga_g`); a ``[seismic] site_pga_g`` beside
+    table its a_g S_S S_T (`SiteConfig.site_pga_g`); a ``[seismic] site_pga_g`` beside
     it must agree (to 0.5 %), or be stated to override it (a note says so)."""
     if site is None:
         if override:

@@ -8,7 +8,7 @@ import numpy as np
 def carried_masses(arch, loads) -> dict:
     """The masses the models move, kg: the masonry's, and what its blocks carry (the fill
     columns, the loads on the extrados that move with the arch), from
-    :func:`~archquake.geometry.loads.block_extras`; the blocks the backing holds (numbered
+    `block_extras`; the blocks the backing holds (numbered
     from 1) belong to the support. ``loads`` None: the bare arch."""
     from archquake.geometry.loads import Loads, block_extras
 

@@ -1,6 +1,6 @@
 """The assessment's report: one list of elements (headings, paragraphs, tables, figures) written
 as Markdown (figures linked) and as one self-contained HTML page (figures embedded; the
-reproduction's style sheet and image embedding, :mod:`archquake.reproduce.report`)."""
+reproduction's style sheet and image embedding, `archquake.reproduce.report`)."""
 
 from __future__ import annotations
 

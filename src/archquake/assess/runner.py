@@ -1,13 +1,13 @@
 """Run an assessment into a folder, resuming what an interrupted run finished.
 
-Layout of ``out`` (the reproduction's, :mod:`archquake.reproduce.runner`)::
+Layout of ``out`` (the reproduction's, `archquake.reproduce.runner`)::
 
     out/report.md, out/report.html, out/results.json
     out/figures/*.png
     out/cache/assess-<section>-<digest>-<version>-<quick|full>.json   each finished section
     out/cache/ida-<digest>-<quick|full>.sqlite                        the IDA's runs
 
-``digest`` hashes the validated input (:meth:`AssessConfig.digest`), so a changed file never
+``digest`` hashes the validated input (`AssessConfig.digest`), so a changed file never
 reuses a stale section.
 """
 
@@ -72,7 +72,7 @@ class Assessment:
 def section_names(config: AssessConfig, arch=None) -> list[str]:
     """The sections this input calls for (records only with a suite, the DEM only if asked; no
     pulses, records or DEM for an ``arch`` the four-link model cannot take:
-    :func:`~archquake.assess.sections.dynamics_refusal`, reported in the validity section)."""
+    `dynamics_refusal`, reported in the validity section)."""
     names = [n for n, _ in SECTIONS]
     if config.suite is None:
         names.remove("records")
@@ -180,7 +180,7 @@ def _tagged(progress: Callable[[str], None] | None, name: str
 
 #: The sections whose data each section reads (``Context.prior``): a section starts once these
 #: are done. The validity section does not wait for the DEM check; the DEM check's warnings are
-#: added to it afterwards (:func:`~archquake.assess.sections.with_dem_warnings`).
+#: added to it afterwards (`with_dem_warnings`).
 NEEDS: dict[str, tuple[str, ...]] = {
     "arch": (), "static": (), "traffic": (), "codecheck": (), "pulses": (), "records": (),
     "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records")}
@@ -188,7 +188,7 @@ NEEDS: dict[str, tuple[str, ...]] = {
 
 def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> None:
     """Call ``run(k, name, prior)`` for every section, ``prior`` the data of the sections it
-    needs (:data:`NEEDS`): one after another, or with ``side_by_side`` each in its own thread
+    needs (`NEEDS`): one after another, or with ``side_by_side`` each in its own thread
     as soon as those are done (the chain of rigid voussoirs' sections spend their time in
     compiled kernels that release the GIL, and in worker processes; the four-link model's
     threaded kernels cannot be entered from two threads at once).

@@ -2,7 +2,7 @@
 
 Each section is a pure function ``section(ctx) -> StudyResult`` (the reproduction's result type:
 its ``data`` holds every number, its ``figures`` the files it wrote), so the reproduction's
-cache stores and resumes it (:mod:`archquake.assess.runner`). A later section reads the numbers
+cache stores and resumes it (`archquake.assess.runner`). A later section reads the numbers
 of the earlier ones from ``ctx.prior`` (their ``data``), never recomputes them.
 
 Numbers in ``data`` carry their units in the key (``_g``, ``_m``, ``_s``, ``_kg``).
@@ -37,8 +37,8 @@ LOADS_ASSUMPTION = ("the fill as columns riding on the voussoirs (weight and hor
 
 
 def assumptions(config) -> tuple[str, ...]:
-    """The assumptions every verdict on ``config``'s arch rests on: :data:`ASSUMPTIONS`, the
-    last one the fill's model when the arch carries loads (:data:`LOADS_ASSUMPTION`)."""
+    """The assumptions every verdict on ``config``'s arch rests on: `ASSUMPTIONS`, the
+    last one the fill's model when the arch carries loads (`LOADS_ASSUMPTION`)."""
     if getattr(config, "loads", None) is None:
         return ASSUMPTIONS
     return ASSUMPTIONS[:-1] + (LOADS_ASSUMPTION,)
@@ -89,7 +89,7 @@ class Mode:
     def rigid_domain_settings(self, lam_g: float, site_g: float | None):
         """The domain search of the rigid chain (one time history per point): coarser than the
         four-link batch's, and scanned from lambda (``lam_g``, g) up to
-        :func:`rigid_scan_ceiling`, so that its magnitudes fall where the verdict is decided."""
+        `rigid_scan_ceiling`, so that its magnitudes fall where the verdict is decided."""
         from archquake.domains import DomainSettings
 
         top = rigid_scan_ceiling(lam_g, site_g)
@@ -140,7 +140,7 @@ class Context:
             self.progress(line)
 
     def counter(self, what: str, total: int) -> Progress:
-        """A :class:`Progress` of ``total`` items (``what``: their name) through :meth:`say`."""
+        """A `Progress` of ``total`` items (``what``: their name) through `say`."""
         return Progress(self.say if self.progress is not None else None, what, total)
 
     @property
@@ -155,7 +155,7 @@ class Context:
 
     def rigid_body(self):
         """What the rigid chain and the DEM run: the arch, or with loads its assembly whose
-        blocks carry them (:func:`archquake.dem.assembly.build_arch_assembly`)."""
+        blocks carry them (`archquake.dem.assembly.build_arch_assembly`)."""
         if self.loads is None:
             return self.arch
         from archquake.dem.assembly import build_arch_assembly
@@ -164,7 +164,7 @@ class Context:
 
     def collapse_acceleration_g(self) -> float:
         """lambda, g: the equivalent static analysis's, with the loads when the arch carries
-        them (:mod:`archquake.limit.loaded`)."""
+        them (`archquake.limit.loaded`)."""
         if self.loads is None:
             from archquake.limit import hinges_of
             from archquake.limit.static import collapse_state
@@ -177,7 +177,7 @@ class Context:
 
 class Progress:
     """Progress of one step on the ``say`` line: ``what: done/total, about N s left``, once the
-    step has run for :attr:`QUIET_S` seconds and then at most every :attr:`EVERY_S` seconds,
+    step has run for `QUIET_S` seconds and then at most every `EVERY_S` seconds,
     and when it ends; nothing for a step shorter than that. The time left is the time per item
     so far times the items left (``total`` may be an estimate, raised if passed, and said to
     be one).
@@ -200,7 +200,7 @@ class Progress:
         self._done = 0
 
     def __enter__(self) -> Progress:
-        """While the step runs, a line every :attr:`EVERY_S` seconds even when no item has
+        """While the step runs, a line every `EVERY_S` seconds even when no item has
         finished since (the first items of a step may take minutes: a line that says how many
         are done and for how long the step has run)."""
         self._stop = threading.Event()
@@ -254,7 +254,7 @@ def prepared_mechanism(arch, impact: str = "paper", loads=None):
     """The arch's prepared mechanism under its impact law, its links carrying ``loads`` (a
     prescribed c_v is passed to each analysis as ``restitution=``, so that the law's validity
     and the verdict's dependence on it are judged in one place:
-    :func:`archquake.outcome.qualify`)."""
+    `archquake.outcome.qualify`)."""
     from archquake.mechanism.prepared import PreparedMechanism
 
     if loads is None:
@@ -264,7 +264,7 @@ def prepared_mechanism(arch, impact: str = "paper", loads=None):
 
 def used_restitution(config, arch) -> tuple[float, Any]:
     """c_v the time histories use (prescribed, or the law's clipped at 0) and the law's own
-    :class:`~archquake.mechanism.impact.ImpactSolution`."""
+    `ImpactSolution`."""
     own = prepared_mechanism(arch, config.impact, config.dead_loads).impact
     cv = config.restitution if config.restitution is not None else max(own.restitution_cv, 0.0)
     return float(cv), own
@@ -276,7 +276,7 @@ def dynamics_refusal(arch, model: str = "rigid") -> str | None:
 
     The chain of rigid voussoirs (``rigid``) takes any arch. The four-link model switches to
     the mirror-image mechanism after each impact, which exists only for a symmetric chain
-    (:attr:`VoussoirChain.symmetric`, docs/geometry.md); with it a surveyed asymmetric arch
+    (`VoussoirChain.symmetric`, docs/geometry.md); with it a surveyed asymmetric arch
     gets its static capacity and this one-line reason instead."""
     if model != "fourlink" or getattr(arch, "symmetric", True):
         return None
@@ -437,7 +437,7 @@ TRAFFIC_POSITIONS = {True: 26, False: 51}
 
 def section_traffic(ctx: Context) -> StudyResult:
     """The traffic check: the ``[loads]`` table's traffic moved along the clear span over the
-    dead loads (:func:`archquake.limit.capacity.capacity_scan`); its least collapse multiplier
+    dead loads (`archquake.limit.capacity.capacity_scan`); its least collapse multiplier
     is the adequacy factor, at the critical position analysed again with both bounds."""
     from matplotlib.figure import Figure as MplFigure
 
@@ -489,8 +489,8 @@ def _domain_data(d, site: float | None) -> dict:
 def pulse_domains(ctx: Context, cv: float | None) -> dict:
     """Step and sine failure domains (FailureDomain objects) of the configuration's model: the
     rigid chain's governing boundary (every voussoir a block, searched by
-    :func:`archquake.compare.dem_failure_domain` with ``model='rigid'``: batches of
-    :func:`archquake.rigid.verdict.rigid_verdicts`, threaded), or the four-link model's at
+    `archquake.compare.dem_failure_domain` with ``model='rigid'``: batches of
+    `archquake.rigid.verdict.rigid_verdicts`, threaded), or the four-link model's at
     restitution ``cv``."""
     if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
         from archquake.compare import dem_failure_domain
@@ -579,9 +579,9 @@ IDA_RUNS_PER_RECORD = {True: 24, False: 52}
 
 
 def _ida_progress(ctx: Context, records: int) -> Callable[[int, int, int], None]:
-    """The IDA's ``progress(stored, total_so_far, round)`` as a :class:`Progress` of runs:
+    """The IDA's ``progress(stored, total_so_far, round)`` as a `Progress` of runs:
     the total grows as hunt-and-fill proposes levels, so the line's total is an estimate
-    (:data:`IDA_RUNS_PER_RECORD`), raised when the work found passes it."""
+    (`IDA_RUNS_PER_RECORD`), raised when the work found passes it."""
     tick = Progress(ctx.say if ctx.progress is not None else None, "IDA runs",
                     records * IDA_RUNS_PER_RECORD[ctx.mode.quick], estimate=True)
     return lambda done, total, rounds: tick(done, total)
@@ -596,7 +596,7 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     Returns
     -------
     (suite, records, IDAResult, fits)
-        ``fits`` as :func:`archquake.ida.fragility.fragility_of` gives them.
+        ``fits`` as `archquake.ida.fragility.fragility_of` gives them.
     """
     from archquake.ground.suites import load_suite
     from archquake.ida import incremental_dynamic_analysis
@@ -663,7 +663,7 @@ def records_axis_top(first_g, site_g: float | None, ceiling_g: float) -> float:
 
 def _fit_records_axes(a1, a2, res, site: float | None, named: int = 3) -> float:
     """The records figure read at a glance: PGA axes fitted to the data
-    (:func:`records_axis_top`), the ``named`` records that collapse first named at their first
+    (`records_axis_top`), the ``named`` records that collapse first named at their first
     collapse, legends below the axes. Returns the axes' top, g."""
     first = np.asarray(res.first_collapse_levels, dtype=float)
     top = records_axis_top(first, site, res.ceiling)
@@ -777,7 +777,7 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
 def _windows(ctx: Context, motions: list, windows: list) -> list | None:
     """The rigid chain's window of each motion, s: as given, or the verdict's default
     (the end of the excitation + the verdict's tail in sqrt(R/g), as
-    :func:`archquake.rigid.rigid_verdicts` takes it for an arch, scaled by the arch's radius: a
+    `archquake.rigid.rigid_verdicts` takes it for an arch, scaled by the arch's radius: a
     loaded assembly has none of its own). For the bare arch, ``windows`` as given."""
     if ctx.loads is None:
         return windows
@@ -1023,7 +1023,7 @@ def with_dem_warnings(validity: dict, dem: dict | None, model: str) -> dict:
 
 
 def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndarray:
-    """Indices of the durations of a domain's data (:func:`_domain_data`), all or the
+    """Indices of the durations of a domain's data (`_domain_data`), all or the
     ``count`` whose governing boundary is nearest ``site`` in ratio (no boundary: farthest)."""
     coll = np.asarray(domain["collapse_g"], dtype=float)
     if count is None or count >= coll.size:
@@ -1050,11 +1050,11 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     time step and sliding. The pulses of the site PGA at every scanned duration (quick mode:
     the two of each family whose governing boundary is nearest the site PGA, the verdicts a
     small change would flip first) and the governing record scaled to it are run on the
-    verdict path (:func:`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
+    verdict path (`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
     it (guarded at a quarter), and with Coulomb joints of the given friction coefficient (the
-    recorded stepper, :func:`archquake.compare.rigid_to_verdict`: the verdict path has no
+    recorded stepper, `archquake.compare.rigid_to_verdict`: the verdict path has no
     friction) at the verdict's step; a friction verdict that differs from the no-slip one is
-    run again at :data:`archquake.rigid.DEFAULT_TIME_STEP` (1e-4 s) and that one kept, so that
+    run again at `archquake.rigid.DEFAULT_TIME_STEP` (1e-4 s) and that one kept, so that
     every verdict the report counts as changed by sliding, or warns about, is the fine step's
     (``friction_time_step_s``: the step of each). A verdict that changes at
     half the step is a serious warning (the step does not resolve the motion); one that changes
@@ -1215,11 +1215,11 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
 
     The text opens with the level word (``'Collapse likely'``, ``'At risk'``, ``'Rocks but
     survives'``, ``'Stands'``, ...), the code check's outcome with a ``[site]`` table, and
-    "indicative" in quick mode; ``outcome`` (:data:`OUTCOMES`) follows the outcome, not the
+    "indicative" in quick mode; ``outcome`` (`OUTCOMES`) follows the outcome, not the
     certainty. A serious validity warning makes it not conclusive, unless the verdict is
     already as high as that warning can raise it ("collapse likely", or "at risk" from the
     pulses with no records) and the warning can only make collapse likelier
-    (:data:`COLLAPSE_LIKELIER`)."""
+    (`COLLAPSE_LIKELIER`)."""
     site = config.site_pga_g
     st = prior["static"]
     lam = st["collapse_acceleration_g"]

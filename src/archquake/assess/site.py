@@ -28,10 +28,10 @@
 
 The site's demand on the dynamic sections (pulses, records, P(collapse), the DEM check) is
 the peak ground acceleration of the SLV spectrum (of the one spectrum, at its limit state):
-a_g S_S S_T (EN 1998-1: gamma_I a_gR S), :meth:`SiteConfig.site_pga_g`.
+a_g S_S S_T (EN 1998-1: gamma_I a_gR S), `SiteConfig.site_pga_g`.
 
 Every problem is one line naming the key (``[site] ag_g``), raised as
-:class:`~archquake.errors.StudyFileError`.
+`StudyFileError`.
 """
 
 from __future__ import annotations
@@ -105,7 +105,7 @@ class SiteConfig:
 
     def spectra(self) -> dict:
         """The site's elastic spectra by limit state ('SLD', 'SLV', 'SLC'): only those with a
-        hazard of their own (:meth:`not_checked` says why the others have none)."""
+        hazard of their own (`not_checked` says why the others have none)."""
         return self._spectra_and_missing()[0]
 
     def not_checked(self) -> dict:
@@ -120,13 +120,13 @@ class SiteConfig:
             self.limit_state or DYNAMIC_LIMIT_STATE)
 
     def site_pga_g(self) -> float:
-        """The site's peak ground acceleration at :attr:`dynamic_limit_state`, g: a_g S_S S_T
+        """The site's peak ground acceleration at `dynamic_limit_state`, g: a_g S_S S_T
         (NTC 2018 eq. 3.2.2 at T = 0), gamma_I a_gR S (EN 1998-1)."""
         spec = self.spectra()[self.dynamic_limit_state]
         return float(spec.pga / spec.g)
 
     def describe_pga(self) -> str:
-        """Where :meth:`site_pga_g` comes from, in words with its factors."""
+        """Where `site_pga_g` comes from, in words with its factors."""
         spec = self.spectra()[self.dynamic_limit_state]
         g = spec.g
         state = self.dynamic_limit_state
@@ -321,7 +321,7 @@ def parse_site(table: dict, *, source: str = "assessment") -> SiteConfig:
 
 # ----------------------------------------------------------------------------- the section
 def section_code_check(ctx):
-    """The code check of the arch's collapse mechanism (:func:`archquake.codecheck.kinematic_check`)
+    """The code check of the arch's collapse mechanism (`archquake.codecheck.kinematic_check`)
     with the ``[site]`` table; its capacity curve against the demand in a figure."""
     import numpy as np
 
@@ -368,7 +368,7 @@ def section_code_check(ctx):
 
 
 def _time_history_routes(ctx, result, curve) -> list:
-    """The time-history route (:func:`archquake.codecheck.timehistory.time_history_route`) of
+    """The time-history route (`archquake.codecheck.timehistory.time_history_route`) of
     each nonlinear limit state checked, with the ``[site] time_history`` suite's records cut to
     their strong part plus 2 s; quick mode bisects the bracket once, the full mode three
     times."""

@@ -1,6 +1,6 @@
-"""The ``archquake`` command line: a thin shell over the library (see :mod:`archquake.cli.main`).
+"""The ``archquake`` command line: a thin shell over the library (see `archquake.cli.main`).
 
-What a user imports from here is the module :mod:`archquake.cli.main`: ``main.main(argv) ->
+What a user imports from here is the module `archquake.cli.main`: ``main.main(argv) ->
 int`` runs a command as the console script does and returns its exit status
 (``from archquake.cli.main import main``). The package imports nothing itself, so that the
 console script pays only for the command it runs.

@@ -232,7 +232,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _warn_implausible(args: argparse.Namespace) -> None:
     """The site's a_g far outside practice, on stderr once the check has succeeded
-    (:mod:`archquake.cli.input_warnings`)."""
+    (`archquake.cli.input_warnings`)."""
     from archquake.cli.input_warnings import warn_pga
 
     top = None if args.hazard is None else max(p[1] for p in args.hazard)
@@ -259,7 +259,7 @@ def _time_history_suite(args: argparse.Namespace) -> list | None:
 
 
 def _time_history(args: argparse.Namespace, result, curve, suite: list) -> list:
-    """The time-history route of the SLV and SLC checked (:func:`time_history_route`), each
+    """The time-history route of the SLV and SLC checked (`time_history_route`), each
     starting from its static capacity."""
     import sys
 

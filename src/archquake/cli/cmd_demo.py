@@ -25,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """:func:`~archquake.cli.cmd_reproduce.reproduce` in quick mode, then the animation of
+    """`reproduce` in quick mode, then the animation of
     Figure 4(d)."""
     from archquake.reproduce.figure4 import animation
     from archquake.validation.paper import oppenheim_arch

@@ -193,7 +193,7 @@ def _check_search(arch, scan: int, precision: float, ceiling: float, loads=None)
 
 def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> int:
     """``--model rigid`` (the default) or ``dem``: the block model's failure domain beside the
-    four-link one (paper Figures 6 and 11), through :func:`archquake.compare.compare_domains`,
+    four-link one (paper Figures 6 and 11), through `archquake.compare.compare_domains`,
     searched the same way on the same assemblies for either model."""
     import csv
 

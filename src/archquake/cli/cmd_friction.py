@@ -54,7 +54,7 @@ LINE_PROGRESS_WORK = 100_000
 def _progress_bar(voussoirs: int = 0):
     """A progress bar on stderr over the instants examined (a long record has thousands of
     instants, the locked ones a few linear programs each). Off a terminal, where the bar is not
-    drawn, a long examination (:data:`LINE_PROGRESS_WORK`) prints a line at each quarter."""
+    drawn, a long examination (`LINE_PROGRESS_WORK`) prints a line at each quarter."""
     from tqdm import tqdm
 
     bar = tqdm(total=0, desc="instants", unit="", file=sys.stderr, disable=None, leave=False)
@@ -116,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     """``--model rigid``: the friction demand of the chain of rigid voussoirs' joint forces
-    (:mod:`archquake.rigid.forces`, with its reporting rule), run to a verdict; with ``loads``
+    (`archquake.rigid.forces`, with its reporting rule), run to a verdict; with ``loads``
     the chain carries them and the static analysis beside it too."""
     import numpy as np
 

@@ -1,6 +1,6 @@
 """``archquake ida``: incremental dynamic analysis of an arch under a record suite, with fragility.
 
-The library does the work (:mod:`archquake.ida`); this shell reads the suite, opens the store and
+The library does the work (`archquake.ida`); this shell reads the suite, opens the store and
 the executor, draws a progress bar on stderr, and prints, plots or writes the result.
 """
 
@@ -111,7 +111,7 @@ def _check(args: argparse.Namespace) -> None:
 
 
 def _model(args: argparse.Namespace):
-    """The :class:`~archquake.sweeps.Model` of --model (checked by :func:`_check`)."""
+    """The `Model` of --model (checked by `_check`)."""
     from archquake.sweeps.cases import Model
 
     return Model(args.model)

@@ -7,7 +7,7 @@ self-contained report.html) setting each number the paper states beside archquak
 tolerance and a pass/fail mark. Finished studies are cached in DIR/cache/ and reused by a rerun.
 Exit status 0 when no line fails, 1 when some line fails, 2 on a usage error.
 
-``archquake demo`` (cli/cmd_demo.py) runs :func:`reproduce` in quick mode plus an animation.
+``archquake demo`` (cli/cmd_demo.py) runs `reproduce` in quick mode plus an animation.
 """
 
 from __future__ import annotations

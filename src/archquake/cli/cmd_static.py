@@ -103,7 +103,7 @@ def _analysis(arch, method: str, loads, args: argparse.Namespace):
 
 
 def format_result(result) -> str:
-    """Human-readable summary of a :class:`~archquake.limit.LimitAnalysis`."""
+    """Human-readable summary of a `LimitAnalysis`."""
     arch = result.arch
     n = arch.voussoirs
     lines = [

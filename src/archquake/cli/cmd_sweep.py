@@ -1,6 +1,6 @@
 """``archquake sweep STUDY.toml``: run a study's grid of cases, resumably, locally or on Dask.
 
-The library does the work (:mod:`archquake.sweeps`); this shell reads the study, opens the
+The library does the work (`archquake.sweeps`); this shell reads the study, opens the
 store and the executor, draws a tqdm bar on stderr, exports, and prints a summary.
 """
 

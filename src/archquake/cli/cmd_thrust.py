@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> int:
 def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     """``--model rigid``: the chain of rigid voussoirs (carrying ``loads``) run to the last time
     asked (or its collapse), its joints at the recorded sample nearest each time
-    (:meth:`archquake.rigid.forces.JointForceHistory.state_at`)."""
+    (`archquake.rigid.forces.JointForceHistory.state_at`)."""
     from archquake.cli.common import rigid_work
     from archquake.cli.rigid_run import joint_numbers, loaded_body, on_arch_joints
     from archquake.rigid import simulate_rigid

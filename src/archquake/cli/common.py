@@ -139,7 +139,7 @@ def comma_numbers(text: str, count: int | None, what: str) -> list[float]:
 
 def check_output_file(path: Path, suffixes: tuple[str, ...] | None, *,
                       create_parents: bool = False) -> Path:
-    """``path`` as a file this command can write, or :class:`InvalidParameterError` saying why.
+    """``path`` as a file this command can write, or `InvalidParameterError` saying why.
 
     Refused: an empty name, an existing directory, a suffix outside ``suffixes`` (None: any),
     a parent folder that does not exist (unless ``create_parents``: then the nearest existing
@@ -220,7 +220,7 @@ def _either(suffixes: tuple[str, ...] | None) -> str:
 
 
 def output_file(*suffixes: str, create_parents: bool = False):
-    """argparse type: an output file checked by :func:`check_output_file` at parse time, so a
+    """argparse type: an output file checked by `check_output_file` at parse time, so a
     bad path fails before any computation (argparse names the option)."""
 
     def parse(text: str) -> Path:
@@ -243,7 +243,7 @@ def path_argument(text: str) -> Path:
 
 
 def output_folder(text: str) -> Path:
-    """argparse type: an output folder checked by :func:`check_output_folder`."""
+    """argparse type: an output folder checked by `check_output_folder`."""
     if not text.strip():  # Path("") is ".": the working folder would take the output
         raise argparse.ArgumentTypeError("an empty path is not a folder name")
     try:
@@ -322,8 +322,8 @@ def _given(args: argparse.Namespace, *names: str) -> list[str]:
 
 
 def arch_from_args(args: argparse.Namespace):
-    """Build the arch (any :class:`~archquake.geometry.VoussoirChain`) from the options of
-    :func:`add_arch_arguments`; every inconsistent combination is one line naming the option."""
+    """Build the arch (any `VoussoirChain`) from the options of
+    `add_arch_arguments`; every inconsistent combination is one line naming the option."""
     from archquake.geometry import OnPiers, Piers
     from archquake.geometry.shapes import ShapedArch, pointed
 
@@ -448,7 +448,7 @@ MODEL_HELP = ("'rigid' (default), the chain of rigid voussoirs: hinges open, mig
 def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] = (),
                        extra: str = "") -> None:
     """``--model rigid|fourlink|dem`` (default rigid; ``models`` limits the choice), read by
-    :func:`model_from_args`. The retired ``--hinges`` stays hidden so that it gets a pointer to
+    `model_from_args`. The retired ``--hinges`` stays hidden so that it gets a pointer to
     ``--model`` instead of argparse's bare 'unrecognized arguments'."""
     from archquake.sweeps.cases import Model
 
@@ -459,7 +459,7 @@ def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] 
 
 
 def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
-    """The :class:`~archquake.sweeps.Model` of ``--model`` (default rigid), with every
+    """The `Model` of ``--model`` (default rigid), with every
     model-specific option given to another model refused in one line: ``--impact`` and
     ``--restitution`` belong to fourlink, ``--integrator`` to rigid. ``args.model`` is set to
     the model's word. ``models`` limits the choice (a command that lacks one)."""
@@ -485,7 +485,7 @@ def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
 
 def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
     """--restitution and --impact: the impact of the analytical model (every command that runs a
-    time history; :func:`impact_from_args` reads them)."""
+    time history; `impact_from_args` reads them)."""
     from archquake.ranges import IMPACT_LAWS
 
     g = parser.add_argument_group("impact (--model fourlink only)")
@@ -499,7 +499,7 @@ def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def impact_from_args(args: argparse.Namespace) -> dict[str, Any]:
-    """``{"restitution": c_v or None, "impact": law or None}`` from :func:`add_impact_arguments`'s
+    """``{"restitution": c_v or None, "impact": law or None}`` from `add_impact_arguments`'s
     options, checked (one line naming --restitution and its range)."""
     restitution = getattr(args, "restitution", None)
     if restitution is not None:  # (the four-link package is imported only to check one)
@@ -648,7 +648,7 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
 
 
 def suite_from_args(name: str, units: str | None, dt: float | None, **kwargs: Any):
-    """:func:`archquake.ground.suites.load_suite` on the command line: a CSV or text file of
+    """`archquake.ground.suites.load_suite` on the command line: a CSV or text file of
     the suite without ``--units`` is refused naming ``--units`` and its choices."""
     from archquake.ground.suites import MISSING_UNITS, load_suite
 
@@ -663,7 +663,7 @@ def suite_from_args(name: str, units: str | None, dt: float | None, **kwargs: An
 
 def ground_motion_from_args(args: argparse.Namespace, *,
                             g: float = STANDARD_GRAVITY) -> GroundMotion:
-    """Build the excitation chosen by :func:`add_ground_motion_arguments` (g -> m/s^2 here).
+    """Build the excitation chosen by `add_ground_motion_arguments` (g -> m/s^2 here).
 
     Every option that does not apply to the chosen excitation is an error rather than being
     silently ignored.
@@ -750,7 +750,7 @@ def _warn_long_pulse(option: str, seconds: float) -> None:
 
 def length_option(args: argparse.Namespace) -> str:
     """The option that sets how long a run of ``args`` lasts, as typed, for
-    :func:`rigid_work`: ``--t-end`` when given, else the excitation's (``--duration``,
+    `rigid_work`: ``--t-end`` when given, else the excitation's (``--duration``,
     ``--period``, ``--record``), whose end the run outlasts by its tail."""
     if getattr(args, "t_end", None) is not None:
         return "--t-end"
@@ -777,12 +777,12 @@ ANNOUNCE_WORK_S = 10.0
 def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
                passes: int = 1, length: str = "--t-end"):
     """The one work estimate of every command that integrates the chain of rigid voussoirs
-    (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
+    (`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
     line naming the options to change, with the time it would take, above
     ``ranges.RIGID_MAX_WORK`` (at once: before the onset test, whose projections of the whole
     chain cost seconds for hundreds of voussoirs); below it, a run estimated above
-    :data:`ANNOUNCE_WORK_S` prints one line on stderr first, unless the motion never reaches the
-    onset of hinging (:func:`archquake.rigid.events.stays_at_rest`: no step is taken), and
+    `ANNOUNCE_WORK_S` prints one line on stderr first, unless the motion never reaches the
+    onset of hinging (`archquake.rigid.events.stays_at_rest`: no step is taken), and
     returns a ``progress(steps_done, steps_at_most)`` for ``simulate_rigid`` that prints a line
     at each quarter of the steps (None for a short run)."""
     from archquake.rigid.events import stays_at_rest

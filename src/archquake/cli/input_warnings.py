@@ -2,7 +2,7 @@
 practice (the usual slip is a unit: m/s^2 typed as g, ms as s), one line on stderr naming the
 option as typed.
 
-The options' checks call :func:`warn_input`; :func:`archquake.cli.main.main` prints the lines
+The options' checks call `warn_input`; `archquake.cli.main.main` prints the lines
 once the command has run, and drops them when it refuses the command line (a refusal stays one
 line, exit status 2).
 """
@@ -23,14 +23,14 @@ def warn_input(option: str, text: str) -> None:
 
 def warn_pga(option: str, value_g: float | None) -> None:
     """Note a peak ground acceleration typed as ``option`` (g) above
-    :data:`~archquake.ranges.PLAUSIBLE_PGA_G`, beyond design practice (m/s^2 typed as g?)."""
+    `PLAUSIBLE_PGA_G`, beyond design practice (m/s^2 typed as g?)."""
     text = pga_note(value_g)
     if text is not None:
         warn_input(option, text)
 
 
 def pga_note(value_g: float | None) -> str | None:
-    """What :func:`warn_pga` says after the option's name, or None for a plausible value."""
+    """What `warn_pga` says after the option's name, or None for a plausible value."""
     from archquake.ranges import PLAUSIBLE_PGA_G
 
     if value_g is None or not value_g > PLAUSIBLE_PGA_G:

@@ -1,6 +1,6 @@
 """Options for what the arch carries (fill, backing, loads on the extrados, traffic), in the
 CLI's units (m, kg/m^3, kN and kN/m per metre of barrel width, degrees), and their conversion
-to :class:`~archquake.geometry.loads.Loads` (SI) here, at the edge."""
+to `Loads` (SI) here, at the edge."""
 
 from __future__ import annotations
 
@@ -114,7 +114,7 @@ def add_loads_arguments(parser: argparse.ArgumentParser, *, traffic: bool = Fals
 
 
 def loads_from_args(args: argparse.Namespace) -> Loads | None:
-    """The loads of :func:`add_loads_arguments` (None when none is given), each value checked in
+    """The loads of `add_loads_arguments` (None when none is given), each value checked in
     one line naming its option."""
     fill = None
     depth, level = args.fill_depth, args.fill_level
@@ -200,7 +200,7 @@ def passive_text(loads: Loads | None) -> str:
 
 
 def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffic:
-    """The traffic of :func:`add_loads_arguments` (``traffic=True``), at ``position`` m."""
+    """The traffic of `add_loads_arguments` (``traffic=True``), at ``position`` m."""
     if (args.axle is None) == (args.patch is None):
         raise InvalidParameterError("give the traffic load: --axle KN or --patch KN with "
                                     "--patch-length M (kN per m of barrel width)")

@@ -9,7 +9,7 @@ The command line starts at once: only the module of the command being run is imp
 the numerics it needs). The top-level ``--help`` lists the commands from ``SUMMARIES`` and
 ``--version`` needs nothing, so neither imports numba, scipy or matplotlib.
 
-User errors (any :class:`~archquake.errors.ArchquakeError`, and malformed arguments) print
+User errors (any `ArchquakeError`, and malformed arguments) print
 one line on stderr and exit with status 2; anything else is a bug and keeps its traceback.
 """
 

@@ -1,17 +1,17 @@
 """``archquake run`` (``--model rigid``, the default): one history of the chain of rigid
 voussoirs.
 
-The model is :func:`archquake.rigid.simulate_rigid`: every voussoir a rigid
+The model is `archquake.rigid.simulate_rigid`: every voussoir a rigid
 block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,
 migrating and closing anywhere. Its output is ``RigidRun.to_dict()``: the keys every model
-shares (:data:`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
+shares (`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
 run is read by the DEM's own code) and the rigid stepper's.
 
 Without ``--t-end``, ``--friction`` or ``--integrator events``, the verdict printed is the
-verdict path's (:func:`archquake.rigid.rigid_verdict`: the step scaled with the arch, 1e-3 s on
+verdict path's (`archquake.rigid.rigid_verdict`: the step scaled with the arch, 1e-3 s on
 Oppenheim's arch, rerun at half the step near a threshold, ``indeterminate`` where the two
 differ), under ``rigid_verdict`` in the JSON; the recorded history (plot, ``--history``,
-impacts, peak rotations) is :func:`archquake.compare.rigid_to_verdict` at that step, its own
+impacts, peak rotations) is `archquake.compare.rigid_to_verdict` at that step, its own
 outcome kept as ``history_outcome``. With ``--friction`` (the verdict path has no sliding) or
 ``--integrator events`` the recorded run's verdict is printed, at 1e-4 s.
 """
@@ -105,8 +105,8 @@ def joint_numbers(run) -> list[int] | None:
 
 
 def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dict:
-    """A joint-force state or summary (:mod:`archquake.rigid.forces`) with its joints numbered
-    as the arch's (``numbers`` from :func:`joint_numbers`; the joints not recorded get None)."""
+    """A joint-force state or summary (`archquake.rigid.forces`) with its joints numbered
+    as the arch's (``numbers`` from `joint_numbers`; the joints not recorded get None)."""
     if numbers is None:
         return state
     out = dict(state)
@@ -125,7 +125,7 @@ def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dic
 
 def with_verdict(out: dict, verdict) -> dict:
     """A recorded run's summary ``out`` with the verdict path's ``verdict``
-    (:class:`~archquake.rigid.RigidVerdict`) in place of its own: outcome, collapse half cycle
+    (`RigidVerdict`) in place of its own: outcome, collapse half cycle
     and time (s), the reason; the verdict's own keys under ``rigid_verdict``, the history's
     outcome under ``history_outcome``."""
     return {**out, "outcome": verdict.outcome.value,

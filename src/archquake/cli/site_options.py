@@ -68,7 +68,7 @@ def add_site_options(parser: argparse.ArgumentParser, *, required: bool = True) 
 
 
 def spectrum_from_args(args: argparse.Namespace):
-    """The :class:`~archquake.codes.spectra.ElasticSpectrum` the site options describe.
+    """The `ElasticSpectrum` the site options describe.
 
     Options of the other code are refused with one line; NTC needs ``--f0`` and ``--tc-star``.
     Returns None when the options were optional and ``--code`` was not given.
@@ -105,7 +105,7 @@ def spectrum_from_args(args: argparse.Namespace):
 
 def site_options_given(args: argparse.Namespace) -> dict[str, object]:
     """The site options besides ``--code`` and ``--component`` by name as typed (None: not
-    given), for :func:`archquake.cli.common.refuse_unless`."""
+    given), for `archquake.cli.common.refuse_unless`."""
     return {"--ag": args.ag, "--f0": args.f0, "--tc-star": args.tc_star, "--soil": args.soil,
             "--topography": args.topography, "--type": args.spectrum_type,
             "--ground": args.ground, "--importance": args.importance}

@@ -1,12 +1,12 @@
 """The code check of a local mechanism by kinematic analysis (NTC 2018 §8.7.1, Circolare 2019
 C8.7.1.2.1; the superseded Circolare 2009 C8A.4 as an option).
 
-Given the mechanism's capacity curve (:func:`archquake.codecheck.kinematic.capacity_curve`), the
-site's elastic spectra at the limit states (:mod:`archquake.codes.spectra`), the knowledge level
+Given the mechanism's capacity curve (`archquake.codecheck.kinematic.capacity_curve`), the
+site's elastic spectra at the limit states (`archquake.codes.spectra`), the knowledge level
 (confidence factor FC) and where the mechanism sits (at the ground, or at height Z in a
 building), each limit state is checked as the code asks and reported as a **capacity a_g**: the
 least peak ground acceleration on rock at which the demand reaches the capacity, the site's
-spectral shape held (:meth:`~archquake.codes.spectra.ElasticSpectrum.with_ag`: S_S and T_D
+spectral shape held (`with_ag`: S_S and T_D
 re-evaluated, F0 and T_C* held). The ratio capacity a_g / site a_g is the code's zeta_E:
 the check passes when it is at least 1.
 
@@ -204,7 +204,7 @@ def least_ag(demand: Callable[[ElasticSpectrum], float], capacity: float,
 
     The demand is scanned over a_g (the soil factor may make it non-monotonic in a_g), then the
     first crossing is refined by Brent's method to round-off. ``inf`` if the demand stays below
-    the capacity up to :data:`MAX_CAPACITY_AG_G`.
+    the capacity up to `MAX_CAPACITY_AG_G`.
     """
     g = spectrum.g
     grid = np.geomspace(1e-4 * g, MAX_CAPACITY_AG_G * g, _AG_SAMPLES)
@@ -292,7 +292,7 @@ class LimitStateCheck:
 
 @dataclass(frozen=True)
 class CodeCheck:
-    """The code check of a local mechanism. Build it with :func:`kinematic_check`.
+    """The code check of a local mechanism. Build it with `kinematic_check`.
 
     Attributes
     ----------
@@ -452,7 +452,7 @@ def limit_state_spectra(hazard: NTCHazard, *, nominal_life_years: float = 50.0,
         V_N, years.
     use_class : {'I', 'II', 'III', 'IV'}
     **site
-        :func:`~archquake.codes.spectra.ntc2018_spectrum`'s other keywords (soil, topography).
+        `ntc2018_spectrum`'s other keywords (soil, topography).
 
     Returns
     -------
@@ -488,7 +488,7 @@ def hazard_spectra(hazard: NTCHazard, *, nominal_life_years: float = 50.0,
     Parameters
     ----------
     hazard, nominal_life_years, use_class, **site
-        As :func:`limit_state_spectra`.
+        As `limit_state_spectra`.
 
     Returns
     -------

@@ -5,7 +5,7 @@ mechanism of rigid blocks (no tension, no sliding, infinite compressive strength
 
 - the activation multiplier ``alpha0`` (C8.7.1.1): the horizontal force, as a fraction of the
   weight, at which the blocks start to move. For an arch it is the collapse multiplier of the
-  equivalent static analysis (:func:`archquake.limit.limit_analysis`, the minimum over the
+  equivalent static analysis (`archquake.limit.limit_analysis`, the minimum over the
   admissible four-hinge mechanisms), the ``Q_k = 0``, ``F_k = 0`` case of the code;
 - the equivalent single-degree-of-freedom system (C8.7.1.2.1.3): from the horizontal virtual
   displacements ``delta_x,k`` of the blocks' centroids at the undisplaced configuration,
@@ -27,12 +27,12 @@ mechanism of rigid blocks (no tension, no sliding, infinite compressive strength
 Rotational inertia of the blocks is not part of (C8.7.1.4-5): the code's equivalent system
 counts translational masses at the centroids only, and so does this module.
 
-Two mechanisms are provided, both following :class:`LocalMechanism`:
+Two mechanisms are provided, both following `LocalMechanism`:
 
-- :class:`FourHingeMechanism`: the arch's four-link mechanism (the hinges of the equivalent
-  static analysis, :class:`~archquake.mechanism.prepared.PreparedMechanism`), whose large
-  displacements are :func:`~archquake.mechanism.configuration.displaced_arch`'s;
-- :class:`RockingBlock`: a rigid block rocking on its toe (``block_on_base``), the case with
+- `FourHingeMechanism`: the arch's four-link mechanism (the hinges of the equivalent
+  static analysis, `PreparedMechanism`), whose large
+  displacements are `displaced_arch`'s;
+- `RockingBlock`: a rigid block rocking on its toe (``block_on_base``), the case with
   closed forms: ``alpha0 = b/h``, ``e* = 1``, ``alpha(d) = tan(asin(sin beta - d/R))``,
   ``d0 = b/2`` with the centroid as control point.
 """
@@ -55,7 +55,7 @@ from archquake.mechanism.kinematics import fourbar, link_states
 from archquake.mechanism.prepared import PreparedMechanism
 
 #: Samples of the capacity curve kept for tables and plots (the curve itself is evaluated
-#: exactly at any displacement by :meth:`CapacityCurve.alpha_at`).
+#: exactly at any displacement by `CapacityCurve.alpha_at`).
 CURVE_SAMPLES = 101
 #: Samples of the search for the first zero of alpha(phi) (then refined by Brent's method).
 _ROOT_SAMPLES = 400
@@ -108,9 +108,9 @@ class LocalMechanism(Protocol):
 
 @dataclass(frozen=True)
 class FourHingeMechanism:
-    """The arch's four-hinge mechanism as a :class:`LocalMechanism` (the moving voussoirs).
+    """The arch's four-hinge mechanism as a `LocalMechanism` (the moving voussoirs).
 
-    Build it with :meth:`of` (the hinges of the equivalent static analysis).
+    Build it with `of` (the hinges of the equivalent static analysis).
 
     Attributes
     ----------
@@ -123,7 +123,7 @@ class FourHingeMechanism:
     @classmethod
     def of(cls, arch: VoussoirChain) -> FourHingeMechanism:
         """The mechanism of ``arch`` opened by a load towards +x
-        (:func:`~archquake.mechanism.prepared.hinges_of`)."""
+        (`hinges_of`)."""
         return cls(PreparedMechanism.build(arch))
 
     @cached_property
@@ -161,8 +161,8 @@ class FourHingeMechanism:
 
     def motion(self, phi: float) -> BlockMotion:
         """The moving voussoirs at ``phi``: each turns with its link about the link's pivot
-        (:func:`~archquake.mechanism.kinematics.fourbar` and ``link_states``, the four-link
-        model's own kinematics; :func:`~archquake.mechanism.configuration.displaced_arch` is
+        (`fourbar` and ``link_states``, the four-link
+        model's own kinematics; `displaced_arch` is
         the same motion with the joint geometry, and a test holds the two together)."""
         fb = fourbar(self.prepared.packed, float(phi))
         ls = link_states(self.prepared.packed, float(phi))
@@ -210,7 +210,7 @@ class RockingBlock:
     @classmethod
     def on_base(cls, width: float, height: float, *, density: float = 2000.0,
                 depth: float = 1.0) -> RockingBlock:
-        """The block of :func:`archquake.dem.assembly.block_on_base` (``width`` b x ``height``
+        """The block of `archquake.dem.assembly.block_on_base` (``width`` b x ``height``
         h, m) on its right toe (b/2, 0)."""
         from archquake.dem.assembly import block_on_base
 
@@ -269,7 +269,7 @@ def _alpha(motion: BlockMotion, masses: np.ndarray, weights: np.ndarray | None =
 @dataclass(frozen=True)
 class CapacityCurve:
     """The equivalent single-degree-of-freedom system of a local mechanism and its capacity curve
-    (C8.7.1.2.1.2-3). Build it with :func:`capacity_curve`.
+    (C8.7.1.2.1.2-3). Build it with `capacity_curve`.
 
     Attributes
     ----------
@@ -448,7 +448,7 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
     Parameters
     ----------
     mechanism : LocalMechanism or VoussoirChain
-        An arch is taken through :meth:`FourHingeMechanism.of` (the collapse mechanism of the
+        An arch is taken through `FourHingeMechanism.of` (the collapse mechanism of the
         equivalent static analysis).
     control : ControlPoint, optional
         The control point C of (C8.7.1.4); None: the moving blocks' centre of mass. e* and M*
@@ -522,13 +522,13 @@ def capacity_curve(mechanism: LocalMechanism | VoussoirChain, *,
 
 @dataclass(frozen=True)
 class LoadedFourHingeMechanism:
-    """The four-hinge mechanism of an arch with what it carries, as a :class:`LocalMechanism`.
+    """The four-hinge mechanism of an arch with what it carries, as a `LocalMechanism`.
 
     The hinges are those of the equivalent static analysis with the loads
-    (:func:`archquake.limit.limit_analysis` with ``loads``). Each moving voussoir is two
+    (`archquake.limit.limit_analysis` with ``loads``). Each moving voussoir is two
     blocks of one link: the voussoir, and what it carries that moves with it (its fill
     column and the loads whose mass moves, lumped at their centroid,
-    :func:`archquake.geometry.loads.block_extras`); loads that weigh but do not move are
+    `archquake.geometry.loads.block_extras`); loads that weigh but do not move are
     blocks of weight without mass. So alpha0, M*, e* and the capacity curve count every
     carried mass (C8.7.1), and alpha0 equals the loaded collapse multiplier. Traffic is not
     part of the seismic combination here.
@@ -557,7 +557,7 @@ class LoadedFourHingeMechanism:
     def of(cls, arch: VoussoirChain, loads, *, g: float = STANDARD_GRAVITY
            ) -> LoadedFourHingeMechanism:
         """The mechanism of ``arch`` carrying ``loads`` (a
-        :class:`~archquake.geometry.loads.Loads`; its traffic is left out) opened by a load
+        `Loads`; its traffic is left out) opened by a load
         towards +x."""
         from archquake.geometry.loads import block_extras
         from archquake.limit import limit_analysis
@@ -591,7 +591,7 @@ class LoadedFourHingeMechanism:
 
     @property
     def weights(self) -> np.ndarray:
-        """Gravity's share of each block of :attr:`masses`, over g, kg, (3N,)."""
+        """Gravity's share of each block of `masses`, over g, kg, (3N,)."""
         return np.concatenate([self.base.masses, self.extras_mass, self.still_weight])
 
     @property
@@ -599,7 +599,7 @@ class LoadedFourHingeMechanism:
         return self.base.rotation_limit
 
     def motion(self, phi: float) -> BlockMotion:
-        """The voussoirs (:meth:`FourHingeMechanism.motion`), and the points of their carried
+        """The voussoirs (`FourHingeMechanism.motion`), and the points of their carried
         masses and still loads fixed to them."""
         m0 = self.base.motion(0.0)
         m = m0 if phi == 0.0 else self.base.motion(phi)

@@ -8,7 +8,7 @@ below d_SLV (d_SLC)**, the capacity of the static route (0.4 d0, 0.6 d0).
 
 Here the dynamics are archquake's own chain of rigid voussoirs (hinges open anywhere, impacts
 dissipate energy through the contacts, no assumed restitution or viscous damping), run to a
-verdict by :func:`archquake.compare.rigid_to_verdict`. Its motion is read as the equivalent
+verdict by `archquake.compare.rigid_to_verdict`. Its motion is read as the equivalent
 SDOF system's displacement through (C8.7.1.4): the horizontal displacement, relative to the
 ground, of the curve's control point (by default the centre of mass of the mechanism's moving
 voussoirs), times sum m delta^2 / (delta_C sum m delta). A record whose run collapses the arch
@@ -30,7 +30,7 @@ from archquake.errors import InvalidParameterError
 #: The fewest records whose mean response the code lets one use (NTC 2018 §7.3.5).
 MIN_RECORDS = 7
 #: First of the rigid chain's blocks that is a voussoir (blocks 0 and 1 are the abutments:
-#: :func:`archquake.dem.assembly.build_arch_assembly`).
+#: `archquake.dem.assembly.build_arch_assembly`).
 _FIRST_VOUSSOIR = 2
 
 
@@ -155,9 +155,9 @@ def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str
     Parameters
     ----------
     curve : CapacityCurve
-        The arch's four-hinge mechanism's (:func:`~archquake.codecheck.kinematic.capacity_curve`).
+        The arch's four-hinge mechanism's (`capacity_curve`).
     records : sequence of GroundMotion
-        At least :data:`MIN_RECORDS` ground motions (m/s^2), already selected and scaled to be
+        At least `MIN_RECORDS` ground motions (m/s^2), already selected and scaled to be
         compatible with the site's spectrum at ``limit_state``.
     limit_state : {'SLV', 'SLC'}
     run : callable, optional
@@ -244,7 +244,7 @@ def time_history_capacity(curve: CapacityCurve, records: Sequence, site_ag_g: fl
     max_ag_g : float
         Highest a_g tried, g (the capacity is reported as inf beyond it).
     run, progress : callable, optional
-        As in :func:`time_history_check`; ``progress`` is told each level's verdict.
+        As in `time_history_check`; ``progress`` is told each level's verdict.
     """
     levels: list[TimeHistoryCheck] = []
     ags: list[float] = []
@@ -289,7 +289,7 @@ def time_history_capacity(curve: CapacityCurve, records: Sequence, site_ag_g: fl
 class TimeHistoryRoute:
     """The time-history route of one limit state beside the static one: the records chosen
     from a suite to match the site's spectrum, their scale factors, and the capacity a_g they
-    give (:func:`time_history_route`).
+    give (`time_history_route`).
 
     Attributes
     ----------
@@ -353,10 +353,10 @@ def time_history_route(curve: CapacityCurve, spectrum, suite: Sequence, limit_st
     """The time-history route of C8.7.1.2.1.9 for one limit state, from a suite of records.
 
     ``count`` records of ``suite`` are chosen and scaled so that their mean spectrum meets the
-    NTC band around ``spectrum`` (:func:`archquake.ground.selection.select_records`, over
+    NTC band around ``spectrum`` (`archquake.ground.selection.select_records`, over
     0.1 s to 1.2 ``period_s``, the limit state's period T_SLV or T_SLC of the static route),
-    then scaled together with a_g until the check of :func:`time_history_check` fails
-    (:func:`time_history_capacity`, starting at the static route's capacity).
+    then scaled together with a_g until the check of `time_history_check` fails
+    (`time_history_capacity`, starting at the static route's capacity).
 
     Parameters
     ----------
@@ -371,14 +371,14 @@ def time_history_route(curve: CapacityCurve, spectrum, suite: Sequence, limit_st
     period_s : float
         The static route's period of the limit state, s.
     count : int
-        Records in the set (at least :data:`MIN_RECORDS`).
+        Records in the set (at least `MIN_RECORDS`).
     bisections : int
-        As :func:`time_history_capacity`.
+        As `time_history_capacity`.
     trim : callable, optional
         ``trim(record) -> record`` applied to each chosen record before it is scaled (e.g. its
         strong part, to save time).
     run, progress : callable, optional
-        As :func:`time_history_capacity`.
+        As `time_history_capacity`.
 
     Returns
     -------

@@ -1,9 +1,9 @@
 """Elastic response spectra of NTC 2018 §3.2 and EN 1998-1:2004 §3.2.2, and the NTC site hazard.
 
-One :class:`ElasticSpectrum` holds one code's elastic spectrum at one site and one limit
-state. It is built by :func:`ntc2018_spectrum` or :func:`ec8_spectrum` from what a user reads
-off the hazard map and the site survey; :meth:`ElasticSpectrum.sa` and
-:meth:`ElasticSpectrum.sd` evaluate it at any periods and damping.
+One `ElasticSpectrum` holds one code's elastic spectrum at one site and one limit
+state. It is built by `ntc2018_spectrum` or `ec8_spectrum` from what a user reads
+off the hazard map and the site survey; `ElasticSpectrum.sa` and
+`ElasticSpectrum.sd` evaluate it at any periods and damping.
 
 Both codes share one shape (a_g in m/s^2, eta = sqrt(10 / (5 + 100 xi)) >= 0.55, xi the
 damping ratio):
@@ -142,7 +142,7 @@ def damping_factor(damping: float) -> float:
 class ElasticSpectrum:
     """One code's elastic response spectrum at one site and limit state.
 
-    Build it with :func:`ntc2018_spectrum` or :func:`ec8_spectrum`; the fields are the code's
+    Build it with `ntc2018_spectrum` or `ec8_spectrum`; the fields are the code's
     symbols, already evaluated (clipped, with the site's factors).
 
     Parameters
@@ -276,7 +276,7 @@ class ElasticSpectrum:
         """The same site at another a_g (m/s^2), every a_g-dependent factor re-evaluated.
 
         NTC: S_S is re-clipped, T_D = 4 a_g/g + 1.6 and F_v follow; F0 and T_C* are held (they
-        would change with the return period: iterate on :class:`NTCHazard` for that).
+        would change with the return period: iterate on `NTCHazard` for that).
         EN 1998-1: ``ag`` is the design a_g = gamma_I a_gR.
 
         Examples
@@ -540,7 +540,7 @@ class NTCHazard:
         return tuple(float(np.exp(np.interp(x, table[:, 0], table[:, k]))) for k in (1, 2, 3))  # type: ignore[return-value]
 
     def spectrum(self, return_period: float, **site: Any) -> ElasticSpectrum:
-        """:func:`ntc2018_spectrum` at one return period (years); ``site`` its other keywords."""
+        """`ntc2018_spectrum` at one return period (years); ``site`` its other keywords."""
         ag_g, f0, tc_star = self.at(return_period)
         return ntc2018_spectrum(ag_g=ag_g, f0=f0, tc_star_s=tc_star, **site)
 

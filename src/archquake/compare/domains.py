@@ -1,5 +1,5 @@
 """Failure domains of the block models, found by the analytical domain search
-(:func:`archquake.domains.failure_domain`) with a block model's evaluation plugged in: the
+(`archquake.domains.failure_domain`) with a block model's evaluation plugged in: the
 distinct-element model (``model='dem'``, paper Figures 6, 11) or the chain of rigid blocks
 (``model='rigid'``, hinges moving: the DEM's rigid limit), on the same assemblies
 with the same tail and the same search.
@@ -9,7 +9,7 @@ hinges (``assembly='hinges'``, the three-voussoir arch: no impacts, the same mec
 governing boundary from the voussoir arch (``assembly='voussoirs'``, hinges free to move).
 
 Each evaluation is one DEM time history, so the search runs at a coarser resolution than the
-analytical one (:data:`DEM_DOMAIN_SETTINGS`: 8 coarse magnitudes, 4 fine, 0.01 g brackets) and the
+analytical one (`DEM_DOMAIN_SETTINGS`: 8 coarse magnitudes, 4 fine, 0.01 g brackets) and the
 runs of each search round are spread over a process pool (the round's (magnitude, duration)
 pairs, i.e. parallel over durations and brackets).
 """
@@ -64,7 +64,7 @@ class DemDomain:
         Wall time, s.
     workers : int
     model : str
-        'dem' or 'rigid' (:data:`BLOCK_MODELS`).
+        'dem' or 'rigid' (`BLOCK_MODELS`).
     """
 
     domain: FailureDomain = field(repr=False)
@@ -123,7 +123,7 @@ def dem_failure_domain(
         Default True for ``'hinges'`` (the three-voussoir arch gives the first-half-cycle
         boundary), False for ``'voussoirs'``.
     settings : DomainSettings
-        The search (default :data:`DEM_DOMAIN_SETTINGS`, 0.01 g).
+        The search (default `DEM_DOMAIN_SETTINGS`, 0.01 g).
     dem_settings : DemSettings, optional
         Default: the paper's stiffness and damping.
     tail : float
@@ -132,7 +132,7 @@ def dem_failure_domain(
         Process-pool size (default: the usable cores, at most the number of durations x 2);
         1 runs serially. Ignored if ``executor`` is given. With ``model='rigid'`` and
         ``solver='direct'`` the runs are batches of verdicts threaded in this process
-        (:func:`archquake.rigid.verdict.rigid_verdicts`): ``workers`` is then the
+        (`archquake.rigid.verdict.rigid_verdicts`): ``workers`` is then the
         number of threads (default: the usable cores) and ``executor`` is not used.
     executor : Executor, optional
         An executor to use instead of a new process pool.
@@ -148,11 +148,11 @@ def dem_failure_domain(
         Called with the number of runs so far as the search goes.
     loads : Loads, optional
         What the arch carries (``assembly='voussoirs'`` only): the blocks carry it
-        (:func:`~archquake.dem.assembly.build_arch_assembly`) and the search starts at the
+        (`build_arch_assembly`) and the search starts at the
         loaded arch's lambda.
     model : {'dem', 'rigid'}
         The block model: the DEM (``dem_settings`` its stiffness, damping and thresholds) or the
-        chain of rigid blocks (:func:`archquake.rigid.simulate_rigid`; only
+        chain of rigid blocks (`archquake.rigid.simulate_rigid`; only
         the thresholds of ``dem_settings`` are read), each run for the pulse plus ``tail``.
 
     Returns
@@ -265,7 +265,7 @@ def compare_domains(
     """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
     of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
-    model, 'dem' (default) or 'rigid' (:func:`dem_failure_domain`). With ``loads`` every model
+    model, 'dem' (default) or 'rigid' (`dem_failure_domain`). With ``loads`` every model
     carries them (the four-link links and both assemblies, on the loaded arch's hinges)."""
     subject: Any = arch
     if loads is not None and not loads.empty:

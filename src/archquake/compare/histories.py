@@ -1,14 +1,14 @@
 """Time histories of the two models side by side (paper Figure 4(b)-(d)).
 
-The analytical model (:func:`archquake.mechanism.simulate`) gives phi(t), the rotation of the
-open mechanism's first link; the distinct-element model (:func:`archquake.dem.simulate_dem`)
+The analytical model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
+open mechanism's first link; the distinct-element model (`archquake.dem.simulate_dem`)
 gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
 cut at the analytical hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
-Both results speak one vocabulary (:class:`~archquake.outcome.Outcome`, impact times, peak
+Both results speak one vocabulary (`Outcome`, impact times, peak
 rotation per half cycle, collapse half cycle: the DEM result computes its own, see
-:mod:`archquake.dem.result`); this module only runs the two models and compares them.
+`archquake.dem.result`); this module only runs the two models and compares them.
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFA
     return float(motion.duration) + tail * math.sqrt(arch.radius / g)
 
 
-#: Tails (sqrt(R/g)) tried in turn by :func:`dem_to_verdict` while the DEM ends still moving.
+#: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
 VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
 
 
@@ -62,7 +62,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
                    g: float = STANDARD_GRAVITY):
     """The DEM run long enough for a verdict: for the end of the excitation plus each of
     ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
-    never hinged, or is at rest: :func:`archquake.dem.result.settled`); the last run is returned
+    never hinged, or is at rest: `archquake.dem.result.settled`); the last run is returned
     (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
     resumed, so each try reruns from the start: a run that needs the second tail costs about
     three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
@@ -87,11 +87,11 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
 
 def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVITY
                  ) -> tuple[float, float]:
-    """The window of :func:`rigid_to_verdict`, s: its first run (:func:`default_dem_duration`,
+    """The window of `rigid_to_verdict`, s: its first run (`default_dem_duration`,
     the end of the excitation + 5 sqrt(R/g)) and the latest it goes on to while the arch
     still moves (the fixed-hinge model's default end, the end of the excitation + 60
     sqrt(R/g)). Its length is bounded only by the work it costs
-    (:func:`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
+    (`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
     nothing it needs."""
     from archquake.mechanism.simulate import default_t_end
 
@@ -102,12 +102,12 @@ def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVIT
 def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
                      time_step: float | None = None, progress=None, loads=None):
-    """The rigid chain (:func:`archquake.rigid.simulate_rigid`) run to a
-    verdict: to :func:`default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
+    """The rigid chain (`archquake.rigid.simulate_rigid`) run to a
+    verdict: to `default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
-    model's default end (the end of the excitation + 60 sqrt(R/g); :func:`rigid_window`),
+    model's default end (the end of the excitation + 60 sqrt(R/g); `rigid_window`),
     however long the record. The rigid chain resumes where it
-    stopped (unlike the DEM, :func:`dem_to_verdict`), so a long tail costs only its own steps.
+    stopped (unlike the DEM, `dem_to_verdict`), so a long tail costs only its own steps.
 
     The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
 
@@ -123,13 +123,13 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     settings : DemSettings, optional
         Thresholds of the verdict (default ``DemSettings()``).
     solver : {"direct", "events"}
-        How the chain is integrated (:func:`~archquake.rigid.simulate_rigid`).
+        How the chain is integrated (`simulate_rigid`).
     time_step : float, optional
         The stepper's step, s (default: ``simulate_rigid``'s).
     progress : callable, optional
         ``simulate_rigid``'s.
     loads : Loads, optional
-        What the arch carries (:func:`archquake.dem.assembly.build_arch_assembly`).
+        What the arch carries (`archquake.dem.assembly.build_arch_assembly`).
 
     Returns
     -------
@@ -138,7 +138,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     Raises
     ------
     InvalidParameterError
-        If its work exceeds ``ranges.RIGID_MAX_WORK`` (:func:`archquake.rigid.model.check_work`).
+        If its work exceeds ``ranges.RIGID_MAX_WORK`` (`archquake.rigid.model.check_work`).
     """
     from archquake.rigid import simulate_rigid
 
@@ -239,7 +239,7 @@ def compare_history(
         Default: the paper's stiffness and damping; its ``duration`` is replaced by
         ``duration``.
     duration : float, optional
-        DEM simulated time, s (default :func:`default_dem_duration`). The analytical model
+        DEM simulated time, s (default `default_dem_duration`). The analytical model
         runs to its own end (rest or collapse).
     g : float
         Gravity, m/s^2.
@@ -319,7 +319,7 @@ def figure4_comparisons(
     duration: float | None = None,
     g: float = STANDARD_GRAVITY,
 ) -> dict[tuple[float, str], HistoryComparison]:
-    """:func:`compare_history` for the step impulses of Figure 4, for each DEM assembly.
+    """`compare_history` for the step impulses of Figure 4, for each DEM assembly.
 
     Returns
     -------

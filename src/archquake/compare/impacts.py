@@ -11,7 +11,7 @@ an inertial frame. In the DEM (every voussoir a block, the paper's stiffness and
   finite-duration impact:  ``c_T = (E(t_i + window) - E_rest) / (E(t_i - window) - E_rest)``,
   E_rest being the settled arch's energy at t = 0 (the rocking arch's potential energy at the
   undisplaced configuration);
-* the joints open ``after`` s after the impact (:func:`archquake.compare.dem_hinges`) are set
+* the joints open ``after`` s after the impact (`archquake.compare.dem_hinges`) are set
   beside the mechanism each law selects.
 """
 
@@ -222,7 +222,7 @@ IMPACT_GEOMETRIES = (
 
 
 def impact_table(geometries=IMPACT_GEOMETRIES, **kwargs) -> list[ImpactComparison]:
-    """:func:`compare_first_impact` over ``geometries`` (label, R, t, embrace deg, n)."""
+    """`compare_first_impact` over ``geometries`` (label, R, t, embrace deg, n)."""
     out = []
     for label, r, t, emb, n in geometries:
         out.append(compare_first_impact(Arch(r, t, math.radians(emb), n), label, **kwargs))
@@ -263,7 +263,7 @@ def hinge_table(rows: list[ImpactComparison]) -> str:
 
 #: (label, R m, t m, embrace deg, voussoirs) of the hinge-migration comparison: the energy kept
 #: over the first half cycle and the hinge sequence, fixed hinges (Eq. 4 and the chain law)
-#: against the DEM and the rigid chain (:mod:`archquake.compare.rigid`), under this module's
+#: against the DEM and the rigid chain (`archquake.compare.rigid`), under this module's
 #: pulse.
 MIGRATION_GEOMETRIES = (
     ("Oppenheim", 10.0, 1.5, 157.5, 7),
@@ -279,7 +279,7 @@ class DemHalfCycle:
 
     ``kept`` = E(t_i + 10 ms) / E(t_p); ``kept_before`` = E(t_i - 10 ms) / E(t_p) (what the
     swing itself lost); ``sequence``: (t s, open joints) each time the DEM's hinge set
-    (:func:`archquake.compare.dem_hinges`, sampled every 5 ms) changes, from t_p to t_i + 0.1 s.
+    (`archquake.compare.dem_hinges`, sampled every 5 ms) changes, from t_p to t_i + 0.1 s.
     """
 
     pulse_duration_s: float
@@ -296,8 +296,8 @@ class DemHalfCycle:
 def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float = STANDARD_GRAVITY
                    ) -> DemHalfCycle:
     """Run the DEM (the paper's stiffness and damping, no sliding: ``DemSettings()``) through the
-    first impact after the comparison's pulse (:func:`rocking_pulse`),
-    measuring energy as :func:`analytical_impacts` does."""
+    first impact after the comparison's pulse (`rocking_pulse`),
+    measuring energy as `analytical_impacts` does."""
     from archquake.dem import simulate_dem
     from archquake.dem.settings import DemSettings
 
@@ -310,9 +310,9 @@ def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float 
 
 
 def half_cycle_of(res, tp: float, t_imp: float, *, window: float = 0.01) -> DemHalfCycle:
-    """The :class:`DemHalfCycle` measures of a recorded run ``res`` (a
-    :class:`archquake.dem.DemResult`, from the DEM or from the rigid chain,
-    :mod:`archquake.rigid`) under the comparison's pulse of duration ``tp`` s,
+    """The `DemHalfCycle` measures of a recorded run ``res`` (a
+    `archquake.dem.DemResult`, from the DEM or from the rigid chain,
+    `archquake.rigid`) under the comparison's pulse of duration ``tp`` s,
     ``t_imp`` s being the fixed-hinge model's first impact (the end of the hinge sequence when
     the run has none)."""
     ti = res.first_impact_time

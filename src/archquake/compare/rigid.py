@@ -1,9 +1,9 @@
 """The rigid limit: the DEM's energy over a half cycle against its contact model, and
-the rigid-block chain (:mod:`archquake.rigid`) through the same protocol.
+the rigid-block chain (`archquake.rigid`) through the same protocol.
 
-Protocols are :mod:`archquake.compare.impacts`'s (energy kept over the first half cycle,
-:func:`~archquake.compare.impacts.half_cycle_of`) and the critical step-pulse duration at a
-given magnitude (Oppenheim's :class:`~archquake.ground.StepImpulse`, first collapsing t_p by
+Protocols are `archquake.compare.impacts`'s (energy kept over the first half cycle,
+`half_cycle_of`) and the critical step-pulse duration at a
+given magnitude (Oppenheim's `StepImpulse`, first collapsing t_p by
 bisection, which assumes survival below the threshold, as the DEM's 0.259-0.2625 s did).
 """
 
@@ -33,8 +33,8 @@ def scaled_contact(stiffness: float = 1.0, damping: float = 1.0):
 def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: float = 0.01,
                      solver: str = "direct", g: float = STANDARD_GRAVITY):
     """The rigid chain through its first impact under the comparison's pulse
-    (:func:`archquake.compare.impacts.rocking_pulse`); returns (DemHalfCycle, RigidRun).
-    ``solver``: :func:`~archquake.rigid.simulate_rigid`'s."""
+    (`archquake.compare.impacts.rocking_pulse`); returns (DemHalfCycle, RigidRun).
+    ``solver``: `simulate_rigid`'s."""
     from archquake.compare.impacts import half_cycle_of, rocking_pulse
     from archquake.rigid import DEFAULT_TIME_STEP, simulate_rigid
 
@@ -53,7 +53,7 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
     run for 3 t_p + ``tail`` s (the DEM's collapses in the second half cycle come 3.6-4.7 s
     after the start on Oppenheim's arch: its default 3 s duration misses them). ``solver``
     and ``friction`` (the joints' Coulomb coefficient, None: no sliding): the rigid chain's
-    (:func:`~archquake.rigid.simulate_rigid`)."""
+    (`simulate_rigid`)."""
     from archquake.ground import StepImpulse
 
     motion = StepImpulse.from_g(magnitude_g, tp, g=g)
@@ -85,7 +85,7 @@ class Threshold:
 
 def critical_step_duration(model: str, arch: Arch, magnitude_g: float, low: float,
                            high: float, *, resolution: float = 0.0025, **kwargs) -> Threshold:
-    """Bisection of :func:`step_collapses` on t_p in [low, high] s down to ``resolution`` s."""
+    """Bisection of `step_collapses` on t_p in [low, high] s down to ``resolution`` s."""
     if step_collapses(model, arch, magnitude_g, low, **kwargs):
         raise ValueError(f"t_p = {low} s already collapses")
     if not step_collapses(model, arch, magnitude_g, high, **kwargs):

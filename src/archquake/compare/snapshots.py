@@ -2,8 +2,8 @@
 displacements under reduced damping (Figure 10).
 
 A DEM hinge is a joint whose wider end is open by more than a tenth of the widest joint opening
-at that instant (:func:`dem_hinges`); its face is the other end. The analytical hinges are
-those of the open mechanism (:attr:`archquake.thrust.MotionState.hinge_joints`).
+at that instant (`dem_hinges`); its face is the other end. The analytical hinges are
+those of the open mechanism (`archquake.thrust.MotionState.hinge_joints`).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 
 def dem_hinges(result, time: float, *, relative: float = 0.1) -> list[tuple[int, str]]:
     """(joint, face) of the DEM hinges at the recorded sample nearest ``time`` (s): the block
-    models' one rule, :func:`archquake.dem.result.open_hinges` (a tenth of the widest
+    models' one rule, `archquake.dem.result.open_hinges` (a tenth of the widest
     opening)."""
     from archquake.dem.result import open_hinges
 
@@ -86,7 +86,7 @@ class HingeComparison:
 def compare_hinges(arch: Arch, times=FIGURE9_TIMES, *, magnitude_g: float = 1.0,
                    duration: float = 0.20, settings=None, g: float = STANDARD_GRAVITY
                    ) -> HingeComparison:
-    """Figures 8 and 9: the analytical mechanism's hinges (:func:`archquake.thrust.states`) and
+    """Figures 8 and 9: the analytical mechanism's hinges (`archquake.thrust.states`) and
     the DEM's (every voussoir a block) at ``times`` for the step impulse ``magnitude_g``,
     ``duration`` (s)."""
     from archquake.dem import DemSettings, simulate_dem
@@ -115,7 +115,7 @@ class ReducedDampingSnapshot:
     reduced, paper : DemResult
     time : float, s
     reduced_displacements, paper_displacements : dict
-        :func:`joint_displacements` at ``time``.
+        `joint_displacements` at ``time``.
     """
 
     reduced: DemResult = field(repr=False)

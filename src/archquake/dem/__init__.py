@@ -2,10 +2,10 @@
 contacts, explicit central-difference time stepping with Rayleigh damping (in the spirit of
 UDEC as used by De Lorenzis, DeJong & Ochsendorf 2007).
 
-Template -> model -> contacts -> analysis: :func:`build_arch_assembly` /
-:func:`block_on_base` build an :class:`Assembly`; :func:`simulate_dem` runs it under any
-ground motion and returns a frozen :class:`DemResult`, which speaks the analytical model's
-vocabulary (:class:`~archquake.outcome.Outcome`, impacts, half cycles, ``to_dict()`` keys).
+Template -> model -> contacts -> analysis: `build_arch_assembly` /
+`block_on_base` build an `Assembly`; `simulate_dem` runs it under any
+ground motion and returns a frozen `DemResult`, which speaks the analytical model's
+vocabulary (`Outcome`, impacts, half cycles, ``to_dict()`` keys).
 """
 
 from archquake.dem.assembly import Assembly, Joint, RotationLink, block_on_base, build_arch_assembly

@@ -1,10 +1,10 @@
 """Compiled hot loop of the distinct-element model (numba), on packed arrays.
 
-Everything here is private; :mod:`archquake.dem.run` packs the arrays and
-:mod:`archquake.dem._reference` is the plain-NumPy reference of :func:`step` that the tests
+Everything here is private; `archquake.dem.run` packs the arrays and
+`archquake.dem._reference` is the plain-NumPy reference of `step` that the tests
 hold it to (test-only: production code does not import it).
 
-Packed layout (:class:`Packed`)
+Packed layout (`Packed`)
 -------------------------------
 Blocks (``nb``): ``state[i] = (x, y, theta, vx, vy, omega)`` with the centroid position and the
 rotation at step n and the velocities at n - 1/2 (absolute frame); ``mass``, ``inertia``
@@ -69,7 +69,7 @@ class Packed(NamedTuple):
 class Scratch(NamedTuple):
     """Work arrays of one step: ``force``, ``dforce`` (nb, 3), ``record`` (nb, 6), world
     vertices ``vw`` (nv, 2), edge frames ``edir`` (nv, 3); ``slots``, the contact slots the
-    step looks at (increasing: every slot, or those :func:`slots_in_reach` keeps); ``cand``
+    step looks at (increasing: every slot, or those `slots_in_reach` keeps); ``cand``
     (as long), room for the free corners a step scans; ``blocker`` (ns,), for each slot the
     active slot whose corner it last coincided with (-1: none yet)."""
 
@@ -84,7 +84,7 @@ class Scratch(NamedTuple):
 
 
 class Span(NamedTuple):
-    """What :func:`run` does: global steps ``step0`` to ``n_steps``, a sample every
+    """What `run` does: global steps ``step0`` to ``n_steps``, a sample every
     ``out_every`` steps (0: none), with the ground moving or not (``ground_on``), settling by
     kinetic damping or not (``settle``), stopping at the first collapsed sample or not."""
 
@@ -97,7 +97,7 @@ class Span(NamedTuple):
 
 
 class Output(NamedTuple):
-    """Samples written by :func:`run`: ``times`` (k,), ``states`` (k, nb, 6), ``energies``
+    """Samples written by `run`: ``times`` (k,), ``states`` (k, nb, 6), ``energies``
     (k, 8) and ``written`` (1,), the number written so far."""
 
     times: np.ndarray
@@ -161,9 +161,9 @@ def slots_in_reach(state, radius, free, vw, sl_i, par, margin):
     """The contact slots (increasing) a step looks at until the neighbour lists are rebuilt,
     for the world vertices ``vw`` of ``state``: every slot with ``par[P_BROAD]`` = 0; else
     every slot of a base block, and those whose corner may come within reach of the other
-    block (:func:`update_contacts`) before then.
+    block (`update_contacts`) before then.
 
-    Between rebuilds no free block moves by more than margin/2 (:func:`run`'s check, the
+    Between rebuilds no free block moves by more than margin/2 (`run`'s check, the
     neighbour lists' own assumption), so a corner farther than radius + dmax + tol + margin
     from the other free block's centroid cannot come within reach; slots are kept up to
     radius + dmax + tol + 2 margin, twice the margin needed. Active contacts are within
@@ -237,8 +237,8 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
     and a corner coinciding with an active corner of the other block is skipped before its
     edges are scanned. Both only leave out corners that the scan would reject, so the contacts,
     and every number after them, are the same bits as with 0 (every edge of every candidate
-    scanned, as :mod:`archquake.dem._reference` does). Only the slots listed in ``slots`` are
-    looked at (:func:`slots_in_reach`).
+    scanned, as `archquake.dem._reference` does). Only the slots listed in ``slots`` are
+    looked at (`slots_in_reach`).
     """
     tol = par[P_TOL]
     dmax = par[P_DMAX]
@@ -344,7 +344,7 @@ def update_contacts(state, radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots,
 def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, slots, par, acc, force, dforce):
     """Add the contact forces to ``force`` (elastic + friction) and ``dforce`` (viscous part of
     the stiffness-proportional damping), both (nb, 3): Fx, Fy, moment about the centroid, for
-    the active contacts among ``slots`` (every active one: :func:`slots_in_reach`). Returns the
+    the active contacts among ``slots`` (every active one: `slots_in_reach`). Returns the
     elastic energy stored in the contact springs, J."""
     dt = par[P_DT]
     beta = par[P_BETA]
@@ -538,7 +538,7 @@ def collapsed(state, free, cpar):
 def joint_openings(pos, cos, sin, left, right, nrm0, tan0, local_left, local_right, opening,
                    slip):
     """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m, into
-    ``opening`` and ``slip``: :func:`archquake.dem.result.joint_kinematics`, which packs the
+    ``opening`` and ``slip``: `archquake.dem.result.joint_kinematics`, which packs the
     joints (``left``/``right`` blocks, undisplaced normal and tangent, each end relative to
     either centroid) and passes ``cos``/``sin`` of every block's rotation (nt, nb).
 
@@ -579,7 +579,7 @@ def joint_openings(pos, cos, sin, left, right, nrm0, tan0, local_left, local_rig
 @nb.njit(cache=True)
 def first_collapsed(states, free, cpar):
     """Index of the first recorded configuration (nt, nb, >= 3) meeting a collapse criterion
-    (:func:`collapsed`), -1 if none does."""
+    (`collapsed`), -1 if none does."""
     for k in range(states.shape[0]):
         if collapsed(states[k], free, cpar):
             return k
@@ -592,7 +592,7 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     ``span.out_every`` steps into ``out``. Returns (next global step, status): STATUS_DONE,
     STATUS_COLLAPSE (first output sample meeting a collapse criterion, when stopping at
     collapse) or STATUS_REBUILD (some block moved more than margin/2 from ``ref`` since the
-    neighbour lists were built). The steps look at the slots :func:`slots_in_reach` keeps for
+    neighbour lists were built). The steps look at the slots `slots_in_reach` keeps for
     the positions at the call (those of ``ref``).
 
     Parameters
@@ -600,7 +600,7 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     packed : Packed
     par, acc : parameters and accumulators
     kind, gparams : the ground motion's kernel spec
-    cpar : (N_COLLAPSE,) collapse criteria (:func:`collapsed`)
+    cpar : (N_COLLAPSE,) collapse criteria (`collapsed`)
     ref : (nb, 3) block positions when the neighbour lists were built
     margin : float, m, the neighbour lists' margin
     span : Span

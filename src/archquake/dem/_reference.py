@@ -1,9 +1,9 @@
-"""Plain-NumPy reference of :func:`archquake.dem._kernels.step` (vectorised over slots and
+"""Plain-NumPy reference of `archquake.dem._kernels.step` (vectorised over slots and
 blocks). Test-only: no production code imports it.
 
 Written independently of the compiled loops (array expressions instead of scalar loops) so
 that a test can hold the kernel to it: same trajectory to round-off over a few hundred steps.
-Same packed layout (:class:`~archquake.dem._kernels.Packed`) and the same rules, in the same
+Same packed layout (`Packed`) and the same rules, in the same
 order (see the kernel module docstring).
 """
 
@@ -191,7 +191,7 @@ def contact_forces(state, vw, edir, sl_i, sl_edge, sl_f, par, acc, force, dforce
 
 
 def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
-    """NumPy reference of :func:`archquake.dem._kernels.step` (same arguments, same effects;
+    """NumPy reference of `archquake.dem._kernels.step` (same arguments, same effects;
     ``work.vw`` and ``work.edir`` are not used)."""
     state, mass, inertia, free = packed.state, packed.mass, packed.inertia, packed.free
     vloc, vstart = packed.vloc, packed.vstart

@@ -1,6 +1,6 @@
 """Plain references of the block models' post-processing: main's per-sample, per-joint and
 per-pair code before it was vectorised (the rigid chain's ``absolute`` closure and rest check;
-:mod:`archquake.dem.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
+`archquake.dem.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
 ``hinge_sets`` and ``mirror_link``), kept verbatim. Test and benchmark only: no production
 code imports it (tests/rigid/test_postproc.py holds the fast code to it, and
 benchmarks/bench_rigid_postproc.py measures against it).

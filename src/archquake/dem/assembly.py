@@ -1,10 +1,10 @@
 """Block assemblies for the distinct-element model: an arch on its abutments, a block on a base.
 
 The arch's hinges come from the one place that answers "which hinges does this arch have",
-:func:`archquake.limit.hinges_of` (the equivalent static analysis), so the DEM
+`archquake.limit.hinges_of` (the equivalent static analysis), so the DEM
 accepts every arch the analytical model accepts: any number of voussoirs, hinges anywhere.
 
-An :class:`Assembly` is the frozen description the solver packs into arrays: convex contact
+An `Assembly` is the frozen description the solver packs into arrays: convex contact
 polygons, exact mass properties, which blocks belong to the (prescribed) base, the joints
 whose opening is recorded, the crown point and the rotation measure.
 
@@ -234,11 +234,11 @@ def loaded_voussoirs(arch: VoussoirChain, loads: Loads) -> LoadedVoussoirs:
     add to its own, at the combined centroid, with the rotational inertia about it by the
     parallel-axis theorem (a point load adds none of its own). The voussoirs the backing holds
     belong to the support. The hinges are the loaded arch's
-    (:func:`archquake.limit.loaded.loaded_collapse`).
+    (`archquake.limit.loaded.loaded_collapse`).
 
     Loads whose mass does not move with the arch (a weight without inertia) need a force the
     block models do not apply, traffic is a statics load, and passive fill pressure is left
-    out of the dynamics: the first two are refused, the last stated (:data:`PASSIVE_LEFT_OUT`).
+    out of the dynamics: the first two are refused, the last stated (`PASSIVE_LEFT_OUT`).
 
     Parameters
     ----------
@@ -289,14 +289,14 @@ def build_arch_assembly(
     cut_joints : tuple of int, optional
         Build a coarser arch cut only at these joints (must include 0 and n), e.g. the
         paper's three-voussoir arch at the analytical hinges, ``(0, 3, 5, 7)`` for
-        Oppenheim's arch (:func:`three_voussoir_assembly`). Merged blocks get the exact merged
+        Oppenheim's arch (`three_voussoir_assembly`). Merged blocks get the exact merged
         mass properties of their voussoirs (Arch's annular-sector masses, centroids and
         inertias, combined with the parallel-axis theorem); their contact polygon is the convex
         hull of their joint end points (the intermediate intrados corners are dropped: contacts
         only occur at the cut joints, and the hull adds no mass).
     mechanism : HingeMechanism, optional
         The analytical mechanism whose first link defines the rotation measure; default the
-        arch's hinges, :func:`archquake.limit.hinges_of` (the equivalent static
+        arch's hinges, `archquake.limit.hinges_of` (the equivalent static
         analysis, any number of voussoirs). Its hinges A and B must be cut joints.
     hold_outside_hinges : bool
         If True, the voussoirs outside the mechanism's outer hinges (between a springing and a
@@ -304,7 +304,7 @@ def build_arch_assembly(
         the ground, as the analytical model assumes (they stay on the ground). The mechanism's
         hinges A and D must then be cut joints.
     loads : Loads, optional
-        What the arch carries (:func:`loaded_voussoirs`): each voussoir's mass, centroid and
+        What the arch carries (`loaded_voussoirs`): each voussoir's mass, centroid and
         inertia include its fill column and carried loads, the voussoirs the backing holds
         are base blocks, and the default mechanism is the loaded arch's. None or empty loads
         give the bare arch's assembly, unchanged.
@@ -424,7 +424,7 @@ def build_arch_assembly(
 
 
 def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) -> Assembly:
-    """The arch cut only at its hinges (:func:`archquake.limit.hinges_of`): the
+    """The arch cut only at its hinges (`archquake.limit.hinges_of`): the
     paper's three-voussoir arch (joints (0, 3, 5, 7) for Oppenheim's arch).
 
     The three moving blocks are the mechanism's links AB, BC and CD. Where a hinge A or D is
@@ -454,8 +454,8 @@ def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) 
 def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS, *,
                  loads: Loads | None = None) -> Assembly:
     """The DEM assembly of ``arch`` carrying ``loads``: ``'voussoirs'`` (every voussoir a
-    block, :func:`build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
-    :func:`three_voussoir_assembly`)."""
+    block, `build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
+    `three_voussoir_assembly`)."""
     if assembly == VOUSSOIRS:
         return build_arch_assembly(arch, loads=loads)
     if assembly == HINGES:

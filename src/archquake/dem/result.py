@@ -1,11 +1,11 @@
 """The result of a distinct-element run, in the analytical model's vocabulary.
 
-:class:`DemResult` holds the sampled histories of a run (:func:`archquake.dem.simulate_dem`)
-and computes from them what the analytical :class:`~archquake.mechanism.SimulationResult`
-reports: the :class:`~archquake.outcome.Outcome`, the onset of hinging, the impacts, the peak
+`DemResult` holds the sampled histories of a run (`archquake.dem.simulate_dem`)
+and computes from them what the analytical `SimulationResult`
+reports: the `Outcome`, the onset of hinging, the impacts, the peak
 rotation of each half cycle, the collapse half cycle and time, and ``to_dict()`` with the keys
-of :data:`archquake.outcome.RESULT_KEYS`. The post-processing (joint openings and slips, the
-rotation measure, the collapse criteria) lives here too; the driver (:mod:`archquake.dem.run`)
+of `archquake.outcome.RESULT_KEYS`. The post-processing (joint openings and slips, the
+rotation measure, the collapse criteria) lives here too; the driver (`archquake.dem.run`)
 only packs, steps and records.
 
 The rotation measure
@@ -15,7 +15,7 @@ from hinge A to hinge B of the analytical first mechanism (the one a ground acce
 -x opens), signed > 0 in that mechanism's opening sense, like the analytical
 ``History.signed_rotation``. When the assembly is its own mirror image (x -> -x) and the
 mirror-image mechanism opens first (the ground accelerates towards +x when the hinges open:
-:func:`mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored
+`mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored
 excitation gives the exact mirror of the measure (negative first), with the same impacts, half
 cycles and outcome.
 
@@ -83,9 +83,9 @@ def joint_kinematics(assembly: Assembly, pos: np.ndarray) -> tuple[np.ndarray, n
     """Opening (nt, nj, 2) at both ends and slip (nt, nj) of every recorded joint, m.
 
     Each end's gap is the right block's copy of the end point minus the left block's
-    (:func:`carry`), resolved on the joint's normal and tangent turned with the left block;
+    (`carry`), resolved on the joint's normal and tangent turned with the left block;
     the slip is the tangential gap at the more closed end. One compiled loop,
-    :func:`archquake.dem._kernels.joint_openings`, over every sample and joint."""
+    `archquake.dem._kernels.joint_openings`, over every sample and joint."""
     nt = pos.shape[0]
     nj = len(assembly.joints)
     opening = np.zeros((nt, nj, 2))
@@ -149,7 +149,7 @@ def rotation_measure(assembly: Assembly, pos: np.ndarray, *, mirrored: bool
     """The rotation measure, rad, (nt,), and the link it is taken on (module docstring).
 
     The assembly's link, unless ``mirrored`` (the mirror-image mechanism opened first: see
-    :func:`mirror_opens_first`) and the assembly is its own mirror image.
+    `mirror_opens_first`) and the assembly is its own mirror image.
     """
     link = assembly.rotation_link
     mirror = mirror_link(assembly) if mirrored else None
@@ -187,7 +187,7 @@ def crown_height(assembly: Assembly, pos: np.ndarray) -> np.ndarray:
 
 
 def collapse_parameters(assembly: Assembly, settings: DemSettings, crown_y0: float) -> np.ndarray:
-    """The packed collapse criteria of :func:`archquake.dem._kernels.collapsed`: a free block's
+    """The packed collapse criteria of `archquake.dem._kernels.collapsed`: a free block's
     centroid below the springings, a block turned by more than ``collapse_rotation``, or the
     crown fallen by more than ``collapse_drop`` reference lengths below ``crown_y0`` (m, its
     height at the start of the ground motion)."""
@@ -268,7 +268,7 @@ def half_cycle_peaks(t: np.ndarray, rot: np.ndarray, impacts: np.ndarray, end: f
 # --------------------------------------------------------------------------- rest
 #: A block model is at rest when its kinetic energy relative to the ground stays below this
 #: fraction of W L (W the weight of the free blocks, L the assembly's reference length) for
-#: :data:`REST_WINDOW` sqrt(L/g) after the end of the excitation (:func:`settled`). A rocking
+#: `REST_WINDOW` sqrt(L/g) after the end of the excitation (`settled`). A rocking
 #: arch passes through zero kinetic energy only at the instants its motion reverses, never
 #: over a window. 1e-6 W L would lift the arch's weight by a millionth of L, an order below
 #: what opening a hinge by the hinge threshold (``hinge_opening`` = 1e-4 L) takes, and after
@@ -281,7 +281,7 @@ REST_WINDOW = 1.0
 
 def rest_threshold(assembly: Assembly, g: float) -> tuple[float, float]:
     """(kinetic energy below which a block model counts as still, J; the window it must stay
-    there, s): :data:`REST_KINETIC` W L and :data:`REST_WINDOW` sqrt(L/g)."""
+    there, s): `REST_KINETIC` W L and `REST_WINDOW` sqrt(L/g)."""
     free = ~np.asarray(assembly.base, dtype=bool)
     weight = g * float(np.asarray(assembly.masses, dtype=float)[free].sum())
     lref = float(assembly.reference_length)
@@ -299,7 +299,7 @@ def excitation_end(motion) -> float | None:
 def settled(assembly: Assembly, g: float, times: np.ndarray, kinetic: np.ndarray,
             excitation_end: float | None) -> bool:
     """Whether a block model's run ends at rest: its kinetic energy (J, relative to the
-    ground) stays below :func:`rest_threshold` over the last window, and that window begins
+    ground) stays below `rest_threshold` over the last window, and that window begins
     after ``excitation_end`` (s; None: not checked)."""
     if len(times) < 2:
         return False
@@ -315,9 +315,9 @@ def settled(assembly: Assembly, g: float, times: np.ndarray, kinetic: np.ndarray
 
 # --------------------------------------------------------------------------- hinges
 #: A joint is a hinge when its wider end is open by more than this fraction of the widest
-#: opening at that instant (:func:`open_hinges`).
+#: opening at that instant (`open_hinges`).
 HINGE_RELATIVE = 0.1
-#: Hinge sets are read every this many s (:func:`hinge_sets`).
+#: Hinge sets are read every this many s (`hinge_sets`).
 HINGE_SAMPLING_S = 0.005
 
 
@@ -344,7 +344,7 @@ def open_hinges(result: DemResult, time: float, *, relative: float = HINGE_RELAT
     face is the other, more closed, end. The relative threshold keeps the four-or-so working
     hinges and drops the sub-millimetre gaps that the rocking blocks open at other joints
     (at t = 0.5 s of Figure 9: 76 and 99 mm at the working hinges, < 5 mm elsewhere but one).
-    (Also :func:`archquake.compare.dem_hinges`.)
+    (Also `archquake.compare.dem_hinges`.)
     """
     k = int(np.argmin(np.abs(result.times - time)))
     return _hinges_at(result.assembly, result.settings, result.joint_opening[k], relative)
@@ -352,18 +352,18 @@ def open_hinges(result: DemResult, time: float, *, relative: float = HINGE_RELAT
 
 def hinge_label(hinges: list[tuple[int, str]]) -> str:
     """``"0i 2e 3e 5i 7e"``: joint and face initial of each hinge, as the analytical model's
-    :class:`~archquake.mechanism.simulate.MechanismEvent` writes them."""
+    `MechanismEvent` writes them."""
     return " ".join(f"{j}{f[0]}" for j, f in hinges)
 
 
 @dataclass(frozen=True)
 class HingeSet:
-    """The hinges of a block model from ``time_s`` on (:func:`hinge_sets`).
+    """The hinges of a block model from ``time_s`` on (`hinge_sets`).
 
-    ``hinges``: the label (:func:`hinge_label`, "" when every joint is closed);
+    ``hinges``: the label (`hinge_label`, "" when every joint is closed);
     ``degrees_of_freedom``: hinges - 3 (an arch between two fixed supports; 0 when fewer than
     four hinges are open); ``kind``: ``onset`` (hinges open from a closed arch), ``change``,
-    or ``rest`` (every joint closed again). Keys as :class:`MechanismEvent`'s."""
+    or ``rest`` (every joint closed again). Keys as `MechanismEvent`'s."""
 
     time_s: float
     hinges: str
@@ -378,7 +378,7 @@ class HingeSet:
 def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
                relative: float = HINGE_RELATIVE) -> tuple[HingeSet, ...]:
     """Every hinge set the arch passed through, with the time it was first seen: the open
-    hinges (:func:`open_hinges`) read every ``every`` s (at least every sample) until the
+    hinges (`open_hinges`) read every ``every`` s (at least every sample) until the
     collapse or the end, one entry each time the set changes. Sets lasting less than ``every``
     may be missed (the staggered closures of an impact last a few ms)."""
     t = result.times
@@ -509,7 +509,7 @@ class DemResult:
 
         The verdict (docs/notes/mechanism.md, "An honest verdict for the block models"):
         ``collapse`` at the first sample meeting a collapse criterion; ``no_hinging`` if no
-        joint opened; ``survives`` only if the run ends at rest (:func:`settled`: kinetic
+        joint opened; ``survives`` only if the run ends at rest (`settled`: kinetic
         energy below ``REST_KINETIC`` W L for ``REST_WINDOW`` sqrt(L/g) after the end of the
         excitation); otherwise, hinges having opened and the arch still moving at the end,
         ``indeterminate``.
@@ -566,7 +566,7 @@ class DemResult:
 
     @property
     def verdict_reason(self) -> str:
-        """One sentence: why the outcome is what it is (the rule of :meth:`from_samples`)."""
+        """One sentence: why the outcome is what it is (the rule of `from_samples`)."""
         k_max, window = rest_threshold(self.assembly, self.g)
         if self.outcome is Outcome.COLLAPSE:
             return "a collapse criterion was met (crown fallen, a block below the springings or turned)"
@@ -582,7 +582,7 @@ class DemResult:
                 + "; run longer to decide")
 
     def hinge_sets(self, *, every: float = HINGE_SAMPLING_S) -> tuple[HingeSet, ...]:
-        """Every hinge set the arch passed through, with times (:func:`hinge_sets`)."""
+        """Every hinge set the arch passed through, with times (`hinge_sets`)."""
         return hinge_sets(self, every=every)
 
     @property
@@ -626,7 +626,7 @@ class DemResult:
         return self.joint_opening > thr
 
     def to_dict(self) -> dict:
-        """Summary for JSON (no histories): the keys of :data:`archquake.outcome.RESULT_KEYS`,
+        """Summary for JSON (no histories): the keys of `archquake.outcome.RESULT_KEYS`,
         shared with the analytical result (``final_state``: ``collapsed`` or None, the DEM runs
         for a fixed time with no rest criterion), then the DEM's own."""
         return {
@@ -659,12 +659,12 @@ class DemResult:
 
     @property
     def hinge_events(self) -> tuple[HingeSet, ...]:
-        """Every hinge set the arch passed through (:meth:`hinge_sets` at its default
-        sampling), as :attr:`archquake.result.ModelResult.hinge_events`."""
+        """Every hinge set the arch passed through (`hinge_sets` at its default
+        sampling), as `archquake.result.ModelResult.hinge_events`."""
         return self.hinge_sets()
 
     def to_table(self) -> dict[str, np.ndarray]:
-        """Columns for a tabular export: :data:`archquake.result.TABLE_COLUMNS` (time, crown
+        """Columns for a tabular export: `archquake.result.TABLE_COLUMNS` (time, crown
         displacement, rotation, kinetic and potential energy), then the other energies and the
         base motion."""
         return {
@@ -678,7 +678,7 @@ class DemResult:
         }
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        """Write `to_table` as CSV (`archquake.result.write_csv`)."""
         return write_csv(self.to_table(), path)
 
 

@@ -1,10 +1,10 @@
 """Driver of the distinct-element model: pack, settle, step, record.
 
 The three layers follow scipy's ``solve_ivp``: the compiled step
-(:func:`archquake.dem._kernels.step`, NumPy reference in :mod:`archquake.dem._reference`), a
-stepper loop with a written contract (:func:`archquake.dem._kernels.run`), and this driver that
+(`archquake.dem._kernels.step`, NumPy reference in `archquake.dem._reference`), a
+stepper loop with a written contract (`archquake.dem._kernels.run`), and this driver that
 packs the assembly, chooses the time step, brings the assembly to rest under gravity, runs it
-and hands the samples to :class:`~archquake.dem.result.DemResult`, which classifies the run.
+and hands the samples to `DemResult`, which classifies the run.
 
 Frames. Positions and velocities are absolute; the base blocks move with the ground, whose
 velocity and displacement are the central-difference integrals of x_g''(t_n) taken inside the
@@ -16,7 +16,7 @@ alpha = 6.28e-5 1/s either choice changes the forces by < 1e-4 of the weight).
 Stiffness-proportional damping acts on the contact relative velocities (frame-independent).
 Energies are those of the motion relative to the ground, where the ground's acceleration is
 the inertial body force -m x_g'': kinetic + potential + strain + damping + friction - input
-work stays constant (:attr:`DemResult.energy_error`).
+work stays constant (`DemResult.energy_error`).
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ MAX_OUTPUT_BYTES = 1_000_000_000
 # --------------------------------------------------------------------------- packing
 def pack(assembly: Assembly) -> Packed:
     """Blocks at rest in the undisplaced configuration (theta = 0, local = polygon - centroid),
-    no contact slots yet (:func:`build_slots`)."""
+    no contact slots yet (`build_slots`)."""
     nb = assembly.n_blocks
     cents = np.array(assembly.centroids, dtype=float)
     counts = np.array([len(p) for p in assembly.polygons])
@@ -223,7 +223,7 @@ def stable_time_step(
 
 def _at_rest_frames(packed: Packed) -> tuple[np.ndarray, np.ndarray]:
     """World vertices (nv, 2) of the undisplaced blocks and every edge's unit tangent and
-    length (nv, 3), as :func:`archquake.dem._kernels.world_vertices` lays them out."""
+    length (nv, 3), as `archquake.dem._kernels.world_vertices` lays them out."""
     blk = np.repeat(np.arange(len(packed.vstart) - 1), np.diff(packed.vstart))
     vw = packed.state[blk, :2] + packed.vloc  # theta = 0
     v = np.arange(vw.shape[0])
@@ -236,7 +236,7 @@ def _at_rest_frames(packed: Packed) -> tuple[np.ndarray, np.ndarray]:
 def _contacts_at_rest(vw: np.ndarray, edir: np.ndarray, packed: Packed, par: np.ndarray) -> None:
     """The contacts of the undisplaced assembly, written into ``packed.sl_edge``/``sl_f``.
 
-    The kernel's rule for new contacts (:func:`archquake.dem._kernels.update_contacts`: an
+    The kernel's rule for new contacts (`archquake.dem._kernels.update_contacts`: an
     edge within whose length the corner lies, neither edge at the corner dipping into it by
     more than ``ANGLE_TOL``, best facing; the lower-numbered block's corners first, a corner
     coinciding with an active corner of the other block skipped), except that corners up to
@@ -298,7 +298,7 @@ def simulate_dem(
     Parameters
     ----------
     arch_or_assembly : Arch or Assembly
-        An Arch is built with :func:`build_arch_assembly` (every voussoir a block).
+        An Arch is built with `build_arch_assembly` (every voussoir a block).
     motion : GroundMotion
         Horizontal ground acceleration (any archquake motion: pulses, records).
     settings : DemSettings, optional

@@ -3,7 +3,7 @@
 Units are SI throughout. Joint stiffnesses are given per unit joint area (Pa/m, i.e. stress per
 unit overlap, as UDEC's ``jkn``/``jks``); each contact point turns them into a spring in N/m by
 multiplying with the block depth and its tributary contact length (see
-:mod:`archquake.dem.assembly`).
+`archquake.dem.assembly`).
 """
 
 from __future__ import annotations
@@ -99,7 +99,7 @@ class DemSettings:
     damping : tuple of two floats
         Rayleigh damping ``(alpha, beta)``: alpha in 1/s (mass-proportional), beta in s
         (stiffness-proportional). Default: the paper's (6.28e-5, 1.59e-4). Use
-        :meth:`rayleigh_from_minimum` for UDEC's ``(f_min, xi_min)`` form.
+        `rayleigh_from_minimum` for UDEC's ``(f_min, xi_min)`` form.
     duration : float
         Simulated time after the pulse starts, s (> 0).
     output_interval : float
@@ -108,7 +108,7 @@ class DemSettings:
         Fraction (0, 1] of the stable time step actually used.
     time_step : float or None
         Fixed time step, s; ``None`` (default) derives it from the block masses, inertias,
-        contact stiffnesses and damping (:func:`archquake.dem.run.stable_time_step`).
+        contact stiffnesses and damping (`archquake.dem.run.stable_time_step`).
     settle_time : float
         Time, s (>= 0), for which the assembly is brought to rest under gravity (kinetic
         damping) before the ground starts to move, so that the joints carry their static

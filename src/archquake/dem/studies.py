@@ -1,4 +1,4 @@
-"""Small studies on top of :func:`simulate_dem`: restitution of a free-rocking block, the
+"""Small studies on top of `simulate_dem`: restitution of a free-rocking block, the
 rocking-onset and overturning thresholds of a block, and the friction needed by an arch.
 
 Each returns plain numbers so that tests and docs/models/dem.md can quote them.
@@ -19,7 +19,7 @@ from archquake.validation.housner import restitution
 
 
 def tilted_block(width: float, height: float, tilt: float, **kwargs) -> Assembly:
-    """:func:`block_on_base` with the block turned clockwise by ``tilt`` rad about its
+    """`block_on_base` with the block turned clockwise by ``tilt`` rad about its
     bottom-right corner, i.e. standing on that corner (its left corner lifted)."""
     base = block_on_base(width, height, **kwargs)
     c, s = math.cos(-tilt), math.sin(-tilt)
@@ -120,7 +120,7 @@ def ramp_and_hold(acceleration: float, ramp: float, hold: float) -> Record:
 
 def rectangular_pulse(acceleration: float, duration: float, *, samples: int = 2000) -> Record:
     """A rectangular acceleration pulse (m/s^2, s), sampled finely (the fall to zero takes
-    duration / samples): :meth:`archquake.ground.pulses.RectangularPulse.sampled`."""
+    duration / samples): `archquake.ground.pulses.RectangularPulse.sampled`."""
     from archquake.ground.pulses import RectangularPulse
 
     return RectangularPulse(acceleration, duration).sampled(samples)
@@ -156,5 +156,5 @@ def slides(arch_or_assembly, friction: float, a_g: float, *, window: float = 0.2
 def friction_threshold(arch_or_assembly, a_g: float, *, low: float = 0.3, high: float = 1.0,
                        rtol: float = 5e-3, **kwargs) -> float:
     """The friction coefficient below which joints slide at the start of an ``a_g`` g
-    impulse (bisection on the coefficient; see :func:`slides`)."""
+    impulse (bisection on the coefficient; see `slides`)."""
     return bisect(lambda mu: not slides(arch_or_assembly, mu, a_g, **kwargs), low, high, rtol=rtol)

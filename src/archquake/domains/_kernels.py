@@ -2,9 +2,9 @@
 
 Each case is one pulse of the family (``kind``; params ``[a, duration, direction]``) on the same
 stack of packed mechanisms with its impact table
-(:class:`~archquake.mechanism.prepared.ImpactTable`). Every case runs
-:func:`archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
-:func:`archquake.mechanism.simulate`, with no history (``dt_out = 0``): the event logic (onset,
+(`ImpactTable`). Every case runs
+`archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
+`archquake.mechanism.simulate`, with no history (``dt_out = 0``): the event logic (onset,
 closure and impact, rest, crest and toggle collapse) is that kernel's, unchanged.
 
 Deciding early (``early=True``)
@@ -24,9 +24,9 @@ the full run's) and accepts the answer when the trajectory up to the cap already
   within each half cycle (Eq. 2 with x_g'' = 0) and never grows at an impact, and a half cycle
   on any row r reaches that row's crest only with at least its barrier, which is at least the
   least one: it can never reach a crest again and survives (the barrier:
-  :func:`archquake.mechanism._kernels.table_energies`, which
-  :func:`archquake.mechanism.simulate` uses for the same proof at its ``t_end``; the test
-  itself: :func:`archquake.mechanism._kernels.last_impact_energy`). A row the
+  `archquake.mechanism._kernels.table_energies`, which
+  `archquake.mechanism.simulate` uses for the same proof at its ``t_end``; the test
+  itself: `archquake.mechanism._kernels.last_impact_energy`). A row the
   law's impacts leave (``next < 0``) stops the run and is flagged, so no motion outside the table is assumed.
   The verdict it states must not hide an undescribed impact still to come: an early survival
   is accepted only if every row's impact is described, or an undescribed impact has already
@@ -35,10 +35,10 @@ the full run's) and accepts the answer when the trajectory up to the cap already
 Otherwise the case is run again with an eight times larger cap, up to the full
 ``max_impacts``. ``early=False`` runs every case in full. Each case returns how its deciding
 run ended and its last impact's energy, from which the caller states the verdict by
-:func:`archquake.mechanism.simulate`'s own rule
-(:func:`~archquake.mechanism.simulate.conclude_run`: a run locked by ``max_impacts``, or cut by
+`archquake.mechanism.simulate`'s own rule
+(`conclude_run`: a run locked by ``max_impacts``, or cut by
 ``t_end`` while rocking, survives only with that proof). A test holds both modes to
-:func:`~archquake.mechanism.simulate` point by point.
+`simulate` point by point.
 """
 
 from __future__ import annotations
@@ -79,8 +79,8 @@ def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_
               max_impacts, early, barrier, meff0, undescribed, ct_max):
     """One case; returns (outcome, collapse_half_cycle, impacts, runs, undescribed impact seen,
     final state code, energy fraction of the last impact) of the deciding run: what
-    :func:`archquake.mechanism.simulate.conclude_run` states the verdict from, as for
-    :func:`~archquake.mechanism.simulate` (the fraction: :func:`last_impact_energy`, NaN where
+    `archquake.mechanism.simulate.conclude_run` states the verdict from, as for
+    `simulate` (the fraction: `last_impact_energy`, NaN where
     its proof does not apply).
 
     An early run locked at its cap is accepted when the proof holds at its last impact (the
@@ -117,10 +117,10 @@ def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, re
 
     Parameters
     ----------
-    mechs, nxt, flip, ratio : the mechanism table, as :func:`simulate_kernel`
+    mechs, nxt, flip, ratio : the mechanism table, as `simulate_kernel`
     kind : int, ground-motion kind (step or sine)
     params : (n, 3) per case ``[a (m/s^2), duration (s), direction]``
-    g, rtol, atol, rest_rotation, max_impacts : as :func:`simulate_kernel`
+    g, rtol, atol, rest_rotation, max_impacts : as `simulate_kernel`
     t_end : (n,) end of each analysis, s
     early : bool, decide early (module docstring)
     undescribed : (m,) bool, the law does not describe the row's impact
@@ -130,7 +130,7 @@ def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, re
     unseen : (n,) bool out: an undescribed impact happened before the verdict
     final : (n,) int64 out: how the deciding run ended (the kernel's ``FINAL_*`` code)
     fraction : (n,) float64 out: its last impact's energy over the least crest barrier, NaN
-        where the proof does not apply (:func:`last_impact_energy`)
+        where the proof does not apply (`last_impact_energy`)
     """
     n = params.shape[0]
     meff0, barrier = table_energies(mechs, g)
@@ -147,13 +147,13 @@ def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, re
         fraction[i] = e
 
 
-#: The kernel's outcome codes as :class:`~archquake.outcome.Outcome` values.
+#: The kernel's outcome codes as `Outcome` values.
 OUTCOMES = {OUTCOME_NO_HINGING: Outcome.NO_HINGING, OUTCOME_SURVIVES: Outcome.SURVIVES,
             OUTCOME_COLLAPSE: Outcome.COLLAPSE}
 
 
 def decode(codes: np.ndarray) -> np.ndarray:
-    """The kernel's outcome codes (n,) as an object array of :class:`~archquake.outcome.Outcome`."""
+    """The kernel's outcome codes (n,) as an object array of `Outcome`."""
     out = np.empty(len(codes), dtype=object)
     for i, c in enumerate(codes):
         out[i] = OUTCOMES[int(c)]

@@ -1,9 +1,9 @@
 """Outcomes of many pulses of one family on one arch: the fast path of the domain search.
 
-:func:`evaluate_pulses` runs every (magnitude, duration) pair through one call of the compiled
-batch kernel (:mod:`archquake.domains._kernels`), which runs the same compiled time history as
-:func:`archquake.mechanism.simulate` for each case; :func:`evaluate_pulses_scalar` is its plain
-twin, a Python loop over :func:`~archquake.mechanism.simulate`, which the tests hold it to.
+`evaluate_pulses` runs every (magnitude, duration) pair through one call of the compiled
+batch kernel (`archquake.domains._kernels`), which runs the same compiled time history as
+`archquake.mechanism.simulate` for each case; `evaluate_pulses_scalar` is its plain
+twin, a Python loop over `simulate`, which the tests hold it to.
 """
 
 from __future__ import annotations
@@ -24,27 +24,27 @@ from archquake.mechanism.prepared import PreparedMechanism
 from archquake.mechanism.simulate import SolverOptions, conclude_run, simulate
 from archquake.outcome import Outcome, qualify
 
-#: Integrator settings of :func:`~archquake.mechanism.simulate`'s default.
+#: Integrator settings of `simulate`'s default.
 DEFAULT_OPTIONS = SolverOptions()
 
 @dataclass(frozen=True)
 class PulseOutcomes:
     """Outcomes of a set of pulses, shape (n,) each: what any model plugged into the domain
-    search returns (:func:`~archquake.domains.failure_domain`'s ``evaluate``).
+    search returns (`failure_domain`'s ``evaluate``).
 
     Attributes
     ----------
     magnitude_g : ndarray, g
     duration : ndarray, s
     outcome : ndarray of Outcome (object)
-        Built from :class:`~archquake.outcome.Outcome` values (or their strings); the verdict
+        Built from `Outcome` values (or their strings); the verdict
         as it may be stated (``indeterminate`` where it depends on an impact the law does not
-        describe, :func:`archquake.outcome.qualify`).
+        describe, `archquake.outcome.qualify`).
     collapse_half_cycle : ndarray of int
         Half cycle of the computed collapse (1 = before any impact), 0 where none (also set
         where the verdict is indeterminate: the law as stated computed that collapse).
     runs : ndarray of int
-        Model runs each case needed (the batch kernel's early decision, see :mod:`._kernels`).
+        Model runs each case needed (the batch kernel's early decision, see `._kernels`).
     """
 
     magnitude_g: np.ndarray
@@ -64,7 +64,7 @@ class PulseOutcomes:
         """(n,) bool: the model, with its impact law as stated, computes a collapse (a certain
         collapse, or an indeterminate verdict whose computation collapsed: the domain search
         brackets the law's boundary and marks what is not certain, see
-        :attr:`~archquake.domains.FailureDomain.collapse_verdict`)."""
+        `collapse_verdict`)."""
         return np.array([o is Outcome.COLLAPSE or (o is Outcome.INDETERMINATE and h > 0)
                          for o, h in zip(self.outcome, self.collapse_half_cycle)], dtype=bool)
 
@@ -95,7 +95,7 @@ def _pairs(magnitudes_g, durations) -> tuple[np.ndarray, np.ndarray]:
 def check_durations(family: PulseFamily, durations: np.ndarray, arch_radius: float,
                     g: float) -> None:
     """Refuse durations below the integrators' time resolution
-    (:func:`archquake.ground.base.check_time_resolution`, one error naming t_p or T)."""
+    (`archquake.ground.base.check_time_resolution`, one error naming t_p or T)."""
     tau = math.sqrt(arch_radius / g)
     for d in np.unique(np.asarray(durations, dtype=float)):
         check_time_resolution(family.kind, np.array([1.0, float(d), -1.0]), tau)
@@ -126,10 +126,10 @@ def evaluate_pulses(
     impact : {"paper", "chain", "mirror"}, optional
         Impact law; None: a PreparedMechanism's own, else "paper".
     options : SolverOptions
-        Tolerances, rest rotation and impact cap, as for :func:`~archquake.mechanism.simulate`.
+        Tolerances, rest rotation and impact cap, as for `simulate`.
     early : bool
         Stop a surviving case as soon as energy proves it can no longer collapse (see
-        :mod:`archquake.domains._kernels`); False runs every case to rest as ``simulate`` does.
+        `archquake.domains._kernels`); False runs every case to rest as ``simulate`` does.
     g : float
         Gravity, m/s^2.
 
@@ -204,7 +204,7 @@ def evaluate_pulses_scalar(
     options: SolverOptions = DEFAULT_OPTIONS,
     g: float = STANDARD_GRAVITY,
 ) -> PulseOutcomes:
-    """The plain twin of :func:`evaluate_pulses`: a loop over :func:`~archquake.mechanism.simulate`."""
+    """The plain twin of `evaluate_pulses`: a loop over `simulate`."""
     prepared = PreparedMechanism.build(arch, impact)
     fam = PulseFamily.parse(family)
     a, d = _pairs(magnitudes_g, durations)

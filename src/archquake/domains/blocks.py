@@ -1,8 +1,8 @@
 """The block models' outcomes of pulses, for the failure-domain search
-(:func:`archquake.domains.failure_domain`'s ``evaluate``): the distinct-element model
+(`archquake.domains.failure_domain`'s ``evaluate``): the distinct-element model
 (``model='dem'``) or the chain of rigid blocks (``model='rigid'``, hinges moving: the DEM's
 rigid limit), each run for the pulse plus a tail. The chain's runs of one search round are one
-threaded batch of verdicts (:func:`archquake.rigid.rigid_verdicts`).
+threaded batch of verdicts (`archquake.rigid.rigid_verdicts`).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ def block_pulse_outcome(assembly, family: str, magnitude_g: float, duration: flo
              first_only: bool, g: float, governing_only: bool = False,
              model: str = "dem", solver: str = "direct") -> tuple[Outcome, int]:
     """One run of the block model ``model`` ('dem' or 'rigid', the latter integrated by
-    ``solver``, :func:`~archquake.rigid.simulate_rigid`'s): (outcome, collapse
+    ``solver``, `simulate_rigid`'s): (outcome, collapse
     half cycle or 0). Module-level: picklable. Both run the pulse plus ``tail_s``; the rigid chain reads
     only the DEM settings' thresholds (hinge opening, collapse criteria), as it always does.
 
@@ -60,8 +60,8 @@ def block_pulse_outcome(assembly, family: str, magnitude_g: float, duration: flo
 def rigid_pulse_outcomes(assembly, family: PulseFamily, points, settings, tail_s: float,
                     first_only: bool, g: float, governing_only: bool,
                     threads: int | None) -> list[tuple[Outcome, int]]:
-    """:func:`block_pulse_outcome` of the rigid chain for every (magnitude g, duration s) of ``points``,
-    as one batch of verdicts (:func:`~archquake.rigid.verdict.rigid_verdicts`: the
+    """`block_pulse_outcome` of the rigid chain for every (magnitude g, duration s) of ``points``,
+    as one batch of verdicts (`rigid_verdicts`: the
     verdict's step with its guard, skips at rest, stops at collapse or proven rest)."""
     from archquake.rigid.verdict import rigid_verdicts
 
@@ -84,7 +84,7 @@ def rigid_pulse_outcomes(assembly, family: PulseFamily, points, settings, tail_s
 @dataclass
 class DemPulseEvaluator:
     """``evaluate(magnitudes_g, durations) -> PulseOutcomes`` of a block assembly under the DEM
-    or the rigid chain, for :func:`~archquake.domains.failure_domain`'s ``evaluate``.
+    or the rigid chain, for `failure_domain`'s ``evaluate``.
 
     Parameters
     ----------
@@ -102,13 +102,13 @@ class DemPulseEvaluator:
     g : float
     governing_only : bool
         Report collapses without their half cycle (0), so that the domain search brackets
-        only the governing boundary (see :func:`dem_failure_domain`).
+        only the governing boundary (see `dem_failure_domain`).
     model : {'dem', 'rigid'}
-        The block model run (:data:`BLOCK_MODELS`).
+        The block model run (`BLOCK_MODELS`).
     solver : {'direct', 'events'}
         How the rigid chain is integrated (``simulate_rigid``'s ``solver``). With 'direct'
         the runs of a call are one batch of verdicts
-        (:func:`archquake.rigid.verdict.rigid_verdicts`, at the verdict's step,
+        (`archquake.rigid.verdict.rigid_verdicts`, at the verdict's step,
         threaded), not time histories through ``executor``.
     threads : int, optional
         Threads of that batch (default: the usable cores).

@@ -100,11 +100,11 @@ class DomainSettings:
         the scan's ratio (its spacing), independently of the ceiling (if it is not above
         lambda, twice lambda is used).
     precision_g : float
-        Width of the final brackets, g; at least :data:`PRECISION_FLOOR` times the ceiling
+        Width of the final brackets, g; at least `PRECISION_FLOOR` times the ceiling
         (finer brackets cannot be halved in double precision).
     early : bool
         Let the batch stop surviving runs once energy proves they cannot collapse (see
-        :mod:`archquake.domains._kernels`).
+        `archquake.domains._kernels`).
     options : SolverOptions
         Integrator settings of every run (history is never recorded).
     """
@@ -195,16 +195,16 @@ class FailureDomain:
     g : float
         Gravity, m/s^2.
     impact_law : str
-        The impact law (:data:`archquake.mechanism.impact.IMPACT_LAWS`).
+        The impact law (`archquake.mechanism.impact.IMPACT_LAWS`).
     impact_validity : str
-        Its validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
+        Its validity (`ImpactSolution`).
     impact_described : bool
         True if the law (with the prescribed c_v, if any) describes this arch's impacts (every
-        row of its mechanism table, :attr:`PreparedMechanism.table`: a boundary may come from
+        row of its mechanism table, `PreparedMechanism.table`: a boundary may come from
         any of them). If False, every verdict reached after an impact is indeterminate
-        (:func:`archquake.outcome.qualify`): lambda and the first-half-cycle boundary stand, and
+        (`archquake.outcome.qualify`): lambda and the first-half-cycle boundary stand, and
         ``collapse_g`` where it collapses after an impact is the law's computed boundary, not a
-        certain one (:attr:`collapse_verdict`).
+        certain one (`collapse_verdict`).
     restitution_prescribed : bool
         True if ``restitution_cv`` was prescribed.
     """
@@ -343,7 +343,7 @@ def _predicate(res, criterion: str) -> np.ndarray:
 
 
 def _rigid_evaluator(arch, family, restitution, impact, g: float, threads: int | None):
-    """The rigid chain's outcomes for :func:`failure_domain` (``model='rigid'``)."""
+    """The rigid chain's outcomes for `failure_domain` (``model='rigid'``)."""
     from archquake.dem.assembly import VOUSSOIRS, dem_assembly
     from archquake.dem.settings import DemSettings
     from archquake.domains.blocks import DOMAIN_TAIL, DemPulseEvaluator
@@ -388,30 +388,30 @@ def failure_domain(
     restitution : float, optional
         Prescribed c_v in [0, 1] (0: perfectly plastic); None: the impact law's.
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law (:mod:`archquake.mechanism.impact`); None: a PreparedMechanism's own, else
+        Impact law (`archquake.mechanism.impact`); None: a PreparedMechanism's own, else
         "paper".
     g : float
         Gravity, m/s^2.
     evaluate : callable, optional
         ``evaluate(magnitudes_g, durations) -> PulseOutcomes`` for 1-D arrays of equal length:
         another model's outcomes plugged into the same search (e.g. the distinct-element model,
-        :func:`archquake.compare.dem_failure_domain`). Default: the compiled analytical batch
-        :func:`~archquake.domains.evaluate_pulses` (``settings.options``, ``settings.early``).
+        `archquake.compare.dem_failure_domain`). Default: the compiled analytical batch
+        `evaluate_pulses` (``settings.options``, ``settings.early``).
         lambda (the scan's start) is always the analytical mechanism's.
     model : {'rigid', 'fourlink'}, optional
         The model whose outcomes are searched when ``evaluate`` is not given. ``'rigid'`` (the
         default for an Arch): the chain of rigid voussoirs, every voussoir a block, each pulse
-        run for itself plus :data:`~archquake.domains.blocks.DOMAIN_TAIL` sqrt(R/g) as
-        threaded batches of guarded verdicts (:func:`archquake.rigid.rigid_verdicts`; its
+        run for itself plus `DOMAIN_TAIL` sqrt(R/g) as
+        threaded batches of guarded verdicts (`archquake.rigid.rigid_verdicts`; its
         impacts follow from the contacts: no ``restitution`` or ``impact``). ``'fourlink'``
         (the default for a PreparedMechanism): the paper's four-link mechanism, the compiled
-        batch :func:`~archquake.domains.evaluate_pulses`.
+        batch `evaluate_pulses`.
     threads : int, optional
         With ``model='rigid'``: threads of each batch (default: the usable cores).
     loads : Loads, optional
         What the arch carries, for another model's ``evaluate`` whose blocks carry them
-        (:func:`archquake.compare.dem_failure_domain`): lambda, the scan's start, is then the
-        static analysis's with the loads (:mod:`archquake.limit.loaded`).
+        (`archquake.compare.dem_failure_domain`): lambda, the scan's start, is then the
+        static analysis's with the loads (`archquake.limit.loaded`).
 
     Returns
     -------

@@ -6,14 +6,14 @@ x_g'' H(phi) = 0`` with m, G, H dimensionless functions of the proportions only;
 (c_v, Eq. 5) is scale-free too. With time measured in sqrt(R/g), nothing depends on R: the arch
 k R under a pulse (a, sqrt(k) t_p) moves exactly as the arch R under (a, t_p), at sqrt(k) times
 the pace. A domain therefore maps to another scale by stretching the DURATION axis by sqrt(k),
-magnitudes unchanged (:func:`similar_boundary`).
+magnitudes unchanged (`similar_boundary`).
 
 The paper states instead that the curves are "approximately scalable with the square root of the
-radius": the magnitude at a given t_p multiplied by sqrt(R / R_ref) (:func:`paper_boundary`).
+radius": the magnitude at a given t_p multiplied by sqrt(R / R_ref) (`paper_boundary`).
 Both agree where a boundary behaves like a t_p = const (short pulses: the arch needs a given
 ground velocity change, which scales with sqrt(g R)); they part where the boundary flattens
 towards lambda (long pulses), which no magnitude scaling can reproduce since lambda does not
-depend on R. :func:`compare_scaling` quantifies the paper's rule on computed domains.
+depend on R. `compare_scaling` quantifies the paper's rule on computed domains.
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
 """The paper's parametric studies: scale (Figure 6), geometry (Figure 7), impulse shape (Figure 11).
 
-Each study computes plain :class:`~archquake.domains.FailureDomain` objects; a geometry the
+Each study computes plain `FailureDomain` objects; a geometry the
 model cannot handle is reported in the case, never silently dropped: an arch that cannot stand
-(:class:`~archquake.errors.UnstableArchError`) has no domain and says why, and an arch whose
+(`UnstableArchError`) has no domain and says why, and an arch whose
 impact model gives c_v > 1 (the five momentum balances create energy; see
-:mod:`archquake.mechanism.impact`) keeps its domain but is flagged, since with c_v > 1 free
+`archquake.mechanism.impact`) keeps its domain but is flagged, since with c_v > 1 free
 rocking grows at every impact and any hinging ends in collapse given time.
 """
 
@@ -28,7 +28,7 @@ from archquake.validation.paper import (
 from .domain import FIGURE5_DURATIONS, DomainSettings, FailureDomain, failure_domain
 
 #: Figure 6: radii, m; Figure 7: thickness ratios at 157.5 degrees, and embraces (degrees) at
-#: t/R = 0.15 (the paper's parameters live in :mod:`archquake.validation.paper`).
+#: t/R = 0.15 (the paper's parameters live in `archquake.validation.paper`).
 SCALE_RADII = FIGURE6_RADII
 GEOMETRY_RATIOS = FIGURE7_RATIOS
 GEOMETRY_EMBRACES_DEG = FIGURE7_EMBRACES_DEG

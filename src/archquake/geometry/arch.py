@@ -45,7 +45,7 @@ from archquake.geometry.checks import (  # noqa: F401  (the ranges are re-export
 class Arch(VoussoirChain):
     """A symmetric part-circular arch of ``voussoirs`` equal voussoirs with radial joints.
 
-    The circular builder of the voussoir chain (:class:`~archquake.geometry.chain.
+    The circular builder of the voussoir chain (`
     VoussoirChain`), with closed-form annular-sector mass properties; its characteristic
     length is its radius R.
 

@@ -3,7 +3,7 @@ properties with its fill column and moving loads added, for the analyses that re
 blocks as masses (the four-link model, its impacts).
 
 Each voussoir's mass is its own plus what it carries that moves with the arch
-(:func:`~archquake.geometry.loads.block_extras`), at the combined centroid, with the rotational
+(`block_extras`), at the combined centroid, with the rotational
 inertia about it by the parallel-axis theorem. Loads whose mass does not move (``still``),
 traffic and passive fill pressure are not masses, so a carrying chain refuses them.
 

@@ -17,9 +17,9 @@ the DEM, the plots) reads an arch through this interface only, so it works on ev
   circular arch;
 - ``thickness`` (ring thickness, m), ``depth`` (m), ``density`` (kg/m^3).
 
-:class:`~archquake.geometry.arch.Arch` (the circular arch with radial joints, closed-form
-mass properties) is one builder of this type; :mod:`archquake.geometry.shapes` holds the
-others, :mod:`archquake.geometry.survey` reads blocks from files, and :class:`OnPiers` stands
+`Arch` (the circular arch with radial joints, closed-form
+mass properties) is one builder of this type; `archquake.geometry.shapes` holds the
+others, `archquake.geometry.survey` reads blocks from files, and `OnPiers` stands
 any of them on piers (the pier courses become more blocks of the same chain).
 """
 
@@ -48,7 +48,7 @@ from archquake.geometry.checks import (  # noqa: F401  (the ranges are re-export
 )
 from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 
-#: A pier's parameters in the messages of :class:`Piers`.
+#: A pier's parameters in the messages of `Piers`.
 _PIER_NAMES = Wording(names={"pier_height": "pier height", "pier_width": "pier width",
                              "pier_courses": "pier courses"})
 
@@ -57,8 +57,8 @@ class VoussoirChain(ABC):
     """Base of every arch: the interface the analyses read (see the module docstring).
 
     Subclasses are frozen dataclasses that provide ``voussoirs``, ``thickness``, ``depth``,
-    ``density``, ``radius``, :meth:`describe`, :meth:`scaled`, and either the joint ends and
-    block polygons (:meth:`_build_layout`) or closed forms overriding the properties below.
+    ``density``, ``radius``, `describe`, `scaled`, and either the joint ends and
+    block polygons (`_build_layout`) or closed forms overriding the properties below.
     """
 
     voussoirs: int

@@ -1,12 +1,12 @@
 """The arch's parameters checked in one place: their ranges and the rules that tie them.
 
-The arch (:class:`~archquake.geometry.Arch` and the other builders), the command line
-(:func:`archquake.cli.common.arch_from_args`) and the study files
-(:class:`~archquake.geometry.spec.ArchSpec`) all check an arch here. Each names a parameter as
-its user typed it, through a :class:`Wording`: ``radius`` for an argument or a study key
+The arch (`Arch` and the other builders), the command line
+(`archquake.cli.common.arch_from_args`) and the study files
+(`ArchSpec`) all check an arch here. Each names a parameter as
+its user typed it, through a `Wording`: ``radius`` for an argument or a study key
 (``radius must be in [0.001, 10000] (m), got 0``), ``--radius`` on the command line
 (``--radius must be in [0.001, 10000] m, got 0``). The generic checks are those of the
-project's validation layer (:mod:`archquake._validate`).
+project's validation layer (`archquake._validate`).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ MAX_THICKNESS_RATIO = 2.0
 #: whose springings overhang the centre far enough that a two-support, four-hinge description
 #: stops being a sensible model.
 MAX_EMBRACE_DEG = 240.0
-#: The same in rad. Compare degrees with :data:`MAX_EMBRACE_DEG` (degrees(radians(240)) is
+#: The same in rad. Compare degrees with `MAX_EMBRACE_DEG` (degrees(radians(240)) is
 #: 239.99999999999997, so converting the bound back would refuse the documented maximum).
 MAX_EMBRACE = math.radians(MAX_EMBRACE_DEG)
 #: Least angle of embrace, degrees: a flatter ring is a straight beam, and below it (5e-324 rad
@@ -58,7 +58,7 @@ MAX_VOUSSOIRS = 2000
 RADIUS_RANGE = (1e-3, 1e4)
 #: Courses (blocks) of a pier.
 PIER_COURSES_RANGE = (1, 500)
-#: Shapes :class:`~archquake.geometry.ShapedArch` knows ("segmental" is the circular arch with
+#: Shapes `ShapedArch` knows ("segmental" is the circular arch with
 #: f < L/2).
 SHAPES = ("circular", "segmental", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
 #: Joint patterns.
@@ -122,7 +122,7 @@ OPTIONS = Wording(option=True, names={"embrace_deg": "--embrace"})
 
 
 def check_radius(radius: object, wording: Wording = KEYS) -> float:
-    """Centreline radius R, m, in :data:`RADIUS_RANGE`."""
+    """Centreline radius R, m, in `RADIUS_RANGE`."""
     return wording.range("radius", radius, *RADIUS_RANGE, "m")
 
 
@@ -153,13 +153,13 @@ def check_thickness_ratio(ratio: object, wording: Wording = KEYS) -> float:
 
 
 def check_embrace_deg(embrace_deg: object, wording: Wording = KEYS) -> float:
-    """Angle of embrace, degrees, from :data:`MIN_EMBRACE_DEG` to :data:`MAX_EMBRACE_DEG`."""
+    """Angle of embrace, degrees, from `MIN_EMBRACE_DEG` to `MAX_EMBRACE_DEG`."""
     return wording.range("embrace_deg", embrace_deg, MIN_EMBRACE_DEG, MAX_EMBRACE_DEG, "degrees")
 
 
 def check_embrace(embrace: object, name: str = "embrace") -> float:
-    """Angle of embrace, rad (an argument of the library), from :data:`MIN_EMBRACE` to
-    :data:`MAX_EMBRACE`; the range is shown in degrees and rad."""
+    """Angle of embrace, rad (an argument of the library), from `MIN_EMBRACE` to
+    `MAX_EMBRACE`; the range is shown in degrees and rad."""
     return require_range(name, embrace, MIN_EMBRACE, MAX_EMBRACE, "", low_open=False,
                          high_open=False,
                          shown=f"[{MIN_EMBRACE_DEG:g}, {MAX_EMBRACE_DEG:g}] degrees = "
@@ -168,22 +168,22 @@ def check_embrace(embrace: object, name: str = "embrace") -> float:
 
 def check_voussoirs(voussoirs: object, wording: Wording = KEYS, *, least: int = MIN_VOUSSOIRS
                     ) -> int:
-    """Number of voussoirs, from ``least`` (3; 4 for vertical joints) to :data:`MAX_VOUSSOIRS`."""
+    """Number of voussoirs, from ``least`` (3; 4 for vertical joints) to `MAX_VOUSSOIRS`."""
     return wording.whole("voussoirs", voussoirs, least, MAX_VOUSSOIRS)
 
 
 def check_depth(depth: object, wording: Wording = KEYS) -> float:
-    """Out-of-plane depth, m, from :data:`MIN_DEPTH` to :data:`MAX_DEPTH`."""
+    """Out-of-plane depth, m, from `MIN_DEPTH` to `MAX_DEPTH`."""
     return wording.range("depth", depth, MIN_DEPTH, MAX_DEPTH, "m")
 
 
 def check_density(density: object, wording: Wording = KEYS) -> float:
-    """Density, kg/m^3, from :data:`MIN_DENSITY` to :data:`MAX_DENSITY`."""
+    """Density, kg/m^3, from `MIN_DENSITY` to `MAX_DENSITY`."""
     return wording.range("density", density, MIN_DENSITY, MAX_DENSITY, "kg/m^3")
 
 
 def check_shape(shape: object, wording: Wording = KEYS) -> str:
-    """One of :data:`SHAPES` (``_`` read as ``-``, any case)."""
+    """One of `SHAPES` (``_`` read as ``-``, any case)."""
     word = str(shape).replace("_", "-").lower()
     if word not in SHAPES:
         raise InvalidParameterError(
@@ -192,7 +192,7 @@ def check_shape(shape: object, wording: Wording = KEYS) -> str:
 
 
 def check_joints(joints: object, wording: Wording = KEYS) -> str:
-    """``radial`` or ``vertical`` (:data:`JOINTS`)."""
+    """``radial`` or ``vertical`` (`JOINTS`)."""
     if joints not in JOINTS:
         raise InvalidParameterError(
             f"{wording.name('joints')} must be {' or '.join(JOINTS)}, got {joints!r}")
@@ -203,7 +203,7 @@ def check_piers(height: object | None, width: object | None, courses: object | N
                 wording: Wording = KEYS) -> bool:
     """Whether piers are given: their height and width (m) go together, and their courses
     only with them. The values themselves are checked by
-    :class:`~archquake.geometry.chain.Piers` (or :func:`check_pier_values`)."""
+    `Piers` (or `check_pier_values`)."""
     if height is None and width is None:
         if courses is not None and wording.option:
             raise InvalidParameterError(f"{wording.name('pier_courses')} needs "
@@ -226,7 +226,7 @@ def check_pier_values(height: object, width: object, courses: object,
 
 
 def check_pier_courses(courses: object, wording: Wording = KEYS) -> int:
-    """Courses of a pier, from 1 to 500 (:data:`PIER_COURSES_RANGE`)."""
+    """Courses of a pier, from 1 to 500 (`PIER_COURSES_RANGE`)."""
     return wording.whole("pier_courses", courses, *PIER_COURSES_RANGE)
 
 

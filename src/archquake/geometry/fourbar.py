@@ -3,7 +3,7 @@
 Pure geometry: given the four pivot positions, the angular velocities of the links AB, BC and
 CD per unit angular velocity of AB (the velocity ratios f_BC, f_CD of the paper's Eq. 1 at one
 configuration). The full position/velocity/acceleration analysis along the motion is in
-:mod:`archquake.mechanism.kinematics`; this is its plain, non-compiled twin at one instant and
+`archquake.mechanism.kinematics`; this is its plain, non-compiled twin at one instant and
 is what the virtual-work (kinematic) limit analysis uses.
 """
 

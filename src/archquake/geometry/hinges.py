@@ -63,7 +63,7 @@ class HingeMechanism:
     Parameters
     ----------
     arch : VoussoirChain
-        Any arch (:mod:`archquake.geometry`): a chain of blocks between two supports.
+        Any arch (`archquake.geometry`): a chain of blocks between two supports.
     joints : tuple of 4 ints, strictly increasing, in [0, n]
     faces : tuple of 4 Face
     """

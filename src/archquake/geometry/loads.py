@@ -28,7 +28,7 @@ Conventions (SI; forces per metre of barrel width are multiplied by the arch's `
   delta on the extrados (the 2:1 slope is 26.57 degrees); parts spread beyond the extrados's
   ends go into the abutments. Traffic is a statics load only (its multiplier is the
   capacity) and never carries mass.
-- **Passive fill pressure** (:class:`Passive`) is off unless given, and every result that
+- **Passive fill pressure** (`Passive`) is off unless given, and every result that
   reads the loads says which: a mobilised fraction of Rankine's K_p on the extrados, per
   block and face one resultant that the fill may mobilise from 0 to its limit, towards the
   ring (so it resists only where the arch moves into the fill).
@@ -197,7 +197,7 @@ class Traffic:
     """An axle (``length`` 0) or a patch: ``load`` N per metre of barrel width in all, centred
     at ``position`` m along the span, spread through the fill at ``dispersion`` degrees from
     the vertical (None: not spread), or with ``boussinesq`` by Flamant's 2-D elastic stress
-    (see :func:`traffic_actions`)."""
+    (see `traffic_actions`)."""
 
     load: float
     position: float = 0.0
@@ -547,7 +547,7 @@ def fill_columns(arch: VoussoirChain, surface: float, extrados: Extrados | None 
 def block_extras(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD_GRAVITY
                  ) -> BlockExtras:
     """Turn ``loads`` into what each block of ``arch`` carries (traffic excluded: see
-    :func:`traffic_actions`).
+    `traffic_actions`).
 
     Parameters
     ----------
@@ -606,7 +606,7 @@ def block_extras(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD_GRAVI
 
 def passive_resultants(arch: VoussoirChain, loads: Loads, *, g: float = STANDARD_GRAVITY
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The largest passive forces the fill can put on each block (:class:`Passive`).
+    """The largest passive forces the fill can put on each block (`Passive`).
 
     Returns
     -------
@@ -695,7 +695,7 @@ def traffic_actions(arch: VoussoirChain, loads: Loads, traffic: Traffic
 
     The load, spread through the fill when ``traffic.dispersion`` is given (module
     docstring) or by Flamant's elastic stress with ``traffic.boussinesq``
-    (:func:`_flamant`; undispersed where there is no fill over the load), acts downwards on
+    (`_flamant`; undispersed where there is no fill over the load), acts downwards on
     the extrados.
     """
     n = arch.voussoirs
@@ -751,7 +751,7 @@ def loads_from_table(table: object, *, source: str = "study file") -> Loads:
         fill_friction_deg = 30    # the fill's friction angle for passive
 
     Loads are per metre of barrel width. Every problem is one
-    :class:`~archquake.errors.StudyFileError` naming the key as the file spells it.
+    `StudyFileError` naming the key as the file spells it.
 
     Examples
     --------

@@ -24,7 +24,7 @@ def perp(v: np.ndarray) -> np.ndarray:
     """``v`` turned by +90 degrees, J v = (-v_y, v_x), shape of ``v``.
 
     The velocity of a point at ``r`` from a pivot turning at ``omega`` is ``omega perp(r)``;
-    the moment of a force F at ``r`` is ``perp(r) . F`` (= :func:`cross` (r, F))."""
+    the moment of a force F at ``r`` is ``perp(r) . F`` (= `cross` (r, F))."""
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 

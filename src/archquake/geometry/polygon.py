@@ -3,7 +3,7 @@
 A block of masonry of out-of-plane ``depth`` (m) and ``density`` (kg/m^3) whose cross-section
 is a simple polygon. Curved faces are sampled densely enough that the polygon's properties
 equal the curved block's to the precision the caller needs (see
-:mod:`archquake.geometry.shapes`).
+`archquake.geometry.shapes`).
 """
 
 from __future__ import annotations

@@ -32,7 +32,7 @@ two arcs of a pointed arch are trimmed or extended to meet on the axis). Joints:
 Blocks are polygons whose curved faces are sampled every ~0.02 degrees of turning, so their
 mass properties equal the curved blocks' to a relative 1e-8 (tests/geometry hold them to
 quadrature and to the circular closed forms). The origin is the centre of the circle for
-circular arches (as :class:`~archquake.geometry.arch.Arch`), else the mid-point of the
+circular arches (as `Arch`), else the mid-point of the
 springing line.
 """
 
@@ -58,7 +58,7 @@ from archquake.geometry.checks import (  # noqa: F401  (SHAPES and JOINTS are re
     check_voussoirs,
 )
 
-#: The shape's and joints' names in the messages of :class:`ShapedArch` (as the options).
+#: The shape's and joints' names in the messages of `ShapedArch` (as the options).
 _NAMES = Wording(names={"shape": "--shape", "joints": "--joints"})
 #: Turning of the three-centred arch's haunch arcs, rad.
 HAUNCH_ANGLE = math.radians(60.0)
@@ -69,12 +69,12 @@ _FACE_SAMPLES = 4501
 
 @dataclass(frozen=True)
 class ShapedArch(VoussoirChain):
-    """A symmetric arch of any shape in :data:`SHAPES`, ring thickness t, n voussoirs.
+    """A symmetric arch of any shape in `SHAPES`, ring thickness t, n voussoirs.
 
     Parameters
     ----------
     shape : str
-        One of :data:`SHAPES`.
+        One of `SHAPES`.
     span : float
         Centreline span L between the springings, m.
     rise : float
@@ -426,7 +426,7 @@ def circular(
     depth: float = 1.0, density: float = 2000.0,
 ) -> VoussoirChain:
     """A circular arch (full or segmental) from span and rise (m), or radius (m) and embrace
-    (rad). With radial joints it is the closed-form :class:`Arch`."""
+    (rad). With radial joints it is the closed-form `Arch`."""
     if radius is not None or embrace is not None:
         if radius is None or embrace is None or span is not None or rise is not None:
             raise InvalidParameterError("give either --span and --rise, or --radius and --embrace")
@@ -469,7 +469,7 @@ def pointed(*, span: float, thickness: float, voussoirs: int, rise: float | None
 
 
 def shaped(shape: str, **kwargs) -> VoussoirChain:
-    """Build any shape by name (:data:`SHAPES`) from keyword arguments (see the builders)."""
+    """Build any shape by name (`SHAPES`) from keyword arguments (see the builders)."""
     shape = str(shape).replace("_", "-").lower()
     if shape == "circular":
         return circular(**kwargs)

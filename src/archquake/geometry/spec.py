@@ -1,9 +1,9 @@
 """The arch of a case in study units (lengths in m, angles in degrees): what a study file, a
-survey file or an API call describes, checked when built (:mod:`archquake.geometry.checks`)
-and turned into an arch, in SI, by :meth:`ArchSpec.build`.
+survey file or an API call describes, checked when built (`archquake.geometry.checks`)
+and turned into an arch, in SI, by `ArchSpec.build`.
 
-Its canonical form (:meth:`ArchSpec.canonical`) is the arch's part of a sweep case's id
-(:mod:`archquake.sweeps.cases`).
+Its canonical form (`ArchSpec.canonical`) is the arch's part of a sweep case's id
+(`archquake.sweeps.cases`).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ from archquake.geometry.checks import (  # the one place where an arch is checke
 @dataclass(frozen=True)
 class ArchSpec:
     """The arch of a case, in study units: a circular arch by radius, t/R and embrace (the
-    paper's), or any shape by span, rise and thickness (:mod:`archquake.geometry.shapes`), with
+    paper's), or any shape by span, rise and thickness (`archquake.geometry.shapes`), with
     optional piers.
 
     Parameters
@@ -58,7 +58,7 @@ class ArchSpec:
     density : float
         Density, kg/m^3 (0 < density <= 1e5; default 2000).
     shape : str
-        One of :data:`archquake.geometry.SHAPES` (default "circular").
+        One of `archquake.geometry.SHAPES` (default "circular").
     span, rise, thickness : float, optional
         Any shape: centreline span and rise, ring thickness, m (instead of radius, t/R and
         embrace).
@@ -70,7 +70,7 @@ class ArchSpec:
         Courses in each pier (default 1).
     blocks : str, optional
         A surveyed arch instead of a shape: the path of a .json, .csv or .dxf block file
-        (:func:`archquake.geometry.survey.read_blocks`, the one reader), with only ``depth`` and
+        (`archquake.geometry.survey.read_blocks`, the one reader), with only ``depth`` and
         ``density`` beside it. It enters the case id through the file's name and the SHA-256 of
         its bytes (``blocks_sha256``), not its directory, as a record file does.
     blocks_sha256 : str, optional
@@ -169,8 +169,8 @@ class ArchSpec:
         return self.radius is not None
 
     def build(self):
-        """The arch (:class:`~archquake.geometry.Arch` for the paper's circular arch, else the
-        shape's :class:`~archquake.geometry.VoussoirChain`; SI, embrace in rad)."""
+        """The arch (`Arch` for the paper's circular arch, else the
+        shape's `VoussoirChain`; SI, embrace in rad)."""
         from archquake.geometry import OnPiers, Piers
         from archquake.geometry.shapes import circular, shaped
 
@@ -225,7 +225,7 @@ class ArchSpec:
 
     @cached_property
     def canonical_json(self) -> str:
-        """:func:`canonical_json` of :meth:`canonical` (computed once per spec: a grid shares
+        """`canonical_json` of `canonical` (computed once per spec: a grid shares
         its specs across many cases)."""
         return canonical_json(self.canonical())
 

@@ -9,7 +9,7 @@ Formats (coordinates in m, x to the right, y up; any order of blocks and vertice
 
 The blocks must form one chain: consecutive blocks share a joint (an edge: two vertices in
 common), the two end blocks stand on the supports on their lowest free edge, and no block
-overlaps another (:func:`~archquake.geometry.chain.check_tiling`). Anything else is one line
+overlaps another (`check_tiling`). Anything else is one line
 naming the file and what is wrong.
 """
 
@@ -27,7 +27,7 @@ from archquake.geometry.polygon import polygon_area, polygon_mass_properties
 
 
 def read_blocks(path: str | Path, *, depth: float = 1.0, density: float = 2000.0) -> BlockChain:
-    """Read the blocks of an arch from ``path`` (.json, .csv or .dxf) into a :class:`BlockChain`.
+    """Read the blocks of an arch from ``path`` (.json, .csv or .dxf) into a `BlockChain`.
 
     Raises
     ------

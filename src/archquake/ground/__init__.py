@@ -1,7 +1,7 @@
 """Ground motions: the step impulse, the one-cycle sine pulse (and their families), recorded
 accelerograms, their intensity measures and record suites.
 
-The intensity measures (:mod:`archquake.ground.measures`, which compiles a numba kernel) are
+The intensity measures (`archquake.ground.measures`, which compiles a numba kernel) are
 imported on first use (PEP 562), so that a command that only builds a motion does not import
 numba."""
 

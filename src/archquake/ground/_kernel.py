@@ -74,7 +74,7 @@ def ground_in_piece(kind, params, t, t_left):
 
 @nb.njit(cache=True, nogil=True)
 def vertical_in_piece(kind, params, t, t_left):
-    """The upward ground acceleration a_v(t), m/s^2, like :func:`ground_in_piece`: a pulse's
+    """The upward ground acceleration a_v(t), m/s^2, like `ground_in_piece`: a pulse's
     vertical part R a s(t) (R its fourth parameter, when present) plus its steady vertical c
     (its fifth, held through the whole run), else 0."""
     if (kind == KIND_STEP or kind == KIND_SINE) and params.shape[0] > 3:
@@ -114,6 +114,6 @@ def next_breakpoint(kind, params, t):
 
 
 def evaluate(kind: int, params: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Vectorised convenience wrapper of :func:`ground_acceleration` (for tests and plots)."""
+    """Vectorised convenience wrapper of `ground_acceleration` (for tests and plots)."""
     t = np.atleast_1d(np.asarray(t, dtype=float))
     return np.array([ground_acceleration(kind, params, float(x)) for x in t])

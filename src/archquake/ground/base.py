@@ -77,7 +77,7 @@ class GroundMotion(Protocol):
 
 
 #: Shortest piece of a ground motion the integrators resolve, as a fraction of the larger of
-#: the arch's time scale sqrt(R/g), the motion's duration and 1 s (see :func:`time_floor`).
+#: the arch's time scale sqrt(R/g), the motion's duration and 1 s (see `time_floor`).
 TIME_RESOLUTION = 1e-9
 
 #: What each kind's shortest piece is called, for the error message.
@@ -91,7 +91,7 @@ def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
     """``motion`` itself if it is a ground motion (or, given ``needs``, has those attributes:
     what a model reads of it); else the one line that says what is. A model that does not
     read the vertical ground acceleration names itself in ``vertical``, and a motion with a
-    vertical is refused for it (:func:`refuse_vertical`)."""
+    vertical is refused for it (`refuse_vertical`)."""
     ok = (isinstance(motion, GroundMotion) if needs is None
           else all(hasattr(motion, name) for name in needs))
     if not ok:
@@ -143,9 +143,9 @@ def time_floor(time_scale: float, duration: float) -> float:
 
 
 def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> None:
-    """Refuse a motion ``(kind, params)`` with a piece shorter than :func:`time_floor`.
+    """Refuse a motion ``(kind, params)`` with a piece shorter than `time_floor`.
 
-    Raises :class:`~archquake.errors.InvalidParameterError` naming the motion's parameter
+    Raises `InvalidParameterError` naming the motion's parameter
     (t_p, T or the record's DT) and its lower bound.
     """
     name, fraction = _PIECE_NAMES[kind]
@@ -182,7 +182,7 @@ def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
 
 
 def check_motion_lift_off(motion: object, g: float) -> None:
-    """:func:`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
+    """`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
     component (its lowest sample)."""
     if not has_vertical(motion):
         return

@@ -1,7 +1,7 @@
 """Intensity measures of a ground motion: PGA, PGV, PGD, Arias, CAV, D5-95, Sa(T), Tm.
 
-Every motion (a :class:`~archquake.ground.records.Record`, a pulse, anything that follows the
-:class:`~archquake.ground.base.GroundMotion` protocol) is treated as the piecewise-linear
+Every motion (a `Record`, a pulse, anything that follows the
+`GroundMotion` protocol) is treated as the piecewise-linear
 history the integrators see: a record is linear between its samples, a pulse is sampled
 finely between its breakpoints with both one-sided values kept at every jump. The integrals
 below are then exact for that history (no trapezoid error on top of the sampling).
@@ -25,13 +25,13 @@ Definitions (x_g'' = a(t) in m/s^2, ground at rest at t = 0):
 
 The oscillator is integrated exactly for piecewise-linear input (the state-transition
 matrix of the oscillator augmented with the input and its slope, computed with
-:func:`scipy.linalg.expm`; the same recurrence as Nigam & Jennings 1969 without their
+`scipy.linalg.expm`; the same recurrence as Nigam & Jennings 1969 without their
 closed-form coefficients' cancellation at small omega dt). Each sample interval is split
 into equal sub-steps no longer than T/100, which is exact for linear input and bounds the
 error of reading the peak at the nodes by 1 - cos(pi/100) < 0.05 %.
 
 Scaling: multiplying a motion by a factor s multiplies PGA, PGV, PGD, CAV and Sa by s and
-Arias intensity by s^2; D5-95 and Tm do not change. :func:`scale_to` uses this.
+Arias intensity by s^2; D5-95 and Tm do not change. `scale_to` uses this.
 """
 
 from __future__ import annotations
@@ -123,7 +123,7 @@ class IntensityMeasure:
 
     @property
     def label(self) -> str:
-        """The text :func:`parse_im` reads back, e.g. ``'pga'`` or ``'sa:0.5'``."""
+        """The text `parse_im` reads back, e.g. ``'pga'`` or ``'sa:0.5'``."""
         return f"sa:{self.period_s:g}" if self.name == "sa" else self.name
 
     @property
@@ -150,7 +150,7 @@ class IntensityMeasure:
         return f"{_IMS[self.name][2]} ({self.unit})"
 
     def of(self, motion, *, g: float = STANDARD_GRAVITY) -> float:
-        """Value of this measure for ``motion``, in :attr:`unit`."""
+        """Value of this measure for ``motion``, in `unit`."""
         g = require_gravity(g)
         t, a = piecewise_samples(motion)
         if self.name == "pga":
@@ -174,7 +174,7 @@ def parse_im(text: str | IntensityMeasure) -> IntensityMeasure:
     ``sa:T`` (T in s).
 
     Case and surrounding spaces are ignored; ``sa(0.5)`` is read as ``sa:0.5``. Anything
-    else raises :class:`~archquake.errors.InvalidParameterError` with one line listing the
+    else raises `InvalidParameterError` with one line listing the
     choices.
     """
     if isinstance(text, IntensityMeasure):
@@ -199,7 +199,7 @@ def parse_im(text: str | IntensityMeasure) -> IntensityMeasure:
 
 
 def im_value(motion, im: str | IntensityMeasure, g: float = STANDARD_GRAVITY) -> float:
-    """Value of one intensity measure of ``motion`` in the measure's unit (see :func:`parse_im`).
+    """Value of one intensity measure of ``motion`` in the measure's unit (see `parse_im`).
 
     Examples
     --------

@@ -17,9 +17,9 @@ DEFAULT_PERIOD_GRID_S = (0.0, 4.0, 0.02)
 
 def check_periods(periods) -> np.ndarray:
     """The periods of a spectrum (s), checked: each 0 (the peak acceleration) or from
-    :data:`~archquake.ranges.SPECTRUM_MIN_PERIOD_S` to the upper bound of
-    :data:`~archquake.ranges.SPECTRUM_PERIOD_RANGE_S`, at most
-    :data:`~archquake.ranges.MAX_SPECTRUM_PERIODS` of them.
+    `SPECTRUM_MIN_PERIOD_S` to the upper bound of
+    `SPECTRUM_PERIOD_RANGE_S`, at most
+    `MAX_SPECTRUM_PERIODS` of them.
 
     >>> check_periods([0.0, 0.5, 20.0]).tolist()
     [0.0, 0.5, 20.0]

@@ -77,7 +77,7 @@ class StepImpulse:
     ``2 t_p``, then rest (zero final ground velocity).
 
     The magnitude is in **m/s^2**, not in g: ``StepImpulse(1.0, 0.2)`` is 1 m/s^2 (0.102 g).
-    Use :meth:`from_g` for a magnitude in g (``StepImpulse.from_g(1.0, 0.2)`` is 1 g); the repr
+    Use `from_g` for a magnitude in g (``StepImpulse.from_g(1.0, 0.2)`` is 1 g); the repr
     shows both.
 
     Parameters
@@ -177,7 +177,7 @@ class StepImpulse:
 class SinePulse:
     """One full cycle of ``direction * a * sin(2 pi t / T)`` on [0, T), then rest.
 
-    The magnitude is in **m/s^2**, not in g; :meth:`from_g` takes g.
+    The magnitude is in **m/s^2**, not in g; `from_g` takes g.
 
     Parameters
     ----------
@@ -191,7 +191,7 @@ class SinePulse:
         R: the pulse's vertical part, R a sin(2 pi t / T) m/s^2 upward on [0, T) (first half
         cycle upward for R > 0); 0 (default) is no vertical.
     steady_vertical : float
-        c, m/s^2 upward, held through the whole run (as for :class:`StepImpulse`).
+        c, m/s^2 upward, held through the whole run (as for `StepImpulse`).
     """
 
     magnitude: float
@@ -263,7 +263,7 @@ class SinePulse:
 @dataclass(frozen=True)
 class RectangularPulse:
     """x_g'' = ``acceleration`` (m/s^2) for 0 <= t < ``pulse_duration`` (s), then 0: the exact
-    rectangle that :meth:`sampled` approximates (its fall takes t_p / 2000)."""
+    rectangle that `sampled` approximates (its fall takes t_p / 2000)."""
 
     acceleration_m_s2: float
     pulse_duration: float
@@ -283,7 +283,7 @@ class RectangularPulse:
         return RectangularPulse(-self.acceleration_m_s2, self.pulse_duration)
 
     def sampled(self, samples: int = 2000) -> Record:
-        """The pulse as a sampled :class:`~archquake.ground.Record` for the kernels that read
+        """The pulse as a sampled `Record` for the kernels that read
         a motion's compiled description (the DEM's): ``samples`` intervals of t_p / samples s
         at the full acceleration, so the fall to zero takes t_p / samples."""
         dt = self.pulse_duration / samples

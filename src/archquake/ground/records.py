@@ -1,14 +1,14 @@
-"""Recorded accelerograms: the :class:`Record` motion and the PEER ``.AT2`` and CSV readers.
+"""Recorded accelerograms: the `Record` motion and the PEER ``.AT2`` and CSV readers.
 
 A record is a uniformly sampled ground acceleration x_g'' (m/s^2, positive towards +x, the
 sign the file gives it) starting at t = 0. Between samples it is linear, outside it is zero,
-exactly as the compiled evaluator (:func:`archquake.ground._kernel.ground_acceleration`,
+exactly as the compiled evaluator (`archquake.ground._kernel.ground_acceleration`,
 kind ``KIND_SAMPLED``) computes it.
 
 Readers convert to SI at the edge: ``.AT2`` files are in g by definition of the format; CSV
-files have no standard unit, so :func:`read_csv` requires ``units`` ("g", "m/s2" or "cm/s2",
+files have no standard unit, so `read_csv` requires ``units`` ("g", "m/s2" or "cm/s2",
 also written "gal"); a one-column file also needs its time step ``dt``. A file
-that cannot be read raises :class:`~archquake.errors.GroundMotionFormatError` with one line
+that cannot be read raises `GroundMotionFormatError` with one line
 naming the file, the line, what is wrong and how to fix it.
 """
 
@@ -268,7 +268,7 @@ class Record:
 # readers
 # -------------------------------------------------------------------------------------
 def read_at2(path: str | Path, *, scale: float = 1.0, g: float = STANDARD_GRAVITY) -> Record:
-    """Read a PEER NGA ``.AT2`` accelerogram (values in g) into a :class:`Record` (m/s^2).
+    """Read a PEER NGA ``.AT2`` accelerogram (values in g) into a `Record` (m/s^2).
 
     The format: four header lines (database, event/station/component, a units line such as
     ``ACCELERATION TIME SERIES IN UNITS OF G``, and NPTS/DT), then the NPTS values, usually
@@ -334,7 +334,7 @@ def read_at2(path: str | Path, *, scale: float = 1.0, g: float = STANDARD_GRAVIT
 
 def read_csv(path: str | Path, *, units: str, dt: float | None = None, scale: float = 1.0,
              g: float = STANDARD_GRAVITY) -> Record:
-    """Read a two-column (time s, acceleration) text file into a :class:`Record` (m/s^2).
+    """Read a two-column (time s, acceleration) text file into a `Record` (m/s^2).
 
     With ``dt`` given, the file is one column of accelerations sampled every ``dt`` seconds
     from t = 0 instead (same rules for separators, comments and one header row; exactly one
@@ -458,8 +458,8 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
                 scale: float = 1.0, g: float = STANDARD_GRAVITY) -> Record:
     """Read an accelerogram, choosing the reader by extension.
 
-    ``.at2`` (any case) -> :func:`read_at2` (values in g; ``units`` may be omitted or "g");
-    ``.csv`` / ``.txt`` -> :func:`read_csv` (``units`` required; ``dt`` for a one-column
+    ``.at2`` (any case) -> `read_at2` (values in g; ``units`` may be omitted or "g");
+    ``.csv`` / ``.txt`` -> `read_csv` (``units`` required; ``dt`` for a one-column
     file).
     """
     path = require_path("path", path)
@@ -541,7 +541,7 @@ def resampled(record: Record, dt: float, *, method: str = "polyphase") -> Record
         New time step, s (> 0).
     method : {"polyphase", "linear"}
         ``"polyphase"`` (default): band-limited resampling with an anti-aliasing low-pass
-        filter (:func:`scipy.signal.resample_poly`, Kaiser window), for a ratio of old to new
+        filter (`scipy.signal.resample_poly`, Kaiser window), for a ratio of old to new
         step that is a fraction p/q with p, q <= 1000. Use it to change the step of a
         record (and always to make it coarser: linear sampling would alias).
         ``"linear"``: samples of the record's own linear interpolant, the motion archquake

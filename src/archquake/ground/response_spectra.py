@@ -1,6 +1,6 @@
 """Response spectra of records and suites over a period range: each record's and their mean.
 
-Each spectrum is :func:`archquake.ground.measures.response_spectrum` (pseudo-spectral
+Each spectrum is `archquake.ground.measures.response_spectrum` (pseudo-spectral
 acceleration of a linear oscillator integrated exactly for the piecewise-linear record,
 5 % damping unless stated); this module tabulates it for many records on one period grid and
 keeps what record selection needs beside it: the event of each record, the recording it
@@ -120,7 +120,7 @@ class RecordSpectra:
 def record_spectra(records: Iterable, periods: Iterable[float] | np.ndarray, *,
                    damping: float = DEFAULT_DAMPING, g: float = STANDARD_GRAVITY
                    ) -> RecordSpectra:
-    """Response spectra of ``records`` (a :class:`~archquake.ground.suites.Suite`, or any
+    """Response spectra of ``records`` (a `Suite`, or any
     iterable of motions) at ``periods`` (s).
 
     Parameters

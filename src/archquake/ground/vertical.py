@@ -1,4 +1,4 @@
-"""A recorded horizontal component with its vertical component: :class:`WithVertical`.
+"""A recorded horizontal component with its vertical component: `WithVertical`.
 
 The vertical is an upward ground acceleration a_v(t), m/s^2, read by the models that take it as
 gravity g + a_v(t). Both components keep their own samples (their own time steps); scaling
@@ -31,7 +31,7 @@ class WithVertical:
     -----
     Read by the rigid chain (its time stepper and its verdict path). A model that reads the
     motion only through its compiled description (``kernel_spec``) does not take the vertical
-    of a record yet, and :meth:`kernel_spec` says so in one line rather than dropping the
+    of a record yet, and `kernel_spec` says so in one line rather than dropping the
     vertical silently.
     """
 
@@ -51,7 +51,7 @@ class WithVertical:
         return max(self.horizontal.duration, self.vertical.duration)
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
-        """The horizontal ground acceleration, m/s^2 (:meth:`Record.acceleration`)."""
+        """The horizontal ground acceleration, m/s^2 (`Record.acceleration`)."""
         return self.horizontal.acceleration(t)
 
     def vertical_acceleration(self, t: np.ndarray | float) -> np.ndarray:

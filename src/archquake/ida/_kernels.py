@@ -2,18 +2,18 @@
 
 Each case is one ground motion (any kind the compiled evaluator knows: a sampled record, a
 step or sine pulse), already scaled, with its own end time, on one stack of packed mechanisms
-with its impact table (:class:`~archquake.mechanism.prepared.ImpactTable`). Every case
-runs :func:`archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
-:func:`archquake.mechanism.simulate`, without history, so the event logic is that kernel's.
+with its impact table (`ImpactTable`). Every case
+runs `archquake.mechanism._kernels.simulate_kernel`, the compiled path behind
+`archquake.mechanism.simulate`, without history, so the event logic is that kernel's.
 
-The early decision is the failure domains' criterion (:mod:`archquake.domains._kernels`): a
+The early decision is the failure domains' criterion (`archquake.domains._kernels`): a
 surviving arch is accepted as such when an impact at or after the end of the excitation leaves a
 kinetic energy below ``(1 - margin)`` of the least barrier ``g [V_r(phi_crit,r) - V_r(0)]`` over
 the table's rows with every row's ``c_T <= 1``: free rocking only loses energy at impacts, so no
-crest can be reached again (the proof is in :mod:`archquake.domains._kernels`).
+crest can be reached again (the proof is in `archquake.domains._kernels`).
 A record shakes the arch through many impacts before it ends, so instead of capping the impacts
 (the pulses' way, which would integrate the record again at every larger cap) the first run stops
-a short window after the excitation (:func:`run_case`); the free-rocking tail to rest, which
+a short window after the excitation (`run_case`); the free-rocking tail to rest, which
 ``simulate`` integrates, is skipped.
 
 Incremental dynamic analysis also needs the largest rotation of the whole run. Up to the
@@ -21,7 +21,7 @@ deciding impact it is the largest recorded peak; after it the arch rocks freely,
 cycle peaks where the potential of its own row has risen by the kinetic energy left by the
 impact before it (energy conservation between impacts, Eq. 2 with x_g'' = 0; a row's mirror
 image has the row's potential), and the free sequence is known from the table alone: the rows
-follow ``next``, each impact keeps the row's ``c_T`` of the energy (:func:`free_rocking_peak`).
+follow ``next``, each impact keeps the row's ``c_T`` of the energy (`free_rocking_peak`).
 Energies only decrease and a row's peak grows with the energy, so once a row comes round again
 its later peaks are below its first: the largest is found among the first visit of each row.
 Each peak is found by bisection of ``g [V(phi) - V(0)] = E`` on ``[0, phi_crit]``.
@@ -93,9 +93,9 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
              rest_rotation, max_impacts, early, barrier, meff0, undescribed, ct_max):
     """One case; returns (outcome, collapse_half_cycle, impacts, runs, peak rotation rad,
     undescribed impact seen, final state code, energy fraction): the last two are what
-    :func:`archquake.mechanism.simulate.conclude_run` states the verdict from, as for
-    :func:`~archquake.mechanism.simulate` (the deciding run's end and its last impact's energy
-    over the least crest barrier, :func:`~archquake.mechanism._kernels.last_impact_energy`,
+    `archquake.mechanism.simulate.conclude_run` states the verdict from, as for
+    `simulate` (the deciding run's end and its last impact's energy
+    over the least crest barrier, `last_impact_energy`,
     NaN where the proof does not apply; an early survival: ``moving`` with the energy of the
     impact that proved it).
 
@@ -104,7 +104,7 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
     A collapse, a rest or the end of hinging within it is the full run's answer; an arch still
     rocking is accepted as surviving at the first impact after the excitation whose kinetic
     energy is below the barrier (module docstring), if the verdict cannot still meet an
-    undescribed impact (:mod:`archquake.domains._kernels`). Otherwise it is run again to
+    undescribed impact (`archquake.domains._kernels`). Otherwise it is run again to
     ``t_end``.
     """
     hist = np.zeros((1, HIST_COLUMNS))
@@ -165,12 +165,12 @@ def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window
 
     Parameters
     ----------
-    mechs, nxt, flip, ratio : the mechanism table, as :func:`simulate_kernel`
+    mechs, nxt, flip, ratio : the mechanism table, as `simulate_kernel`
     kinds : (n,) int64 ground-motion kind of each case
     flat : (m,) the cases' kernel parameters, concatenated; case i uses
         ``flat[offsets[i]:offsets[i + 1]]``
     offsets : (n + 1,) int64
-    g, rtol, atol, rest_rotation, max_impacts : as :func:`simulate_kernel`
+    g, rtol, atol, rest_rotation, max_impacts : as `simulate_kernel`
     t_end : (n,) end of each analysis, s
     window : s, the first run of a case stops this long after the excitation (with ``early``)
     early : bool, decide early (module docstring)
@@ -178,7 +178,7 @@ def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window
     ct_max : the largest kinetic-energy ratio of the rows' impacts
     outcome, half, n_impacts, runs : (n,) int64 out;  peak : (n,) float64 out, rad
     unseen : (n,) bool out: an undescribed impact happened before the verdict
-    final : (n,) int64 out, fraction : (n,) float64 out: see :func:`run_case`
+    final : (n,) int64 out, fraction : (n,) float64 out: see `run_case`
     """
     n = kinds.shape[0]
     meff0, barrier = table_energies(mechs, g)

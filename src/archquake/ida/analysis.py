@@ -1,35 +1,35 @@
 """Incremental dynamic analysis of an arch under a suite of records, through the sweep store.
 
-:func:`incremental_dynamic_analysis` runs hunt-and-fill (:mod:`archquake.ida.huntfill`) for every
-record of a suite at once, in rounds: each round asks :func:`~archquake.ida.huntfill.propose_levels`
+`incremental_dynamic_analysis` runs hunt-and-fill (`archquake.ida.huntfill`) for every
+record of a suite at once, in rounds: each round asks `propose_levels`
 for the next levels of every record (a pure function of what the store already holds), turns each
-level into a sweep case "this record scaled by this factor" (:class:`archquake.sweeps.Case` with
-an in-memory motion), and evaluates the round through :func:`archquake.sweeps.run_sweep`: the
+level into a sweep case "this record scaled by this factor" (`archquake.sweeps.Case` with
+an in-memory motion), and evaluates the round through `archquake.sweeps.run_sweep`: the
 store skips what it holds and stores each batch as it completes, on a local pool or a Dask cluster.
 An interrupted analysis rerun with the same store replays the rounds from the store and computes
 only what is missing.
 
 The rigid chain (``model="rigid"``, the default) goes through its verdict path, one threaded
-batch of compiled verdicts per round and chunk (:func:`archquake.ida.batch.evaluate_rigid_cases`,
-:func:`archquake.rigid.rigid_verdicts`); the four-link model (``model="fourlink"``) through one
-compiled batch call per round and chunk (:func:`archquake.ida.batch.evaluate_cases`); the DEM
-(``model="dem"``) through :func:`archquake.sweeps.evaluate_case` case by case.
+batch of compiled verdicts per round and chunk (`archquake.ida.batch.evaluate_rigid_cases`,
+`archquake.rigid.rigid_verdicts`); the four-link model (``model="fourlink"``) through one
+compiled batch call per round and chunk (`archquake.ida.batch.evaluate_cases`); the DEM
+(``model="dem"``) through `archquake.sweeps.evaluate_case` case by case.
 
-The rigid chain's half-step guard (:mod:`archquake.rigid.verdict`) guards what the analysis
+The rigid chain's half-step guard (`archquake.rigid.verdict`) guards what the analysis
 answers, the levels where each record's trace changes between survival and collapse: the levels
 run at the verdict's step alone (stored with ``guard`` false in their options), and once a
-record's trace has converged its deciding levels (:func:`deciding_levels`) are rerun at half the
-step (:func:`~archquake.ida.batch.rigid_half_step_verdicts`, one threaded batch in this
+record's trace has converged its deciding levels (`deciding_levels`) are rerun at half the
+step (`rigid_half_step_verdicts`, one threaded batch in this
 process, not stored: a resumed analysis computes them again). A level whose two verdicts differ
 is ``indeterminate``, counted as a collapse, and the trace goes on from there until every
 deciding level is confirmed or indeterminate. On the bridge example under the 28 near-field
 records, levels that decide nothing were rerun by the per-verdict rule without changing any
 result (docs/notes/mechanism.md, "The rigid chain's step, its guard and its verdict path").
 
-Intensity levels are in the measure's unit (:mod:`archquake.ground.measures`: g for PGA and Sa,
+Intensity levels are in the measure's unit (`archquake.ground.measures`: g for PGA and Sa,
 m/s for PGV, Arias and CAV). A level x of record r is the record scaled by
 ``s = (x / IM(r))^(1/k)`` (k = 1, or 2 for Arias intensity), as
-:func:`archquake.ground.measures.scale_to` scales it.
+`archquake.ground.measures.scale_to` scales it.
 """
 
 from __future__ import annotations
@@ -110,7 +110,7 @@ class RecordIda:
     @property
     def collapsed(self) -> np.ndarray:
         """(levels,) bool: the run collapsed, or its verdict is indeterminate (counted with the
-        collapses: the model cannot show the arch survives; see :data:`COUNTED_AS_COLLAPSE`)."""
+        collapses: the model cannot show the arch survives; see `COUNTED_AS_COLLAPSE`)."""
         return np.array([o in COUNTED_AS_COLLAPSE for o in self.outcomes], dtype=bool)
 
     @property
@@ -200,7 +200,7 @@ class IdaResult:
     total : int
         Cases of the analysis.
     guarded : int
-        Levels rerun at half the step by the rigid chain's guard (:func:`deciding_levels`;
+        Levels rerun at half the step by the rigid chain's guard (`deciding_levels`;
         computed again on every call, not stored).
     """
 
@@ -340,33 +340,33 @@ def incremental_dynamic_analysis(
         The suite's records (unscaled, m/s^2), or any motions with ``scaled`` and
         ``kernel_spec`` (a step pulse as a one-record suite); names must be unique.
     im : str or IntensityMeasure
-        ``pga``, ``pgv``, ``sa:T``, ``arias``, ... (:func:`archquake.ground.measures.parse_im`).
+        ``pga``, ``pgv``, ``sa:T``, ``arias``, ... (`archquake.ground.measures.parse_im`).
     store : ResultStore
         Where every case is stored (and found again on a rerun).
     ceiling : float, optional
         Largest level, IM units (default: the IM of the suite's median record scaled to
         PGA = 5 g).
     precision, fill, hunt_step, hunt_growth : float
-        See :class:`archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
+        See `archquake.ida.huntfill.HuntFill` (relative: 0.02 brackets every
         transition within 2 % of the IM).
     model : {'rigid', 'fourlink', 'dem'}
-        :class:`archquake.sweeps.Model` (default ``rigid``, the chain of rigid voussoirs;
-        named as ``--model`` names it, :func:`archquake.sweeps.model_of`).
+        `archquake.sweeps.Model` (default ``rigid``, the chain of rigid voussoirs;
+        named as ``--model`` names it, `archquake.sweeps.model_of`).
     options : CaseOptions, optional
         Prescribed restitution and impact law (fourlink only), end time, gravity (default: none, the
         model's own, standard gravity).
     executor, workers, chunk_size
-        As :func:`archquake.sweeps.run_sweep` (default: a local process pool), except for the
+        As `archquake.sweeps.run_sweep` (default: a local process pool), except for the
         four-link model and the rigid chain: with neither ``executor`` nor ``workers`` it runs in this process
-        (:class:`~archquake.parallel.SerialExecutor`: the compiled batch already spreads a round
+        (`SerialExecutor`: the compiled batch already spreads a round
         over all cores with threads; a pool of processes, each with as many threads,
         started afresh every round, took 1.5x as long on Oppenheim's arch under the near-field
         pulse set, docs/earthquakes.md), and its default chunk is a round's share per worker
-        (one compiled call per worker and round, :func:`round_chunk_size`).
+        (one compiled call per worker and round, `round_chunk_size`).
     progress : callable, optional
         ``progress(stored, total_so_far, round)`` after every stored batch.
     loads : Loads, optional
-        What the arch carries, masses that move with it (:class:`~archquake.sweeps.Case`'s
+        What the arch carries, masses that move with it (`Case`'s
         ``loads``): every model carries them, and the levels start at the loaded lambda.
 
     Returns
@@ -526,7 +526,7 @@ def deciding_levels(done: dict[float, Any]) -> list[float]:
 
 def guarded_record(rec: Any, half: Any) -> Any:
     """A level's stored record (the rigid chain's verdict at its step, guard off) with the
-    half-step guard's rerun ``half`` (a :class:`~archquake.rigid.RigidVerdict`): confirmed when
+    half-step guard's rerun ``half`` (a `RigidVerdict`): confirmed when
     both steps agree on survival or collapse (``no_hinging`` counts as survival), otherwise
     ``indeterminate`` (counted as collapse), with the reason naming both; a level already
     ``indeterminate`` at its step stays so."""

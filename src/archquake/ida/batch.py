@@ -1,12 +1,12 @@
 """Evaluate many sweep cases of the analytical model in one compiled call per arch.
 
-:func:`evaluate_cases` is the batch function incremental dynamic analysis hands to
-:func:`archquake.sweeps.run_sweep` (``evaluate_batch=``): the cases of one round (records scaled
+`evaluate_cases` is the batch function incremental dynamic analysis hands to
+`archquake.sweeps.run_sweep` (``evaluate_batch=``): the cases of one round (records scaled
 by factors, pulses) are grouped by arch and options, each group goes through
-:func:`archquake.ida._kernels.batch_kernel` (the compiled kernel of
-:func:`~archquake.mechanism.simulate`, with the failure domains' early decision), and every case
+`archquake.ida._kernels.batch_kernel` (the compiled kernel of
+`simulate`, with the failure domains' early decision), and every case
 gets the summary incremental dynamic analysis reads: outcome, collapse half cycle and the largest
-rotation of the run. It is a smaller summary than :func:`archquake.sweeps.evaluate_case` stores
+rotation of the run. It is a smaller summary than `archquake.sweeps.evaluate_case` stores
 (no impact times, no solver counters): ``evaluator`` says which produced a row.
 """
 
@@ -37,14 +37,14 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
         Analytical-model cases (any excitation).
     early : bool
         Stop a surviving case once energy proves it cannot collapse any more (the peak rotation
-        is still exact, see :mod:`archquake.ida._kernels`).
+        is still exact, see `archquake.ida._kernels`).
 
     Returns
     -------
     list
         Per case, in order: ``{"outcome", "collapse_half_cycle", "peak_rotation_max_rad",
         "critical_rotation_rad", "collapse_acceleration_g", "restitution_cv", "impacts",
-        "kernel_runs", "t_end_s", "evaluator"}``, or the :class:`~archquake.errors.ArchquakeError`
+        "kernel_runs", "t_end_s", "evaluator"}``, or the `ArchquakeError`
         refusing the case (e.g. an arch too thin to stand).
     """
     from archquake.sweeps.evaluate import prepared_mechanism
@@ -66,7 +66,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
 
 def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -> list[Any]:
     """The rigid chain's verdicts of many cases, one threaded batch per (arch, options) group
-    (:func:`archquake.rigid.rigid_verdicts`: the step scaled with the arch, the half-step
+    (`archquake.rigid.rigid_verdicts`: the step scaled with the arch, the half-step
     guard, stopped at collapse or proven rest).
 
     Parameters
@@ -80,8 +80,8 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
     Returns
     -------
     list
-        Per case, in order: :func:`archquake.sweeps.evaluate.rigid_summary` of its verdict, or
-        the :class:`~archquake.errors.ArchquakeError` refusing the case.
+        Per case, in order: `archquake.sweeps.evaluate.rigid_summary` of its verdict, or
+        the `ArchquakeError` refusing the case.
     """
     from archquake.rigid import rigid_verdicts
     from archquake.sweeps.evaluate import rigid_summary
@@ -106,13 +106,13 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
 
 def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = None) -> list[Any]:
     """The rigid chain's verdicts of rigid cases at half the verdict's step, guard off: the
-    half-step guard's rerun (:func:`archquake.rigid.rigid_verdicts`), for the levels that decide
+    half-step guard's rerun (`archquake.rigid.rigid_verdicts`), for the levels that decide
     an incremental dynamic analysis.
 
     Parameters
     ----------
     cases : sequence of Case
-        Rigid-chain cases, as :func:`evaluate_rigid_cases` takes them.
+        Rigid-chain cases, as `evaluate_rigid_cases` takes them.
     threads : int, optional
         Threads of each batch (default: the cores this process may use).
 

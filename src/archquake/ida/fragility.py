@@ -3,13 +3,13 @@
 A fragility curve is the probability of collapse at intensity x,
 ``P(C | x) = Phi(ln(x / theta) / beta)`` (median theta, dispersion beta). Two estimators:
 
-(a) **first-collapse intensities** (:func:`fit_first_collapse`): each record's first-collapse
+(a) **first-collapse intensities** (`fit_first_collapse`): each record's first-collapse
     level x_i is a sample of the capacity, ln x_i ~ N(ln theta, beta^2). The maximum-likelihood
     estimate is ``ln theta = mean(ln x_i)``, ``beta = std(ln x_i)`` (population form, n in the
     denominator). A record that does not collapse the arch up to the ceiling c is right-censored:
     it contributes ``ln(1 - Phi(ln(c / theta) / beta))`` to the log-likelihood, which is then
     maximised numerically (Nelder-Mead on ln theta, ln beta from the uncensored estimate).
-(b) **collapse fraction per level** (:func:`fit_collapse_fraction`, Baker 2015, "Efficient
+(b) **collapse fraction per level** (`fit_collapse_fraction`, Baker 2015, "Efficient
     analytical fragility function fitting using dynamic structural analysis", Earthquake Spectra
     31(1), Eq. 11): at levels x_j, z_j of n_j records collapse; the likelihood is the product of
     binomial probabilities ``C(n_j, z_j) p_j^z_j (1 - p_j)^(n_j - z_j)`` with
@@ -19,7 +19,7 @@ A fragility curve is the probability of collapse at intensity x,
 
 Confidence intervals: percentile bootstrap over records (the records are the independent
 samples; in (b) a record's outcomes at all levels travel together), with a
-:class:`numpy.random.Generator` passed in, so the intervals are reproducible.
+`numpy.random.Generator` passed in, so the intervals are reproducible.
 """
 
 from __future__ import annotations
@@ -217,7 +217,7 @@ def fit_collapse_fraction(levels: Sequence[float], collapses, *,
     collapses : array_like of bool, shape (records, levels)
         Whether record i collapses the arch at level j.
     rng, bootstrap, confidence
-        As :func:`fit_first_collapse`; records (rows) are resampled.
+        As `fit_first_collapse`; records (rows) are resampled.
     """
     x = np.asarray(levels, dtype=float)
     c = np.asarray(collapses, dtype=bool)
@@ -274,7 +274,7 @@ def dimensionless_divisor(im, *, collapse_acceleration_g: float, radius: float,
 def fragility_of(result, *, rng: np.random.Generator | None = None,
                  bootstrap: int = DEFAULT_BOOTSTRAP, confidence: float = DEFAULT_CONFIDENCE,
                  levels=None) -> dict:
-    """Both fits of an :class:`~archquake.ida.IdaResult` in its intensity measure.
+    """Both fits of an `IdaResult` in its intensity measure.
 
     Returns
     -------

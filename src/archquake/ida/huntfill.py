@@ -16,7 +16,7 @@ the stated precision:
    collapse) while ``b / a - 1 > precision``.
 
 Steps 2 and 3 propose every gap at once, so a round of the analysis runs many levels in one
-batch. :func:`propose_levels` is a pure function of the levels already run and their outcomes,
+batch. `propose_levels` is a pure function of the levels already run and their outcomes,
 so an interrupted analysis resumes from its store by replaying the rounds; the set of levels it
 converges to does not depend on the order in which results arrive (each proposal depends on one
 gap only, and the hunt proposes one level at a time).

@@ -1,9 +1,9 @@
 """Equivalent static (limit) analysis: collapse acceleration, hinges, line of thrust, friction
 demand and minimum thickness (Heyman's rigid no-tension voussoirs; paper p. 2120, 2126, 2131).
 
-The statics of a voussoir chain in any configuration (:func:`joint_forces`) lives here too, so
+The statics of a voussoir chain in any configuration (`joint_forces`) lives here too, so
 the line of thrust during motion reuses it, and so does the least-friction admissible line of
-thrust of the locked arch (:func:`locked_joint_forces`).
+thrust of the locked arch (`locked_joint_forces`).
 """
 
 from archquake.limit.analysis import (

@@ -1,7 +1,7 @@
 """Equivalent static analysis: the horizontal acceleration that turns the arch into a mechanism.
 
 Self-weight plus a uniform horizontal acceleration ``lambda g`` on every voussoir, towards +x
-(the mirror case follows by symmetry: :meth:`HingeMechanism.mirrored`); rigid voussoirs, no
+(the mirror case follows by symmetry: `HingeMechanism.mirrored`); rigid voussoirs, no
 tension, infinite compressive strength, no sliding (Heyman's assumptions, paper p. 2120).
 ``lambda`` is the minimum constant ground acceleration, in g, that starts the motion: the
 paper's 0.37 g for Oppenheim's arch (p. 2126; the paper writes -0.37 g because its ground
@@ -9,19 +9,19 @@ acceleration points the other way, towards -x, which loads the arch towards +x).
 
 Two independent methods that must agree:
 
-- kinematic (upper bound, :mod:`archquake.limit.kinematic`): least virtual-work multiplier
+- kinematic (upper bound, `archquake.limit.kinematic`): least virtual-work multiplier
   over every admissible four-hinge mechanism at the joints (up to 60 voussoirs);
-- static (lower bound, :mod:`archquake.limit.static`): largest lambda for which a line of
+- static (lower bound, `archquake.limit.static`): largest lambda for which a line of
   thrust fits in the section, a linear program (any number of voussoirs).
 
 Scope: the four-hinge mechanism is the collapse mode of arches of moderate to large embrace
 (the paper's range). Thick arches of small embrace (seen below about 135 degrees of
 embrace, t/R > 0.15) can instead fail by lifting off a springing (a rigid rotation, shear without
 normal force at the joint), or carry any horizontal acceleration as a strut; both are
-reported as :class:`~archquake.errors.ArchquakeError` rather than forced into four hinges.
+reported as `ArchquakeError` rather than forced into four hinges.
 
 Figure 7 of the paper (R = 10 m, 7 voussoirs, the number of Oppenheim's arch; the paper does
-not state another), computed here with :func:`limit_analysis`:
+not state another), computed here with `limit_analysis`:
 
 =====  =====  ==========  ====================  ==========  ===============
 t/R    beta   lambda (g)  hinges A, B, C, D     locations   friction demand
@@ -40,7 +40,7 @@ stand under self-weight: with 7 voussoirs a 157.5 degree arch needs only t/R >= 
 "Symmetric" is the paper's sense: the hinge *locations* are mirror images about the vertical
 axis (joints 2 and 5 of 7). The faces of a mechanism driven by a horizontal load are never
 mirror symmetric (the mirror faces give the mirror mechanism, driven by the opposite load),
-so :attr:`HingeMechanism.symmetric` compares the joints only.
+so `HingeMechanism.symmetric` compares the joints only.
 """
 
 from __future__ import annotations
@@ -99,7 +99,7 @@ class LimitAnalysis:
     Attributes
     ----------
     arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
+        Any arch of `archquake.geometry` (a chain of blocks between two supports).
     collapse_acceleration_g : float
         lambda, the equivalent static collapse acceleration: the horizontal acceleration, in g,
         at which the arch becomes a mechanism (from the line of thrust through the four
@@ -122,7 +122,7 @@ class LimitAnalysis:
     loads : Loads or None
         What the arch carries (None: the bare arch). With loads, lambda, the hinges and the
         joint forces are those of the arch with its fill and carried loads
-        (:mod:`archquake.limit.loaded`); traffic is not part of the earthquake load.
+        (`archquake.limit.loaded`); traffic is not part of the earthquake load.
     carried : BlockExtras or None
         The loads as each block carries them (masses, centroids, held joints).
     opposite_collapse_acceleration_g : float or None
@@ -242,16 +242,16 @@ def limit_analysis(
     Parameters
     ----------
     arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
+        Any arch of `archquake.geometry` (a chain of blocks between two supports).
     method : {"static", "kinematic", "both"}
         "static" (any n), "kinematic" (n <= 60), or "both" (checks that they agree).
     g : float, optional
         Gravity, m/s^2 (only scales the joint forces; lambda is in g).
     loads : Loads, optional
-        What the arch carries (:mod:`archquake.geometry.loads`): the fill's and the carried
+        What the arch carries (`archquake.geometry.loads`): the fill's and the carried
         loads' weight and horizontal inertia act at their centroids, the backing holds the
         joints below its top. Its traffic, if any, is left out (see
-        :func:`~archquake.limit.capacity.traffic_capacity`).
+        `traffic_capacity`).
     vertical : float, optional
         A constant vertical ground acceleration, in g, upward positive (> -1): every mass that
         moves with the arch weighs m g (1 + vertical), the horizontal inertia stays m a. The
@@ -367,7 +367,7 @@ def coupled_vertical_analysis(
     ratio : float
         k_v / k_h, in [0, 1].
     method, g, loads
-        As in :func:`limit_analysis`.
+        As in `limit_analysis`.
 
     Returns
     -------
@@ -394,15 +394,15 @@ def hinges_of(arch: VoussoirChain) -> HingeMechanism:
     """The hinges of ``arch``: those of the equivalent static analysis, oriented so that a ground
     acceleration towards -x opens them (the paper's Figure 1).
 
-    Goes through :func:`archquake.limit.limit_analysis` (the line-of-thrust method), so arches of
+    Goes through `archquake.limit.limit_analysis` (the line-of-thrust method), so arches of
     any number of voussoirs are handled, hinges may sit anywhere (a hinge above a springing
     leaves the voussoirs below it on the ground), and an arch too thin to stand raises
-    :class:`~archquake.errors.UnstableArchError` naming its minimum thickness.
+    `UnstableArchError` naming its minimum thickness.
 
     Parameters
     ----------
     arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
+        Any arch of `archquake.geometry` (a chain of blocks between two supports).
 
     Returns
     -------
@@ -430,12 +430,12 @@ def _hinges(arch: VoussoirChain) -> HingeMechanism:
     return mech if mech.load_direction > 0 else mech.mirrored()
 
 
-#: :func:`hinges_of` once per arch (arches are frozen; the DEM's and the rigid chain's
+#: `hinges_of` once per arch (arches are frozen; the DEM's and the rigid chain's
 #: assemblies of one arch, and the verdict's onset, all ask for its hinges).
 _memoised_hinges = functools.lru_cache(maxsize=128)(_hinges)
 
 
-#: Largest arch whose hinges :func:`certified_mechanism` looks for (it enumerates 16 C(n+1, 4)
+#: Largest arch whose hinges `certified_mechanism` looks for (it enumerates 16 C(n+1, 4)
 #: mechanisms: 1 120 at n = 7, 95 760 at n = 20, a few ms); above it the linear program does.
 CERTIFIED_VOUSSOIRS = 20
 #: Margins of the certificate, relative to the largest of their kind: a joint that is not a
@@ -448,20 +448,20 @@ CERTIFICATE_MARGIN = 1e-5
 
 def certified_mechanism(arch: VoussoirChain) -> HingeMechanism | None:
     """The collapse mechanism of the static linear program, found without solving it, where
-    its optimum can be proven; None where it cannot (then call :func:`limit_analysis`).
+    its optimum can be proven; None where it cannot (then call `limit_analysis`).
 
     The least-multiplier four-hinge mechanism of the enumeration
-    (:func:`~archquake.limit.kinematic.kinematic_collapse`) proposes a vertex of the static
+    (`kinematic_collapse`) proposes a vertex of the static
     program: the equilibrium with the line of thrust through its four hinges
-    (:func:`~archquake.limit.static.collapse_state`). That vertex is the program's optimum,
+    (`collapse_state`). That vertex is the program's optimum,
     and its only one, when it is primal feasible with every other constraint strictly slack
     (the line of thrust inside every other joint) and dual feasible with every dual strictly
     positive (the objective's gradient a positive combination of the four hinge constraints'):
     the optimality conditions of linear programming, checked with the margin
-    :data:`CERTIFICATE_MARGIN`. The program's duals are then these four, so
-    :func:`~archquake.limit.static.static_collapse` reads the same hinges from them. Arches of
-    more than :data:`CERTIFIED_VOUSSOIRS` voussoirs, ties between mechanisms, a line of thrust
-    that grazes a fifth joint, a multiplier at :data:`~archquake.limit.static.MAX_MULTIPLIER`
+    `CERTIFICATE_MARGIN`. The program's duals are then these four, so
+    `static_collapse` reads the same hinges from them. Arches of
+    more than `CERTIFIED_VOUSSOIRS` voussoirs, ties between mechanisms, a line of thrust
+    that grazes a fifth joint, a multiplier at `MAX_MULTIPLIER`
     and arches that cannot stand are left to the program (which reports them).
 
     Examples

@@ -2,8 +2,8 @@
 mechanism, at one position and along the span (the adequacy factor of bridge assessment).
 
 The arch carries its dead loads (self-weight, fill columns, loads on the extrados, backing:
-:mod:`archquake.geometry.loads`); the traffic load, spread through the fill if asked, is the
-live load that the multiplier mu scales (:mod:`archquake.limit.loaded`). The collapse load is
+`archquake.geometry.loads`); the traffic load, spread through the fill if asked, is the
+live load that the multiplier mu scales (`archquake.limit.loaded`). The collapse load is
 mu times the traffic load. Rigid blocks, no tension, no sliding, no crushing, no passive fill
 pressure, no arching or strength of the fill: the fill is dead weight only, so the capacity
 is on the safe side of what a fill's passive resistance would add.
@@ -204,9 +204,9 @@ def capacity_scan(arch: VoussoirChain, loads: Loads, traffic: Traffic,
     """The multiplier of ``traffic`` moved along the span.
 
     The dead loads and the mechanisms are built once; at each position the kinematic
-    enumeration (up to :data:`~archquake.limit.kinematic.MAX_KINEMATIC_VOUSSOIRS` voussoirs)
+    enumeration (up to `MAX_KINEMATIC_VOUSSOIRS` voussoirs)
     or the linear program gives mu. The critical position is then analysed again by
-    :func:`traffic_capacity` (both bounds where they apply).
+    `traffic_capacity` (both bounds where they apply).
 
     Parameters
     ----------

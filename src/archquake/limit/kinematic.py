@@ -10,13 +10,13 @@ it is in limit equilibrium follows from virtual work at the undisplaced configur
 v_k being the centroid velocities of the opening motion (gravity does ``-g sum m v_y``, the
 load ``lambda g`` towards +x does ``lambda g sum m v_x``). By the upper-bound theorem the
 collapse multiplier is the least such lambda over mechanisms that the load drives
-(``sum m v_x > 0``). :attr:`HingeMechanism.collapse_acceleration_g` is the scalar reference; here
+(``sum m v_x > 0``). `HingeMechanism.collapse_acceleration_g` is the scalar reference; here
 the enumeration is vectorised with prefix sums of the voussoirs' masses and first moments, so
 each mechanism costs O(1).
 
 The enumeration grows as 16 C(n+1, 4) ~ (2/3) n^4 mechanisms: about 8 million for n = 60,
-which is the largest ``n`` accepted (:data:`MAX_KINEMATIC_VOUSSOIRS`, about a second). Larger
-arches use the static method (:mod:`archquake.limit.static`), which is exact for any ``n``.
+which is the largest ``n`` accepted (`MAX_KINEMATIC_VOUSSOIRS`, about a second). Larger
+arches use the static method (`archquake.limit.static`), which is exact for any ``n``.
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ class MechanismSet:
     A mechanism opens with link AB turning at ``rates[:, 0]`` (rad per unit phi-dot, +1 or -1:
     the sense that opens all four hinges on their free faces, counter-clockwise positive), the
     coupler BC at ``rates[:, 1]`` and CD at ``rates[:, 2]``, at the undisplaced configuration;
-    these are :attr:`HingeMechanism.rates` for every mechanism at once.
+    these are `HingeMechanism.rates` for every mechanism at once.
 
     Attributes
     ----------
@@ -66,7 +66,7 @@ class MechanismSet:
         return int(self.joints.shape[0])
 
     def mechanism(self, i: int, arch: VoussoirChain) -> HingeMechanism:
-        """Mechanism ``i`` as a :class:`HingeMechanism` of ``arch``."""
+        """Mechanism ``i`` as a `HingeMechanism` of ``arch``."""
         return HingeMechanism(
             arch,
             tuple(int(j) for j in self.joints[i]),  # type: ignore[arg-type]
@@ -98,8 +98,8 @@ def admissible_mechanisms(arch: VoussoirChain) -> MechanismSet:
     Parameters
     ----------
     arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
-        With at most :data:`MAX_KINEMATIC_VOUSSOIRS` voussoirs.
+        Any arch of `archquake.geometry` (a chain of blocks between two supports).
+        With at most `MAX_KINEMATIC_VOUSSOIRS` voussoirs.
 
     Returns
     -------
@@ -149,7 +149,7 @@ def mechanism_multipliers(arch: VoussoirChain) -> tuple[np.ndarray, np.ndarray, 
     Parameters
     ----------
     arch : Arch
-        With at most :data:`MAX_KINEMATIC_VOUSSOIRS` voussoirs.
+        With at most `MAX_KINEMATIC_VOUSSOIRS` voussoirs.
 
     Returns
     -------

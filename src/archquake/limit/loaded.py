@@ -8,7 +8,7 @@ at its own centroid, and mu is lambda in g; for the traffic capacity they are th
 load, and mu multiplies it. Joints the backing holds are no hinges and put no bound on the
 line of thrust.
 
-The two methods, as for the bare arch (:mod:`archquake.limit.analysis`):
+The two methods, as for the bare arch (`archquake.limit.analysis`):
 
 - kinematic (upper bound): over every admissible four-hinge mechanism at the joints that are
   not held, mu = -P_dead / P_live, P being the virtual power of an action set in the opening
@@ -61,7 +61,7 @@ class LoadCase:
     passive_block, passive_point, passive_direction, passive_limit : ndarray
         The passive forces the fill may put on the blocks (s of them): block, point (m),
         direction (+1 towards +x) and largest value (N)
-        (:func:`~archquake.geometry.loads.passive_resultants`); each takes any value from 0
+        (`passive_resultants`); each takes any value from 0
         to its limit.
     """
 
@@ -146,7 +146,7 @@ def traffic_case(arch: VoussoirChain, loads: Loads, traffic: Traffic | None = No
 
 def _unit_actions(case: LoadCase) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:
     """N and M at every joint for the dead loads and each unit unknown (H, V, M0, mu), over
-    the force scale W and the length scale R; rows as in :mod:`archquake.limit.static`."""
+    the force scale W and the length scale R; rows as in `archquake.limit.static`."""
     arch = case.arch
     scale_l = arch.radius
     scale_f = case.weight if case.weight > 0 else float(np.abs(case.live_force).sum())
@@ -201,7 +201,7 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
     UnstableArchError
         No line of thrust fits under the dead loads alone.
     ArchquakeError
-        Any mu up to :data:`~archquake.limit.static.MAX_MULTIPLIER` is carried, or the collapse
+        Any mu up to `MAX_MULTIPLIER` is carried, or the collapse
         is not a four-hinge mechanism.
     """
     a_ub, b_ub, index = _constraints(case)
@@ -231,7 +231,7 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
 
 
 def _passive_bounds(case: LoadCase) -> list[tuple[float, float]]:
-    """0 <= p_s <= limit_s, over the force scale of :func:`_unit_actions`."""
+    """0 <= p_s <= limit_s, over the force scale of `_unit_actions`."""
     scale_f = case.weight if case.weight > 0 else float(np.abs(case.live_force).sum())
     return [(0.0, float(lim) / scale_f) for lim in case.passive_limit]
 
@@ -380,7 +380,7 @@ def collapse_forces(case: LoadCase, mechanism: HingeMechanism, *, scale: float =
 
 @dataclass(frozen=True)
 class LoadedCollapse:
-    """The collapse of a :class:`LoadCase`: multiplier, hinges, joint resultants, both bounds."""
+    """The collapse of a `LoadCase`: multiplier, hinges, joint resultants, both bounds."""
 
     case: LoadCase
     multiplier: float
@@ -469,7 +469,7 @@ def _passive_collapse(case: LoadCase, method: str, rtol: float = 1e-7) -> Loaded
 def loaded_collapse(case: LoadCase, method: str = "both") -> LoadedCollapse:
     """Collapse of ``case`` by the static ("static"), kinematic ("kinematic") or both methods
     ("both": they must agree to 1e-6 relative). With passive pressure see
-    :func:`_passive_collapse`: the program's multiplier is reported."""
+    `_passive_collapse`: the program's multiplier is reported."""
     if case.passive_limit.size:
         return _passive_collapse(case, method)
     mu_s = mu_k = None

@@ -7,7 +7,7 @@ of thrust inside the section and in compression exists whenever the arch stands;
 one reported is the line that needs the least friction coefficient: a generalized fractional
 program (minimise the largest |V|/N over the joints), solved exactly by Dinkelbach's method,
 a few linear programs in all. The statics of every joint are those of
-:func:`archquake.limit.thrust.joint_forces`, the package's one statics routine.
+`archquake.limit.thrust.joint_forces`, the package's one statics routine.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Unknowns (dimensionless: forces over the arch's weight W, lengths over R): the left support
 reaction (H, V), its moment M0 about the origin O, and the load factor lambda (horizontal body
 force lambda g on every voussoir, towards +x). Every joint's normal force N_j and moment M_j
-about the joint's centre are affine in those four unknowns (:func:`archquake.limit.thrust.
+about the joint's centre are affine in those four unknowns (`archquake.limit.thrust.
 joint_forces` evaluated for each unit unknown and superposed), and the line of thrust lies
 inside the section at joint j when
 
@@ -16,7 +16,7 @@ virtual-work equation), and where the line of thrust touches the intrados or the
 
 By the mirror symmetry of the arch, the set of admissible lambda is an interval [-l, l]:
 it contains 0 whenever it is not empty, so the arch stands under its own weight exactly when
-the program is feasible. :func:`min_thickness_ratio` bisects on that feasibility.
+the program is feasible. `min_thickness_ratio` bisects on that feasibility.
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ from archquake.limit.thrust import arch_joint_points, joint_forces, moments_abou
 #: least t/R an Arch accepts, so that the bisection's next midpoint is still an Arch.
 _THINNEST = 2.0 * MIN_THICKNESS_RATIO
 
-#: Smallest relative bracket width :func:`min_thickness_ratio` accepts: a few units of double
+#: Smallest relative bracket width `min_thickness_ratio` accepts: a few units of double
 #: precision (2.2e-16) above which the bisection's midpoint still differs from its ends.
 MIN_RTOL = 1e-14
 
@@ -129,7 +129,7 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
     voussoirs : int
         Number of voussoirs (3 .. MAX_VOUSSOIRS).
     rtol : float
-        Relative width of the final bracket, in [:data:`MIN_RTOL`, 0.5] (below the floor the
+        Relative width of the final bracket, in [`MIN_RTOL`, 0.5] (below the floor the
         bracket's ends cannot be told apart in double precision).
 
     Returns
@@ -170,12 +170,12 @@ def min_thickness_ratio(embrace: float, voussoirs: int, *, rtol: float = 1e-7) -
 
 def min_thickness(arch: VoussoirChain, *, rtol: float = 1e-7) -> float:
     """Least ring thickness, m, for which ``arch`` (its shape, joints, voussoirs and piers
-    kept; :meth:`~archquake.geometry.VoussoirChain.with_thickness`) stands under its own weight.
+    kept; `with_thickness`) stands under its own weight.
 
     Bisection on the feasibility of the static program with lambda = 0, as
-    :func:`min_thickness_ratio` (which it equals times R for a circular :class:`Arch`).
+    `min_thickness_ratio` (which it equals times R for a circular `Arch`).
 
-    With loads: :func:`archquake.limit.loaded.min_thickness_loaded`.
+    With loads: `archquake.limit.loaded.min_thickness_loaded`.
 
     Raises
     ------
@@ -239,7 +239,7 @@ def min_pier_width(arch: VoussoirChain, *, rtol: float = 1e-4) -> float | None:
     courses and arch held; None if the arch has no piers, or none up to 64 times the given
     width (or twice the pier height, if larger) stand.
 
-    Bisection on :func:`stands` between a width that does not stand and one that does (a
+    Bisection on `stands` between a width that does not stand and one that does (a
     wider pier is heavier and its base longer: the line of thrust fits more easily).
 
     Examples
@@ -317,7 +317,7 @@ def static_collapse(arch: VoussoirChain, *, rtol: float = 1e-7) -> tuple[float, 
     Parameters
     ----------
     arch : VoussoirChain
-        Any arch of :mod:`archquake.geometry` (a chain of blocks between two supports).
+        Any arch of `archquake.geometry` (a chain of blocks between two supports).
     rtol : float
         Relative threshold on the duals (against the largest) that marks a hinge.
 
@@ -333,7 +333,7 @@ def static_collapse(arch: VoussoirChain, *, rtol: float = 1e-7) -> tuple[float, 
     UnstableArchError
         No line of thrust fits even without horizontal load.
     ArchquakeError
-        The arch carries any horizontal acceleration up to :data:`MAX_MULTIPLIER` g.
+        The arch carries any horizontal acceleration up to `MAX_MULTIPLIER` g.
 
     Examples
     --------

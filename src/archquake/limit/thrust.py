@@ -164,7 +164,7 @@ def joint_forces(
         Resultant external force on each voussoir (weight, body forces, inertia forces), N.
     moments : array_like, shape (n,)
         Moment of all external actions on each voussoir about the origin O, N m (see
-        :func:`moments_about_origin`).
+        `moments_about_origin`).
     reaction_force : array_like, shape (2,)
         Force of the left support on voussoir 0 (through joint 0), N.
     reaction_moment : float
@@ -212,7 +212,7 @@ def joint_forces(
 
 
 def arch_joint_points(arch) -> np.ndarray:
-    """Joint end points of an undisplaced arch (any :class:`~archquake.geometry.VoussoirChain`),
+    """Joint end points of an undisplaced arch (any `VoussoirChain`),
     m, (n+1, 2, 2)."""
     return np.stack([arch.intrados_points, arch.extrados_points], axis=1)
 

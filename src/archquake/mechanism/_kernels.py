@@ -1,7 +1,7 @@
 """Compiled time history of the rocking arch: Dormand-Prince 5(4) with events.
 
 State machine over a stack of mechanisms (rows of an (m, 30) array, each packed by
-:func:`archquake.mechanism.prepared.pack_mechanism`; :class:`~archquake.mechanism.prepared.ImpactTable`
+`archquake.mechanism.prepared.pack_mechanism`; `ImpactTable`
 holds the stack and its impact table). The state is (row, side, phi, phi'): the open mechanism
 is row ``row`` (side +1) or its mirror image (side -1, the paper's Eq. 3: the same coefficients
 with the ground term negated).
@@ -85,7 +85,7 @@ from archquake.mechanism.kinematics import (
     potential,
 )
 
-#: The crest/toggle search of :func:`archquake.mechanism.kinematics.linkage_limits`, compiled.
+#: The crest/toggle search of `archquake.mechanism.kinematics.linkage_limits`, compiled.
 linkage_limits_compiled = nb.njit(cache=True)(linkage_limits)
 
 OUTCOME_NO_HINGING = 0
@@ -307,7 +307,7 @@ def _row_terms(mechs, row, use_tail, v_toggle):
     """What the kernel keeps of the mechanism row it moves on (taken once per half cycle, when
     the row changes): the packed row, its crest and toggle rotations (rad), m_eff at phi = 0,
     kappa2 = the sum of the link masses (|H| <= sqrt(kappa2 m_eff), Cauchy-Schwarz, for
-    :func:`no_return`), the potential/g at the crest (kg m; 0 without a record tail) and whether
+    `no_return`), the potential/g at the crest (kg m; 0 without a record tail) and whether
     the no-return criterion applies on this row."""
     mech = mechs[row]
     phi_crit = mech[PHI_CRIT]
@@ -324,7 +324,7 @@ def _row_terms(mechs, row, use_tail, v_toggle):
 def simulate_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
                     rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters, onsets,
                     initial_rate=0.0):
-    """Integrate one time history (:func:`simulate_kernel_eval` without requested times).
+    """Integrate one time history (`simulate_kernel_eval` without requested times).
 
     Returns
     -------
@@ -359,7 +359,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
     dt_out : output interval, s (0: no history; < 0: every accepted step and event)
     hist : (cap, 6) out: t, phi, phi', side, x_g'', row. Samples beyond ``cap`` are counted (in
         counters[0]) but not written: the caller sizes the buffer again and reruns.
-    impacts : (max_impacts, 7) out: the :data:`IMPACT_COLUMNS`
+    impacts : (max_impacts, 7) out: the `IMPACT_COLUMNS`
     peaks : (max_impacts + 1,) out: peak phi of each half cycle
     counters : (10,) out: n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles,
         n_steps, n_rejected, n_rhs, onset_time, collapse_time, 1 if the run stopped because the
@@ -382,7 +382,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
     tail : (N,) for a sampled record, int_{t_i}^{end} |x_g''| dt from each sample time t_i to
         the record's end, m/s (empty: no collapse before the excitation's end); with it a
         collapse is declared during the record once the remaining motion cannot bring the
-        mechanism back over the crest (:func:`no_return`)
+        mechanism back over the crest (`no_return`)
     v_toggle : (m,) potential/g at each row's toggle, kg m (the lowest past the crest, see
         ``tail``; nan: the criterion does not apply to that row)
 
@@ -734,7 +734,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
 
 
 #: Relative safety margin on the energy barrier below which "cannot reach a crest again" is
-#: accepted (:func:`table_energies`).
+#: accepted (`table_energies`).
 ENERGY_MARGIN = 1e-6
 
 
@@ -748,8 +748,8 @@ def table_energies(mechs, g):
     impact whose c_T <= 1; a half cycle on row r reaches its crest only with at least its
     barrier. So an impact after the excitation that leaves ``1/2 m_eff(0) phi'^2`` below the
     least barrier, on a table whose rows all have c_T <= 1, proves that no crest is reached
-    again: the proof of the batches' early decision (:mod:`archquake.domains._kernels`) and of
-    :func:`archquake.mechanism.simulate`'s survival of a run cut while still rocking.
+    again: the proof of the batches' early decision (`archquake.domains._kernels`) and of
+    `archquake.mechanism.simulate`'s survival of a run cut while still rocking.
     """
     m = mechs.shape[0]
     meff0 = np.empty(m)
@@ -765,7 +765,7 @@ def table_energies(mechs, g):
 @nb.njit(cache=True, nogil=True)
 def last_impact_energy(impacts, n_all, t_exc, meff0, barrier, ct_max, undescribed):
     """The kinetic energy ``1/2 m_eff(0) phi'^2`` the run's last impact left, as a fraction of
-    the least crest barrier (:func:`table_energies`), where the free-rocking proof applies to
+    the least crest barrier (`table_energies`), where the free-rocking proof applies to
     it; NaN where it does not.
 
     It applies when the last impact is recorded (``1 <= n_all <= impacts.shape[0]``: the run did

@@ -1,11 +1,11 @@
 """The displaced arch: where every voussoir is, and how it accelerates, for a mechanism state.
 
-One home for the arch's geometry along the motion. The plots (:mod:`archquake.plotting.history`,
-:mod:`archquake.plotting.thrust`) and the joint forces of the moving arch
-(:mod:`archquake.thrust.states`) all read it from :func:`displaced_arch`.
+One home for the arch's geometry along the motion. The plots (`archquake.plotting.history`,
+`archquake.plotting.thrust`) and the joint forces of the moving arch
+(`archquake.thrust.states`) all read it from `displaced_arch`.
 
 A mechanism state (``phi``, ``phi_dot``, ``phi_ddot``, which mechanism is open) fixes the rigid
-motion of each of the three links (the four-bar linkage of :mod:`archquake.mechanism.kinematics`):
+motion of each of the three links (the four-bar linkage of `archquake.mechanism.kinematics`):
 a voussoir of a link turns by the link's rotation ``psi`` about the link's pivot. Its centroid
 accelerates, relative to the ground, by ``a_c = r' phi'' + r'' phi'^2`` and turns with
 ``alpha = psi' phi'' + psi'' phi'^2`` (primes on ``r``, ``psi`` are d/dphi). Voussoirs outside
@@ -94,7 +94,7 @@ class DisplacedArch:
     @property
     def positions(self) -> np.ndarray:
         """Centroid displacement dx, dy (m) and rotation (rad) of each voussoir, (n, 3): the
-        format :func:`archquake.plotting.arch.plot_arch` draws."""
+        format `archquake.plotting.arch.plot_arch` draws."""
         return np.column_stack([self.centroids - self.arch.voussoir_centroids, self.rotations])
 
 
@@ -195,7 +195,7 @@ def displaced_arch(prepared: PreparedMechanism, phi: float, side: int = 1, *,
         +1 the first mechanism, -1 its mirror image, 0 locked (undisplaced, at rest).
     phi_dot, phi_ddot : float
         Rate (rad/s) and acceleration (rad/s^2) of the open mechanism: they set the voussoirs'
-        accelerations only (``phi_ddot`` is an input here; :func:`archquake.thrust.state_at`
+        accelerations only (``phi_ddot`` is an input here; `archquake.thrust.state_at`
         takes it from the equation of motion, Eq. 2).
 
     Returns
@@ -252,7 +252,7 @@ def displaced_arch(prepared: PreparedMechanism, phi: float, side: int = 1, *,
 
 def voussoir_positions(prepared: PreparedMechanism, phi: float, side: int = 1) -> np.ndarray:
     """Centroid displacement dx, dy (m) and rotation (rad) of every voussoir, (n, 3), when the
-    mechanism on ``side`` has turned by ``phi``: :attr:`DisplacedArch.positions`.
+    mechanism on ``side`` has turned by ``phi``: `DisplacedArch.positions`.
 
     Examples
     --------
@@ -267,7 +267,7 @@ def voussoir_positions(prepared: PreparedMechanism, phi: float, side: int = 1) -
 
 def hinge_points(prepared: PreparedMechanism, phi: float, side: int = 1) -> np.ndarray:
     """The four hinge points A, B, C, D of the open mechanism (side +1 or -1) in the displaced
-    arch, m, (4, 2): :attr:`DisplacedArch.hinge_points`."""
+    arch, m, (4, 2): `DisplacedArch.hinge_points`."""
     points = displaced_arch(prepared, phi, side).hinge_points
     if points is None:
         raise InvalidParameterError("the locked arch (side 0) has no hinges")
@@ -283,9 +283,9 @@ def crown_and_energies(prepared: PreparedMechanism, phi: np.ndarray, phi_dot: np
     ----------
     prepared : PreparedMechanism
         The run's first mechanism under its impact law (the rows of ``row`` are rows of its
-        :attr:`~PreparedMechanism.table`).
+        `table`).
     phi, phi_dot, side : ndarray (nt,)
-        The history's samples (:class:`archquake.mechanism.simulate.History`): rotation (rad)
+        The history's samples (`archquake.mechanism.simulate.History`): rotation (rad)
         and rate (rad/s) of the open mechanism, and its side (+1, -1 mirror image, 0 locked).
     row : ndarray (nt,) of int, optional
         The open mechanism's row of the table (None: row 0 throughout).
@@ -295,7 +295,7 @@ def crown_and_energies(prepared: PreparedMechanism, phi: np.ndarray, phi_dot: np
     Returns
     -------
     crown : ndarray (nt, 2)
-        Displacement dx, dy of the crown point (:attr:`VoussoirChain.crown_point`, carried by
+        Displacement dx, dy of the crown point (`VoussoirChain.crown_point`, carried by
         the middle voussoir ``n // 2`` as the block models carry it) relative to the ground, m.
     kinetic : ndarray (nt,)
         ``1/2 m_eff(phi) phi'^2`` (Eq. 2's generalised mass), J.

@@ -18,14 +18,14 @@ pre-impact rate, so the post-impact rate is ``c_v`` times the pre-impact rate's 
 
 Impact laws
 -----------
-:func:`solve_impact` holds every impact law behind one signature (``law=``):
+`solve_impact` holds every impact law behind one signature (``law=``):
 
 ``"paper"``
     Eqs. 4a-4e above, the post-impact mechanism the mirror image (the paper's assumption). Kept
     to reproduce the paper; it can create energy (c_T > 1) or give c_v < 0 for arches whose
     hinges are not symmetric.
 ``"chain"``
-    The impact law of a chain of rigid voussoirs (:mod:`archquake.mechanism.impact_chain`):
+    The impact law of a chain of rigid voussoirs (`archquake.mechanism.impact_chain`):
     the post-impact mechanism is the four-hinge mechanism of maximum restitution (conservation of
     its generalised momentum), checked by the impulse line; never creates energy; reports its
     validity.
@@ -62,7 +62,7 @@ VALIDITY_MEANING = {
     "beyond_set": "the impact's post mechanism is beyond the mechanisms tabulated for the history",
 }
 
-#: The chain laws' validities under which the impact is described (:meth:`ImpactSolution.describes`).
+#: The chain laws' validities under which the impact is described (`ImpactSolution.describes`).
 DESCRIBED = ("four_hinge", "near_four_hinge", "at_rest")
 
 
@@ -81,7 +81,7 @@ def check_restitution(value: object, name: str = "restitution") -> float | None:
 
 
 def check_impact_law(law: object, name: str = "impact") -> str:
-    """The one check of an impact law's name (:data:`IMPACT_LAWS`)."""
+    """The one check of an impact law's name (`IMPACT_LAWS`)."""
     if not isinstance(law, str) or law not in IMPACT_LAWS:
         raise InvalidParameterError(f"{name} must be one of {', '.join(IMPACT_LAWS)}, got {law!r}")
     return str(law)
@@ -105,18 +105,18 @@ class ImpactSolution:
     admissible : bool
         False if c_v < 0: the balances then start the mirror mechanism in its closing sense,
         which is not an admissible motion (seen for some thick, shallow arches);
-        :func:`archquake.mechanism.simulate` then treats the impact as perfectly plastic.
+        `archquake.mechanism.simulate` then treats the impact as perfectly plastic.
     residual : float
         Max |A x - b| of the 5x5 solve, relative to |b| (a check that the solve is sound); for
         the chain laws, the consistency of the impulse line's four hinge conditions.
     law : str
-        The impact law (:data:`IMPACT_LAWS`).
+        The impact law (`IMPACT_LAWS`).
     post : HingeMechanism or None
         The post-impact mechanism (the mirror image for ``"paper"`` and ``"mirror"``; chosen for
         ``"chain"``; None if the arch stops or no four-hinge mechanism is the response).
     validity : str
         ``"four_hinge"``, ``"at_rest"``, ``"near_four_hinge"`` or ``"outside"`` for the chain laws
-        (see :class:`~archquake.mechanism.impact_chain.ChainImpact`); for ``"paper"``,
+        (see `ChainImpact`); for ``"paper"``,
         ``"assumed"`` (not checked), or ``"outside"`` when it creates energy or is inadmissible.
     chain : ChainImpact or None
         The chain laws' full solution (impulse line, exact response, ...).
@@ -148,8 +148,8 @@ class ImpactSolution:
           ``not_four_hinge`` do not describe it, whatever c_v is prescribed (a prescription
           replaces the number, not the mechanism).
 
-        The rule that turns this into :attr:`archquake.outcome.Outcome.INDETERMINATE` is
-        :func:`archquake.outcome.qualify`.
+        The rule that turns this into `archquake.outcome.Outcome.INDETERMINATE` is
+        `archquake.outcome.qualify`.
         """
         if self.law == "paper":
             return bool(prescribed or (not self.energy_gain and self.restitution_cv >= 0.0))

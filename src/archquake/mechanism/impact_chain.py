@@ -17,7 +17,7 @@ assumption, and friction demand is reported).
 * The admissible velocities form a convex cone K: at every joint the relative motion is a
   rotation about the intrados end, a rotation about the extrados end, or a non-negative
   combination of both (lift-off). Without sliding, K's extreme rays are the four-hinge
-  mechanisms (:func:`archquake.limit.kinematic.admissible_mechanisms`), plus rays in which a
+  mechanisms (`archquake.limit.kinematic.admissible_mechanisms`), plus rays in which a
   joint lifts off.
 * A contact impulse can only act where the post-impact motion keeps the contact closed
   (perfectly plastic contact points, Moreau's impact law with zero restitution). Then Pi does no
@@ -73,7 +73,7 @@ IMPULSE_LINE_RTOL = 1e-7
 #: model is outside its validity.
 NEAR_FOUR_HINGE_TOL = 0.1
 
-#: Validity labels of :class:`ChainImpact` ("not_four_hinge": the impulse line failed and the exact
+#: Validity labels of `ChainImpact` ("not_four_hinge": the impulse line failed and the exact
 #: response was not computed, ``exact=False``, or its quadratic program did not converge).
 VALIDITY = ("four_hinge", "at_rest", "near_four_hinge", "outside", "not_four_hinge")
 
@@ -195,7 +195,7 @@ def impulse_line(arch: VoussoirChain, impulse_force: np.ndarray, impulse_moment:
     Returns
     -------
     JointForces
-        Impulses (N s) in the statics convention of :mod:`archquake.limit.thrust`.
+        Impulses (N s) in the statics convention of `archquake.limit.thrust`.
     residual : float
         Inconsistency of the four hinge conditions for three unknowns (relative; ~1e-12 when
         Pi does no work on the mechanism, as it must).
@@ -326,14 +326,14 @@ class ChainImpact:
         kinetically equivalent coordinates; for the mirror mechanism measured as the paper does
         (on the mirror of link AB) it is exactly the paper's c_v of Eq. 5.
     post_rate : float
-        Opening rate of ``post``'s own phi (its link AB, :class:`HingeMechanism` convention) per
+        Opening rate of ``post``'s own phi (its link AB, `HingeMechanism` convention) per
         unit closing rate of ``pre``, rad/s per rad/s (0 if at rest).
     is_mirror : bool
         True if ``post`` is the mirror image of ``pre`` (the paper's assumption).
     validity : str
         'four_hinge' (the exact impact response is ``post``), 'at_rest' (the exact response is
         rest: a perfectly plastic impact), 'near_four_hinge' (the exact response is a motion of
-        more degrees of freedom within :data:`NEAR_FOUR_HINGE_TOL` of ``post``), or 'outside'
+        more degrees of freedom within `NEAR_FOUR_HINGE_TOL` of ``post``), or 'outside'
         (the analytical four-hinge model does not describe the impact); 'not_four_hinge' when the
         impulse line failed and the exact response was not computed (``exact=False``).
     distance : float
@@ -447,7 +447,7 @@ def chain_impact(pre: HingeMechanism, *, post: HingeMechanism | str | None = Non
     ----------
     pre : HingeMechanism
         The mechanism whose hinges close (any four-hinge mechanism of an arch of at most
-        :data:`~archquake.limit.kinematic.MAX_KINEMATIC_VOUSSOIRS` voussoirs, the enumeration's
+        `MAX_KINEMATIC_VOUSSOIRS` voussoirs, the enumeration's
         limit).
     post : HingeMechanism, 'mirror' or None
         None (default): the post-impact mechanism is chosen (maximum restitution, checked by the

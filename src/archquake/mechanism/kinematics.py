@@ -1,8 +1,8 @@
 """Position, velocity and acceleration analysis of the arch's four-link mechanism (paper Eq. 1).
 
 The mechanism is packed once into a float64 array (the layout below, filled by
-:func:`archquake.mechanism.prepared.pack_mechanism`) and every function here is plain scalar
-Python decorated with :func:`numba.extending.register_jitable`: called from Python it runs as
+`archquake.mechanism.prepared.pack_mechanism`) and every function here is plain scalar
+Python decorated with `numba.extending.register_jitable`: called from Python it runs as
 ordinary Python (the readable reference, used by the ``solve_ivp`` driver), called from compiled
 code it is compiled inline (the fast kernels). One source, two uses. This module imports no other
 module of the package's mechanism layer (the compiled kernels import it, never the reverse).
@@ -272,7 +272,7 @@ def paper_coefficients(mech, phi: float) -> tuple[float, float, float, float]:
     Parameters
     ----------
     mech : ndarray, shape (30,)
-        Packed mechanism (:func:`archquake.mechanism.prepared.pack_mechanism`).
+        Packed mechanism (`archquake.mechanism.prepared.pack_mechanism`).
     phi : float
         Rotation theta0 - theta, rad.
 

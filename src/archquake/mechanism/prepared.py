@@ -1,24 +1,24 @@
 """The one place that prepares a mechanism from an arch.
 
-"Which hinges does this arch have" has one answer, :func:`archquake.limit.hinges_of`: those of the equivalent
-static analysis (:func:`archquake.limit.limit_analysis`, the paper's assumption), oriented so that
-a ground acceleration towards -x opens them (the paper's Figure 1). :class:`PreparedMechanism`
-packs that mechanism for the compiled kernels (:func:`pack_mechanism`) with its impact solution
-(Eq. 4), once, and is what the time histories (:func:`archquake.mechanism.simulate`), the domain
-search (:mod:`archquake.domains`), the thrust line in motion (:mod:`archquake.thrust`) and the
-distinct-element assemblies (:mod:`archquake.dem.assembly`) all start from.
+"Which hinges does this arch have" has one answer, `archquake.limit.hinges_of`: those of the equivalent
+static analysis (`archquake.limit.limit_analysis`, the paper's assumption), oriented so that
+a ground acceleration towards -x opens them (the paper's Figure 1). `PreparedMechanism`
+packs that mechanism for the compiled kernels (`pack_mechanism`) with its impact solution
+(Eq. 4), once, and is what the time histories (`archquake.mechanism.simulate`), the domain
+search (`archquake.domains`), the thrust line in motion (`archquake.thrust`) and the
+distinct-element assemblies (`archquake.dem.assembly`) all start from.
 
 Its properties are the mechanism's scalar characteristics, so that no code outside
-:mod:`archquake.mechanism` reads the packed layout:
+`archquake.mechanism` reads the packed layout:
 
-* :attr:`PreparedMechanism.collapse_acceleration_g`: lambda, the equivalent static collapse
+* `PreparedMechanism.collapse_acceleration_g`: lambda, the equivalent static collapse
   acceleration in g (the onset threshold of hinging);
-* :attr:`PreparedMechanism.critical_rotation`: the crest of the potential, rad;
-* :attr:`PreparedMechanism.toggle_rotation`: the toggle of the linkage, rad;
-* :attr:`PreparedMechanism.restitution`: the c_v the time histories use.
+* `PreparedMechanism.critical_rotation`: the crest of the potential, rad;
+* `PreparedMechanism.toggle_rotation`: the toggle of the linkage, rad;
+* `PreparedMechanism.restitution`: the c_v the time histories use.
 
-:attr:`PreparedMechanism.table` is the set of mechanisms the time history may move on under the
-impact law, with its impact table (:class:`ImpactTable`): for ``"paper"`` and ``"mirror"`` the
+`PreparedMechanism.table` is the set of mechanisms the time history may move on under the
+impact law, with its impact table (`ImpactTable`): for ``"paper"`` and ``"mirror"`` the
 first mechanism alone (its mirror image is the same packed row on the other side), for
 ``"chain"`` every mechanism the law's post-impact map reaches from it.
 """
@@ -67,28 +67,28 @@ from archquake.mechanism.kinematics import (
     eom_terms,
 )
 
-#: Most mechanisms of a reachable set (:class:`ImpactTable`); an impact whose post-impact
+#: Most mechanisms of a reachable set (`ImpactTable`); an impact whose post-impact
 #: mechanism would be the next one is flagged (validity ``beyond_set``), never extrapolated.
 MAX_REACHABLE = 32
 
 #: The impact law a history uses when none is given: the one place the default is stated.
 DEFAULT_IMPACT_LAW = "paper"
 
-#: Validity of a row's impact beyond the chain laws' (:data:`~archquake.mechanism.impact_chain.VALIDITY`
+#: Validity of a row's impact beyond the chain laws' (`VALIDITY`
 #: and Eq. 4's ``assumed``): the post-impact mechanism is not in the tabulated set.
 BEYOND_SET = "beyond_set"
 
-#: Samples of the crest/toggle search (:func:`archquake.mechanism.kinematics.linkage_limits`).
+#: Samples of the crest/toggle search (`archquake.mechanism.kinematics.linkage_limits`).
 _LIMIT_SAMPLES = 4000
 
 
 def pack_mechanism(mech: HingeMechanism) -> np.ndarray:
-    """Pack a :class:`HingeMechanism` into the float64 array the kernels read, shape (30,).
+    """Pack a `HingeMechanism` into the float64 array the kernels read, shape (30,).
 
-    The layout is that of :mod:`archquake.mechanism.kinematics`. Link masses and inertias are
+    The layout is that of `archquake.mechanism.kinematics`. Link masses and inertias are
     sums over the links' voussoirs (parallel-axis theorem); G0, H0 are the gravity and ground
     terms of the equation of motion at phi = 0; the critical and toggle rotations come from
-    :func:`~archquake.mechanism.kinematics.linkage_limits`.
+    `linkage_limits`.
     """
     arch = mech.arch
     a, b, c, d = mech.points
@@ -147,10 +147,10 @@ class ImpactTable:
     mechanisms : tuple of HingeMechanism
         Q_0 (the limit-analysis mechanism), Q_1, ... in the order the law reaches them.
     packed : ndarray (m, 30)
-        :func:`pack_mechanism` of each.
+        `pack_mechanism` of each.
     next_row : ndarray (m,) int64
         Row after an impact of each row (-1: the post-impact mechanism is beyond the
-        :data:`MAX_REACHABLE` rows tabulated; the history stops there, flagged).
+        `MAX_REACHABLE` rows tabulated; the history stops there, flagged).
     flip : ndarray (m,) int64
         +-1: the side after the impact is the side before times this.
     rate_ratio : ndarray (m,)
@@ -158,7 +158,7 @@ class ImpactTable:
     restitution_ct : ndarray (m,)
         The law's kinetic-energy ratio across each row's impact.
     validity : tuple of str
-        Each row's impact validity (the law's, ``assumed`` for Eq. 4, :data:`BEYOND_SET`).
+        Each row's impact validity (the law's, ``assumed`` for Eq. 4, `BEYOND_SET`).
     """
 
     mechanisms: tuple[HingeMechanism, ...]
@@ -175,7 +175,7 @@ class ImpactTable:
 
     @property
     def complete(self) -> bool:
-        """True if every impact stays in the set (no row is :data:`BEYOND_SET`)."""
+        """True if every impact stays in the set (no row is `BEYOND_SET`)."""
         return bool(np.all(self.next_row >= 0))
 
     def meff0(self) -> np.ndarray:
@@ -197,14 +197,14 @@ class ImpactTable:
         return np.where(self.next_row >= 0, out, 0.0)
 
     def restitution_cts(self, restitution: float | None = None) -> np.ndarray:
-        """Kinetic-energy ratio across each row's impact under :meth:`ratios`."""
+        """Kinetic-energy ratio across each row's impact under `ratios`."""
         if restitution is not None:
             return np.where(self.next_row >= 0, float(restitution) ** 2, 0.0)
         return self.restitution_ct.copy()
 
     def described(self, law: str, restitution: float | None = None) -> np.ndarray:
         """(m,) bool: the law describes each row's impact
-        (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`, per row)."""
+        (`describes`, per row)."""
         from archquake.mechanism.impact import DESCRIBED
 
         if law == "paper":
@@ -241,7 +241,7 @@ class ImpactTable:
 @lru_cache(maxsize=16)
 def _chain_rows(first: HingeMechanism, cap: int):
     """The reachable set of the chain law from ``first`` (and its mirror): rows, next, flip,
-    c_T, validity, the law's post rates (see :class:`ImpactTable`)."""
+    c_T, validity, the law's post rates (see `ImpactTable`)."""
     from archquake.mechanism.impact_chain import chain_impact
 
     rows = [first]
@@ -273,11 +273,11 @@ def _chain_rows(first: HingeMechanism, cap: int):
 
 
 def impact_table(prepared: PreparedMechanism, cap: int = MAX_REACHABLE) -> ImpactTable:
-    """The :class:`ImpactTable` of a prepared mechanism under its impact law.
+    """The `ImpactTable` of a prepared mechanism under its impact law.
 
     ``"paper"`` and ``"mirror"``: one row (the first mechanism), its impact onto its own mirror
-    image (``next = 0``, ``flip = -1``) at the law's c_v (:attr:`PreparedMechanism.restitution`).
-    ``"chain"``: start from the first mechanism, apply :func:`~archquake.mechanism.impact_chain.chain_impact`
+    image (``next = 0``, ``flip = -1``) at the law's c_v (`PreparedMechanism.restitution`).
+    ``"chain"``: start from the first mechanism, apply `chain_impact`
     to every row found (the mirror image of a row is the same row on the other side, since the
     law commutes with the mirror), up to ``cap`` rows. The rate ratio is the one that gives the
     post mechanism (packed phi) the law's c_T of the kinetic energy:
@@ -309,14 +309,14 @@ def impact_table(prepared: PreparedMechanism, cap: int = MAX_REACHABLE) -> Impac
 class PreparedMechanism:
     """A mechanism packed for the kernels, with its impact solution (reusable across runs).
 
-    Build it with :meth:`build` (from an arch, a mechanism or a prepared mechanism).
+    Build it with `build` (from an arch, a mechanism or a prepared mechanism).
 
     Attributes
     ----------
     mechanism : HingeMechanism
         The first mechanism, opened by a ground acceleration towards -x.
     packed : ndarray, shape (30,)
-        :func:`pack_mechanism` of it (the kernels' input; read it through the properties).
+        `pack_mechanism` of it (the kernels' input; read it through the properties).
     impact : ImpactSolution
         Eq. 4 solved for this mechanism closing.
 
@@ -355,12 +355,12 @@ class PreparedMechanism:
     @property
     def restitution(self) -> float:
         """The c_v the time histories use: the impact model's, or 0 (perfectly plastic) where
-        the model's is negative (inadmissible; see :class:`~archquake.mechanism.ImpactSolution`)."""
+        the model's is negative (inadmissible; see `ImpactSolution`)."""
         return max(self.impact.restitution_cv, 0.0)
 
     def restitution_for(self, restitution: float | None = None) -> float:
         """The c_v a time history uses: ``restitution`` if prescribed (checked once, here:
-        :func:`~archquake.mechanism.impact.check_restitution`, [0, 1]), else :attr:`restitution`
+        `check_restitution`, [0, 1]), else `restitution`
         (the impact law's own)."""
         cv = check_restitution(restitution)
         return self.restitution if cv is None else cv
@@ -368,7 +368,7 @@ class PreparedMechanism:
     @cached_property
     def table(self) -> ImpactTable:
         """The mechanisms the time history may move on under the impact law, with the impact
-        table (:func:`impact_table`; computed once, on first use)."""
+        table (`impact_table`; computed once, on first use)."""
         return impact_table(self)
 
     @property
@@ -378,7 +378,7 @@ class PreparedMechanism:
         return self.table.complete
 
     def member(self, row: int) -> PreparedMechanism:
-        """Row ``row`` of :attr:`table` as a prepared mechanism (its own impact under the law is
+        """Row ``row`` of `table` as a prepared mechanism (its own impact under the law is
         not re-solved: ``impact`` is the first mechanism's)."""
         if row == 0:
             return self
@@ -387,24 +387,24 @@ class PreparedMechanism:
 
     def describes_impact(self, restitution: float | None = None) -> bool:
         """True if the impact law (with ``restitution`` prescribed or not) describes this arch's
-        impacts (:meth:`~archquake.mechanism.impact.ImpactSolution.describes`)."""
+        impacts (`describes`)."""
         return self.impact.describes(prescribed=restitution is not None)
 
     @classmethod
     def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,
               impact: str | None = None, *, loads=None) -> PreparedMechanism:
-        """Prepare an arch (its hinges: :func:`hinges_of`), a given mechanism (mirrored if a load
+        """Prepare an arch (its hinges: `hinges_of`), a given mechanism (mirrored if a load
         towards -x opens it, so that the first mechanism is always the one a ground acceleration
         towards -x opens), or take a prepared mechanism. ``impact`` is the impact law
-        (:data:`archquake.mechanism.impact.IMPACT_LAWS`); None: a prepared mechanism's own, or
-        :data:`DEFAULT_IMPACT_LAW`. A prepared mechanism under another law is re-solved for that law only
+        (`archquake.mechanism.impact.IMPACT_LAWS`); None: a prepared mechanism's own, or
+        `DEFAULT_IMPACT_LAW`. A prepared mechanism under another law is re-solved for that law only
         (the packed mechanism is kept).
 
-        ``loads`` (a :class:`~archquake.geometry.loads.Loads`, with an arch): each link carries
+        ``loads`` (a `Loads`, with an arch): each link carries
         its voussoirs' fill columns and moving loads
-        (:class:`~archquake.geometry.carrying.CarryingChain`: mass, combined centroid,
+        (`CarryingChain`: mass, combined centroid,
         parallel-axis inertia, in the equation of motion and the impacts alike), and the hinges
-        are the loaded arch's (:func:`archquake.limit.loaded.loaded_collapse`, a load towards
+        are the loaded arch's (`archquake.limit.loaded.loaded_collapse`, a load towards
         +x)."""
         if impact is not None:
             check_impact_law(impact)

@@ -1,6 +1,6 @@
 """A plain reference driver: ``scipy.integrate.solve_ivp`` with a Python right-hand side.
 
-Same model and outcome semantics as :func:`archquake.mechanism.simulate`, written the
+Same model and outcome semantics as `archquake.mechanism.simulate`, written the
 straightforward way: solve_ivp (DOP853) between the excitation's breakpoints, with terminal
 events for closure, collapse and the toggle, and a plain scan for the onset of hinging. It is
 slow by design and serves as the oracle the compiled path is held to in the tests, and as the
@@ -27,7 +27,7 @@ from archquake.mechanism.simulate import Outcome
 @dataclass(frozen=True)
 class ReferenceResult:
     """Outcome, collapse half cycle and time, impact times and peak rotations (as in
-    :class:`~archquake.mechanism.SimulationResult`), plus the number of right-hand-side calls."""
+    `SimulationResult`), plus the number of right-hand-side calls."""
 
     outcome: Outcome
     collapse_half_cycle: int | None
@@ -55,7 +55,7 @@ def simulate_reference(
     max_impacts: int = 2000,
     g: float = STANDARD_GRAVITY,
 ) -> ReferenceResult:
-    """Time history with solve_ivp; see :func:`archquake.mechanism.simulate` for the arguments."""
+    """Time history with solve_ivp; see `archquake.mechanism.simulate` for the arguments."""
     prep = PreparedMechanism.build(arch)
     mech = prep.packed
     cv = prep.restitution_for(restitution)

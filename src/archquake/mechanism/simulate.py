@@ -1,10 +1,10 @@
 """Time histories of the rocking arch (paper Eqs. 2-7): driver and result.
 
-:func:`simulate` takes an arch (or a hinge mechanism) and any ground motion and returns a
-:class:`SimulationResult`. The hinges default to those of the equivalent static analysis
+`simulate` takes an arch (or a hinge mechanism) and any ground motion and returns a
+`SimulationResult`. The hinges default to those of the equivalent static analysis
 (the paper's assumption); after each impact the arch continues on the mechanism the impact law
 selects (the mirror image for Eq. 4 and "mirror"; the chain law's choice, from the reachable set
-tabulated in :attr:`~archquake.mechanism.prepared.PreparedMechanism.table`) with the law's rate
+tabulated in `table`) with the law's rate
 or a prescribed coefficient of restitution.
 
 Outcomes
@@ -20,19 +20,19 @@ Outcomes
     first such instant; the half cycle counts the mechanisms opened so far (1 = before any impact).
 ``survives``
     Hinges opened, no collapse, and the run shows that none can come
-    (:func:`archquake.outcome.conclude`): the arch came to rest after the excitation (an impact
+    (`archquake.outcome.conclude`): the arch came to rest after the excitation (an impact
     left a rate whose next half cycle would peak below ``rest_rotation``; ``final_state``
     ``rest``), or it was still rocking at ``t_end`` (``moving``) or stopped by ``max_impacts``
     (``stalled``) but its last impact, after the excitation, left a kinetic energy
     ``1/2 m_eff(0) phi'^2`` below the least crest barrier ``g [V(phi_crit) - V(0)]`` over the
     rows of the mechanism table, with every row's c_T <= 1 (free rocking then never reaches a
     crest: the proof of the domain and IDA batches, with their
-    :func:`~archquake.mechanism._kernels.table_energies`).
+    `table_energies`).
 ``indeterminate``
     The run ended before the survival (or the absence of hinging) could be shown: ``t_end``
     before the end of the excitation, or still rocking (stalled) without that proof; or a
     verdict was computed only through an impact the impact law does not describe
-    (:func:`archquake.outcome.qualify`, with the validity of each impact before the verdict).
+    (`archquake.outcome.qualify`, with the validity of each impact before the verdict).
     ``computed_outcome`` keeps what was computed, ``verdict_reason`` (JSON ``verdict``) says why.
     With the default ``t_end`` (the end of the excitation plus 60 sqrt(R/g)) a described run
     nearly always ends at rest.
@@ -150,13 +150,13 @@ class SolverOptions:
 class History:
     """Sampled time history (shape (N,) each): t (s), phi (rad), phi_dot (rad/s), side
     (0 locked, +1 the row mechanism, -1 its mirror image), ground acceleration (m/s^2), and the
-    row of :attr:`~archquake.mechanism.prepared.PreparedMechanism.table` that is open
+    row of `table` that is open
     (``mechanism_row``; always 0 under Eq. 4 and "mirror").
 
     ``phi`` is the rotation of the open mechanism's first link (the paper's theta0 - theta,
     or theta'0 - theta' on the mirror image); ``signed_rotation`` = side * phi
     tells a mechanism from its mirror on a plot. ``phi_ddot`` (rad/s^2, Eq. 2) is given for the
-    states at requested times (:attr:`SimulationResult.evaluated`), None for the sampled history.
+    states at requested times (`SimulationResult.evaluated`), None for the sampled history.
     """
 
     t: np.ndarray
@@ -226,9 +226,9 @@ class SimulationResult:
     ----------
     outcome : Outcome
         The verdict as it may be stated: ``computed_outcome``, or ``indeterminate`` where the
-        run ended before the survival could be shown (:func:`archquake.outcome.conclude`) or the
+        run ended before the survival could be shown (`archquake.outcome.conclude`) or the
         verdict depends on an impact the law does not describe
-        (:func:`archquake.outcome.qualify`); ``verdict_reason`` says why.
+        (`archquake.outcome.qualify`); ``verdict_reason`` says why.
     final_state : FinalState
     collapse_half_cycle : int or None
         1 = collapse before any impact, 2 = after the first impact, ... (the computed collapse,
@@ -248,7 +248,7 @@ class SimulationResult:
     restitution_ct : float
         c_T = c_v^2.
     energy_gain : bool
-        True if the c_v used gives c_T > 1 (see :mod:`.impact`).
+        True if the c_v used gives c_T > 1 (see `.impact`).
     impact_model_cv : float
         c_v from the impact model (Eq. 4) for this geometry, whether or not it was used.
     impact_admissible : bool
@@ -257,12 +257,12 @@ class SimulationResult:
         a restitution is prescribed.
     impact_law : str
         The impact law (``"paper"``: Eq. 4; ``"chain"``, ``"mirror"``: see
-        :mod:`archquake.mechanism.impact`).
+        `archquake.mechanism.impact`).
     impact_validity : str
-        The law's validity (:class:`~archquake.mechanism.impact.ImpactSolution`).
+        The law's validity (`ImpactSolution`).
     impact_followed : bool
         True if the time history moves on the mechanism the law selects after every impact (the
-        law's reachable set is tabulated whole, :attr:`PreparedMechanism.table`); False if an
+        law's reachable set is tabulated whole, `PreparedMechanism.table`); False if an
         impact could leave the tabulated set (such an impact stops the history, ``unresolved``).
     mechanisms : tuple of MechanismEvent
         The sequence of mechanisms: every onset and impact with the hinges that open, its kind
@@ -270,13 +270,13 @@ class SimulationResult:
     computed_outcome : Outcome
         What the model computed with the impact law as stated (no_hinging, survives, collapse).
     verdict_reason : str
-        Why ``outcome`` is what it is, in one sentence (:func:`archquake.outcome.conclude`,
-        then :func:`~archquake.outcome.qualify`); the JSON key ``verdict``, as the block models'.
+        Why ``outcome`` is what it is, in one sentence (`archquake.outcome.conclude`,
+        then `qualify`); the JSON key ``verdict``, as the block models'.
     restitution_prescribed : bool
         True if ``restitution_cv`` was prescribed (``simulate(..., restitution=...)``).
     impact_described : bool
         True if the impact law describes every impact of this history (per impact: the validity
-        of its row's impact, :meth:`~archquake.mechanism.impact.ImpactSolution.describes`; with
+        of its row's impact, `describes`; with
         no impact, whether it describes the first mechanism's).
     mechanism : HingeMechanism
         The first mechanism (opened by a ground acceleration towards -x).
@@ -338,7 +338,7 @@ class SimulationResult:
     @property
     def rotation(self) -> np.ndarray:
         """phi signed by the side, rad (> 0 in the first mechanism, < 0 in its mirror image),
-        at :attr:`times`: :attr:`History.signed_rotation`."""
+        at `times`: `History.signed_rotation`."""
         return self.history.signed_rotation if self.history is not None else np.zeros(0)
 
     @cached_property
@@ -354,29 +354,29 @@ class SimulationResult:
     @property
     def crown_displacement(self) -> np.ndarray:
         """(nt, 2): the crown point's displacement dx, dy relative to the ground at
-        :attr:`times`, m (:func:`archquake.mechanism.configuration.crown_and_energies`;
+        `times`, m (`archquake.mechanism.configuration.crown_and_energies`;
         computed on first use)."""
         return self._motion[0]
 
     @property
     def kinetic(self) -> np.ndarray:
-        """Kinetic energy relative to the ground, ``1/2 m_eff phi'^2``, at :attr:`times`, J."""
+        """Kinetic energy relative to the ground, ``1/2 m_eff phi'^2``, at `times`, J."""
         return self._motion[1]
 
     @property
     def potential(self) -> np.ndarray:
-        """Gravitational potential energy from the undisplaced arch at :attr:`times`, J."""
+        """Gravitational potential energy from the undisplaced arch at `times`, J."""
         return self._motion[2]
 
     @property
     def hinge_events(self) -> tuple[MechanismEvent, ...]:
-        """The sequence of mechanisms (:attr:`mechanisms`), as
-        :attr:`archquake.result.ModelResult.hinge_events`."""
+        """The sequence of mechanisms (`mechanisms`), as
+        `archquake.result.ModelResult.hinge_events`."""
         return tuple(self.mechanisms)
 
     def to_table(self) -> dict[str, np.ndarray]:
         """Columns for a tabular export (``pandas.DataFrame(result.to_table())``):
-        :data:`archquake.result.TABLE_COLUMNS`, then phi' (rad/s), the side, the ground
+        `archquake.result.TABLE_COLUMNS`, then phi' (rad/s), the side, the ground
         acceleration (m/s^2) and the mechanism's row. Empty columns without a history."""
         out = shared_columns(self)
         h = self.history
@@ -391,12 +391,12 @@ class SimulationResult:
         return out
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        """Write `to_table` as CSV (`archquake.result.write_csv`)."""
         return write_csv(self.to_table(), path)
 
     def to_dict(self, include_history: bool = False) -> dict:
         """Plain dict for JSON (the CLI's ``--json``, a sweep's stored row): the keys of
-        :data:`archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
+        `archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
         the analytical model's own."""
         out = {
             **shared_keys(self, "fourlink", self.final_state.value),
@@ -430,7 +430,7 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
     """For a sampled record: ``int_{t_i}^{end} |x_g''| dt`` from each sample (m/s, exact for
     the linear interpolation, sign changes included) and, per row of the mechanism table, the
     potential/g at the toggle, for the no-return collapse criterion
-    (:func:`archquake.mechanism._kernels.no_return`). The tail is empty (the criterion off) for
+    (`archquake.mechanism._kernels.no_return`). The tail is empty (the criterion off) for
     the pulses; a row's toggle value is nan (the criterion off on that row) if the potential
     does not decrease from its crest to its toggle (sampled at 257 points), which the
     criterion's bound assumes."""
@@ -485,7 +485,7 @@ def _toggle_potential(packed: bytes) -> float | None:
 def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: np.ndarray,
                      restitution: float | None = None) -> tuple[MechanismEvent, ...]:
     """The sequence of mechanisms of a run from the kernel's impacts (the
-    :data:`~archquake.mechanism._kernels.IMPACT_COLUMNS`) and onsets (time, side), in time
+    `IMPACT_COLUMNS`) and onsets (time, side), in time
     order."""
     table = prepared.table
     described = table.described(prepared.impact.law, restitution)
@@ -511,7 +511,7 @@ def last_impact_fraction(prepared: PreparedMechanism, mechs: np.ndarray, impacts
                          g: float) -> float:
     """The kinetic energy the run's last impact left, as a fraction of the least crest barrier,
     where the free-rocking proof applies to it (NaN where not): the batches' proof,
-    :func:`archquake.mechanism._kernels.last_impact_energy`, with the table's energies, c_T and
+    `archquake.mechanism._kernels.last_impact_energy`, with the table's energies, c_T and
     described rows for ``restitution`` (prescribed c_v or None)."""
     table = prepared.table
     meff0, barrier = K.table_energies(mechs, g)
@@ -525,13 +525,13 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
                  t_end: float, excitation_end: float, energy_fraction: float
                  ) -> tuple[Outcome, str]:
     """The verdict of a compiled run, with its reason, from how it ended: the one rule of
-    :func:`simulate` and of the batches (:func:`archquake.domains.evaluate_pulses`).
+    `simulate` and of the batches (`archquake.domains.evaluate_pulses`).
 
     A run that ended at rest with ``impacts >= max_impacts`` was locked by the cap, not by the
     rest criterion, and counts as ``stalled``; the last impact's ``energy_fraction`` (of the
-    least crest barrier, NaN where the proof does not apply: :func:`last_impact_fraction`)
+    least crest barrier, NaN where the proof does not apply: `last_impact_fraction`)
     proves survival when below ``1 - ENERGY_MARGIN``; then
-    :func:`archquake.outcome.conclude`. Apply :func:`~archquake.outcome.qualify` to the result.
+    `archquake.outcome.conclude`. Apply `qualify` to the result.
 
     Parameters
     ----------
@@ -567,7 +567,7 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
 
 def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) -> np.ndarray:
     """The four-link model's default end of analysis, s: the end of the excitation plus
-    :data:`~archquake.ranges.RUN_TAIL` sqrt(R/g) (what :func:`simulate`, the failure domains'
+    `RUN_TAIL` sqrt(R/g) (what `simulate`, the failure domains'
     batch and the incremental dynamic analysis use).
 
     Parameters
@@ -613,10 +613,10 @@ def simulate(
         the post-impact mechanism is still the law's, with c_v^2 of the kinetic energy before
         the impact (for the mirror image, the rate is c_v times the closing rate).
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law (:mod:`archquake.mechanism.impact`): "paper" (Eq. 4), "chain" (the chain
-        law, :mod:`archquake.mechanism.impact_chain`, followed over its reachable set of
+        Impact law (`archquake.mechanism.impact`): "paper" (Eq. 4), "chain" (the chain
+        law, `archquake.mechanism.impact_chain`, followed over its reachable set of
         mechanisms; see ``SimulationResult.mechanisms``) or "mirror". None: a
-        PreparedMechanism's own law, else :data:`~archquake.mechanism.prepared.DEFAULT_IMPACT_LAW`.
+        PreparedMechanism's own law, else `DEFAULT_IMPACT_LAW`.
     t_end : float, optional
         End of the analysis, s. Default: the end of the excitation plus 60 sqrt(R/g).
     initial_rate : float, optional
@@ -625,7 +625,7 @@ def simulate(
     options : SolverOptions
     t_eval : sequence of float, optional
         Times, s (>= 0, non-decreasing), at which to report the exact state in
-        :attr:`SimulationResult.evaluated`: each is reached by one Dormand-Prince step of the
+        `SimulationResult.evaluated`: each is reached by one Dormand-Prince step of the
         integrator landing on it from its last accepted step (as accurate as the steps
         themselves, unlike the interpolated ``history``); the steps, events and outcome are
         those of the run without ``t_eval``. At an impact the state is the closing one; at the

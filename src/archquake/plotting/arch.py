@@ -1,8 +1,8 @@
 """Drawing an arch: voussoirs (undisplaced or moved), hinges and a line of thrust.
 
-:func:`plot_arch` is the general drawing that the other figures build on (the collapse state
+`plot_arch` is the general drawing that the other figures build on (the collapse state
 of the equivalent static analysis here; the line of thrust during motion and distinct-element
-snapshots later). Matplotlib is imported only inside :mod:`archquake.plotting`, which never
+snapshots later). Matplotlib is imported only inside `archquake.plotting`, which never
 chooses a backend; functions take an optional ``ax``, return it and never call ``show()``.
 """
 
@@ -246,7 +246,7 @@ def plot_shapes(arches: Sequence[VoussoirChain], titles: Sequence[str] | None = 
 
 
 def save_limit_analysis(result, path: str | Path) -> Path:
-    """Draw :func:`plot_limit_analysis` into a new figure and save it to ``path``."""
+    """Draw `plot_limit_analysis` into a new figure and save it to ``path``."""
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     plot_limit_analysis(result, ax)
     return save(fig, path, dpi=150)

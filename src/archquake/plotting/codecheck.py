@@ -15,7 +15,7 @@ _COLOURS = {"SLD": "tab:green", "SLV": "tab:orange", "SLC": "tab:red"}
 
 
 def plot_code_check(result, ax=None):
-    """Draw a :class:`~archquake.codecheck.check.CodeCheck` into ``ax`` (a new figure if None).
+    """Draw a `CodeCheck` into ``ax`` (a new figure if None).
 
     Accelerations in g, displacements in m. The demand spectra are the site's, at the damping
     each nonlinear check reads them with, up to the largest period read plus a margin.
@@ -70,7 +70,7 @@ def plot_code_check(result, ax=None):
 
 
 def save_code_check(result, path: str | Path) -> Path:
-    """Draw :func:`plot_code_check` into a new figure and save it to ``path``."""
+    """Draw `plot_code_check` into a new figure and save it to ``path``."""
     fig, ax = plt.subplots(figsize=(7.5, 6.0))
     plot_code_check(result, ax)
     return save(fig, path, dpi=150)

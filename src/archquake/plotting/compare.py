@@ -85,7 +85,7 @@ def figure4_comparison(comparisons: dict, path: str | Path, *, t_end: float = 4.
     Parameters
     ----------
     comparisons : dict
-        ``{(t_p, assembly): HistoryComparison}`` (:func:`archquake.compare.figure4_comparisons`).
+        ``{(t_p, assembly): HistoryComparison}`` (`archquake.compare.figure4_comparisons`).
     path : output file
     t_end : float, s
     """
@@ -137,7 +137,7 @@ def plot_domain_comparison(comparison, ax=None, *, title: str | None = None):
 
 
 def domain_comparison_figure(comparisons: Sequence, path: str | Path) -> Path:
-    """One panel per :class:`~archquake.compare.DomainComparison` (several radii, or step and
+    """One panel per `DomainComparison` (several radii, or step and
     sine), saved to ``path``."""
     n = len(comparisons)
     cols = min(3, n)

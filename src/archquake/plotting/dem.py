@@ -93,7 +93,7 @@ def plot_dem_snapshot(result, time: float, ax=None, *, arrows: bool = True,
 
 
 def plot_dem_snapshots(result, times, *, ncols: int = 3):
-    """A grid of :func:`plot_dem_snapshot` panels (the paper's Figure 9). Returns the Figure."""
+    """A grid of `plot_dem_snapshot` panels (the paper's Figure 9). Returns the Figure."""
     times = list(times)
     nrows = int(np.ceil(len(times) / ncols))
     fig, axes = plt.subplots(nrows, ncols, figsize=(4 * ncols, 3 * nrows), squeeze=False)

@@ -1,6 +1,6 @@
 """Failure-domain figures like the paper's: Figure 5 (regions), 6 (scale), 7 (geometry), 11 (sine).
 
-Functions take results from :mod:`archquake.domains`, an optional ``ax``, return it and never
+Functions take results from `archquake.domains`, an optional ``ax``, return it and never
 call ``show()``; ``save_*`` helpers write a file and close the figure.
 """
 

@@ -1,7 +1,7 @@
-"""Writing a figure to a file: the one save helper of :mod:`archquake.plotting`.
+"""Writing a figure to a file: the one save helper of `archquake.plotting`.
 
 Plot functions draw into an ``ax`` (a new figure if None), return it and never call ``show()``
-nor choose a backend: importing :mod:`archquake.plotting` leaves matplotlib's backend as the
+nor choose a backend: importing `archquake.plotting` leaves matplotlib's backend as the
 user set it (a notebook keeps its inline backend). Saving works with any backend; the command
 line selects Agg for itself before matplotlib is first imported.
 """

@@ -1,8 +1,8 @@
 """Incremental dynamic analysis figures: IDA curves and fragility curves.
 
-Functions take an :class:`archquake.ida.IdaResult` (and fits from
-:mod:`archquake.ida.fragility`), an optional ``ax``, and return the ``ax``; they never call
-``show()`` and do not choose a matplotlib backend (:func:`save_ida` writes a file through a
+Functions take an `archquake.ida.IdaResult` (and fits from
+`archquake.ida.fragility`), an optional ``ax``, and return the ``ax``; they never call
+``show()`` and do not choose a matplotlib backend (`save_ida` writes a file through a
 figure it creates and closes, so it works without a display).
 """
 
@@ -70,7 +70,7 @@ def plot_ida_curves(result, ax=None, *, title: str | None = None):
 def plot_fragility(result, fits: dict, ax=None, *, title: str | None = None):
     """Fragility: the collapse fraction per level (points), the empirical distribution of the
     first-collapse intensities (steps) and the two lognormal fits (``fits`` from
-    :func:`archquake.ida.fragility.fragility_of`)."""
+    `archquake.ida.fragility.fragility_of`)."""
     ax = _axes(ax)
     levels = fits["levels"]
     ax.plot(levels, fits["fraction"], "o", color="C0", ms=4,

@@ -1,6 +1,6 @@
-"""Figures of ``archquake reproduce`` that :mod:`archquake.plotting.compare` does not draw: the
+"""Figures of ``archquake reproduce`` that `archquake.plotting.compare` does not draw: the
 paper's Figure 6, several arches' boundaries on one axes with the distinct-element boundary
-points laid over them (Figures 4, 9, 10 and 11 come from :mod:`archquake.plotting.compare`)."""
+points laid over them (Figures 4, 9, 10 and 11 come from `archquake.plotting.compare`)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Spectra figures: a code's elastic spectrum, records' response spectra, a selected set.
 
 Functions take a result, an optional ``ax``, and return the ``ax``; the ``save_*`` functions
-write a file through :func:`archquake.plotting.figures.save`. Accelerations are drawn in g,
+write a file through `archquake.plotting.figures.save`. Accelerations are drawn in g,
 periods in s.
 """
 
@@ -101,7 +101,7 @@ def plot_selection(selection, ax=None, *, target_label: str = "target",
 
 
 def save_record_spectra(spectra, path: str | Path, *, title: str | None = None) -> Path:
-    """:func:`plot_record_spectra` written to ``path``."""
+    """`plot_record_spectra` written to ``path``."""
     from matplotlib.figure import Figure
 
     from archquake.plotting.figures import save
@@ -113,7 +113,7 @@ def save_record_spectra(spectra, path: str | Path, *, title: str | None = None) 
 
 def save_selection(selection, path: str | Path, *, target_label: str = "target",
                    title: str | None = None) -> Path:
-    """:func:`plot_selection` written to ``path``."""
+    """`plot_selection` written to ``path``."""
     from matplotlib.figure import Figure
 
     from archquake.plotting.figures import save

@@ -2,7 +2,7 @@
 run again, each number the paper states set beside archquake's with a tolerance and a mark, and
 the figures (with the distinct-element overlays) in one self-contained report.
 
-Run it with :func:`run_studies` or ``archquake reproduce --quick --out DIR``.
+Run it with `run_studies` or ``archquake reproduce --quick --out DIR``.
 
 Examples
 --------

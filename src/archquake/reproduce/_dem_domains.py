@@ -12,7 +12,7 @@ from archquake.geometry.arch import Arch
 from archquake.reproduce.core import Row, fmt
 from archquake.validation.paper import DEM_FIRST_BOUNDARY_AGREEMENT
 
-#: DEM boundary search of the reproduction (:func:`archquake.compare.dem_failure_domain`):
+#: DEM boundary search of the reproduction (`archquake.compare.dem_failure_domain`):
 #: (coarse magnitudes from lambda to the ceiling, final bracket in g), quick and full.
 DEM_SEARCH = {True: (3, 0.02), False: (5, 0.01)}
 
@@ -24,8 +24,8 @@ DEM_TAIL_FIRST, DEM_TAIL_GOVERNING = 2.5, 4.0
 def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, quick: bool, label: str):
     """The DEM's first-half-cycle (three-voussoir arch) and governing (voussoir arch) boundaries
     at the analytical grid's durations nearest ``durations_first`` / ``durations_gov``, through
-    :func:`archquake.compare.dem_failure_domain`, as a
-    :class:`~archquake.compare.DomainComparison` with ``dom``.
+    `archquake.compare.dem_failure_domain`, as a
+    `DomainComparison` with ``dom``.
 
     The search's ceiling is set from the analytical boundaries: 1.3 times the highest
     first-half-cycle one (a DEM boundary above that would fail the 5 % row anyway) and twice the
@@ -136,7 +136,7 @@ def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list
 
 
 def dem_series(comparison):
-    """Overlay markers for :func:`archquake.plotting.reproduce.domains_with_dem`."""
+    """Overlay markers for `archquake.plotting.reproduce.domains_with_dem`."""
     f, g = comparison.first, comparison.governing
     return (
         (f"{comparison.label} DEM 1st half cycle (3 voussoirs)", f.domain.durations, f.boundary_g, "v"),

@@ -3,8 +3,8 @@
 A study is a pure function ``study(arch, quick, figures) -> StudyResult``: it computes one part
 of the paper for ``arch`` (Oppenheim's arch by default), writes its figures into the folder
 ``figures`` and returns the rows that set each number the paper states beside archquake's.
-The report (:mod:`archquake.reproduce.report`) is assembled from the results alone, so a
-cached result (:mod:`archquake.reproduce.runner`) reproduces the same report.
+The report (`archquake.reproduce.report`) is assembled from the results alone, so a
+cached result (`archquake.reproduce.runner`) reproduces the same report.
 """
 
 from __future__ import annotations
@@ -126,8 +126,8 @@ def paper_row(
     paper: str | None = None,
     justification: str | None = None,
 ) -> Row:
-    """The row of a number the paper states (:class:`~archquake.validation.paper.PaperValue`):
-    its page, value, tolerance and why come from :mod:`archquake.validation.paper`; ``x`` is
+    """The row of a number the paper states (`PaperValue`):
+    its page, value, tolerance and why come from `archquake.validation.paper`; ``x`` is
     archquake's value (None when not computed), ``archquake`` its formatted text. ``source``,
     ``paper`` and ``justification`` only add context (a figure panel, "(same arch)")."""
     return Row(
@@ -290,7 +290,7 @@ def commit_file(source: str | Path, target: str | Path) -> Path:
 
 def atomic_write_bytes(path: str | Path, data: bytes) -> Path:
     """Write ``data`` to ``path`` through a temporary file in the same folder, fsync and
-    rename (:func:`commit_file`): an interrupted write leaves the old file or none."""
+    rename (`commit_file`): an interrupted write leaves the old file or none."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
@@ -308,7 +308,7 @@ def atomic_write_bytes(path: str | Path, data: bytes) -> Path:
 
 
 def atomic_write_text(path: str | Path, text: str) -> Path:
-    """:func:`atomic_write_bytes` of UTF-8 text."""
+    """`atomic_write_bytes` of UTF-8 text."""
     return atomic_write_bytes(path, text.encode("utf-8"))
 
 
@@ -324,7 +324,7 @@ def file_seal(path: str | Path) -> dict:
 
 
 def seal_intact(path: str | Path, seal: object) -> bool:
-    """True if ``path`` exists with the size and SHA-256 of ``seal`` (:func:`file_seal`); a
+    """True if ``path`` exists with the size and SHA-256 of ``seal`` (`file_seal`); a
     missing seal, a 0-byte, truncated or altered file is not intact."""
     if not isinstance(seal, dict) or "size_bytes" not in seal or "sha256" not in seal:
         return False

@@ -1,6 +1,6 @@
 """Study ``figure4``: the time histories of Figure 4 (a = 1.0 g, t_p = 0.44, 0.27, 0.20 s), the
 analytical mechanism with the distinct-element overlays (p. 2126, p. 2132), and the rocking
-animation that ``archquake demo`` adds to the report (:func:`animation`)."""
+animation that ``archquake demo`` adds to the report (`animation`)."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ FIGURE4_DEM_DURATION = 6.0
 def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     """Figure 4: time histories for a = 1.0 g, t_p = 0.44, 0.27, 0.20 s; DEM overlays
     (three-voussoir arch for 0.44 s, seven voussoirs otherwise, as in the paper), both models
-    run by :func:`archquake.compare.compare_history`."""
+    run by `archquake.compare.compare_history`."""
     from archquake.compare import HINGES, VOUSSOIRS, compare_history
     from archquake.plotting.compare import figure4_comparison
 

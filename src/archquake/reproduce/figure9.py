@@ -1,5 +1,5 @@
 """Study ``figure9``: the hinges of the distinct-element model during motion (p. 2131-2132,
-Figure 9), run through :mod:`archquake.compare`."""
+Figure 9), run through `archquake.compare`."""
 
 from __future__ import annotations
 
@@ -13,12 +13,12 @@ from archquake.validation.paper import FIGURE4D_FIRST_IMPACT, FIGURE9_TIMES
 
 
 def _joints(hinges) -> tuple[int, ...]:
-    """The joints of :func:`archquake.compare.dem_hinges`' (joint, face) pairs, ascending."""
+    """The joints of `archquake.compare.dem_hinges`' (joint, face) pairs, ascending."""
     return tuple(sorted({j for j, _ in hinges}))
 
 
 def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
-    """Figure 9: the DEM's hinges (:func:`archquake.compare.compare_hinges`) against the
+    """Figure 9: the DEM's hinges (`archquake.compare.compare_hinges`) against the
     analytical ones and the line of thrust."""
     from archquake.compare import compare_hinges, dem_hinges
     from archquake.limit import hinges_of

@@ -8,7 +8,7 @@ _M = "archquake.reproduce"
 
 #: Every study of the paper: (key, title, what of the paper it covers, "module:function"); the
 #: study ``name`` lives in ``archquake.reproduce.<name>`` and reads the paper's numbers from
-#: :mod:`archquake.validation.paper`.
+#: `archquake.validation.paper`.
 STUDIES: tuple[Study, ...] = (
     Study(
         "static",

@@ -95,7 +95,7 @@ def cache_path(out: Path, name: str, quick: bool, version: str = __version__) ->
 
 
 def load_cached(out: Path, name: str, quick: bool) -> StudyResult | None:
-    """The cached result of study ``name`` under ``out`` (:func:`store_result`), or None if
+    """The cached result of study ``name`` under ``out`` (`store_result`), or None if
     there is none, it cannot be read, or a figure it drew is missing or altered."""
     path = cache_path(out, name, quick)
     try:

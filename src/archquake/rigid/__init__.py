@@ -1,11 +1,11 @@
 """The rigid-block chain: rigid voussoirs with unilateral, plastic, no-slip (or Coulomb) joint
 contacts and any number of open hinges, the rigid limit of the distinct-element model.
 
-:mod:`~archquake.rigid.model` packs an arch (or any block assembly, :mod:`archquake.dem`'s
+`model` packs an arch (or any block assembly, `archquake.dem`'s
 description) and holds the tolerances every integrator reads; two integrators read it: the
-Moreau-Jean time stepper (:mod:`~archquake.rigid.steps`) and the event integrator
-(:mod:`~archquake.rigid.events`); :mod:`~archquake.rigid.forces` recovers the joint forces of a
-run; :func:`simulate_rigid` (:mod:`~archquake.rigid.run`) drives either to a verdict.
+Moreau-Jean time stepper (`steps`) and the event integrator
+(`events`); `forces` recovers the joint forces of a
+run; `simulate_rigid` (`run`) drives either to a verdict.
 """
 
 from archquake.rigid.model import DEFAULT_TIME_STEP, RigidModel

@@ -1,6 +1,6 @@
 """Compiled event-driven integrator of the rigid-block chain (numba).
 
-The same model as :mod:`archquake.rigid._step_kernels` (rigid voussoirs, unilateral
+The same model as `archquake.rigid._step_kernels` (rigid voussoirs, unilateral
 plastic corner contacts, no sliding), integrated between contact changes as an ODE in the
 joints' relative rotations instead of by Moreau-Jean steps.
 
@@ -33,7 +33,7 @@ ends on them:
 
 * *closure*: a hinge's opening angle phi = +-beta returns to zero: a plastic impact, solved in
   full coordinates as the time stepper solves it, the kinetic-metric projection of the
-  velocities onto the cone of the contacts touching (:func:`_step_kernels.project_direct`);
+  velocities onto the cone of the contacts touching (`_step_kernels.project_direct`);
   the joints whose relative rotation rate after it is nonzero are the new hinges;
 * *opening*: the normal force of a corner of a locked joint (from the joint's force and moment,
   by statics of the links right of it and the springing's wrench) reaches zero: the joint
@@ -126,8 +126,8 @@ CHATTER_EVENTS = 60
 
 
 class Chain(NamedTuple):
-    """The packed arrays of the chain that :func:`run` reads and never writes, assembled once
-    per run (:class:`archquake.rigid.events.EventModel`).
+    """The packed arrays of the chain that `run` reads and never writes, assembled once
+    per run (`archquake.rigid.events.EventModel`).
 
     Blocks (n of them, in chain order): ``X0`` (n, 2) undisplaced centroids, m; ``mb``, ``ib``
     masses (kg) and inertias (kg m^2); prefix sums from the left ``S0`` (n + 1,) of the mass,
@@ -135,9 +135,9 @@ class Chain(NamedTuple):
     ``p0`` (nj, 2, 2) undisplaced corners, m; ``n0``, ``t0`` (nj, 2) normals and tangents;
     ``hw`` half-widths, m; ``sg`` = t x n (+-1); ``ja``, ``jb`` the blocks on either side (-1:
     a springing); ``arm_a``, ``arm_b`` the corners from those blocks' centroids, m (as the
-    time stepper's :mod:`archquake.rigid._step_kernels` reads them). ``free_blocks`` and ``free``: the
+    time stepper's `archquake.rigid._step_kernels` reads them). ``free_blocks`` and ``free``: the
     blocks the collapse criterion reads, and 1 for each movable block. ``cpar``: the collapse
-    criterion's parameters (:func:`archquake.dem._kernels.collapsed`). ``lref``: the chain's
+    criterion's parameters (`archquake.dem._kernels.collapsed`). ``lref``: the chain's
     reference length L, m (the radius of a circular arch).
     """
 
@@ -163,8 +163,8 @@ class Chain(NamedTuple):
 
 
 class Span(NamedTuple):
-    """What one call of :func:`run` integrates: the ground motion (``kind``, ``gp``: its
-    compiled description, :meth:`archquake.ground.GroundMotion.kernel_spec`), gravity ``g``
+    """What one call of `run` integrates: the ground motion (``kind``, ``gp``: its
+    compiled description, `archquake.ground.GroundMotion.kernel_spec`), gravity ``g``
     (m/s^2), the end ``t_end`` (s) and the excitation's end ``t_exc_end`` (s); the onset
     thresholds ``lam_pos``, ``lam_neg`` (m/s^2, the ground acceleration that moves the locked
     arch either way); the error control ``rtol``, ``atol`` and largest step ``h_max`` (s); the
@@ -187,7 +187,7 @@ class Span(NamedTuple):
 
 
 class State(NamedTuple):
-    """The state :func:`run` reads and updates in place: ``st`` = [K, jh, ch] (the hinge set),
+    """The state `run` reads and updates in place: ``st`` = [K, jh, ch] (the hinge set),
     ``y`` = (beta, beta', W_in), ``tt`` (1,) the time (s); ``counters`` (N_COUNTERS), ``diag``
     (N_E); ``fq``, ``fv`` (n, 3) the block positions and velocities handed to and from the time
     stepper; ``log`` (rows, 4) the event log; ``state_all`` (n, 6) work array of the collapse
@@ -205,7 +205,7 @@ class State(NamedTuple):
 
 
 class Output(NamedTuple):
-    """The samples :func:`run` writes: block positions ``q`` and velocities ``v`` (cap, n, 3)
+    """The samples `run` writes: block positions ``q`` and velocities ``v`` (cap, n, 3)
     and energies ``e`` (cap, 5: kinetic, potential, dissipated, input work (J), friction
     demand)."""
 
@@ -345,7 +345,7 @@ def _link_accelerations(K, P, G, bdd, al, aG):
 
 @nb.njit(cache=True)
 def _kkt_matrix(K, P, G, dd, lm, li, A, r, closed):
-    """The KKT matrix of the links (after :func:`kinematics`): the generalised mass
+    """The KKT matrix of the links (after `kinematics`): the generalised mass
     M_il = sum_{k > max(i, l)} m_k (G_k - P_i).(G_k - P_l) + I_k in A[:K, :K] and, for a
     closed chain, the closure's Jacobian C (the last link's rotation and the velocity of its
     material point X = dd[K]) as [[M, -C^T], [C, 0]]; r zeroed. Returns the system's size."""
@@ -377,7 +377,7 @@ def _kkt_matrix(K, P, G, dd, lm, li, A, r, closed):
 @nb.njit(cache=True)
 def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
     """Accelerations beta'' (``ws[11]``), the springing's wrench ``ws[12]`` and the kinematic
-    quantities in ``ws`` (:func:`workspace`) for load ``ax`` (x_g'', m/s^2); ``closed``: the
+    quantities in ``ws`` (`workspace`) for load ``ax`` (x_g'', m/s^2); ``closed``: the
     chain ends on a springing (else its last link is free and mu = 0). Returns False if the
     KKT system is singular."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
@@ -444,7 +444,7 @@ def dynamics(K, jh, ch, beta, bdot, p0, lm, lg0, li, ax, g, ws, closed):
 
 @nb.njit(cache=True)
 def workspace(nh):
-    """Scratch arrays of :func:`dynamics`, sized for ``nh`` hinges: (th, dd, P, vP, G, om, vG,
+    """Scratch arrays of `dynamics`, sized for ``nh`` hinges: (th, dd, P, vP, G, om, vG,
     aG, al, A, r, bdd, mu)."""
     return (np.zeros(nh + 1), np.zeros((nh + 1, 2)), np.zeros((nh, 2)), np.zeros((nh, 2)),
             np.zeros((nh + 1, 2)), np.zeros(nh + 1), np.zeros((nh + 1, 2)),
@@ -463,7 +463,7 @@ def _link_of(K, jh, b):
 
 @nb.njit(cache=True)
 def joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, ax, g, out):
-    """Every joint's force from its left part on its right part, after :func:`dynamics`:
+    """Every joint's force from its left part on its right part, after `dynamics`:
     ``out[j] = (f0, f1, N, V)`` (``out`` has a row per joint: n + 1 for a closed chain, n for
     an open one) N, the corner normal forces of a locked joint (f0 + f1 = N) or,
     at a hinge, (nan, nan, N, V); V the shear."""
@@ -709,7 +709,7 @@ def to_full(K, jh, ch, y, p0, lg0, X0, ws, n, q, v):
 @nb.njit(cache=True)
 def energies(K, ws, lm, lg0, li, g):
     """(kinetic, potential) energy of the links, J, potential relative to the undisplaced arch
-    (after :func:`kinematics` or :func:`dynamics`)."""
+    (after `kinematics` or `dynamics`)."""
     G, om, vG = ws[4], ws[5], ws[6]
     kin = 0.0
     pot = 0.0
@@ -978,7 +978,7 @@ def _save(t, K, y, tt, st, diag):
 
 @nb.njit(cache=True)
 def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, why, t, tt, st, diag):
-    """Stop for a hand-over to the time stepper (:func:`_save`): the block positions and
+    """Stop for a hand-over to the time stepper (`_save`): the block positions and
     velocities of the reduced state into ``fq``, ``fv``; returns ``why``."""
     _save(t, K, y, tt, st, diag)
     if K == 0:
@@ -997,8 +997,8 @@ def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, why, t, tt, st, diag):
 @nb.njit(cache=True)
 def run(chain, span, state, output, written):
     """Integrate from ``state.tt[0]`` to ``span.t_end`` (module docstring): ``chain`` a
-    :class:`Chain`, ``span`` a :class:`Span`, ``state`` a :class:`State` (updated in place),
-    ``output`` an :class:`Output`. ``st`` = [K, jh (MAX_HINGES), ch (MAX_HINGES)] and ``y`` =
+    `Chain`, ``span`` a `Span`, ``state`` a `State` (updated in place),
+    ``output`` an `Output`. ``st`` = [K, jh (MAX_HINGES), ch (MAX_HINGES)] and ``y`` =
     (beta, beta', W_in) are the state, updated in place; samples at k ``dt_out`` (k = written +
     1, ...) go to ``output`` (``e``: kinetic, potential, dissipated, input, friction demand).
     ``log`` (rows: t s, kind (1 closure, 2 opening, 3 relock, 4 onset, 5 rest), joint, hinges
@@ -1059,7 +1059,7 @@ def run(chain, span, state, output, written):
     ang_tol = 1e-13
     # the contact solve's limits as run-time integers: a literal constant argument would compile
     # a copy of the solver specialised to it (11 s each), where these share the one compiled
-    # for the onset search of :mod:`archquake.rigid.events`
+    # for the onset search of `archquake.rigid.events`
     max_sweeps = np.int64(SOLVE_SWEEPS)
     onset_sets = np.int64(RK.ACTIVE_SET_ITERATIONS)
     impact_sets = np.int64(IMPACT_ACTIVE_SETS)

@@ -1,15 +1,15 @@
-"""Compiled joint-force probes of the rigid chain (numba): :func:`archquake.rigid.forces.
+"""Compiled joint-force probes of the rigid chain (numba): `archquake.rigid.forces.
 joint_forces` over every sample in one call.
 
-At each recorded sample the stepper's next step is repeated (:func:`archquake.rigid.
+At each recorded sample the stepper's next step is repeated (`archquake.rigid.
 _step_kernels.project` at the mid-step configuration, warm-started from the previous sample's
-impulses), exactly as the plain loop of :func:`archquake.rigid.forces.joint_forces_reference`
+impulses), exactly as the plain loop of `archquake.rigid.forces.joint_forces_reference`
 does it, which a test holds this kernel to. The samples depend on each other only through that
 warm start, so they are probed in order, in one compiled loop.
 
-The rank test of :mod:`archquake.rigid.forces` (the smallest singular value of the active
+The rank test of `archquake.rigid.forces` (the smallest singular value of the active
 rows above ``RANK_TOLERANCE`` times the largest) is settled here where a bound proves it
-(:func:`rank_certificate`); the samples it leaves open go to numpy's SVD.
+(`rank_certificate`); the samples it leaves open go to numpy's SVD.
 
 SI units throughout: m, s, kg, N s.
 """
@@ -40,8 +40,8 @@ def _entry(row, q, body, px, py, dx, dy, sign, isq_m, isq_i):
 
 @nb.njit(cache=True)
 def rank_certificate(q, act, ja, jb, nrm, tan, pts, isq_m, isq_i):
-    """1 where the active rows (as :func:`archquake.rigid.forces._rows` builds them, each
-    scaled to unit norm) are proven independent with s_min / s_max > :data:`CERTIFIED_RATIO`;
+    """1 where the active rows (as `archquake.rigid.forces._rows` builds them, each
+    scaled to unit norm) are proven independent with s_min / s_max > `CERTIFIED_RATIO`;
     0 where they cannot be (more rows than velocities, or no row: 1); -1 where not proven.
 
     The bound: with G = R R^T = L L^T (Cholesky), lambda_min(G) = 1 / ||G^-1||_2 >=
@@ -127,10 +127,10 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
     acc : ndarray (nt,)
         The ground acceleration over each sample's step, m/s^2.
     mass, inertia, ja, jb, arm_a, arm_b, n0, t0
-        The :class:`~archquake.rigid.model.RigidModel`'s arrays.
+        The `RigidModel`'s arrays.
     h, g, gap_tol, tol, max_sweeps, mu, correction, hold
         The step (s), gravity (m/s^2) and the projection's settings, as
-        :func:`~archquake.rigid._step_kernels.project` takes them.
+        `project` takes them.
     lref : float
         The assembly's reference length, m (a rotation rate's velocity).
     impulsive_factor : float
@@ -153,7 +153,7 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
     pts : ndarray (nt, nj, 2, 2, 2)
         The corners on each side at ``qm``: [sample, joint, corner, side, xy], m.
     certified : ndarray (nt,) int8
-        :func:`rank_certificate` of each sample's active rows: 1 independent, 0 dependent,
+        `rank_certificate` of each sample's active rows: 1 independent, 0 dependent,
         -1 left to the SVD.
     """
     nt, nb_, _ = pos.shape

@@ -1,17 +1,17 @@
 """The rigid chain's ground input, compiled: the steps' mean ground accelerations of a sampled
 record and the verdict's suffix maxima.
 
-Both give the same bits as their NumPy expressions (:func:`archquake.rigid.model.mean_acceleration`
+Both give the same bits as their NumPy expressions (`archquake.rigid.model.mean_acceleration`
 on any motion, ``np.maximum.accumulate`` on the reversed steps), which the digests of the
 verdicts rest on; tests/rigid/test_input_kernels.py holds them to those expressions over every
 record of a suite and random records. They release the GIL, so a thread pool prepares a
 history in the thread that runs it.
 
-* :func:`step_means` evaluates each sub-sample with the compiled evaluator of every kernel
-  (:func:`archquake.ground._kernel.ground_acceleration`, the same arithmetic as
-  :meth:`archquake.ground.Record.acceleration`) and sums a step's sub-samples in NumPy's own
-  order (:func:`numpy_sum`), then divides by their number, as ``ndarray.mean`` does.
-* :func:`suffix_maxima` is ``np.maximum`` folded from the last step back.
+* `step_means` evaluates each sub-sample with the compiled evaluator of every kernel
+  (`archquake.ground._kernel.ground_acceleration`, the same arithmetic as
+  `archquake.ground.Record.acceleration`) and sums a step's sub-samples in NumPy's own
+  order (`numpy_sum`), then divides by their number, as ``ndarray.mean`` does.
+* `suffix_maxima` is ``np.maximum`` folded from the last step back.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ PAIRWISE_BLOCK = 128
 
 @nb.njit(cache=True, nogil=True)
 def numpy_sum(values, count):
-    """The sum of ``values[:count]`` (count <= :data:`PAIRWISE_BLOCK`) in the order of
+    """The sum of ``values[:count]`` (count <= `PAIRWISE_BLOCK`) in the order of
     ``np.add.reduce`` over a contiguous row: fewer than 8 terms one after another from 0.0;
     else eight partial sums ``r[j] = v[j] + v[j + 8] + ...`` over the whole blocks of eight,
     combined as ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7)), then the remainder one
@@ -79,7 +79,7 @@ def step_means(params, t0, h, sub_samples, out):
     t0, h : float
         Start and step, s.
     sub_samples : int
-        Sub-samples a step (at most :data:`PAIRWISE_BLOCK`).
+        Sub-samples a step (at most `PAIRWISE_BLOCK`).
     out : ndarray (n,)
     """
     values = np.empty(sub_samples)

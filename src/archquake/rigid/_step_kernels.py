@@ -1,4 +1,4 @@
-"""Compiled Moreau-Jean stepper of :mod:`archquake.rigid` (numba).
+"""Compiled Moreau-Jean stepper of `archquake.rigid` (numba).
 
 One step, h, from (q_k, v_k) (per free body: x, y, theta and their rates, relative to the
 ground; base bodies fixed in the ground's frame):
@@ -12,21 +12,21 @@ ground; base bodies fixed in the ground's frame):
 3. v_free = v_k + h M^-1 f(t_m), f = (-m x_g'', -m g, 0);
 4. v_{k+1} = argmin 1/2 ||v - v_free||_M over {H_N v >= b_N, H_T v = b_T}: projected Gauss-Seidel on
    the contact impulses p (p_N >= 0, p_T free), v = v_free + M^-1 H^T p, over-relaxed
-   (:data:`RELAX`), warm-started from the previous step's impulses (perfectly plastic: e = 0).
+   (`RELAX`), warm-started from the previous step's impulses (perfectly plastic: e = 0).
    With a finite friction coefficient mu, each joint's tangential impulse is clamped to
    |p_T| <= mu (p_N0 + p_N1), the current normal impulses of its corners: a fixed point of the
    sweep then satisfies Coulomb's law in 2D (stick with |p_T| < mu p_N, or slip opposite to p_T
    at the bound). That is no longer a projection (Coulomb's law has no potential), so neither
    uniqueness nor convergence is guaranteed; the sweep count and residual are reported.
-   :func:`run`'s default solver (``METHOD_DIRECT``, :func:`project_direct`) solves the
+   `run`'s default solver (``METHOD_DIRECT``, `project_direct`) solves the
    no-slip projection exactly on a guessed active set (the contacts that pushed at the
    previous step): one banded Cholesky of the Delassus matrix per step, corrected sets when
    the guess fails, and Gauss-Seidel only when no set is accepted after
-   :data:`ACTIVE_SET_ITERATIONS` or the refinement stalls (3 of the 3996 steps of Oppenheim's
+   `ACTIVE_SET_ITERATIONS` or the refinement stalls (3 of the 3996 steps of Oppenheim's
    4 s history at the verdict's step, 0.04 % of the bridge's steps under near-field records); it
    returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed of the rigid chain").
    With friction the no-slip solution is kept when every joint's tangential impulse lies in
-   its cone, |p_T| <= mu p_N (:func:`_in_cone`): every joint then sticks, which is Coulomb's
+   its cone, |p_T| <= mu p_N (`_in_cone`): every joint then sticks, which is Coulomb's
    law, so it is a solution of the frictional step (and its velocity, the no-slip
    projection, is unique). Only when a joint's impulse leaves its cone does the step run the
    clamped Gauss-Seidel, from the no-slip impulses clamped into the cones. The impulses of
@@ -40,7 +40,7 @@ ground; base bodies fixed in the ground's frame):
    7.7e-7 m/s, against the 2.4e-11 m/s asked);
 5. q_{k+1} = q_m + h/2 v_{k+1}.
 
-**Coulomb joints and the correction** (:func:`_record_slip`). A joint whose tangential impulse
+**Coulomb joints and the correction** (`_record_slip`). A joint whose tangential impulse
 ends a step on its cone's edge slips, and its reference offset (``slip_ref``) is released: the
 next step takes the offset it has then. Its slip is motion, not a drift for the tangential
 correction to undo. The reference was once kept through the slip. The correction's bound,
@@ -50,13 +50,13 @@ the friction force did positive work. On Oppenheim's arch under a step pulse of 
 0.2 s, with mu 0.8, the contacts did 4.6e6 J of work and the arch collapsed where the no-slip
 chain survives.
 
-**Position-level correction** (:func:`run`'s ``correction``, on by default; :func:`project`
-and :func:`project_direct` without it unless asked, as the event integrator and the force
+**Position-level correction** (`run`'s ``correction``, on by default; `project`
+and `project_direct` without it unless asked, as the event integrator and the force
 probes call them). With b = 0 the scheme holds velocities only, and a pivot in persistent
 contact drifts: q is advanced linearly in theta, so a corner turning about its pivot at omega
 leaves it by about r omega^2 h^2 / 2 a step (7e-8 m on a parabolic arch at 3 lambda), past
 ``gap_tol`` (1e-9 L): the corner dropped out with its joint's no-slip row and the block slid
-(33 mm in 0.29 s, docs/notes/mechanism.md). The bounds (:func:`_targets`): b_N = -g_c / h on a
+(33 mm in 0.29 s, docs/notes/mechanism.md). The bounds (`_targets`): b_N = -g_c / h on a
 corner open by g_c > 0 (pulled shut in one step; a penetration is not pushed out, which would
 throw the corner off at |g_c| / h: half the approach speed after an impact, a restitution the
 plastic model has not: it moved the energy kept over the half cycles of
@@ -83,7 +83,7 @@ that the contacts make in the step. An arch at rest on its supports
 step's mean velocity, -p^T H (v_k + v_{k+1}) / 2 = -(v_{k+1} - v_free)^T M (v_k + v_{k+1}) / 2.
 The positions advance by h (v_k + v_{k+1}) / 2 and the input work D_INPUT is taken on the same
 mean velocity, so T + V + D_CONTACT_WORK - D_INPUT is constant to rounding: the balance the runs
-report (:class:`archquake.rigid.run.EnergyBalance`). It is 0 where nothing moves relative to the
+report (`archquake.rigid.run.EnergyBalance`). It is 0 where nothing moves relative to the
 ground. D_FRICTION_WORK is its part on the slipping joints' tangential rows, -p_T H_T (v_k +
 v_{k+1}) / 2: mu p_N times the step's slip. D_DISSIPATED stays the ``damping`` column of the
 result, which the digests of the no-slip runs hold.
@@ -119,11 +119,11 @@ N_DIAG = 9
 #: 2e-5.
 RELAX = 1.3
 
-#: Contact solvers of :func:`run`: the plain projected Gauss-Seidel (:func:`project`, the
-#: reference) and the exact solve on a guessed active set (:func:`project_direct`).
+#: Contact solvers of `run`: the plain projected Gauss-Seidel (`project`, the
+#: reference) and the exact solve on a guessed active set (`project_direct`).
 METHOD_PGS = 0
 METHOD_DIRECT = 1
-#: :func:`project_direct`: regularisation of the (singular) Delassus matrix, relative to its
+#: `project_direct`: regularisation of the (singular) Delassus matrix, relative to its
 #: largest diagonal entry; refinement solves per active set; active sets tried before
 #: Gauss-Seidel. An accepted active set gives the exact projection whatever the number of
 #: sets tried, so the cap only decides when Gauss-Seidel takes over, and Gauss-Seidel is what
@@ -137,7 +137,7 @@ ACTIVE_SET_ITERATIONS = 24
 
 
 class Chain(NamedTuple):
-    """The chain's packed arrays (:class:`archquake.rigid.model.RigidModel`'s): per free body
+    """The chain's packed arrays (`archquake.rigid.model.RigidModel`'s): per free body
     ``mass`` (kg), ``inertia`` (kg m^2) and their inverses ``inv_m``, ``inv_i``; per joint the
     free bodies on its two sides ``ja``, ``jb`` (int, -1: the base), the corners relative to
     their bodies' centroids ``arm_a``, ``arm_b`` (nj, 2, 2) m, the undisplaced normal ``n0``
@@ -156,7 +156,7 @@ class Chain(NamedTuple):
 
 
 def pack_chain(model) -> Chain:
-    """The :class:`Chain` of a :class:`~archquake.rigid.model.RigidModel` (its arrays, not
+    """The `Chain` of a `RigidModel` (its arrays, not
     copied; the inverses computed once)."""
     return Chain(model.mass, model.inertia, 1.0 / model.mass, 1.0 / model.inertia, model.ja,
                  model.jb, model.arm_a, model.arm_b, model.n0, model.t0)
@@ -165,8 +165,8 @@ def pack_chain(model) -> Chain:
 class Stepping(NamedTuple):
     """The settings of a step: ``h`` (s), ``g`` (m/s^2), ``gap_tol`` (m, a corner is active
     below it), ``tol`` (m/s, the solver's), ``max_iter`` (Gauss-Seidel sweeps), ``mu``
-    (friction coefficient, 0: no slip), ``method`` (:data:`METHOD_PGS` or
-    :data:`METHOD_DIRECT`), ``h_corr`` (s, the position correction's time, 0: none) and
+    (friction coefficient, 0: no slip), ``method`` (`METHOD_PGS` or
+    `METHOD_DIRECT`), ``h_corr`` (s, the position correction's time, 0: none) and
     ``hold`` (m, its hold; module docstring)."""
 
     h: float
@@ -182,7 +182,7 @@ class Stepping(NamedTuple):
 
 def stepping(h: float, g: float, gap_tol: float, tol: float, max_iter: int, mu: float,
              method: int, correction: bool = True, hold_tol: float = 0.0) -> Stepping:
-    """A :class:`Stepping` (types fixed for the compiled kernels): ``correction`` False turns
+    """A `Stepping` (types fixed for the compiled kernels): ``correction`` False turns
     the position-level correction off (``h_corr`` and ``hold`` 0)."""
     return Stepping(float(h), float(g), float(gap_tol), float(tol), int(max_iter), float(mu),
                     int(method), float(h) if correction else 0.0,
@@ -202,8 +202,8 @@ class State(NamedTuple):
 
 
 class Record(NamedTuple):
-    """Where :func:`run` writes its samples: every ``out_every`` steps a row of ``q``, ``v``
-    (k, nb, 3) and ``diag`` (k, :data:`N_DIAG`)."""
+    """Where `run` writes its samples: every ``out_every`` steps a row of ``q``, ``v``
+    (k, nb, 3) and ``diag`` (k, `N_DIAG`)."""
 
     out_every: int
     q: np.ndarray
@@ -236,7 +236,7 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
 
 @nb.njit(cache=True, inline="always")
 def _corner(q, trig, body, arm):
-    """:func:`_point` with the body's cos and sin read from ``trig`` (the same numbers)."""
+    """`_point` with the body's cos and sin read from ``trig`` (the same numbers)."""
     if body < 0:
         return arm[0], arm[1]
     c = trig[body, 0]
@@ -246,7 +246,7 @@ def _corner(q, trig, body, arm):
 
 @nb.njit(cache=True, inline="always")
 def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
-    """:func:`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
+    """`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
     entry is overwritten); ``trig`` (nb, 2) scratch: each body's cos and sin, computed once
     (not once per corner: the same numbers, a fifth of the calls)."""
     nj = ja.shape[0]
@@ -295,7 +295,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
     the Delassus diagonal (m/s per N s), ``offset[r]`` (tangential rows) the tangential offset
     (P_b - P_a) . t of the row's point, m. A corner is active when its gap is <= ``gap_tol``, or <=
     ``hold_tol`` (m) if it pushed at the previous step (``p_warm`` > 0; the position-level
-    correction's hold, :func:`run`)."""
+    correction's hold, `run`)."""
     nj = ja.shape[0]
     rows_j = np.zeros(3 * nj, np.int64)
     rows_k = np.zeros(3 * nj, np.int64)
@@ -311,7 +311,7 @@ def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_to
 @nb.njit(cache=True, inline="always")
 def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol, rows_j,
                rows_k, ja_rows, jb_rows, diag, offset):
-    """:func:`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
+    """`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
     set); returns ``nrows``."""
     nj = ja.shape[0]
     nrows = 0
@@ -356,7 +356,7 @@ def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, ho
 
 @nb.njit(cache=True)
 def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
-    """The rows' bounds (nrows,), m/s, of the position-level correction (:func:`run`), all zero
+    """The rows' bounds (nrows,), m/s, of the position-level correction (`run`), all zero
     when ``correction <= 0`` (s; the velocity-level cone alone).
 
     Normal row of an active corner open by g_c > 0 (m): -g_c / ``correction`` (pulled shut in
@@ -373,7 +373,7 @@ def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
 
 @nb.njit(cache=True, inline="always")
 def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen):
-    """:func:`_targets` written into ``target`` (its first ``nrows`` entries), ``seen`` (nj,)
+    """`_targets` written into ``target`` (its first ``nrows`` entries), ``seen`` (nj,)
     bool scratch."""
     for r in range(nrows):
         target[r] = 0.0
@@ -402,7 +402,7 @@ def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, tar
 @nb.njit(cache=True)
 def _correction_work(nrows, p, target):
     """-sum_r p_r target_r, J: the part of the kinetic energy a projection removes that is the
-    position-level correction's (impulses ``p`` N s, bounds ``target`` m/s; :func:`run`)."""
+    position-level correction's (impulses ``p`` N s, bounds ``target`` m/s; `run`)."""
     w = 0.0
     for r in range(nrows):
         w -= p[r] * target[r]
@@ -414,7 +414,7 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
          max_iter, mu, target):
     """Projected over-relaxed Gauss-Seidel from the impulses ``p`` (nrows,), already applied to
     ``v``; both updated in place. ``target`` (nrows,), m/s: the rows' bounds, H_r v >= target[r]
-    (normal rows) or H_r v = target[r] (tangential rows, always 0) (:func:`_targets`). Returns
+    (normal rows) or H_r v = target[r] (tangential rows, always 0) (`_targets`). Returns
     (sweeps, residual m/s)."""
     nj = ja.shape[0]
     pn_joint = np.zeros(nj)
@@ -456,11 +456,11 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
             mu, correction=0.0, hold_tol=0.0, slip_ref=None, work=None):
     """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
     contacts (module docstring, step 4), by projected Gauss-Seidel alone (the plain stepper,
-    ``method = 0`` of :func:`run`).
+    ``method = 0`` of `run`).
 
     ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
     ``correction``: s, > 0 for the position-level correction of step 4 (the normal rows bound
-    H_n v >= -gap / ``correction``, :func:`_targets`); 0 (default): the cone H_n v >= 0.
+    H_n v >= -gap / ``correction``, `_targets`); 0 (default): the cone H_n v >= 0.
 
     Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
     N s; sweeps taken; final residual m/s)."""
@@ -474,9 +474,9 @@ def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_war
 @nb.njit(cache=True, inline="always")
 def _project_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
                   max_iter, mu, correction, hold_tol, slip_ref, work, ws):
-    """:func:`project` in the work arrays ``ws`` (:class:`Work`): the velocity is written into
+    """`project` in the work arrays ``ws`` (`Work`): the velocity is written into
     ``ws.vn``, the impulses into ``ws.imp``, the slipping joints into ``ws.slip_p``,
-    ``ws.t_ja``, ``ws.t_jb`` (:func:`_record_slip`); returns (sweeps, residual)."""
+    ``ws.t_ja``, ``ws.t_jb`` (`_record_slip`); returns (sweeps, residual)."""
     nj = ja.shape[0]
     rows_j = ws.rows_j
     rows_k = ws.rows_k
@@ -524,7 +524,7 @@ def _record_slip(nrows, rows_j, rows_k, p, mu, ja_rows, jb_rows, slip_ref, ws):
     """After a Coulomb solve (``mu`` > 0): every joint whose tangential impulse sits on its
     cone's edge, |p_T| >= mu p_N (1 - 1e-9), slips. Its impulse goes to ``ws.slip_p`` (nj,) N s
     and its tangential Jacobian rows to ``ws.t_ja``, ``ws.t_jb`` (nj, 3), for the friction's
-    work (:func:`run`); its reference offset ``slip_ref`` is released (NaN: taken anew when
+    work (`run`); its reference offset ``slip_ref`` is released (NaN: taken anew when
     the joint next sticks), since its slip is motion, not drift for the correction to undo.
     ``ws.slip_p`` is zero for the other joints (all of them when ``mu`` <= 0)."""
     slip_p = ws.slip_p
@@ -632,7 +632,7 @@ def _envelope_solve(w_mat, first, n, rhs, out):
 def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
                    max_iter, mu, max_sets=ACTIVE_SET_ITERATIONS, correction=0.0, hold_tol=0.0,
                    slip_ref=None, work=None):
-    """The same contact step as :func:`project`, solved exactly on a guessed active set,
+    """The same contact step as `project`, solved exactly on a guessed active set,
     Gauss-Seidel only when the guess fails, or (``mu > 0``) when a joint's tangential impulse
     leaves its Coulomb cone (module docstring, step 4).
 
@@ -648,12 +648,12 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     conditions to ``tol``: normal impulses in S >= -tol / W_rr, normal rows outside S separating
     (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
     to ``max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
-    (:func:`_pgs`) finishes from the previous step's impulses. With ``mu > 0`` an accepted
+    (`_pgs`) finishes from the previous step's impulses. With ``mu > 0`` an accepted
     set's impulses are tested against the Coulomb cones, |p_T| <= mu (p_N0 + p_N1) + tol /
-    W_TT at every joint (:func:`_in_cone`): kept if they pass (every joint sticks), otherwise
-    clamped into the cones (:func:`_clamp_to_cone`) and finished by the clamped Gauss-Seidel.
-    ``correction``: as :func:`project` (the equalities and the separating test then read
-    H_r v = target_r, H_r v >= target_r - tol). Returns as :func:`project`; the count is the
+    W_TT at every joint (`_in_cone`): kept if they pass (every joint sticks), otherwise
+    clamped into the cones (`_clamp_to_cone`) and finished by the clamped Gauss-Seidel.
+    ``correction``: as `project` (the equalities and the separating test then read
+    H_r v = target_r, H_r v >= target_r - tol). Returns as `project`; the count is the
     number of factorised active sets plus any Gauss-Seidel sweeps."""
     ws = workspace(inv_m.shape[0], ja.shape[0])
     v = ws.vn
@@ -665,16 +665,16 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
 
 
 class Work(NamedTuple):
-    """The work arrays of one step (:func:`workspace`): allocated once per run, overwritten by
+    """The work arrays of one step (`workspace`): allocated once per run, overwritten by
     every step (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the
     mid-step configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses;
-    ``gaps``, ``nrm``, ``tan``, ``pts``: :func:`geometry`'s; ``corr`` (1,): the correction's
+    ``gaps``, ``nrm``, ``tan``, ``pts``: `geometry`'s; ``corr`` (1,): the correction's
     work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; ``sa``, ``sb``, ``ha``,
     ``hb``, ``tg``: the direct solve's equality rows packed in set order (bodies, Jacobian
     entries, bounds); ``pn`` (nj,) the joints' normal impulses (Gauss-Seidel's scratch);
     ``slip_p`` (nj,) the tangential impulse of each joint that slipped in the step (N s, 0 for
     the others) and ``t_ja``, ``t_jb`` (nj, 3) its tangential Jacobian rows
-    (:func:`_record_slip`); the others the contact rows' and the direct solve's scratch."""
+    (`_record_slip`); the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -718,8 +718,8 @@ class Work(NamedTuple):
 
 @nb.njit(cache=True)
 def workspace(nbody, nj):
-    """The :class:`Work` arrays of one step of ``nbody`` free bodies and ``nj`` joints:
-    allocated once, reused by every step (:func:`advance`)."""
+    """The `Work` arrays of one step of ``nbody`` free bodies and ``nj`` joints:
+    allocated once, reused by every step (`advance`)."""
     nr = 3 * nj
     return Work(np.zeros((nbody, 3)), np.zeros((nbody, 3)), np.zeros((nbody, 3)),
                 np.zeros((nj, 3)), np.zeros((nj, 2)), np.zeros((nj, 2)), np.zeros((nj, 2)),
@@ -737,7 +737,7 @@ def workspace(nbody, nj):
 @nb.njit(cache=True, inline="always")
 def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
                  max_iter, mu, max_sets, correction, hold_tol, slip_ref, work, ws):
-    """:func:`project_direct` in the work arrays ``ws`` (:class:`Work`): the velocity is
+    """`project_direct` in the work arrays ``ws`` (`Work`): the velocity is
     written into ``ws.vn``, the impulses into ``ws.imp``; returns (count, residual)."""
     nj = ja.shape[0]
     v = ws.vn
@@ -976,7 +976,7 @@ def _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
     """Every active joint's tangential impulse lies in its Coulomb cone, |p_T| <= mu p_N
     (p_N = p_N0 + p_N1, N s), to the solve's accuracy ``tol`` / W_TT (``tol`` m/s, W_TT the
     tangential row's Delassus diagonal): the no-slip solution then sticks at every joint, and
-    satisfies Coulomb's law (:func:`project_direct`)."""
+    satisfies Coulomb's law (`project_direct`)."""
     for r in range(nrows):
         if rows_k[r] == 2:
             pn = _joint_normal(r, rows_j, rows_k, p)
@@ -1013,13 +1013,13 @@ def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def advance(chain, cfg, state, acc_k, ws, av_k):
-    """One Moreau-Jean step of the :class:`Chain` ``chain`` from ``state`` (:class:`State`)
+    """One Moreau-Jean step of the `Chain` ``chain`` from ``state`` (`State`)
     under the mean ground acceleration ``acc_k`` (m/s^2) and the mean upward ground
     acceleration ``av_k`` (m/s^2, gravity reads g + av_k), with the settings ``cfg``
-    (:class:`Stepping`): steps 1-4 of the module docstring. ``state.slip_ref`` is updated in
+    (`Stepping`): steps 1-4 of the module docstring. ``state.slip_ref`` is updated in
     place; ``state.q``, ``state.v`` and ``state.p_warm`` are not changed: the caller sets
     v = vn, q = qm + h/2 vn (step 5) and the warm start. The step writes into ``ws``
-    (:class:`Work`, allocated once per run): ``ws.qm``, ``ws.gaps`` (at qm), ``ws.vf`` (v_free),
+    (`Work`, allocated once per run): ``ws.qm``, ``ws.gaps`` (at qm), ``ws.vf`` (v_free),
     ``ws.vn``, ``ws.imp`` (nj, 3) and ``ws.corr`` (the correction's work). Returns (sweeps,
     residual m/s)."""
     q = state.q
@@ -1054,11 +1054,11 @@ def advance(chain, cfg, state, acc_k, ws, av_k):
 def run(chain, cfg, state, acc, vacc, record, diag):
     """Advance ``acc.shape[0]`` steps (``acc[k]``: the mean ground acceleration over step k,
     m/s^2; ``vacc[k]``: the mean upward ground acceleration, or ``vacc`` empty for none; the
-    input work counts both) of the :class:`Chain` ``chain`` with the settings ``cfg`` (:class:`Stepping`; its
+    input work counts both) of the `Chain` ``chain`` with the settings ``cfg`` (`Stepping`; its
     ``h_corr`` and ``hold``: the position-level correction, module docstring; 0: the
     velocity-level scheme alone, as the event integrator's stepping windows), writing q, v,
     diagnostics after every ``record.out_every`` steps into row ``k // out_every`` of
-    ``record``'s arrays (:class:`Record`). ``state`` (:class:`State`) and ``diag`` (the running
+    ``record``'s arrays (`Record`). ``state`` (`State`) and ``diag`` (the running
     D_* values) are updated in place. Returns the number of sweeps of the worst step."""
     q = state.q
     v = state.v

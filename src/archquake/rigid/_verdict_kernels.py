@@ -1,31 +1,31 @@
 """Compiled verdict-only run of the rigid chain (numba): the Moreau-Jean step of
-:func:`archquake.rigid._step_kernels.run` (the same step, bit for bit, through
-``project_direct``), with the verdict of :meth:`archquake.dem.result.DemResult.from_samples`
+`archquake.rigid._step_kernels.run` (the same step, bit for bit, through
+``project_direct``), with the verdict of `archquake.dem.result.DemResult.from_samples`
 read on the fly instead of from recorded samples, and three shortcuts that do not change it:
 
 * **skip at rest**: while the chain is untouched at rest (q, v exactly the rest state) and the
   step's mean ground acceleration lies inside the safe domain (-lambda_- g, lambda_+ g) (the
-  no-slip chain's onset multipliers, :attr:`archquake.rigid.events.EventModel.onset_g`), the
+  no-slip chain's onset multipliers, `archquake.rigid.events.EventModel.onset_g`), the
   exact solution does not move, so the step is not computed. Once the chain has moved, every
   step is computed: a chain that has settled again (kinetic energy below ``REST_KINETIC`` W L)
   still moves a little, and on records the verdict near a threshold depends on that motion
   (zeroing it and skipping changed verdicts at threshold levels of the bridge example under
   near-field records);
 * **stop at collapse**: at the first step meeting a collapse criterion
-  (:func:`archquake.dem._kernels.collapsed`);
+  (`archquake.dem._kernels.collapsed`);
 * **stop at proven rest**: at rest with the rest of the ground motion inside the safe domain (a
   suffix maximum of the ground acceleration): untouched, or, after a motion, settled (kinetic
   energy below ``REST_KINETIC`` W L for a rest window, every joint closed, the safe domain
   narrowed by ``REST_MARGIN``, the configuration being only near the undisplaced one); or
-  settled after the end of the excitation (:func:`~archquake.dem.result.settled`'s rule).
+  settled after the end of the excitation (`settled`'s rule).
 
 Every step is checked (the recorded runs check at their output samples); the hinge onset is
 read on the step's mid-step corner gaps (``_rigid_kernels.geometry``), the DEM's on the recorded
 joint openings: both are the opening of a joint end beyond ``hinge_opening`` L.
 
 The impacts before a collapse (its half cycle) are the sign changes of the rotation measure
-(:func:`archquake.dem.result.crossings`), counted on both the assembly's rotation link and its
-mirror image; the caller picks one with :func:`archquake.dem.result.mirror_opens_first`'s rule.
+(`archquake.dem.result.crossings`), counted on both the assembly's rotation link and its
+mirror image; the caller picks one with `archquake.dem.result.mirror_opens_first`'s rule.
 """
 
 from __future__ import annotations
@@ -87,10 +87,10 @@ OUTCOME_INDETERMINATE = 3
 
 
 class Frame(NamedTuple):
-    """The assembly's arrays the verdict reads besides the :class:`~._step_kernels.Chain`:
+    """The assembly's arrays the verdict reads besides the `Chain`:
     ``base_state`` (n_blocks, 3) every block's undisplaced x, y (m), theta (rad);
     ``free_blocks`` (nb,) int the assembly index of each free body; ``free_mask`` (n_blocks,)
-    int 1 for a free block; ``cpar``: :func:`archquake.dem.result.collapse_parameters`;
+    int 1 for a free block; ``cpar``: `archquake.dem.result.collapse_parameters`;
     ``links_block`` (2, 2) int, ``links_local`` (2, 2, 2) m, ``links_sign`` (2,): the two
     rotation links (the assembly's, its mirror image), their blocks and points relative to the
     blocks' centroids."""
@@ -105,11 +105,11 @@ class Frame(NamedTuple):
 
 
 class Histories(NamedTuple):
-    """Histories for :func:`verdict_batch`, end to end: history i's steps are
+    """Histories for `verdict_batch`, end to end: history i's steps are
     ``acc[starts[i]:starts[i + 1]]`` (the steps' mean ground accelerations, m/s^2), with the
     suffix maxima ``suffix_pos``, ``suffix_neg`` (the largest ground acceleration towards +x /
     -x, a magnitude, from a step to the history's end, m/s^2) and the parameters ``pars[i]``
-    (:data:`N_PAR`, P_*)."""
+    (`N_PAR`, P_*)."""
 
     acc: np.ndarray
     suffix_pos: np.ndarray
@@ -141,13 +141,13 @@ def _chord_angle(st, links_block, links_local, ell):
 
 @nb.njit(cache=True, nogil=True)
 def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc):
-    """Run the chain (:class:`~._step_kernels.Chain` ``chain``, :class:`Frame` ``frame``)
+    """Run the chain (`Chain` ``chain``, `Frame` ``frame``)
     from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2) up to a verdict
-    (module docstring) and write it into ``out`` (:data:`N_OUT`).
+    (module docstring) and write it into ``out`` (`N_OUT`).
 
     ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
-    (magnitude) from step k to the end, m/s^2; ``par``: :data:`N_PAR` parameters (P_*);
-    ``vacc``, ``skip_acc``: as :class:`Histories` (the suffix maxima are then skip_acc's)."""
+    (magnitude) from step k to the end, m/s^2; ``par``: `N_PAR` parameters (P_*);
+    ``vacc``, ``skip_acc``: as `Histories` (the suffix maxima are then skip_acc's)."""
     mass = chain.mass
     inertia = chain.inertia
     base_state = frame.base_state
@@ -342,8 +342,8 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_
 
 @nb.njit(cache=True, nogil=True)
 def verdict_batch(chain, frame, hist, outs, first, last):
-    """:func:`verdict_run` for histories ``first`` to ``last - 1`` of ``hist``
-    (:class:`Histories`), history i's verdict into ``outs[i]``. Releases the GIL: a thread
+    """`verdict_run` for histories ``first`` to ``last - 1`` of ``hist``
+    (`Histories`), history i's verdict into ``outs[i]``. Releases the GIL: a thread
     pool runs slices."""
     for i in range(first, last):
         a = hist.starts[i]

@@ -1,12 +1,12 @@
 """The rigid-block chain integrated from event to event: ``simulate_rigid(...,
 solver="events")``.
 
-The model is :mod:`archquake.rigid`'s (rigid voussoirs, plastic no-slip corner
+The model is `archquake.rigid`'s (rigid voussoirs, plastic no-slip corner
 contacts, any number of hinges); only the integration differs. Between contact changes the arch
 moves with K - 3 degrees of freedom (K hinges), an ODE in the hinges' relative rotations
 integrated to a tolerance; closures (plastic impacts, the same cone projection as the time
 stepper's), openings (a corner force of a locked joint reaching zero) and the onset are located
-as events (:mod:`archquake.rigid._event_kernels`). Energy between events is conserved to
+as events (`archquake.rigid._event_kernels`). Energy between events is conserved to
 the integrator's tolerance, instead of the stepper's O(h) loss in persistent contact.
 
 What the event integrator does not model (a hinge in tension, a joint separating, chattering
@@ -73,7 +73,7 @@ _MODELS: dict[int, EventModel] = {}
 
 @dataclass(frozen=True)
 class EventModel:
-    """A :class:`~archquake.rigid.model.RigidModel` laid out for the event integrator:
+    """A `RigidModel` laid out for the event integrator:
     blocks in chain order (joint j between blocks j - 1 and j, the springings -1; a chain whose
     last block is free, such as a block on its base, has no joint n), prefix sums
     of the blocks' mass properties, the joints' undisplaced corners ``p0`` (nj, 2, 2), normals,
@@ -120,7 +120,7 @@ class EventModel:
 
     @classmethod
     def of(cls, rigid: RigidModel) -> EventModel:
-        """:meth:`build`, memoised on the rigid model (its onset thresholds are computed once)."""
+        """`build`, memoised on the rigid model (its onset thresholds are computed once)."""
         key = id(rigid)
         hit = _MODELS.get(key)
         if hit is not None and hit.rigid is rigid:
@@ -166,16 +166,16 @@ class EventModel:
         """(lambda_+, lambda_-): the ground accelerations, in g, towards +x and -x at which the
         locked arch starts to move (the no-slip rigid chain's collapse multipliers), by
         bisection on the Gauss projection to 1e-12 (bracketed by 20 g, doubled while the arch
-        stays); inf above :data:`ONSET_CEILING_G`, 0 below :data:`ONSET_FLOOR_G`. :meth:`onset_near`
+        stays); inf above `ONSET_CEILING_G`, 0 below `ONSET_FLOOR_G`. `onset_near`
         gives the same numbers with fewer projections when they are known roughly."""
         return self._bisect(1.0), self._bisect(-1.0)
 
     def onset_near(self, hint_g: float) -> tuple[float, float]:
-        """:attr:`onset_g`, the same numbers, found with fewer projections from a rough value
+        """`onset_g`, the same numbers, found with fewer projections from a rough value
         ``hint_g`` (g) of lambda_+ (the limit analysis's, which the chain's exceeds by 1e-8 to
         2e-7 of itself: its projection's tolerances).
 
-        The bisection of :attr:`onset_g` is replayed step by step, but a projection whose
+        The bisection of `onset_g` is replayed step by step, but a projection whose
         answer a bracket already gives is not computed: once the arch is shown to stay at
         ``a`` and to move at ``b``, every midpoint below ``a`` stays and every one above ``b``
         moves (the bisection's own premise), so only the midpoints inside (a, b) are
@@ -205,7 +205,7 @@ class EventModel:
         return 0.0, math.inf
 
     def _bisect(self, sgn: float, stays: float = 0.0, moves: float = math.inf) -> float:
-        """The bisection of :attr:`onset_g` towards ``sgn`` x, taking the arch to stay at rest
+        """The bisection of `onset_g` towards ``sgn`` x, taking the arch to stay at rest
         at or below ``stays`` and to move at or above ``moves`` (g) without projecting."""
 
         def moving(x: float) -> bool:
@@ -241,8 +241,8 @@ def stays_at_rest(model: RigidModel, motion, *, g: float = STANDARD_GRAVITY) -> 
     inside their cones balancing gravity and the inertia force -m a) form an interval, since
     the conditions are linear in the forces and in a. So the chain stays at rest through the
     whole motion exactly when it stays under the motion's largest acceleration towards +x and
-    its largest towards -x (:func:`archquake.ground.base.acceleration_peaks`): two Gauss
-    projections (:meth:`EventModel._moves`, the test of :attr:`EventModel.onset_g`), whatever
+    its largest towards -x (`archquake.ground.base.acceleration_peaks`): two Gauss
+    projections (`EventModel._moves`, the test of `EventModel.onset_g`), whatever
     the motion's length. Then the time stepper's every step projects the free velocity back to
     zero, and the event integrator never finds an onset.
 
@@ -259,7 +259,7 @@ def stays_at_rest(model: RigidModel, motion, *, g: float = STANDARD_GRAVITY) -> 
     -------
     bool
         False also where the test does not apply (a motion that does not describe its peaks, a
-        model that is not a single chain, a peak beyond :data:`ONSET_CEILING_G`).
+        model that is not a single chain, a peak beyond `ONSET_CEILING_G`).
     """
     from archquake.ground.base import acceleration_peaks
 
@@ -292,7 +292,7 @@ def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
 def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, dt_out: float,
                     out_q, out_v, out_e, written: int, diag, g: float, state_all, free, cpar,
                     stop_at_collapse: bool) -> tuple[int, float, bool]:
-    """Run the time stepper (:func:`archquake.rigid._step_kernels.run`, direct solve, its
+    """Run the time stepper (`archquake.rigid._step_kernels.run`, direct solve, its
     default step) from (q, v) at t0 to the first output time at least ``window`` s later,
     writing the samples it passes; (q, v) become its end state. Returns (samples written, end
     time, collapsed)."""
@@ -355,7 +355,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
         ``times`` (nt,) s; ``q``, ``v`` (nt, nb, 3); ``e`` (nt, 5): kinetic, potential,
         dissipated, input work (J), friction demand; ``status`` (``_event_kernels.STATUS_*``)
         and ``t`` (s) reached; ``windows_s``: the times at which the time stepper took over for
-        ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (:data:`WHY`);
+        ``fallback_window`` sqrt(L/g), with ``window_why`` the reasons (`WHY`);
         ``counters`` and ``log`` (``_event_kernels.run``); ``max_drift_m``; ``state``: the final
         (st, y) of the kernel; ``wall_s``.
     """
@@ -456,14 +456,14 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             "wall_s": wall}
 
 
-#: The event log's kinds (:func:`archquake.rigid._event_kernels.run`).
+#: The event log's kinds (`archquake.rigid._event_kernels.run`).
 EVENT_KINDS = {1: "closure", 2: "opening", 3: "relock", 4: "onset", 5: "rest", 6: "resume"}
 
 
 def events_summary(raw: dict) -> dict:
     """The event integrator's record for JSON: counts of closures, openings, onsets and cut
     accumulations, the times (s) and reasons the time stepper took over, the steps taken, and
-    the event log: every event with its time (s), kind (:data:`EVENT_KINDS`), joint (-1 for
+    the event log: every event with its time (s), kind (`EVENT_KINDS`), joint (-1 for
     none) and the number of hinges after it."""
     c = raw["counters"]
     return {"closures": int(c[EK.N_CLOSURES]), "openings": int(c[EK.N_OPENINGS]),

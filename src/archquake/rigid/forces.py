@@ -1,8 +1,8 @@
-"""Joint forces of the rigid chain (:mod:`archquake.rigid`): the line of thrust
+"""Joint forces of the rigid chain (`archquake.rigid`): the line of thrust
 and the friction demand of the mechanism in use.
 
 At a recorded sample (q, v) the stepper's next step is repeated (the same contact projection,
-:func:`archquake.rigid._step_kernels.project`, at the mid-step configuration, warm-started
+`archquake.rigid._step_kernels.project`, at the mid-step configuration, warm-started
 from the previous sample's impulses) and each joint's corner impulses over the step, divided by
 the time step h, are its forces: N = (p_0 + p_1) / h (compressive), V = p_T / h. Where the
 resultant crosses the joint line follows from the two corner forces alone (the tangential one
@@ -215,7 +215,7 @@ def _independent(h: np.ndarray) -> bool:
 
 
 def _setup(run, motion, g: float | None, every: int) -> dict:
-    """What both probes of :func:`joint_forces` read: the model, the step and the projection's
+    """What both probes of `joint_forces` read: the model, the step and the projection's
     settings, the samples used and their ground accelerations."""
     res = run.result
     g = res.g if g is None else float(g)
@@ -262,7 +262,7 @@ def _history(s: dict, imp: np.ndarray, unique: np.ndarray, impulsive: np.ndarray
 
 
 def _entries(rows, q, body, p, d, sign, isq_m, isq_i) -> None:
-    """One body's entries of a contact row, for every sample at once (as :func:`_rows`'s
+    """One body's entries of a contact row, for every sample at once (as `_rows`'s
     ``entry``): ``rows`` (ns, 3 nb), ``q`` (ns, nb, 3), the point ``p`` and direction ``d``
     (ns, 2)."""
     if body < 0:
@@ -275,7 +275,7 @@ def _entries(rows, q, body, p, d, sign, isq_m, isq_i) -> None:
 
 def _unique(model: RigidModel, active: np.ndarray, qm: np.ndarray, nrm: np.ndarray,
             tan: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    """The rank test of every sample (nt,) bool: the rows of :func:`_rows`, built at once for
+    """The rank test of every sample (nt,) bool: the rows of `_rows`, built at once for
     all samples that share a set of active corners, and one batched SVD per set."""
     nt, nj = active.shape[:2]
     nb = qm.shape[1]
@@ -321,12 +321,12 @@ def _unique(model: RigidModel, active: np.ndarray, qm: np.ndarray, nrm: np.ndarr
 
 
 def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> JointForceHistory:
-    """The joint forces of ``run`` (a :class:`~archquake.rigid.run.RigidRun`) at its
+    """The joint forces of ``run`` (a `RigidRun`) at its
     recorded samples, under the ``motion`` it was run with (module docstring).
 
     Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
     recorded samples. Cost: one contact projection per sample used, all in one compiled call
-    (:func:`archquake.rigid._force_kernels.probe`; :func:`joint_forces_reference` is its
+    (`archquake.rigid._force_kernels.probe`; `joint_forces_reference` is its
     plain twin), which also proves most samples' rank test by a bound; the SVD settles the
     rest. A run of the event integrator (``solver="events"``, no time step of its own)
     is probed with the stepper's default step."""
@@ -352,7 +352,7 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
 
 def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
                          ) -> JointForceHistory:
-    """:func:`joint_forces` of a run at rest (``run.at_rest``: the motion never reaches the
+    """`joint_forces` of a run at rest (``run.at_rest``: the motion never reaches the
     onset of hinging), with three projections instead of one a sample.
 
     The locked arch is statically indeterminate (3(n + 1) independent rows or more for 3n
@@ -389,7 +389,7 @@ def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
 
 def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 1
                            ) -> JointForceHistory:
-    """:func:`joint_forces` by a plain loop over the samples (one projection and one rank test
+    """`joint_forces` by a plain loop over the samples (one projection and one rank test
     each, in Python): the twin a test holds the compiled probe to."""
     s = _setup(run, motion, g, every)
     res, model, picks, h, acc = s["res"], s["model"], s["picks"], s["h"], s["acc"]

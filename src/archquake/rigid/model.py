@@ -7,14 +7,14 @@ mechanisms and had to re-express the configuration at each switch. The DEM shows
 phases of 0.1-0.4 s and joints closing one after another. A chain of rigid blocks whose joints
 may open at either corner has all of these motions at once, and needs no choice of mechanism:
 
-* each block (every voussoir, :class:`archquake.dem.assembly.Assembly`, the DEM's own
+* each block (every voussoir, `archquake.dem.assembly.Assembly`, the DEM's own
   description, so both models read the same blocks, masses and joints) is a rigid body
   (x, y, theta), in the frame of the ground (inertial load -m x_g'');
 * each joint has two corner contacts (intrados, extrados) with a unilateral normal constraint
   (gap >= 0, compressive impulse), and while either corner is in contact, no sliding (tangential
   relative velocity zero; the friction demand |p_T| / p_N is recorded and reported, to be read
   against mu = 0.8), or optionally Coulomb friction (``friction=mu``);
-* Moreau-Jean time stepping at velocity level (:mod:`archquake.rigid._step_kernels`): each
+* Moreau-Jean time stepping at velocity level (`archquake.rigid._step_kernels`): each
   step's velocity is the kinetic-metric projection of the unconstrained velocity onto the cone of
   admissible velocities of the contacts that are closed at mid-step, i.e. perfectly plastic
   impacts (e = 0), Moreau's sweeping process, with a position-level correction: an open
@@ -25,16 +25,16 @@ may open at either corner has all of these motions at once, and needs no choice 
   contact whose impulse would be tensile separates), migrate, two or more degrees of freedom
   move at once, closures are staggered or simultaneous as the geometry makes them; for a
   simultaneous closure at phi = 0 the step is exactly the chain law's cone projection
-  (:func:`archquake.mechanism.impact_chain.cone_projection`; test).
+  (`archquake.mechanism.impact_chain.cone_projection`; test).
 
 Why time stepping and not events: the number of possible contact states is 3^(n+1), the set of
 active contacts changes during a half cycle tens of times, and closures accumulate (a closing
 joint can reopen its neighbour at once); Moreau-Jean needs no event location and is robust to
 accumulation, at first order in h. The convergence in h is measured (docs/notes/mechanism.md).
 
-Energies are relative to the ground. The results are a :class:`archquake.dem.DemResult` built
-by the DEM's own post-processing (:meth:`DemResult.from_samples`, through
-:func:`archquake.rigid.run._samples_to_result`, which any integrator's samples go to), so impacts,
+Energies are relative to the ground. The results are a `archquake.dem.DemResult` built
+by the DEM's own post-processing (`DemResult.from_samples`, through
+`archquake.rigid.run._samples_to_result`, which any integrator's samples go to), so impacts,
 hinges, collapse criteria and the rotation measure are read exactly as in the DEM; in it,
 ``strain`` is zero and the ``damping`` column holds the energy removed by the contact
 projections (the plastic impacts, the scheme's O(h) loss in persistent contacts, and the
@@ -85,7 +85,7 @@ ACC_SAMPLES = 16
 
 @dataclass(frozen=True)
 class RigidModel:
-    """An :class:`Assembly` packed for the stepper: free bodies and joint corners.
+    """An `Assembly` packed for the stepper: free bodies and joint corners.
 
     ``body`` maps assembly block -> free-body index (-1 for base blocks); for joint j,
     ``ja[j]``/``jb[j]`` are the free bodies on its ``left``/``right`` side (-1: the base),
@@ -186,9 +186,9 @@ def mean_vertical(motion, t0: float, h: float, n: int) -> np.ndarray:
     """The upward ground acceleration, m/s^2, averaged over each of ``n`` steps of ``h`` s from
     ``t0`` s, (n,); empty when the motion has no vertical (the stepper's gravity is then g).
 
-    A pulse's vertical is R direction x_g''(t) + c (:mod:`archquake.ground.pulses`): the mean
-    of each step is R direction times :func:`mean_acceleration`'s, plus c. A record's vertical
-    component (:class:`~archquake.ground.vertical.WithVertical`) is averaged as a record.
+    A pulse's vertical is R direction x_g''(t) + c (`archquake.ground.pulses`): the mean
+    of each step is R direction times `mean_acceleration`'s, plus c. A record's vertical
+    component (`WithVertical`) is averaged as a record.
     """
     if not has_vertical(motion):
         return np.empty(0)
@@ -205,8 +205,8 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     The mean of a step is that of its sub-samples ``motion.acceleration(t0 + h (k + (j + 1/2)
     / ACC_SAMPLES))`` as ``ndarray.mean`` computes it, to the bit, by three routes:
 
-    * a sampled record (:class:`~archquake.ground.Record`): compiled
-      (:func:`archquake.rigid._input_kernels.step_means`: the same interpolation and NumPy's
+    * a sampled record (`Record`): compiled
+      (`archquake.rigid._input_kernels.step_means`: the same interpolation and NumPy's
       order of summation), without the (n, ``ACC_SAMPLES``) array of sub-samples;
     * a pulse constant between its breakpoints (the step impulse, the rectangular pulse): only
       the steps that straddle a breakpoint are sub-sampled: every other step's sub-samples are
@@ -273,7 +273,7 @@ __all__ = ["ACC_SAMPLES", "DEFAULT_TIME_STEP", "FORCE_SAMPLES", "GAP_TOLERANCE",
 
 def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 1,
                passes: int = 1, change: str = "use fewer voussoirs or a shorter duration") -> float:
-    """Refuse a run of the chain whose work exceeds :data:`archquake.ranges.RIGID_MAX_WORK`.
+    """Refuse a run of the chain whose work exceeds `archquake.ranges.RIGID_MAX_WORK`.
 
     Parameters
     ----------
@@ -295,7 +295,7 @@ def check_work(n_bodies: int, duration: float, time_step: float, *, runs: int = 
     -------
     float
         The estimated time of the whole call, s (the work of every run and pass times
-        :data:`archquake.ranges.RIGID_SECONDS_PER_WORK`), when it is accepted.
+        `archquake.ranges.RIGID_SECONDS_PER_WORK`), when it is accepted.
 
     Raises
     ------

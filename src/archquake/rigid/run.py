@@ -1,10 +1,10 @@
-"""Running the rigid-block chain (:mod:`archquake.rigid.model`) to a verdict: ``simulate_rigid``
-and its result, :class:`RigidRun`.
+"""Running the rigid-block chain (`archquake.rigid.model`) to a verdict: ``simulate_rigid``
+and its result, `RigidRun`.
 
-The stepper (:mod:`archquake.rigid.steps`) and the event integrator
-(:mod:`archquake.rigid.events`) hand back their samples; here they become a
-:class:`archquake.dem.DemResult` by the DEM's own post-processing
-(:meth:`DemResult.from_samples`, through :func:`_samples_to_result`), so impacts, hinges,
+The stepper (`archquake.rigid.steps`) and the event integrator
+(`archquake.rigid.events`) hand back their samples; here they become a
+`archquake.dem.DemResult` by the DEM's own post-processing
+(`DemResult.from_samples`, through `_samples_to_result`), so impacts, hinges,
 collapse criteria and the rotation measure are read exactly as in the DEM. In it, ``strain`` is
 zero and the ``damping`` column holds the energy removed by the contact projections (the
 plastic impacts, the scheme's O(h) loss in persistent contacts, and the position correction's
@@ -54,7 +54,7 @@ from archquake.rigid.steps import METHODS, run_steps
 class RigidRun:
     """A rigid-chain history.
 
-    ``result``: the samples as a :class:`DemResult` (module docstring); ``time_step`` s;
+    ``result``: the samples as a `DemResult` (module docstring); ``time_step`` s;
     ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
     ``correction_work``: J, the part of the ``damping`` column (the kinetic energy the contact
     projections removed) that is the work of the position-level correction
@@ -65,14 +65,14 @@ class RigidRun:
     correction of a step's last sweep, m/s; ``wall_s``: wall time of the stepping;
     ``contact_work``, ``friction_work``: (nt,) J, the work done on the contacts since t = 0
     (``_step_kernels.D_CONTACT_WORK``, the energy they dissipate: what closes the balance,
-    :attr:`energy`) and its part on the slipping joints (``D_FRICTION_WORK``); None for the
+    `energy`) and its part on the slipping joints (``D_FRICTION_WORK``); None for the
     event integrator, whose ``damping`` column is its impacts' loss;
     ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
     motion it was run with; ``events``: with ``solver="events"``, the event integrator's
-    record (:func:`archquake.rigid.events.run_events`: counters, the event log, the
+    record (`archquake.rigid.events.run_events`: counters, the event log, the
     times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
     adaptive); ``at_rest``: the motion never reaches the onset of hinging
-    (:func:`archquake.rigid.events.stays_at_rest`), so no step was taken: the samples are the
+    (`archquake.rigid.events.stays_at_rest`), so no step was taken: the samples are the
     chain at rest on the moving ground.
     """
 
@@ -93,7 +93,7 @@ class RigidRun:
 
     @cached_property
     def energy(self) -> EnergyBalance:
-        """The run's energy balance (:class:`EnergyBalance`, :func:`energy_balance`)."""
+        """The run's energy balance (`EnergyBalance`, `energy_balance`)."""
         res = self.result
         contacts = res.damping if self.contact_work is None else self.contact_work
         friction = np.zeros_like(contacts) if self.friction_work is None else self.friction_work
@@ -111,7 +111,7 @@ class RigidRun:
     def joint_forces(self):
         """The joint forces, line of thrust and friction demand at the recorded samples (at most
         ``FORCE_SAMPLES`` of them, evenly strided):
-        :func:`archquake.rigid.forces.joint_forces`, with its reporting rule."""
+        `archquake.rigid.forces.joint_forces`, with its reporting rule."""
         if self.motion is None:
             raise InvalidParameterError("this run does not know its ground motion")
         if self.at_rest:  # the locked arch: indeterminate at every sample (forces module)
@@ -123,7 +123,7 @@ class RigidRun:
 
     @property
     def outcome(self) -> Outcome:
-        """The :class:`~archquake.outcome.Outcome` (the DEM's post-processing, ``result``)."""
+        """The `Outcome` (the DEM's post-processing, ``result``)."""
         return self.result.outcome
 
     # what every model's result has (archquake.result.ModelResult), read from ``result``
@@ -194,9 +194,9 @@ class RigidRun:
 
     def to_table(self) -> dict[str, np.ndarray]:
         """Columns for a tabular export: ``result.to_table()``
-        (:data:`archquake.result.TABLE_COLUMNS` first) with the contacts' work in place of the
+        (`archquake.result.TABLE_COLUMNS` first) with the contacts' work in place of the
         DEM's sinks (``dissipated_contacts_J``, ``dissipated_friction_J``: its part on slipping
-        joints; :attr:`energy`), then the friction demand."""
+        joints; `energy`), then the friction demand."""
         out = self.result.to_table()
         for key in ("strain_J", "damping_J", "friction_J"):
             del out[key]
@@ -209,12 +209,12 @@ class RigidRun:
         return out
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write :meth:`to_table` as CSV (:func:`archquake.result.write_csv`)."""
+        """Write `to_table` as CSV (`archquake.result.write_csv`)."""
         return write_csv(self.to_table(), path)
 
     def to_dict(self, *, joint_forces: bool = True) -> dict:
         """Summary for JSON: ``DemResult.to_dict()`` (the keys of
-        :data:`archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model``
+        `archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model``
         names it), then the
         stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
         forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
@@ -252,7 +252,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     Parameters
     ----------
     arch_or_assembly : VoussoirChain, Assembly or RigidModel
-        An arch is built with :func:`archquake.dem.assembly.build_arch_assembly` (every
+        An arch is built with `archquake.dem.assembly.build_arch_assembly` (every
         voussoir a block), as the DEM does.
     motion : GroundMotion
     duration, time_step, output_interval : float
@@ -267,7 +267,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     chunk : float
         The run is checked for collapse every ``chunk`` s.
     solver_tolerance : float
-        Gauss-Seidel tolerance, a fraction of sqrt(g L) (:data:`SOLVER_TOLERANCE`).
+        Gauss-Seidel tolerance, a fraction of sqrt(g L) (`SOLVER_TOLERANCE`).
     friction : float, optional
         Coulomb coefficient mu (> 0) of every joint; None (default): no sliding, the paper's
         assumption. With mu the step is no longer a projection (``_step_kernels`` docstring).
@@ -279,10 +279,10 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         impulse lies in its Coulomb cone (every joint sticks) and runs Gauss-Seidel with the
         Coulomb clamp only where a joint slips; "pgs" runs the clamped Gauss-Seidel at every
         step. "events": the same model integrated from contact event to
-        contact event (:mod:`archquake.rigid.events`; no friction, from rest;
+        contact event (`archquake.rigid.events`; no friction, from rest;
         ``time_step`` and ``chunk`` are not used).
     until_rest : float, optional
-        s: if the arch has neither collapsed nor come to rest (:func:`archquake.dem.result.settled`)
+        s: if the arch has neither collapsed nor come to rest (`archquake.dem.result.settled`)
         by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
         reached. Without it (default) the run ends at ``duration``; the verdict is
         ``indeterminate`` if the arch is still moving then.
@@ -367,10 +367,10 @@ class EnergyBalance:
     ``input_work_J``, ``peak_kinetic_J``, ``contacts_J`` (D at the end), ``friction_J`` (its
     part on slipping joints), ``impacts_J`` (the rest: plastic impacts, the step's loss in
     persistent contact and the position correction's work), ``scale_J`` = max(|W|, T, |V -
-    V(0)|, 1/2 M max |x_g'|^2) over the run (:func:`energy_balance`), 0 only without
+    V(0)|, 1/2 M max |x_g'|^2) over the run (`energy_balance`), 0 only without
     excitation and motion; ``residual``: max |T + V + D - W - E(0)| /
     ``scale_J`` (0 when nothing moved); ``warning``: a sentence when ``residual`` exceeds
-    :data:`ENERGY_WARNING` or a dissipation is negative, else None. A broken balance is
+    `ENERGY_WARNING` or a dissipation is negative, else None. A broken balance is
     located at the sample where it jumps most, and the sentence names the term whose change
     there departs most from its changes at the ten samples around it."""
 
@@ -397,7 +397,7 @@ class EnergyBalance:
 def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray,
                    contacts: np.ndarray, friction: np.ndarray, input_work: np.ndarray, *,
                    ground_kinetic: float = 0.0) -> EnergyBalance:
-    """The :class:`EnergyBalance` of the samples (each (nt,), J; ``times`` s): ``contacts`` the
+    """The `EnergyBalance` of the samples (each (nt,), J; ``times`` s): ``contacts`` the
     work done on the contacts since t = 0, ``friction`` its part on slipping joints;
     ``ground_kinetic`` J, 1/2 M max |x_g'|^2 (M the free blocks' mass), the kinetic energy the
     ground's motion gives the arch carried along with it: a scale that only vanishes without
@@ -440,16 +440,16 @@ def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray
                          residual=residual, warning=warning)
 
 
-#: Most samples of a run at rest (:func:`_at_rest`): its history is constant, so a long
+#: Most samples of a run at rest (`_at_rest`): its history is constant, so a long
 #: window is sampled more coarsely than ``output_interval``.
 REST_SAMPLES = 10_000
 
 
 def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: float,
              output_interval: float, g: float, time_step: float) -> RigidRun:
-    """The run of a chain that the motion never moves (:func:`stays_at_rest`): at rest relative
+    """The run of a chain that the motion never moves (`stays_at_rest`): at rest relative
     to the ground over ``duration`` s, sampled every ``output_interval`` s (at most
-    :data:`REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
+    `REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
     no work on a body that does not move relative to the ground), read by the same
     post-processing as a stepped run: ``no_hinging``."""
     import time as _time
@@ -476,7 +476,7 @@ def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: floa
 
 def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
                      output_interval: float, g: float, until_rest: float | None) -> RigidRun:
-    """``simulate_rigid(..., solver="events")``: :func:`~archquake.rigid.events.
+    """``simulate_rigid(..., solver="events")``: `
     run_events` and the same post-processing as the time stepper's."""
     em = EventModel.of(model)
     raw = run_events(em, motion, duration=duration, output_interval=output_interval, g=g,
@@ -504,8 +504,8 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
                        times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
                        input_work: np.ndarray, ground_displacement: np.ndarray,
                        ground_velocity: np.ndarray) -> DemResult:
-    """The recorded samples of a rigid-chain run as a :class:`DemResult` (the DEM's
-    post-processing, :meth:`DemResult.from_samples`; module docstring): what any stepper of
+    """The recorded samples of a rigid-chain run as a `DemResult` (the DEM's
+    post-processing, `DemResult.from_samples`; module docstring): what any stepper of
     this model hands back.
 
     Parameters
@@ -524,7 +524,7 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
         s, from the start of the ground motion.
     q, v : ndarray (nt, nb, 3)
         Configurations and velocities of the free bodies relative to the ground
-        (:func:`absolute_states`).
+        (`absolute_states`).
     dissipated, input_work : ndarray (nt,)
         J: energy removed by the contact step (the ``damping`` column) and work of the
         inertial load, since t = 0.

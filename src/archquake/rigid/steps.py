@@ -1,10 +1,10 @@
-"""The Moreau-Jean time stepper of the rigid-block chain (:mod:`archquake.rigid.model`), driven
+"""The Moreau-Jean time stepper of the rigid-block chain (`archquake.rigid.model`), driven
 chunk by chunk over a ground motion: ``simulate_rigid(..., solver="direct" or "pgs")``.
 
-Each chunk of steps runs in the compiled kernel (:func:`archquake.rigid._step_kernels.run`);
+Each chunk of steps runs in the compiled kernel (`archquake.rigid._step_kernels.run`);
 between chunks the run is checked for collapse (the DEM's criteria) and, past ``duration``
-with ``until_rest``, for rest. The samples come back raw (:class:`SteppedSamples`):
-:mod:`archquake.rigid.run` turns them into a result.
+with ``until_rest``, for rest. The samples come back raw (`SteppedSamples`):
+`archquake.rigid.run` turns them into a result.
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ class SteppedSamples:
 
 
 def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool:
-    """The samples so far end at rest (:func:`archquake.dem.result.settled`). ``times`` and
+    """The samples so far end at rest (`archquake.dem.result.settled`). ``times`` and
     ``vs`` are the recorded chunks, (n,) and (n, nb, 3) each; only the last window's are read."""
     window = rest_threshold(model.assembly, g)[1]
     t_last = float(times[-1][-1])

@@ -1,12 +1,12 @@
 """The rigid chain's verdict alone, fast: a step chosen for the verdict, a guard that proves it,
 and many histories in one compiled, threaded call.
 
-* **The step** (:func:`verdict_time_step`): h = :data:`STEP_FACTOR` sqrt(L / g), L the chain's
+* **The step** (`verdict_time_step`): h = `STEP_FACTOR` sqrt(L / g), L the chain's
   reference length (the voussoirs' thickness): time scales as sqrt(L / g), so a lab arch and a
   nave get the same accuracy (1.0e-3 s on Oppenheim's arch, L = 1.5 m). Its measured error is
   in docs/notes/mechanism.md ("The rigid chain's step").
 * **The guard**: a verdict that depends on an impact and may lie near its threshold (a half
-  cycle after the first lasted more than :data:`GUARD_LENGTHENING` times the first: the arch
+  cycle after the first lasted more than `GUARD_LENGTHENING` times the first: the arch
   lingered near a crest) is run again at half the step; where the two verdicts differ the
   result is ``indeterminate``, with the reason. ``guard_ran`` says whether it ran. A collapse
   in the first half cycle (no impact) is not rerun: the first half cycle's threshold moves by
@@ -14,14 +14,14 @@ and many histories in one compiled, threaded call.
   rule was measured on pulses; on earthquake records it reruns about half of the verdicts and
   no single run foretells which verdicts change with the step, so incremental dynamic analysis
   runs its levels with ``guard=False`` and reruns at half the step only the levels that decide
-  its result (:func:`archquake.ida.analysis.deciding_levels`; docs/notes/mechanism.md, "The
+  its result (`archquake.ida.analysis.deciding_levels`; docs/notes/mechanism.md, "The
   guard on earthquake records").
-* **Fast** (:mod:`archquake.rigid._verdict_kernels`): the whole history is one compiled
+* **Fast** (`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps of the untouched chain under a ground acceleration inside the safe domain are
   skipped; the run stops at collapse or once rest is proven; no samples are recorded and no
-  :class:`~archquake.dem.DemResult` is built.
+  `DemResult` is built.
 
-:func:`rigid_verdict` is one history; :func:`rigid_verdicts` runs many over a thread pool (the
+`rigid_verdict` is one history; `rigid_verdicts` runs many over a thread pool (the
 kernel releases the GIL), for failure domains, IDA and sweeps.
 """
 
@@ -91,7 +91,7 @@ _OUTCOMES = (Outcome.NO_HINGING, Outcome.SURVIVES, Outcome.COLLAPSE, Outcome.IND
 
 
 #: The arch each memoised model was built from (by the model's identity, the model kept
-#: alive by :func:`_model_of_chain`'s cache): its limit analysis seeds the onset's bisection.
+#: alive by `_model_of_chain`'s cache): its limit analysis seeds the onset's bisection.
 _CHAIN_OF: dict[int, tuple[RigidModel, VoussoirChain]] = {}
 
 
@@ -105,9 +105,9 @@ def _model_of_chain(arch: VoussoirChain) -> RigidModel:
 
 
 def _onset_g(model: RigidModel) -> tuple[float, float]:
-    """The chain's onset multipliers, g (:attr:`~archquake.rigid.events.EventModel.onset_g`);
+    """The chain's onset multipliers, g (`onset_g`);
     for a model built from an arch, by the bisection seeded with the arch's limit analysis
-    (:meth:`~archquake.rigid.events.EventModel.onset_near`: the same numbers, fewer
+    (`onset_near`: the same numbers, fewer
     projections)."""
     from archquake.limit import hinges_of
     from archquake.limit.static import collapse_state
@@ -129,7 +129,7 @@ _ASSEMBLY_MODELS: dict[int, tuple[Assembly, RigidModel]] = {}
 
 
 def rigid_model(arch_or_model: VoussoirChain | Assembly | RigidModel) -> RigidModel:
-    """The :class:`RigidModel` of an arch or an assembly, built once (memoised: both are
+    """The `RigidModel` of an arch or an assembly, built once (memoised: both are
     frozen), or a model itself."""
     if isinstance(arch_or_model, RigidModel):
         return arch_or_model
@@ -146,7 +146,7 @@ def rigid_model(arch_or_model: VoussoirChain | Assembly | RigidModel) -> RigidMo
 
 
 def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
-    """The verdict's default step, s: :data:`STEP_FACTOR` sqrt(L / g), L the reference
+    """The verdict's default step, s: `STEP_FACTOR` sqrt(L / g), L the reference
     length, m.
 
     >>> import math
@@ -160,7 +160,7 @@ def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
 
 @dataclass(frozen=True)
 class _Packed:
-    """A model's arrays for :func:`~archquake.rigid._verdict_kernels.verdict_run`."""
+    """A model's arrays for `verdict_run`."""
 
     chain: RK.Chain
     frame: VK.Frame
@@ -172,7 +172,7 @@ _PACKED: dict[tuple[int, DemSettings], tuple[RigidModel, _Packed]] = {}
 
 
 def _packed(model: RigidModel, settings: DemSettings) -> _Packed:
-    """:func:`_pack`, memoised on the model (by identity) and the settings."""
+    """`_pack`, memoised on the model (by identity) and the settings."""
     key = (id(model), settings)
     hit = _PACKED.get(key)
     if hit is not None and hit[0] is model:
@@ -204,7 +204,7 @@ def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
 
 @dataclass(frozen=True)
 class RigidVerdict:
-    """The rigid chain's verdict on one history (:func:`rigid_verdict`).
+    """The rigid chain's verdict on one history (`rigid_verdict`).
 
     Attributes
     ----------
@@ -262,7 +262,7 @@ class RigidVerdict:
 
     def to_dict(self) -> dict:
         """Summary for JSON (units in the keys): the keys of
-        :data:`archquake.outcome.RESULT_KEYS` it knows first (``model`` ``"rigid_chain"``),
+        `archquake.outcome.RESULT_KEYS` it knows first (``model`` ``"rigid_chain"``),
         then the verdict path's own."""
         return {"model": "rigid_chain", "outcome": self.outcome.value,
                 "final_state": self.final_state,
@@ -306,7 +306,7 @@ def _params(model: RigidModel, packed: _Packed, settings: DemSettings, h: float,
 
 def _decode(out: np.ndarray, h: float, vg_of) -> dict:
     """The kernel's ``out`` as plain values; ``vg_of(step)``: the ground velocity after a step
-    (for :func:`~archquake.dem.result.mirror_opens_first`'s choice of the rotation link)."""
+    (for `mirror_opens_first`'s choice of the rotation link)."""
     code = int(out[VK.O_OUTCOME])
     onset = int(out[VK.O_ONSET_STEP])
     mirrored = False
@@ -333,7 +333,7 @@ def _decode(out: np.ndarray, h: float, vg_of) -> dict:
 def _near(d: dict) -> bool:
     """The guard's rule: the verdict depends on an impact (a survival or a collapse after
     one) and one of its half cycles after the first (a collapse's up to the collapse) lasted
-    more than :data:`GUARD_LENGTHENING` times the first: the arch lingered near a crest."""
+    more than `GUARD_LENGTHENING` times the first: the arch lingered near a crest."""
     return (d["impacts"] >= 1 and d["outcome"] in (Outcome.SURVIVES, Outcome.COLLAPSE)
             and d["lengthening"] > GUARD_LENGTHENING)
 
@@ -354,7 +354,7 @@ def _reason(d: dict) -> str:
 
 class _Job:
     """One history for the kernel: its parameters, and its steps' mean ground accelerations
-    and their suffix maxima, prepared by :meth:`run` in the thread that runs it (compiled for
+    and their suffix maxima, prepared by `run` in the thread that runs it (compiled for
     a record: without the GIL, beside the other threads' kernels)."""
 
     def __init__(self, model, packed, motion, h, duration, until_rest, settings, g, skip, tol):
@@ -381,7 +381,7 @@ class _Job:
         return min(float(self.n), (out[-1] - out[0] + 1) * self.motion.dt / self.h)
 
     def run(self, packed: _Packed) -> np.ndarray:
-        """Prepare the steps and run the kernel: its ``out`` (:data:`VK.N_OUT`)."""
+        """Prepare the steps and run the kernel: its ``out`` (`VK.N_OUT`)."""
         acc = mean_acceleration(self.motion, 0.0, self.h, self.n)
         g = self.par[VK.P_G]
         check_motion_lift_off(self.motion, g)
@@ -399,7 +399,7 @@ class _Job:
         return out[0]
 
     def vg(self, step: int) -> float:
-        """The ground velocity after a step, m/s (after :meth:`run`): the running sum of the
+        """The ground velocity after a step, m/s (after `run`): the running sum of the
         steps' accelerations, up to the latest step asked for (a prefix of ``np.cumsum``,
         which sums one step after another: the same bits)."""
         if step < 0:
@@ -467,13 +467,13 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
         Ground accelerations, m/s^2.
     duration : float or sequence, optional
         s, the run's window for each motion (default: the end of the excitation
-        + :data:`WINDOW_TAIL` sqrt(R/g), at most ``ranges.DEM_T_END_MAX_S``; required for an
+        + `WINDOW_TAIL` sqrt(R/g), at most ``ranges.DEM_T_END_MAX_S``; required for an
         assembly). The run stops earlier at collapse or at proven rest, so a long window costs
         only while the arch keeps moving.
     until_rest : float or sequence, optional
         s: go on past ``duration`` while the arch moves, up to this time.
     time_step : float, optional
-        s (default :func:`verdict_time_step`).
+        s (default `verdict_time_step`).
     settings : DemSettings, optional
         Thresholds of the verdict (hinge opening, collapse criteria), as the DEM's.
     g : float
@@ -483,7 +483,7 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     skip_at_rest : bool
         Skip steps at rest and stop at proven rest (exact; False only to check that).
     solver_tolerance : float
-        As :func:`~archquake.rigid.simulate_rigid`'s.
+        As `simulate_rigid`'s.
     threads : int, optional
         Threads (default: the cores this process may use).
 
@@ -565,13 +565,13 @@ def _per_motion(value, n: int, name: str) -> list:
 
 
 #: The default window after the end of the excitation, in sqrt(R/g): the four-link model's
-#: default end (:data:`archquake.ranges.RUN_TAIL`), the longest window of
+#: default end (`archquake.ranges.RUN_TAIL`), the longest window of
 #: ``rigid_to_verdict``.
 WINDOW_TAIL = RUN_TAIL
 
 
 def default_window(arch_or_model, motion, g: float) -> float:
-    """The default run window, s: the end of the excitation + :data:`WINDOW_TAIL` sqrt(R/g),
+    """The default run window, s: the end of the excitation + `WINDOW_TAIL` sqrt(R/g),
     at most ``ranges.DEM_T_END_MAX_S`` (the block models' cap); the run stops earlier at
     collapse or proven rest."""
     from archquake.ranges import DEM_T_END_MAX_S
@@ -592,7 +592,7 @@ def rigid_verdict(arch_or_model: VoussoirChain | Assembly | RigidModel, motion, 
                   g: float = STANDARD_GRAVITY, guard: bool = True,
                   skip_at_rest: bool = True,
                   solver_tolerance: float = SOLVER_TOLERANCE) -> RigidVerdict:
-    """The rigid chain's verdict on one ground motion (:func:`rigid_verdicts`, one thread)."""
+    """The rigid chain's verdict on one ground motion (`rigid_verdicts`, one thread)."""
     return rigid_verdicts(arch_or_model, [motion], duration=duration, until_rest=until_rest,
                           time_step=time_step, settings=settings, g=g, guard=guard,
                           skip_at_rest=skip_at_rest, solver_tolerance=solver_tolerance,

@@ -2,7 +2,7 @@
 
 A case describes its inputs in the units a study file uses (lengths in m, angles in degrees,
 accelerations in g) because those are the numbers a user reads back from the store; the
-conversion to SI happens once, in :meth:`ArchSpec.build` and :meth:`ExcitationSpec.build`.
+conversion to SI happens once, in `ArchSpec.build` and `ExcitationSpec.build`.
 
 The case id is the first 20 hex digits of the SHA-256 of the case's *canonical JSON*: its
 inputs as a JSON object with sorted keys, every real number written as a float
@@ -73,7 +73,7 @@ _RETIRED = {"analytical": "fourlink (hinges fixed) or rigid (hinges moving, the 
 
 def model_of(model: str | Model | None = None, hinges: str | None = None, *,
              model_name: str = "model", hinges_name: str = "hinges") -> Model:
-    """The :class:`Model` a user names (``rigid``, ``fourlink`` or ``dem``; None: the default,
+    """The `Model` a user names (``rigid``, ``fourlink`` or ``dem``; None: the default,
     rigid), with a one-line pointer for the words of earlier versions.
 
     ``hinges`` is the retired ``--hinges fixed|moving`` (None when not given): any value is
@@ -117,7 +117,7 @@ class CaseOptions:
         Coefficient of restitution on angular velocity, in [0, 1] (0: perfectly plastic); None:
         the impact law's own (analytical model).
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law of the analytical model (:mod:`archquake.mechanism.impact`); None: "paper".
+        Impact law of the analytical model (`archquake.mechanism.impact`); None: "paper".
         Left out of the case's canonical form when None or "paper" (the same model), so existing
         case ids are unchanged.
     t_end_s : float, optional
@@ -125,7 +125,7 @@ class CaseOptions:
     g : float
         Gravity, m/s^2 (> 0), also the factor from study magnitudes in g to m/s^2.
     guard : bool
-        The rigid chain's half-step guard on its verdict (:func:`archquake.rigid.rigid_verdicts`;
+        The rigid chain's half-step guard on its verdict (`archquake.rigid.rigid_verdicts`;
         False: the verdict at the step alone, as incremental dynamic analysis runs its levels
         before it checks the levels that decide its result). Left out of the canonical form when
         True, so existing case ids are unchanged.
@@ -161,7 +161,7 @@ class CaseOptions:
 
     @cached_property
     def canonical_json(self) -> str:
-        """:func:`canonical_json` of :meth:`canonical`, computed once per spec."""
+        """`canonical_json` of `canonical`, computed once per spec."""
         return canonical_json(self.canonical())
 
 
@@ -211,7 +211,7 @@ class Case:
 
     def canonical(self) -> dict[str, Any]:
         """The inputs that define the case (what its id hashes), as plain JSON values. The
-        four-link model is hashed under its earlier word, ``analytical`` (:data:`_ID_WORDS`),
+        four-link model is hashed under its earlier word, ``analytical`` (`_ID_WORDS`),
         so stores written before it was named ``fourlink`` resume."""
         out = {"schema": CASE_SCHEMA, "model": _id_word(self.model),
                "arch": self.arch.canonical(),
@@ -222,7 +222,7 @@ class Case:
 
     @property
     def canonical_json(self) -> str:
-        """:func:`canonical_json` of :meth:`canonical`, assembled from the specs' own (cached)
+        """`canonical_json` of `canonical`, assembled from the specs' own (cached)
         canonical JSON: the same string, byte for byte, since the top-level keys are written
         in sorted order with the same separators (a test holds the two equal). A grid of a
         million cases then costs one concatenation and one hash per case."""
@@ -235,11 +235,11 @@ class Case:
 
     @cached_property
     def case_id(self) -> str:
-        """Stable id: the first 20 hex digits of SHA-256 of :attr:`canonical_json`."""
+        """Stable id: the first 20 hex digits of SHA-256 of `canonical_json`."""
         return hashlib.sha256(self.canonical_json.encode()).hexdigest()[:CASE_ID_LENGTH]
 
     def columns(self) -> dict[str, Any]:
-        """Flat input columns (see :data:`INPUT_COLUMNS`), None where not applicable."""
+        """Flat input columns (see `INPUT_COLUMNS`), None where not applicable."""
         exc = self.excitation
         cols = {"model": self.model.value, **self.arch.columns(),
                 "excitation": exc.kind.value, "magnitude_g": exc.magnitude_g,

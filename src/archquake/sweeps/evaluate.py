@@ -1,28 +1,28 @@
 """The default case function: build the arch and the motion, run the case's model, summarise.
 
-``evaluate_case`` is what :func:`archquake.sweeps.run_sweep` maps when no other function is
+``evaluate_case`` is what `archquake.sweeps.run_sweep` maps when no other function is
 injected. It is pure (the same case always gives the same summary) and importable by worker
 processes and Dask workers (a plain module-level function).
 
 Models:
 
-- ``fourlink``: :func:`archquake.mechanism.simulate` (the four-link rocking mechanism with
+- ``fourlink``: `archquake.mechanism.simulate` (the four-link rocking mechanism with
   impacts), summarised by ``result.to_dict(include_history=False)``;
-- ``dem``: :func:`archquake.dem.simulate_dem` on the arch with every voussoir a block, the
+- ``dem``: `archquake.dem.simulate_dem` on the arch with every voussoir a block, the
   paper's contact stiffness and damping (``DemSettings()``), for ``t_end_s`` (default: until a
   verdict, the end of the excitation + 5, then 10, then 20 sqrt(R/g) while the arch still moves,
-  :func:`archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
+  `archquake.compare.dem_to_verdict`), summarised by ``result.to_dict()``.
   ``restitution`` and ``impact`` do not apply to it (a case giving one is refused);
 - ``rigid``: the chain of rigid blocks (hinges moving, the DEM's rigid limit). Without
-  ``t_end_s``: its verdict (:func:`archquake.rigid.rigid_verdict`: the step scaled with the
+  ``t_end_s``: its verdict (`archquake.rigid.rigid_verdict`: the step scaled with the
   arch, the half-step guard, stopped at collapse or proven rest, within the end of the
-  excitation + 60 sqrt(R/g)), summarised by :func:`rigid_summary` (no impact times or peak
+  excitation + 60 sqrt(R/g)), summarised by `rigid_summary` (no impact times or peak
   rotation per half cycle: the verdict path records no history). With ``t_end_s``:
-  :func:`archquake.rigid.simulate_rigid` for that time, summarised by ``RigidRun.to_dict()``
+  `archquake.rigid.simulate_rigid` for that time, summarised by ``RigidRun.to_dict()``
   without its joint forces. ``restitution`` and ``impact`` are refused as for the DEM (its
   impacts follow from the blocks' plastic contacts).
 
-All summaries start with the same keys (:data:`archquake.outcome.RESULT_KEYS`: outcome,
+All summaries start with the same keys (`archquake.outcome.RESULT_KEYS`: outcome,
 collapse_half_cycle, collapse_time_s, impact_times_s, peak_rotation_rad, ...), so a store
 holding both models has one column per quantity.
 """
@@ -68,7 +68,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``result.to_dict()`` (no history): the keys of :data:`archquake.outcome.RESULT_KEYS`
+        ``result.to_dict()`` (no history): the keys of `archquake.outcome.RESULT_KEYS`
         (outcome, collapse half cycle, impact times in s, peak rotation per half cycle in
         rad, ...), then the model's own.
 
@@ -128,7 +128,7 @@ RIGID_VERDICT_EVALUATOR = "rigid verdict (compiled, guarded)"
 
 
 def rigid_summary(verdict) -> dict[str, Any]:
-    """The stored summary of a :class:`~archquake.rigid.RigidVerdict`: its ``to_dict()``
+    """The stored summary of a `RigidVerdict`: its ``to_dict()``
     (outcome, collapse half cycle and time in s, largest rotation in rad, the step in s, the
     guard's rerun, ...) under the model's sweep name ``rigid``, with ``evaluator``."""
     return {**verdict.to_dict(), "model": Model.RIGID.value,
@@ -151,7 +151,7 @@ def prepared_mechanism(arch: ArchSpec, impact: str | None = None, loads=None):
 def mechanism_limits(arch: ArchSpec, loads=None) -> tuple[float, float]:
     """The arch's equivalent static collapse acceleration (g) and the critical rotation of its
     four-hinge mechanism (rad: the crest of its potential), with no impact law: defined on any
-    arch, symmetric or not (:func:`prepared_mechanism` needs the mirror-image mechanism of a
+    arch, symmetric or not (`prepared_mechanism` needs the mirror-image mechanism of a
     symmetric one for its impact). Memoised per process.
 
     Returns

@@ -2,7 +2,7 @@
 each batch as it completes and skipping what the store already holds.
 
 Design (the style notes' habit 11): the case function is pure (``Case -> dict``), the executor
-is injected (:class:`~archquake.parallel.SerialExecutor`, a ``ProcessPoolExecutor``, or Dask's
+is injected (`SerialExecutor`, a ``ProcessPoolExecutor``, or Dask's
 ``Client(address).get_executor()``), and only the driving process writes the store. Cases
 travel in chunks (one task evaluates several cases) so that millisecond cases are not swamped
 by scheduling overhead; at most a few chunks per worker are in flight, so an interruption
@@ -80,9 +80,9 @@ class SweepReport:
 def evaluate_chunk(evaluate: CaseFunction, cases: Sequence[Case]) -> list[CaseRecord]:
     """Evaluate cases one after another (this is the task a worker runs).
 
-    A case the model refuses with an :class:`~archquake.errors.ArchquakeError` (bad geometry,
+    A case the model refuses with an `ArchquakeError` (bad geometry,
     an arch that cannot stand, a solver that cannot proceed) becomes an ``"error"`` record with
-    its one-line message; a missing model (:class:`ModelUnavailableError`) and any other
+    its one-line message; a missing model (`ModelUnavailableError`) and any other
     exception propagate (the first is a fault of the installation, the others are bugs).
     """
     records = []
@@ -107,8 +107,8 @@ def evaluate_batch_chunk(evaluate_batch: BatchFunction, cases: Sequence[Case]) -
     """Evaluate a chunk with one call of a batch function (the task a worker runs).
 
     ``evaluate_batch(cases)`` returns one item per case, in order: a summary dict, or an
-    :class:`~archquake.errors.ArchquakeError` instance for a case the model refuses (stored as
-    an ``"error"`` row, as :func:`evaluate_chunk` does). ``elapsed_s`` is the call's wall time
+    `ArchquakeError` instance for a case the model refuses (stored as
+    an ``"error"`` row, as `evaluate_chunk` does). ``elapsed_s`` is the call's wall time
     shared equally between its cases.
     """
     t0 = time.perf_counter()
@@ -152,10 +152,10 @@ def run_sweep(
     store : ResultStore
     evaluate : callable, optional
         Pure ``Case -> dict`` (picklable for process pools and Dask). Default:
-        :func:`archquake.sweeps.evaluate.evaluate_case` (the real models).
+        `archquake.sweeps.evaluate.evaluate_case` (the real models).
     evaluate_batch : callable, optional
         Instead of ``evaluate``: a pure function evaluating a whole chunk in one call
-        (see :func:`evaluate_batch_chunk`); each chunk is one call.
+        (see `evaluate_batch_chunk`); each chunk is one call.
     executor : concurrent.futures.Executor, optional
         Where chunks run. Default: a ``ProcessPoolExecutor`` with ``workers`` processes, created
         and shut down here; an injected executor is left open.
@@ -168,7 +168,7 @@ def run_sweep(
         ``progress(stored, total)``: cases of this sweep in the store, after every batch.
     no_worker_timeout : float
         On a Dask cluster: seconds with no worker before the sweep stops with
-        :class:`ClusterLostError` (default :data:`NO_WORKER_TIMEOUT`).
+        `ClusterLostError` (default `NO_WORKER_TIMEOUT`).
 
     Returns
     -------
@@ -236,9 +236,9 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, 
                 check: Callable[[], None] | None = None) -> Iterator:
     """Yield ``fn(item)`` results in completion order with at most ``window`` tasks in flight.
 
-    While nothing completes, ``check()`` runs every :data:`HEARTBEAT` seconds and may raise
+    While nothing completes, ``check()`` runs every `HEARTBEAT` seconds and may raise
     (a lost cluster). A task cancelled by its executor (Dask cancels every task when the
-    scheduler goes away) raises :class:`ClusterLostError`. On KeyboardInterrupt or
+    scheduler goes away) raises `ClusterLostError`. On KeyboardInterrupt or
     ClusterLostError the tasks that had already completed are still yielded, so the consumer
     can store them, before the error propagates; tasks still in flight are cancelled.
     """
@@ -278,7 +278,7 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, 
 
 def _cluster_check(executor: Executor | None, no_worker_timeout: float
                    ) -> Callable[[], None] | None:
-    """For a Dask executor, a check that raises :class:`ClusterLostError` once the scheduler
+    """For a Dask executor, a check that raises `ClusterLostError` once the scheduler
     is gone or no worker has been connected for ``no_worker_timeout`` s; None otherwise."""
     client = getattr(executor, "_client", None)
     if client is None:

@@ -2,13 +2,13 @@
 
 Table ``results`` (primary key ``case_id``):
 
-- ``case_id`` (TEXT): the case's stable id (:attr:`archquake.sweeps.Case.case_id`);
-- the flat input columns of :data:`archquake.sweeps.cases.INPUT_COLUMNS` (model, radius_m,
+- ``case_id`` (TEXT): the case's stable id (`archquake.sweeps.Case.case_id`);
+- the flat input columns of `archquake.sweeps.cases.INPUT_COLUMNS` (model, radius_m,
   thickness_ratio, thickness_m, embrace_deg, voussoirs, depth_m, density_kg_m3, excitation,
   magnitude_g, duration_s, period_s, direction, record, record_sha256, record_units, scale,
   restitution, t_end_s, g_m_s2), NULL where they do not apply;
 - ``status`` (TEXT): ``"ok"``, or ``"error"`` when the model refused the case with an
-  :class:`~archquake.errors.ArchquakeError` (e.g. an arch too thin to stand), whose one-line
+  `ArchquakeError` (e.g. an arch too thin to stand), whose one-line
   message is in ``error``;
 - ``outcome`` (TEXT): the model's outcome (``no_hinging``, ``survives``, ``collapse``) or NULL;
 - ``elapsed_s`` (REAL): wall time of the evaluation, s (the only column that differs between
@@ -224,7 +224,7 @@ class ResultStore:
 
     # ------------------------------------------------------------------ reading
     def stored_ids(self) -> set[str]:
-        """Ids of every stored case whose row is whole (a damaged row, :attr:`damaged`, is not
+        """Ids of every stored case whose row is whole (a damaged row, `damaged`, is not
         stored: its case is computed again)."""
         ids: set[str] = set()
         for cid, status, outputs in self._db.execute(
@@ -272,7 +272,7 @@ class ResultStore:
         """Every stored case as a flat dict (ordered by case id): id, inputs, status columns and,
         with ``flatten_outputs``, one column per output (nested keys joined by '.', lists as
         JSON text) instead of ``outputs_json``. Damaged rows are skipped (their ids are added
-        to :attr:`damaged`)."""
+        to `damaged`)."""
         return list(self._iter_rows(flatten_outputs))
 
     def _iter_rows(self, flatten_outputs: bool) -> Iterator[dict[str, Any]]:
@@ -316,7 +316,7 @@ class ResultStore:
     # ------------------------------------------------------------------ export
     def export(self, path: str | Path) -> Path:
         """Write every whole row (inputs and outputs as columns) to ``.csv`` or ``.parquet``;
-        damaged rows are skipped and their ids added to :attr:`damaged`."""
+        damaged rows are skipped and their ids added to `damaged`."""
         path = Path(path)
         rows = self.rows()
         columns = ["case_id", *INPUT_COLUMNS, *(c for c in RESULT_COLUMNS if c != "outputs_json")]

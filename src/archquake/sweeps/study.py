@@ -1,4 +1,4 @@
-"""Study files: a TOML grid of arches x excitations x options, expanded into :class:`Case` s.
+"""Study files: a TOML grid of arches x excitations x options, expanded into `Case` s.
 
 The schema (documented with a full example in ``docs/sweeps.md``)::
 
@@ -40,7 +40,7 @@ The schema (documented with a full example in ``docs/sweeps.md``)::
     t_end_s = 10.0                      # s; omitted: the model's default
 
 Every error is one line naming the file, the key and what is expected
-(:class:`~archquake.errors.StudyFileError`).
+(`StudyFileError`).
 """
 
 from __future__ import annotations
@@ -143,7 +143,7 @@ def _has_control(text: str) -> bool:
 def read_toml(path: Path, what: str) -> dict[str, Any]:
     """The parsed TOML file ``path`` (``what`` names it in messages, e.g. "study file"), read
     only if it is a regular file of reasonable size; every failure is one
-    :class:`StudyFileError` line naming the file."""
+    `StudyFileError` line naming the file."""
     try:
         info = path.stat()
         if not stat.S_ISREG(info.st_mode):  # a device or pipe could stream or block forever

@@ -2,7 +2,7 @@
 (paper, "Minimum coefficient of friction to avoid sliding", p. 2131).
 
 At every instant the demand at a joint is |V| / N from the line of thrust of the moving arch
-(:mod:`archquake.thrust.states`); the arch needs a friction coefficient at least equal to the
+(`archquake.thrust.states`); the arch needs a friction coefficient at least equal to the
 largest demand over joints and time. The paper finds, for Oppenheim's arch under the step
 impulse, that this maximum is at the right springing (hinge D) at the onset t = 0+, so that it
 depends on the magnitude only: 0.509 at 0.5 g and about 0.56 at 1.0 g (0.51 and 0.55 with
@@ -12,7 +12,7 @@ Instants examined: every sample of the recorded history, the onset of hinging (t
 rest, with the ground acceleration just after the onset), and both sides of every impact (the
 closing mechanism at phi = 0 with the rate before impact, the opening one with the rate
 after). While the arch is locked its forces are statically indeterminate and the least
-friction an admissible line of thrust needs is used (:func:`archquake.limit.locked_joint_forces`);
+friction an admissible line of thrust needs is used (`archquake.limit.locked_joint_forces`);
 those states are cached by ground acceleration.
 """
 
@@ -153,9 +153,9 @@ def friction_demand(
         The time history, if already computed (must hold its history).
     restitution : float, optional
         Prescribed c_v in [0, 1] for the time history (as in
-        :func:`archquake.mechanism.simulate`); ignored with ``result``.
+        `archquake.mechanism.simulate`); ignored with ``result``.
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law of the time history (as in :func:`archquake.mechanism.simulate`).
+        Impact law of the time history (as in `archquake.mechanism.simulate`).
     g : float
         Gravity, m/s^2.
     progress : callable, optional

@@ -2,7 +2,7 @@
 motion (paper, Figure 8) and the friction the joints need (p. 2131).
 
 At an instant of a time history the mechanism's state (``phi``, ``phi_dot``, which mechanism
-is open) fixes the displaced arch (:func:`archquake.mechanism.configuration.displaced_arch`),
+is open) fixes the displaced arch (`archquake.mechanism.configuration.displaced_arch`),
 and the equation of motion (Eq. 2, or Eq. 3 for the mirror mechanism) gives ``phi_ddot``.
 Each voussoir then carries, in the frame moving with the ground:
 
@@ -14,21 +14,21 @@ The four hinges carry forces through the hinge points and no moment. The three l
 nine equilibrium equations for the eight force components at A, B, C and D; they are
 consistent (rank eight) exactly because ``phi_ddot`` satisfies the equation of motion, which
 is their virtual-work combination, and the residual of the least-squares solution is kept as
-a check (:attr:`MotionState.equilibrium_residual`). With the reaction at A known, the
-resultant at every joint follows from :func:`archquake.limit.thrust.joint_forces` (the one
+a check (`MotionState.equilibrium_residual`). With the reaction at A known, the
+resultant at every joint follows from `archquake.limit.thrust.joint_forces` (the one
 statics routine of the package) applied to the displaced voussoirs; voussoirs outside the
 mechanism stay on the ground and are loaded by weight and ground inertia only. At an open
 hinge the friction demand is measured against the bisector of the two faces (see
-:mod:`archquake.mechanism.configuration`).
+`archquake.mechanism.configuration`).
 
 While the arch is locked (before hinging starts, and after it comes to rest) it moves rigidly
 with the ground and its internal forces are statically indeterminate. The state reported is
 then the admissible line of thrust that needs the least friction
-(:func:`archquake.limit.locked_joint_forces`); by the lower-bound theorem of limit analysis
+(`archquake.limit.locked_joint_forces`); by the lower-bound theorem of limit analysis
 such a line exists whenever the arch stands.
 
-The time history itself is the one compiled integrator's: :func:`states` asks
-:func:`archquake.mechanism.simulate` for the exact states at the requested times
+The time history itself is the one compiled integrator's: `states` asks
+`archquake.mechanism.simulate` for the exact states at the requested times
 (``t_eval``); nothing here integrates.
 """
 
@@ -63,7 +63,7 @@ class MotionState:
     t : float
         Time, s.
     configuration : DisplacedArch
-        The displaced arch (:func:`archquake.mechanism.configuration.displaced_arch`): phi,
+        The displaced arch (`archquake.mechanism.configuration.displaced_arch`): phi,
         phi_dot, phi_ddot (Eq. 2), side, joint lines, centroids, rigid motions and hinges, each
         also readable here under its own name (``state.phi``, ``state.joint_points``, ...).
     ground_acceleration : float
@@ -75,7 +75,7 @@ class MotionState:
     hinge_forces : ndarray, (4, 2), or None
         Force transmitted at A, B, C, D from the part on the left to the part on the right, N.
     forces : JointForces
-        Resultants at every joint (:mod:`archquake.limit.thrust` conventions).
+        Resultants at every joint (`archquake.limit.thrust` conventions).
     equilibrium_residual : float
         Largest violation of the links' nine equilibrium equations, relative to the total
         weight (forces) and weight x R (moments): ~1e-15 when phi_ddot obeys Eq. 2.
@@ -243,7 +243,7 @@ def state_at(
         Gravity, m/s^2.
     locked_start : JointForces, optional
         For a locked state: a line of thrust to start the least-friction search from (the
-        ``forces`` of a nearby locked state; see :func:`archquake.limit.locked_joint_forces`).
+        ``forces`` of a nearby locked state; see `archquake.limit.locked_joint_forces`).
 
     Returns
     -------
@@ -319,7 +319,7 @@ def states(
 ) -> list[MotionState]:
     """The arch at given instants of its response to a ground motion (Figure 8).
 
-    The states come from :func:`archquake.mechanism.simulate` with ``t_eval=times``: each
+    The states come from `archquake.mechanism.simulate` with ``t_eval=times``: each
     requested time is reached by a step of the integrator landing on it. At a jump of the
     ground acceleration the snapshot shows the value just before the jump (the paper's Figure
     8(a) at t = t_p: "the first pulse is still acting"); at t = 0, and at the onset of hinging,
@@ -332,9 +332,9 @@ def states(
     times : sequence of float
         Instants, s (>= 0, before any collapse; any order, repeats allowed).
     restitution : float, optional
-        Prescribed c_v in [0, 1], as in :func:`archquake.mechanism.simulate`.
+        Prescribed c_v in [0, 1], as in `archquake.mechanism.simulate`.
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law, as in :func:`archquake.mechanism.simulate`.
+        Impact law, as in `archquake.mechanism.simulate`.
     options : SolverOptions, optional
         Integrator settings (default: simulate's; no history is recorded).
     g : float

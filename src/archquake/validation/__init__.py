@@ -1,9 +1,9 @@
 """What archquake is checked against, kept apart from the models:
 
-- :mod:`archquake.validation.paper`: every number De Lorenzis, DeJong & Ochsendorf (2007) state,
+- `archquake.validation.paper`: every number De Lorenzis, DeJong & Ochsendorf (2007) state,
   with its tolerance, the reason for it and its page; Oppenheim's arch; the figures' parameters;
-- :mod:`archquake.validation.housner`: the closed forms of a rigid rocking block (Housner 1963);
-- :mod:`archquake.validation.trl_bridges`: TRL's full-scale load tests to collapse of masonry arch
+- `archquake.validation.housner`: the closed forms of a rigid rocking block (Housner 1963);
+- `archquake.validation.trl_bridges`: TRL's full-scale load tests to collapse of masonry arch
   bridges, what is published of each bridge with its source, and archquake's collapse load for
   Prestwood (docs/loads.md, "Against the full-scale tests").
 

@@ -55,7 +55,7 @@ def restitution_from_inertia(alpha: float, mass_radius2_over_inertia: float) -> 
 def restitution(width: float, height: float) -> float:
     """Housner's restitution of a rectangular block: r = 1 - 1.5 sin^2(alpha).
 
-    Exact for a rigid rectangle (m R^2 / I_O = 3/4 in :func:`restitution_from_inertia`), not a
+    Exact for a rigid rectangle (m R^2 / I_O = 3/4 in `restitution_from_inertia`), not a
     slender-block approximation.
 
     Parameters
@@ -106,8 +106,8 @@ def free_rocking(width: float, height: float, tilt: float, impacts: int = 2, *,
                  g: float = STANDARD_GRAVITY) -> tuple[list[float], list[float]]:
     """Free rocking released from rest at ``tilt`` (rad): the times of the first ``impacts``
     impacts (s) and the tilt reached after each (rad). Between impacts the exact motion
-    (:func:`fall_time`, twice per half cycle after the first); at each impact the angular
-    velocity times :func:`restitution`, so the energy times r^2:
+    (`fall_time`, twice per half cycle after the first); at each impact the angular
+    velocity times `restitution`, so the energy times r^2:
     ``cos(alpha - tilt_k+1) = cos(alpha) + r^2 (cos(alpha - tilt_k) - cos(alpha))``."""
     alpha = slenderness(width, height)
     r = restitution(width, height)

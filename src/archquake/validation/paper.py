@@ -2,11 +2,11 @@
 tolerance, and where the paper states it; the arch they study and the parameters of their figures.
 
 This module is the one home of the paper's numbers. ``archquake reproduce`` (one module per
-study in :mod:`archquake.reproduce`) and the tests under ``tests/paper/`` read their values and
+study in `archquake.reproduce`) and the tests under ``tests/paper/`` read their values and
 tolerances from here, so one number has one tolerance everywhere.
 
-A stated number is a :class:`PaperValue`; a comparison of archquake's two models that the paper
-words without a number ("excellent agreement") is an :class:`Agreement` with the relative or
+A stated number is a `PaperValue`; a comparison of archquake's two models that the paper
+words without a number ("excellent agreement") is an `Agreement` with the relative or
 absolute bound that reads the words. Both check a computed value and explain a miss:
 
 >>> from archquake.validation import paper

@@ -2,7 +2,7 @@
 of each bridge, with its source and how far it is to be trusted, and archquake's collapse load
 for the one bridge whose geometry could be sourced (Prestwood).
 
-Every number is a :class:`Sourced` value: the value, its unit, where it is stated and a
+Every number is a `Sourced` value: the value, its unit, where it is stated and a
 confidence: ``"stated"`` (printed in TRL's own report abstract), ``"quoted"`` (stated in a later
 paper that models the test, not checked against TRL's full report), ``"read"`` (our reading of
 a quoted value, e.g. which span a figure dimensions), or ``"assumed"`` (no source found: a
@@ -180,7 +180,7 @@ def prestwood_capacity(fill_depth: float, *, spread: bool, passive: bool,
     """archquake's collapse of Prestwood under TRL's test load: a 0.3 m patch across the full
     width centred at a quarter of the clear span, on a fill ``fill_depth`` m deep over the
     crown (2040 kg/m^3), spread at 2:1 when ``spread``, with passive pressure at
-    :data:`PASSIVE_FRACTION` of K_p (phi 30 deg) when ``passive``.
+    `PASSIVE_FRACTION` of K_p (phi 30 deg) when ``passive``.
 
     ``.collapse_load_N_m * width`` is the total load on the barrel, to set beside 228 kN.
     """
