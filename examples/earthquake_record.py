@@ -4,7 +4,8 @@
     python examples/earthquake_record.py RSN953.AT2        # your PEER .AT2 file (in g)
     python examples/earthquake_record.py quake.csv --units m/s2 --scale 1.5
 
-Any two-column CSV (time s, acceleration) or PEER .AT2 file works (docs/ground-motions.md).
+Any two-column CSV (time s, acceleration; --units says in what, since a CSV file does not) or PEER
+.AT2 file (in g) works (docs/ground-motions.md).
 Without a path, a small synthetic record (a decaying 1.2 Hz burst, about 0.6 g peak) is written to a
 temporary CSV file first, so the example needs no external data.
 """
@@ -38,7 +39,8 @@ def main(path: str | None = None, *, units: str | None = None, scale: float = 1.
             path = str(synthetic_record(Path(tmp) / "synthetic.csv", duration=3.0 if quick else 6.0))
             units = "g"
         if units is None and Path(path).suffix.lower() in (".csv", ".txt"):
-            units = "g"  # a CSV file does not say its units: g unless --units says otherwise
+            raise SystemExit(f"{Path(path).name} needs --units g|m/s2|cm/s2: a CSV file does not "
+                             "say its units")
         record = read_record(path, units=units, scale=scale)
     arch = Arch(radius=10.0, thickness=1.5, embrace=math.radians(157.5), voussoirs=7)
     print(f"{record.name}: {record.duration:.2f} s, peak {record.peak / 9.80665:.3f} g (scaled x{scale:g})")
@@ -53,7 +55,8 @@ def main(path: str | None = None, *, units: str | None = None, scale: float = 1.
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("path", nargs="?", help="record file (.AT2 or CSV); default: a synthetic one")
-    parser.add_argument("--units", choices=("g", "m/s2"), help="CSV acceleration units (default g)")
+    parser.add_argument("--units", choices=("g", "m/s2", "cm/s2"),
+                        help="CSV acceleration units (required with a CSV file)")
     parser.add_argument("--scale", type=float, default=1.0, help="factor on the accelerations")
     parser.add_argument("--quick", action="store_true", help="one run instead of four")
     a = parser.parse_args()

@@ -85,9 +85,14 @@ SITE_AG_RANGE_G = (0.0, 3.0)
 #: Where an input leaves engineering practice, it is accepted with a one-line warning naming the
 #: option (the usual slip is a unit: m/s^2 typed as g, ms as s, radians as degrees): a peak
 #: ground acceleration or a_g above 1.5 g (the largest recorded PGAs are about 1-3 g, design
-#: values stay below 0.5 g), an arch's radius below 0.2 m.
+#: values stay below 0.5 g), an arch's radius below 0.2 m, a pulse longer than 10 s (a
+#: near-fault pulse lasts about 0.5-5 s; 270 s is 270 ms typed as s).
 PLAUSIBLE_PGA_G = 1.5
 PLAUSIBLE_RADIUS_M = 0.2
+PLAUSIBLE_PULSE_S = 10.0
+#: An angle of embrace in degrees up to 2 pi (6.28 degrees, rise/span below 0.014) is refused
+#: as radians typed as degrees (180 degrees is 3.1416 rad); a flatter ring is a beam.
+RADIANS_EMBRACE_DEG = 2.0 * 3.141592653589793
 #: NTC 2018 F0, the plateau's amplification on rock: the code sets its minimum at 2.2 (§3.2.3.2.1);
 #: the hazard grid holds about 2.2-3.0, the upper bound 4.0 is ours and generous.
 NTC_F0_RANGE = (2.2, 4.0)
@@ -138,6 +143,8 @@ __all__ = [
     "SITE_AG_RANGE_G",
     "PLAUSIBLE_PGA_G",
     "PLAUSIBLE_RADIUS_M",
+    "PLAUSIBLE_PULSE_S",
+    "RADIANS_EMBRACE_DEG",
     "NTC_F0_RANGE",
     "NTC_TC_STAR_RANGE_S",
     "NTC_SOILS",

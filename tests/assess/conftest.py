@@ -13,13 +13,27 @@ import pytest
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def fourlink_bridge():
-    """examples/bridge.toml with [options] model = "fourlink" and restitution = 0.8."""
+def bare_bridge():
+    """examples/bridge.toml's ring without its [loads] table: the bare semicircle (R 5 m, t
+    0.6 m, 15 voussoirs) whose sections these tests set beside the library's bare-arch calls
+    (the loaded bridge's are in test_loads.py)."""
     import tomllib
 
     from archquake.assess.config import parse_config
 
     data = tomllib.loads((EXAMPLES / "bridge.toml").read_text())
+    data.pop("loads", None)
+    return parse_config(data, source="bridge.toml", base_dir=EXAMPLES)
+
+
+def fourlink_bridge():
+    """:func:`bare_bridge` with [options] model = "fourlink" and restitution = 0.8."""
+    import tomllib
+
+    from archquake.assess.config import parse_config
+
+    data = tomllib.loads((EXAMPLES / "bridge.toml").read_text())
+    data.pop("loads", None)
     data["options"] = {**data.get("options", {}), "model": "fourlink", "restitution": 0.8}
     return parse_config(data, source="bridge.toml", base_dir=EXAMPLES)
 

@@ -18,10 +18,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from archquake.assess import load_config
 from archquake.assess.sections import Context, Mode, prepared_mechanism, section_arch, section_static
 
-from .conftest import EXAMPLES
+from .conftest import bare_bridge
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reproduce"))
 from test_browser import CHROMIUM, _chromium  # noqa: E402  (the reproduction's helper)
@@ -32,7 +31,7 @@ SECTIONS = ("arch", "static", "pulses", "records", "dem", "validity", "codecheck
 TITLES = ("1. The arch", "2. Static capacity", "3. Pulses", "4. Records", "5. The DEM check",
           "6. Validity", "7. Code check (NTC 2018 §8.7.1, Circolare 2019 C8.7.1.2)", "8. Verdict")
 #: The bridge's site PGA: a_g S_S S_T at the SLV of its [site] table (0.1499 g x 1.2 x 1).
-SITE = load_config(EXAMPLES / "bridge.toml").site_pga_g
+SITE = bare_bridge().site_pga_g
 
 
 def test_every_section_is_present(bridge):
@@ -68,7 +67,7 @@ def test_static_numbers_equal_the_api(bridge):
     from archquake.limit import geometric_safety_factor, limit_analysis, min_thickness
 
     _, res, out, _ = bridge
-    arch = load_config(EXAMPLES / "bridge.toml").build_arch()
+    arch = bare_bridge().build_arch()
     la = limit_analysis(arch)
     st = res["sections"]["static"]
     assert st["collapse_acceleration_g"] == la.collapse_acceleration_g
@@ -91,7 +90,7 @@ def test_pulse_domain_equals_the_api(bridge):
 
     _, res, _, _ = bridge
     pu = res["sections"]["pulses"]
-    arch = load_config(EXAMPLES / "bridge.toml").build_arch()
+    arch = bare_bridge().build_arch()
     assert pu["restitution_cv"] == 0.8  # the example's prescribed value
     k = 2
     d = failure_domain(prepared_mechanism(arch, "paper"), "step",
@@ -130,7 +129,7 @@ def test_validity_reports_the_paper_law_and_the_sensitivity(bridge):
 
     _, res, _, _ = bridge
     va = res["sections"]["validity"]
-    own = PreparedMechanism.build(load_config(EXAMPLES / "bridge.toml").build_arch()).impact
+    own = PreparedMechanism.build(bare_bridge().build_arch()).impact
     assert va["impact"]["law_restitution_cv"] == own.restitution_cv
     assert va["impact"]["law_energy_gain"] and va["impact"]["used_restitution_cv"] == 0.8
     assert any(w["key"] == "impact_law" for w in va["warnings"])
@@ -153,7 +152,7 @@ def test_verdict_is_not_certain_when_a_serious_warning_is_raised(bridge):
 
 def test_full_and_quick_agree_on_the_static_numbers(bridge, tmp_path):
     rep, res, _, _ = bridge
-    cfg = load_config(EXAMPLES / "bridge.toml")
+    cfg = bare_bridge()
     ctx = Context(cfg, cfg.build_arch(), Mode(False), tmp_path, tmp_path)
     full = json.loads(json.dumps(section_static(ctx).to_dict()))["data"]
     quick = res["sections"]["static"]
@@ -203,7 +202,7 @@ def test_restitution_sensitivity_reruns_the_ida(bridge, tmp_path):
     assert ordered != ("restitution_ida_order" in keys)
     for e in ida:  # each P is a lognormal CDF at the site PGA: below 1/2 iff the median is above
         assert (e["p_collapse_at_site"] < 0.5) == (e["fragility_median_g"] > SITE)
-    cfg = rep_config = load_config(EXAMPLES / "bridge.toml")
+    cfg = rep_config = bare_bridge()
     suite = load_suite(cfg.suite)
     records = Mode(True).records(suite.records)
     assert [r.name for r in records] == rec["records_used"]

@@ -18,6 +18,8 @@ from archquake.assess import load_config
 from archquake.assess.runner import section_names
 from archquake.sweeps import ArchSpec
 
+from .conftest import bare_bridge
+
 BRIDGE = ArchSpec(radius=5.0, thickness_ratio=0.12, embrace_deg=180, voussoirs=15, density=1800)
 
 
@@ -187,9 +189,8 @@ def test_the_dem_check_runs_the_model_at_every_level_it_compares(tmp_path, monke
     from archquake.assess.sections import Context, Mode, section_dem, with_dem_warnings
 
     monkeypatch.setattr(sections, "_dem_outcome", lambda arch, motion, duration: "collapse")
-    from pathlib import Path
 
-    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    cfg = bare_bridge()
     arch = cfg.build_arch()
     prior = {"static": {"collapse_acceleration_g": 0.0491},
              "pulses": {"step": {"durations_s": [0.3314454], "collapse_g": [0.0954919]}}}
@@ -228,7 +229,6 @@ def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path
     a window that ended before the record did could only give collapse or indeterminate.
     Oracle: ``settled`` itself, on a run still (zero kinetic energy) over the whole window the
     DEM check asks for."""
-    from pathlib import Path
 
     from archquake.assess import sections
     from archquake.assess.sections import Context, Mode, section_dem, strong_motion_end
@@ -241,7 +241,7 @@ def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path
     monkeypatch.setattr(sections, "_dem_outcome",
                         lambda arch, motion, duration: asked.append((motion, duration))
                         or "survives")
-    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    cfg = bare_bridge()
     arch = cfg.build_arch()
     rec = load_suite("near-field-pulse").records[0]
     pga = rec.peak / STANDARD_GRAVITY
@@ -268,7 +268,6 @@ def test_the_rigid_ida_stops_at_the_scan_ceiling(tmp_path, monkeypatch):
     IDA's own 5 g. Measured on the bridge's 28 records (docs/notes/measurements.md): the same
     28 first-collapse brackets and the same 5 records with resurrections at 1 g as at 5 g, with
     1444 runs instead of 2324."""
-    from pathlib import Path
 
     import archquake.ida as ida
     from archquake.assess.sections import Context, Mode, rigid_scan_ceiling, run_ida
@@ -283,7 +282,7 @@ def test_the_rigid_ida_stops_at_the_scan_ceiling(tmp_path, monkeypatch):
         raise Stop
 
     monkeypatch.setattr(ida, "incremental_dynamic_analysis", fake)
-    cfg = load_config(Path(__file__).resolve().parents[2] / "examples" / "bridge.toml")
+    cfg = bare_bridge()
     ctx = Context(cfg, cfg.build_arch(), Mode(True), tmp_path, tmp_path, {})
     with pytest.raises(Stop):
         run_ida(ctx, None)

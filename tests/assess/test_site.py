@@ -30,13 +30,32 @@ def test_example_has_a_site():
 
 
 def test_section_is_the_library_check(tmp_path):
+    """Oracle: archquake check's library call on the bridge carrying its fill and backing
+    (every carried mass in alpha0, M* and e*, C8.7.1), to 1e-12."""
+    from archquake.codecheck.kinematic import LoadedFourHingeMechanism
+
     cfg = load_config(EXAMPLE)
     arch = cfg.build_arch()
     ctx = SimpleNamespace(config=cfg, arch=arch, figures=tmp_path)
     res = section_code_check(ctx)
     assert (tmp_path / "codecheck.png").is_file()
     spectra = limit_state_spectra(NTCHazard(HAZARD), soil="B")
-    ref = kinematic_check(capacity_curve(arch), spectra, knowledge="LC1")
+    ref = kinematic_check(capacity_curve(LoadedFourHingeMechanism.of(arch, cfg.dead_loads)),
+                          spectra, knowledge="LC1")
+    bare = kinematic_check(capacity_curve(arch), spectra, knowledge="LC1")
+    assert res.data["carried_mass_kg"] > 0
+    assert res.data["alpha0"] == pytest.approx(ref.curve.alpha0, rel=1e-12)
+    assert abs(res.data["alpha0"] / bare.curve.alpha0 - 1.0) > 0.1  # the loads change it
+    # the block table: each moving voussoir, then what it carries, numbered as the arch's blocks
+    blocks = res.data["blocks"]
+    voussoirs = [b for b in blocks if b["part"] == "voussoir"]
+    carried = [b for b in blocks if b["part"] == "carried"]
+    assert [b["block"] for b in voussoirs] == [b["block"] for b in carried]
+    assert sum(b["mass_kg"] for b in carried) == pytest.approx(
+        res.data["mass_kg"] - sum(float(arch.voussoir_masses[b["block"] - 1]) for b in voussoirs),
+        rel=1e-9)
+    sx = sum(b["m_dx_kg_m"] for b in blocks)
+    assert sum(b["m_dy_kg_m"] for b in blocks) / sx == pytest.approx(res.data["alpha0"], rel=1e-9)
     got = {(c["limit_state"], c["method"]): c["capacity_ag_g"] for c in res.data["limit_states"]}
     for c in ref.checks:
         assert got[(c.limit_state, c.method)] == pytest.approx(c.capacity_ag_g, rel=1e-12)
@@ -54,10 +73,12 @@ def test_section_is_the_library_check(tmp_path):
 def test_block_table_reconciles_alpha0_e_star_and_the_masses(tmp_path):
     """Oracle: the static analysis (the limit-analysis LP, an independent computation) for
     alpha0 = sum m delta_y / sum m delta_x; the curve's own e* and M for the block sums; and
-    the masses of section 1: M is the moving blocks' part of the arch's total."""
+    the masses of section 1: M is the moving blocks' part of the arch's total (the bare ring)."""
     from archquake.limit import limit_analysis
 
-    cfg = load_config(EXAMPLE)
+    from .conftest import bare_bridge
+
+    cfg = bare_bridge()
     arch = cfg.build_arch()
     res = section_code_check(SimpleNamespace(config=cfg, arch=arch, figures=tmp_path))
     blocks = res.data["blocks"]

@@ -150,7 +150,7 @@ def test_record_units_on_an_at2_file_name_the_option(capsys, tmp_path):
 def test_record_time_step_outside_its_range_is_one_line(capsys, tmp_path):
     csv = tmp_path / "q.csv"
     csv.write_text("0,0.1\n1000000,0.2\n2000000,0.1\n")
-    assert main(["run", "--record", str(csv), "--t-end", "1"]) == 2
+    assert main(["run", "--record", str(csv), "--units", "g", "--t-end", "1"]) == 2
     err = one_line(capsys)
     assert "q.csv" in err and "time step" in err and "(0, 1]" in err
 

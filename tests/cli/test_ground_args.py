@@ -56,20 +56,23 @@ def test_given_gravity_is_used():
         == 9.81
 
 
-def test_csv_record_defaults_to_g_and_honours_units_scale_mirror(csv_file):
-    base = parse("--record", str(csv_file))
+def test_csv_record_needs_units_and_honours_units_scale_mirror(csv_file):
+    # A CSV file does not say its units: none is assumed (cm/s^2 read as g is 981 times too much)
+    with pytest.raises(InvalidParameterError, match=r"quake.csv needs --units \{g,m/s2,cm/s2"):
+        parse("--record", str(csv_file))
+    base = parse("--record", str(csv_file), "--units", "g")
     assert isinstance(base, Record)
     np.testing.assert_allclose(base.accelerations, np.array([0.1, -0.3, 0.2]) * G, rtol=1e-15)
     si = parse("--record", str(csv_file), "--units", "m/s2")
     np.testing.assert_allclose(si.accelerations, [0.1, -0.3, 0.2], rtol=1e-15)
-    scaled = parse("--record", str(csv_file), "--scale", "2", "--mirror")
+    scaled = parse("--record", str(csv_file), "--units", "g", "--scale", "2", "--mirror")
     np.testing.assert_allclose(scaled.accelerations, -2 * base.accelerations, rtol=1e-15)
     assert scaled.scale == -2.0
 
 
 def test_at2_record_is_in_g(at2_file, csv_file):
     # Oracle: the same values written as CSV in g.
-    assert parse("--record", str(at2_file)) == parse("--record", str(csv_file))
+    assert parse("--record", str(at2_file)) == parse("--record", str(csv_file), "--units", "g")
     with pytest.raises(InvalidParameterError, match="--units m/s2 does not apply to quake.AT2"):
         parse("--record", str(at2_file), "--units", "m/s2")
 
@@ -114,12 +117,13 @@ def test_malformed_record_is_a_format_error(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text("0,1\n0.01,2\n0.03,3\n")
     with pytest.raises(GroundMotionFormatError, match="bad.csv: line 3"):
-        parse("--record", str(bad))
+        parse("--record", str(bad), "--units", "g")
 
 
 def test_help_states_units_and_direction():
     parser = argparse.ArgumentParser(prog="t")
     add_ground_motion_arguments(parser)
     text = " ".join(parser.format_help().split())
-    for phrase in ("in g", "towards -x", "default g", "TP", "s (1e-06 to 1000)", ".AT2", "towards +x"):
+    for phrase in ("in g", "towards -x", "required with a CSV", "TP", "s (1e-06 to 1000)", ".AT2",
+                   "towards +x"):
         assert phrase in text, phrase

@@ -30,18 +30,19 @@ def northridge_csv():
 
 
 def test_text_summary(northridge_csv, capsys):
-    assert cli_main.main(["record", str(northridge_csv)]) == 0
+    assert cli_main.main(["record", str(northridge_csv), "--units", "g"]) == 0
     out = capsys.readouterr().out
     assert "Northridge_1994_PAC-175" in out
     assert "points     1000" in out
     assert "dt         0.02 s" in out
     assert "duration   19.98 s" in out
     assert "0.4153 g = 4.073 m/s^2" in out  # PGA 0.415325 g (pyslammer's file)
-    assert "g (default; use --units m/s2" in out
+    assert "units      g\n" in out
 
 
 def test_json_summary_with_scale(northridge_csv, capsys):
-    assert cli_main.main(["record", str(northridge_csv), "--scale", "2", "--json"]) == 0
+    assert cli_main.main(["record", str(northridge_csv), "--units", "g", "--scale", "2",
+                          "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["points"] == 1000 and data["dt_s"] == 0.02
     assert data["pga_g"] == pytest.approx(2 * 0.415325, rel=1e-12)
@@ -71,7 +72,7 @@ def test_malformed_file_exits_2_with_one_line(tmp_path, capsys, name, content, f
     path = tmp_path / name
     if content is not None:
         path.write_text(content)
-    assert cli_main.main(["record", str(path)]) == 2
+    assert cli_main.main(["record", str(path), "--units", "g"]) == 2
     captured = capsys.readouterr()
     assert captured.out == ""
     err = captured.err.strip()

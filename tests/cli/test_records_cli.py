@@ -35,7 +35,8 @@ def samples():
 
 def test_record_json_carries_the_library_measures(samples, capsys):
     path = samples / "Northridge_1994_PAC-175.csv"
-    assert cli_main.main(["record", str(path), "--json", "--periods", "0.5,1"]) == 0
+    assert cli_main.main(["record", str(path), "--units", "g", "--json", "--periods",
+                          "0.5,1"]) == 0
     data = json.loads(capsys.readouterr().out)["intensity_measures"]
     ref = intensity_measures(read_record(path, units="g"), periods=(0.5, 1.0)).to_dict()
     assert set(data) == set(ref)
@@ -46,7 +47,8 @@ def test_record_json_carries_the_library_measures(samples, capsys):
 
 
 def test_record_text_shows_units(samples, capsys):
-    assert cli_main.main(["record", str(samples / "Northridge_1994_PAC-175.csv")]) == 0
+    assert cli_main.main(["record", str(samples / "Northridge_1994_PAC-175.csv"), "--units",
+                          "g"]) == 0
     out = capsys.readouterr().out
     for fragment in ("PGV        0.4527 m/s", "Arias      0.8895 m/s", "D5-95", " s (mean period",
                      "Sa(1 s)", "g (5 % damping)"):
@@ -71,13 +73,13 @@ def test_one_column_gal_file(tmp_path, capsys):
 )
 def test_record_bad_options_exit_2(samples, capsys, argv, fragment):
     path = samples / "Northridge_1994_PAC-175.csv"
-    assert cli_main.main(["record", str(path), *argv]) == 2
+    assert cli_main.main(["record", str(path), "--units", "g", *argv]) == 2
     err = capsys.readouterr().err
     assert fragment in err and err.count("\n") == 1
 
 
 def test_records_folder(samples, capsys):
-    assert cli_main.main(["records", str(samples), "--json"]) == 0
+    assert cli_main.main(["records", str(samples), "--units", "g", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert len(data["records"]) == 18 and data["units_in_files"] == "g"
     assert all("pga_g" in r["intensity_measures"] for r in data["records"])

@@ -88,7 +88,8 @@ def test_spectrum_bad_input_exit_2_one_line(argv, fragment, capsys):
 
 def test_record_spectrum_json(samples, capsys):
     path = samples / "Northridge_1994_PAC-175.csv"
-    assert cli_main.main(["record", str(path), "--spectrum", "--periods", "0:1:0.25",
+    assert cli_main.main(["record", str(path), "--units", "g", "--spectrum", "--periods",
+                          "0:1:0.25",
                           "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     expected = response_spectrum(read_record(path, units="g"), np.arange(5) * 0.25) / G
@@ -96,7 +97,8 @@ def test_record_spectrum_json(samples, capsys):
 
 
 def test_suite_spectrum_mean(samples, capsys):
-    assert cli_main.main(["records", str(samples), "--spectrum", "--periods", "0.5,1",
+    assert cli_main.main(["records", str(samples), "--units", "g", "--spectrum", "--periods",
+                          "0.5,1",
                           "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     rows = np.array([r["sa_g"] for r in data["records"]])
@@ -113,7 +115,7 @@ def test_select_from_a_folder_meets_the_band(samples, site, tmp_path, capsys):
     scaled; their mean, recomputed here from the files, lies in the code's band at every
     period (EN 1998-1: and the mean PGA >= a_g S at T = 0)."""
     out = tmp_path / "sel.png"
-    argv = ["records", str(samples), "--select", *site, "--periods", "0.2:1.0:0.1",
+    argv = ["records", str(samples), "--units", "g", "--select", *site, "--periods", "0.2:1.0:0.1",
             "--count", "7", "--scale-range", "0.25,4", "--json", "--plot", str(out)]
     assert cli_main.main(argv) == 0
     data = json.loads(capsys.readouterr().out)["selection"]
@@ -137,7 +139,8 @@ def test_select_from_a_folder_meets_the_band(samples, site, tmp_path, capsys):
 
 
 def test_select_deterministic_and_says_when_it_cannot(samples, capsys):
-    argv = ["records", str(samples), "--select", *NTC_SITE, "--periods", "0.2:1.0:0.2",
+    argv = ["records", str(samples), "--units", "g", "--select", *NTC_SITE, "--periods",
+            "0.2:1.0:0.2",
             "--json", "--seed", "4"]
     assert cli_main.main(argv) == 0
     first = json.loads(capsys.readouterr().out)["selection"]["records"]
@@ -147,7 +150,7 @@ def test_select_deterministic_and_says_when_it_cannot(samples, capsys):
         (r["name"], r["scale_factor"]) for r in again]
     # a site ten times stronger with the records unscaled: no set can match
     strong = ["--code", "ntc2018", "--ag", "2.5", "--f0", "2.4", "--tc-star", "0.3"]
-    assert cli_main.main(["records", str(samples), "--select", *strong, "--periods",
+    assert cli_main.main(["records", str(samples), "--units", "g", "--select", *strong, "--periods",
                           "0.2:1.0:0.2", "--scale-range", "1,1"]) == 2
     err = capsys.readouterr().err
     assert "no set of 7 records meets the band: the best mean is below the band" in err
@@ -166,6 +169,6 @@ def test_select_deterministic_and_says_when_it_cannot(samples, capsys):
      "fewer than count = 30"),
 ])
 def test_records_select_bad_input_exit_2(samples, argv, fragment, capsys):
-    assert cli_main.main(["records", str(samples), *argv]) == 2
+    assert cli_main.main(["records", str(samples), "--units", "g", *argv]) == 2
     err = capsys.readouterr().err
     assert fragment in err and err.count("\n") == 1

@@ -42,13 +42,17 @@ def test_record_example_reads_a_given_file(tmp_path):
     assert "quake" in out and "peak 0.612 g (scaled x1.2)" in out
 
 
-def test_record_example_reads_a_csv_without_units_in_g(tmp_path):
-    """A CSV record given without --units is read in g (as the CLI and the --help say), not
-    refused by read_record for want of units (issue 15)."""
+def test_record_example_needs_the_units_of_a_csv(tmp_path):
+    """A CSV file does not say its units: without --units the example refuses it in one line
+    naming --units (as the command line does), with --units g it reads the values as g."""
     csv = tmp_path / "quake.csv"
     csv.write_text("time,acc\n" + "\n".join(f"{0.01 * i:.2f},{(0.5 if 10 <= i < 60 else 0.0):g}"
                                              for i in range(300)) + "\n")
-    out = run_example("examples/earthquake_record.py", str(csv), "--quick")
+    python = str(PYTHON) if PYTHON.exists() else sys.executable
+    done = subprocess.run([python, "examples/earthquake_record.py", str(csv), "--quick"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.returncode != 0 and "--units" in done.stderr and "Traceback" not in done.stderr
+    out = run_example("examples/earthquake_record.py", str(csv), "--units", "g", "--quick")
     assert "peak 0.500 g (scaled x1)" in out
 
 

@@ -45,7 +45,7 @@ BASES: dict[str, tuple[list[str], list[str]]] = {
                ["--thickness", "--embrace", "--durations", "--max-magnitude", "--precision"]),
     "spectrum": (["spectrum", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star",
                   "0.3", "--json"], ["--ag", "--periods", "--damping"]),
-    "record": (["record", "quake.csv", "--json"], ["--scale", "--periods"]),
+    "record": (["record", "quake.csv", "--units", "g", "--json"], ["--scale", "--periods"]),
     "min-thickness": (["min-thickness", "--voussoirs", "20", "--json"],
                       ["--embrace", "--voussoirs"]),
     "check": (["check", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3",
@@ -68,8 +68,9 @@ def campaign() -> list[tuple[str, list[str]]]:
         if name in ("run", "friction", "thrust", "static", "check"):
             for arch in ARCHES:
                 cases.append((name, [*base, *arch]))
-    cases.append(("run", ["run", "--record", "long.csv", "--json"]))
-    cases.append(("run", ["run", "--record", "quake.csv", "--scale", "1e-320", "--json"]))
+    cases.append(("run", ["run", "--record", "long.csv", "--units", "g", "--json"]))
+    cases.append(("run", ["run", "--record", "quake.csv", "--units", "g", "--scale", "1e-320",
+                          "--json"]))
     return cases
 
 
@@ -111,7 +112,7 @@ def test_degenerate_values_campaign(scratch, long_record, case):
 @pytest.mark.parametrize("argv", [
     ["run", "--pulse", "step", "--magnitude", "0", "--duration", "0.2"],
     ["run", "--pulse", "step", "--magnitude", "1e-308", "--duration", "0.2"],
-    ["run", "--record", "quake.csv", "--scale", "1e-320"],
+    ["run", "--record", "quake.csv", "--units", "g", "--scale", "1e-320"],
     ["run", *PULSE, "--thickness", "0.01", "--embrace", "10"],
     ["friction", *PULSE, "--thickness", "0.01", "--embrace", "10"],
     ["thrust", *PULSE, "--thickness", "0.01", "--embrace", "10"],
@@ -135,18 +136,19 @@ def test_below_the_onset_nothing_is_integrated(scratch, argv):
 
 def test_run_refuses_the_work_friction_refuses(scratch):
     """200 voussoirs on a semicircle: ``friction`` refused it (~91 min) while ``run`` went on
-    silently; both now refuse in one line with the estimate, naming the options."""
+    silently; both now refuse in one line with the estimate, naming the options (without
+    --t-end, the run lasts the pulse and a tail: --duration)."""
     argv = [*PULSE, "--thickness", "1.08", "--embrace", "180", "--voussoirs", "200"]
     for command in ("run", "friction"):
         result = call([command, *argv], 60.0)
         assert problem(result) is None and result.code == 2, problem(result)
         line = result.error_lines[0]
-        assert "min" in line and "--voussoirs" in line and "--t-end" in line, line
+        assert "min" in line and "--voussoirs" in line and "--duration" in line, line
 
 
 def test_a_long_record_runs_by_default(scratch, long_record):
     """A record longer than 120 s runs with the default --t-end (--help allows 10,000 s)."""
-    result = call(["run", "--record", str(long_record), "--json"], 60.0)
+    result = call(["run", "--record", str(long_record), "--units", "g", "--json"], 60.0)
     assert problem(result) is None and result.code == 0, (problem(result), result.err)
     assert json.loads(result.out)["outcome"] == "no_hinging"
 
@@ -253,7 +255,7 @@ def test_a_long_record_is_judged_to_its_end(scratch):
         f"{0.01 * i:.2f},"
         f"{0.6 * math.sin(2 * math.pi * 0.01 * i / 0.4) if 19900 < i < 19980 else 0.0:.6f}"
         for i in range(20001)) + "\n")
-    result = call(["run", "--record", str(path), "--json"], 300.0)
+    result = call(["run", "--record", str(path), "--units", "g", "--json"], 300.0)
     assert problem(result) is None and result.code == 0, (problem(result), result.err)
     out = json.loads(result.out)
     assert out["rigid_verdict"]["onset_time_s"] > 199.0

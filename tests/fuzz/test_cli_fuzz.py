@@ -138,7 +138,7 @@ COMMANDS: dict[str, tuple[list[str], dict[str, st.SearchStrategy[str]]]] = {
                 "--scan": ints_in(2, 8), "--precision": floats_in(0.05, 0.5),
                 "--max-magnitude": floats_in(0.5, 2.0), "--workers": ints_in(1, 2),
                 "--pulse": st.sampled_from(["step", "sine"])}),
-    "record": (["record", "quake.csv", "--json"],
+    "record": (["record", "quake.csv", "--units", "g", "--json"],
                {"--scale": floats_in(0.1, 10.0), "--units": st.sampled_from(["g", "m/s2", "ms"])}),
     "spectrum": (["spectrum", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star",
                   "0.3", "--periods", "0:2:0.5", "--json"],
@@ -355,10 +355,11 @@ def csv_files(draw) -> bytes:
 def _run_record(scratch: Path, data: bytes, suffix: str, n: int, command: str):
     path = scratch / f"rec{n}{suffix}"
     path.write_bytes(data)
+    units = [] if suffix == ".AT2" else ["--units", "g"]  # a CSV file does not say its units
     if command == "record":
-        argv = ["record", str(path), "--json"]
+        argv = ["record", str(path), *units, "--json"]
     else:
-        argv = ["run", "--model", "fourlink", "--record", str(path), "--t-end", "1",
+        argv = ["run", "--model", "fourlink", "--record", str(path), *units, "--t-end", "1",
                 "--voussoirs", "5", "--json"]
     check(call(argv, TIMEOUT), [path.name, "--record", "--scale", "--units"])
 

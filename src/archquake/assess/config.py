@@ -29,6 +29,14 @@ computation.
     restitution = 0.8       # fourlink only: prescribed c_v in (0, 1] (instead of the law's)
     dem = true              # run the distinct-element check
 
+    [loads]         # what the arch carries (docs/loads.md; per metre of barrel width)
+    fill_depth = 0.8        # m over the crown's extrados (or fill_level = y, m)
+    fill_density = 1900     # kg/m^3
+    backing = 1.5           # m above each springing (backing_right if it differs)
+    point_loads = [{position = 2.0, load_kN = 30.0}]           # masses that move with the arch
+    distributed_loads = [{start = 3.0, end = 5.0, load_kN_m = 40.0}]
+    traffic = {axle_kN = 100.0, dispersion_deg = 26.57}      # the traffic check (statics only)
+
 Every problem is one line naming the key as the file spells it (``[arch] radius``), raised as
 :class:`~archquake.errors.StudyFileError` (exit status 2 on the command line). Every record
 file of the suite is read and checked here, before anything is computed. A value far outside
@@ -48,6 +56,7 @@ from typing import Any
 
 from archquake.assess.site import SITE_KEYS, SiteConfig, parse_site
 from archquake.errors import ArchquakeError, StudyFileError
+from archquake.geometry.loads import LOADS_KEYS  # the keys of [loads], as the study files'
 
 #: Keys of [arch]: the study files' arch keys (one home: archquake.sweeps.study) and friction.
 ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "density", "shape",
@@ -58,7 +67,7 @@ OPTION_KEYS = ("model", "impact", "restitution", "dem")
 #: The models an assessment's verdicts may rest on (the DEM is its check, ``dem = true``).
 ASSESS_MODELS = ("rigid", "fourlink")
 TABLES = {"arch": ARCH_KEYS, "seismic": SEISMIC_KEYS, "options": OPTION_KEYS,
-          "site": SITE_KEYS}
+          "site": SITE_KEYS, "loads": LOADS_KEYS}
 _WORDS = ("shape", "joints")
 _INTEGERS = ("voussoirs", "pier_courses")
 
@@ -99,6 +108,10 @@ class AssessConfig:
     notes : tuple of str
         One line per input far outside practice, and per override stated (printed before the
         run and in the report).
+    loads : Loads or None
+        The ``[loads]`` table (:func:`~archquake.geometry.loads.loads_from_table`): every
+        section carries its dead loads (:attr:`dead_loads`); its traffic is the traffic
+        check's.
     """
 
     arch: Any
@@ -114,10 +127,20 @@ class AssessConfig:
     site: SiteConfig | None = None
     site_pga_source: str | None = None
     notes: tuple[str, ...] = ()
+    loads: Any = None
+
+    @property
+    def dead_loads(self):
+        """What the arch carries in every section (the ``[loads]`` table without its traffic),
+        or None: a bare arch."""
+        if self.loads is None:
+            return None
+        dead = self.loads.without_traffic()
+        return None if dead.empty else dead
 
     def canonical(self) -> dict:
-        """Everything that determines the results (the cache key's input). The ``[site]``
-        table enters only when given, so a file without one keeps its digest."""
+        """Everything that determines the results (the cache key's input). The ``[site]`` and
+        ``[loads]`` tables enter only when given, so a file without them keeps its digest."""
         out = {"arch": self.arch.canonical(), "friction": self.friction,
                "site_pga_g": self.site_pga_g,
                "suite": list(self.suite) if isinstance(self.suite, tuple) else self.suite,
@@ -125,6 +148,8 @@ class AssessConfig:
                "dem": self.dem, "model": self.model}
         if self.site is not None:
             out["site"] = self.site.canonical()
+        if self.loads is not None:
+            out["loads"] = self.loads.to_dict()
         return out
 
     @property
@@ -213,11 +238,12 @@ def parse_config(data: dict, *, source: str = "assessment",
             kwargs[key] = _number(source, f"[arch] {key}", value)
     notes: list[str] = []
     embrace = kwargs.get("embrace_deg")
-    if isinstance(embrace, float) and 0.0 < embrace <= 2.0 * math.pi + 1e-9:
+    from archquake.ranges import PLAUSIBLE_PGA_G, PLAUSIBLE_RADIUS_M, RADIANS_EMBRACE_DEG
+
+    if isinstance(embrace, float) and 0.0 < embrace <= RADIANS_EMBRACE_DEG + 1e-9:
         raise _fail(source, "[arch] embrace_deg", f"= {embrace:g} looks like radians "
                                                   f"({math.degrees(embrace):.4g} degrees): the "
                                                   "key is in degrees, e.g. 180 for a semicircle")
-    from archquake.ranges import PLAUSIBLE_PGA_G, PLAUSIBLE_RADIUS_M
 
     radius = kwargs.get("radius")
     if isinstance(radius, float) and 0.0 < radius < PLAUSIBLE_RADIUS_M:
@@ -244,6 +270,8 @@ def parse_config(data: dict, *, source: str = "assessment",
                            f"{math.ceil(wide * 1000.0) / 1000.0:.3f} m wide would stand")
                         + " (or lower pier_height)")
         raise _fail(source, "[arch]", f"is invalid: {unstable_error(arch)}")
+
+    loads = None if "loads" not in data else _loads(source, data["loads"], arch)
 
     seismic = data.get("seismic", {})
     site = None
@@ -321,7 +349,57 @@ def parse_config(data: dict, *, source: str = "assessment",
                          "beyond design practice: is it in g (not m/s^2)?")
     return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
                         model=model, site=site_table, site_pga_source=site_source,
-                        notes=tuple(notes))
+                        notes=tuple(notes), loads=loads)
+
+
+def _loads(source: str, table: Any, arch) -> Any:
+    """The ``[loads]`` table read (:func:`~archquake.geometry.loads.loads_from_table`) and
+    checked against ``arch``: an arch that can carry loads (no piers, an extrados running left
+    to right), positions on its clear span, a fill surface at or above the extrados; and loads
+    every section can carry: the dynamic models carry masses that move with the arch, so
+    passive pressure and ``moves_with_arch = false`` are refused."""
+    from archquake.geometry.loads import Extrados, loads_from_table
+
+    loads = loads_from_table(table, source=source)
+    try:
+        extrados = Extrados.of(arch)
+    except ArchquakeError as exc:
+        key = "[arch] pier_height" if "piers" in str(exc) else "[arch]"
+        raise _fail(source, "[loads]", f"cannot be carried: {exc} ({key})") from None
+    span = extrados.clear_span
+    where = (f"must lie on the clear span, 0 to {span:.4g} m from the left springing of the "
+             "intrados")
+    for i, p in enumerate(loads.point_loads):
+        if p.position > span:
+            raise _fail(source, f"[loads] point_loads[{i}] position",
+                        f"= {p.position:g} m {where}")
+        if not p.moves_with_arch:
+            raise _fail(source, f"[loads] point_loads[{i}] moves_with_arch",
+                        "= false: a weight without mass is statics only, and the assessment's "
+                        "dynamic sections carry masses that move with the arch; leave it out "
+                        "(archquake static and check take it)")
+    for i, d in enumerate(loads.distributed_loads):
+        if d.end > span:
+            raise _fail(source, f"[loads] distributed_loads[{i}] end", f"= {d.end:g} m {where}")
+        if not d.moves_with_arch:
+            raise _fail(source, f"[loads] distributed_loads[{i}] moves_with_arch",
+                        "= false: a weight without mass is statics only, and the assessment's "
+                        "dynamic sections carry masses that move with the arch; leave it out "
+                        "(archquake static and check take it)")
+    if loads.traffic is not None and loads.traffic.position > span:
+        raise _fail(source, "[loads] traffic position", f"= {loads.traffic.position:g} m {where}")
+    if loads.passive is not None:
+        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+
+        raise _fail(source, "[loads] passive", f"is not taken by an assessment: "
+                                               f"{PASSIVE_LEFT_OUT}; leave it out "
+                                               "(archquake static and capacity take it)")
+    if loads.fill is not None:
+        try:
+            loads.fill.surface(arch)
+        except ArchquakeError as exc:
+            raise _fail(source, "[loads] fill_level", f"is invalid: {exc}") from None
+    return loads
 
 
 def _site_pga(source: str, given: float | None, override: bool, site: SiteConfig | None,

@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 
 from archquake import __version__
-from archquake.assess.sections import ASSUMPTIONS
+from archquake.assess.sections import assumptions
 from archquake.assess.site import report_code_check
 from archquake.reproduce.report import REPORT_CSS, image_data_uri, md_cell
 
@@ -45,8 +45,12 @@ def elements(rep) -> list[tuple]:
             f" Site PGA of the dynamic sections {cfg.site_pga_g:.3g} g: "
             f"{getattr(cfg, 'site_pga_source', None) or '[seismic] site_pga_g'}.")
     el.append(("p", "Input: " + ", ".join(f"{k} = {val}" for k, val in cfg.arch.canonical().items())
-               + f"; friction coefficient {cfg.friction:g}. Total mass "
-               f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m), overall "
+               + f"; friction coefficient {cfg.friction:g}. "
+               + ("Total mass " if "masses" not in a else "Mass of the masonry ")
+               + f"{a['total_mass_kg']:.0f} kg (depth {a['depth_m']:g} m)"
+               + ("" if "masses" not in a else
+                  f", carrying {a['masses']['carried_mass_kg']:.0f} kg (below)")
+               + ", overall "
                f"{a['overall_width_m']:.2f} m wide and {a['overall_height_m']:.2f} m high."
                + site))
     notes = getattr(cfg, "notes", ())
@@ -56,6 +60,8 @@ def elements(rep) -> list[tuple]:
     el.append(("table", ["block", "mass (kg)", "centroid x (m)", "centroid y (m)"],
                [[b["block"], f"{b['mass_kg']:.1f}", f"{b['centroid_x_m']:.3f}",
                  f"{b['centroid_y_m']:.3f}"] for b in a["blocks"]]))
+    if "loads" in a:
+        _loads(el, a)
 
     st = s["static"]
     el.append(("h2", "static", "2. Static capacity"))
@@ -64,7 +70,8 @@ def elements(rep) -> list[tuple]:
     rows = [["collapse acceleration lambda", f"{st['collapse_acceleration_g']:.4f} g"],
             ["hinges (load towards +x)", hinges],
             ["thickness t", f"{st['thickness_m']:.3f} m"],
-            ["minimum thickness t_min (same shape)",
+            ["minimum thickness t_min (same shape" + (", under the same fill and loads)"
+                                                       if "loads" in st else ")"),
              "not defined: " + str(st.get("min_thickness_note")) if st["min_thickness_m"] is None
              else f"{st['min_thickness_m']:.4f} m"],
             ["geometric factor of safety t / t_min", _f(st["geometric_safety_factor"])],
@@ -77,6 +84,8 @@ def elements(rep) -> list[tuple]:
         rows.append(["site PGA / lambda", f"{st['site_over_lambda']:.2f}"])
     el.append(("table", ["quantity", "value"], rows))
     el.append(("fig", "static.png", rep.sections["static"].figures[0].caption))
+    if "traffic" in s:
+        _traffic(el, rep, s["traffic"])
 
     pu = s.get("pulses")
     if pu is None:
@@ -92,7 +101,7 @@ def elements(rep) -> list[tuple]:
     el.append(("table", ["number", "value"], [[k, _f(x) if not isinstance(x, list) else
                                                ", ".join(_f(y) for y in x)]
                                               for k, x in v["numbers"].items()]))
-    el.append(("p", "Assumptions: " + "; ".join(ASSUMPTIONS) + ". Hinges form only at the joints "
+    el.append(("p", "Assumptions: " + "; ".join(assumptions(cfg)) + ". Hinges form only at the joints "
                     "between the blocks; the ground moves horizontally in the arch's plane."))
     # numbered as they come (a file without records or a [site] table has fewer sections), and
     # the list of sections made from the headings themselves: the list and the order agree
@@ -106,6 +115,76 @@ def elements(rep) -> list[tuple]:
                        f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
                        "Sections: " + ", ".join(titles) + "."))
     return el
+
+
+def _loads(el: list, a: dict) -> None:
+    """What the arch carries (the ``[loads]`` table, per metre of barrel width) and the masses
+    the models move."""
+    lo, m = a["loads"], a["masses"]
+    rows = []
+    f = lo.get("fill")
+    if f is not None:
+        where = (f"surface {f['depth_m']:g} m over the crown's extrados" if f["depth_m"]
+                 is not None else f"surface at y = {f['level_m']:g} m")
+        rows.append(["fill", f"{where}, {f['density_kg_m3']:g} kg/m^3; each block carries the "
+                             "column of fill above its extrados"])
+    b = lo.get("backing")
+    if b is not None:
+        rows.append(["backing", f"{b['left_m']:g} m (left) and {b['right_m']:g} m (right) above "
+                                "the springings: no hinge at joints "
+                                f"{', '.join(map(str, m['held_joints']))} (joints numbered from "
+                                "0 at the left springing)"
+                     + (f"; blocks {', '.join(map(str, m['held_blocks']))} belong to the "
+                        "support" if m.get("held_blocks") else "")])
+    for p in lo.get("point_loads", []):
+        rows.append(["point load", f"{p['load_N_m'] / 1e3:g} kN/m at {p['position_m']:g} m, "
+                                   "its mass moving with the arch"])
+    for d in lo.get("distributed_loads", []):
+        rows.append(["distributed load", f"{d['pressure_Pa'] / 1e3:g} kN/m^2 from "
+                                         f"{d['start_m']:g} to {d['end_m']:g} m, its mass "
+                                         "moving with the arch"])
+    t = lo.get("traffic")
+    if t is not None:
+        kind = "axle" if not t["length_m"] else f"patch {t['length_m']:g} m long"
+        spread = ("Boussinesq (Flamant)" if t["boussinesq"] else "not spread"
+                  if t["dispersion_deg"] is None else
+                  f"spread at {t['dispersion_deg']:g} deg through the fill")
+        rows.append(["traffic", f"{t['load_N_m'] / 1e3:g} kN/m {kind}, {spread}; statics only "
+                                "(the traffic check), no mass"])
+    rows.append(["passive fill pressure", "off (not modelled)"])
+    el.append(("p", "What the arch carries (positions along the clear span from the left "
+                    "springing of the intrados; loads per metre of barrel width). Every section "
+                    "carries the fill, the backing and the loads on the extrados; the traffic "
+                    "load enters the traffic check only."))
+    el.append(("table", ["load", "as modelled"], rows))
+    el.append(("table", ["mass", "kg"], [
+        ["masonry (the voussoirs)", f"{m['masonry_mass_kg']:.0f}"],
+        ["fill columns", f"{m['fill_mass_kg']:.0f}"],
+        ["loads on the extrados (moving with the arch)", f"{m['superimposed_mass_kg']:.0f}"],
+        ["carried in all", f"{m['carried_mass_kg']:.0f}"],
+        ["held by the backing (masonry and carried; with the support)",
+         f"{m.get('held_mass_kg', 0.0):.0f}"]]))
+
+
+def _traffic(el: list, rep, t: dict) -> None:
+    """The traffic check: the adequacy factor and the scan's figure."""
+    el.append(("h2", "traffic", "3. Traffic check"))
+    spread = ("Boussinesq (Flamant)" if t["boussinesq"] else "not spread"
+              if t["dispersion_deg"] is None else f"spread at {t['dispersion_deg']:g} deg")
+    el.append(("p", f"The {t['load_kN_m']:g} kN/m {t['kind']} ({spread}) moved along the clear "
+                    f"span over the dead loads, at {t['positions']} positions: the multiplier on "
+                    "it that collapses the arch (equilibrium and the four-hinge mechanism, "
+                    "statics only). The least multiplier is the adequacy factor."))
+    hinges = ", ".join(str(j) for j in t["hinge_joints"])
+    crit = t["critical"]
+    el.append(("table", ["quantity", "value"], [
+        ["adequacy factor (least multiplier)", f"{t['adequacy_factor']:.3f}"],
+        ["critical position", f"{t['critical_position_m']:.3f} m from the left springing"],
+        ["collapse load there", f"{t['collapse_load_kN_m']:.1f} kN/m"],
+        ["hinges (joints)", hinges],
+        ["static and kinematic bounds", f"{_f(crit.get('static_multiplier'))} and "
+                                        f"{_f(crit.get('kinematic_multiplier'))}"]]))
+    el.append(("fig", "traffic.png", rep.sections["traffic"].figures[0].caption))
 
 
 def _model_name(model: str) -> str:

@@ -80,6 +80,8 @@ def section_names(config: AssessConfig, arch=None) -> list[str]:
         names.remove("dem")
     if config.site is None:
         names.remove("codecheck")
+    if config.loads is None or config.loads.traffic is None:
+        names.remove("traffic")
     if arch is not None and dynamics_refusal(arch, config.model) is not None:
         names = [n for n in names if n not in ("pulses", "records", "dem")]
     return names
@@ -180,7 +182,7 @@ def _tagged(progress: Callable[[str], None] | None, name: str
 #: are done. The validity section does not wait for the DEM check; the DEM check's warnings are
 #: added to it afterwards (:func:`~archquake.assess.sections.with_dem_warnings`).
 NEEDS: dict[str, tuple[str, ...]] = {
-    "arch": (), "static": (), "codecheck": (), "pulses": (), "records": (),
+    "arch": (), "static": (), "traffic": (), "codecheck": (), "pulses": (), "records": (),
     "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records")}
 
 

@@ -29,6 +29,18 @@ from archquake.reproduce.core import Figure, StudyResult
 #: The assumptions every verdict rests on.
 ASSUMPTIONS = ("rigid blocks", "no tension at the joints", "infinite compressive strength",
                "in-plane motion only", "no backfill or spandrel walls")
+#: The last assumption for an arch that carries loads (docs/loads.md): the fill as columns.
+LOADS_ASSUMPTION = ("the fill as columns riding on the voussoirs (weight and horizontal inertia "
+                    "at each column's centroid; no arching, no shear between columns, no passive "
+                    "pressure), no spandrel walls")
+
+
+def assumptions(config) -> tuple[str, ...]:
+    """The assumptions every verdict on ``config``'s arch rests on: :data:`ASSUMPTIONS`, the
+    last one the fill's model when the arch carries loads (:data:`LOADS_ASSUMPTION`)."""
+    if getattr(config, "loads", None) is None:
+        return ASSUMPTIONS
+    return ASSUMPTIONS[:-1] + (LOADS_ASSUMPTION,)
 
 
 def rigid_scan_ceiling(lam_g: float, site_g: float | None) -> float:
@@ -134,6 +146,33 @@ class Context:
     def site(self) -> float | None:
         return self.config.site_pga_g
 
+    @property
+    def loads(self):
+        """What the arch carries in every section (the ``[loads]`` table without its traffic),
+        or None."""
+        return self.config.dead_loads
+
+    def rigid_body(self):
+        """What the rigid chain and the DEM run: the arch, or with loads its assembly whose
+        blocks carry them (:func:`archquake.dem.assembly.build_arch_assembly`)."""
+        if self.loads is None:
+            return self.arch
+        from archquake.dem.assembly import build_arch_assembly
+
+        return build_arch_assembly(self.arch, loads=self.loads)
+
+    def collapse_acceleration_g(self) -> float:
+        """lambda, g: the equivalent static analysis's, with the loads when the arch carries
+        them (:mod:`archquake.limit.loaded`)."""
+        if self.loads is None:
+            from archquake.limit import hinges_of
+            from archquake.limit.static import collapse_state
+
+            return float(collapse_state(hinges_of(self.arch))[0])
+        from archquake.limit.loaded import loaded_collapse, seismic_case
+
+        return float(loaded_collapse(seismic_case(self.arch, self.loads)).multiplier)
+
 
 class Progress:
     """Progress of one step on the ``say`` line: ``what: done/total, about N s left``, once the
@@ -210,19 +249,22 @@ def _duration(seconds: float) -> str:
     return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.0f} min"
 
 
-def prepared_mechanism(arch, impact: str = "paper"):
-    """The arch's prepared mechanism under its impact law (a prescribed c_v is passed to each
-    analysis as ``restitution=``, so that the law's validity and the verdict's dependence on it
-    are judged in one place: :func:`archquake.outcome.qualify`)."""
+def prepared_mechanism(arch, impact: str = "paper", loads=None):
+    """The arch's prepared mechanism under its impact law, its links carrying ``loads`` (a
+    prescribed c_v is passed to each analysis as ``restitution=``, so that the law's validity
+    and the verdict's dependence on it are judged in one place:
+    :func:`archquake.outcome.qualify`)."""
     from archquake.mechanism.prepared import PreparedMechanism
 
-    return PreparedMechanism.build(arch, impact)
+    if loads is None:
+        return PreparedMechanism.build(arch, impact)
+    return PreparedMechanism.build(arch, impact, loads=loads)
 
 
 def used_restitution(config, arch) -> tuple[float, Any]:
     """c_v the time histories use (prescribed, or the law's clipped at 0) and the law's own
     :class:`~archquake.mechanism.impact.ImpactSolution`."""
-    own = prepared_mechanism(arch, config.impact).impact
+    own = prepared_mechanism(arch, config.impact, config.dead_loads).impact
     cv = config.restitution if config.restitution is not None else max(own.restitution_cv, 0.0)
     return float(cv), own
 
@@ -268,10 +310,26 @@ def section_arch(ctx: Context) -> StudyResult:
     fig = MplFigure(figsize=(8, 5))
     ax = fig.subplots()
     plot_arch(arch, ax)
+    loads = ctx.config.loads
+    carried = None
+    if loads is not None:
+        from archquake.geometry.loads import block_extras
+        from archquake.plotting.arch import draw_loads
+
+        carried = block_extras(arch, ctx.loads) if ctx.loads is not None else None
+        if carried is not None:
+            draw_loads(ax, arch, carried, ctx.loads)
+        if loads.traffic is not None:
+            draw_traffic(ax, arch, carried, loads.traffic)
+        ax.legend(loc="upper left", fontsize=7, frameon=False)
     for k, c in enumerate(cents):
         ax.text(c[0], c[1], str(k + 1), ha="center", va="center", fontsize=7)
     x0, x1 = float(pts[:, 0].min()), float(pts[:, 0].max())
     y0, y1 = float(pts[:, 1].min()), float(pts[:, 1].max())
+    if carried is not None and carried.surface is not None:
+        y1 = max(y1, float(carried.surface))
+    if loads is not None:  # room above for the loads' arrows
+        y1 += 0.12 * float(arch.radius)
     ax.annotate("", (x0, y0 - 0.08 * height), (x1, y0 - 0.08 * height),
                 arrowprops={"arrowstyle": "<->", "color": "k"})
     ax.text(0.5 * (x0 + x1), y0 - 0.12 * height, f"overall width {width:.2f} m", ha="center",
@@ -293,9 +351,60 @@ def section_arch(ctx: Context) -> StudyResult:
             "overall_width_m": width, "overall_height_m": height,
             "friction_coefficient": ctx.config.friction,
             "density_kg_m3": float(ctx.config.arch.density), "depth_m": float(ctx.config.arch.depth)}
-    return StudyResult("arch", "1. The arch", (),
-                       (Figure("arch.png", "The arch: blocks numbered from the left springing, "
-                               "with its overall dimensions."),), (), data)
+    caption = "The arch: blocks numbered from the left springing, with its overall dimensions."
+    if loads is not None:
+        data["loads"] = loads.to_dict()
+        data["masses"] = carried_masses(arch, ctx.loads)
+        caption = ("The arch and what it carries: blocks numbered from the left springing, the "
+                   "fill columns shaded under the fill surface, the backing's top, the loads on "
+                   "the extrados" + (" and the traffic load (at the position the file gives; "
+                                     "the traffic check moves it along the span)"
+                                     if loads.traffic is not None else "") + ".")
+    return StudyResult("arch", "1. The arch", (), (Figure("arch.png", caption),), (), data)
+
+
+def carried_masses(arch, loads) -> dict:
+    """The masses the models move, kg: the masonry's, and what its blocks carry (the fill
+    columns, the loads on the extrados that move with the arch), from
+    :func:`~archquake.geometry.loads.block_extras`; the blocks the backing holds (numbered
+    from 1) belong to the support. ``loads`` None: the bare arch."""
+    from archquake.geometry.loads import Loads, block_extras
+
+    masonry = float(np.sum(arch.voussoir_masses))
+    if loads is None:
+        return {"masonry_mass_kg": masonry, "fill_mass_kg": 0.0, "superimposed_mass_kg": 0.0,
+                "carried_mass_kg": 0.0, "held_blocks": []}
+    extras = block_extras(arch, loads)
+    fill = (0.0 if loads.fill is None else
+            float(block_extras(arch, Loads(fill=loads.fill, backing=loads.backing)).mass.sum()))
+    carried = float(extras.mass.sum())
+    held = np.asarray(extras.held, dtype=bool)
+    blocks = [int(k) + 1 for k in np.flatnonzero(held[:-1] & held[1:])]  # both joints held
+    still = np.zeros(arch.voussoirs, dtype=bool)
+    still[[b - 1 for b in blocks]] = True
+    return {"masonry_mass_kg": masonry, "fill_mass_kg": fill,
+            "superimposed_mass_kg": carried - fill, "carried_mass_kg": carried,
+            "held_joints": [int(j) for j in np.flatnonzero(held)], "held_blocks": blocks,
+            "held_mass_kg": float(np.sum(np.asarray(arch.voussoir_masses)[still])
+                                  + np.sum(extras.mass[still]))}
+
+
+def draw_traffic(ax, arch, carried, traffic) -> None:
+    """The traffic load's arrow (an axle) or bar (a patch) above the fill, at its position."""
+    from archquake.geometry.loads import Extrados
+
+    ex = Extrados.of(arch)
+    x = ex.x0 + traffic.position
+    top = (carried.surface if carried is not None and carried.surface is not None
+           else float(arch.crown_point[1]))
+    r = float(arch.radius)
+    if traffic.length > 0:
+        ax.plot([x - 0.5 * traffic.length, x + 0.5 * traffic.length], [top + 0.05 * r] * 2,
+                color="tab:red", linewidth=3, label=f"traffic {traffic.load / 1e3:g} kN/m")
+    else:
+        ax.annotate("", (x, top), (x, top + 0.2 * r),
+                    arrowprops={"arrowstyle": "-|>", "color": "tab:red", "linewidth": 2})
+        ax.plot([], [], color="tab:red", label=f"axle {traffic.load / 1e3:g} kN/m")
 
 
 # ----------------------------------------------------------------------------- 2. statics
@@ -304,10 +413,17 @@ def section_static(ctx: Context) -> StudyResult:
     from archquake.limit import geometric_safety_factor, limit_analysis, min_thickness
     from archquake.plotting.arch import save_limit_analysis
 
-    la = limit_analysis(ctx.arch)
+    loads = ctx.loads
+    la = limit_analysis(ctx.arch) if loads is None else limit_analysis(ctx.arch, loads=loads)
     try:
-        t_min: float | None = min_thickness(ctx.arch)
-        fos: float | None = geometric_safety_factor(ctx.arch)
+        if loads is None:
+            t_min: float | None = min_thickness(ctx.arch)
+            fos: float | None = geometric_safety_factor(ctx.arch)
+        else:  # the ring thinned under the same fill surface and loads
+            from archquake.limit.loaded import min_thickness_loaded
+
+            t_min = float(min_thickness_loaded(ctx.arch, loads))
+            fos = float(ctx.arch.thickness) / t_min
         t_min_note = None
     except InvalidParameterError as exc:  # blocks from a file: no ring thickness to vary
         t_min = fos = None
@@ -329,12 +445,54 @@ def section_static(ctx: Context) -> StudyResult:
         "sliding": bool(demand > mu),
         "thrust_x_m": la.thrust_line[:, 0], "thrust_y_m": la.thrust_line[:, 1],
     }
+    if loads is not None:
+        data["loads"] = la.to_dict().get("loads")
     if ctx.site is not None:
         data["site_over_lambda"] = ctx.site / la.collapse_acceleration_g
     return StudyResult("static", "2. Static capacity", (),
                        (Figure("static.png", "The four-hinge mechanism at the collapse "
                                "acceleration lambda (load towards +x) and its line of thrust."),),
                        (), data)
+
+
+# ----------------------------------------------------------------------------- traffic
+#: Positions of the traffic check's scan along the span (quick, full).
+TRAFFIC_POSITIONS = {True: 26, False: 51}
+
+
+def section_traffic(ctx: Context) -> StudyResult:
+    """The traffic check: the ``[loads]`` table's traffic moved along the clear span over the
+    dead loads (:func:`archquake.limit.capacity.capacity_scan`); its least collapse multiplier
+    is the adequacy factor, at the critical position analysed again with both bounds."""
+    from matplotlib.figure import Figure as MplFigure
+
+    from archquake.limit.capacity import capacity_scan
+    from archquake.plotting.figures import DRAWING, save
+    from archquake.plotting.loads import plot_capacity, plot_capacity_scan
+
+    loads = ctx.config.loads
+    traffic = loads.traffic
+    scan = capacity_scan(ctx.arch, loads, traffic, TRAFFIC_POSITIONS[ctx.mode.quick])
+    crit = scan.critical
+    data = scan.to_dict()
+    data.update({"load_kN_m": traffic.load / 1e3, "kind": "axle" if traffic.length == 0
+                 else f"patch {traffic.length:g} m long",
+                 "dispersion_deg": traffic.dispersion, "boussinesq": traffic.boussinesq,
+                 "positions": int(scan.positions_m.size),
+                 "collapse_load_kN_m": crit.collapse_load_N_m / 1e3,
+                 "hinge_joints": list(crit.mechanism.joints)})
+    with DRAWING:  # the figures of sections run side by side, one at a time
+        fig = MplFigure(figsize=(13, 4.8))
+        a1, a2 = fig.subplots(1, 2)
+        plot_capacity(crit, a1)
+        plot_capacity_scan(scan, a2)
+        fig.tight_layout()  # room for the two-line title
+        save(fig, ctx.figures / "traffic.png", dpi=110)
+    return StudyResult("traffic", "Traffic check", (),
+                       (Figure("traffic.png", "The traffic load at its critical position: the "
+                               "collapse mechanism and line of thrust over the fill (left), and "
+                               "its collapse multiplier against its position along the span "
+                               "(right)."),), (), data)
 
 
 # ----------------------------------------------------------------------------- 3. pulses
@@ -361,10 +519,8 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
     restitution ``cv``."""
     if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
         from archquake.compare import dem_failure_domain
-        from archquake.limit import hinges_of
-        from archquake.limit.static import collapse_state
 
-        lam = float(collapse_state(hinges_of(ctx.arch))[0])
+        lam = ctx.collapse_acceleration_g()
         settings = ctx.mode.rigid_domain_settings(lam, ctx.site)
         n = ctx.mode.durations.size
         guess = n * (settings.coarse_points + 2 * settings.fine_points)  # about, per family
@@ -374,11 +530,13 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
                           f"{fam} domain time histories", guess, estimate=True) as tick:
                 out[fam] = dem_failure_domain(ctx.arch, fam, ctx.mode.durations,
                                               settings=settings, governing_only=True,
-                                              model="rigid", progress=tick).domain
+                                              model="rigid", progress=tick,
+                                              **({} if ctx.loads is None
+                                                 else {"loads": ctx.loads})).domain
         return out
     from archquake.domains import failure_domain
 
-    prep = prepared_mechanism(ctx.arch, ctx.config.impact)
+    prep = prepared_mechanism(ctx.arch, ctx.config.impact, ctx.loads)
     prescribed = ctx.config.restitution is not None or cv != prep.restitution
     return {fam: failure_domain(prep, fam, ctx.mode.durations,
                                 settings=ctx.mode.domain_settings,
@@ -483,15 +641,14 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     store_path.parent.mkdir(parents=True, exist_ok=True)
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
+    loaded = {} if ctx.loads is None else {"loads": ctx.loads}
     if cfg.model == "rigid":  # one threaded batch of verdicts per round, in this process
-        from archquake.limit import hinges_of
-        from archquake.limit.static import collapse_state
-
-        lam = float(collapse_state(hinges_of(ctx.arch))[0])
+        lam = ctx.collapse_acceleration_g()
         with ResultStore(store_path) as store:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model,
                                                ceiling=rigid_scan_ceiling(lam, ctx.site),
+                                               **loaded,
                                                progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
     else:
@@ -499,6 +656,7 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
         with ResultStore(store_path) as store, interruptible_pool(n) as executor:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
                                                model=cfg.model, executor=executor, workers=n,
+                                               **loaded,
                                                progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
     fits = fragility_of(res, rng=np.random.default_rng(0),
@@ -632,11 +790,25 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
     if ctx.config.model == "rigid":
         from archquake.rigid import rigid_verdicts
 
-        return [v.outcome.value for v in rigid_verdicts(ctx.arch, motions, duration=windows)]
+        return [v.outcome.value for v in rigid_verdicts(ctx.rigid_body(), motions,
+                                                        duration=_windows(ctx, motions, windows))]
     from archquake.mechanism.simulate import simulate
 
-    prep = prepared_mechanism(ctx.arch, ctx.config.impact)
+    prep = prepared_mechanism(ctx.arch, ctx.config.impact, ctx.loads)
     return [simulate(prep, m, restitution=ctx.config.restitution, t_end=w).outcome.value
+            for m, w in zip(motions, windows, strict=True)]
+
+
+def _windows(ctx: Context, motions: list, windows: list) -> list | None:
+    """The rigid chain's window of each motion, s: as given, or the verdict's default
+    (the end of the excitation + the verdict's tail in sqrt(R/g), as
+    :func:`archquake.rigid.rigid_verdicts` takes it for an arch, scaled by the arch's radius: a
+    loaded assembly has none of its own). For the bare arch, ``windows`` as given."""
+    if ctx.loads is None:
+        return windows
+    from archquake.rigid.verdict import _default_window
+
+    return [_default_window(ctx.arch, m, STANDARD_GRAVITY) if w is None else w
             for m, w in zip(motions, windows, strict=True)]
 
 
@@ -698,12 +870,13 @@ def section_dem(ctx: Context) -> StudyResult:
     tail = DOMAIN_TAIL * math.sqrt(float(ctx.arch.radius) / STANDARD_GRAVITY)
     windows = [None if case.startswith("record") or ctx.config.model != "rigid"
                else float(m.duration) + tail for case, _, m, _, _ in jobs]
+    body = ctx.rigid_body()  # the DEM's blocks carry the loads as the rigid chain's do
     if len(jobs) <= 1:
         model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
-        outcomes = [_dem_outcome(ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+        outcomes = [_dem_outcome(body, m, dur) for _, _, m, dur, _ in jobs]
     else:
         with interruptible_pool(min(workers(), len(jobs))) as pool:
-            futures = [pool.submit(_dem_outcome, ctx.arch, m, dur) for _, _, m, dur, _ in jobs]
+            futures = [pool.submit(_dem_outcome, body, m, dur) for _, _, m, dur, _ in jobs]
             tick, ran = ctx.counter("DEM runs", len(jobs)), [0]
             with tick:
                 for fu in futures:
@@ -885,12 +1058,15 @@ def _nearest_boundaries(domain: dict, site: float, count: int | None) -> np.ndar
     return np.sort(np.argsort(gap, kind="stable")[:count])
 
 
-def _rigid_friction_outcome(arch, motion, friction: float, time_step: float) -> str:
-    """One recorded run of the rigid chain with Coulomb joints to a verdict, at ``time_step``
-    (s; the verdict path has no friction): its outcome's word (module level: picklable)."""
+def _rigid_friction_outcome(arch, motion, friction: float, time_step: float,
+                            loads=None) -> str:
+    """One recorded run of the rigid chain (its blocks carrying ``loads``) with Coulomb joints
+    to a verdict, at ``time_step`` (s; the verdict path has no friction): its outcome's word
+    (module level: picklable)."""
     from archquake.compare import rigid_to_verdict
 
-    run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step)
+    run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step,
+                           **({} if loads is None else {"loads": loads}))
     return str(run.outcome.value)
 
 
@@ -932,20 +1108,23 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         cases.append((f"record {gov['record']}", rec.scaled(site / gov["pga_unscaled_g"])))
     ctx.say(f"  {len(cases)} cases at the site PGA x 3 (step, half step, friction)")
     motions = [m for _, m in cases]
-    h = verdict_time_step(ctx.arch)
+    body = ctx.rigid_body()
+    h = verdict_time_step(body)
+    windows = _windows(ctx, motions, [None] * len(motions))
     mu = ctx.config.friction
     fine = min(h, DEFAULT_TIME_STEP)
     tick = ctx.counter("sensitivity runs", 3 * len(motions))
     done = [0]
     with tick, interruptible_pool(min(workers(), len(motions))) as pool:
         # Coulomb joints at the verdict's step, in worker processes while the verdicts run
-        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h) for m in motions]
+        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h, ctx.loads)
+                   for m in motions]
         for fu in futures:
             fu.add_done_callback(lambda _: tick(_bump(done)))
-        default = rigid_verdicts(ctx.arch, motions, time_step=h)
+        default = rigid_verdicts(body, motions, time_step=h, duration=windows)
         done[0] += len(motions) - 1
         tick(_bump(done))
-        half = rigid_verdicts(ctx.arch, motions, time_step=0.5 * h)
+        half = rigid_verdicts(body, motions, time_step=0.5 * h, duration=windows)
         done[0] += len(motions) - 1
         tick(_bump(done))
         slid = [fu.result() for fu in futures]
@@ -956,7 +1135,8 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         again = [k for k in range(len(motions))
                  if fine < h and slid[k] != default[k].outcome.value]
         tick(done[0], 3 * len(motions) + len(again))
-        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine)
+        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, motions[k], mu, fine,
+                               ctx.loads)
                    for k in again]
         for k, fu in zip(again, futures, strict=True):
             slid[k], slid_steps[k] = fu.result(), fine
@@ -1191,7 +1371,14 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
     elif likelier and top:
         parts.append("What the models leave out can only make collapse likelier here ("
                      + "; ".join(w["warning"] for w in likelier) + ").")
-    parts.append("Assumptions: " + ", ".join(ASSUMPTIONS) + ".")
+    tr = prior.get("traffic")
+    if tr is not None:
+        parts.append(f"Traffic check (statics): the {tr['load_kN_m']:g} kN/m "
+                     f"{tr['kind']} collapses the arch at {tr['adequacy_factor']:.3g} times "
+                     f"itself, at {tr['critical_position_m']:.3g} m from the left springing "
+                     "(the adequacy factor).")
+        numbers["traffic_adequacy_factor"] = tr["adequacy_factor"]
+    parts.append("Assumptions: " + ", ".join(assumptions(config)) + ".")
     if level in ("collapse likely",) or code_fails:
         outcome = "fails"
     elif level in ("at risk", "rocks: dynamics not assessed"):
@@ -1208,11 +1395,13 @@ def verdict(config, prior: dict, *, quick: bool = False) -> dict:
 
 
 SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
-    ("arch", section_arch), ("static", section_static), ("pulses", section_pulses),
+    ("arch", section_arch), ("static", section_static), ("traffic", section_traffic),
+    ("pulses", section_pulses),
     ("records", section_records), ("dem", section_dem), ("validity", section_validity),
     ("codecheck", section_code_check))
 
-__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "OUTCOMES", "Context", "Mode", "Progress",
+__all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "LOADS_ASSUMPTION", "TRAFFIC_POSITIONS",
+           "assumptions", "carried_masses", "OUTCOMES", "Context", "Mode", "Progress",
            "SECTIONS", "dynamics_refusal",
            "prepared_mechanism", "rigid_scan_ceiling",
            "run_ida",

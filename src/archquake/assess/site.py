@@ -331,7 +331,14 @@ def section_code_check(ctx):
     from archquake.reproduce.core import Figure, StudyResult
 
     site: SiteConfig = ctx.config.site
-    curve = capacity_curve(ctx.arch)
+    loads = ctx.config.dead_loads
+    if loads is None:
+        curve = capacity_curve(ctx.arch)
+    else:  # every mass the arch carries (C8.7.1): its fill columns and loads on the extrados
+        from archquake.codecheck.kinematic import LoadedFourHingeMechanism
+
+        mechanism = LoadedFourHingeMechanism.of(ctx.arch, loads)
+        curve = capacity_curve(mechanism)
     result = kinematic_check(curve, site.spectra(), knowledge=site.knowledge,
                              procedure=site.procedure, position=site.position())
     save_code_check(result, ctx.figures / "codecheck.png")
@@ -343,7 +350,16 @@ def section_code_check(ctx):
     data["verdicts"] = [c.verdict() for c in result.governing]
     data["not_checked"] = site.not_checked()
     data["blocks"] = curve.block_table()
+    if loads is not None:  # the moving voussoirs, then what each carries: numbered as the arch
+        numbers = [int(k) + 1 for k in mechanism.base.voussoirs]
+        n = len(numbers)
+        data["blocks"] = [dict(row, block=numbers[i % n], part=("voussoir", "carried")[i // n])
+                          for i, row in enumerate(data["blocks"][:2 * n])]
     data["arch_mass_kg"] = float(np.sum(ctx.arch.voussoir_masses))
+    if loads is not None:
+        from archquake.assess.sections import carried_masses
+
+        data["carried_mass_kg"] = carried_masses(ctx.arch, loads)["carried_mass_kg"]
     return StudyResult("codecheck", "Code check", (),
                        (Figure("codecheck.png", "The capacity curve of the equivalent SDOF system "
                                "(C8.7.1.3) against the site's demand spectra at each limit "
@@ -401,8 +417,14 @@ def report_code_check(el: list, rep, data: dict) -> None:
         el.append(("p", f"Vertical component: {data['vertical']['reason']}."))
     blocks = data.get("blocks")
     moving = ("" if not blocks else
-              f" (blocks {blocks[0]['block']}-{blocks[-1]['block']}, the blocks that move; "
-              f"the arch's total is {data['arch_mass_kg']:.0f} kg, section 1)")
+              f" (blocks {min(b['block'] for b in blocks)}-{max(b['block'] for b in blocks)}, "
+              "the blocks that move" + (" with what they carry" if "carried_mass_kg" in data
+                                        else "") + "; "
+              f"the arch's total is {data['arch_mass_kg']:.0f} kg"
+              + ("" if "carried_mass_kg" not in data else
+                 f" of masonry and {data['carried_mass_kg']:.0f} kg carried (fill and loads "
+                 "on the extrados, with their blocks)")
+              + ", section 1)")
     el.append(("table", ["quantity", "value", "from"], [
         ["activation multiplier alpha0", f"{data['alpha0']:.4f}", "C8.7.1.1 (static analysis)"],
         ["participating mass fraction e*", f"{data['e_star']:.4f}", "C8.7.1.5"],
@@ -425,7 +447,8 @@ def report_code_check(el: list, rep, data: dict) -> None:
                         f"{sx * sx / (mass * sxx):.4f}."))
         el.append(("table", ["block", "mass m (kg)", "delta_x (m/rad)", "delta_y (m/rad)",
                              "m delta_x", "m delta_y", "m delta_x^2"],
-                   [[b["block"], f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
+                   [[f"{b['block']} (carried)" if b.get("part") == "carried" else b["block"],
+                     f"{b['mass_kg']:.1f}", f"{b['dx_m_rad']:.4f}",
                      f"{b['dy_m_rad']:.4f}", f"{b['m_dx_kg_m']:.1f}", f"{b['m_dy_kg_m']:.1f}",
                      f"{b['m_dx2_kg_m2']:.1f}"] for b in blocks]
                    + [["sum", f"{mass:.1f}", "", "", f"{sx:.1f}", f"{sy:.1f}", f"{sxx:.1f}"]]))

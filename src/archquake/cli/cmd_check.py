@@ -16,11 +16,7 @@ from archquake.cli.common import (
     ranged,
 )
 from archquake.cli.loads_options import add_loads_arguments, check_loads_on, loads_from_args
-from archquake.cli.site_options import (
-    add_site_options,
-    implausible_pga,
-    spectrum_from_args,
-)
+from archquake.cli.site_options import add_site_options, spectrum_from_args
 from archquake.errors import InvalidParameterError
 from archquake.ranges import (
     BUILDING_PERIOD_RANGE_S,
@@ -249,13 +245,13 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _warn_implausible(args: argparse.Namespace) -> None:
-    """The site's a_g far outside practice, on stderr, once the check has succeeded."""
-    import sys
+    """The site's a_g far outside practice, on stderr once the check has succeeded
+    (:mod:`archquake.cli.input_warnings`)."""
+    from archquake.cli.input_warnings import warn_pga
 
     top = None if args.hazard is None else max(p[1] for p in args.hazard)
-    for note in (implausible_pga("--ag", args.ag), implausible_pga("--hazard a_g", top)):
-        if note is not None:
-            print(note, file=sys.stderr)
+    warn_pga("--ag", args.ag)
+    warn_pga("--hazard a_g", top)
 
 
 def _time_history_suite(args: argparse.Namespace) -> list | None:

@@ -120,7 +120,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     the chain carries them and the static analysis beside it too."""
     import numpy as np
 
-    from archquake.cli.common import rigid_work
+    from archquake.cli.common import length_option, rigid_work
     from archquake.cli.rigid_run import joint_numbers, on_arch_joints
     from archquake.compare import rigid_to_verdict
     from archquake.compare.histories import rigid_window
@@ -128,7 +128,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
-                          DEFAULT_TIME_STEP)
+                          DEFAULT_TIME_STEP, length=length_option(args))
     run = rigid_to_verdict(arch, motion, progress=progress, loads=loads)
     forces = run.joint_forces
     summary = on_arch_joints(forces.summary(), joint_numbers(run), arch.voussoirs + 1)

@@ -25,6 +25,7 @@ from archquake.cli.common import (
     number,
     path_argument,
     print_json,
+    suite_from_args,
     whole,
 )
 from archquake.errors import ArchquakeError, InvalidParameterError
@@ -118,7 +119,6 @@ def _model(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     from archquake.ground.measures import parse_im
-    from archquake.ground.suites import load_suite
     from archquake.ida import incremental_dynamic_analysis
     from archquake.ida.fragility import dimensionless_divisor, dispersion_by_im, fragility_of
     from archquake.sweeps import ArchSpec, CaseOptions, ResultStore
@@ -132,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
     spec = ArchSpec(arch.radius, arch.thickness / arch.radius, math.degrees(arch.embrace),
                     arch.voussoirs, arch.depth, arch.density)
     try:
-        suite = load_suite(args.records, units=args.units, dt=args.dt)
+        suite = suite_from_args(args.records, args.units, args.dt)
     except ArchquakeError as exc:
         raise InvalidParameterError(f"--records: {exc}") from None
     options = CaseOptions(**impact_from_args(args))

@@ -35,8 +35,9 @@ DEFAULT_PERIODS = (0.2, 0.5, 1.0, 2.0)
 def add_record_file_arguments(p: argparse.ArgumentParser) -> None:
     """--units, --dt: how to read CSV/text files (shared with ``archquake records``)."""
     p.add_argument("--units", choices=UNITS, default=None,
-                   help="units of a CSV/text file's acceleration column: g, m/s2 or cm/s2 (= gal) "
-                        "(default g; .AT2 files are always in g)")
+                   help="units of a CSV/text file's acceleration column: g, m/s2 or cm/s2 (= gal); "
+                        "required with CSV/text files (they do not say); .AT2 files are always "
+                        "in g")
     p.add_argument("--dt", type=number, metavar="S",
                    help=f"time step of a one-column file, s ({RECORD_DT_RANGE_S[0]:g} to "
                         f"{RECORD_DT_RANGE_S[1]:g}); a two-column file (time, acceleration) "
@@ -102,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
     ims = intensity_measures(record, periods=args.periods, g=g)
     summary = record.to_dict(g=g)
     is_text = args.file.suffix.lower() in (".csv", ".txt")
-    summary["units_in_file"] = (args.units or "g") if is_text else "g"
+    summary["units_in_file"] = args.units if is_text else "g"  # a text file needs --units
     summary["g_m_s2"] = g
     summary["baseline_order"] = args.baseline
     summary["intensity_measures"] = ims.to_dict()
@@ -111,8 +112,6 @@ def run(args: argparse.Namespace) -> int:
         return 0
     signed = float(record.accelerations[int(round(record.time_of_peak / record.dt))])
     units_note = summary["units_in_file"]
-    if is_text and args.units is None:
-        units_note += " (default; use --units m/s2 if the file is in m/s^2)"
     lines = [
         f"record     {record.name}",
         f"file       {record.source}",

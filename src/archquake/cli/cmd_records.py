@@ -13,6 +13,7 @@ from archquake.cli.common import (
     print_json,
     ranged_whole,
     refuse_unless,
+    suite_from_args,
 )
 from archquake.cli.site_options import add_site_options, site_options_given, spectrum_from_args
 from archquake.constants import STANDARD_GRAVITY
@@ -130,8 +131,7 @@ def run(args: argparse.Namespace) -> int:
     if args.dt is not None and args.dt <= 0:
         raise InvalidParameterError(f"--dt must be > 0 s, got {args.dt:g}")
     units = args.units
-    suite = load_suite(args.suite, units=units or "g", dt=args.dt, normalized=args.normalized,
-                       g=g)
+    suite = suite_from_args(args.suite, units, args.dt, normalized=args.normalized, g=g)
     if args.select:
         return _select(suite, args, g)
     if args.spectrum:
@@ -150,7 +150,7 @@ def run(args: argparse.Namespace) -> int:
                     "records": rows})
         return 0
     print(f"{suite.name}: {suite.description}"
-          + ("" if units or suite.name in FEMA_SUITES else " (text files in g unless --units)"))
+          + (f" (text files in {units})" if units else ""))
     sa_head = "".join(f"  Sa({t:g}s) g" for t in args.periods)
     print(f"{'record':28s} {'event':26s}  PGA g   PGV m/s  Arias m/s  D5-95 s   Tm s{sa_head}")
     for row in rows:

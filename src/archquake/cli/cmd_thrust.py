@@ -116,7 +116,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     duration = max(max(args.times), 1e-3) + 1e-3
-    progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP)
+    progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP, length="--times")
     run = simulate_rigid(loaded_body(arch, loads), motion, duration=duration, progress=progress)
     collapse = run.result.collapse_time
     if collapse is not None and max(args.times) > collapse:

@@ -15,6 +15,7 @@ import numpy as np
 
 from archquake._json import to_jsonable
 from archquake._validate import check_range, check_whole  # noqa: F401  (the CLI's wording)
+from archquake.cli.input_warnings import warn_input, warn_pga
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import GroundMotionFormatError, InvalidParameterError
 from archquake.geometry.arch import Arch
@@ -45,7 +46,11 @@ from archquake.ranges import (  # the one place of every range
     FIGURE_SUFFIXES,
     MAGNITUDE_RANGE_G,
     MAX_DURATIONS,
+    PLAUSIBLE_PGA_G,
+    PLAUSIBLE_PULSE_S,
+    PLAUSIBLE_RADIUS_M,
     PULSE_TIME_RANGE_S,
+    RADIANS_EMBRACE_DEG,
     RECORD_DT_RANGE_S,
     SCALE_RANGE,
     T_END_RANGE_S,
@@ -389,8 +394,16 @@ def _circular_from_args(args: argparse.Namespace, joints: str):
     radius, thickness, embrace, voussoirs = (values[k] for k in ("radius", "thickness", "embrace",
                                                                   "voussoirs"))
     check_embrace_deg(embrace, OPTIONS)
+    if getattr(args, "embrace", None) is not None and embrace <= RADIANS_EMBRACE_DEG:
+        raise InvalidParameterError(
+            f"--embrace {embrace:g} looks like radians ({math.degrees(embrace):.4g} degrees): "
+            f"--embrace is in degrees, e.g. 180 for a semicircle (a ring flatter than "
+            f"{RADIANS_EMBRACE_DEG:.3g} degrees is a beam)")
     check_voussoirs(voussoirs, OPTIONS)
     check_radius(radius, OPTIONS)
+    if getattr(args, "radius", None) is not None and radius < PLAUSIBLE_RADIUS_M:
+        warn_input("--radius", f"{radius:g} m is below {PLAUSIBLE_RADIUS_M:g} m, smaller than "
+                               "any masonry arch: is it in m?")
     check_thickness(thickness, radius, OPTIONS)
     if joints == "vertical":
         from archquake.geometry.shapes import circular
@@ -568,8 +581,9 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
                           "positive upward); --scale scales both, --mirror reverses the "
                           "horizontal only. Read by the rigid chain (the default model)")
     grp.add_argument("--units", choices=RECORD_UNITS, default=None,
-                     help="units of a CSV record's acceleration column (default g; .AT2 files "
-                          "are always in g)")
+                     help="units of a CSV record's acceleration column, required with a "
+                          "CSV or text record (a CSV file does not say); .AT2 files are always "
+                          "in g")
     grp.add_argument("--scale", type=number, metavar="S",
                      help=f"factor applied to every value of the record (> 0 and <= "
                           f"{SCALE_RANGE[1]:g}; default 1)")
@@ -586,16 +600,19 @@ def add_ground_motion_arguments(parser: argparse.ArgumentParser) -> None:
 
 def record_from_args(path: Path, units: str | None, scale: float | None, *,
                      g: float = STANDARD_GRAVITY, dt: float | None = None) -> Record:
-    """Read a record given on the command line: CSV units default to g here (and only here,
-    where ``--help`` says so); ``--scale`` must be > 0 (``--mirror`` reverses a record);
-    ``--dt`` (s, > 0) is the step of a one-column text file."""
+    """Read a record given on the command line: a CSV or text file needs ``--units`` (the file
+    does not say); ``--scale`` must be > 0 (``--mirror`` reverses a record); ``--dt`` (s, > 0)
+    is the step of a one-column text file. A peak above ``ranges.PLAUSIBLE_PGA_G`` is warned
+    about, naming ``--scale`` (or ``--units``)."""
     scale = 1.0 if scale is None else scale
     if dt is not None:
         check_range("--dt", dt, *RECORD_DT_RANGE_S, "s")
     check_range("--scale", scale, *SCALE_RANGE, low_open=True,
                 hint="use --mirror to reverse the record" if scale < 0 else "")
     if units is None and path.suffix.lower() in (".csv", ".txt"):
-        units = "g"
+        raise InvalidParameterError(
+            f"{path.name} needs --units {{{','.join(RECORD_UNITS)}}}: the units of its "
+            "acceleration column (a CSV file does not say)")
     if path.suffix.lower() == ".at2" and units not in (None, "g"):
         raise InvalidParameterError(f"--units {units} does not apply to {path.name}: PEER .AT2 "
                                     "files are in g; leave --units out")
@@ -618,7 +635,30 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
         raise InvalidParameterError(
             f"{path}: peak {peak_g:g} g (after --scale {scale:g}) is above "
             f"{MAGNITUDE_RANGE_G[1]:g} g; lower --scale")
+    if peak_g > PLAUSIBLE_PGA_G:
+        what = (f"a PGA of {peak_g:.3g} g, above {PLAUSIBLE_PGA_G:g} g, beyond design practice: "
+                "is it in g?")
+        if scale != 1.0:
+            warn_input(f"--scale {scale:g}", f"gives {path.name} {what}")
+        elif units is not None:
+            warn_input(f"--units {units}", f"gives {path.name} {what}")
+        else:  # a PEER file, in g: its own values
+            warn_input(path.name, f"has {what}")
     return record
+
+
+def suite_from_args(name: str, units: str | None, dt: float | None, **kwargs: Any):
+    """:func:`archquake.ground.suites.load_suite` on the command line: a CSV or text file of
+    the suite without ``--units`` is refused naming ``--units`` and its choices."""
+    from archquake.ground.suites import MISSING_UNITS, load_suite
+
+    try:
+        return load_suite(name, units=units, dt=dt, **kwargs)
+    except InvalidParameterError as exc:
+        if units is None and str(exc).startswith(MISSING_UNITS):
+            raise InvalidParameterError(
+                f"--units {{{','.join(RECORD_UNITS)}}} is needed: {exc}") from None
+        raise
 
 
 def ground_motion_from_args(args: argparse.Namespace, *,
@@ -664,6 +704,7 @@ def ground_motion_from_args(args: argparse.Namespace, *,
         raise InvalidParameterError(f"--pulse {pulse} needs --magnitude A (g, >= 0)")
     check_range("--magnitude", args.magnitude, *MAGNITUDE_RANGE_G, "g",
                 hint="use --mirror to reverse the pulse" if args.magnitude < 0 else "")
+    warn_pga("--magnitude", args.magnitude)
     direction = 1 if args.mirror else -1
     vertical = getattr(args, "vertical", None)
     vertical = 0.0 if vertical is None else vertical
@@ -676,6 +717,7 @@ def ground_motion_from_args(args: argparse.Namespace, *,
             raise InvalidParameterError("--pulse step needs --duration TP (s, > 0): the length "
                                         "t_p of its first lobe")
         check_range("--duration", args.duration, *PULSE_TIME_RANGE_S, "s")
+        _warn_long_pulse("--duration", args.duration)
         return _lifts_off(StepImpulse.from_g(args.magnitude, args.duration, direction, g=g,
                                              vertical=vertical), g)
     if args.duration is not None:
@@ -684,6 +726,7 @@ def ground_motion_from_args(args: argparse.Namespace, *,
     if args.period is None:
         raise InvalidParameterError("--pulse sine needs --period T (s, > 0)")
     check_range("--period", args.period, *PULSE_TIME_RANGE_S, "s")
+    _warn_long_pulse("--period", args.period)
     return _lifts_off(SinePulse.from_g(args.magnitude, args.period, direction, g=g,
                                        vertical=vertical), g)
 
@@ -699,6 +742,29 @@ def _lifts_off(motion: GroundMotion, g: float) -> GroundMotion:
     return motion
 
 
+def _warn_long_pulse(option: str, seconds: float) -> None:
+    if seconds > PLAUSIBLE_PULSE_S:
+        warn_input(option, f"{seconds:g} s is longer than {PLAUSIBLE_PULSE_S:g} s, beyond any "
+                           "recorded pulse: is it in s (not ms)?")
+
+
+def length_option(args: argparse.Namespace) -> str:
+    """The option that sets how long a run of ``args`` lasts, as typed, for
+    :func:`rigid_work`: ``--t-end`` when given, else the excitation's (``--duration``,
+    ``--period``, ``--record``), whose end the run outlasts by its tail."""
+    if getattr(args, "t_end", None) is not None:
+        return "--t-end"
+    return excitation_option(args) + " (the run lasts the excitation and then 60 sqrt(R/g))"
+
+
+def excitation_option(args: argparse.Namespace) -> str:
+    """The option that sets how long the excitation of ``args`` lasts, as typed: ``--duration``
+    (step impulse), ``--period`` (sine pulse) or ``--record``."""
+    if getattr(args, "record", None) is not None:
+        return "--record"
+    return "--period" if getattr(args, "pulse", None) == "sine" else "--duration"
+
+
 #: Step of ``--periods START:STOP`` when none is given, s.
 DEFAULT_PERIOD_STEP_S = 0.05
 
@@ -709,7 +775,7 @@ ANNOUNCE_WORK_S = 10.0
 
 
 def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
-               passes: int = 1):
+               passes: int = 1, length: str = "--t-end"):
     """The one work estimate of every command that integrates the chain of rigid voussoirs
     (:func:`archquake.rigid.model.check_work`, the bound of ``simulate_rigid``): refused in one
     line naming the options to change, with the time it would take, above
@@ -727,7 +793,7 @@ def rigid_work(command: str, arch, motion, duration: float, time_step: float, *,
     # the bound first: it is arithmetic, while the onset test projects the whole chain (seconds
     # for hundreds of voussoirs)
     seconds = check_work(model.n_bodies, duration, time_step, passes=passes,
-                         change="give fewer --voussoirs or a shorter --t-end")
+                         change=f"give fewer --voussoirs or a shorter {length}")
     if seconds <= ANNOUNCE_WORK_S or stays_at_rest(model, motion):
         return None
     steps = math.ceil(duration / time_step)
@@ -779,11 +845,18 @@ def periods_list(text: str) -> tuple[float, ...]:
 
 
 def parse_durations(text: str) -> np.ndarray:
-    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration."""
+    """argparse type: ``START:STOP:COUNT`` (s) to COUNT evenly spaced durations, or one duration;
+    durations past ``ranges.PLAUSIBLE_PULSE_S`` are warned about (``--durations``)."""
     try:
-        return _durations(text)
+        values = _durations(text)
     except InvalidParameterError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+    longest = float(values.max())
+    if longest > PLAUSIBLE_PULSE_S:
+        warn_input("--durations", f"{text} reaches {longest:g} s, longer than "
+                                  f"{PLAUSIBLE_PULSE_S:g} s, beyond any recorded pulse: is it in "
+                                  "s (not ms)?")
+    return values
 
 
 def _durations(text: str) -> np.ndarray:
@@ -832,7 +905,10 @@ __all__ = [
     "periods_list",
     "rigid_work",
     "print_json",
+    "excitation_option",
+    "length_option",
     "record_from_args",
+    "suite_from_args",
     "to_jsonable",
     "whole",
 ]

@@ -40,11 +40,15 @@ def block_duration(args, arch, motion, flag: str, why: str) -> float:
 
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
     if duration > DEM_T_END_MAX_S:
+        from archquake.cli.common import excitation_option
+
         given = ("--t-end" if args.t_end is not None
                  else "the default --t-end (end of the excitation + 5 sqrt(R/g))")
+        change = ("a shorter --t-end" if args.t_end is not None
+                  else f"a shorter {excitation_option(args)}, or a --t-end")
         raise InvalidParameterError(
             f"{given} is {duration:g} s; with {flag} it must be <= {DEM_T_END_MAX_S:g} s "
-            f"({why}): give a shorter --t-end")
+            f"({why}): give {change}")
     return duration
 
 

@@ -23,6 +23,7 @@ import sys
 from collections.abc import Sequence
 
 from archquake import __version__
+from archquake.cli.input_warnings import print_input_warnings, take_input_warnings
 from archquake.errors import ArchquakeError, UsageError
 
 #: Sub-command modules, in the order ``--help`` lists them.
@@ -130,11 +131,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 user error)."""
     argv = list(argv) if argv is not None else sys.argv[1:]
     previous = _stop_on_sigterm()
+    take_input_warnings()  # none left from an earlier call in the same process
     try:
         parser = build_parser(argv)
         args = parser.parse_args(argv)
-        return int(args.func(args) or 0)
+        status = int(args.func(args) or 0)
+        print_input_warnings()  # after the command: a refusal stays one line
+        return status
     except ArchquakeError as exc:
+        take_input_warnings()
         print(f"archquake: error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

@@ -36,7 +36,7 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
     if solver == "events" and args.friction is not None:
         raise InvalidParameterError(
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
-    from archquake.cli.common import rigid_work
+    from archquake.cli.common import length_option, rigid_work
     from archquake.compare.histories import rigid_window
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
@@ -52,7 +52,8 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
             step = verdict_time_step(arch)
             window = rigid_window(arch, motion)[1]
             # the verdict, then the recorded history, each up to the window's end
-            progress = rigid_work("run", arch, motion, window, step, passes=2)
+            progress = rigid_work("run", arch, motion, window, step, passes=2,
+                                  length=length_option(args))
             # the verdict's own default window stops at 120 s (its batches' bound); a run
             # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
             verdict = rigid_verdict(body, motion,
@@ -64,7 +65,7 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
             progress = None
             if solver == "direct":
                 progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
-                                      DEFAULT_TIME_STEP)
+                                      DEFAULT_TIME_STEP, length=length_option(args))
             result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
                                       progress=progress, loads=loads)
     else:  # a given --t-end is run as given

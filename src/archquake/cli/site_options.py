@@ -80,6 +80,9 @@ def spectrum_from_args(args: argparse.Namespace):
         return None
     if args.ag is None:
         raise InvalidParameterError(f"--code {args.code} needs --ag G (a_g in g)")
+    from archquake.cli.input_warnings import warn_pga
+
+    warn_pga("--ag", args.ag)
     ntc = {"--f0": args.f0, "--tc-star": args.tc_star, "--soil": args.soil,
            "--topography": args.topography}
     ec8 = {"--type": args.spectrum_type, "--ground": args.ground, "--importance": args.importance}
@@ -100,18 +103,6 @@ def spectrum_from_args(args: argparse.Namespace):
                         component=args.component)
 
 
-def implausible_pga(name: str, value_g: float | None) -> str | None:
-    """The one-line warning for a peak ground acceleration typed as ``name`` (g) above
-    :data:`~archquake.ranges.PLAUSIBLE_PGA_G`, beyond design practice (m/s^2 typed as g?), or
-    None. A command prints it on stderr once it has succeeded (a refusal stays one line)."""
-    from archquake.ranges import PLAUSIBLE_PGA_G
-
-    if value_g is None or value_g <= PLAUSIBLE_PGA_G:
-        return None
-    return (f"archquake: warning: {name} {value_g:g} g is above {PLAUSIBLE_PGA_G:g} g, beyond "
-            "design practice: is it in g (not m/s^2)?")
-
-
 def site_options_given(args: argparse.Namespace) -> dict[str, object]:
     """The site options besides ``--code`` and ``--component`` by name as typed (None: not
     given), for :func:`archquake.cli.common.refuse_unless`."""
@@ -120,5 +111,4 @@ def site_options_given(args: argparse.Namespace) -> dict[str, object]:
             "--ground": args.ground, "--importance": args.importance}
 
 
-__all__ = ["SITE_CODES", "add_site_options", "site_options_given", "spectrum_from_args",
-           "implausible_pga"]
+__all__ = ["SITE_CODES", "add_site_options", "site_options_given", "spectrum_from_args"]

@@ -230,14 +230,18 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
         f"records {text!r}: no such file or folder, and not a suite name ({known})")
 
 
+#: How the refusal of a CSV/text file without units begins (the command line names its option).
+MISSING_UNITS = "units of "
+
+
 def _files_suite(name: str, paths: list[Path], source: str | None, units, dt, g) -> Suite:
     records = []
     for p in paths:
         u = units
         if u is None and p.suffix.lower() in (".csv", ".txt"):
             raise InvalidParameterError(
-                f"units of {p.name} must be given: 'g', 'm/s2' or 'cm/s2' (a CSV file does not "
-                "say)")
+                f"{MISSING_UNITS}{p.name} must be given: 'g', 'm/s2' or 'cm/s2' (a CSV file "
+                "does not say)")
         records.append(read_record(p, units=u if p.suffix.lower() != ".at2" else None,
                                    dt=dt if p.suffix.lower() != ".at2" else None, g=g))
     names = [r.name for r in records]
