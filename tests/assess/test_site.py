@@ -64,6 +64,10 @@ def test_section_is_the_library_check(tmp_path):
     report_code_check(el, SimpleNamespace(sections={"codecheck": res}), res.data)
     assert el[0][0] == "h2" and "Code check" in el[0][2]
     assert sum(1 for e in el if e[0] == "table") == 3  # numbers, blocks, limit states
+    # NTC 2018 §7.2.2 asks for the vertical component for an arch: the report says it is taken
+    assert res.data["vertical"]["taken"]
+    assert any(e[0] == "p" and e[1].startswith("Vertical component: taken: NTC 2018 §7.2.2")
+               for e in el)
 
 
 def test_block_table_reconciles_alpha0_e_star_and_the_masses(tmp_path):

@@ -413,6 +413,8 @@ def report_code_check(el: list, rep, data: dict) -> None:
                     "local mechanism; each limit state is reported as the capacity a_g (the "
                     "least a_g on rock at which the demand reaches the capacity, the site's "
                     "spectral shape held) against the site's a_g."))
+    if data.get("vertical") is not None:  # where the code asks for it (docs/code-check.md)
+        el.append(("p", f"Vertical component: {data['vertical']['reason']}."))
     blocks = data.get("blocks")
     moving = ("" if not blocks else
               f" (blocks {min(b['block'] for b in blocks)}-{max(b['block'] for b in blocks)}, "

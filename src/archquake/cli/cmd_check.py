@@ -87,6 +87,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                      type=ranged(*BUILDING_PERIOD_RANGE_S, unit="s", low_open=True),
                      help="the building's fundamental period T1, s (with --height; NTC eq. "
                           "7.3.6 or a pushover)")
+    grp.add_argument("--vertical-component", choices=("code", "take", "neglect"),
+                     default="code",
+                     help="the vertical component of the seismic action: 'code' (default) as "
+                          "the code asks (NTC 2018 takes it for an arch, a thrusting "
+                          "structure; EN 1998-1 does not, an arch not being among the members "
+                          "it names), 'take' or 'neglect'; taken, each limit state is checked "
+                          "under E_x + 0.3 E_z and 0.3 E_x + E_z at the ground, the weights "
+                          "scaled by (1 - k_v)")
     th = p.add_argument_group(
         "time-history route (Circolare 2019 C8.7.1.2.1.9), beside the static one")
     th.add_argument("--time-history", metavar="SUITE",
@@ -203,8 +211,14 @@ def run(args: argparse.Namespace) -> int:
         from archquake.codecheck.kinematic import LoadedFourHingeMechanism
 
         curve = capacity_curve(LoadedFourHingeMechanism.of(arch, loads))
-    result = kinematic_check(curve, spectra, knowledge=args.knowledge, procedure=args.procedure,
-                             position=position)
+    vertical = {"code": None, "take": True, "neglect": False}[args.vertical_component]
+    try:
+        result = kinematic_check(curve, spectra, knowledge=args.knowledge,
+                                 procedure=args.procedure, position=position, vertical=vertical)
+    except InvalidParameterError as exc:
+        if vertical and "vertical component" in str(exc):
+            raise InvalidParameterError(f"--vertical-component take: {exc}") from None
+        raise
     routes = _time_history(args, result, curve, suite) if suite is not None else []
     if args.plot is not None:
         from archquake.plotting.codecheck import save_code_check
@@ -326,6 +340,7 @@ def format_result(result, arch, source: str, missing: dict | None = None) -> str
         f"  d0 = {curve.d0_m:.4f} m (alpha = 0 at rotation {curve.phi0_rad:.4f} rad; control "
         "point: centre of mass of the moving voussoirs, C8.7.1.4)",
     ]
+    lines.append(f"vertical component: {result.vertical.reason}")
     governing = result.governing
     for c in result.checks:
         lines.append(c.verdict() + ("" if c in governing else "  (not governing)"))

@@ -43,7 +43,11 @@ import numpy as np
 from scipy.optimize import brentq
 
 from archquake._validate import require_positive, require_range
-from archquake.codecheck.kinematic import CapacityCurve
+from archquake.codecheck.kinematic import (
+    CapacityCurve,
+    FourHingeMechanism,
+    LoadedFourHingeMechanism,
+)
 from archquake.codes.spectra import ElasticSpectrum, NTCHazard, return_period_years
 from archquake.errors import InvalidParameterError
 
@@ -92,6 +96,102 @@ NONLINEAR = {
     "SLV": LimitStateSpec(0.4, 1.68, 0.08),
     "SLC": LimitStateSpec(0.6, 1.56, 0.10),
 }
+
+
+#: The other component's share in the combination of the components (NTC 2018 eq. 7.3.15,
+#: EN 1998-1 eq. 4.20): E_x + 0.3 E_z and 0.3 E_x + E_z.
+COMBINATION_COEFFICIENT = 0.3
+#: EN 1998-1 §4.3.3.5.2(1): the vertical component is taken where a_vg exceeds 0.25 g (and
+#: only for the members it names), in g.
+EC8_VERTICAL_THRESHOLD_G = 0.25
+
+
+@dataclass(frozen=True)
+class VerticalTreatment:
+    """Whether the check takes the vertical component of the seismic action, and why.
+
+    Where taken, every limit state is checked under the two combinations E_x + 0.3 E_z and
+    0.3 E_x + E_z (NTC 2018 eq. 7.3.15), the vertical as a steady downward ground
+    acceleration k_v g = c a_vg (c = 0.3 or 1, a_vg the site's vertical spectrum's PGA; a
+    rigid mechanism has no period before it activates): every weight, hence the whole capacity
+    curve a(d), is scaled by (1 - k_v) (the exact law of a no-tension mechanism loaded by its
+    weights alone, :func:`archquake.limit.limit_analysis`'s ``vertical``), d0 unchanged.
+
+    Attributes
+    ----------
+    taken : bool
+    reason : str
+        One sentence: which clause, and why it applies or not here.
+    """
+
+    taken: bool
+    reason: str
+
+    def to_dict(self) -> dict:
+        return {"taken": self.taken, "reason": self.reason,
+                "combinations": (["E_x + 0.3 E_z", "0.3 E_x + E_z"] if self.taken else [])}
+
+
+def vertical_treatment(spectra: Mapping[str, ElasticSpectrum], position: Position,
+                       procedure: Procedure, vertical: bool | None, *,
+                       thrusting: bool = True) -> VerticalTreatment:
+    """As the code asks (``vertical`` None), or as the caller says (True, False).
+
+    NTC 2018 §7.2.2 names thrusting structures and bridges among the cases where the vertical
+    component must be considered: an arch (``thrusting``) is both, so the NTC check takes it;
+    a block rocking on its base is not among them. EN 1998-1
+    §4.3.3.5.2 asks for it only where a_vg > 0.25 g and for the members it names (horizontal
+    members spanning 20 m or more, cantilevers longer than 5 m, prestressed members, beams
+    supporting columns, base isolation), among which an arch is not: the EN 1998-1 check
+    neglects it unless asked. Above the ground the floor spectrum (C7.2.11) is horizontal
+    only, and the superseded 2009 procedure (C8A.4) has no vertical: both neglect it, and
+    refuse ``vertical=True``.
+    """
+    codes = {sp.code for sp in spectra.values()}
+    if not position.at_ground:
+        if vertical:
+            raise InvalidParameterError(
+                "the vertical component is taken at the ground only (the C7.2.11 floor "
+                "spectrum is horizontal)")
+        return VerticalTreatment(False, "neglected: the mechanism sits in a building and the "
+                                        "floor spectrum of C7.2.11 is horizontal only")
+    if procedure is Procedure.CIRC2009:
+        if vertical:
+            raise InvalidParameterError(
+                "the vertical component is taken with procedure 2019 only")
+        return VerticalTreatment(False, "neglected: the 2009 procedure (C8A.4) has no "
+                                        "vertical component")
+    if vertical is True:
+        return VerticalTreatment(True, "taken, as asked")
+    if vertical is False:
+        return VerticalTreatment(False, "neglected, as asked")
+    if codes <= {"ntc2018"} and not thrusting:
+        return VerticalTreatment(False, "neglected: NTC 2018 §7.2.2 asks for the vertical "
+                                        "component for thrusting structures and bridges, and "
+                                        "this mechanism is neither")
+    if codes <= {"ntc2018"}:
+        return VerticalTreatment(True, "taken: NTC 2018 §7.2.2 asks for the vertical "
+                                       "component for thrusting structures and bridges, and "
+                                       "an arch is one")
+    avg = max((sp.companion("vertical").pga / sp.g for sp in spectra.values()), default=0.0)
+    return VerticalTreatment(False, f"neglected: EN 1998-1 §4.3.3.5.2 asks for it only where "
+                                    f"a_vg > {EC8_VERTICAL_THRESHOLD_G:g} g (here {avg:.3f} g) "
+                                    f"and for the members it names, among which an arch is "
+                                    f"not (it is taken on request)")
+
+
+def _combinations(taken: bool) -> tuple[tuple[float, float], ...]:
+    """(horizontal share, vertical share) of each combination checked."""
+    if not taken:
+        return ((1.0, 0.0),)
+    return ((1.0, COMBINATION_COEFFICIENT), (COMBINATION_COEFFICIENT, 1.0))
+
+
+def _gravity_factor(spectrum: ElasticSpectrum, share: float) -> float:
+    """1 - k_v: the weights under a downward k_v g = ``share`` a_vg (0 where they vanish)."""
+    if share == 0.0:
+        return 1.0
+    return max(1.0 - share * spectrum.companion("vertical").pga / spectrum.g, 0.0)
 
 
 @dataclass(frozen=True)
@@ -311,6 +411,7 @@ class CodeCheck:
     position: Position
     spectra: Mapping[str, ElasticSpectrum] = field(repr=False)
     checks: tuple[LimitStateCheck, ...]
+    vertical: VerticalTreatment = VerticalTreatment(False, "neglected")
 
     @property
     def confidence_factor(self) -> float:
@@ -358,6 +459,7 @@ class CodeCheck:
             "a0_star_m_s2": self.a0_star,
             "d0_m": self.curve.d0_m,
             "passes": self.passes,
+            "vertical": self.vertical.to_dict(),
             "limit_states": [{**c.to_dict(), "governing": c in self.governing}
                              for c in self.checks],
             "spectra": {k: s.to_dict() for k, s in self.spectra.items()},
@@ -367,13 +469,25 @@ class CodeCheck:
 
 def _sld(curve: CapacityCurve, spectrum: ElasticSpectrum, position: Position, fc: float,
          *, state: str = "SLD", ag_factor: float = 1.0,
-         capacity_factor: float = 1.0) -> LimitStateCheck:
+         capacity_factor: float = 1.0, vertical: bool = False) -> LimitStateCheck:
     """Activation: the least a_g with a_Z(a_g) = a0* (C8.7.1.8), the a_g times ``ag_factor``
     (2019's linear SLV: a_g,SLV = q a_g,SLD), or with a_Z(a_g) = ``capacity_factor`` a0*
-    (2009's linear SLV: a0* >= a_g S / q)."""
+    (2009's linear SLV: a0* >= a_g S / q). With ``vertical``, the worse of the combinations
+    (:class:`VerticalTreatment`): a0* (1 - k_v) against the horizontal share of a_Z."""
     g = spectrum.g
     capacity = curve.a0_star(fc) * capacity_factor
-    ag = ag_factor * least_ag(lambda s: peak_demand(s, position), capacity, spectrum)
+    combos = _combinations(vertical)
+
+    def demand(s: ElasticSpectrum) -> float:
+        worst = 0.0
+        for h_share, v_share in combos:
+            factor = _gravity_factor(s, v_share)
+            if factor == 0.0:
+                return math.inf
+            worst = max(worst, h_share * peak_demand(s, position) / factor)
+        return worst
+
+    ag = ag_factor * least_ag(demand, capacity, spectrum)
     where = "a_g S" if position.at_ground else "a_g S (1 + Z/H) (C7.2.11)"
     formulas = {"capacity": "a0* = alpha0 g / (e* FC) (C8.7.1.3)",
                 "demand": f"a_Z = {where}",
@@ -383,20 +497,35 @@ def _sld(curve: CapacityCurve, spectrum: ElasticSpectrum, position: Position, fc
     if capacity_factor != 1.0:
         formulas["capacity"] = f"q a0*, q = {capacity_factor:g} (C8A.4: a0* >= a_g S / q)"
         formulas["capacity_ag"] = "least a_g with a_g S = q a0*"
+    if vertical:
+        formulas["vertical"] = ("the worse of E_x + 0.3 E_z and 0.3 E_x + E_z (NTC 7.3.15): "
+                                "a_Z share against a0* (1 - k_v), k_v = share a_vg / g")
     return LimitStateCheck(state, "linear", ag / g, spectrum.ag / g, "acceleration", capacity,
-                           peak_demand(spectrum, position), None, None, formulas)
+                           demand(spectrum), None, None, formulas)
 
 
 def _nonlinear_2019(curve: CapacityCurve, spectrum: ElasticSpectrum, position: Position,
-                    fc: float, state: str, floor_ag: float) -> LimitStateCheck:
+                    fc: float, state: str, floor_ag: float,
+                    vertical: bool = False) -> LimitStateCheck:
     spec = NONLINEAR[state]
     g = spectrum.g
     d = spec.fraction_of_d0 * curve.d0_m
     a = curve.acceleration_at(d, fc)
     period = spec.period_factor * math.pi * math.sqrt(d / a)
+    combos = _combinations(vertical)
 
     def demand(s: ElasticSpectrum) -> float:
-        return displacement_demand(s, period, spec.damping, position)
+        if not vertical:
+            return displacement_demand(s, period, spec.damping, position)
+        worst = 0.0
+        for h_share, v_share in combos:
+            factor = _gravity_factor(s, v_share)
+            if factor == 0.0:
+                return math.inf
+            # the capacity curve at weights (1 - k_v): a(d) scaled, the period lengthened
+            t = period / math.sqrt(factor)
+            worst = max(worst, h_share * displacement_demand(s, t, spec.damping, position))
+        return worst
 
     ag = max(least_ag(demand, d, spectrum), floor_ag)
     eq = "C8.7.1.10" if state == "SLV" else "C8.7.1.11"
@@ -410,6 +539,10 @@ def _nonlinear_2019(curve: CapacityCurve, spectrum: ElasticSpectrum, position: P
         "capacity_ag": "least a_g with demand = capacity"
                        + ("; not below a_g,SLD (C8.7.1.2.1.6)" if state == "SLV" else ""),
     }
+    if vertical:
+        formulas["vertical"] = ("the worse of E_x + 0.3 E_z and 0.3 E_x + E_z (NTC 7.3.15): "
+                                "a(d) times (1 - k_v), T / sqrt(1 - k_v), the horizontal "
+                                "share of the displacement demand; k_v = share a_vg / g")
     return LimitStateCheck(state, "nonlinear", ag / g, spectrum.ag / g, "displacement", d,
                            demand(spectrum), period, spec.damping, formulas)
 
@@ -524,7 +657,8 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
                     knowledge: KnowledgeLevel | str = KnowledgeLevel.LC1,
                     procedure: Procedure | str = Procedure.CIRC2019,
                     position: Position | None = None,
-                    behaviour_factor: float = BEHAVIOUR_FACTOR) -> CodeCheck:
+                    behaviour_factor: float = BEHAVIOUR_FACTOR,
+                    vertical: bool | None = None) -> CodeCheck:
     """Check a local mechanism at the site's limit states (see the module docstring).
 
     Parameters
@@ -542,6 +676,11 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
         At the ground when not given.
     behaviour_factor : float
         q of the linear SLV check.
+    vertical : bool, optional
+        Take the vertical component of the seismic action (:class:`VerticalTreatment`): None
+        (default) as the code asks (:func:`vertical_treatment`: NTC 2018 takes it for an arch,
+        EN 1998-1 does not), True or False to decide. The result's ``vertical`` says which and
+        why.
 
     Returns
     -------
@@ -563,6 +702,10 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
         raise InvalidParameterError(
             f"limit states must be SLD, SLV or SLC, got {', '.join(sorted(unknown))}")
     fc = knowledge.confidence_factor
+    treatment = vertical_treatment(spectra, position, procedure, vertical,
+                                   thrusting=isinstance(curve.mechanism, (FourHingeMechanism,
+                                                                        LoadedFourHingeMechanism)))
+    v = treatment.taken
     checks: list[LimitStateCheck] = []
     if procedure is Procedure.CIRC2009:
         if not position.at_ground:
@@ -574,24 +717,32 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
             checks.append(_sld(curve, spectra["SLV"], position, fc, state="SLV",
                                capacity_factor=q))
             checks.append(_nonlinear_2009(curve, spectra["SLV"], fc))
-        return CodeCheck(curve, knowledge, procedure, position, dict(spectra), tuple(checks))
+        return CodeCheck(curve, knowledge, procedure, position, dict(spectra), tuple(checks),
+                         treatment)
     if "SLD" in spectra:
-        checks.append(_sld(curve, spectra["SLD"], position, fc))
+        checks.append(_sld(curve, spectra["SLD"], position, fc, vertical=v))
     for state in ("SLV", "SLC"):
         if state not in spectra:
             continue
         floor = 0.0
         if state == "SLV":
-            lin = _sld(curve, spectra["SLV"], position, fc, state="SLV", ag_factor=q)
+            lin = _sld(curve, spectra["SLV"], position, fc, state="SLV", ag_factor=q,
+                       vertical=v)
             checks.append(lin)
             # C8.7.1.2.1.6: if a_g,SLV < a_g,SLD, a_g,SLD (activation on the same spectrum)
             floor = lin.capacity_ag_g / q * spectra["SLV"].g
-        checks.append(_nonlinear_2019(curve, spectra[state], position, fc, state, floor))
-    return CodeCheck(curve, knowledge, procedure, position, dict(spectra), tuple(checks))
+        checks.append(_nonlinear_2019(curve, spectra[state], position, fc, state, floor,
+                                      vertical=v))
+    return CodeCheck(curve, knowledge, procedure, position, dict(spectra), tuple(checks),
+                     treatment)
 
 
 __all__ = [
     "BEHAVIOUR_FACTOR",
+    "COMBINATION_COEFFICIENT",
+    "EC8_VERTICAL_THRESHOLD_G",
+    "VerticalTreatment",
+    "vertical_treatment",
     "LIMIT_STATES",
     "limit_state_spectra",
     "hazard_spectra",

@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -295,6 +295,20 @@ class ElasticSpectrum:
         return ec8_spectrum(ag_g=ag / (self.g * importance), spectrum_type=p["spectrum_type"],
                             ground=p["ground"], importance=importance,
                             component=self.component, g=self.g)
+
+    def companion(self, component: str) -> ElasticSpectrum:
+        """The same site and a_g, the given component (``'horizontal'`` or ``'vertical'``):
+        e.g. the vertical spectrum beside a horizontal one, whose PGA is a_vg (NTC: a_g S_T;
+        EN 1998-1: a_vg/a_g of Tab. 3.4 times a_g).
+
+        Examples
+        --------
+        >>> spec = ntc2018_spectrum(ag_g=0.25, f0=2.4, tc_star_s=0.30, soil="B")
+        >>> round(spec.companion("vertical").pga / spec.g, 3)
+        0.25
+        """
+        component = _choice("component", component, SPECTRUM_COMPONENTS)
+        return replace(self, component=component).with_ag(self.ag)
 
     def label(self) -> str:
         """Words for a legend, e.g. ``'NTC 2018 horizontal, a_g 0.25 g, soil B, T1'``."""
