@@ -115,7 +115,7 @@ class VerticalTreatment:
     acceleration k_v g = c a_vg (c = 0.3 or 1, a_vg the site's vertical spectrum's PGA; a
     rigid mechanism has no period before it activates): every weight, hence the whole capacity
     curve a(d), is scaled by (1 - k_v) (the exact law of a no-tension mechanism loaded by its
-    weights alone, :func:`archquake.limit.limit_analysis`'s ``vertical``), d0 unchanged.
+    weights alone, `archquake.limit.limit_analysis`'s ``vertical``), d0 unchanged.
 
     Attributes
     ----------
@@ -473,7 +473,7 @@ def _sld(curve: CapacityCurve, spectrum: ElasticSpectrum, position: Position, fc
     """Activation: the least a_g with a_Z(a_g) = a0* (C8.7.1.8), the a_g times ``ag_factor``
     (2019's linear SLV: a_g,SLV = q a_g,SLD), or with a_Z(a_g) = ``capacity_factor`` a0*
     (2009's linear SLV: a0* >= a_g S / q). With ``vertical``, the worse of the combinations
-    (:class:`VerticalTreatment`): a0* (1 - k_v) against the horizontal share of a_Z."""
+    (`VerticalTreatment`): a0* (1 - k_v) against the horizontal share of a_Z."""
     g = spectrum.g
     capacity = curve.a0_star(fc) * capacity_factor
     combos = _combinations(vertical)
@@ -677,8 +677,8 @@ def kinematic_check(curve: CapacityCurve, spectra: Mapping[str, ElasticSpectrum]
     behaviour_factor : float
         q of the linear SLV check.
     vertical : bool, optional
-        Take the vertical component of the seismic action (:class:`VerticalTreatment`): None
-        (default) as the code asks (:func:`vertical_treatment`: NTC 2018 takes it for an arch,
+        Take the vertical component of the seismic action (`VerticalTreatment`): None
+        (default) as the code asks (`vertical_treatment`: NTC 2018 takes it for an arch,
         EN 1998-1 does not), True or False to decide. The result's ``vertical`` says which and
         why.
 
