@@ -127,7 +127,7 @@ def test_cli_record_vertical(tmp_path, capsys):
     np.savetxt(tmp_path / "h.csv", np.column_stack([t, h.accelerations / G]), delimiter=",")
     np.savetxt(tmp_path / "v.csv", np.column_stack([t, np.full(t.size, 0.2)]), delimiter=",")
     np.savetxt(tmp_path / "down.csv", np.column_stack([t, np.full(t.size, -0.6)]), delimiter=",")
-    base = ["run", "--record", str(tmp_path / "h.csv"), "--t-end", "2"]
+    base = ["run", "--record", str(tmp_path / "h.csv"), "--units", "g", "--t-end", "2"]
     assert main([*base, "--record-vertical", str(tmp_path / "v.csv"), "--json"]) == 0
     out = capsys.readouterr().out
     assert '"vertical": {' in out
