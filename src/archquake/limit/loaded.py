@@ -204,17 +204,8 @@ def static_multiplier(case: LoadCase, *, rtol: float = 1e-7) -> tuple[float, Hin
         Any mu up to `MAX_MULTIPLIER` is carried, or the collapse
         is not a four-hinge mechanism.
     """
-    a_ub, b_ub, index = _constraints(case)
-    passive = _passive_bounds(case)
-    res = _solve(np.concatenate([[0.0, 0.0, 0.0, -1.0], np.zeros(len(passive))]), a_ub, b_ub,
-                 [(None, None)] * 3 + [(None, MAX_MULTIPLIER)] + passive)
-    if res.status == 2:
-        raise _unstable(case)
+    res, index = _lp(case)
     mu = float(res.x[3])
-    if res.status == 3 or mu >= MAX_MULTIPLIER * (1 - 1e-9):
-        raise ArchquakeError(
-            f"no collapse mechanism: a line of thrust fits for any multiplier up to "
-            f"{MAX_MULTIPLIER:g}")
     duals = np.abs(res.ineqlin.marginals)
     order = np.argsort(duals)[::-1]
     active = sorted(int(index[i]) for i in order if duals[i] > rtol * duals[order[0]])
