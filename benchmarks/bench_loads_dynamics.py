@@ -14,12 +14,10 @@ Run: .venv/bin/python benchmarks/bench_loads_dynamics.py
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
-import time
-from pathlib import Path
 
-from timing import best_of  # benchmarks/timing.py
+from timing import BRIDGE_ARGS as BRIDGE  # benchmarks/timing.py
+from timing import best_of
+from timing import best_process as _process
 
 from archquake.dem.assembly import build_arch_assembly
 from archquake.geometry import Arch
@@ -27,19 +25,6 @@ from archquake.geometry.loads import Fill, Loads
 from archquake.ground import StepImpulse
 from archquake.limit.loaded import loaded_collapse, seismic_case
 from archquake.rigid import simulate_rigid
-
-BRIDGE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--voussoirs", "15",
-          "--density", "1800"]
-EXE = str(Path(sys.executable).with_name("archquake"))
-
-
-def _process(argv: list[str], repeat: int = 3) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        subprocess.run([EXE, *argv], check=True, capture_output=True)
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def main() -> dict:
