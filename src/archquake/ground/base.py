@@ -15,11 +15,20 @@ kind        params (float64)                   x_g''(t)
                                                [t_p, 3 t_p), 0 after (Oppenheim's impulse)
 1 sine      [a, T, direction(, R)]             direction*a*sin(2 pi t/T) on [0, T), 0 after
 2 sampled   [t0, dt, x_0, x_1, ..., x_{N-1}]   linear between samples, 0 outside
+3 sampled   [N, t0, dt, x_0, ..., x_{N-1},     the horizontal as kind 2; the upward a_v(t)
+  with its  t0v, dtv, v_0, ..., v_{M-1}]       linear between its own samples v, 0 outside
+  vertical
 ==========  =================================  ==========================================
 
 A pulse with a vertical carries [R, c] as its fourth and fifth parameters: the upward ground
 acceleration is then a_v(t) = R * direction * x_g''(t) + c, the pulse's own shape (first lobe
 +1) times R a, plus a steady c m/s^2 held through the whole run.
+
+A record with its vertical component (kind 3) keeps each component on its own time step: no
+resampling, so the compiled a_v(t) is the vertical file's own linear interpolation, exactly
+what the Python side (`WithVertical.vertical_acceleration`) evaluates, and the breakpoints are
+the union of both components' sample times. Two components of one station share their time
+step, and then the union is one grid.
 """
 
 from __future__ import annotations
@@ -35,6 +44,7 @@ from archquake.errors import InvalidParameterError
 KIND_STEP = 0
 KIND_SINE = 1
 KIND_SAMPLED = 2
+KIND_SAMPLED_VERTICAL = 3
 
 
 @runtime_checkable
@@ -83,7 +93,8 @@ TIME_RESOLUTION = 1e-9
 #: What each kind's shortest piece is called, for the error message.
 _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
                 KIND_SINE: ("period T", 0.25),  # quarter periods (breakpoints at the extrema)
-                KIND_SAMPLED: ("record time step DT", 1.0)}
+                KIND_SAMPLED: ("record time step DT", 1.0),
+                KIND_SAMPLED_VERTICAL: ("record time step DT", 1.0)}
 
 
 def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
@@ -116,9 +127,9 @@ def refuse_vertical(motion: object, model: str) -> None:
     """The one line for a model that does not read the vertical ground acceleration yet."""
     if has_vertical(motion):
         raise InvalidParameterError(
-            f"{model} does not take the vertical ground acceleration yet: drop the pulse's "
-            "vertical (--vertical), or run the rigid chain's time stepper (--model rigid) or the "
-            "four-link model (--model fourlink)")
+            f"{model} does not take the vertical ground acceleration yet: drop the vertical "
+            "(--vertical, --record-vertical), or run the rigid chain's time stepper (--model "
+            "rigid), the four-link model (--model fourlink) or the DEM (--model dem)")
 
 
 def time_floor(time_scale: float, duration: float) -> float:
@@ -149,6 +160,11 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
     (t_p, T or the record's DT) and its lower bound.
     """
     name, fraction = _PIECE_NAMES[kind]
+    if kind == KIND_SAMPLED_VERTICAL:  # each component on its own step
+        n = int(params[0])
+        check_time_resolution(KIND_SAMPLED, params[1:3 + n], time_scale)
+        check_time_resolution(KIND_SAMPLED, params[3 + n:], time_scale)
+        return
     if kind == KIND_SAMPLED:
         value = float(params[1])
         duration = float(params[0] + params[1] * (params.shape[0] - 3))
@@ -170,6 +186,13 @@ def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
     """Refuse a motion whose vertical part reaches g downward: with g + a_v(t) <= 0 the arch
     leaves its supports, which no model here describes (the rigid-body equations assume the
     blocks stay pressed together by gravity)."""
+    if kind == KIND_SAMPLED_VERTICAL:  # a record's vertical: its lowest sample
+        lowest = float(np.min(params[5 + int(params[0]):]))
+        if not g + lowest > 0.0:
+            raise InvalidParameterError(
+                f"the vertical component reaches {-lowest / g:.3g} g downward: g + a_v <= 0 "
+                "lifts the arch off its supports, outside every model; lower --scale")
+        return
     if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
         return
     a, r, c = float(params[0]), float(params[3]), float(params[4])
@@ -184,17 +207,9 @@ def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
 def check_motion_lift_off(motion: object, g: float) -> None:
     """`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
     component (its lowest sample)."""
-    if not has_vertical(motion):
-        return
-    vertical = getattr(motion, "vertical", None)
-    samples = getattr(vertical, "accelerations", None)
-    if samples is None:
+    if has_vertical(motion):
         kind, params = cast(GroundMotion, motion).kernel_spec()
         check_lift_off(kind, params, g)
-    elif not g + float(np.min(samples)) > 0.0:
-        raise InvalidParameterError(
-            f"the vertical component reaches {-float(np.min(samples)) / g:.3g} g downward: "
-            "g + a_v <= 0 lifts the arch off its supports, outside every model; lower --scale")
 
 
 def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
@@ -259,5 +274,5 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
 
 __all__ = ["GroundMotion", "acceleration_peaks", "check_lift_off", "check_motion",
            "check_motion_lift_off", "has_vertical", "refuse_vertical", "motion_label",
-           "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION", "check_time_resolution",
-           "time_floor"]
+           "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "KIND_SAMPLED_VERTICAL", "TIME_RESOLUTION",
+           "check_time_resolution", "time_floor"]

@@ -1,8 +1,9 @@
 """A recorded horizontal component with its vertical component: `WithVertical`.
 
-The vertical is an upward ground acceleration a_v(t), m/s^2, read by the models that take it as
-gravity g + a_v(t). Both components keep their own samples (their own time steps); scaling
-scales both, mirroring reverses the horizontal only (it flips the arch's side, not up and down).
+The vertical is an upward ground acceleration a_v(t), m/s^2, read by every model as gravity
+g + a_v(t). Both components keep their own samples (their own time steps) here and in the
+compiled description (`KIND_SAMPLED_VERTICAL`); scaling scales both, mirroring reverses the
+horizontal only (it flips the arch's side, not up and down).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import numpy as np
 
 from archquake._validate import require_finite, require_instance
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import InvalidParameterError
+from archquake.ground.base import KIND_SAMPLED_VERTICAL
 from archquake.ground.records import Record
 
 
@@ -29,10 +30,10 @@ class WithVertical:
 
     Notes
     -----
-    Read by the rigid chain (its time stepper and its verdict path). A model that reads the
-    motion only through its compiled description (``kernel_spec``) does not take the vertical
-    of a record yet, and `kernel_spec` says so in one line rather than dropping the
-    vertical silently.
+    Every model reads it: the rigid chain's time stepper and verdict path through
+    `vertical_acceleration`, the four-link model, the DEM and the rigid chain's event
+    integrator through `kernel_spec` (``KIND_SAMPLED_VERTICAL``: each component on its own
+    time step, no resampling, breakpoints at both components' sample times).
     """
 
     horizontal: Record
@@ -62,10 +63,18 @@ class WithVertical:
         return np.union1d(self.horizontal.breakpoints(), self.vertical.breakpoints())
 
     def kernel_spec(self) -> tuple[int, np.ndarray]:
-        raise InvalidParameterError(
-            "a record's vertical component is read by the rigid chain only (--model rigid, "
-            "without --integrator events): leave "
-            "--record-vertical out for this model or command")
+        """``(KIND_SAMPLED_VERTICAL, [N, t0, dt, x_0..x_{N-1}, t0v, dtv, v_0..v_{M-1}])``.
+
+        >>> import numpy as np
+        >>> from archquake.ground.vertical import WithVertical
+        >>> both = WithVertical(Record([0.0, 1.0, 0.0], 0.5), Record([2.0, 2.0], 1.0))
+        >>> kind, params = both.kernel_spec()
+        >>> kind, params.tolist()
+        (3, [3.0, 0.0, 0.5, 0.0, 1.0, 0.0, 0.0, 1.0, 2.0, 2.0])
+        """
+        h = self.horizontal.kernel_spec()[1]
+        v = self.vertical.kernel_spec()[1]
+        return KIND_SAMPLED_VERTICAL, np.concatenate(([float(h.size - 2)], h, v))
 
     def mirrored(self) -> WithVertical:
         return WithVertical(self.horizontal.mirrored(), self.vertical)

@@ -71,7 +71,7 @@ from archquake.ground._kernel import (
     next_breakpoint,
     vertical_in_piece,
 )
-from archquake.ground.base import KIND_SAMPLED, KIND_STEP
+from archquake.ground.base import KIND_SAMPLED, KIND_SAMPLED_VERTICAL, KIND_STEP
 from archquake.mechanism.kinematics import (
     G0,
     H0,
@@ -209,7 +209,7 @@ def find_onset(mech, kind, params, t, t_limit, g):
     t_cur = t
     while t_cur < t_limit:
         t_next = min(next_breakpoint(kind, params, t_cur), t_limit)
-        nsub = 1 if kind == KIND_STEP else (2 if kind == KIND_SAMPLED else 64)
+        nsub = 1 if kind == KIND_STEP else (2 if kind >= KIND_SAMPLED else 64)
         prev_t = t_cur
         for j in range(nsub + 1):
             tj = t_cur + (t_next - t_cur) * j / nsub
@@ -281,7 +281,8 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
     ``U >= T0 + g (V(phi_crit) - V(phi))``; the criterion is that the bound is below it (with
     a relative margin of 1e-9).
     """
-    t0, dt = params[0], params[1]
+    # the tail's grid: the horizontal's samples (a record with its vertical: after its count)
+    t0, dt = (params[1], params[2]) if kind == KIND_SAMPLED_VERTICAL else (params[0], params[1])
     n = tail.shape[0]
     i = int(math.floor((t_left - t0) / dt + 1e-9))
     if i < 0:
