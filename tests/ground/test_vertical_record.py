@@ -52,6 +52,7 @@ def test_each_component_is_its_own_record(xh, dth, xv, dtv):
     while np.isfinite(t := next_breakpoint(kind, params, t)):
         pts.append(t)
     union = np.union1d(h.times, v.times)
+    union = union[np.r_[True, np.diff(union) > 1e-12 * (1.0 + union[1:])]]  # one grid point
     assert np.allclose(pts, union, rtol=0, atol=1e-12)
     # inside every piece both components are linear, and equal to each record's own value
     t = np.r_[0.5 * (union[:-1] + union[1:]), union[0] + 0.3 * np.diff(union)]

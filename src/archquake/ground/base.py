@@ -182,26 +182,55 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
             f"are below the integrator's time resolution), got {value:g}")
 
 
+def _vertical_extremes(kind: int, params: np.ndarray) -> tuple[float, float] | None:
+    """(lowest upward ground acceleration, its steady part c), m/s^2, of a motion with a
+    vertical; None without one."""
+    if kind == KIND_SAMPLED_VERTICAL:  # a record's vertical: its lowest sample
+        return min(float(np.min(params[5 + int(params[0]):])), 0.0), 0.0
+    if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
+        return None
+    a, r, c = float(params[0]), float(params[3]), float(params[4])
+    return c + (min(r * a, -0.5 * r * a) if kind == KIND_STEP else -abs(r) * a), c
+
+
 def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
     """Refuse a motion whose vertical part reaches g downward: with g + a_v(t) <= 0 the arch
     leaves its supports, which no model here describes (the rigid-body equations assume the
     blocks stay pressed together by gravity)."""
-    if kind == KIND_SAMPLED_VERTICAL:  # a record's vertical: its lowest sample
-        lowest = float(np.min(params[5 + int(params[0]):]))
-        if not g + lowest > 0.0:
-            raise InvalidParameterError(
-                f"the vertical component reaches {-lowest / g:.3g} g downward: g + a_v <= 0 "
-                "lifts the arch off its supports, outside every model; lower --scale")
+    extremes = _vertical_extremes(kind, params)
+    if extremes is None:
         return
-    if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
+    lowest = extremes[0]
+    if g + lowest > 0.0:
         return
-    a, r, c = float(params[0]), float(params[3]), float(params[4])
-    lowest = c + (min(r * a, -0.5 * r * a) if kind == KIND_STEP else -abs(r) * a)
-    if not g + lowest > 0.0:
+    if kind == KIND_SAMPLED_VERTICAL:
         raise InvalidParameterError(
-            f"the vertical ground acceleration (R = {r:g}, a = {a / g:.3g} g, steady "
-            f"{c / g:.3g} g) reaches {-lowest / g:.3g} g downward: g + a_v <= 0 lifts the arch "
-            "off its supports, outside every model; keep the downward vertical below g")
+            f"the vertical component reaches {-lowest / g:.3g} g downward: g + a_v <= 0 "
+            "lifts the arch off its supports, outside every model; lower --scale")
+    a, r, c = float(params[0]), float(params[3]), float(params[4])
+    raise InvalidParameterError(
+        f"the vertical ground acceleration (R = {r:g}, a = {a / g:.3g} g, steady "
+        f"{c / g:.3g} g) reaches {-lowest / g:.3g} g downward: g + a_v <= 0 lifts the arch "
+        "off its supports, outside every model; keep the downward vertical below g")
+
+
+def lift_off_factor(motion: object, g: float) -> float:
+    """The factor of ``motion.scaled`` at which its vertical reaches g downward (the arch
+    leaves its supports there, `check_lift_off`); inf for a motion without a downward
+    vertical. A steady vertical c is not scaled.
+
+    >>> from archquake.ground.pulses import StepImpulse
+    >>> lift_off_factor(StepImpulse(2.0, 0.1, vertical=-0.5), 9.8)  # -0.5 * 2 f = -9.8
+    9.8
+    """
+    spec = getattr(motion, "kernel_spec", None)
+    if spec is None or not has_vertical(motion):
+        return math.inf
+    extremes = _vertical_extremes(*spec())
+    if extremes is None or not extremes[0] < extremes[1]:
+        return math.inf
+    lowest, c = extremes
+    return (g + c) / (c - lowest)
 
 
 def check_motion_lift_off(motion: object, g: float) -> None:
@@ -273,6 +302,7 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
 
 
 __all__ = ["GroundMotion", "acceleration_peaks", "check_lift_off", "check_motion",
-           "check_motion_lift_off", "has_vertical", "refuse_vertical", "motion_label",
+           "check_motion_lift_off", "has_vertical", "lift_off_factor", "refuse_vertical",
+           "motion_label",
            "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "KIND_SAMPLED_VERTICAL", "TIME_RESOLUTION",
            "check_time_resolution", "time_floor"]

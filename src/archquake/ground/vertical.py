@@ -51,6 +51,52 @@ class WithVertical:
     def duration(self) -> float:
         return max(self.horizontal.duration, self.vertical.duration)
 
+    # the horizontal's description, as a suite, the intensity measures and IDA read a record
+    @property
+    def accelerations(self) -> np.ndarray:
+        """The horizontal's samples, m/s^2 (the record's intensity measures are its)."""
+        return self.horizontal.accelerations
+
+    @property
+    def dt(self) -> float:
+        return self.horizontal.dt
+
+    @property
+    def t0(self) -> float:
+        return self.horizontal.t0
+
+    @property
+    def points(self) -> int:
+        return self.horizontal.points
+
+    @property
+    def scale(self) -> float:
+        return self.horizontal.scale
+
+    @property
+    def component(self) -> str | None:
+        return self.horizontal.component
+
+    @property
+    def source(self) -> str | None:
+        return self.horizontal.source
+
+    @property
+    def metadata(self) -> dict:
+        return self.horizontal.metadata
+
+    @property
+    def peak(self) -> float:
+        return self.horizontal.peak
+
+    @property
+    def time_of_peak(self) -> float:
+        return self.horizontal.time_of_peak
+
+    def truncated(self, end: float) -> WithVertical:
+        """Both components' samples at t <= ``end`` (s), `Record.truncated`."""
+        return WithVertical(self.horizontal.truncated(end), self.vertical.truncated(end))
+
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
         """The horizontal ground acceleration, m/s^2 (`Record.acceleration`)."""
         return self.horizontal.acceleration(t)
