@@ -269,7 +269,11 @@ def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
         return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s" + towards + up
     if d.get("type") == "sine":
         return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s" + towards + up
-    return str(d.get("name", getattr(motion, "name", "record")))
+    name = str(d.get("name", getattr(motion, "name", "record")))
+    vertical = d.get("vertical")
+    if isinstance(vertical, Mapping):  # a record with its vertical component
+        name += f" with its vertical {vertical.get('name')} (PGA {vertical.get('pga_g', 0):.3g} g)"
+    return name
 
 
 def acceleration_peaks(motion: object) -> tuple[float, float] | None:
