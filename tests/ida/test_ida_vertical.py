@@ -109,3 +109,20 @@ def test_levels_stop_where_the_vertical_lifts_the_arch_off(tmp_path):
     lift_level = (h.peak / G) * G / -float(np.min(v.accelerations))
     assert rec.ceiling == pytest.approx(lift_level, rel=1e-8) and rec.ceiling < lift_level
     assert rec.levels.max() <= rec.ceiling
+
+
+def test_records_lists_each_vertical_with_its_measures(tmp_path, capsys):
+    """Oracle: the vertical's measures of `archquake record` (the same summary) and V/H."""
+    h = synthetic_record(1, duration=4.0)
+    _write(tmp_path / "h.csv", h)
+    _write(tmp_path / "up.csv", _vertical(h, 0.6))
+    (tmp_path / "s.list").write_text("h.csv up.csv\n")
+    assert main(["records", str(tmp_path / "s.list"), "--units", "g", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)["records"][0]
+    assert row["vertical"]["v_over_h"]["pga"] == pytest.approx(0.6, rel=1e-6)
+    assert main(["record", str(tmp_path / "h.csv"), "--units", "g", "--record-vertical",
+                 str(tmp_path / "up.csv"), "--periods", "1", "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)["vertical"]
+    assert row["vertical"]["intensity_measures"] == alone["intensity_measures"]
+    assert main(["records", str(tmp_path / "s.list"), "--units", "g"]) == 0
+    assert "V/H 0.60" in capsys.readouterr().out
