@@ -184,7 +184,7 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
 
 def _vertical_extremes(kind: int, params: np.ndarray) -> tuple[float, float] | None:
     """(lowest upward ground acceleration, its steady part c), m/s^2, of a motion with a
-    vertical; None without one."""
+    vertical (a record's: its lowest sample, or 0); None without one."""
     if kind == KIND_SAMPLED_VERTICAL:  # a record's vertical: its lowest sample
         return min(float(np.min(params[5 + int(params[0]):])), 0.0), 0.0
     if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
@@ -217,7 +217,7 @@ def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
 def lift_off_factor(motion: object, g: float) -> float:
     """The factor of ``motion.scaled`` at which its vertical reaches g downward (the arch
     leaves its supports there, `check_lift_off`); inf for a motion without a downward
-    vertical. A steady vertical c is not scaled.
+    vertical. Scaling scales every acceleration, the vertical's (a pulse's steady c too).
 
     >>> from archquake.ground.pulses import StepImpulse
     >>> lift_off_factor(StepImpulse(2.0, 0.1, vertical=-0.5), 9.8)  # -0.5 * 2 f = -9.8
@@ -227,10 +227,9 @@ def lift_off_factor(motion: object, g: float) -> float:
     if spec is None or not has_vertical(motion):
         return math.inf
     extremes = _vertical_extremes(*spec())
-    if extremes is None or not extremes[0] < extremes[1]:
+    if extremes is None or not extremes[0] < 0.0:
         return math.inf
-    lowest, c = extremes
-    return (g + c) / (c - lowest)
+    return g / -extremes[0]
 
 
 def check_motion_lift_off(motion: object, g: float) -> None:
