@@ -1,9 +1,10 @@
 """A recorded horizontal component with its vertical component: `WithVertical`.
 
-The vertical is an upward ground acceleration a_v(t), m/s^2, read by every model as gravity
-g + a_v(t). Both components keep their own samples (their own time steps) here and in the
-compiled description (`KIND_SAMPLED_VERTICAL`); scaling scales both, mirroring reverses the
-horizontal only (it flips the arch's side, not up and down).
+The vertical is an upward ground acceleration a_v(t), m/s^2, read by the models as gravity
+g + a_v(t) (all but the rigid chain's event integrator). Both components keep their own
+samples (their own time steps) here and in the compiled description (`KIND_SAMPLED_VERTICAL`);
+scaling scales both, mirroring reverses the horizontal only (it flips the arch's side, not up
+and down).
 """
 
 from __future__ import annotations
@@ -30,10 +31,12 @@ class WithVertical:
 
     Notes
     -----
-    Every model reads it: the rigid chain's time stepper and verdict path through
-    `vertical_acceleration`, the four-link model, the DEM and the rigid chain's event
-    integrator through `kernel_spec` (``KIND_SAMPLED_VERTICAL``: each component on its own
-    time step, no resampling, breakpoints at both components' sample times).
+    Read by the rigid chain's time stepper and verdict path through `vertical_acceleration`,
+    and by the four-link model and the DEM through `kernel_spec` (``KIND_SAMPLED_VERTICAL``:
+    each component on its own time step, no resampling, breakpoints at both components'
+    sample times). The rigid chain's event integrator refuses it in one line (it does not
+    read a vertical yet). Where a suite, the intensity measures or IDA read a record's
+    description (``dt``, ``accelerations``, ``metadata``...), it is the horizontal's.
     """
 
     horizontal: Record
@@ -51,7 +54,7 @@ class WithVertical:
     def duration(self) -> float:
         return max(self.horizontal.duration, self.vertical.duration)
 
-    # the horizontal's description, as a suite, the intensity measures and IDA read a record
+    # the horizontal's description, where a suite, the intensity measures and IDA read a record
     @property
     def accelerations(self) -> np.ndarray:
         """The horizontal's samples, m/s^2 (the record's intensity measures are its)."""
@@ -111,8 +114,6 @@ class WithVertical:
     def kernel_spec(self) -> tuple[int, np.ndarray]:
         """``(KIND_SAMPLED_VERTICAL, [N, t0, dt, x_0..x_{N-1}, t0v, dtv, v_0..v_{M-1}])``.
 
-        >>> import numpy as np
-        >>> from archquake.ground.vertical import WithVertical
         >>> both = WithVertical(Record([0.0, 1.0, 0.0], 0.5), Record([2.0, 2.0], 1.0))
         >>> kind, params = both.kernel_spec()
         >>> kind, params.tolist()
