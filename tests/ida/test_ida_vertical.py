@@ -126,3 +126,14 @@ def test_records_lists_each_vertical_with_its_measures(tmp_path, capsys):
     assert row["vertical"]["intensity_measures"] == alone["intensity_measures"]
     assert main(["records", str(tmp_path / "s.list"), "--units", "g"]) == 0
     assert "V/H 0.60" in capsys.readouterr().out
+
+
+def test_the_text_output_names_a_lowered_ceiling(tmp_path, capsys):
+    h = synthetic_record(3, duration=6.0)
+    _write(tmp_path / "h.csv", h)
+    _write(tmp_path / "up.csv", _vertical(h, 4.0))
+    assert main(["ida", "--radius", "10", "--thickness", "1.5", "--embrace", "157.5",
+                 "--voussoirs", "7", "--model", "fourlink", "--units", "g", "--ceiling", "1",
+                 "--no-progress", "--store", str(tmp_path / "s.sqlite"), "--records",
+                 str(tmp_path / "h.csv"), "--record-vertical", str(tmp_path / "up.csv")]) == 0
+    assert "reaches g downward" in capsys.readouterr().out

@@ -229,6 +229,10 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
         extra = f"; {len(r.resurrections)} resurrection(s)" if r.resurrections else ""
         print(f"  {r.name:<{width}}  {first.lower_edge if first else math.nan:12.4g}  "
               f"{runs}{extra}")
+    for r in result.records:
+        if r.ceiling < result.ceiling * (1 - 1e-9):  # its vertical lifts the arch off above
+            print(f"  {r.name}: levels up to {r.ceiling:.4g} {u}, where its vertical component "
+                  "reaches g downward (the arch would leave its supports)")
     levels = fits["levels"]
     print("collapse fraction per level:")
     print("  " + "  ".join(f"{x:.3g}:{p:.2f}" for x, p in zip(levels, fits["fraction"],
