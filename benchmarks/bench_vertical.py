@@ -11,6 +11,7 @@ without, the least disturbed measure on shared cores):
 
 * the rigid chain's verdict path (`rigid_verdict`, its default step, 8 s window);
 * the rigid chain's time stepper (`simulate_rigid`, 1e-4 s, 6 s);
+* the rigid chain's event integrator (`simulate_rigid(..., solver="events")`, 6 s);
 * the four-link model (`simulate`, t_end 8 s);
 * the DEM (`simulate_dem`, 3 s, the default contacts).
 
@@ -57,6 +58,7 @@ def main() -> None:
         ("rigid verdict path", lambda m: rigid_verdict(arch, m, duration=8.0, guard=False), 9),
         ("rigid time stepper", lambda m: simulate_rigid(arch, m, duration=6.0,
                                                         time_step=1e-4), 3),
+        ("rigid events", lambda m: simulate_rigid(arch, m, duration=6.0, solver="events"), 3),
         ("four-link", lambda m: simulate(arch, m, t_end=8.0), 15),
         ("DEM", lambda m: simulate_dem(arch, m, DemSettings(duration=3.0)), 3),
     )

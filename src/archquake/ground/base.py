@@ -97,12 +97,9 @@ _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
                 KIND_SAMPLED_VERTICAL: ("record time step DT", 1.0)}
 
 
-def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
-                 vertical: str | None = None) -> GroundMotion:
+def check_motion(motion: object, needs: tuple[str, ...] | None = None) -> GroundMotion:
     """``motion`` itself if it is a ground motion (or, given ``needs``, has those attributes:
-    what a model reads of it); else the one line that says what is. A model that does not
-    read the vertical ground acceleration names itself in ``vertical``, and a motion with a
-    vertical is refused for it (`refuse_vertical`)."""
+    what a model reads of it); else the one line that says what is."""
     ok = (isinstance(motion, GroundMotion) if needs is None
           else all(hasattr(motion, name) for name in needs))
     if not ok:
@@ -110,8 +107,6 @@ def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
             f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
             f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
             f"{type(motion).__name__}")
-    if vertical is not None:
-        refuse_vertical(motion, vertical)
     return cast(GroundMotion, motion)
 
 
@@ -121,15 +116,6 @@ def has_vertical(motion: object) -> bool:
     v = getattr(motion, "vertical", 0.0)
     return (v is not None and not isinstance(v, (int, float))) or bool(
         v or getattr(motion, "steady_vertical", 0.0))
-
-
-def refuse_vertical(motion: object, model: str) -> None:
-    """The one line for a model that does not read the vertical ground acceleration yet."""
-    if has_vertical(motion):
-        raise InvalidParameterError(
-            f"{model} does not take the vertical ground acceleration yet: drop the vertical "
-            "(--vertical, --record-vertical), or run the rigid chain's time stepper (--model "
-            "rigid), the four-link model (--model fourlink) or the DEM (--model dem)")
 
 
 def time_floor(time_scale: float, duration: float) -> float:
@@ -305,7 +291,6 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
 
 
 __all__ = ["GroundMotion", "acceleration_peaks", "check_lift_off", "check_motion",
-           "check_motion_lift_off", "has_vertical", "lift_off_factor", "refuse_vertical",
-           "motion_label",
+           "check_motion_lift_off", "has_vertical", "lift_off_factor", "motion_label",
            "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "KIND_SAMPLED_VERTICAL", "TIME_RESOLUTION",
            "check_time_resolution", "time_floor"]

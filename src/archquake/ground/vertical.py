@@ -1,10 +1,9 @@
 """A recorded horizontal component with its vertical component: `WithVertical`.
 
-The vertical is an upward ground acceleration a_v(t), m/s^2, read by the models as gravity
-g + a_v(t) (all but the rigid chain's event integrator). Both components keep their own
-samples (their own time steps) here and in the compiled description (`KIND_SAMPLED_VERTICAL`);
-scaling scales both, mirroring reverses the horizontal only (it flips the arch's side, not up
-and down).
+The vertical is an upward ground acceleration a_v(t), m/s^2, read by every model as gravity
+g + a_v(t). Both components keep their own samples (their own time steps) here and in the
+compiled description (`KIND_SAMPLED_VERTICAL`); scaling scales both, mirroring reverses the
+horizontal only (it flips the arch's side, not up and down).
 """
 
 from __future__ import annotations
@@ -32,11 +31,11 @@ class WithVertical:
     Notes
     -----
     Read by the rigid chain's time stepper and verdict path through `vertical_acceleration`,
-    and by the four-link model and the DEM through `kernel_spec` (``KIND_SAMPLED_VERTICAL``:
-    each component on its own time step, no resampling, breakpoints at both components'
-    sample times). The rigid chain's event integrator refuses it in one line (it does not
-    read a vertical yet). Where a suite, the intensity measures or IDA read a record's
-    description (``dt``, ``accelerations``, ``metadata``...), it is the horizontal's.
+    and by the four-link model, the DEM and the rigid chain's event integrator through
+    `kernel_spec` (``KIND_SAMPLED_VERTICAL``: each component on its own time step, no
+    resampling, breakpoints at both components' sample times). Where a suite, the intensity
+    measures or IDA read a record's description (``dt``, ``accelerations``, ``metadata``...),
+    it is the horizontal's.
     """
 
     horizontal: Record
