@@ -300,7 +300,11 @@ def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
     arch = _built(arch)
     body = _block_body(arch, o.loads)
     if o.t_end is None:  # run until a verdict (rest or collapse), or the cap
-        return dem_to_verdict(body, motion, settings, radius=arch.radius, g=o.g)
+        radius = getattr(arch, "radius", None)
+        if radius is None:
+            raise InvalidParameterError("give t_end: this block assembly has no radius to scale "
+                                        "the default window by")
+        return dem_to_verdict(body, motion, settings, radius=radius, g=o.g)
     return simulate_dem(body, motion, settings.with_(duration=o.t_end), g=o.g)
 
 

@@ -1,9 +1,9 @@
 """Time histories of the two models side by side (paper Figure 4(b)-(d)).
 
-The analytical model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
+The four-link model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
 open mechanism's first link; the distinct-element model (`archquake.dem.simulate_dem`)
 gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
-cut at the analytical hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
+cut at the four-link model's hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
 Both results speak one vocabulary (`Outcome`, impact times, peak
@@ -51,13 +51,14 @@ class HistoryComparison:
     Attributes
     ----------
     analytical : SimulationResult
+        The four-link model's run.
         With its history.
     dem : DemResult
     assembly : str
         ``'voussoirs'`` or ``'hinges'`` (the three-voussoir arch).
     window : float
         End of the first half cycle compared, s: the earliest of the two models' first
-        impacts and the analytical collapse (the analytical history ends there).
+        impacts and the four-link collapse (the four-link history ends there).
     max_difference : float
         max |rotation_DEM - phi_analytical| over [0, window], rad.
     relative_difference : float
@@ -82,7 +83,7 @@ class HistoryComparison:
 
     @property
     def same_outcome(self) -> bool:
-        """Same outcome and, for a collapse, the same half cycle (an indeterminate analytical
+        """Same outcome and, for a collapse, the same half cycle (an indeterminate four-link
         verdict is never the same as the DEM's: it claims neither collapse nor survival)."""
         return (self.analytical.outcome is self.dem.outcome
                 and self.analytical.collapse_half_cycle == self.dem.collapse_half_cycle)
@@ -123,12 +124,12 @@ def compare_history(
     arch : Arch
     motion : GroundMotion
     assembly : {'voussoirs', 'hinges'}
-        The DEM arch: every voussoir a block, or cut at the analytical hinges.
+        The DEM arch: every voussoir a block, or cut at the four-link model's hinges.
     settings : DemSettings, optional
         Default: the paper's stiffness and damping; its ``duration`` is replaced by
         ``duration``.
     duration : float, optional
-        DEM simulated time, s (default `default_dem_duration`). The analytical model
+        DEM simulated time, s (default `default_dem_duration`). The four-link model
         runs to its own end (rest or collapse).
     g : float
         Gravity, m/s^2.
@@ -172,14 +173,14 @@ def compare_history(
 def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
     """(window end s, max |rotation_DEM - phi| rad, that / max |phi|) over the first half cycle.
 
-    The window ends at the earliest of the analytical collapse, the analytical first impact,
+    The window ends at the earliest of the four-link collapse, the four-link first impact,
     the DEM's first impact and the DEM's last sample; the DEM rotation is interpolated
-    linearly onto the analytical samples (DEM output every 5 ms; the curvature error of that
+    linearly onto the four-link samples (DEM output every 5 ms; the curvature error of that
     interpolation is ~1e-6 rad for these motions).
     """
     h = analytical.history
     if h is None:
-        raise InvalidParameterError("the analytical result needs its history (output_interval != 0)")
+        raise InvalidParameterError("the four-link result needs its history (output_interval != 0)")
     ends = [float(h.t[-1]), float(dem.times[-1])]
     if analytical.collapse_time is not None:
         ends.append(analytical.collapse_time)
