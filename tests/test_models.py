@@ -99,3 +99,14 @@ def test_the_once_integrated_run_guards_as_the_verdict_path(magnitude, tp):
     assert g.guard_outcome is v.guard_outcome and g.time_step_s == v.time_step_s
     assert lengthening(g.run) == pytest.approx(v.lengthening, abs=0.02)
     assert g.to_dict()["guard"]["ran"] == v.guard_ran
+
+
+def test_a_dem_run_to_a_verdict_needs_a_radius():
+    """The DEM's default window scales with sqrt(R/g): a block on its base has no R, so the
+    run asks for its end in one line (it raised a TypeError)."""
+    from archquake.dem import block_on_base
+
+    block = block_on_base(0.2, 1.0)
+    assert block.radius is None
+    with pytest.raises(InvalidParameterError, match="^give t_end"):
+        run("dem", block, PULSE)
