@@ -110,3 +110,13 @@ def test_a_dem_run_to_a_verdict_needs_a_radius():
     assert block.radius is None
     with pytest.raises(InvalidParameterError, match="^give t_end"):
         run("dem", block, PULSE)
+
+
+def test_a_word_of_the_last_release_warns_at_the_caller_s_line():
+    """``run("analytical", ...)`` runs the four-link model for one more release; the
+    DeprecationWarning points at the line that called `run` (so Python's default filters show
+    it in a script). Oracle: the same run under ``fourlink``."""
+    with pytest.warns(DeprecationWarning, match="model analytical is deprecated") as caught:
+        old = run("analytical", OPPENHEIM, PULSE, to_verdict=True)
+    assert caught[0].filename == __file__
+    assert old.to_dict() == run("fourlink", OPPENHEIM, PULSE, to_verdict=True).to_dict()

@@ -62,14 +62,16 @@ DEPRECATED_WORDS = {"rigid_chain": Model.RIGID, "analytical": Model.FOURLINK}
 
 
 def model_of(model: str | Model | None = None, hinges: str | None = None, *,
-             model_name: str = "model", hinges_name: str = "hinges") -> Model:
+             model_name: str = "model", hinges_name: str = "hinges",
+             stacklevel: int = 2) -> Model:
     """The `Model` a user names (``rigid``, ``fourlink`` or ``dem``; None: the default,
     rigid). The words of earlier versions (`DEPRECATED_WORDS`: ``rigid_chain``,
     ``analytical``) still name their model, with a DeprecationWarning.
 
     ``hinges`` is the retired ``--hinges fixed|moving`` (None when not given): any value is
     refused with the ``--model`` that replaces it. ``model_name`` and ``hinges_name`` are the
-    option or key as the user typed it (``--model``, ``study.model``...).
+    option or key as the user typed it (``--model``, ``study.model``...). ``stacklevel``: the
+    warning's, as `warnings.warn` takes it (2: the caller of `model_of`).
 
     Examples
     --------
@@ -91,7 +93,8 @@ def model_of(model: str | Model | None = None, hinges: str | None = None, *,
     if word in DEPRECATED_WORDS:
         now = DEPRECATED_WORDS[word]
         warnings.warn(f"{model_name} {word} is deprecated and will be removed in the next "
-                      f"release: use {model_name} {now.value}", DeprecationWarning, stacklevel=2)
+                      f"release: use {model_name} {now.value}", DeprecationWarning,
+                      stacklevel=stacklevel)
         return now
     try:
         return Model(word)
@@ -378,7 +381,7 @@ def run(model: str | Model, arch, motion, *, options: RunOptions | None = None,
     InvalidParameterError
         An unknown model, or an option the model does not take.
     """
-    spec = MODELS[model_of(model)]
+    spec = MODELS[model_of(model, stacklevel=3)]  # a deprecated word: the caller's line
     o = RunOptions() if options is None else options
     if not isinstance(o, RunOptions):
         raise InvalidParameterError(f"options must be a RunOptions, got {type(o).__name__}")
