@@ -29,8 +29,6 @@ ALLOWED: dict[str, tuple[int, str]] = {
     "archquake.compare.rigid": (1, "runs the rigid chain or the DEM with the DEM settings' "
                                    "thresholds and output interval, which RunOptions does not "
                                    "carry"),
-    "archquake.domains.blocks": (2, "the block models' pulse evaluator: as compare.rigid, and "
-                                    "the rigid chain's threaded batch of pulse outcomes"),
 }
 
 _NAMES = frozenset({"rigid", "fourlink", "dem", "analytical", "rigid_chain"})

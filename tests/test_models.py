@@ -84,7 +84,7 @@ def test_each_option_belongs_to_a_model():
     taken = set().union(*(spec.takes for spec in MODELS.values()))
     assert taken == {"restitution", "impact", "friction", "integrator", "time_step", "guard",
                      "dem"}
-    assert takes("fourlink", "loads") and not takes("fourlink", "dem")
+    assert takes("fourlink", "loads") and not takes("fourlink", "dem") and takes("rigid", "dem")
 
 
 @pytest.mark.parametrize("magnitude, tp", [(1.0, 0.27), (0.7, 0.44), (1.5, 0.2), (0.5, 0.6)])

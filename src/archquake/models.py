@@ -133,7 +133,9 @@ class RunOptions:
         ``rigid``: the half-step rerun of a verdict near a threshold (a run to a verdict at
         the verdict's step reads it; False is refused for the other models).
     dem : DemSettings, optional
-        ``dem``: contact law and damping (``duration`` is replaced by the run's).
+        ``dem``: contact law, damping and thresholds (``duration`` is replaced by the run's);
+        ``rigid``: its thresholds only (hinge opening, collapse criteria), so that the run is
+        classified as the DEM's is.
     """
 
     t_end: float | None = None
@@ -192,6 +194,9 @@ class ModelSpec:
     blocks : bool
         A block model: every voussoir a body, its impacts from its contacts (the rigid chain,
         the DEM), rather than the four-link mechanism's links.
+    deformable : bool
+        Its contacts are deformable, with a stiffness and damping (the DEM), rather than rigid
+        and plastic.
     batched : bool
         Its verdicts run many at once in one compiled, threaded call (no process pool):
         the four-link model's batch and the rigid chain's verdict path.
@@ -205,6 +210,7 @@ class ModelSpec:
     kind: str
     takes: frozenset[str]
     blocks: bool
+    deformable: bool
     batched: bool
     runner: Callable[..., Any]
 
@@ -274,19 +280,20 @@ def _run_rigid(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
     body = _block_body(arch, o.loads)
     if o.t_end is not None:  # a given end is run as given
         return simulate_rigid(body, motion, duration=o.t_end, friction=o.friction, g=o.g,
-                              solver=solver, progress=progress,
+                              solver=solver, progress=progress, settings=o.dem,
                               time_step=DEFAULT_TIME_STEP if o.time_step is None else o.time_step)
     if verdict_step and to_verdict:  # the compiled verdict path, no history
         from archquake.rigid.verdict import rigid_verdict
 
-        return rigid_verdict(body, motion, g=o.g, guard=o.guard)
+        return rigid_verdict(body, motion, g=o.g, guard=o.guard, settings=o.dem)
     if verdict_step:  # the history, integrated once at the verdict's step, guarded
         from archquake.rigid.run import run_guarded
 
         return run_guarded(arch, motion, g=o.g, loads=o.loads, progress=progress,
-                           guard=o.guard)
+                           guard=o.guard, settings=o.dem)
     return rigid_to_verdict(arch, motion, friction=o.friction, g=o.g, solver=solver,
-                            time_step=o.time_step, progress=progress, loads=o.loads)
+                            time_step=o.time_step, progress=progress, loads=o.loads,
+                            settings=o.dem)
 
 
 def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
@@ -314,14 +321,15 @@ def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
 #: Each model's runner and the options it takes, like `scipy.integrate.solve_ivp`'s METHODS.
 MODELS: dict[Model, ModelSpec] = {
     Model.RIGID: ModelSpec(Model.RIGID, "chain of rigid voussoirs", "rigid", "rigid chain",
-                           frozenset({"friction", "integrator", "time_step", "guard"}),
-                           blocks=True, batched=True, runner=_run_rigid),
+                           frozenset({"friction", "integrator", "time_step", "guard", "dem"}),
+                           blocks=True, deformable=False, batched=True, runner=_run_rigid),
     Model.FOURLINK: ModelSpec(Model.FOURLINK, "four-link mechanism", "four-link",
                               "four-link mechanism", frozenset({"restitution", "impact"}),
-                              blocks=False, batched=True, runner=_run_fourlink),
+                              blocks=False, deformable=False, batched=True,
+                              runner=_run_fourlink),
     Model.DEM: ModelSpec(Model.DEM, "distinct-element model", "DEM", "distinct-element",
-                         frozenset({"friction", "dem"}), blocks=True, batched=False,
-                         runner=_run_dem),
+                         frozenset({"friction", "dem"}), blocks=True, deformable=True,
+                         batched=False, runner=_run_dem),
 }
 
 

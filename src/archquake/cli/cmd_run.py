@@ -90,11 +90,12 @@ def run(args: argparse.Namespace) -> int:
     options = models.RunOptions(t_end=args.t_end, loads=loads,
                                 restitution=impact["restitution"], impact=impact["impact"],
                                 friction=args.friction, integrator=args.integrator)
-    if models.takes(model, "dem"):
+    spec = models.spec(model)
+    if spec.deformable:  # the DEM: its stiffness, damping and assembly from the options
         from archquake.cli import dem_run
 
         return dem_run.run(args, arch, motion, options)
-    if models.takes(model, "integrator"):
+    if spec.blocks:  # the rigid chain
         from archquake.cli import rigid_run
 
         return rigid_run.run(args, arch, motion, options)

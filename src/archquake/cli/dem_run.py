@@ -66,7 +66,7 @@ def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -
              "--rayleigh": args.rayleigh}
     from archquake import models
 
-    refuse_unless(given, models.takes(args.model, "dem"),
+    refuse_unless(given, models.spec(args.model).deformable,
                   "to the distinct-element model (--friction also to --model rigid): add "
                   "--model dem, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen

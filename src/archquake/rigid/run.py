@@ -710,7 +710,8 @@ def lengthening(run) -> float:
 
 
 def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
-                progress=None, guard: bool = True) -> GuardedRun:
+                progress=None, guard: bool = True,
+                settings: DemSettings | None = None) -> GuardedRun:
     """The rigid chain to a verdict (`rigid_to_verdict`), integrated once at the verdict
     path's step (`archquake.rigid.verdict.verdict_time_step`: scaled with the voussoirs'
     thickness, 1e-3 s on Oppenheim's arch), under the verdict path's guard: a run whose
@@ -732,6 +733,8 @@ def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
         ``simulate_rigid``'s, for the run at the verdict's step (not for the guard's rerun).
     guard : bool
         False: no rerun (the verdict at the step alone).
+    settings : DemSettings, optional
+        Thresholds of the verdict (default ``DemSettings()``).
 
     Returns
     -------
@@ -740,14 +743,16 @@ def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
     from archquake.rigid.verdict import GUARD_LENGTHENING, verdict_time_step
 
     h = verdict_time_step(arch, g=g)
-    run = rigid_to_verdict(arch, motion, g=g, time_step=h, progress=progress, loads=loads)
+    run = rigid_to_verdict(arch, motion, g=g, time_step=h, progress=progress, loads=loads,
+                           settings=settings)
     stretch = lengthening(run)
     outcome, reason = run.outcome, run.verdict_reason
     near = (guard and run.impact_times.size >= 1 and outcome in (Outcome.SURVIVES, Outcome.COLLAPSE)
             and stretch > GUARD_LENGTHENING)
     half = None
     if near:
-        half = rigid_to_verdict(arch, motion, g=g, time_step=0.5 * h, loads=loads).outcome
+        half = rigid_to_verdict(arch, motion, g=g, time_step=0.5 * h, loads=loads,
+                                settings=settings).outcome
         if half is not outcome:
             reason = (f"near the threshold: {outcome.value} at the step {h:.3g} s, "
                       f"{half.value} at {0.5 * h:.3g} s; a finer step (--t-end with the "
