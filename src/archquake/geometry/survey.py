@@ -138,12 +138,12 @@ def chain_from_polygons(polygons, *, depth: float = 1.0, density: float = 2000.0
     shared: dict[tuple[int, int], np.ndarray] = {}
     # a vertex within tol of another block lies in that block's bounding box grown by tol: the
     # distances are taken between those vertices only (a surveyed block has thousands)
-    low = [p.min(axis=0) - tol for p in polys]
-    high = [p.max(axis=0) + tol for p in polys]
+    box_low = [p.min(axis=0) - tol for p in polys]
+    box_high = [p.max(axis=0) + tol for p in polys]
     for a in range(nb):
         for b in range(a + 1, nb):
-            near_a = np.nonzero(np.all((polys[a] >= low[b]) & (polys[a] <= high[b]), axis=1))[0]
-            near_b = np.all((polys[b] >= low[a]) & (polys[b] <= high[a]), axis=1)
+            near_a = np.nonzero(np.all((polys[a] >= box_low[b]) & (polys[a] <= box_high[b]), axis=1))[0]
+            near_b = np.all((polys[b] >= box_low[a]) & (polys[b] <= box_high[a]), axis=1)
             if len(near_a) < 2 or not near_b.any():
                 continue
             d = np.hypot(*(polys[a][near_a, None, :] - polys[b][None, near_b, :])
