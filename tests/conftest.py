@@ -32,7 +32,6 @@ LONGEST_FIRST: tuple[str, ...] = (
     "tests/mechanism/test_impact_chain.py",
     "tests/cli/test_check_cli.py",
     "tests/mechanism/test_chain_history.py",
-    "tests/compare/test_loads_rigid_dem.py",
     "tests/assess/test_site.py",
     "tests/assess/test_blocks.py",
     "tests/dem/test_block.py",
