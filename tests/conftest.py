@@ -26,7 +26,6 @@ LONGEST_FIRST: tuple[str, ...] = (
     "tests/reproduce/test_reproduce.py",
     "tests/assess/test_assess.py",
     "tests/rigid/test_chain.py",
-    "tests/cli/test_spectrum_cli.py",
     "tests/ida/test_ida.py",
     "tests/rigid/test_vertical.py",
     "tests/mechanism/test_impact_chain.py",
