@@ -36,7 +36,7 @@ from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.limit.analysis import hinges_of
-from archquake.mechanism._kernels import linkage_limits_compiled
+from archquake.mechanism._kernels import Table, linkage_limits_compiled
 from archquake.mechanism.impact import (
     ImpactSolution,
     check_impact_law,
@@ -389,6 +389,18 @@ class PreparedMechanism:
         """True if the impact law (with ``restitution`` prescribed or not) describes this arch's
         impacts (`describes`)."""
         return self.impact.describes(prescribed=restitution is not None)
+
+    def kernel_table(self, restitution: float | None = None) -> Table:
+        """The impact table under the law, packed for the compiled kernels
+        (`archquake.mechanism._kernels.Table`), for a prescribed c_v ``restitution`` (already
+        checked: `check_restitution`) or the law's (None). The no-return criterion is off on
+        every row (``v_toggle`` nan): a record's run sets it."""
+        table = self.table
+        mechs, nxt, flip, ratio = table.kernel_arrays(restitution)
+        return Table(mechs, nxt, flip, ratio,
+                     np.ascontiguousarray(~table.described(self.impact.law, restitution)),
+                     float(np.max(table.restitution_cts(restitution))),
+                     np.full(mechs.shape[0], np.nan))
 
     @classmethod
     def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,
