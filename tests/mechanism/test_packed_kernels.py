@@ -20,6 +20,7 @@ import archquake.mechanism._kernels as K
 from archquake.geometry import Arch
 from archquake.ground import Record, SinePulse, StepImpulse
 from archquake.mechanism import PreparedMechanism, SolverOptions, simulate
+from archquake.mechanism.prepared import KERNEL_TABLES
 
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
@@ -47,6 +48,20 @@ def test_every_impact_law_packs_to_one_table_type(restitution):
     types = {numba.typeof(PreparedMechanism.build(OPPENHEIM, law).kernel_table(restitution))
              for law in ("paper", "chain", "mirror")}
     assert len(types) == 1
+
+
+def test_the_kernel_table_is_built_once_per_restitution_and_the_memo_is_bounded():
+    """Oracle: object identity. The same table while memoised, a rebuilt (equal) one after
+    `KERNEL_TABLES` other values of c_v have pushed it out."""
+    prepared = PreparedMechanism.build(OPPENHEIM)
+    first = prepared.kernel_table(None)
+    assert prepared.kernel_table(None) is first
+    for k in range(KERNEL_TABLES):
+        prepared.kernel_table(0.1 + 0.05 * k)
+    again = prepared.kernel_table(None)
+    assert again is not first
+    for a, b in zip(again, first, strict=True):
+        np.testing.assert_array_equal(a, b)
 
 
 def test_settings_read_back_by_their_indices():

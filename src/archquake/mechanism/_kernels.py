@@ -231,7 +231,10 @@ class Piece(NamedTuple):
 def _kernel_array(values: np.ndarray) -> np.ndarray:
     """``values`` as an aligned, C-contiguous, writable float64 array (a copy only where it is
     not one already): the one array type the kernels are compiled for."""
-    return np.require(values, dtype=np.float64, requirements=["A", "C", "W"])
+    out = np.ascontiguousarray(values, dtype=np.float64)
+    if not (out.flags.writeable and out.flags.aligned):
+        out = out.copy()
+    return out
 
 
 def excitation(kind: int, params: np.ndarray, tail: np.ndarray | None = None) -> Excitation:
@@ -299,7 +302,7 @@ def run_settings(base, t_end, max_impacts):
     return out
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def _rhs(piece, t, phi, v):
     exc = piece.exc
     return acceleration(piece.mech, phi, v,
