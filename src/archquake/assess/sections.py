@@ -798,7 +798,7 @@ def section_vertical(ctx: Context) -> StudyResult:
                       f"{'quick' if ctx.mode.quick else 'full'}.sqlite")
         store_path.parent.mkdir(parents=True, exist_ok=True)
         options = (CaseOptions(restitution=cfg.restitution, impact=cfg.impact)
-                   if cfg.model == "fourlink" else CaseOptions())
+                   if models.takes(cfg.model, "restitution") else CaseOptions())
         ctx.say(f"  IDA of the horizontal alone of {len(both)} records")
         with ResultStore(store_path) as store:
             res = incremental_dynamic_analysis(
