@@ -82,7 +82,7 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
                                              arch.voussoirs + 1)
     if verdict is not None:
         out = with_verdict(out, verdict)
-    return emit_block_run(args, arch, motion, result.result, out, _print_text,
+    return emit_block_run(args, arch, motion, result, out, _print_text,
                           label="rigid chain", history=result)
 
 
@@ -90,7 +90,7 @@ def loaded_body(arch, loads):
     """What the rigid chain runs: ``arch`` itself, or its assembly carrying ``loads``."""
     if loads is None:
         return arch
-    from archquake.dem.assembly import build_arch_assembly
+    from archquake.blocks.assembly import build_arch_assembly
 
     return build_arch_assembly(arch, loads=loads)
 
@@ -98,7 +98,7 @@ def loaded_body(arch, loads):
 def joint_numbers(run) -> list[int] | None:
     """The arch's joint number of each joint the run records, or None where they are all of
     them in order (the joints inside a backing are not recorded)."""
-    asm = run.result.assembly
+    asm = run.assembly
     cuts = asm.meta.get("cut_joints")
     numbers = [int(cuts[j.index]) for j in asm.joints] if cuts else None
     return None if numbers is None or numbers == list(range(len(numbers))) else numbers

@@ -2,13 +2,13 @@
 
 The analytical model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
 open mechanism's first link; the distinct-element model (`archquake.dem.simulate_dem`)
-gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
+gives ``BlockResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
 cut at the analytical hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
 Both results speak one vocabulary (`Outcome`, impact times, peak
 rotation per half cycle, collapse half cycle: the DEM result computes its own, see
-`archquake.dem.result`); this module only runs the two models and compares them.
+`archquake.blocks.result`); this module only runs the two models and compares them.
 """
 
 from __future__ import annotations
@@ -20,8 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.compare)
+from archquake.blocks.assembly import (  # noqa: F401  (re-exported by archquake.compare)
     ASSEMBLIES,
     HINGES,
     VOUSSOIRS,
@@ -30,6 +29,8 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
     dem_assembly,
     three_voussoir_assembly,
 )
+from archquake.blocks.criteria import DEFAULT_TAIL, default_window
+from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
@@ -37,20 +38,14 @@ from archquake.ground.base import GroundMotion
 from archquake.validation.paper import FIGURE4_DURATIONS
 
 if TYPE_CHECKING:
-    from archquake.dem.result import DemResult
+    from archquake.blocks.result import BlockResult
     from archquake.mechanism.simulate import SimulationResult
-
-#: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
-#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
-#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
-#: second half cycle.
-DEFAULT_TAIL = 5.0
-
 
 def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFAULT_TAIL,
                          g: float = STANDARD_GRAVITY) -> float:
-    """End of the excitation plus ``tail`` sqrt(R/g), s: the DEM's default simulated time."""
-    return float(motion.duration) + tail * math.sqrt(arch.radius / g)
+    """End of the excitation plus ``tail`` sqrt(R/g), s: the block models' default simulated
+    time (`archquake.blocks.default_window` for the arch's radius)."""
+    return default_window(motion, arch.radius, tail=tail, g=g)
 
 
 #: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
@@ -62,7 +57,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
                    g: float = STANDARD_GRAVITY):
     """The DEM run long enough for a verdict: for the end of the excitation plus each of
     ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
-    never hinged, or is at rest: `archquake.dem.result.settled`); the last run is returned
+    never hinged, or is at rest: `archquake.blocks.result.settled`); the last run is returned
     (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
     resumed, so each try reruns from the start: a run that needs the second tail costs about
     three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
@@ -129,7 +124,7 @@ def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None
     progress : callable, optional
         ``simulate_rigid``'s.
     loads : Loads, optional
-        What the arch carries (`archquake.dem.assembly.build_arch_assembly`).
+        What the arch carries (`archquake.blocks.assembly.build_arch_assembly`).
 
     Returns
     -------
@@ -163,7 +158,7 @@ class HistoryComparison:
     ----------
     analytical : SimulationResult
         With its history.
-    dem : DemResult
+    dem : BlockResult
     assembly : str
         ``'voussoirs'`` or ``'hinges'`` (the three-voussoir arch).
     window : float
@@ -178,7 +173,7 @@ class HistoryComparison:
     """
 
     analytical: SimulationResult = field(repr=False)
-    dem: DemResult = field(repr=False)
+    dem: BlockResult = field(repr=False)
     assembly: str
     window: float
     max_difference: float

@@ -11,12 +11,16 @@ import time
 from collections.abc import Callable
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains.batch import PulseFamily, PulseOutcomes
 from archquake.outcome import Outcome
+
+if TYPE_CHECKING:
+    from archquake.blocks.result import BlockResult
 
 #: The block models a domain may be searched with: the DEM and the rigid chain.
 BLOCK_MODELS = ("dem", "rigid")
@@ -39,11 +43,12 @@ def block_pulse_outcome(assembly, family: str, magnitude_g: float, duration: flo
     ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the search
     brackets no first-half-cycle boundary."""
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
+    res: BlockResult
     if model == "rigid":
         from archquake.rigid import simulate_rigid
 
         res = simulate_rigid(assembly, motion, duration=motion.duration + tail_s,
-                             settings=settings, g=g, solver=solver).result
+                             settings=settings.criteria, g=g, solver=solver)
     else:
         from archquake.dem import simulate_dem
 
@@ -67,7 +72,7 @@ def rigid_pulse_outcomes(assembly, family: PulseFamily, points, settings, tail_s
 
     motions = [family.motion(a, d, g=g) for a, d in points]
     verdicts = rigid_verdicts(assembly, motions, duration=[m.duration + tail_s for m in motions],
-                              settings=settings, g=g, threads=threads)
+                              settings=settings.criteria, g=g, threads=threads)
     out = []
     for v in verdicts:
         if v.outcome is Outcome.COLLAPSE:

@@ -103,7 +103,7 @@ def evaluate_case(case: Case) -> dict[str, Any]:
     arch = case.arch.build()
     body: Any = arch  # the arch, or its blocks carrying the loads
     if case.loads is not None:
-        from archquake.dem.assembly import build_arch_assembly
+        from archquake.blocks.assembly import build_arch_assembly
 
         body = build_arch_assembly(arch, loads=case.loads)
     if case.model is Model.RIGID:
