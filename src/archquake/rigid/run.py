@@ -1,8 +1,11 @@
 """Running the rigid-block chain (`archquake.rigid.model`) to a verdict: ``simulate_rigid``
 and its result, `RigidRun`.
 
-The stepper (`archquake.rigid.steps`) and the event integrator
-(`archquake.rigid.events`) hand back their samples; here they become a `RigidRun`, a
+One driver, ``simulate_rigid``: it validates the run, picks the integrator (a strategy:
+the time stepper, `archquake.rigid.steps`, through `_time_steps`; the event
+integrator, `archquake.rigid.events`, through `_events`; or none, `_below_onset`, for a
+motion that never reaches the onset of hinging), each of which runs (and goes on until rest)
+its own way and hands back its samples, an `Integrated`; they become a `RigidRun`, a
 `archquake.blocks.BlockResult` built by the block models' own post-processing
 (`BlockResult.from_samples`, through `_samples_to_run`), so impacts, hinges,
 collapse criteria and the rotation measure are read exactly as in the DEM. In it, ``strain`` is
@@ -256,30 +259,22 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     if solver != "events":  # the bound first (arithmetic; the onset test projects the chain)
         check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest),
                    h)
+    # the integrator (a strategy: each runs, and resumes until rest, its own way), then the
+    # one result
+    got: Integrated
     if friction is None and initial is None and stays_at_rest(model, motion, g=g):
-        return _at_rest(model, motion, settings, duration=duration,
-                        output_interval=output_interval, g=g,
-                        time_step=math.nan if solver == "events" else h)
-    if solver == "events":
-        return _simulate_events(model, motion, settings, duration=duration,
-                                output_interval=output_interval, g=g, until_rest=until_rest)
-    s = run_steps(model, motion, settings, duration=duration, time_step=h,
-                  output_interval=output_interval, initial=initial, g=g, chunk=chunk,
-                  solver_tolerance=solver_tolerance, friction=mu, solver=solver,
-                  until_rest=until_rest, progress=progress)
-    da = s.diag
-    return _samples_to_run(
-        model, motion, settings, g=g, time_step=h, duration=duration,
-        output_interval=s.output_interval, n_steps=s.n_steps, times=s.times, q=s.q, v=s.v,
-        dissipated=da[:, RK.D_DISSIPATED], input_work=da[:, RK.D_INPUT],
-        ground_displacement=s.ground_displacement, ground_velocity=s.ground_velocity,
-        stepper_time_step=h, max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
-        friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=s.max_sweeps,
-        residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=s.wall_s,
-        friction_coefficient=friction, ground_motion=motion,
-        correction_work=float(da[-1, RK.D_CORRECTION]),
-        contact_work=da[:, RK.D_CONTACT_WORK].copy(),
-        friction_work=da[:, RK.D_FRICTION_WORK].copy())
+        got = _below_onset(model, motion, duration=duration, output_interval=output_interval,
+                           time_step=math.nan if solver == "events" else h)
+    elif solver == "events":
+        got = _events(model, motion, settings, duration=duration,
+                      output_interval=output_interval, g=g, until_rest=until_rest)
+    else:
+        got = _time_steps(model, motion, settings, duration=duration, time_step=h,
+                          output_interval=output_interval, initial=initial, g=g, chunk=chunk,
+                          solver_tolerance=solver_tolerance, friction=friction, solver=solver,
+                          until_rest=until_rest, progress=progress)
+    return _samples_to_run(model, motion, settings, g=g, duration=duration, **got.samples(),
+                           **got.extras)
 
 
 #: A residual of the energy balance above this fraction of its scale is a warning on the run.
@@ -374,18 +369,82 @@ def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray
                          residual=residual, warning=warning)
 
 
-#: Most samples of a run at rest (`_at_rest`): its history is constant, so a long
+@dataclass(frozen=True)
+class Integrated:
+    """What an integrator of the chain hands `simulate_rigid`, which builds the result from
+    it, once (`_samples_to_run`).
+
+    ``time_step``: the step the run's settings record, s; ``output_interval`` s;
+    ``n_steps``: steps taken; ``times`` (nt,) s; ``q``, ``v`` (nt, nb, 3): the free bodies'
+    configurations and velocities relative to the ground; ``dissipated``, ``input_work`` (nt,)
+    J: the energy the contacts removed (the ``damping`` column) and the inertial load's work,
+    since t = 0; ``ground_displacement`` (m), ``ground_velocity`` (m/s) (nt,); ``extras``: the
+    integrator's own fields of `RigidRun` (``stepper_time_step``, ``max_penetration_m``,
+    ...)."""
+
+    time_step: float
+    output_interval: float
+    n_steps: int
+    times: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    dissipated: np.ndarray
+    input_work: np.ndarray
+    ground_displacement: np.ndarray
+    ground_velocity: np.ndarray
+    extras: dict = field(default_factory=dict)
+
+    def samples(self) -> dict:
+        """The samples, as `_samples_to_run`'s keywords."""
+        return {"time_step": self.time_step, "output_interval": self.output_interval,
+                "n_steps": self.n_steps, "times": self.times, "q": self.q, "v": self.v,
+                "dissipated": self.dissipated, "input_work": self.input_work,
+                "ground_displacement": self.ground_displacement,
+                "ground_velocity": self.ground_velocity}
+
+
+def _time_steps(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
+                time_step: float, output_interval: float,
+                initial: tuple[np.ndarray, np.ndarray] | None, g: float, chunk: float,
+                solver_tolerance: float, friction: float | None, solver: str,
+                until_rest: float | None, progress) -> Integrated:
+    """The Moreau-Jean time stepper (`archquake.rigid.steps.run_steps`; ``solver`` "direct"
+    or "pgs", ``friction`` the joints' Coulomb coefficient or None), arguments validated by
+    `simulate_rigid`."""
+    h = time_step
+    s = run_steps(model, motion, settings, duration=duration, time_step=h,
+                  output_interval=output_interval, initial=initial, g=g, chunk=chunk,
+                  solver_tolerance=solver_tolerance,
+                  friction=0.0 if friction is None else float(friction), solver=solver,
+                  until_rest=until_rest, progress=progress)
+    da = s.diag
+    return Integrated(
+        time_step=h, output_interval=s.output_interval, n_steps=s.n_steps, times=s.times,
+        q=s.q, v=s.v, dissipated=da[:, RK.D_DISSIPATED], input_work=da[:, RK.D_INPUT],
+        ground_displacement=s.ground_displacement, ground_velocity=s.ground_velocity,
+        extras={"stepper_time_step": h,
+                "max_penetration_m": float(da[:, RK.D_PENETRATION].max(initial=0.0)),
+                "friction_demand": da[:, RK.D_FRICTION].copy(), "max_sweeps": s.max_sweeps,
+                "residual": float(da[:, RK.D_RESIDUAL].max(initial=0.0)), "wall_s": s.wall_s,
+                "friction_coefficient": friction, "ground_motion": motion,
+                "correction_work": float(da[-1, RK.D_CORRECTION]),
+                "contact_work": da[:, RK.D_CONTACT_WORK].copy(),
+                "friction_work": da[:, RK.D_FRICTION_WORK].copy()})
+
+
+#: Most samples of a run at rest (`_below_onset`): its history is constant, so a long
 #: window is sampled more coarsely than ``output_interval``.
 REST_SAMPLES = 10_000
 
 
-def _at_rest(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
-             output_interval: float, g: float, time_step: float) -> RigidRun:
+def _below_onset(model: RigidModel, motion, *, duration: float, output_interval: float,
+                 time_step: float) -> Integrated:
     """The run of a chain that the motion never moves (`stays_at_rest`): at rest relative
     to the ground over ``duration`` s, sampled every ``output_interval`` s (at most
     `REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
     no work on a body that does not move relative to the ground), read by the same
-    post-processing as a stepped run: ``no_hinging``."""
+    post-processing as a stepped run: ``no_hinging``. ``time_step``: the stepper's, s (NaN
+    for the event integrator)."""
     import time as _time
 
     start = _time.perf_counter()
@@ -398,20 +457,20 @@ def _at_rest(model: RigidModel, motion, settings: BlockCriteria, *, duration: fl
     ug, vg = ground_kinematics(motion, times, step=max(1e-4, duration / 1e6))
     zeros = np.zeros(n + 1)
     h = time_step if math.isfinite(time_step) else output_interval
-    return _samples_to_run(model, motion, settings, g=g, time_step=h, duration=duration,
-                           output_interval=interval, n_steps=0, times=times, q=q, v=v,
-                           dissipated=zeros, input_work=zeros, ground_displacement=ug,
-                           ground_velocity=vg, stepper_time_step=time_step,
-                           max_penetration_m=0.0, friction_demand=zeros.copy(), max_sweeps=0,
-                           residual=0.0, wall_s=_time.perf_counter() - start,
-                           friction_coefficient=None, ground_motion=motion,
-                           contact_work=zeros.copy(), friction_work=zeros.copy(), at_rest=True)
+    return Integrated(
+        time_step=h, output_interval=interval, n_steps=0, times=times, q=q, v=v,
+        dissipated=zeros, input_work=zeros, ground_displacement=ug, ground_velocity=vg,
+        extras={"stepper_time_step": time_step, "max_penetration_m": 0.0,
+                "friction_demand": zeros.copy(), "max_sweeps": 0, "residual": 0.0,
+                "wall_s": _time.perf_counter() - start, "friction_coefficient": None,
+                "ground_motion": motion, "contact_work": zeros.copy(),
+                "friction_work": zeros.copy(), "at_rest": True})
 
 
-def _simulate_events(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
-                     output_interval: float, g: float, until_rest: float | None) -> RigidRun:
-    """``simulate_rigid(..., solver="events")``: `
-    run_events` and the same post-processing as the time stepper's."""
+def _events(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
+            output_interval: float, g: float, until_rest: float | None) -> Integrated:
+    """``simulate_rigid(..., solver="events")``: the event integrator,
+    `archquake.rigid.events.run_events`, its samples from the rest state on."""
     em = EventModel.of(model)
     raw = run_events(em, motion, duration=duration, output_interval=output_interval, g=g,
                      settings=settings, until_rest=until_rest)
@@ -422,15 +481,14 @@ def _simulate_events(model: RigidModel, motion, settings: BlockCriteria, *, dura
     e = np.vstack([np.zeros((1, raw["e"].shape[1])), raw["e"]])
     ug, vg = ground_kinematics(motion, times)
     # the settings record a finite step: the output interval (the integrator's own is adaptive)
-    return _samples_to_run(model, motion, settings, g=g, time_step=output_interval,
-                           duration=duration, output_interval=output_interval,
-                           n_steps=int(raw["counters"][0]), times=times, q=q, v=v,
-                           dissipated=e[:, 2], input_work=e[:, 3], ground_displacement=ug,
-                           ground_velocity=vg, stepper_time_step=math.nan,
-                           max_penetration_m=raw["max_drift_m"],
-                           friction_demand=e[:, 4].copy(), max_sweeps=int(raw["counters"][9]),
-                           residual=0.0, wall_s=raw["wall_s"], friction_coefficient=None,
-                           ground_motion=motion, events=raw)
+    return Integrated(
+        time_step=output_interval, output_interval=output_interval,
+        n_steps=int(raw["counters"][0]), times=times, q=q, v=v, dissipated=e[:, 2],
+        input_work=e[:, 3], ground_displacement=ug, ground_velocity=vg,
+        extras={"stepper_time_step": math.nan, "max_penetration_m": raw["max_drift_m"],
+                "friction_demand": e[:, 4].copy(), "max_sweeps": int(raw["counters"][9]),
+                "residual": 0.0, "wall_s": raw["wall_s"], "friction_coefficient": None,
+                "ground_motion": motion, "events": raw})
 
 
 def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, *, g: float,
@@ -484,7 +542,6 @@ def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, *, g: fl
     return RigidRun.from_samples(model.assembly, record, motion_d, g, time_step, math.nan,
                                  n_steps, 0, times, states, energies,
                                  excitation_end=excitation_end(motion), **extras)
-
 
 
 __all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "simulate_rigid"]
