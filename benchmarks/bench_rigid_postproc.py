@@ -17,10 +17,10 @@ from timing import best_of  # benchmarks/timing.py
 
 from archquake.blocks import _result_reference as REF
 from archquake.blocks import result as R
-from archquake.compare import rigid_to_verdict
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.rigid import run as RC
+from archquake.rigid.run import rigid_to_verdict
 
 
 def main() -> dict:
