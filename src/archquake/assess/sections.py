@@ -156,10 +156,10 @@ class Context:
 
     def rigid_body(self):
         """What the rigid chain and the DEM run: the arch, or with loads its assembly whose
-        blocks carry them (`archquake.dem.assembly.build_arch_assembly`)."""
+        blocks carry them (`archquake.blocks.assembly.build_arch_assembly`)."""
         if self.loads is None:
             return self.arch
-        from archquake.dem.assembly import build_arch_assembly
+        from archquake.blocks.assembly import build_arch_assembly
 
         return build_arch_assembly(self.arch, loads=self.loads)
 

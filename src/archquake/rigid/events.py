@@ -297,7 +297,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
     default step) from (q, v) at t0 to the first output time at least ``window`` s later,
     writing the samples it passes; (q, v) become its end state. Returns (samples written, end
     time, collapsed)."""
-    import archquake.dem._kernels as DK
+    import archquake.blocks._kernels as DK
 
     r = model.rigid
     lref = model.lref
@@ -360,18 +360,18 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
         ``counters`` and ``log`` (``_event_kernels.run``); ``max_drift_m``; ``state``: the final
         (st, y) of the kernel; ``wall_s``.
     """
-    import archquake.dem._kernels as DK
-    from archquake.dem.result import (
+    import archquake.blocks._kernels as DK
+    from archquake.blocks.criteria import block_criteria
+    from archquake.blocks.result import (
         collapse_parameters,
         crown_height,
         excitation_end,
         settled,
     )
-    from archquake.dem.settings import DemSettings
 
     r = model.rigid
     asm = r.assembly
-    settings = DemSettings() if settings is None else settings
+    settings = block_criteria(settings, caller="run_events")
     n = r.n_bodies
     lref = model.lref
     check_motion_lift_off(motion, g)
