@@ -144,8 +144,8 @@ def rigid_digest() -> str:
         run = simulate_rigid(arch, pulse, duration=0.8, time_step=1e-4, output_interval=5e-4,
                              chunk=0.05, solver_tolerance=1e-11,
                              solver="pgs" if k % 5 == 4 else "direct")
-        d.add(_block_numbers(run.result))
-        d.add([run.time_step, run.max_penetration_m, run.friction_demand, run.max_sweeps,
+        d.add(_block_numbers(run))
+        d.add([run.stepper_time_step, run.max_penetration_m, run.friction_demand, run.max_sweeps,
                run.residual, run.correction_work])
     return d.hexdigest()
 
@@ -157,7 +157,7 @@ def rigid_events_digest() -> str:
     d = _Digest()
     for arch, pulse in _cases(4, 13):
         run = simulate_rigid(arch, pulse, duration=0.8, output_interval=5e-4, solver="events")
-        d.add(_block_numbers(run.result))
+        d.add(_block_numbers(run))
         d.add([run.max_penetration_m, run.friction_demand, run.max_sweeps])
     return d.hexdigest()
 
