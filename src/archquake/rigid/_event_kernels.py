@@ -1053,6 +1053,7 @@ def run(chain, span, state, output, written):
     vf = np.zeros((n, 3))
     inv_m = 1.0 / mb
     inv_i = 1.0 / ib
+    blocks = RK.Chain(mb, ib, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0)
     p_guess = np.ones((nj, 3))
     weight = g * S0[n]
     ftol = 1e-9
@@ -1064,6 +1065,11 @@ def run(chain, span, state, output, written):
     onset_sets = np.int64(RK.ACTIVE_SET_ITERATIONS)
     impact_sets = np.int64(IMPACT_ACTIVE_SETS)
     gap_tol = 1e-9 * lref
+    # the contact solves' settings: the onset's Gauss projection, the impacts' projection
+    onset_cfg = RK.Stepping(0.0, 0.0, gap_tol, 1e-13 * math.sqrt(g * lref), int(max_sweeps),
+                            0.0, RK.METHOD_DIRECT, 0.0, 0.0, int(onset_sets))
+    impact_cfg = RK.Stepping(0.0, 0.0, gap_tol, 1e-11 * math.sqrt(g * lref), int(max_sweeps),
+                             0.0, RK.METHOD_DIRECT, 0.0, 0.0, int(impact_sets))
     ev_ring = np.full(CHATTER_EVENTS, -math.inf)
     ev_pos = 0
     link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
@@ -1143,11 +1149,9 @@ def run(chain, span, state, output, written):
                 vf[b, 0] = -ax
                 vf[b, 1] = -g
                 vf[b, 2] = 0.0
-            gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
-            acc, imp, _, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                               gap_tol, np.zeros((nj, 3)),
-                                               1e-13 * math.sqrt(g * lref), max_sweeps, 0.0,
-                                               onset_sets)
+            geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+            nrm = geo.nrm
+            acc, imp, _, _ = RK.project_direct(blocks, onset_cfg, qf, geo, vf, np.zeros((nj, 3)))
             beta_j[:] = 0.0
             K2, ok = modes_after_projection(qf, acc, beta_j, sg, ja, jb, arm_a, arm_b, nrm, 1e-7,
                                             1e-7 * (g + abs(ax)), jh2, ch2, rates,
@@ -1343,16 +1347,14 @@ def run(chain, span, state, output, written):
                 beta_j[:] = 0.0
                 for i in range(K):
                     beta_j[jh[i]] = y[i]
-                gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+                geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+                nrm = geo.nrm
                 vscale = 0.0
                 for b in range(n):
                     vscale = max(vscale, abs(vf[b, 0]) + abs(vf[b, 1]) + abs(vf[b, 2]) * lref)
                 # the guessed active set: every touching corner pushes (the exact solve drops
                 # the tensile ones)
-                vn, imp, nsolve, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm,
-                                                       tan, pts, gap_tol, p_guess,
-                                                       1e-11 * math.sqrt(g * lref), max_sweeps,
-                                                       0.0, impact_sets)
+                vn, imp, nsolve, _ = RK.project_direct(blocks, impact_cfg, qf, geo, vf, p_guess)
                 counters[N_SOLVES] += nsolve
                 K2, ok = modes_after_projection(qf, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm,
                                                 1e-8, 1e-7 * max(vscale, 1e-300), jh2, ch2,

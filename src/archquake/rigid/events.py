@@ -68,9 +68,6 @@ ONSET_CEILING_G = 1.0e6
 #: through the projection's tolerances) is found so by one projection first.
 ONSET_FLOOR_G = 1.0e-9
 
-_MODELS: dict[int, EventModel] = {}
-
-
 @dataclass(frozen=True)
 class EventModel:
     """A `RigidModel` laid out for the event integrator:
@@ -120,16 +117,9 @@ class EventModel:
 
     @classmethod
     def of(cls, rigid: RigidModel) -> EventModel:
-        """`build`, memoised on the rigid model (its onset thresholds are computed once)."""
-        key = id(rigid)
-        hit = _MODELS.get(key)
-        if hit is not None and hit.rigid is rigid:
-            return hit
-        em = cls.build(rigid)
-        if len(_MODELS) > 64:
-            _MODELS.clear()
-        _MODELS[key] = em
-        return em
+        """`build`, once per rigid model (``rigid.events``: its onset thresholds are computed
+        once)."""
+        return rigid.events
 
     @property
     def closed(self) -> bool:
@@ -149,11 +139,10 @@ class EventModel:
         a = np.zeros((n, 3))
         a[:, 0] = -ax_g
         a[:, 1] = -1.0
-        gaps, nrm, tan, pts = RK.geometry(q, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0)
-        acc, _, _, _ = RK.project_direct(q, a, 1.0 / self.mb, 1.0 / self.ib, r.ja, r.jb, gaps,
-                                         nrm, tan, pts, 1e-9 * self.lref,
-                                         np.zeros((len(r.ja), 3)), 1e-13 * math.sqrt(self.lref),
-                                         EK.SOLVE_SWEEPS, 0.0, RK.ACTIVE_SET_ITERATIONS)
+        geo = r.geometry(q)
+        nrm = geo.nrm
+        cfg = RK.solving(1e-9 * self.lref, 1e-13 * math.sqrt(self.lref), EK.SOLVE_SWEEPS)
+        acc, _, _, _ = RK.project_direct(r.chain, cfg, q, geo, a, np.zeros((len(r.ja), 3)))
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
         k, _ = EK.modes_after_projection(q, acc, np.zeros(nj), self.sg, r.ja, r.jb, r.arm_a,
@@ -319,7 +308,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
             acc = mean_acceleration(motion, t, h, ns)
             cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0,
                               RK.METHOD_DIRECT, correction=False)
-            RK.run(RK.pack_chain(r), cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
+            RK.run(r.chain, cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
                    acc, np.empty(0), RK.Record(ns, oq, ov, od), dg)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
