@@ -145,9 +145,9 @@ class EventModel:
         acc, _, _, _ = RK.project_direct(r.chain, cfg, q, geo, a, np.zeros((len(r.ja), 3)))
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
-        k, _ = EK.modes_after_projection(q, acc, np.zeros(nj), self.sg, r.ja, r.jb, r.arm_a,
-                                         r.arm_b, nrm, 1e-7, 1e-7 * (1 + abs(ax_g)), jh,
-                                         jh.copy(), np.zeros(nj), 1e-9 / self.lref)
+        k, _ = EK.modes_after_projection(r.chain, self.sg, q, acc, nrm, np.zeros(nj), 1e-7,
+                                         1e-7 * (1 + abs(ax_g)), 1e-9 / self.lref, jh, jh.copy(),
+                                         np.zeros(nj))
         return k >= (4 if self.closed else 1)
 
     @cached_property
@@ -278,13 +278,18 @@ def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
     return np.interp(times, grid, ug), np.interp(times, grid, vg)
 
 
-def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, dt_out: float,
-                    out_q, out_v, out_e, written: int, diag, g: float, state_all, free, cpar,
-                    stop_at_collapse: bool) -> tuple[int, float, bool]:
+def _stepper_window(model: EventModel, motion, chain: EK.Chain, state: EK.State,
+                    output: EK.Output, t0: float, window: float, dt_out: float, written: int,
+                    g: float, stop_at_collapse: bool) -> tuple[int, float, bool]:
     """Run the time stepper (`archquake.rigid._step_kernels.run`, direct solve, its
-    default step) from (q, v) at t0 to the first output time at least ``window`` s later,
-    writing the samples it passes; (q, v) become its end state. Returns (samples written, end
-    time, collapsed)."""
+    default step) from the block state (q, v) = (``state.fq``, ``state.fv``) at t0 to the
+    first output time at least ``window`` s later, writing the samples it passes into
+    ``output`` (every ``dt_out`` s) and the energies into ``state.diag``; (q, v) become its end
+    state. The collapse criterion is ``chain``'s. Returns (samples written, end time,
+    collapsed)."""
+    q, v, diag, state_all = state.fq, state.fv, state.diag, state.state_all
+    out_q, out_v, out_e = output
+    free, cpar = chain.free, chain.cpar
     import archquake.dem._kernels as DK
 
     r = model.rigid
@@ -410,8 +415,8 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             windows.append(float(tt[0]))
             whys.append(int(why))
             written, t_w, collapsed = _stepper_window(
-                model, motion, fq, fv, float(tt[0]), fallback_window * math.sqrt(lref / g),
-                output_interval, out_q, out_v, out_e, written, diag, g, state_all, free, cpar,
+                model, motion, chain, state, output, float(tt[0]),
+                fallback_window * math.sqrt(lref / g), output_interval, written, g,
                 bool(settings.stop_at_collapse))
             if collapsed:
                 status = EK.STATUS_COLLAPSE
