@@ -1,0 +1,75 @@
+"""How the rigid chain's kernels are fed: packed arguments, a model packed once, stepping loops
+without reference counting.
+
+Oracles: the source itself (the number of parameters of every function, read with ``ast``), object
+identity (a model's derived forms are built once), and numba's compile options (the stepping loops
+are compiled without reference counting, the step's cost measured in
+docs/notes/measurements.md, "The rigid chain's step without reference counting"). The loops'
+numbers are held bit for bit elsewhere: ``test_step_work_arrays_carry_nothing_between_steps``
+(tests/rigid/test_chain.py) and the digests (tests/test_digest.py).
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+from pathlib import Path
+
+import pytest
+
+import archquake.rigid as rigid_pkg
+from archquake.geometry import Arch
+
+#: The repository's rule: no function takes 15 or more arguments (pack them).
+MAX_ARGUMENTS = 14
+RIGID = Path(rigid_pkg.__file__).parent
+OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
+
+
+def _arities(path: Path) -> list[tuple[str, int]]:
+    out = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            a = node.args
+            n = (len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs) + (a.vararg is not None)
+                 + (a.kwarg is not None))
+            out.append((node.name, n))
+    return out
+
+
+@pytest.mark.parametrize("module", ["_step_kernels.py", "_verdict_kernels.py", "_event_kernels.py",
+                                    "_force_kernels.py", "_input_kernels.py", "model.py",
+                                    "steps.py", "verdict.py", "events.py", "forces.py"])
+def test_no_function_takes_15_arguments(module):
+    """Every function of the rigid chain's kernels and of the modules that pack for them takes
+    at most 14 arguments (the kernels read packed tuples: `Chain`, `Stepping`, `Geometry`,
+    `Work`, the event integrator's `Chain`, `Span`, `State`, `Links`, `Output`)."""
+    wide = [(name, n) for name, n in _arities(RIGID / module) if n > MAX_ARGUMENTS]
+    assert not wide, f"{module}: {wide}"
+
+
+def test_model_derived_forms_are_built_once():
+    """A `RigidModel`'s packed arrays and its event-integrator layout are built once and kept on
+    it; the verdict path finds the same objects, and the model remembers its arch."""
+    from archquake.dem.settings import DemSettings
+    from archquake.rigid.events import EventModel
+    from archquake.rigid.verdict import _packed, rigid_model
+
+    model = rigid_model(OPPENHEIM)
+    assert model.arch is OPPENHEIM
+    assert model.chain is model.chain
+    assert model.events is model.events
+    assert EventModel.of(model) is model.events
+    assert _packed(model, DemSettings()) is _packed(model, DemSettings())  # hashed by identity
+    assert _packed(model, DemSettings()).chain is model.chain
+
+
+def test_stepping_loops_are_compiled_without_reference_counting():
+    """The recorded stepper's and the verdict's loops allocate nothing and are compiled with
+    numba's reference counting off: with it, each step took and dropped a reference to every
+    array of the packed tuples it passes on."""
+    import archquake.rigid._step_kernels as RK
+    import archquake.rigid._verdict_kernels as VK
+
+    for loop in (RK._steps, VK._verdict_steps):
+        assert loop.targetoptions.get("_nrt") is False, loop.py_func.__name__
