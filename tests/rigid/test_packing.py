@@ -56,7 +56,7 @@ def test_model_derived_forms_are_built_once():
     from archquake.rigid.verdict import _packed, rigid_model
 
     model = rigid_model(OPPENHEIM)
-    assert model.arch is OPPENHEIM
+    assert model.arch == OPPENHEIM  # an equal arch (the models are memoised on the arch)
     assert model.chain is model.chain
     assert model.events is model.events
     assert EventModel.of(model) is model.events
