@@ -266,9 +266,8 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
 
 @nb.njit(cache=True, inline="always")
 def _corner(q, trig, body, arms, j, k):
-    """`_point` of corner ``k`` of joint ``j`` (``arms[j, k]``) with the body's cos and sin read
-    from ``trig`` (the same numbers). Scalar indexing: a view ``arms[j, k]`` would take and
-    drop a reference (two atomic operations) per corner."""
+    """`_point` of corner ``k`` of joint ``j`` (``arms[j, k]``, read by scalar indexing) with
+    the body's cos and sin read from ``trig`` (the same numbers)."""
     if body < 0:
         return arms[j, k, 0], arms[j, k, 1]
     c = trig[body, 0]
@@ -309,7 +308,7 @@ def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
 @nb.njit(cache=True, inline="always")
 def _row(q, body, px, py, dx, dy, sign, out, r):
     """Jacobian entries ``out[r]`` (3,) of ``sign`` times the velocity of the body point (px,
-    py) along d (scalar indexing, no view: `_corner`)."""
+    py) along d."""
     if body < 0:
         out[r, 0] = 0.0
         out[r, 1] = 0.0
