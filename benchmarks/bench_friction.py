@@ -16,10 +16,10 @@ from __future__ import annotations
 import math
 import time
 
-from archquake.compare import rigid_to_verdict
 from archquake.geometry import Arch
 from archquake.ground.pulses import SinePulse, StepImpulse
 from archquake.ground.suites import load_suite
+from archquake.rigid.run import rigid_to_verdict
 from archquake.rigid.verdict import verdict_time_step
 
 MU = 0.6

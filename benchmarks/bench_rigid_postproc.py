@@ -15,12 +15,12 @@ import time
 import numpy as np
 from timing import best_of  # benchmarks/timing.py
 
-from archquake.compare import rigid_to_verdict
 from archquake.dem import _result_reference as REF
 from archquake.dem import result as R
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.rigid import run as RC
+from archquake.rigid.run import rigid_to_verdict
 
 
 def main() -> dict:

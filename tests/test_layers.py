@@ -40,13 +40,15 @@ ROOT = Path(archquake.__file__).parent
 #:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
 #: - the three models, each on what is below: mechanism (the paper's four-link model), dem, and
-#:   rigid (built on the DEM's blocks and post-processing);
+#:   rigid (built on the DEM's blocks and post-processing), each with its own run to a verdict;
+#: - models: the one way to run any of the three (their names and ``run``), above them and
+#:   below everything that runs a model by its name;
 #: - thrust (the line of thrust in motion, from the four-link model), domains (failure domains
 #:   of the four-link model);
 #: - compare (the models against each other) -> codecheck (the code check of the arch's
 #:   mechanism: its kinematics, the site's spectra, the rigid chain's run to a verdict) ->
-#:   sweeps (grids of cases of any model; its case table reads compare's run-to-verdict
-#:   policies) -> ida (incremental dynamic analysis through sweeps) -> warm (compiles every
+#:   sweeps (grids of cases of any model, run through models) -> ida (incremental dynamic
+#:   analysis through sweeps) -> warm (compiles every
 #:   model's kernels, the batched ones of domains and ida included);
 #: - plotting (figures of results) -> reproduce (the paper's studies, which draw figures) ->
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
@@ -61,6 +63,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("mechanism",),
     ("dem",),
     ("rigid",),
+    ("models",),
     ("thrust",),
     ("domains",),
     ("compare",),

@@ -17,7 +17,9 @@ The verbs and nouns of the package are one import away, and loaded only when fir
 >>> simulate(arch, StepImpulse.from_g(1.0, 0.27)).outcome.value  # paper Figure 4(c)
 'collapse'
 
-``Arch``, ``limit_analysis``, ``simulate`` (the paper's model: hinges fixed between impacts),
+``Arch``, ``limit_analysis``, ``run`` (any of the three models by its name, ``Model``, with
+``RunOptions``; the default, as on the command line, is the chain of rigid voussoirs),
+``simulate`` (the paper's four-link model: hinges fixed between impacts),
 ``simulate_rigid`` (the chain of rigid voussoirs: hinges that move), ``simulate_dem``,
 ``failure_domain``,
 ``StepImpulse``, ``SinePulse``, ``Record``, ``read_record``, ``Outcome``, ``ModelResult`` (what
@@ -60,6 +62,9 @@ _LAZY: dict[str, str] = {
     "HingeMechanism": "archquake.geometry",
     "limit_analysis": "archquake.limit",
     "simulate": "archquake.mechanism",
+    "run": "archquake.models",
+    "Model": "archquake.models",
+    "RunOptions": "archquake.models",
     "Outcome": "archquake.outcome",
     "ModelResult": "archquake.result",
     "simulate_dem": "archquake.dem",
@@ -78,6 +83,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
     from archquake.ground import Record, SinePulse, StepImpulse, read_record
     from archquake.limit import limit_analysis
     from archquake.mechanism.simulate import simulate
+    from archquake.models import Model, RunOptions, run
     from archquake.outcome import Outcome
     from archquake.result import ModelResult
     from archquake.rigid import simulate_rigid
@@ -94,9 +100,11 @@ __all__ = [
     "Hinge",
     "HingeMechanism",
     "InvalidParameterError",
+    "Model",
     "ModelResult",
     "Outcome",
     "Record",
+    "RunOptions",
     "STANDARD_GRAVITY",
     "SinePulse",
     "SolverError",
@@ -109,6 +117,7 @@ __all__ = [
     "g",
     "limit_analysis",
     "read_record",
+    "run",
     "simulate",
     "simulate_dem",
     "simulate_rigid",

@@ -10,6 +10,8 @@ thickness ratio, embrace, voussoirs) live with their checks in `archquake.geomet
 
 from __future__ import annotations
 
+from archquake.constants import STANDARD_GRAVITY
+
 #: Gravity g, m/s^2 (the keyword ``g=`` of every function): from a small moon's to a hundred
 #: times the Earth's. Outside it weights and the time scale sqrt(R/g) leave the range where
 #: the linear programme and the integrators are well conditioned (g = 1e308 overflows).
@@ -23,8 +25,39 @@ T_END_RANGE_S = (0.01, 1e4)
 #: How long a run goes on after the end of the excitation when no end is given, in units of
 #: sqrt(R/g) (60 sqrt(R/g) = 61 s for R = 10 m): long enough for a rocking arch to come to rest
 #: or to be shown unable to reach a crest again. The four-link model's default end
-#: (`archquake.mechanism.simulate.default_t_end`) and the rigid chain's verdict window.
+#: (`default_t_end`) and the rigid chain's verdict window.
 RUN_TAIL = 60.0
+
+
+def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY):
+    """The default end of an analysis, s: the end of the excitation plus `RUN_TAIL`
+    sqrt(R/g) (the four-link model's default end, its failure domains' batch and its
+    incremental dynamic analysis; the latest end of the rigid chain's run to a verdict).
+
+    Parameters
+    ----------
+    excitation_end_s : float or ndarray
+        End of each excitation, s.
+    radius : float
+        The arch's radius R, m.
+    g : float
+        Gravity, m/s^2.
+
+    Returns
+    -------
+    ndarray
+        s, the shape of ``excitation_end_s``.
+
+    Examples
+    --------
+    >>> round(float(default_t_end(0.81, 10.0)), 3)
+    61.399
+    """
+    import math
+
+    import numpy as np
+
+    return np.asarray(excitation_end_s, dtype=float) + RUN_TAIL * math.sqrt(radius / g)
 #: The four-link model's impact laws (``--impact``; `archquake.mechanism.impact`).
 IMPACT_LAWS = ("paper", "chain", "mirror")
 #: Longest distinct-element run, s of simulated time (--t-end with --model dem, or its default):

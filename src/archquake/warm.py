@@ -88,7 +88,8 @@ def _domains() -> None:
 def _ida() -> None:
     """The batched records of ``archquake ida`` and sweeps (a parallel loop)."""
     from archquake.ida.batch import evaluate_cases
-    from archquake.sweeps.cases import ArchSpec, Case, ExcitationKind, ExcitationSpec, Model
+    from archquake.models import Model
+    from archquake.sweeps.cases import ArchSpec, Case, ExcitationKind, ExcitationSpec
 
     spec = ExcitationSpec(ExcitationKind.RECORD, motion=_record(), scale=2.0)
     # the batched kernel is the four-link model's (the rigid chain's batches are "verdicts")

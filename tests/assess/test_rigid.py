@@ -109,7 +109,7 @@ def test_surveyed_arch_full_report_with_pulses_records_and_dem(tmp_path):
 
 
 def _friction_verdict(arch, motion, time_step: float) -> str:
-    from archquake.compare import rigid_to_verdict
+    from archquake.rigid.run import rigid_to_verdict
 
     return rigid_to_verdict(arch, motion, friction=0.6, time_step=time_step).outcome.value
 

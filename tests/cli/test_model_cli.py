@@ -98,8 +98,6 @@ IDA = ["ida", "--records", "near-field-pulse"]
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["run", "--model", "analytical", *FIG4A],
-     "--model analytical is retired: use --model fourlink (hinges fixed) or rigid"),
     (["run", "--hinges", "moving", *FIG4A], "--hinges is retired: use --model rigid"),
     (["run", "--model", "analytical", "--hinges", "fixed", *FIG4A],
      "--hinges is retired: use --model fourlink"),
@@ -117,7 +115,6 @@ IDA = ["ida", "--records", "near-field-pulse"]
      "--integrator events has no sliding"),
     ([*IDA, "--hinges", "moving"], "--hinges is retired: use --model rigid"),
     ([*IDA, "--restitution", "0.5"], "--restitution applies only to --model fourlink"),
-    (["domain", "--model", "analytical"], "--model analytical is retired"),
     (["domain", "--impact", "chain"], "--impact applies only to --model fourlink"),
     (["domain", "--model", "fourlink", "--workers", "2"], "--workers"),
     (["friction", *FIG4A, "--model", "dem"], "--model must be rigid or fourlink here"),
@@ -131,17 +128,30 @@ def test_bad_combinations_are_one_line_exit_2(argv, message, capsys, tmp_path, m
 
 
 def test_run_to_a_verdict_prints_the_guarded_verdict_at_the_scaled_step(capsys):
-    """Without --t-end the verdict is the verdict path's, at the step scaled with the arch
-    (1e-3 s on Oppenheim's arch), and the recorded history runs at that step. Oracle: the DEM's
-    Figure 4(a) collapse (first half cycle, 1.508 s), which the rigid chain matches within 3 %
-    (docs/mechanism.md); the history's own outcome agrees, the pulse lying far above the
-    threshold."""
+    """Without --t-end the chain is integrated once, at the step scaled with the arch (1e-3 s
+    on Oppenheim's arch), and its verdict is guarded. Oracle: the DEM's Figure 4(a) collapse
+    (first half cycle, 1.508 s), which the rigid chain matches within 3 % (docs/mechanism.md);
+    a collapse in the first half cycle (no impact) is not near a threshold: no rerun."""
     out = _json(capsys, "run", *FIG4A)
-    v = out["rigid_verdict"]
+    v = out["guard"]
     assert v["time_step_s"] == pytest.approx(1.0e-3, rel=0.01)
     assert out["rigid"]["time_step_s"] == v["time_step_s"]
-    assert out["outcome"] == v["outcome"] == out["history_outcome"] == "collapse"
+    assert out["outcome"] == "collapse" and not v["ran"] and v["outcome"] is None
+    assert "rigid_verdict" not in out and "history_outcome" not in out
     assert out["collapse_half_cycle"] == 1
     assert out["collapse_time_s"] == pytest.approx(1.508, rel=0.03)
     assert main(["run", *FIG4A]) == 0
-    assert "verdict path        step 0.001 s" in capsys.readouterr().out
+    assert "verdict's step      0.001 s" in capsys.readouterr().out
+
+
+def test_the_words_of_the_last_release_warn_and_map(capsys):
+    """``--model analytical`` (the four-link model's earlier name) still runs the four-link
+    model for one release, with one warning line on stderr. Oracle: the same command under
+    ``--model fourlink``."""
+    assert main(["run", *FIG4A, "--model", "fourlink", "--json"]) == 0
+    now = capsys.readouterr()
+    assert main(["run", *FIG4A, "--model", "analytical", "--json"]) == 0
+    old = capsys.readouterr()
+    assert old.out == now.out and now.err == ""
+    assert old.err.strip() == ("archquake: warning: --model analytical is deprecated and will "
+                               "be removed in the next release: use --model fourlink")

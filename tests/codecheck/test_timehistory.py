@@ -65,8 +65,8 @@ def test_capacity_brackets_the_four_link_threshold(three):
     amplitude at which the four-link model's largest half-cycle displacement (its own
     integration and impact law; on three voussoirs the chain moves as the four links) reaches
     d_SLV = 0.4 d0. Identical records give identical runs, so each level is run once."""
-    from archquake.compare import rigid_to_verdict
     from archquake.mechanism import PreparedMechanism, simulate
+    from archquake.rigid.run import rigid_to_verdict
 
     arch, curve = three
     tp = 0.25

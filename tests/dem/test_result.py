@@ -137,7 +137,7 @@ def test_dem_default_run_goes_on_to_a_verdict(capsys):
     """``archquake run --model dem`` without --t-end: Figure 4(d)'s pulse on the seven
     voussoirs still rocks at the default end (excitation + 5 sqrt(R/g) = 5.65 s; last impact
     4.9 s), so the DEM is rerun with 10 sqrt(R/g) (10.7 s) and is then at rest: 'survives'
-    (compare.dem_to_verdict; sweeps and IDA use it too)."""
+    (dem.run.dem_to_verdict; sweeps and IDA use it too)."""
     import json
 
     from archquake.cli.main import main

@@ -79,6 +79,7 @@ RUN_PAGES = (
     "docs/guide/records.md",
     "docs/guide/report.md",
     "docs/guide/reading.md",
+    "docs/models/choosing.md",
     "docs/models/rigid.md",
     "docs/models/fourlink.md",
     "docs/models/dem.md",

@@ -19,10 +19,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from archquake.compare import rigid_to_verdict
 from archquake.ground.measures import im_value
 from archquake.ida import incremental_dynamic_analysis
 from archquake.rigid import rigid_verdict
+from archquake.rigid.run import rigid_to_verdict
 from archquake.rigid.verdict import verdict_time_step
 from archquake.sweeps import ArchSpec, ResultStore
 

@@ -428,7 +428,7 @@ def test_rigid_model_ida_brackets_its_own_threshold(tmp_path):
     with ``simulate_rigid`` (0.04 g; the window of ``run --hinges moving``: the end of the pulse
     + 5 sqrt(R/g), on until rest up to + 60 sqrt(R/g); ``indeterminate`` counted with collapse,
     as the IDA counts it): the two brackets overlap. All runs are rigid cases."""
-    from archquake.compare import default_dem_duration
+    from archquake.dem.run import default_dem_duration
     from archquake.ida.analysis import COUNTED_AS_COLLAPSE
     from archquake.rigid import simulate_rigid
 

@@ -55,7 +55,7 @@ def test_a_motion_below_the_onset_takes_no_step(motion):
 def test_stout_arches_under_1g_end_at_once(arch):
     """The arches whose runs took 15-45 s (a locked history at a step scaled with a 1 cm
     voussoir, and the joint forces of every sample) now take none."""
-    from archquake.compare import rigid_to_verdict
+    from archquake.rigid.run import rigid_to_verdict
 
     run = rigid_to_verdict(arch, StepImpulse.from_g(1.0, 0.2))
     assert run.at_rest and run.outcome is Outcome.NO_HINGING

@@ -19,13 +19,13 @@ import numpy as np
 import pytest
 
 from archquake import Arch
-from archquake.compare import rigid_to_verdict
 from archquake.compare.rigid import oppenheim, step_collapses
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem.assembly import block_on_base
 from archquake.ground.pulses import RectangularPulse, SinePulse, StepImpulse
 from archquake.outcome import Outcome
 from archquake.rigid import RigidModel, simulate_rigid
+from archquake.rigid.run import rigid_to_verdict
 
 #: Oppenheim's arch at 1.0 g, t_p 0.2 s: the case where the Coulomb joints once created
 #: megajoules and collapsed the arch.

@@ -123,7 +123,7 @@ def test_bridge_verdicts_are_the_clamped_gauss_seidels(motion):
     first impact and the collapse within 1e-6 s (measured: 5e-10 s; Gauss-Seidel stops at its
     tolerance or its 5000 sweeps, the direct solve is exact to the same tolerance), and no
     joint outside its cone."""
-    from archquake.compare import rigid_to_verdict
+    from archquake.rigid.run import rigid_to_verdict
     from archquake.rigid.verdict import verdict_time_step
 
     h = verdict_time_step(BRIDGE)
@@ -150,7 +150,7 @@ def test_bridge_pulse_verdicts_of_the_assessment_are_the_clamped_gauss_seidels()
     residuals up to 4e-7 m/s), and it counted 2 impacts where the default solver and
     Gauss-Seidel run to its tolerance both count 1 (T = 0.159 s), 2 where they count 3
     (T = 0.316 s); the first impacts of those agree to 1e-8 s."""
-    from archquake.compare import rigid_to_verdict
+    from archquake.rigid.run import rigid_to_verdict
     from archquake.rigid.verdict import verdict_time_step
 
     h = verdict_time_step(BRIDGE)

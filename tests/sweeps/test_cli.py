@@ -72,22 +72,6 @@ def test_bad_options_are_one_line(small_study_file, capsys, sweep_cli, extra, ne
     assert len(err) == 1 and needle in err[0], err
 
 
-def test_missing_model_fails_before_running(small_study_file, capsys, monkeypatch):
-    from archquake.cli import main as cli_main
-    from archquake.sweeps import ModelUnavailableError
-
-    def unavailable(model):
-        raise ModelUnavailableError("model 'dem' needs archquake.dem.simulate_dem, which this "
-                                    "build of archquake does not provide yet")
-
-    monkeypatch.setattr(cli_main, "COMMANDS", ("sweep",))
-    monkeypatch.setattr("archquake.sweeps.evaluate.model_function", unavailable)
-    monkeypatch.setattr(cmd_sweep, "model_function", unavailable)
-    assert cli_main.main(["sweep", str(small_study_file)]) == 2
-    assert "simulate_dem" in capsys.readouterr().err
-    assert not (small_study_file.parent / "small.sqlite").exists()
-
-
 def sweep_fake_model_cases(path):
     from archquake.sweeps import load_study
 

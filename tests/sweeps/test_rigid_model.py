@@ -12,18 +12,17 @@ import math
 
 import pytest
 
-from archquake.compare import default_dem_duration
 from archquake.constants import STANDARD_GRAVITY
+from archquake.dem.run import default_dem_duration
 from archquake.errors import InvalidParameterError, StudyFileError
+from archquake.models import Model, model_of
 from archquake.rigid import rigid_verdict, simulate_rigid
 from archquake.sweeps import (
     ArchSpec,
     Case,
     CaseOptions,
     ExcitationSpec,
-    Model,
     evaluate_case,
-    model_of,
 )
 from archquake.sweeps.study import parse_study
 
@@ -70,14 +69,17 @@ def test_rigid_case_refuses_impact_options_and_keeps_existing_ids():
 
 
 def test_model_of_uses_the_words_of_run():
-    """``--model rigid|fourlink|dem``, default rigid; the retired words point at the new ones."""
+    """``--model rigid|fourlink|dem``, default rigid; the words of the last release still name
+    their model for one more, with a warning; ``--hinges`` points at ``--model``."""
     assert model_of() is Model.RIGID
     assert model_of("fourlink") is Model.FOURLINK
     assert model_of("dem") is Model.DEM
-    for words, match in ((("analytical",), "^--model analytical is retired: use --model fourlink"),
-                         ((None, "moving"), "^--hinges is retired: use --model rigid$"),
+    for old, now in (("analytical", Model.FOURLINK), ("rigid_chain", Model.RIGID)):
+        with pytest.warns(DeprecationWarning,
+                          match=f"^--model {old} is deprecated .*: use --model {now.value}$"):
+            assert model_of(old, model_name="--model") is now
+    for words, match in (((None, "moving"), "^--hinges is retired: use --model rigid$"),
                          ((None, "fixed"), "^--hinges is retired: use --model fourlink$"),
-                         (("rigid_chain",), "^--model rigid_chain is retired: use --model rigid"),
                          (("fem",), "^--model must be one of rigid, fourlink, dem, got 'fem'")):
         with pytest.raises(InvalidParameterError, match=match):
             model_of(*words, model_name="--model", hinges_name="--hinges")
@@ -93,8 +95,9 @@ def _study(**study) -> dict:
 def test_study_model_words():
     assert parse_study(_study()).model is Model.RIGID
     assert parse_study(_study(model="fourlink")).cases[0].case_id == "aec2e12de1ef622838a5"
+    with pytest.warns(DeprecationWarning, match="study.model analytical is deprecated"):
+        assert parse_study(_study(model="analytical")).model is Model.FOURLINK
     for bad, match in (({"hinges": "moving"}, "study.hinges is retired: use study.model rigid"),
-                       ({"model": "analytical"}, "study.model analytical is retired"),
                        ({"model": "fem"}, "study.model must be one of rigid, fourlink, dem")):
         with pytest.raises(StudyFileError, match=match):
             parse_study(_study(**bad))

@@ -296,7 +296,7 @@ def parse_config(data: dict, *, source: str = "assessment",
         check_suite(source, suite, units, base_dir)
 
     options = data.get("options", {})
-    from archquake.sweeps.cases import model_of
+    from archquake.models import model_of, takes
 
     try:  # the words of --model, with a pointer for the retired ones
         model = model_of(options.get("model"), model_name="[options] model").value
@@ -305,7 +305,7 @@ def parse_config(data: dict, *, source: str = "assessment",
     if model not in ASSESS_MODELS:
         raise _fail(source, "[options] model", f"must be one of {list(ASSESS_MODELS)}, got "
                                                f"{model!r} (the DEM is the check: dem = true)")
-    if model != "fourlink":
+    if not takes(model, "restitution"):
         for key in ("impact", "restitution"):
             if key in options:
                 raise _fail(source, f"[options] {key}", f"applies to model = \"fourlink\" "

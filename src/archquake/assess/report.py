@@ -8,7 +8,7 @@ import html
 import math
 from pathlib import Path
 
-from archquake import __version__
+from archquake import __version__, models
 from archquake.assess.sections import assumptions
 from archquake.assess.site import report_code_check
 from archquake.reproduce.report import REPORT_CSS, image_data_uri, md_cell
@@ -189,7 +189,7 @@ def _traffic(el: list, rep, t: dict) -> None:
 
 def _model_name(model: str) -> str:
     """The model in words, for the report."""
-    return "chain of rigid voussoirs" if model == "rigid" else "four-link mechanism"
+    return models.spec(model).label
 
 
 def _refusal(s: dict) -> str | None:
@@ -322,7 +322,7 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
     va = s["validity"]
     el.append(("h2", "validity", "6. Validity"))
     imp = va["impact"]
-    if va.get("model") == "rigid":
+    if va.get("model") is not None and models.spec(va["model"]).blocks:
         el.append(("p", "Impacts: the chain of rigid voussoirs' plastic corner contacts (no "
                         "coefficient of restitution to choose)."))
     elif "law_restitution_cv" not in imp:

@@ -20,7 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from archquake import __version__
+from archquake import __version__, models
 from archquake._json import to_jsonable
 from archquake.assess.config import AssessConfig
 from archquake.assess.sections import (
@@ -115,7 +115,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     names = section_names(config, arch)
     results: dict[str, StudyResult] = {}
     cached: dict[str, bool] = {}
-    side_by_side = config.model == "rigid"
+    side_by_side = models.takes(config.model, "guard")  # the verdict batches' threads
     if progress is not None and side_by_side:
         progress = _one_at_a_time(progress)
 

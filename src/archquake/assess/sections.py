@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from archquake import models
 from archquake.assess.masses import carried_masses
 from archquake.assess.site import section_code_check
 from archquake.constants import STANDARD_GRAVITY
@@ -278,7 +279,7 @@ def dynamics_refusal(arch, model: str = "rigid") -> str | None:
     the mirror-image mechanism after each impact, which exists only for a symmetric chain
     (`VoussoirChain.symmetric`, docs/geometry.md); with it a surveyed asymmetric arch
     gets its static capacity and this one-line reason instead."""
-    if model != "fourlink" or getattr(arch, "symmetric", True):
+    if models.spec(model).blocks or getattr(arch, "symmetric", True):
         return None
     return ("the arch is not symmetric about x = 0 (blocks from a file): the four-link model "
             "switches to the mirror-image mechanism after each impact, which exists only for a "
@@ -492,7 +493,7 @@ def pulse_domains(ctx: Context, cv: float | None) -> dict:
     `archquake.compare.dem_failure_domain` with ``model='rigid'``: batches of
     `archquake.rigid.verdict.rigid_verdicts`, threaded), or the four-link model's at
     restitution ``cv``."""
-    if ctx.config.model == "rigid":  # batches of the rigid chain's verdicts, threaded
+    if models.takes(ctx.config.model, "guard"):  # batches of the chain's verdicts, threaded
         from archquake.compare import dem_failure_domain
 
         lam = ctx.collapse_acceleration_g()
@@ -525,7 +526,7 @@ def section_pulses(ctx: Context) -> StudyResult:
     from archquake.plotting.domains import plot_domain
     from archquake.plotting.figures import DRAWING, save
 
-    rigid = ctx.config.model == "rigid"
+    rigid = models.spec(ctx.config.model).blocks
     cv = None if rigid else used_restitution(ctx.config, ctx.arch)[0]
     domains = pulse_domains(ctx, cv)
     data: dict[str, Any] = {"model": ctx.config.model, "restitution_cv": cv}
@@ -607,7 +608,7 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
                        units=cfg.units)
     records = ctx.mode.records(suite.records)
-    fourlink = cfg.model == "fourlink"
+    fourlink = models.takes(cfg.model, "restitution")
     options = (CaseOptions(restitution=restitution, impact=cfg.impact) if fourlink
                else CaseOptions())
     tag = "" if restitution == cfg.restitution else f"-cv{restitution:.4g}"
@@ -617,7 +618,7 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
     loaded = {} if ctx.loads is None else {"loads": ctx.loads}
-    if cfg.model == "rigid":  # one threaded batch of verdicts per round, in this process
+    if models.takes(cfg.model, "guard"):  # one threaded batch of verdicts per round, here
         lam = ctx.collapse_acceleration_g()
         with ResultStore(store_path) as store:
             res = incremental_dynamic_analysis(cfg.arch, records, "pga", store, options=options,
@@ -694,7 +695,7 @@ def section_records(ctx: Context) -> StudyResult:
     from archquake.plotting.ida import plot_fragility, plot_ida_curves
 
     cfg = ctx.config
-    cv = used_restitution(cfg, ctx.arch)[0] if cfg.model == "fourlink" else None
+    cv = used_restitution(cfg, ctx.arch)[0] if models.takes(cfg.model, "restitution") else None
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
     suite, records, res, fits = run_ida(ctx, cfg.restitution)
     with DRAWING:  # the figures of sections run side by side, one at a time
@@ -762,7 +763,7 @@ def _model_outcomes(ctx: Context, motions: list, windows: list) -> list[str]:
     restitution its pulses and records used."""
     if not motions:
         return []
-    if ctx.config.model == "rigid":
+    if models.takes(ctx.config.model, "guard"):
         from archquake.rigid import rigid_verdicts
 
         return [v.outcome.value for v in rigid_verdicts(ctx.rigid_body(), motions,
@@ -843,7 +844,7 @@ def section_dem(ctx: Context) -> StudyResult:
     from archquake.domains.blocks import DOMAIN_TAIL
 
     tail = DOMAIN_TAIL * math.sqrt(float(ctx.arch.radius) / STANDARD_GRAVITY)
-    windows = [None if case.startswith("record") or ctx.config.model != "rigid"
+    windows = [None if case.startswith("record") or not models.spec(ctx.config.model).blocks
                else float(m.duration) + tail for case, _, m, _, _ in jobs]
     body = ctx.rigid_body()  # the DEM's blocks carry the loads as the rigid chain's do
     if len(jobs) <= 1:
@@ -897,7 +898,7 @@ def section_validity(ctx: Context) -> StudyResult:
              serious=ctx.site is None or ctx.site > lam)
     impact: dict[str, Any] = {"law": cfg.impact, "prescribed_restitution_cv": cfg.restitution}
     cv = math.nan
-    if cfg.model == "rigid":
+    if models.spec(cfg.model).blocks:
         impact = {"law": "plastic contacts (the chain of rigid voussoirs: no restitution)",
                   "prescribed_restitution_cv": None}
     elif refusal is not None:
@@ -942,11 +943,12 @@ def section_validity(ctx: Context) -> StudyResult:
         warn("resurrections", f"{rec['records_with_resurrections']} record(s) collapse the arch "
              "at some scale and not at a larger one", "the IDA curves are not monotonic; the "
              "first-collapse fit is the one that counts", serious=False)
-    step_sens = (_rigid_sensitivity(ctx, warn) if cfg.model == "rigid" and ctx.site is not None
+    step_sens = (_rigid_sensitivity(ctx, warn) if models.takes(cfg.model, "guard")
+                 and ctx.site is not None
                  and "pulses" in ctx.prior else [])
     # restitution sensitivity (four-link model): the pulse verdict at c_v +- 0.1
     sens = []
-    if cfg.model == "fourlink" and ctx.site is not None and "pulses" in ctx.prior:
+    if models.takes(cfg.model, "restitution") and ctx.site is not None and "pulses" in ctx.prior:
         base = ctx.prior["pulses"]
         for dcv in (-0.1, 0.1):
             c2 = min(max(cv + dcv, 0.0), 1.0)
@@ -967,7 +969,7 @@ def section_validity(ctx: Context) -> StudyResult:
                  f"(at c_v = {', '.join(format(e['restitution_cv'], '.2g') for e in changed)})",
                  "the verdict rests on the restitution, which the rigid-block model cannot "
                  "fix: treat it as uncertain")
-    ida_sens = (_ida_sensitivity(ctx, cv, warn) if cfg.model == "fourlink"
+    ida_sens = (_ida_sensitivity(ctx, cv, warn) if models.takes(cfg.model, "restitution")
                 and "p_collapse_at_site" in rec else [])
     data = {"model": cfg.model, "impact": impact, "warnings": warnings,
             "step_sensitivity": step_sens, "restitution_sensitivity": sens,
@@ -1038,7 +1040,7 @@ def _rigid_friction_outcome(arch, motion, friction: float, time_step: float,
     """One recorded run of the rigid chain (its blocks carrying ``loads``) with Coulomb joints
     to a verdict, at ``time_step`` (s; the verdict path has no friction): its outcome's word
     (module level: picklable)."""
-    from archquake.compare import rigid_to_verdict
+    from archquake.rigid.run import rigid_to_verdict
 
     run = rigid_to_verdict(arch, motion, friction=friction, time_step=time_step,
                            **({} if loads is None else {"loads": loads}))
@@ -1052,7 +1054,7 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     small change would flip first) and the governing record scaled to it are run on the
     verdict path (`archquake.rigid.rigid_verdicts`) at its step (guarded) and at half of
     it (guarded at a quarter), and with Coulomb joints of the given friction coefficient (the
-    recorded stepper, `archquake.compare.rigid_to_verdict`: the verdict path has no
+    recorded stepper, `archquake.rigid.run.rigid_to_verdict`: the verdict path has no
     friction) at the verdict's step; a friction verdict that differs from the no-slip one is
     run again at `archquake.rigid.DEFAULT_TIME_STEP` (1e-4 s) and that one kept, so that
     every verdict the report counts as changed by sliding, or warns about, is the fine step's

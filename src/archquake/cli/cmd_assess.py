@@ -53,7 +53,7 @@ def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = Fals
     from archquake.assess import load_config
     from archquake.assess.config import ASSESS_MODELS
     from archquake.errors import InvalidParameterError
-    from archquake.sweeps.cases import model_of
+    from archquake.models import model_of, takes
 
     config = load_config(file)  # every input error is raised here, before any computation
     if model is not None:
@@ -61,7 +61,7 @@ def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = Fals
         if word not in ASSESS_MODELS:
             raise InvalidParameterError(f"--model must be rigid or fourlink for assess, got "
                                         f"{word!r} (the DEM is the check: [options] dem = true)")
-        if word != "fourlink" and config.restitution is not None:
+        if not takes(word, "restitution") and config.restitution is not None:
             raise InvalidParameterError(f"--model {word}: the file prescribes [options] "
                                         "restitution, which applies to the four-link model only")
         config = replace(config, model=word)

@@ -86,19 +86,20 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from archquake import models
     from archquake.domains import DomainSettings, failure_domain
-    from archquake.sweeps.cases import Model
 
     model = model_from_args(args)
     arch = arch_from_args(args)
-    refuse_unless({"--workers": args.workers}, model is not Model.FOURLINK,
+    blocks = models.spec(model).blocks
+    refuse_unless({"--workers": args.workers}, blocks,
                   "with --model rigid or dem (the four-link domain runs in this process); "
                   "leave it out")
     impact = impact_from_args(args)
     from archquake.cli.loads_options import dynamic_loads_from_args
 
     loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
-    if model is not Model.FOURLINK:
+    if blocks:
         return _run_dem(args, arch, model.value, loads)
     if args.durations is None:
         args.durations = parse_durations("0.05:1.5:40")
@@ -211,7 +212,9 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
                                     "which needs loads symmetric about the crown: leave it out "
                                     "(--csv, --json)")
     flag = f"--model {model}"
-    who = "DEM" if model == "dem" else "rigid"
+    from archquake import models
+
+    who = models.spec(model).short
     lobes = 3.0 if args.pulse == "step" else 1.0  # a step impulse lasts 3 t_p, a sine pulse T
     if lobes * float(max(durations)) > DEM_T_END_MAX_S:
         raise InvalidParameterError(
@@ -260,7 +263,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
     an = comp.analytical
     sym = an.family.duration_symbol
     print(f"failure domain, {an.family.value} pulse, "
-          + ("distinct-element" if model == "dem" else "rigid chain") + " beside the four-link "
+          + models.spec(model).kind + " beside the four-link "
           "mechanism; arch "
           f"R = {arch.radius:g} m, t/R = {arch.thickness_ratio:.3f}, embrace "
           f"{math.degrees(arch.embrace):g} deg, {arch.voussoirs} voussoirs")
@@ -310,10 +313,11 @@ def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations,
     four-link model needs symmetric loads, so there is nothing beside it)."""
     import csv
 
+    from archquake import models
     from archquake.compare import dem_failure_domain
     from archquake.dem.assembly import VOUSSOIRS, dem_assembly
 
-    who = "DEM" if model == "dem" else "rigid"
+    who = models.spec(model).short
     dd = dem_failure_domain(arch, args.pulse, durations, assembly=VOUSSOIRS, settings=settings,
                             workers=workers, model=model, loads=loads)
     dom = dd.domain
@@ -331,7 +335,7 @@ def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations,
         return 0
     sym = dom.family.duration_symbol
     print(f"failure domain, {dom.family.value} pulse, "
-          + ("distinct-element" if model == "dem" else "rigid chain")
+          + models.spec(model).kind
           + f" with every voussoir a block carrying its loads; arch R = {arch.radius:g} m, "
           f"t/R = {arch.thickness_ratio:.3f}, embrace {math.degrees(arch.embrace):g} deg, "
           f"{arch.voussoirs} voussoirs")

@@ -80,7 +80,7 @@ def _progress_bar(voussoirs: int = 0):
 
 
 def run(args: argparse.Namespace) -> int:
-    from archquake.sweeps.cases import Model
+    from archquake.models import spec
     from archquake.thrust.friction import friction_demand
 
     model = model_from_args(args, models=("rigid", "fourlink"))
@@ -89,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     from archquake.cli.loads_options import dynamic_loads_from_args
 
     loads = dynamic_loads_from_args(args, arch, model)
-    if model is Model.RIGID:
+    if spec(model).blocks:  # the rigid chain, else the four-link model
         return _run_rigid(args, arch, motion, loads)
     with _progress_bar(arch.voussoirs) as progress:
         result = friction_demand(arch, motion, progress=progress, **impact_from_args(args))
@@ -122,10 +122,9 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
 
     from archquake.cli.common import length_option, rigid_work
     from archquake.cli.rigid_run import joint_numbers, on_arch_joints
-    from archquake.compare import rigid_to_verdict
-    from archquake.compare.histories import rigid_window
     from archquake.limit import limit_analysis
     from archquake.rigid.model import DEFAULT_TIME_STEP
+    from archquake.rigid.run import rigid_to_verdict, rigid_window
 
     progress = rigid_work("friction", arch, motion, rigid_window(arch, motion)[1],
                           DEFAULT_TIME_STEP, length=length_option(args))

@@ -112,7 +112,7 @@ def _check(args: argparse.Namespace) -> None:
 
 def _model(args: argparse.Namespace):
     """The `Model` of --model (checked by `_check`)."""
-    from archquake.sweeps.cases import Model
+    from archquake.models import Model
 
     return Model(args.model)
 
@@ -188,6 +188,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
+    from archquake import models
+
     a = result.arch
     im = result.im
     u = im.unit
@@ -197,7 +199,7 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
           + (f", c_v = {result.settings['restitution']:g} (prescribed)"
              if result.settings["restitution"] is not None else "")
           + (f"; impact law {result.settings.get('impact', 'paper')}"
-             if result.model.value == "fourlink" else ""))
+             if models.takes(result.model, "impact") else ""))
     if result.loads is not None:
         from archquake.dem.assembly import PASSIVE_LEFT_OUT
 
@@ -264,10 +266,10 @@ def _executor(args: argparse.Namespace) -> AbstractContextManager[tuple[Any, int
     threads: 2.62 s against 3.10 s through a pool for the four-link model,
     docs/earthquakes.md), else the executor the options
     ask for (the DEM's runs are one process each: a pool of all cores by default)."""
+    from archquake import models
     from archquake.parallel import open_executor
-    from archquake.sweeps import Model
 
-    if _model(args) in (Model.FOURLINK, Model.RIGID) and args.workers is None and args.scheduler is None:
+    if models.spec(_model(args)).batched and args.workers is None and args.scheduler is None:
         return nullcontext((None, None))
     return open_executor(workers=args.workers, scheduler=args.scheduler)
 

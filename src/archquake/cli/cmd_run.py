@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 
 from archquake.cli.common import (
     add_arch_arguments,
@@ -20,7 +21,6 @@ from archquake.cli.common import (
     ranged,
 )
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import InvalidParameterError
 from archquake.ground.base import motion_label
 from archquake.ranges import (
     ANIMATION_SUFFIXES,
@@ -75,31 +75,44 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from archquake import models
     from archquake.cli.dem_run import refuse_dem_options
-    from archquake.sweeps.cases import Model
 
     model = model_from_args(args)
     arch = arch_from_args(args)
     motion = ground_motion_from_args(args)
-    refuse_dem_options(args, friction_too=model is not Model.RIGID)
+    # --friction is the rigid chain's as well as the DEM's
+    refuse_dem_options(args, friction_too=not models.takes(model, "integrator"))
     impact = impact_from_args(args)
-    from archquake.cli.loads_options import dynamic_loads_from_args, fourlink_masses
+    from archquake.cli.loads_options import dynamic_loads_from_args
 
     loads = dynamic_loads_from_args(args, arch, model, fourlink=True)
-    if model is Model.DEM:
-        return _run_dem(args, arch, motion, loads)
-    if model is Model.RIGID:
+    options = models.RunOptions(t_end=args.t_end, loads=loads,
+                                restitution=impact["restitution"], impact=impact["impact"],
+                                friction=args.friction, integrator=args.integrator)
+    spec = models.spec(model)
+    if spec.deformable:  # the DEM: its stiffness, damping and assembly from the options
+        from archquake.cli import dem_run
+
+        return dem_run.run(args, arch, motion, options)
+    if spec.blocks:  # the rigid chain
         from archquake.cli import rigid_run
 
-        return rigid_run.run(args, arch, motion, loads)
-    from archquake.mechanism import PreparedMechanism
-    from archquake.mechanism.simulate import (
-        simulate,  # the function (the module of its name can shadow it on the package)
-    )
+        return rigid_run.run(args, arch, motion, options)
+    return _run_fourlink(args, arch, motion, options)
 
-    prepared = PreparedMechanism.build(arch, impact["impact"], loads=loads)
-    result = simulate(prepared, motion, restitution=impact["restitution"], t_end=args.t_end)
-    assert result.history is not None  # simulate always records the history
+
+def _run_fourlink(args: argparse.Namespace, arch, motion, options) -> int:
+    """The four-link model's history: print, plot, animate as asked."""
+    from archquake import models
+    from archquake.cli.loads_options import fourlink_masses
+    from archquake.mechanism import PreparedMechanism
+
+    loads = options.loads
+    prepared = PreparedMechanism.build(arch, options.impact, loads=loads)
+    result = models.run(models.Model.FOURLINK, prepared, motion,
+                        options=replace(options, impact=None, loads=None))
+    assert result.history is not None  # a history run records it
     g = STANDARD_GRAVITY
     if args.plot:
         from archquake.plotting.history import figure4
@@ -180,15 +193,3 @@ def _print_text(result, motion, g: float) -> None:
     if result.peak_rotation.size:
         shown = ", ".join(f"{p:.4f}" for p in result.peak_rotation[:6])
         print(f"peak phi [rad]      {shown}" + (" ..." if result.peak_rotation.size > 6 else ""))
-
-
-def _run_dem(args, arch, motion, loads=None) -> int:
-    try:
-        from archquake.dem import simulate_dem  # noqa: F401
-    except ImportError:
-        raise InvalidParameterError(
-            "--model dem is not available in this build; use --model rigid"
-        ) from None
-    from archquake.cli import dem_run
-
-    return dem_run.run(args, arch, motion, loads)

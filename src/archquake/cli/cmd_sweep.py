@@ -24,15 +24,14 @@ from archquake.ranges import (
     TABLE_SUFFIXES,
     WORKERS_RANGE,
 )
-from archquake.sweeps import ResultStore, load_study, model_function, run_sweep
+from archquake.sweeps import ResultStore, load_study, run_sweep
 from archquake.sweeps.evaluate import evaluate_case
 from archquake.sweeps.runner import NO_WORKER_TIMEOUT, CaseFunction
 
 
 def case_function(model) -> CaseFunction:
-    """The case function for ``model``; fails with one line now if this build lacks the model
-    (rather than once per case). Tests replace this to inject a cheap function."""
-    model_function(model)
+    """The case function for ``model`` (`evaluate_case`, which runs any model through
+    `archquake.models.run`). Tests replace this to inject a cheap function."""
     return evaluate_case
 
 
@@ -89,7 +88,7 @@ def run(args: argparse.Namespace) -> int:
     if args.model is not None:  # the same grid with another model (other case ids)
         from dataclasses import replace
 
-        from archquake.sweeps.cases import model_of
+        from archquake.models import model_of
 
         model = model_of(args.model, model_name="--model")
         study = replace(study, model=model,

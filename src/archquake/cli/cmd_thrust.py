@@ -68,11 +68,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from archquake.sweeps.cases import Model
+    from archquake.models import spec
     from archquake.thrust import states
 
     model = model_from_args(args, models=("rigid", "fourlink"))
-    refuse_unless({"--plot": args.plot}, model is Model.FOURLINK,
+    blocks = spec(model).blocks  # the rigid chain, else the four-link model
+    refuse_unless({"--plot": args.plot}, not blocks,
                   "with --model fourlink (the drawing shows the four-link mechanism's displaced "
                   "arch)")
     arch = arch_from_args(args)
@@ -82,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
     from archquake.cli.loads_options import dynamic_loads_from_args
 
     loads = dynamic_loads_from_args(args, arch, model)
-    if model is Model.RIGID:
+    if blocks:
         return _run_rigid(args, arch, motion, loads)
     snapshots = states(arch, motion, args.times, **impact_from_args(args))
     if args.plot is not None:

@@ -325,7 +325,7 @@ def arch_from_args(args: argparse.Namespace):
     """Build the arch (any `VoussoirChain`) from the options of
     `add_arch_arguments`; every inconsistent combination is one line naming the option."""
     from archquake.geometry import OnPiers, Piers
-    from archquake.geometry.shapes import ShapedArch, pointed
+    from archquake.geometry.shapes import ShapedArch, circular, pointed
 
     check_depth(args.depth, OPTIONS)
     check_density(args.density, OPTIONS)
@@ -371,8 +371,10 @@ def arch_from_args(args: argparse.Namespace):
             arch = ShapedArch(shape, args.span, args.rise, args.thickness, voussoirs, joints,
                               args.depth, args.density)
             if shape in ("circular", "segmental") and joints == "radial":
-                r, beta = arch._circle()
-                arch = Arch(r, args.thickness, beta, voussoirs, args.depth, args.density)
+                # its circle, as the library builds it (the shape above checked the rise)
+                arch = circular(span=args.span, rise=args.rise, thickness=args.thickness,
+                                voussoirs=voussoirs, joints=joints, depth=args.depth,
+                                density=args.density)
     height, width = getattr(args, "pier_height", None), getattr(args, "pier_width", None)
     courses = getattr(args, "pier_courses", None)
     if not check_piers(height, width, courses, OPTIONS):
@@ -450,7 +452,7 @@ def add_model_argument(parser: argparse.ArgumentParser, models: tuple[str, ...] 
     """``--model rigid|fourlink|dem`` (default rigid; ``models`` limits the choice), read by
     `model_from_args`. The retired ``--hinges`` stays hidden so that it gets a pointer to
     ``--model`` instead of argparse's bare 'unrecognized arguments'."""
-    from archquake.sweeps.cases import Model
+    from archquake.models import Model
 
     names = models or tuple(m.value for m in Model)
     parser.add_argument("--model", default=None, metavar="{" + ",".join(names) + "}",
@@ -463,20 +465,20 @@ def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
     model-specific option given to another model refused in one line: ``--impact`` and
     ``--restitution`` belong to fourlink, ``--integrator`` to rigid. ``args.model`` is set to
     the model's word. ``models`` limits the choice (a command that lacks one)."""
-    from archquake.sweeps.cases import Model, model_of
+    from archquake.models import model_of, takes
 
     model = model_of(args.model, getattr(args, "hinges", None), model_name="--model",
                      hinges_name="--hinges")
     if models and model.value not in models:
         raise InvalidParameterError(f"--model must be {' or '.join(models)} here, got "
                                     f"{model.value!r}")
-    who = "the DEM's" if model is Model.DEM else "the rigid chain's"
     refuse_unless({"--impact": getattr(args, "impact", None),
                    "--restitution": getattr(args, "restitution", None)},
-                  model is Model.FOURLINK,
-                  f"to --model fourlink ({who} impacts follow from its contacts): add --model "
-                  "fourlink, or leave it out")
-    refuse_unless({"--integrator": getattr(args, "integrator", None)}, model is Model.RIGID,
+                  takes(model, "restitution"),
+                  f"to --model fourlink (with --model {model.value} the impacts follow from the "
+                  "contacts): add --model fourlink, or leave it out")
+    refuse_unless({"--integrator": getattr(args, "integrator", None)},
+                  takes(model, "integrator"),
                   "to --model rigid (how the chain of rigid voussoirs is integrated): leave it "
                   "out")
     args.model = model.value
@@ -484,7 +486,7 @@ def model_from_args(args: argparse.Namespace, models: tuple[str, ...] = ()):
 
 
 def add_impact_arguments(parser: argparse.ArgumentParser) -> None:
-    """--restitution and --impact: the impact of the analytical model (every command that runs a
+    """--restitution and --impact: the impact of the four-link model (every command that runs a
     time history; `impact_from_args` reads them)."""
     from archquake.ranges import IMPACT_LAWS
 

@@ -1,6 +1,6 @@
 """``archquake run --model dem``: one distinct-element time history (the paper's UDEC model).
 
-The output is ``DemResult.to_dict()``: the analytical run's keys
+The output is ``DemResult.to_dict()``: the four-link run's keys
 (`archquake.outcome.RESULT_KEYS`: outcome, collapse_half_cycle, collapse_time_s,
 onset_time_s, impact_times_s, peak_rotation_rad, ...) followed by the DEM's own.
 """
@@ -36,7 +36,7 @@ def block_duration(args, arch, motion, flag: str, why: str) -> float:
     """The run's length for a block model (the DEM, the rigid chain), s: ``--t-end`` or the
     default (end of the excitation + 5 sqrt(R/g)); over ``ranges.DEM_T_END_MAX_S`` it is refused
     in one line naming the option, ``flag`` the model's option and ``why`` its cost."""
-    from archquake.compare import default_dem_duration
+    from archquake.dem.run import default_dem_duration
 
     duration = args.t_end if args.t_end is not None else default_dem_duration(arch, motion)
     if duration > DEM_T_END_MAX_S:
@@ -64,7 +64,9 @@ def refuse_dem_options(args: argparse.Namespace, *, friction_too: bool = True) -
     given = {"--dem-assembly": args.dem_assembly, "--stiffness": args.stiffness,
              "--friction": args.friction if friction_too else None, "--damping": args.damping,
              "--rayleigh": args.rayleigh}
-    refuse_unless(given, args.model == "dem",
+    from archquake import models
+
+    refuse_unless(given, models.spec(args.model).deformable,
                   "to the distinct-element model (--friction also to --model rigid): add "
                   "--model dem, or leave it out")
     if args.dem_assembly is None:  # None until here, so that giving it is seen
@@ -79,7 +81,7 @@ def add_dem_arguments(parser: argparse.ArgumentParser) -> None:
                                     "--history writes the DEM's rotation, energies and base motion)")
     grp.add_argument("--dem-assembly", choices=("voussoirs", "hinges"), default=None,
                      help="DEM blocks: every voussoir (default) or the arch cut only at the "
-                          "analytical hinges (the paper's three-voussoir arch)")
+                          "four-link model's hinges (the paper's three-voussoir arch)")
     grp.add_argument("--stiffness", type=ranged(*STIFFNESS_RANGE, "Pa/m"), metavar="PA_PER_M",
                      help=f"joint normal and shear stiffness, Pa/m ({STIFFNESS_RANGE[0]:g} to "
                           f"{STIFFNESS_RANGE[1]:g}; default {DEFAULT_STIFFNESS:g}, the paper's)")
@@ -126,28 +128,21 @@ def settings_from_args(args: argparse.Namespace, duration: float):
     return DemSettings(contact=law, damping=damping, duration=duration)
 
 
-def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
-    """Run the DEM for ``arch`` (carrying ``loads``) under ``motion`` and print/plot/animate as
-    the options say."""
-    from archquake.compare import dem_assembly
-    from archquake.dem import simulate_dem
+def run(args: argparse.Namespace, arch, motion, options) -> int:
+    """Run the DEM for ``arch`` under ``motion`` with ``options``
+    (`archquake.models.RunOptions`, its loads carried by the assembly ``--dem-assembly``
+    builds) and print/plot/animate as the options say."""
+    from dataclasses import replace
 
-    if getattr(args, "impact", None) is not None:
-        raise InvalidParameterError("--impact applies to the analytical model only; the DEM's "
-                                    "impacts follow from its contacts and damping (--damping)")
-    if args.restitution is not None:
-        raise InvalidParameterError("--restitution applies to the analytical model only; the DEM's "
-                                    "impacts follow from its contacts and damping (--damping)")
+    from archquake import models
+    from archquake.compare import dem_assembly
+
     duration = block_duration(args, arch, motion, "--model dem",
                               "the explicit DEM needs millions of steps")
-    settings = settings_from_args(args, duration)
-    assembly = dem_assembly(arch, args.dem_assembly, loads=loads)
-    if args.t_end is None:  # the default runs until a verdict (rest or collapse), or the cap
-        from archquake.compare import dem_to_verdict
-
-        result = dem_to_verdict(assembly, motion, settings, radius=arch.radius)
-    else:
-        result = simulate_dem(assembly, motion, settings)
+    settings = settings_from_args(args, duration)  # its contact law holds --friction
+    assembly = dem_assembly(arch, args.dem_assembly, loads=options.loads)
+    result = models.run(models.Model.DEM, assembly, motion,
+                        options=replace(options, loads=None, friction=None, dem=settings))
     return emit_block_run(args, arch, motion, result, result.to_dict(),
                           lambda out: _print_text(out, result))
 

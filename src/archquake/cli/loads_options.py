@@ -248,13 +248,13 @@ def dynamic_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: 
     """The loads of the command line for a dynamic ``model`` (None without), checked against
     ``arch``; the four-link model refuses them in one line unless ``fourlink`` (the commands
     that carry them on its links)."""
-    from archquake.sweeps.cases import Model
+    from archquake.models import spec
 
     loads = loads_from_args(args)
     if loads is None:
         return None
     check_loads_on(arch, loads)
-    if Model(model) is Model.FOURLINK and not fourlink:
+    if not spec(model).blocks and not fourlink:  # the four-link model's links
         raise InvalidParameterError(
             "--model fourlink does not carry fill, backing or loads in this command: use "
             "--model rigid (the default)")

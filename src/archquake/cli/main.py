@@ -20,7 +20,9 @@ import importlib
 import os
 import signal
 import sys
+import warnings
 from collections.abc import Sequence
+from pathlib import Path
 
 from archquake import __version__
 from archquake.cli.input_warnings import print_input_warnings, take_input_warnings
@@ -127,6 +129,20 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+def _show(caught: list[warnings.WarningMessage]) -> None:
+    """Print archquake's own deprecation warnings as one line each on stderr; show the others
+    as Python would have."""
+    seen = set()
+    for w in caught:
+        text = str(w.message)
+        if issubclass(w.category, DeprecationWarning) and "archquake" in Path(w.filename).parts:
+            if text not in seen:
+                seen.add(text)
+                print(f"archquake: warning: {text}", file=sys.stderr, flush=True)
+        else:
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 user error)."""
     argv = list(argv) if argv is not None else sys.argv[1:]
@@ -135,7 +151,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parser = build_parser(argv)
         args = parser.parse_args(argv)
-        status = int(args.func(args) or 0)
+        with warnings.catch_warnings(record=True) as caught:
+            # the words of earlier versions (a model named "analytical"...) warn once a run
+            warnings.filterwarnings("always", category=DeprecationWarning, module=r"archquake\.")
+            status = int(args.func(args) or 0)
+        _show(caught)
         print_input_warnings()  # after the command: a refusal stays one line
         return status
     except ArchquakeError as exc:

@@ -1,19 +1,18 @@
 """``archquake run`` (``--model rigid``, the default): one history of the chain of rigid
 voussoirs.
 
-The model is `archquake.rigid.simulate_rigid`: every voussoir a rigid
-block, plastic no-slip corner contacts (or Coulomb joints with ``--friction``), hinges opening,
-migrating and closing anywhere. Its output is ``RigidRun.to_dict()``: the keys every model
-shares (`archquake.outcome.RESULT_KEYS`), then the DEM post-processing's keys (the rigid
-run is read by the DEM's own code) and the rigid stepper's.
+The model is `archquake.rigid.simulate_rigid`, run through `archquake.models.run`: every
+voussoir a rigid block, plastic no-slip corner contacts (or Coulomb joints with
+``--friction``), hinges opening, migrating and closing anywhere. Its output is
+``RigidRun.to_dict()``: the keys every model shares (`archquake.outcome.RESULT_KEYS`), then
+the DEM post-processing's keys (the rigid run is read by the DEM's own code) and the rigid
+stepper's.
 
-Without ``--t-end``, ``--friction`` or ``--integrator events``, the verdict printed is the
-verdict path's (`archquake.rigid.rigid_verdict`: the step scaled with the arch, 1e-3 s on
-Oppenheim's arch, rerun at half the step near a threshold, ``indeterminate`` where the two
-differ), under ``rigid_verdict`` in the JSON; the recorded history (plot, ``--history``,
-impacts, peak rotations) is `archquake.compare.rigid_to_verdict` at that step, its own
-outcome kept as ``history_outcome``. With ``--friction`` (the verdict path has no sliding) or
-``--integrator events`` the recorded run's verdict is printed, at 1e-4 s.
+Without ``--t-end``, ``--friction`` or ``--integrator events``, the chain is integrated once,
+at the verdict's step (scaled with the arch, 1e-3 s on Oppenheim's arch), and rerun at half
+the step only near a threshold, ``indeterminate`` where the two differ
+(`archquake.rigid.run.run_guarded`); the guard is under ``guard`` in the JSON. With
+``--friction`` or ``--integrator events`` the recorded run's verdict is printed, at 1e-4 s.
 """
 
 from __future__ import annotations
@@ -22,13 +21,13 @@ import argparse
 
 from archquake.cli.common import check_range
 from archquake.errors import InvalidParameterError
-from archquake.ranges import DEM_T_END_MAX_S, FRICTION_RANGE
+from archquake.ranges import FRICTION_RANGE
 
 
-def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
-    """Run the rigid chain for ``arch`` (carrying ``loads``) under ``motion``; print, plot,
-    animate as asked."""
-    from archquake.rigid import simulate_rigid
+def run(args: argparse.Namespace, arch, motion, options) -> int:
+    """Run the rigid chain for ``arch`` under ``motion`` with ``options``
+    (`archquake.models.RunOptions`); print, plot, animate as asked."""
+    from archquake import models
 
     if args.friction is not None:
         check_range("--friction", args.friction, *FRICTION_RANGE)
@@ -37,53 +36,32 @@ def run(args: argparse.Namespace, arch, motion, loads=None) -> int:
         raise InvalidParameterError(
             "--integrator events has no sliding: leave --friction out, or use --integrator steps")
     from archquake.cli.common import length_option, rigid_work
-    from archquake.compare.histories import rigid_window
     from archquake.rigid.model import DEFAULT_TIME_STEP
+    from archquake.rigid.run import rigid_window
 
-    body = loaded_body(arch, loads)
-    verdict = None
-    if args.t_end is None:  # to a verdict: see compare.rigid_to_verdict
-        from archquake.compare import rigid_to_verdict
-
-        if args.friction is None and solver == "direct":  # the guarded verdict, its step
-            from archquake.rigid import rigid_verdict
-            from archquake.rigid.verdict import verdict_time_step
-
-            step = verdict_time_step(arch)
-            window = rigid_window(arch, motion)[1]
-            # the verdict, then the recorded history, each up to the window's end
-            progress = rigid_work("run", arch, motion, window, step, passes=2,
-                                  length=length_option(args))
-            # the verdict's own default window stops at 120 s (its batches' bound); a run
-            # goes on as --help says, to the end of the excitation + 60 sqrt(R/g)
-            verdict = rigid_verdict(body, motion,
-                                    duration=window if window > DEM_T_END_MAX_S else None)
-            result = rigid_to_verdict(arch, motion, solver=solver,
-                                      time_step=verdict.time_step_s, progress=progress,
-                                      loads=loads)
-        else:
-            progress = None
-            if solver == "direct":
-                progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
-                                      DEFAULT_TIME_STEP, length=length_option(args))
-            result = rigid_to_verdict(arch, motion, friction=args.friction, solver=solver,
-                                      progress=progress, loads=loads)
-    else:  # a given --t-end is run as given
-        progress = None
+    progress = None
+    if args.t_end is not None:  # a given --t-end is run as given
         if solver == "direct":
             progress = rigid_work("run", arch, motion, args.t_end, DEFAULT_TIME_STEP)
-        result = simulate_rigid(body, motion, duration=args.t_end, friction=args.friction,
-                                solver=solver, progress=progress)
+    elif args.friction is None and solver == "direct":  # once, at the verdict's step
+        from archquake.rigid.verdict import verdict_time_step
+
+        # the run, and near a threshold the guard's rerun at half the step (twice the steps)
+        progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
+                              verdict_time_step(arch), passes=3, length=length_option(args))
+    elif solver == "direct":
+        progress = rigid_work("run", arch, motion, rigid_window(arch, motion)[1],
+                              DEFAULT_TIME_STEP, length=length_option(args))
+    result = models.run(models.Model.RIGID, arch, motion, options=options, progress=progress)
     from archquake.cli.dem_run import emit_block_run
 
+    recorded = getattr(result, "run", result)  # the RigidRun of a guarded run
     out = result.to_dict()
     if out.get("joint_forces"):
-        out["joint_forces"] = on_arch_joints(out["joint_forces"], joint_numbers(result),
+        out["joint_forces"] = on_arch_joints(out["joint_forces"], joint_numbers(recorded),
                                              arch.voussoirs + 1)
-    if verdict is not None:
-        out = with_verdict(out, verdict)
-    return emit_block_run(args, arch, motion, result.result, out, _print_text,
-                          label="rigid chain", history=result)
+    return emit_block_run(args, arch, motion, recorded.result, out, _print_text,
+                          label="rigid chain", history=recorded)
 
 
 def loaded_body(arch, loads):
@@ -123,17 +101,6 @@ def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dic
     return out
 
 
-def with_verdict(out: dict, verdict) -> dict:
-    """A recorded run's summary ``out`` with the verdict path's ``verdict``
-    (`RigidVerdict`) in place of its own: outcome, collapse half cycle
-    and time (s), the reason; the verdict's own keys under ``rigid_verdict``, the history's
-    outcome under ``history_outcome``."""
-    return {**out, "outcome": verdict.outcome.value,
-            "collapse_half_cycle": verdict.collapse_half_cycle,
-            "collapse_time_s": verdict.collapse_time_s, "verdict": verdict.reason,
-            "history_outcome": out["outcome"], "rigid_verdict": verdict.to_dict()}
-
-
 def _print_text(out: dict) -> None:
     from archquake.ground.base import motion_label
 
@@ -157,13 +124,11 @@ def _print_text(out: dict) -> None:
     from archquake.cli.dem_run import print_block_verdict
 
     print_block_verdict(out)
-    v = out.get("rigid_verdict")
+    v = out.get("guard")
     if v is not None:
-        print(f"verdict path        step {v['time_step_s']:.3g} s, "
-              + (f"rerun at half the step: {v['guard_outcome']}" if v["guard_ran"]
-                 else "not near a threshold (no rerun)")
-              + ("" if out["history_outcome"] == out["outcome"]
-                 else f"; the recorded history ends {out['history_outcome']}"))
+        print(f"verdict's step      {v['time_step_s']:.3g} s, "
+              + (f"rerun at half the step: {v['outcome']}" if v["ran"]
+                 else "not near a threshold (no rerun)"))
     events = out["mechanisms"]
     for k, e in enumerate(events[:10]):
         print(f"{'hinge sets' if k == 0 else '':<19} t = {e['time_s']:.3f} s  {e['kind']:<7} "

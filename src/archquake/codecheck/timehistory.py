@@ -8,7 +8,7 @@ below d_SLV (d_SLC)**, the capacity of the static route (0.4 d0, 0.6 d0).
 
 Here the dynamics are archquake's own chain of rigid voussoirs (hinges open anywhere, impacts
 dissipate energy through the contacts, no assumed restitution or viscous damping), run to a
-verdict by `archquake.compare.rigid_to_verdict`. Its motion is read as the equivalent
+verdict by `archquake.rigid.run.rigid_to_verdict`. Its motion is read as the equivalent
 SDOF system's displacement through (C8.7.1.4): the horizontal displacement, relative to the
 ground, of the curve's control point (by default the centre of mass of the mechanism's moving
 voussoirs), times sum m delta^2 / (delta_C sum m delta). A record whose run collapses the arch
@@ -143,9 +143,13 @@ def chain_displacement(curve: CapacityCurve, result) -> np.ndarray:
 
 
 def _default_run(arch, motion):
-    from archquake.compare import rigid_to_verdict
+    """The rigid chain run to a verdict at its recorded step (`archquake.models.run`, the
+    stepper's default 1e-4 s: the route reads the voussoirs' positions)."""
+    from archquake import models
+    from archquake.rigid.model import DEFAULT_TIME_STEP
 
-    return rigid_to_verdict(arch, motion).result
+    options = models.RunOptions(time_step=DEFAULT_TIME_STEP)
+    return models.run(models.Model.RIGID, arch, motion, options=options).result
 
 
 def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str = "SLV", *,

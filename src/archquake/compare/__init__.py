@@ -2,7 +2,7 @@
 6, 9, 10, 11): time histories, failure domains, snapshots.
 
 Each name is imported from its module on first use (PEP 562), so that a command that needs one
-function (the rigid chain's run to a verdict) does not import the studies of the others."""
+function does not import the studies of the others."""
 
 import sys
 from typing import TYPE_CHECKING
@@ -28,16 +28,14 @@ _LAZY: dict[str, str] = {
     "compare_domains": "archquake.compare.domains",
     "compare_hinges": "archquake.compare.snapshots",
     "compare_history": "archquake.compare.histories",
-    "default_dem_duration": "archquake.compare.histories",
+    "default_dem_duration": "archquake.dem.run",
     "dem_assembly": "archquake.compare.histories",
     "dem_failure_domain": "archquake.compare.domains",
     "dem_hinges": "archquake.compare.snapshots",
-    "dem_to_verdict": "archquake.compare.histories",
     "figure4_comparisons": "archquake.compare.histories",
     "first_half_cycle_difference": "archquake.compare.histories",
     "joint_displacements": "archquake.compare.snapshots",
     "reduced_damping_snapshot": "archquake.compare.snapshots",
-    "rigid_to_verdict": "archquake.compare.histories",
     "three_voussoir_assembly": "archquake.compare.histories",
 }
 
@@ -56,12 +54,9 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
         VOUSSOIRS,
         HistoryComparison,
         compare_history,
-        default_dem_duration,
         dem_assembly,
-        dem_to_verdict,
         figure4_comparisons,
         first_half_cycle_difference,
-        rigid_to_verdict,
         three_voussoir_assembly,
     )
     from archquake.compare.snapshots import (
@@ -76,6 +71,7 @@ if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type
         joint_displacements,
         reduced_damping_snapshot,
     )
+    from archquake.dem.run import default_dem_duration
 
 
 __getattr__, __dir__ = attach(sys.modules[__name__], _LAZY)
@@ -104,8 +100,6 @@ __all__ = [
     "HistoryComparison",
     "compare_history",
     "default_dem_duration",
-    "dem_to_verdict",
-    "rigid_to_verdict",
     "dem_assembly",
     "figure4_comparisons",
     "first_half_cycle_difference",

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from archquake import models
 from archquake.compare.histories import HINGES, VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains import DomainSettings, FailureDomain, PulseFamily, failure_domain
@@ -174,7 +175,8 @@ def dem_failure_domain(
     n_dur = int(np.atleast_1d(durations).size)
     t0 = time.perf_counter()
     own = None
-    batched = model == "rigid" and solver == "direct"  # threads in one process, no pool
+    # the rigid chain's verdicts: threads in one process, no pool
+    batched = models.spec(model).batched and solver == "direct"
     if batched:
         n = workers if workers is not None else usable_cores()
         if n < 1:

@@ -1,14 +1,16 @@
 """Time histories of the two models side by side (paper Figure 4(b)-(d)).
 
-The analytical model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
+The four-link model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
 open mechanism's first link; the distinct-element model (`archquake.dem.simulate_dem`)
 gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
-cut at the analytical hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
+cut at the four-link model's hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
 Both results speak one vocabulary (`Outcome`, impact times, peak
 rotation per half cycle, collapse half cycle: the DEM result computes its own, see
-`archquake.dem.result`); this module only runs the two models and compares them.
+`archquake.dem.result`); this module only runs the two models and compares them (each
+model's run to a verdict lives with the model: `archquake.rigid.run.rigid_to_verdict`,
+`archquake.dem.run.dem_to_verdict`).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
     dem_assembly,
     three_voussoir_assembly,
 )
+from archquake.dem.run import default_dem_duration  # noqa: F401  (re-exported by archquake.compare)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
@@ -40,120 +43,6 @@ if TYPE_CHECKING:
     from archquake.dem.result import DemResult
     from archquake.mechanism.simulate import SimulationResult
 
-#: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
-#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
-#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
-#: second half cycle.
-DEFAULT_TAIL = 5.0
-
-
-def default_dem_duration(arch: Arch, motion: GroundMotion, *, tail: float = DEFAULT_TAIL,
-                         g: float = STANDARD_GRAVITY) -> float:
-    """End of the excitation plus ``tail`` sqrt(R/g), s: the DEM's default simulated time."""
-    return float(motion.duration) + tail * math.sqrt(arch.radius / g)
-
-
-#: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
-VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
-
-
-def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
-                   radius: float | None = None, tails=VERDICT_TAILS,
-                   g: float = STANDARD_GRAVITY):
-    """The DEM run long enough for a verdict: for the end of the excitation plus each of
-    ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
-    never hinged, or is at rest: `archquake.dem.result.settled`); the last run is returned
-    (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
-    resumed, so each try reruns from the start: a run that needs the second tail costs about
-    three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
-
-    ``radius``: R, m (default: the arch's; required for an Assembly)."""
-    from archquake.dem import DemSettings, simulate_dem
-    from archquake.outcome import Outcome
-    from archquake.ranges import DEM_T_END_MAX_S
-
-    r = float(radius if radius is not None else arch_or_assembly.radius)
-    base = DemSettings() if settings is None else settings
-    result = None
-    for tail in tails:
-        duration = float(motion.duration) + float(tail) * math.sqrt(r / g)
-        if result is not None and duration > DEM_T_END_MAX_S:
-            break
-        result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)
-        if result.outcome is not Outcome.INDETERMINATE:
-            break
-    return result
-
-
-def rigid_window(arch: Arch, motion: GroundMotion, *, g: float = STANDARD_GRAVITY
-                 ) -> tuple[float, float]:
-    """The window of `rigid_to_verdict`, s: its first run (`default_dem_duration`,
-    the end of the excitation + 5 sqrt(R/g)) and the latest it goes on to while the arch
-    still moves (the fixed-hinge model's default end, the end of the excitation + 60
-    sqrt(R/g)). Its length is bounded only by the work it costs
-    (`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
-    nothing it needs."""
-    from archquake.mechanism.simulate import default_t_end
-
-    d = default_dem_duration(arch, motion, g=g)
-    return d, max(d, float(default_t_end(np.asarray(motion.duration), arch.radius, g)))
-
-
-def rigid_to_verdict(arch: Arch, motion: GroundMotion, *, friction: float | None = None,
-                     g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
-                     time_step: float | None = None, progress=None, loads=None):
-    """The rigid chain (`archquake.rigid.simulate_rigid`) run to a
-    verdict: to `default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
-    the arch still moves then, on until it is at rest or collapses, up to the fixed-hinge
-    model's default end (the end of the excitation + 60 sqrt(R/g); `rigid_window`),
-    however long the record. The rigid chain resumes where it
-    stopped (unlike the DEM, `dem_to_verdict`), so a long tail costs only its own steps.
-
-    The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
-
-    Parameters
-    ----------
-    arch : Arch
-    motion : GroundMotion
-        Ground acceleration, m/s^2.
-    friction : float, optional
-        Coulomb coefficient of every joint; None: no sliding.
-    g : float
-        m/s^2.
-    settings : DemSettings, optional
-        Thresholds of the verdict (default ``DemSettings()``).
-    solver : {"direct", "events"}
-        How the chain is integrated (`simulate_rigid`).
-    time_step : float, optional
-        The stepper's step, s (default: ``simulate_rigid``'s).
-    progress : callable, optional
-        ``simulate_rigid``'s.
-    loads : Loads, optional
-        What the arch carries (`archquake.dem.assembly.build_arch_assembly`).
-
-    Returns
-    -------
-    RigidRun
-
-    Raises
-    ------
-    InvalidParameterError
-        If its work exceeds ``ranges.RIGID_MAX_WORK`` (`archquake.rigid.model.check_work`).
-    """
-    from archquake.rigid import simulate_rigid
-
-    d, cap = rigid_window(arch, motion, g=g)
-    body: Arch | Assembly = arch
-    if loads is not None and not loads.empty:
-        body = build_arch_assembly(arch, loads=loads)
-    if time_step is None:
-        return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                              settings=settings, solver=solver, progress=progress)
-    return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
-                          settings=settings, solver=solver, time_step=time_step,
-                          progress=progress)
-
-
 # ----------------------------------------------------------------------------- comparison
 @dataclass(frozen=True)
 class HistoryComparison:
@@ -162,13 +51,14 @@ class HistoryComparison:
     Attributes
     ----------
     analytical : SimulationResult
+        The four-link model's run.
         With its history.
     dem : DemResult
     assembly : str
         ``'voussoirs'`` or ``'hinges'`` (the three-voussoir arch).
     window : float
         End of the first half cycle compared, s: the earliest of the two models' first
-        impacts and the analytical collapse (the analytical history ends there).
+        impacts and the four-link collapse (the four-link history ends there).
     max_difference : float
         max |rotation_DEM - phi_analytical| over [0, window], rad.
     relative_difference : float
@@ -193,7 +83,7 @@ class HistoryComparison:
 
     @property
     def same_outcome(self) -> bool:
-        """Same outcome and, for a collapse, the same half cycle (an indeterminate analytical
+        """Same outcome and, for a collapse, the same half cycle (an indeterminate four-link
         verdict is never the same as the DEM's: it claims neither collapse nor survival)."""
         return (self.analytical.outcome is self.dem.outcome
                 and self.analytical.collapse_half_cycle == self.dem.collapse_half_cycle)
@@ -234,12 +124,12 @@ def compare_history(
     arch : Arch
     motion : GroundMotion
     assembly : {'voussoirs', 'hinges'}
-        The DEM arch: every voussoir a block, or cut at the analytical hinges.
+        The DEM arch: every voussoir a block, or cut at the four-link model's hinges.
     settings : DemSettings, optional
         Default: the paper's stiffness and damping; its ``duration`` is replaced by
         ``duration``.
     duration : float, optional
-        DEM simulated time, s (default `default_dem_duration`). The analytical model
+        DEM simulated time, s (default `default_dem_duration`). The four-link model
         runs to its own end (rest or collapse).
     g : float
         Gravity, m/s^2.
@@ -283,14 +173,14 @@ def compare_history(
 def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
     """(window end s, max |rotation_DEM - phi| rad, that / max |phi|) over the first half cycle.
 
-    The window ends at the earliest of the analytical collapse, the analytical first impact,
+    The window ends at the earliest of the four-link collapse, the four-link first impact,
     the DEM's first impact and the DEM's last sample; the DEM rotation is interpolated
-    linearly onto the analytical samples (DEM output every 5 ms; the curvature error of that
+    linearly onto the four-link samples (DEM output every 5 ms; the curvature error of that
     interpolation is ~1e-6 rad for these motions).
     """
     h = analytical.history
     if h is None:
-        raise InvalidParameterError("the analytical result needs its history (output_interval != 0)")
+        raise InvalidParameterError("the four-link result needs its history (output_interval != 0)")
     ends = [float(h.t[-1]), float(dem.times[-1])]
     if analytical.collapse_time is not None:
         ends.append(analytical.collapse_time)
@@ -339,14 +229,12 @@ def figure4_comparisons(
 
 __all__ = [
     "ASSEMBLIES",
-    "DEFAULT_TAIL",
     "FIGURE4_DURATIONS",
     "HINGES",
     "HistoryComparison",
     "VOUSSOIRS",
     "compare_history",
     "default_dem_duration",
-    "dem_to_verdict",
     "dem_assembly",
     "figure4_comparisons",
     "first_half_cycle_difference",

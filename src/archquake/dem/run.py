@@ -415,3 +415,55 @@ __all__ = [
     "simulate_dem",
     "stable_time_step",
 ]
+
+
+# ----------------------------------------------------------------------------- to a verdict
+#: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
+#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
+#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
+#: second half cycle.
+DEFAULT_TAIL = 5.0
+
+
+def default_dem_duration(arch, motion: GroundMotion, *, tail: float = DEFAULT_TAIL,
+                         g: float = STANDARD_GRAVITY) -> float:
+    """End of the excitation plus ``tail`` sqrt(R/g), s: the DEM's default simulated time
+    (``arch``: anything with a ``radius``, m)."""
+    return float(motion.duration) + tail * math.sqrt(arch.radius / g)
+
+
+#: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
+VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
+
+
+def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
+                   radius: float | None = None, tails=VERDICT_TAILS,
+                   g: float = STANDARD_GRAVITY) -> DemResult:
+    """The DEM run long enough for a verdict: for the end of the excitation plus each of
+    ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
+    never hinged, or is at rest: `archquake.dem.result.settled`); the last run is returned
+    (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
+    resumed, so each try reruns from the start: a run that needs the second tail costs about
+    three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
+
+    ``radius``: R, m (default: the arch's; required for an Assembly)."""
+    from archquake.outcome import Outcome
+    from archquake.ranges import DEM_T_END_MAX_S
+
+    if not tails:
+        raise InvalidParameterError("tails must give at least one tail, in sqrt(R/g)")
+    r = float(radius if radius is not None else arch_or_assembly.radius)
+    base = DemSettings() if settings is None else settings
+    result = None
+    for tail in tails:
+        duration = float(motion.duration) + float(tail) * math.sqrt(r / g)
+        if result is not None and duration > DEM_T_END_MAX_S:
+            break
+        result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)
+        if result.outcome is not Outcome.INDETERMINATE:
+            break
+    assert result is not None  # the first tail always runs
+    return result
+
+
+__all__ += ["DEFAULT_TAIL", "VERDICT_TAILS", "default_dem_duration", "dem_to_verdict"]

@@ -148,7 +148,7 @@ def evaluate_pulses(
     ([1, 2, 0], ['collapse', 'collapse', 'survives'])
     """
     from archquake.domains._kernels import batch_kernel, decode
-    from archquake.mechanism.simulate import default_t_end
+    from archquake.ranges import default_t_end
 
     prepared = PreparedMechanism.build(arch, impact)
     prescribed = check_restitution(restitution)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from archquake import models
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains.batch import PulseFamily, PulseOutcomes
 from archquake.outcome import Outcome
@@ -39,16 +40,9 @@ def block_pulse_outcome(assembly, family: str, magnitude_g: float, duration: flo
     ``governing_only`` a collapse is reported with half cycle 0 (not counted), so the search
     brackets no first-half-cycle boundary."""
     motion = PulseFamily(family).motion(magnitude_g, duration, g=g)
-    if model == "rigid":
-        from archquake.rigid import simulate_rigid
-
-        res = simulate_rigid(assembly, motion, duration=motion.duration + tail_s,
-                             settings=settings, g=g, solver=solver).result
-    else:
-        from archquake.dem import simulate_dem
-
-        res = simulate_dem(assembly, motion, settings.with_(duration=motion.duration + tail_s),
-                           g=g)
+    options = models.RunOptions(t_end=motion.duration + tail_s, g=g, dem=settings,
+                                integrator="events" if solver == "events" else None)
+    res = models.run(model, assembly, motion, options=options)
     if res.outcome is Outcome.COLLAPSE:
         half = int(res.collapse_half_cycle or 0)
         if first_only and half != 1:
@@ -147,7 +141,8 @@ class DemPulseEvaluator:
             args = [(self.assembly, self.family.value, a, d, self.settings, self.tail_s,
                      self.first_only, self.g, self.governing_only, self.model, self.solver)
                     for a, d in todo]
-            if self.model == "rigid" and self.solver == "direct":
+            # the rigid chain's verdicts: one threaded batch in this process
+            if models.spec(self.model).batched and self.solver == "direct":
                 results = rigid_pulse_outcomes(self.assembly, self.family, todo, self.settings,
                                           self.tail_s, self.first_only, self.g,
                                           self.governing_only, self.threads)

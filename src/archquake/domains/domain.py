@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from archquake import models
 from archquake._validate import (
     require_array,
     require_gravity,
@@ -395,9 +396,9 @@ def failure_domain(
     evaluate : callable, optional
         ``evaluate(magnitudes_g, durations) -> PulseOutcomes`` for 1-D arrays of equal length:
         another model's outcomes plugged into the same search (e.g. the distinct-element model,
-        `archquake.compare.dem_failure_domain`). Default: the compiled analytical batch
+        `archquake.compare.dem_failure_domain`). Default: the compiled four-link batch
         `evaluate_pulses` (``settings.options``, ``settings.early``).
-        lambda (the scan's start) is always the analytical mechanism's.
+        lambda (the scan's start) is always the four-link mechanism's.
     model : {'rigid', 'fourlink'}, optional
         The model whose outcomes are searched when ``evaluate`` is not given. ``'rigid'`` (the
         default for an Arch): the chain of rigid voussoirs, every voussoir a block, each pulse
@@ -435,13 +436,19 @@ def failure_domain(
     require_instance("settings", settings, DomainSettings, "a DomainSettings (or None)")
     if model is None:
         model = "fourlink" if isinstance(arch, PreparedMechanism) else "rigid"
-    if model not in ("rigid", "fourlink"):
-        raise InvalidParameterError(f"model must be 'rigid' or 'fourlink', got {model!r}")
+    word = str(getattr(model, "value", model))
+    try:
+        spec = models.spec(word)
+    except InvalidParameterError:
+        spec = None
+    if spec is None or not spec.batched:  # the models whose domains run in compiled batches
+        raise InvalidParameterError(f"model must be 'rigid' or 'fourlink', got {word!r}")
+    model = spec.model.value
     loaded = loads is not None and not loads.empty
     if loaded and (evaluate is None or not isinstance(arch, VoussoirChain)):
         raise InvalidParameterError("a domain with loads needs the block models' evaluation of "
                                     "the loaded arch (archquake.compare.dem_failure_domain)")
-    if evaluate is None and model == "rigid":
+    if evaluate is None and spec.blocks:
         evaluate = _rigid_evaluator(arch, family, restitution, impact, g, threads)
     if evaluate is not None and isinstance(arch, VoussoirChain):
         # another model's outcomes carry their own impacts: only the hinges and lambda of the

@@ -44,20 +44,19 @@ from typing import Any
 
 import numpy as np
 
+from archquake import models
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.ground.measures import IntensityMeasure, im_value, parse_im
 from archquake.ida.huntfill import HuntFill, Interval, collapsed_at, intervals, propose_levels
+from archquake.models import DEFAULT_MODEL, Model, model_of
 from archquake.outcome import Outcome
 from archquake.sweeps.cases import (
-    DEFAULT_MODEL,
     ArchSpec,
     Case,
     CaseOptions,
     ExcitationKind,
     ExcitationSpec,
-    Model,
-    model_of,
     motion_digest,
 )
 from archquake.sweeps.store import STATUS_ERROR, ResultStore
@@ -69,7 +68,7 @@ MAX_ROUNDS = 200
 
 #: Outcomes the IDA counts as collapse (the hunt, the collapse intervals and the fragility): a
 #: collapse, and an indeterminate verdict (the arch is not shown to survive: the fragility is
-#: then an upper bound of the analytical model's, and each record reports how many runs were
+#: then an upper bound of the four-link model's, and each record reports how many runs were
 #: indeterminate, ``indeterminate_runs``).
 COUNTED_AS_COLLAPSE = (Outcome.COLLAPSE.value, Outcome.INDETERMINATE.value)
 
@@ -373,7 +372,7 @@ def incremental_dynamic_analysis(
     -------
     IdaResult
     """
-    from archquake.ida.batch import evaluate_cases, evaluate_rigid_cases, rigid_half_step_verdicts
+    from archquake.ida.batch import BATCHES, rigid_half_step_verdicts
     from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import mechanism_limits
     from archquake.sweeps.runner import run_sweep
@@ -383,10 +382,10 @@ def incremental_dynamic_analysis(
     model = model_of(model)
     # the rigid chain's levels run at its step alone; the guard then checks the levels that
     # decide the result at half the step (module docstring)
-    guard = model is Model.RIGID and options.guard
+    guard = models.takes(model, "guard") and options.guard
     if guard:
         options = replace(options, guard=False)
-    batched = model in (Model.FOURLINK, Model.RIGID)  # one compiled, threaded call per round
+    batched = models.spec(model).batched  # one compiled, threaded call per round
     if batched and executor is None and workers is None:
         executor = SerialExecutor()
     if not motions:
@@ -427,11 +426,7 @@ def incremental_dynamic_analysis(
                                          scale=float(factor), file_sha256=digests[i]),
                     model, options, loads)
 
-    batch: Callable[[Sequence[Case]], list[Any]] | None = None
-    if model is Model.FOURLINK:
-        batch = evaluate_cases
-    elif model is Model.RIGID:
-        batch = evaluate_rigid_cases
+    batch: Callable[[Sequence[Case]], list[Any]] | None = BATCHES.get(model)
     runs: list[dict[float, Case]] = [{} for _ in motions]
     outcomes: list[dict[float, Any]] = [{} for _ in motions]
     checked: list[set[float]] = [set() for _ in motions]  # levels the guard has rerun
@@ -553,7 +548,7 @@ def guarded_record(rec: Any, half: Any) -> Any:
 
 
 def round_chunk_size(cases: int, executor: Executor | None, workers: int | None) -> int:
-    """Cases per task of one round of the analytical model: the round split evenly over the
+    """Cases per task of one round of the four-link model: the round split evenly over the
     workers (one task for an in-process executor).
 
     Each task is one call of the compiled batch, which spreads its cases over numba's threads

@@ -1,4 +1,4 @@
-"""Evaluate many sweep cases of the analytical model in one compiled call per arch.
+"""Evaluate many sweep cases of the four-link model in one compiled call per arch.
 
 `evaluate_cases` is the batch function incremental dynamic analysis hands to
 `archquake.sweeps.run_sweep` (``evaluate_batch=``): the cases of one round (records scaled
@@ -21,8 +21,9 @@ import numpy as np
 
 from archquake.domains._kernels import OUTCOMES
 from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.models import Model
 from archquake.outcome import Outcome, qualify
-from archquake.sweeps.cases import Case, Model
+from archquake.sweeps.cases import Case
 
 #: The ``evaluator`` key of a batch summary.
 BATCH_EVALUATOR = "ida batch (compiled, early decision)"
@@ -177,7 +178,8 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
     from archquake.ida._kernels import WINDOW_TAU, batch_kernel
     from archquake.mechanism import SolverOptions
     from archquake.mechanism._kernels import excitation_end
-    from archquake.mechanism.simulate import conclude_run, default_t_end
+    from archquake.mechanism.simulate import conclude_run
+    from archquake.ranges import default_t_end
 
     g = options.g
     solver = SolverOptions()
@@ -269,5 +271,11 @@ def thread_order(n: int, threads: int) -> list[int]:
     return [j for t in range(threads) for j in range(t, n, threads)]
 
 
-__all__ = ["BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases",
+#: The batch evaluator of each model that has one (one compiled, threaded call per batch; the
+#: DEM's cases run one a process, through the sweep's executor).
+BATCHES: dict[Model, Callable[..., list[Any]]] = {Model.FOURLINK: evaluate_cases,
+                                                  Model.RIGID: evaluate_rigid_cases}
+
+
+__all__ = ["BATCHES", "BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases",
            "rigid_half_step_verdicts", "thread_order"]

@@ -71,7 +71,7 @@ from archquake.ground.base import (
 from archquake.mechanism.impact import check_restitution
 from archquake.mechanism.prepared import PreparedMechanism
 from archquake.outcome import Outcome, conclude, qualify
-from archquake.ranges import RUN_TAIL
+from archquake.ranges import RUN_TAIL, default_t_end  # noqa: F401  (re-exported)
 from archquake.result import shared_columns, shared_keys, write_csv
 
 
@@ -563,28 +563,6 @@ def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, ma
                     excitation_end_s=float(excitation_end),
                     below_barrier=proof and energy_fraction < 1.0 - K.ENERGY_MARGIN,
                     energy_fraction=float(energy_fraction) if proof else None)
-
-
-def default_t_end(excitation_end_s, radius: float, g: float = STANDARD_GRAVITY) -> np.ndarray:
-    """The four-link model's default end of analysis, s: the end of the excitation plus
-    `RUN_TAIL` sqrt(R/g) (what `simulate`, the failure domains'
-    batch and the incremental dynamic analysis use).
-
-    Parameters
-    ----------
-    excitation_end_s : float or ndarray
-        End of each excitation, s.
-    radius : float
-        The arch's radius R, m.
-    g : float
-        Gravity, m/s^2.
-
-    Examples
-    --------
-    >>> round(float(default_t_end(0.81, 10.0)), 3)
-    61.399
-    """
-    return np.asarray(excitation_end_s, dtype=float) + RUN_TAIL * math.sqrt(radius / g)
 
 
 def simulate(

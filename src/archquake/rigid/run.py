@@ -552,3 +552,215 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
 
 
 __all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "simulate_rigid"]
+
+
+# ----------------------------------------------------------------------------- to a verdict
+def rigid_window(arch, motion, *, g: float = STANDARD_GRAVITY) -> tuple[float, float]:
+    """The window of `rigid_to_verdict`, s: its first run (`archquake.dem.run.default_dem_duration`,
+    the end of the excitation + 5 sqrt(R/g)) and the latest it goes on to while the arch
+    still moves (`archquake.ranges.default_t_end`: the end of the excitation + 60 sqrt(R/g),
+    the four-link model's default end). Its length is bounded only by the work it costs
+    (`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
+    nothing it needs. ``arch``: anything with a ``radius``, m."""
+    from archquake.dem.run import default_dem_duration
+    from archquake.ranges import default_t_end
+
+    d = default_dem_duration(arch, motion, g=g)
+    return d, max(d, float(default_t_end(np.asarray(motion.duration), arch.radius, g)))
+
+
+def rigid_to_verdict(arch, motion, *, friction: float | None = None,
+                     g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
+                     time_step: float | None = None, progress=None, loads=None) -> RigidRun:
+    """The rigid chain (`simulate_rigid`) run to a verdict: to
+    `archquake.dem.run.default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
+    the arch still moves then, on until it is at rest or collapses, up to the end of the
+    excitation + 60 sqrt(R/g) (`rigid_window`), however long the record. The rigid chain
+    resumes where it stopped (unlike the DEM, `archquake.dem.run.dem_to_verdict`), so a long
+    tail costs only its own steps.
+
+    The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
+
+    Parameters
+    ----------
+    arch : Arch
+    motion : GroundMotion
+        Ground acceleration, m/s^2.
+    friction : float, optional
+        Coulomb coefficient of every joint; None: no sliding.
+    g : float
+        m/s^2.
+    settings : DemSettings, optional
+        Thresholds of the verdict (default ``DemSettings()``).
+    solver : {"direct", "events"}
+        How the chain is integrated (`simulate_rigid`).
+    time_step : float, optional
+        The stepper's step, s (default: ``simulate_rigid``'s).
+    progress : callable, optional
+        ``simulate_rigid``'s.
+    loads : Loads, optional
+        What the arch carries (`archquake.dem.assembly.build_arch_assembly`).
+
+    Returns
+    -------
+    RigidRun
+
+    Raises
+    ------
+    InvalidParameterError
+        If its work exceeds ``ranges.RIGID_MAX_WORK`` (`archquake.rigid.model.check_work`).
+    """
+    d, cap = rigid_window(arch, motion, g=g)
+    body = arch
+    if loads is not None and not loads.empty:
+        from archquake.dem.assembly import build_arch_assembly
+
+        body = build_arch_assembly(arch, loads=loads)
+    if time_step is None:
+        return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
+                              settings=settings, solver=solver, progress=progress)
+    return simulate_rigid(body, motion, duration=d, friction=friction, until_rest=cap, g=g,
+                          settings=settings, solver=solver, time_step=time_step,
+                          progress=progress)
+
+
+__all__ += ["rigid_to_verdict", "rigid_window"]
+
+
+@dataclass(frozen=True)
+class GuardedRun:
+    """A recorded run of the rigid chain at the verdict's step, with the verdict path's
+    half-step guard (`run_guarded`): one integration gives the history and the verdict.
+
+    Attributes
+    ----------
+    run : RigidRun
+        The recorded history, at ``time_step_s``.
+    outcome : Outcome
+        The verdict: the run's, or ``indeterminate`` where the guard's rerun at half the step
+        ends otherwise.
+    verdict_reason : str
+        Why, in one sentence.
+    time_step_s : float
+        The verdict's step, s (`archquake.rigid.verdict.verdict_time_step`).
+    lengthening : float
+        The longest half cycle after the first (a collapse's up to the collapse) over the
+        first (0 without an impact): the guard's measure of nearness to a threshold.
+    guard_ran : bool
+        Whether the run was repeated at half the step (``lengthening`` above
+        `archquake.rigid.verdict.GUARD_LENGTHENING` after an impact).
+    guard_outcome : Outcome or None
+        The outcome at half the step.
+    """
+
+    run: RigidRun
+    outcome: Outcome
+    verdict_reason: str
+    time_step_s: float
+    lengthening: float
+    guard_ran: bool
+    guard_outcome: Outcome | None
+
+    def __getattr__(self, name: str):
+        """Every other attribute is the run's (times, rotation, impacts, ``to_csv``...: the
+        `archquake.result.ModelResult` interface)."""
+        if name.startswith("__") or name == "run":
+            raise AttributeError(name)
+        return getattr(self.run, name)
+
+    @property
+    def collapse_half_cycle(self) -> int | None:
+        """The run's, where the verdict is the run's (None otherwise)."""
+        return self.run.collapse_half_cycle if self.outcome is self.run.outcome else None
+
+    @property
+    def collapse_time(self) -> float | None:
+        """s: the run's, where the verdict is the run's (None otherwise)."""
+        return self.run.collapse_time if self.outcome is self.run.outcome else None
+
+    def to_dict(self, *, joint_forces: bool = True) -> dict:
+        """``RigidRun.to_dict()`` with the verdict in its outcome, collapse half cycle and time
+        (s) and ``verdict``, and the guard under ``guard`` (the step in s, whether it ran, its
+        outcome, the lengthening)."""
+        out = self.run.to_dict(joint_forces=joint_forces)
+        same = self.outcome is self.run.outcome
+        out.update({"outcome": self.outcome.value, "verdict": self.verdict_reason,
+                    "collapse_half_cycle": out["collapse_half_cycle"] if same else None,
+                    "collapse_time_s": out["collapse_time_s"] if same else None})
+        out["guard"] = {"time_step_s": self.time_step_s, "ran": self.guard_ran,
+                        "outcome": None if self.guard_outcome is None
+                        else self.guard_outcome.value,
+                        "lengthening": self.lengthening}
+        return out
+
+
+def lengthening(run) -> float:
+    """The longest half cycle after the first (a collapse's up to the collapse) over the first,
+    of a run's rotation measure (0 without an impact): the guard's measure
+    (`archquake.rigid.verdict`), read from the recorded impacts."""
+    impacts = np.asarray(run.impact_times, dtype=float)
+    onset = run.onset_time
+    if impacts.size == 0 or onset is None or not impacts[0] > onset:
+        return 0.0
+    ends = list(impacts)
+    if run.collapse_time is not None:
+        ends.append(float(run.collapse_time))
+    longest = float(np.max(np.diff(ends), initial=0.0))
+    return longest / float(impacts[0] - onset)
+
+
+def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
+                progress=None, guard: bool = True,
+                settings: DemSettings | None = None) -> GuardedRun:
+    """The rigid chain to a verdict (`rigid_to_verdict`), integrated once at the verdict
+    path's step (`archquake.rigid.verdict.verdict_time_step`: scaled with the voussoirs'
+    thickness, 1e-3 s on Oppenheim's arch), under the verdict path's guard: a run whose
+    verdict depends on an impact and whose later half cycles lasted more than
+    `archquake.rigid.verdict.GUARD_LENGTHENING` times the first (the arch lingered near a
+    crest) is run again at half the step; where the two outcomes differ the verdict is
+    ``indeterminate``, with the reason.
+
+    Parameters
+    ----------
+    arch : Arch
+    motion : GroundMotion
+        Ground acceleration, m/s^2.
+    g : float
+        m/s^2.
+    loads : Loads, optional
+        What the arch carries.
+    progress : callable, optional
+        ``simulate_rigid``'s, for the run at the verdict's step (not for the guard's rerun).
+    guard : bool
+        False: no rerun (the verdict at the step alone).
+    settings : DemSettings, optional
+        Thresholds of the verdict (default ``DemSettings()``).
+
+    Returns
+    -------
+    GuardedRun
+    """
+    from archquake.rigid.verdict import GUARD_LENGTHENING, verdict_time_step
+
+    h = verdict_time_step(arch, g=g)
+    run = rigid_to_verdict(arch, motion, g=g, time_step=h, progress=progress, loads=loads,
+                           settings=settings)
+    stretch = lengthening(run)
+    outcome, reason = run.outcome, run.verdict_reason
+    near = (guard and run.impact_times.size >= 1 and outcome in (Outcome.SURVIVES, Outcome.COLLAPSE)
+            and stretch > GUARD_LENGTHENING)
+    half = None
+    if near:
+        half = rigid_to_verdict(arch, motion, g=g, time_step=0.5 * h, loads=loads,
+                                settings=settings).outcome
+        if half is not outcome:
+            reason = (f"near the threshold: {outcome.value} at the step {h:.3g} s, "
+                      f"{half.value} at {0.5 * h:.3g} s; a finer step (--t-end with the "
+                      "default 1e-4 s step) or --integrator events decides")
+            outcome = Outcome.INDETERMINATE
+        else:
+            reason += f" (confirmed at half the step, {0.5 * h:.3g} s)"
+    return GuardedRun(run, outcome, reason, h, stretch, near, half)
+
+
+__all__ += ["GuardedRun", "lengthening", "run_guarded"]

@@ -239,21 +239,25 @@ class RigidVerdict:
     skipped_steps: int
     rest_proven: bool
     final_state: str
+    #: Gravity, m/s^2.
+    g: float = STANDARD_GRAVITY
 
     def to_dict(self) -> dict:
-        """Summary for JSON (units in the keys): the keys of
-        `archquake.outcome.RESULT_KEYS` it knows first (``model`` ``"rigid_chain"``),
-        then the verdict path's own."""
-        return {"model": "rigid_chain", "outcome": self.outcome.value,
+        """Summary for JSON (units in the keys): the keys of `archquake.outcome.RESULT_KEYS`
+        first (``model`` ``"rigid"``, as ``--model`` names it; ``impact_times_s`` and
+        ``peak_rotation_rad`` None: the verdict path records no history, only the count of
+        impacts, ``impacts``), then the verdict path's own."""
+        return {"model": "rigid", "outcome": self.outcome.value,
                 "final_state": self.final_state,
                 "collapse_half_cycle": self.collapse_half_cycle,
                 "collapse_time_s": self.collapse_time_s, "onset_time_s": self.onset_time_s,
+                "impact_times_s": None, "peak_rotation_rad": None,
+                "max_rotation_rad": self.max_rotation_rad, "g_m_s2": self.g,
                 "verdict_reason": self.reason,
                 "end_time_s": self.end_time_s, "time_step_s": self.time_step_s,
                 "guard_ran": self.guard_ran,
                 "guard_outcome": None if self.guard_outcome is None else self.guard_outcome.value,
-                "peak_crown_drop": self.peak_crown_drop,
-                "max_rotation_rad": self.max_rotation_rad, "lengthening": self.lengthening,
+                "peak_crown_drop": self.peak_crown_drop, "lengthening": self.lengthening,
                 "impacts": self.impacts,
                 "steps": self.steps, "skipped_steps": self.skipped_steps,
                 "rest_proven": self.rest_proven}
@@ -509,10 +513,10 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     firsts = [job(h, i) for i in range(n)]
     _drain(packed, [(j.expected_steps(), (i, False), j) for i, j in enumerate(firsts)],
            nthreads, done)
-    return [_verdict(found[i], second.get(i), h) for i in range(n)]
+    return [_verdict(found[i], second.get(i), h, g) for i in range(n)]
 
 
-def _verdict(d: dict, d2: dict | None, h: float) -> RigidVerdict:
+def _verdict(d: dict, d2: dict | None, h: float, g: float) -> RigidVerdict:
     outcome = d["outcome"]
     reason = _reason(d)
     if d2 is not None:
@@ -532,7 +536,7 @@ def _verdict(d: dict, d2: dict | None, h: float) -> RigidVerdict:
         peak_crown_drop=d["peak_drop"], max_rotation_rad=d["peak_rotation"],
         lengthening=d["lengthening"], impacts=d["impacts"], steps=d["steps"],
         skipped_steps=d["skipped"], rest_proven=d["rest_proven"],
-        final_state=("moving", "rest", "collapsed")[d["final"]])
+        final_state=("moving", "rest", "collapsed")[d["final"]], g=g)
 
 
 def _per_motion(value, n: int, name: str) -> list:

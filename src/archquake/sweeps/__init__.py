@@ -15,10 +15,9 @@ from archquake._lazy import attach
 #: Public names -> their module, imported on first access (a command that needs only the
 #: cases' vocabulary does not load the runner, the store and the study reader).
 _LAZY: dict[str, str] = {
-    **dict.fromkeys(("DEFAULT_MODEL", "ArchSpec", "Case", "CaseOptions", "ExcitationKind",
-                     "ExcitationSpec", "Model", "model_of"), "archquake.sweeps.cases"),
-    **dict.fromkeys(("ModelUnavailableError", "evaluate_case", "model_function"),
-                    "archquake.sweeps.evaluate"),
+    **dict.fromkeys(("ArchSpec", "Case", "CaseOptions", "ExcitationKind", "ExcitationSpec"),
+                    "archquake.sweeps.cases"),
+    **dict.fromkeys(("ModelUnavailableError", "evaluate_case"), "archquake.sweeps.evaluate"),
     **dict.fromkeys(("SweepReport", "run_sweep"), "archquake.sweeps.runner"),
     **dict.fromkeys(("CaseRecord", "ResultStore"), "archquake.sweeps.store"),
     **dict.fromkeys(("Study", "load_study", "parse_study"), "archquake.sweeps.study"),
@@ -26,16 +25,13 @@ _LAZY: dict[str, str] = {
 
 if TYPE_CHECKING:  # pragma: no cover - what the lazy names resolve to, for type checkers
     from archquake.sweeps.cases import (
-        DEFAULT_MODEL,
         ArchSpec,
         Case,
         CaseOptions,
         ExcitationKind,
         ExcitationSpec,
-        Model,
-        model_of,
     )
-    from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case, model_function
+    from archquake.sweeps.evaluate import ModelUnavailableError, evaluate_case
     from archquake.sweeps.runner import SweepReport, run_sweep
     from archquake.sweeps.store import CaseRecord, ResultStore
     from archquake.sweeps.study import Study, load_study, parse_study
@@ -49,16 +45,12 @@ __all__ = [
     "CaseRecord",
     "ExcitationKind",
     "ExcitationSpec",
-    "DEFAULT_MODEL",
-    "Model",
-    "model_of",
     "ModelUnavailableError",
     "ResultStore",
     "Study",
     "SweepReport",
     "evaluate_case",
     "load_study",
-    "model_function",
     "parse_study",
     "run_sweep",
 ]

@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import json
 from dataclasses import dataclass, field
-from enum import StrEnum
 from functools import cached_property
 from typing import Any
 
@@ -35,6 +34,7 @@ from archquake.ground.spec import (  # noqa: F401  (re-exported: a case's excita
     motion_digest,
     motion_name,
 )
+from archquake.models import DEFAULT_MODEL, Model, model_of
 from archquake.ranges import T_END_RANGE_S
 
 #: Version of the canonical-JSON layout; bump only if the meaning of an input changes.
@@ -43,21 +43,6 @@ CASE_SCHEMA = 1
 CASE_ID_LENGTH = 20
 
 
-class Model(StrEnum):
-    """The model a case is evaluated with, named as ``--model`` names it: the chain of rigid
-    voussoirs (``rigid``, the default: hinges open, migrate and close anywhere, impacts follow
-    from plastic contacts), the paper's four-link mechanism with hinges fixed between impacts
-    and Eq. 4's coefficient of restitution (``fourlink``), or the distinct-element model
-    (``dem``)."""
-
-    RIGID = "rigid"
-    FOURLINK = "fourlink"
-    DEM = "dem"
-
-
-#: The model every command and API function uses unless told otherwise.
-DEFAULT_MODEL = Model.RIGID
-
 #: The word a model's case ids hash, where it differs from its name (the four-link model was
 #: ``analytical`` when stores were first written: their ids stay valid).
 _ID_WORDS = {Model.FOURLINK: "analytical"}
@@ -65,46 +50,6 @@ _ID_WORDS = {Model.FOURLINK: "analytical"}
 
 def _id_word(model: Model) -> str:
     return _ID_WORDS.get(model, model.value)
-
-#: The words of earlier versions and what they are now (for a one-line pointer).
-_RETIRED = {"analytical": "fourlink (hinges fixed) or rigid (hinges moving, the default)",
-            "rigid_chain": "rigid"}
-
-
-def model_of(model: str | Model | None = None, hinges: str | None = None, *,
-             model_name: str = "model", hinges_name: str = "hinges") -> Model:
-    """The `Model` a user names (``rigid``, ``fourlink`` or ``dem``; None: the default,
-    rigid), with a one-line pointer for the words of earlier versions.
-
-    ``hinges`` is the retired ``--hinges fixed|moving`` (None when not given): any value is
-    refused with the ``--model`` that replaces it. ``model_name`` and ``hinges_name`` are the
-    option or key as the user typed it (``--model``, ``study.model``...).
-
-    Examples
-    --------
-    >>> model_of().value
-    'rigid'
-    >>> model_of("fourlink").value
-    'fourlink'
-    >>> model_of("dem", model_name="--model").value
-    'dem'
-    """
-    if hinges is not None:
-        now = {"moving": "rigid", "fixed": "fourlink"}.get(str(hinges))
-        hint = (f"{model_name} {now}" if now is not None
-                else f"{model_name} rigid (hinges moving) or {model_name} fourlink (hinges fixed)")
-        raise InvalidParameterError(f"{hinges_name} is retired: use {hint}")
-    if model is None:
-        return DEFAULT_MODEL
-    word = str(getattr(model, "value", model))
-    if word in _RETIRED:
-        raise InvalidParameterError(f"{model_name} {word} is retired: use {model_name} "
-                                    f"{_RETIRED[word]}")
-    try:
-        return Model(word)
-    except ValueError:
-        raise InvalidParameterError(f"{model_name} must be one of "
-                                    f"{', '.join(m.value for m in Model)}, got {word!r}") from None
 
 
 @dataclass(frozen=True)
@@ -115,9 +60,9 @@ class CaseOptions:
     ----------
     restitution : float, optional
         Coefficient of restitution on angular velocity, in [0, 1] (0: perfectly plastic); None:
-        the impact law's own (analytical model).
+        the impact law's own (four-link model).
     impact : {"paper", "chain", "mirror"}, optional
-        Impact law of the analytical model (`archquake.mechanism.impact`); None: "paper".
+        Impact law of the four-link model (`archquake.mechanism.impact`); None: "paper".
         Left out of the case's canonical form when None or "paper" (the same model), so existing
         case ids are unchanged.
     t_end_s : float, optional
@@ -273,9 +218,6 @@ __all__ = [
     "ExcitationKind",
     "ExcitationSpec",
     "INPUT_COLUMNS",
-    "DEFAULT_MODEL",
-    "Model",
-    "model_of",
     "RECORD_UNITS",
     "canonical_json",
     "file_digest",

@@ -56,6 +56,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from archquake.errors import ArchquakeError, InvalidParameterError, StudyFileError
+from archquake.models import Model, model_of
 from archquake.sweeps.cases import (
     RECORD_UNITS,
     ArchSpec,
@@ -63,8 +64,6 @@ from archquake.sweeps.cases import (
     CaseOptions,
     ExcitationKind,
     ExcitationSpec,
-    Model,
-    model_of,
 )
 
 _AXIS = "a number, a list of numbers, or {start, stop, num}"
