@@ -43,6 +43,8 @@ run ended and its last impact's energy, from which the caller states the verdict
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numba as nb
 import numpy as np
 
@@ -53,8 +55,13 @@ from archquake.mechanism._kernels import (
     OUTCOME_COLLAPSE,
     OUTCOME_NO_HINGING,
     OUTCOME_SURVIVES,
+    S_G,
+    S_MAX_IMPACTS,
+    Excitation,
+    Output,
     excitation_end,
     last_impact_energy,
+    run_settings,
     simulate_kernel,
     table_energies,
 )
@@ -62,6 +69,41 @@ from archquake.outcome import Outcome
 
 #: First cap on impacts when deciding early.
 FIRST_IMPACT_CAP = 4
+
+
+class Decisions(NamedTuple):
+    """What a batch returns for each of its n cases.
+
+    Attributes
+    ----------
+    outcome : ndarray (n,) int64
+        The kernel's outcome code.
+    half : ndarray (n,) int64
+        Collapse half cycle (0 if none).
+    n_impacts : ndarray (n,) int64
+        Impacts in the deciding run.
+    runs : ndarray (n,) int64
+        Kernel runs used.
+    peak : ndarray (n,)
+        Largest rotation of the whole run, rad (the records' batch, `archquake.ida._kernels`;
+        the pulses' batch leaves it NaN).
+    unseen : ndarray (n,) bool
+        An impact the law does not describe happened before the verdict.
+    final : ndarray (n,) int64
+        How the deciding run ended (the kernel's ``FINAL_*`` code).
+    fraction : ndarray (n,)
+        Its last impact's energy over the least crest barrier, NaN where the proof does not
+        apply (`last_impact_energy`).
+    """
+
+    outcome: np.ndarray
+    half: np.ndarray
+    n_impacts: np.ndarray
+    runs: np.ndarray
+    peak: np.ndarray
+    unseen: np.ndarray
+    final: np.ndarray
+    fraction: np.ndarray
 
 
 @nb.njit(cache=True, nogil=True)
@@ -75,10 +117,12 @@ def undescribed_seen(impacts, n_imp, undescribed):
 
 
 @nb.njit(cache=True, nogil=True)
-def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
-              max_impacts, early, barrier, meff0, undescribed, ct_max):
-    """One case; returns (outcome, collapse_half_cycle, impacts, runs, undescribed impact seen,
-    final state code, energy fraction of the last impact) of the deciding run: what
+def _run_case(table, exc, base, t_end, early, barrier, meff0):
+    """One case: the `Excitation` ``exc`` on the `Table` ``table`` with the settings ``base``
+    (`archquake.mechanism._kernels.settings`) up to ``t_end`` (s), with the table's
+    `table_energies` ``meff0`` and ``barrier``; returns (outcome, collapse_half_cycle,
+    impacts, runs, undescribed impact seen, final state code, energy fraction of the last
+    impact) of the deciding run: what
     `archquake.mechanism.simulate.conclude_run` states the verdict from, as for
     `simulate` (the fraction: `last_impact_energy`, NaN where
     its proof does not apply).
@@ -88,7 +132,8 @@ def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_
     impact after the excitation); it is then reported ``stalled`` with that fraction (below
     ``1 - ENERGY_MARGIN``), which states ``survives``, as the full run would."""
     hist = np.zeros((1, HIST_COLUMNS))
-    t_exc = excitation_end(kind, params)
+    t_exc = excitation_end(exc.kind, exc.params)
+    max_impacts = int(base[S_MAX_IMPACTS])
     cap = min(FIRST_IMPACT_CAP, max_impacts) if early else max_impacts
     runs = 0
     while True:
@@ -96,48 +141,59 @@ def _run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_
         peaks = np.zeros(cap + 1)
         counters = np.zeros(10)
         onsets = np.zeros((cap + 1, 2))
-        outcome, final, half = simulate_kernel(
-            mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation, cap,
-            0.0, hist, impacts, peaks, counters, onsets)
+        outcome, final, half = simulate_kernel(table, exc, run_settings(base, t_end, cap),
+                                               Output(hist, impacts, peaks, counters, onsets))
         runs += 1
         n_imp = int(counters[1])
-        fraction = last_impact_energy(impacts, n_imp, t_exc, meff0, barrier, ct_max, undescribed)
+        fraction = last_impact_energy(impacts, n_imp, t_exc, table, meff0, barrier)
         if (cap >= max_impacts or n_imp < cap
                 or (outcome == OUTCOME_SURVIVES and fraction < 1.0 - ENERGY_MARGIN)):
-            return (outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp, undescribed),
+            return (outcome, half, n_imp, runs, undescribed_seen(impacts, n_imp,
+                                                                 table.undescribed),
                     final, fraction)
         cap = min(8 * cap, max_impacts)
 
 
 @nb.njit(cache=True, parallel=True)
-def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, rest_rotation,
-                 max_impacts, early, undescribed, ct_max, outcome, half, n_impacts, runs,
-                 unseen, final, fraction):
+def batch_kernel(table, kind, params, base, t_end, early):
     """Run ``params.shape[0]`` cases in parallel.
 
     Parameters
     ----------
-    mechs, nxt, flip, ratio : the mechanism table, as `simulate_kernel`
-    kind : int, ground-motion kind (step or sine)
-    params : (n, 3) per case ``[a (m/s^2), duration (s), direction]``
-    g, rtol, atol, rest_rotation, max_impacts : as `simulate_kernel`
-    t_end : (n,) end of each analysis, s
-    early : bool, decide early (module docstring)
-    undescribed : (m,) bool, the law does not describe the row's impact
-    ct_max : the largest kinetic-energy ratio of the rows' impacts
-    outcome, half, n_impacts, runs : (n,) int64 out: outcome code, collapse half cycle (0 if
-        none), impacts in the deciding run, kernel runs used
-    unseen : (n,) bool out: an undescribed impact happened before the verdict
-    final : (n,) int64 out: how the deciding run ended (the kernel's ``FINAL_*`` code)
-    fraction : (n,) float64 out: its last impact's energy over the least crest barrier, NaN
-        where the proof does not apply (`last_impact_energy`)
+    table : Table
+        The mechanism table (`archquake.mechanism._kernels.Table`).
+    kind : int
+        Ground-motion kind (step or sine).
+    params : ndarray (n, 3)
+        Per case ``[a (m/s^2), duration (s), direction]``.
+    base : ndarray
+        Gravity, tolerances, rest rotation and cap on impacts
+        (`archquake.mechanism._kernels.settings`; no history).
+    t_end : ndarray (n,)
+        End of each analysis, s.
+    early : bool
+        Decide early (module docstring).
+
+    Returns
+    -------
+    Decisions
+        Of each case (``peak`` NaN: not computed for pulses).
     """
     n = params.shape[0]
-    meff0, barrier = table_energies(mechs, g)
+    meff0, barrier = table_energies(table.mechs, base[S_G])
+    no_tail = np.empty(0)
+    # written by the parallel loop as plain arrays, wrapped at the end: numba's parallel loop
+    # loses writes through an array reached from a tuple (numba issues 5872, 7135)
+    outcome = np.zeros(n, dtype=np.int64)
+    half = np.zeros(n, dtype=np.int64)
+    n_impacts = np.zeros(n, dtype=np.int64)
+    runs = np.zeros(n, dtype=np.int64)
+    unseen = np.zeros(n, dtype=np.bool_)
+    final = np.zeros(n, dtype=np.int64)
+    fraction = np.full(n, np.nan)
     for i in nb.prange(n):
-        o, h, m, r, u, f, e = _run_case(mechs, nxt, flip, ratio, kind, params[i], g, t_end[i],
-                                        rtol, atol, rest_rotation, max_impacts, early, barrier,
-                                        meff0, undescribed, ct_max)
+        o, h, m, r, u, f, e = _run_case(table, Excitation(kind, params[i], no_tail), base,
+                                        t_end[i], early, barrier, meff0)
         outcome[i] = o
         half[i] = h if o == OUTCOME_COLLAPSE else 0
         n_impacts[i] = m
@@ -145,6 +201,7 @@ def batch_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol, re
         unseen[i] = u
         final[i] = f
         fraction[i] = e
+    return Decisions(outcome, half, n_impacts, runs, np.full(n, np.nan), unseen, final, fraction)
 
 
 #: The kernel's outcome codes as `Outcome` values.
@@ -160,5 +217,5 @@ def decode(codes: np.ndarray) -> np.ndarray:
     return out
 
 
-__all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "OUTCOMES", "batch_kernel", "decode",
-           "table_energies", "undescribed_seen"]
+__all__ = ["ENERGY_MARGIN", "FIRST_IMPACT_CAP", "OUTCOMES", "Decisions", "batch_kernel",
+           "decode", "table_energies", "undescribed_seen"]

@@ -151,11 +151,7 @@ def evaluate_pulses(
     from archquake.ranges import default_t_end
 
     prepared = PreparedMechanism.build(arch, impact)
-    prescribed = check_restitution(restitution)
-    table = prepared.table
-    mechs, nxt, flip, ratio = table.kernel_arrays(prescribed)
-    undescribed = ~table.described(prepared.impact.law, prescribed)
-    ct_max = float(np.max(table.restitution_cts(prescribed)))
+    table = prepared.kernel_table(check_restitution(restitution))
     fam = PulseFamily.parse(family)
     require_gravity(g)
     a, d = _pairs(magnitudes_g, durations)
@@ -167,18 +163,9 @@ def evaluate_pulses(
     params[:, 2] = -1.0
     t_exc = 3.0 * d if fam is PulseFamily.STEP else d
     t_end = default_t_end(t_exc, prepared.mechanism.arch.radius, g)
-    outcome = np.zeros(n, dtype=np.int64)
-    half = np.zeros(n, dtype=np.int64)
-    n_imp = np.zeros(n, dtype=np.int64)
-    runs = np.zeros(n, dtype=np.int64)
-    unseen = np.zeros(n, dtype=np.bool_)
-    final = np.zeros(n, dtype=np.int64)
-    fraction = np.full(n, np.nan)
-    if n:
-        batch_kernel(mechs, nxt, flip, ratio, fam.kind, params, float(g), t_end, options.rtol,
-                     options.atol, options.rest_rotation, int(options.max_impacts), bool(early),
-                     np.ascontiguousarray(undescribed), ct_max, outcome, half, n_imp, runs,
-                     unseen, final, fraction)
+    decided = batch_kernel(table, fam.kind, params, options.kernel_settings(g), t_end,
+                           bool(early))
+    outcome, half, n_imp, runs, _peak, unseen, final, fraction = decided
     verdict = np.empty(n, dtype=object)
     for i, o in enumerate(decode(outcome)):
         # how the run ended (locked by max_impacts, cut by t_end): simulate's own rule

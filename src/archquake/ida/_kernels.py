@@ -32,15 +32,20 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from archquake.domains._kernels import ENERGY_MARGIN, table_energies, undescribed_seen
+from archquake.domains._kernels import ENERGY_MARGIN, Decisions, table_energies, undescribed_seen
 from archquake.mechanism._kernels import (
     FINAL_MOVING,
     HIST_COLUMNS,
     IMPACT_COLUMNS,
     OUTCOME_COLLAPSE,
     OUTCOME_SURVIVES,
+    S_G,
+    S_MAX_IMPACTS,
+    Excitation,
+    Output,
     excitation_end,
     last_impact_energy,
+    run_settings,
     simulate_kernel,
 )
 from archquake.mechanism.kinematics import PHI_CRIT, potential
@@ -69,11 +74,13 @@ def free_peak(mech, g, energy):
 
 
 @nb.njit(cache=True, nogil=True)
-def free_rocking_peak(mechs, nxt, ratio, meff0, g, row, rate):
+def free_rocking_peak(table, meff0, g, row, rate):
     """The largest peak rotation, rad, of free rocking that starts on ``row`` at phi = 0 with
-    opening ``rate`` (rad/s), below every crest: the rows follow ``nxt`` and each impact turns
-    the closing rate (equal to the opening one: energy is conserved within a free half cycle)
-    into ``ratio`` times it on the next row (module docstring)."""
+    opening ``rate`` (rad/s), below every crest: the rows of the `Table` ``table`` follow its
+    ``nxt`` and each impact turns the closing rate (equal to the opening one: energy is
+    conserved within a free half cycle) into ``ratio`` times it on the next row (module
+    docstring); ``meff0``: `table_energies`, g: m/s^2."""
+    mechs, nxt, ratio = table.mechs, table.nxt, table.ratio
     m = mechs.shape[0]
     seen = np.zeros(m, dtype=np.bool_)
     peak = 0.0
@@ -89,10 +96,12 @@ def free_rocking_peak(mechs, nxt, ratio, meff0, g, row, rate):
 
 
 @nb.njit(cache=True, nogil=True)
-def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol,
-             rest_rotation, max_impacts, early, barrier, meff0, undescribed, ct_max):
-    """One case; returns (outcome, collapse_half_cycle, impacts, runs, peak rotation rad,
-    undescribed impact seen, final state code, energy fraction): the last two are what
+def run_case(table, exc, base, t_end, window, early, barrier, meff0):
+    """One case: the `Excitation` ``exc`` on the `Table` ``table`` with the settings ``base``
+    (`archquake.mechanism._kernels.settings`) up to ``t_end`` (s), a first run ``window`` (s)
+    past the excitation, with the table's `table_energies` ``meff0`` and ``barrier``;
+    returns (outcome, collapse_half_cycle, impacts, runs, peak rotation rad, undescribed
+    impact seen, final state code, energy fraction): the last two are what
     `archquake.mechanism.simulate.conclude_run` states the verdict from, as for
     `simulate` (the deciding run's end and its last impact's energy
     over the least crest barrier, `last_impact_energy`,
@@ -108,7 +117,10 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
     ``t_end``.
     """
     hist = np.zeros((1, HIST_COLUMNS))
-    t_exc = excitation_end(kind, params)
+    params, undescribed, ct_max = exc.params, table.undescribed, table.ct_max
+    g = base[S_G]
+    max_impacts = int(base[S_MAX_IMPACTS])
+    t_exc = excitation_end(exc.kind, params)
     # simulate_kernel locks the arch at a rest (and at max_impacts) but a record still acting
     # can open it again, and the new half cycle's peak is written without a bound check; at
     # most a few re-openings per piece of the excitation, so leave room for them.
@@ -123,9 +135,9 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
         peaks = np.zeros(max_impacts + 1 + spare)
         counters = np.zeros(10)
         onsets = np.zeros((max_impacts + 1 + spare, 2))
-        outcome, final, half = simulate_kernel(
-            mechs, nxt, flip, ratio, kind, params, g, t_stop, rtol, atol, rest_rotation,
-            max_impacts, 0.0, hist, impacts, peaks, counters, onsets)
+        outcome, final, half = simulate_kernel(table, exc,
+                                               run_settings(base, t_stop, max_impacts),
+                                               Output(hist, impacts, peaks, counters, onsets))
         runs += 1
         n_imp = int(counters[1])
         n_half = int(counters[2])
@@ -135,8 +147,7 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
         if t_stop >= t_end or final != FINAL_MOVING:
             return (outcome, half, n_imp, runs, peak, undescribed_seen(impacts, n_imp,
                                                                        undescribed),
-                    final, last_impact_energy(impacts, n_imp, t_exc, meff0, barrier, ct_max,
-                                              undescribed))
+                    final, last_impact_energy(impacts, n_imp, t_exc, table, meff0, barrier))
         if outcome == OUTCOME_SURVIVES and ct_max <= 1.0:
             for k in range(min(n_imp, max_impacts)):
                 if impacts[k, 0] >= t_exc:
@@ -150,7 +161,7 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
                         peak = 0.0
                         for j in range(k + 1):
                             peak = max(peak, peaks[j])
-                        peak = max(peak, free_rocking_peak(mechs, nxt, ratio, meff0, g, row, v))
+                        peak = max(peak, free_rocking_peak(table, meff0, g, row, v))
                         return (outcome, half, n_imp, runs, peak, seen, final,
                                 0.5 * meff0[row] * v * v / barrier)
                     break
@@ -158,36 +169,51 @@ def run_case(mechs, nxt, flip, ratio, kind, params, g, t_end, window, rtol, atol
 
 
 @nb.njit(cache=True, parallel=True)
-def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window, rtol, atol,
-                 rest_rotation, max_impacts, early, undescribed, ct_max, outcome, half,
-                 n_impacts, runs, peak, unseen, final, fraction):
+def batch_kernel(table, kinds, flat, offsets, base, t_end, window, early):
     """Run ``kinds.shape[0]`` cases in parallel.
 
     Parameters
     ----------
-    mechs, nxt, flip, ratio : the mechanism table, as `simulate_kernel`
-    kinds : (n,) int64 ground-motion kind of each case
-    flat : (m,) the cases' kernel parameters, concatenated; case i uses
-        ``flat[offsets[i]:offsets[i + 1]]``
-    offsets : (n + 1,) int64
-    g, rtol, atol, rest_rotation, max_impacts : as `simulate_kernel`
-    t_end : (n,) end of each analysis, s
-    window : s, the first run of a case stops this long after the excitation (with ``early``)
-    early : bool, decide early (module docstring)
-    undescribed : (m,) bool, the law does not describe the row's impact
-    ct_max : the largest kinetic-energy ratio of the rows' impacts
-    outcome, half, n_impacts, runs : (n,) int64 out;  peak : (n,) float64 out, rad
-    unseen : (n,) bool out: an undescribed impact happened before the verdict
-    final : (n,) int64 out, fraction : (n,) float64 out: see `run_case`
+    table : Table
+        The mechanism table (`archquake.mechanism._kernels.Table`).
+    kinds : ndarray (n,) int64
+        Ground-motion kind of each case.
+    flat : ndarray (m,)
+        The cases' kernel parameters, concatenated; case i uses
+        ``flat[offsets[i]:offsets[i + 1]]``.
+    offsets : ndarray (n + 1,) int64
+    base : ndarray
+        Gravity, tolerances, rest rotation and cap on impacts
+        (`archquake.mechanism._kernels.settings`; no history).
+    t_end : ndarray (n,)
+        End of each analysis, s.
+    window : float
+        S, the first run of a case stops this long after the excitation (with ``early``).
+    early : bool
+        Decide early (module docstring).
+
+    Returns
+    -------
+    Decisions
+        Of each case (`archquake.domains._kernels.Decisions`; see `run_case`).
     """
     n = kinds.shape[0]
-    meff0, barrier = table_energies(mechs, g)
+    meff0, barrier = table_energies(table.mechs, base[S_G])
+    no_tail = np.empty(0)
+    # written by the parallel loop as plain arrays, wrapped at the end: numba's parallel loop
+    # loses writes through an array reached from a tuple (numba issues 5872, 7135)
+    outcome = np.zeros(n, dtype=np.int64)
+    half = np.zeros(n, dtype=np.int64)
+    n_impacts = np.zeros(n, dtype=np.int64)
+    runs = np.zeros(n, dtype=np.int64)
+    peak = np.zeros(n)
+    unseen = np.zeros(n, dtype=np.bool_)
+    final = np.zeros(n, dtype=np.int64)
+    fraction = np.full(n, np.nan)
     for i in nb.prange(n):
-        params = flat[offsets[i]:offsets[i + 1]]
-        o, h, m, r, p, u, f, e = run_case(mechs, nxt, flip, ratio, kinds[i], params, g,
-                                          t_end[i], window, rtol, atol, rest_rotation,
-                                          max_impacts, early, barrier, meff0, undescribed,
-                                          ct_max)
+        exc = Excitation(kinds[i], flat[offsets[i]:offsets[i + 1]], no_tail)
+        o, h, m, r, p, u, f, e = run_case(table, exc, base, t_end[i], window, early, barrier,
+                                          meff0)
         outcome[i] = o
         half[i] = h if o == OUTCOME_COLLAPSE else 0
         n_impacts[i] = m
@@ -196,6 +222,7 @@ def batch_kernel(mechs, nxt, flip, ratio, kinds, flat, offsets, g, t_end, window
         unseen[i] = u
         final[i] = f
         fraction[i] = e
+    return Decisions(outcome, half, n_impacts, runs, peak, unseen, final, fraction)
 
 
 __all__ = ["PEAK_BISECTIONS", "WINDOW_TAU", "batch_kernel", "free_peak", "free_rocking_peak",

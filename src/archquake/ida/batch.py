@@ -187,10 +187,7 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
 
     cv = prepared.restitution_for(options.restitution)
     prescribed = check_restitution(options.restitution)
-    table = prepared.table
-    mechs, nxt, flip, ratio = table.kernel_arrays(prescribed)
-    undescribed = np.ascontiguousarray(~table.described(prepared.impact.law, prescribed))
-    ct_max = float(np.max(table.restitution_cts(prescribed)))
+    table = prepared.kernel_table(prescribed)
     order = thread_order(len(cases), numba.get_num_threads())
     cases = [cases[j] for j in order]
     kinds, parts, results = [], [], []
@@ -208,20 +205,10 @@ def _run_group(prepared, cases, options, early) -> list[Any]:
         t_end = default_t_end(t_exc, prepared.mechanism.arch.radius, g)
     else:
         t_end = np.full(n, float(options.t_end_s))
-    outcome = np.zeros(n, dtype=np.int64)
-    half = np.zeros(n, dtype=np.int64)
-    n_imp = np.zeros(n, dtype=np.int64)
-    runs = np.zeros(n, dtype=np.int64)
-    peak = np.zeros(n)
-    unseen = np.zeros(n, dtype=np.bool_)
-    final = np.zeros(n, dtype=np.int64)
-    fraction = np.full(n, np.nan)
-    if n:
-        window = WINDOW_TAU * math.sqrt(prepared.mechanism.arch.radius / g)
-        batch_kernel(mechs, nxt, flip, ratio, kinds_a, flat, offsets, float(g), t_end,
-                     window, solver.rtol, solver.atol, solver.rest_rotation,
-                     int(solver.max_impacts), bool(early), undescribed, ct_max, outcome, half,
-                     n_imp, runs, peak, unseen, final, fraction)
+    window = WINDOW_TAU * math.sqrt(prepared.mechanism.arch.radius / g)
+    decided = batch_kernel(table, kinds_a, flat, offsets, solver.kernel_settings(g), t_end,
+                           window, bool(early))
+    outcome, half, n_imp, runs, peak, unseen, final, fraction = decided
 
     static_g = prepared.collapse_acceleration_g
     phi_crit = prepared.critical_rotation

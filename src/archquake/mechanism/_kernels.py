@@ -2,7 +2,11 @@
 
 State machine over a stack of mechanisms (rows of an (m, 30) array, each packed by
 `archquake.mechanism.prepared.pack_mechanism`; `ImpactTable`
-holds the stack and its impact table). The state is (row, side, phi, phi'): the open mechanism
+holds the stack and its impact table). The kernels take the model packed once: the stack and its
+impact table in a `Table`, the ground motion in an `Excitation`, the solver's settings in one
+float array (`settings`, indices ``S_*``), the buffers they write in an `Output` (and
+`Requested`); the integrator's inner functions take the open mechanism over one piece of the
+excitation as a `Piece`. The state is (row, side, phi, phi'): the open mechanism
 is row ``row`` (side +1) or its mirror image (side -1, the paper's Eq. 3: the same coefficients
 with the ground term negated).
 
@@ -29,6 +33,7 @@ with the ground term negated).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -105,17 +110,214 @@ HIST_COLUMNS = 6
 #: End of the excitation, s (kept under this name for the kernels that use it).
 excitation_end = ground_duration
 
+#: Indices of the settings array (`settings`): gravity, m/s^2; end of the analysis, s; relative
+#: tolerance; absolute tolerance on phi, rad; rest rotation, rad; cap on impacts; output
+#: interval, s; locked output interval, s; cap on history samples; initial opening rate, rad/s.
+(S_G, S_T_END, S_RTOL, S_ATOL_PHI, S_REST_ROTATION, S_MAX_IMPACTS, S_DT_OUT, S_DT_LOCK,
+ S_HIST_LIMIT, S_INITIAL_RATE) = range(10)
+N_SETTINGS = 10
+
+
+class Table(NamedTuple):
+    """The stack of packed mechanisms and its impact table, as the kernels take them
+    (`archquake.mechanism.prepared.PreparedMechanism.kernel_table`).
+
+    Attributes
+    ----------
+    mechs : ndarray (m, 30)
+        Packed mechanisms (row 0: the limit-analysis mechanism, which the onsets open).
+    nxt : ndarray (m,) int64
+        Row after an impact of each row (-1: outside the set).
+    flip : ndarray (m,) int64
+        +-1: the side after an impact is the side before times this.
+    ratio : ndarray (m,)
+        Opening rate of the post mechanism per unit closing rate (the paper's law: c_v).
+    undescribed : ndarray (m,) bool
+        The impact law does not describe the row's impact.
+    ct_max : float
+        The largest kinetic-energy ratio of the rows' impacts.
+    v_toggle : ndarray (m,)
+        Potential/g at each row's toggle, kg m, for the no-return collapse criterion on a
+        record (`no_return`; nan: the criterion does not apply to that row).
+    """
+
+    mechs: np.ndarray
+    nxt: np.ndarray
+    flip: np.ndarray
+    ratio: np.ndarray
+    undescribed: np.ndarray
+    ct_max: float
+    v_toggle: np.ndarray
+
+
+class Excitation(NamedTuple):
+    """The ground motion as the kernels take it (`excitation`).
+
+    Attributes
+    ----------
+    kind : int
+        Ground-motion kind (``GroundMotion.kernel_spec``).
+    params : ndarray (k,) float64
+        Its kernel parameters.
+    tail : ndarray (N,)
+        For a sampled record, ``int_{t_i}^{end} |x_g''| dt`` from each sample time t_i to the
+        record's end, m/s (empty: no collapse before the excitation's end); with it a
+        collapse is declared during the record once the remaining motion cannot bring the
+        mechanism back over the crest (`no_return`).
+    """
+
+    kind: int
+    params: np.ndarray
+    tail: np.ndarray
+
+
+class Output(NamedTuple):
+    """What a run writes (`simulate_kernel_eval`).
+
+    Attributes
+    ----------
+    hist : ndarray (cap, 6)
+        t, phi, phi', side, x_g'', row. Samples beyond ``cap`` are counted (in counters[0]) but
+        not written: the caller sizes the buffer again and reruns.
+    impacts : ndarray (max_impacts, 7)
+        The `IMPACT_COLUMNS`.
+    peaks : ndarray (max_impacts + 1,)
+        Peak phi of each half cycle, rad.
+    counters : ndarray (10,)
+        n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles, n_steps, n_rejected,
+        n_rhs, onset_time, collapse_time, 1 if the run stopped because the history reached the
+        settings' ``S_HIST_LIMIT`` samples (counters[8] is written only then), n_onsets.
+    onsets : ndarray (k, 2)
+        Time and side of each onset of hinging from rest (row 0), as many as fit (an onset
+        follows a lock, and a lock an impact: max_impacts + 1 always fit).
+    """
+
+    hist: np.ndarray
+    impacts: np.ndarray
+    peaks: np.ndarray
+    counters: np.ndarray
+    onsets: np.ndarray
+
+
+class Requested(NamedTuple):
+    """Requested times and the states there (`simulate_kernel_eval`).
+
+    Attributes
+    ----------
+    times : ndarray (n,)
+        Requested times, s, sorted (non-decreasing).
+    states : ndarray (n, 6)
+        Out: phi, phi', phi'', side, x_g'', row at each time reached (in order).
+    """
+
+    times: np.ndarray
+    states: np.ndarray
+
+
+class Piece(NamedTuple):
+    """What the open mechanism's equation of motion holds fixed between two events or
+    breakpoints of the excitation: the packed row ``mech`` (30,) and its index ``row``, the
+    ``side`` (+-1), the `Excitation`, gravity ``g`` (m/s^2) and ``t_left`` (s), the start of the
+    excitation's piece (the ground is evaluated as its right limit there)."""
+
+    mech: np.ndarray
+    row: int | np.integer
+    side: int
+    exc: Excitation
+    g: float
+    t_left: float
+
+
+def _kernel_array(values: np.ndarray) -> np.ndarray:
+    """``values`` as an aligned, C-contiguous, writable float64 array (a copy only where it is
+    not one already): the one array type the kernels are compiled for."""
+    out = np.ascontiguousarray(values, dtype=np.float64)
+    if not (out.flags.writeable and out.flags.aligned):
+        out = out.copy()
+    return out
+
+
+def excitation(kind: int, params: np.ndarray, tail: np.ndarray | None = None) -> Excitation:
+    """The `Excitation` of a ground motion's ``kernel_spec()`` with a record's ``tail``
+    (default none), in the one type the kernels are compiled for (a read-only record is
+    copied)."""
+    return Excitation(int(kind), _kernel_array(params),
+                      np.empty(0) if tail is None else _kernel_array(tail))
+
+
+def settings(g: float, t_end: float, rtol: float, atol_phi: float, rest_rotation: float,
+             max_impacts: int, *, dt_out: float = 0.0, dt_lock: float | None = None,
+             hist_limit: int = 1, initial_rate: float = 0.0) -> np.ndarray:
+    """The settings array of a run (indices ``S_*``).
+
+    Parameters
+    ----------
+    g : float
+        Gravity, m/s^2.
+    t_end : float
+        End of the analysis, s.
+    rtol, atol_phi : float
+        Tolerances (the rate's absolute tolerance is ``atol_phi sqrt(g / R)``, so that similar
+        arches take similar steps), atol_phi in rad.
+    rest_rotation : float
+        Rad: below this peak the next half cycle is not started (the arch locks).
+    max_impacts : int
+        The run locks the arch at this many impacts.
+    dt_out : float
+        Output interval, s (0: no history; < 0: every accepted step and event).
+    dt_lock : float, optional
+        History interval while locked, s (>= dt_out; when larger, each locked stretch also
+        gets a sample at its end and the moving samples restart from there). Default dt_out.
+    hist_limit : int
+        The run stops (counters[8] = 1) when the history reaches this many samples.
+    initial_rate : float
+        Rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this opening rate
+        (free rocking), instead of from rest.
+
+    Returns
+    -------
+    ndarray (N_SETTINGS,) float64
+    """
+    out = np.empty(N_SETTINGS)
+    out[S_G] = g
+    out[S_T_END] = t_end
+    out[S_RTOL] = rtol
+    out[S_ATOL_PHI] = atol_phi
+    out[S_REST_ROTATION] = rest_rotation
+    out[S_MAX_IMPACTS] = max_impacts
+    out[S_DT_OUT] = dt_out
+    out[S_DT_LOCK] = dt_out if dt_lock is None else dt_lock
+    out[S_HIST_LIMIT] = hist_limit
+    out[S_INITIAL_RATE] = initial_rate
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def run_settings(base, t_end, max_impacts):
+    """A copy of the settings ``base`` ending at ``t_end`` (s) with at most ``max_impacts``
+    impacts (the batches' per-case runs)."""
+    out = base.copy()
+    out[S_T_END] = t_end
+    out[S_MAX_IMPACTS] = max_impacts
+    return out
+
 
 @nb.njit(cache=True, nogil=True)
 def _rhs(mech, kind, params, side, g, t, t_left, phi, v):
+    """phi'' of the open mechanism (Eq. 2) at (t, phi, phi' = v), from the fields of a `Piece`
+    that `dopri_step` unpacks once per step (a Piece passed to each of the seven evaluations
+    cost 2.5 % of a history; inlining it instead cost 10 % more compile time)."""
     return acceleration(mech, phi, v, side * ground_in_piece(kind, params, t, t_left),
                         g + vertical_in_piece(kind, params, t, t_left))
 
 
 @nb.njit(cache=True, nogil=True)
-def dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, h):
-    """One Dormand-Prince step. Returns (phi1, v1, k7 = phi''(t+h), err_phi, err_v); nan if
-    a stage left the linkage's range (beyond the toggle)."""
+def dopri_step(piece, t, phi, v, k1, h):
+    """One Dormand-Prince step of the open mechanism ``piece`` (a `Piece`) from (t, phi, v)
+    with phi''(t) = k1. Returns (phi1, v1, k7 = phi''(t+h), err_phi, err_v); nan if a stage
+    left the linkage's range (beyond the toggle)."""
+    mech, side, kind, params, g, t_left = (piece.mech, piece.side, piece.exc.kind,
+                                           piece.exc.params, piece.g, piece.t_left)
     p1, q1 = v, k1
     p2 = v + h * A21 * q1
     q2 = _rhs(mech, kind, params, side, g, t + C2 * h, t_left, phi + h * A21 * p1, p2)
@@ -151,7 +353,7 @@ def hermite(s, h, y0, d0, y1, d1):
 
 
 @nb.njit(cache=True, nogil=True)
-def _hermite_root(h, y0, d0, y1, d1, target, lo=0.0):
+def _hermite_root(h, y0, d0, y1, d1, target, lo):
     """Root in (lo, h] of hermite(s) - target given a sign change there (bisection)."""
     hi = h
     flo = hermite(lo, h, y0, d0, y1, d1) - target
@@ -166,19 +368,19 @@ def _hermite_root(h, y0, d0, y1, d1, target, lo=0.0):
 
 
 @nb.njit(cache=True, nogil=True)
-def _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_guess, target, lo, hi):
+def _locate(piece, t, phi, v, k1, s_guess, target, lo, hi):
     """Re-integrate from (t, phi, v) to the event phi = target, with Newton on the step size
     safeguarded by the bracket [lo, hi] (phi - target changes sign across it; bisection when
     Newton leaves it). Returns (s, phi_s, v_s, a_s)."""
     s = min(max(s_guess, lo), hi)
     f_lo_positive = True
     if lo > 0.0:
-        ph_lo = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, lo)[0]
+        ph_lo = dopri_step(piece, t, phi, v, k1, lo)[0]
         f_lo_positive = ph_lo - target > 0.0
     else:
         f_lo_positive = phi - target > 0.0
     for _ in range(60):
-        ph, vv, aa, e1, e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, s)
+        ph, vv, aa, e1, e2 = dopri_step(piece, t, phi, v, k1, s)
         f = ph - target
         if (f > 0.0) == f_lo_positive:
             lo = s
@@ -191,7 +393,7 @@ def _locate(mech, kind, params, side, g, t, t_left, phi, v, k1, s_guess, target,
             s = s_new
             break
         s = s_new
-    ph, vv, aa, e1, e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1, s)
+    ph, vv, aa, e1, e2 = dopri_step(piece, t, phi, v, k1, s)
     return s, ph, vv, aa
 
 
@@ -201,11 +403,13 @@ def _opening_force(mech, side, a, g):
 
 
 @nb.njit(cache=True, nogil=True)
-def find_onset(mech, kind, params, t, t_limit, g):
-    """Earliest time >= t at which the ground acceleration opens a mechanism, and its side.
+def find_onset(mech, exc, g, t, t_limit):
+    """Earliest time >= t at which the ground acceleration (the `Excitation` ``exc``) opens
+    the mechanism ``mech`` under gravity ``g``, and its side.
 
     Returns (time, side) with side 0 if none before ``t_limit``.
     """
+    kind, params = exc.kind, exc.params
     t_cur = t
     while t_cur < t_limit:
         t_next = min(next_breakpoint(kind, params, t_cur), t_limit)
@@ -241,34 +445,36 @@ def find_onset(mech, kind, params, t, t_limit, g):
 
 
 @nb.njit(cache=True, nogil=True)
-def _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t_last, s_max,
-                   t_eval, eval_out, i_ev, row):
-    """States at the requested times in (t, t_last] of the step that starts at (t, phi, v):
-    each is one Dormand-Prince step from the step's start landing on the time (never an
-    interpolant), capped at ``s_max``. Returns (next index into t_eval, rhs evaluations)."""
+def _record_states(piece, t, phi, v, k1, t_last, s_max, requested, i_ev):
+    """States at the `Requested` times in (t, t_last] of the step of ``piece`` that starts at
+    (t, phi, v): each is one Dormand-Prince step from the step's start landing on the time
+    (never an interpolant), capped at ``s_max``, written from index ``i_ev`` on. Returns (next
+    index into the requested times, rhs evaluations)."""
+    t_eval, eval_out = requested.times, requested.states
+    exc = piece.exc
     n_rhs = 0
     while i_ev < t_eval.shape[0] and t_eval[i_ev] <= t_last:
         sub = min(t_eval[i_ev] - t, s_max)
         if sub > 0.0:
-            ph, vv, aa, _e1, _e2 = dopri_step(mech, kind, params, side, g, t, t_left, phi, v,
-                                               k1, sub)
+            ph, vv, aa, _e1, _e2 = dopri_step(piece, t, phi, v, k1, sub)
             n_rhs += 6
         else:
             ph, vv, aa = phi, v, k1
         eval_out[i_ev, 0] = ph
         eval_out[i_ev, 1] = vv
         eval_out[i_ev, 2] = aa
-        eval_out[i_ev, 3] = side
-        eval_out[i_ev, 4] = ground_in_piece(kind, params, t + sub, t_left)
-        eval_out[i_ev, 5] = row
+        eval_out[i_ev, 3] = piece.side
+        eval_out[i_ev, 4] = ground_in_piece(exc.kind, exc.params, t + sub, piece.t_left)
+        eval_out[i_ev, 5] = piece.row
         i_ev += 1
     return i_ev, n_rhs
 
 
 @nb.njit(cache=True, nogil=True)
-def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_toggle):
-    """True if the ground motion left after ``t_left`` cannot bring a mechanism that is past
-    its crest (``phi >= phi_crit``) and opening (``v >= 0``) back over the crest.
+def no_return(piece, phi, v, kappa2, v_crest, v_toggle):
+    """True if the ground motion left after the start ``t_left`` of the `Piece` ``piece``
+    (its excitation's ``tail``) cannot bring a mechanism that is past its crest
+    (``phi >= phi_crit``) and opening (``v >= 0``) back over the crest.
 
     The sufficient criterion of ``docs/notes/mechanism.md`` (collapse on a record): the ground's power
     on the mechanism is ``P = -side x_g'' H(phi) phi'`` and by Cauchy-Schwarz
@@ -281,6 +487,7 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
     ``U >= T0 + g (V(phi_crit) - V(phi))``; the criterion is that the bound is below it (with
     a relative margin of 1e-9).
     """
+    mech, params, tail, t_left, g = piece.mech, piece.exc.params, piece.exc.tail, piece.t_left, piece.g
     t0, dt = params[0], params[1]
     n = tail.shape[0]
     i = int(math.floor((t_left - t0) / dt + 1e-9))
@@ -303,98 +510,86 @@ def no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2, v_crest, v_to
 
 
 @nb.njit(cache=True, nogil=True)
-def _row_terms(mechs, row, use_tail, v_toggle):
+def _row_terms(table, row, use_tail):
     """What the kernel keeps of the mechanism row it moves on (taken once per half cycle, when
     the row changes): the packed row, its crest and toggle rotations (rad), m_eff at phi = 0,
     kappa2 = the sum of the link masses (|H| <= sqrt(kappa2 m_eff), Cauchy-Schwarz, for
     `no_return`), the potential/g at the crest (kg m; 0 without a record tail) and whether
     the no-return criterion applies on this row."""
-    mech = mechs[row]
+    mech = table.mechs[row]
     phi_crit = mech[PHI_CRIT]
     _ok, meff0, _dm, _gg, _hh = eom_terms(mech, 0.0)
     kappa2 = 0.0
     for k in range(3):
         kappa2 += mech[LINK0 + 4 * k]
     v_crest = potential(mech, phi_crit) if use_tail else 0.0
-    row_tail = use_tail and math.isfinite(v_toggle[row])
+    row_tail = use_tail and math.isfinite(table.v_toggle[row])
     return mech, phi_crit, mech[PHI_TOGGLE], meff0, kappa2, v_crest, row_tail
 
 
 @nb.njit(cache=True, nogil=True)
-def simulate_kernel(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
-                    rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters, onsets,
-                    initial_rate=0.0):
+def simulate_kernel(table, exc, settings, out):
     """Integrate one time history (`simulate_kernel_eval` without requested times).
 
     Returns
     -------
     (outcome, final_state, collapse_half_cycle)
     """
-    t_eval = np.empty(0)
-    eval_out = np.empty((0, HIST_COLUMNS))
-    outcome, final, collapse_half, _n = simulate_kernel_eval(
-        mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi, rest_rotation,
-        max_impacts, dt_out, hist, impacts, peaks, counters, onsets, initial_rate, t_eval,
-        eval_out, dt_out, hist.shape[0], np.empty(0), np.zeros(mechs.shape[0]))
+    requested = Requested(np.empty(0), np.empty((0, HIST_COLUMNS)))
+    outcome, final, collapse_half, _n = simulate_kernel_eval(table, exc, settings, out,
+                                                             requested)
     return outcome, final, collapse_half
 
 
 @nb.njit(cache=True, nogil=True)
-def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, atol_phi,
-                         rest_rotation, max_impacts, dt_out, hist, impacts, peaks, counters,
-                         onsets, initial_rate, t_eval, eval_out, dt_lock, hist_limit, tail,
-                         v_toggle):
+def simulate_kernel_eval(table, exc, settings, out, requested):
     """Integrate one time history, with the states at requested times. See the module
     docstring for the logic.
 
     Parameters
     ----------
-    mechs : (m, 30) packed mechanisms (row 0: the limit-analysis mechanism, which the onsets
-        open);  nxt : (m,) int64 row after an impact of each row (-1: outside the set);
-        flip : (m,) +-1.0, the side after = side before * flip;  ratio : (m,) opening rate of the
-        post mechanism per unit closing rate (the paper's law: c_v)
-    kind, params : ground motion;  g : gravity, m/s^2;  t_end : s;  rtol, atol_phi : tolerances
-        (the rate's absolute tolerance is atol_phi * sqrt(g / R), so that similar arches take
-        similar steps);  rest_rotation : rad;  max_impacts : int
-    dt_out : output interval, s (0: no history; < 0: every accepted step and event)
-    hist : (cap, 6) out: t, phi, phi', side, x_g'', row. Samples beyond ``cap`` are counted (in
-        counters[0]) but not written: the caller sizes the buffer again and reruns.
-    impacts : (max_impacts, 7) out: the `IMPACT_COLUMNS`
-    peaks : (max_impacts + 1,) out: peak phi of each half cycle
-    counters : (10,) out: n_hist (samples wanted, may exceed cap), n_impacts, n_half_cycles,
-        n_steps, n_rejected, n_rhs, onset_time, collapse_time, 1 if the run stopped because the
-        history reached ``hist_limit`` samples (counters[8] is written only then), n_onsets
-    onsets : (k, 2) out: time and side of each onset of hinging from rest (row 0), as many as
-        fit (an onset follows a lock, and a lock an impact: max_impacts + 1 always fit)
-    initial_rate : rad/s (>= 0); if > 0 the first mechanism starts open at t = 0 with this
-        opening rate (free rocking), instead of from rest.
-    t_eval : (m,) requested times, s, sorted (non-decreasing). A time inside an accepted step
-        gets one extra Dormand-Prince step from the step's start landing on it (the step
-        sequence, and so the history and events, are those of a run without ``t_eval``). A
-        time at an impact gets the closing state; at the onset of hinging, the opening one
-        (phi = 0, the ground just after the onset). Times after the arch has come to rest for
-        good are locked states; times after a collapse or beyond ``t_end`` are not reached.
-    eval_out : (m, 6) out: phi, phi', phi'', side, x_g'', row at each time reached (in order);
-        x_g'' is the value the step used there (at a breakpoint ending a step, the left limit).
-    dt_lock : history interval while locked, s (>= dt_out; when larger, each locked stretch
-        also gets a sample at its end and the moving samples restart from there)
-    hist_limit : the run stops (counters[8] = 1) when the history reaches this many samples
-    tail : (N,) for a sampled record, int_{t_i}^{end} |x_g''| dt from each sample time t_i to
-        the record's end, m/s (empty: no collapse before the excitation's end); with it a
-        collapse is declared during the record once the remaining motion cannot bring the
-        mechanism back over the crest (`no_return`)
-    v_toggle : (m,) potential/g at each row's toggle, kg m (the lowest past the crest, see
-        ``tail``; nan: the criterion does not apply to that row)
+    table : Table
+        The mechanism stack and its impact table.
+    exc : Excitation
+        The ground motion (with a record's tail for the no-return criterion).
+    settings : ndarray (N_SETTINGS,)
+        Gravity, end time, tolerances, caps and output intervals (`settings`, ``S_*``).
+    out : Output
+        Written: the history, impacts, peaks, counters and onsets.
+    requested : Requested
+        Times, s, sorted (non-decreasing). A time inside an accepted step gets one extra
+        Dormand-Prince step from the step's start landing on it (the step sequence, and so the
+        history and events, are those of a run without requested times). A time at an impact
+        gets the closing state; at the onset of hinging, the opening one (phi = 0, the ground
+        just after the onset). Times after the arch has come to rest for good are locked
+        states; times after a collapse or beyond ``t_end`` are not reached. Their states:
+        phi, phi', phi'', side, x_g'', row at each time reached (in order); x_g'' is the
+        value the step used there (at a breakpoint ending a step, the left limit).
 
     Returns
     -------
     (outcome, final_state, collapse_half_cycle, number of requested times reached)
     """
+    kind, params, tail = exc.kind, exc.params, exc.tail
+    g = settings[S_G]
+    t_end = settings[S_T_END]
+    rtol = settings[S_RTOL]
+    atol_phi = settings[S_ATOL_PHI]
+    rest_rotation = settings[S_REST_ROTATION]
+    max_impacts = int(settings[S_MAX_IMPACTS])
+    dt_out = settings[S_DT_OUT]
+    dt_lock = settings[S_DT_LOCK]
+    hist_limit = int(settings[S_HIST_LIMIT])
+    initial_rate = settings[S_INITIAL_RATE]
+    hist, impacts, peaks, counters, onsets = (out.hist, out.impacts, out.peaks, out.counters,
+                                              out.onsets)
+    t_eval, eval_out = requested.times, requested.states
+    nxt, flip, ratio, v_toggle = table.nxt, table.flip, table.ratio, table.v_toggle
     t_exc = excitation_end(kind, params)
-    row = 0
+    row = np.int64(0)  # typed int64, not the literal 0, so that `_row_terms` compiles once
     use_tail = tail.shape[0] > 0
     mech, phi_crit, phi_toggle, meff0, kappa2, v_crest, row_tail = _row_terms(
-        mechs, row, use_tail, v_toggle)
+        table, row, use_tail)
     atol_v = atol_phi * math.sqrt(g / mech[LENGTH])
     n_on = 0
     n_hist = 0
@@ -415,7 +610,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
     v = 0.0
     t_out = 0.0
     overflow = False
-    i_ev = 0
+    i_ev = np.int64(0)  # typed int64, not the literal 0 (`_record_states` compiles once)
     n_eval = t_eval.shape[0]
     tau = math.sqrt(mech[LENGTH] / g)
     h = 1e-3 * tau
@@ -429,7 +624,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
         onset_time = 0.0
     while t < t_end:
         if side == 0:
-            t_on, s_on = find_onset(mech, kind, params, t, max(t, min(t_exc, t_end)), g)
+            t_on, s_on = find_onset(mech, exc, g, t, max(t, min(t_exc, t_end)))
             # history while locked
             if dt_out > 0.0:
                 t_last = -1.0
@@ -492,12 +687,12 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
             continue
         # ---------------------------------------------------------------- open
         t_left = t
+        piece = Piece(mech, row, side, exc, g, t_left)
         t_stop = min(next_breakpoint(kind, params, t), t_end)
         k1 = _rhs(mech, kind, params, side, g, t, t_left, phi, v)
         n_rhs += 1
         if i_ev < n_eval and t_eval[i_ev] <= t:  # at the onset (or t = 0 of free rocking)
-            i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1, t,
-                                         0.0, t_eval, eval_out, i_ev, row)
+            i_ev, extra = _record_states(piece, t, phi, v, k1, t, 0.0, requested, i_ev)
         excitation_over = t >= t_exc - 1e-12 * (1.0 + t_exc)
         if excitation_over and phi >= phi_crit and v >= 0.0:
             outcome = OUTCOME_COLLAPSE
@@ -510,13 +705,12 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
             hh = min(h, t_stop - t)
             if hh < h_min:
                 if i_ev < n_eval:
-                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_stop, hh, t_eval, eval_out, i_ev, row)
+                    i_ev, extra = _record_states(piece, t, phi, v, k1, t_stop, hh, requested,
+                                                 i_ev)
                     n_rhs += extra
                 t = t_stop
                 break
-            phi1, v1, k7, ep, ev = dopri_step(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                              hh)
+            phi1, v1, k7, ep, ev = dopri_step(piece, t, phi, v, k1, hh)
             n_rhs += 6
             if not (math.isfinite(phi1) and math.isfinite(v1) and math.isfinite(k7)):
                 n_rej += 1
@@ -546,13 +740,13 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
             if phi1 < 0.0 and phi >= 0.0:
                 ev_kind = 1
                 if v > 0.0:  # opening at the start: the closure comes after the top
-                    s_lo = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                    s_lo = _hermite_root(hh, v, k1, v1, k7, 0.0, 0.0)
                 s_ev = _hermite_root(hh, phi, v, phi1, v1, 0.0, s_lo)
             if excitation_over and phi1 >= phi_crit and v1 >= 0.0:
                 if phi < phi_crit:
-                    s_c = _hermite_root(hh, phi, v, phi1, v1, phi_crit)
+                    s_c = _hermite_root(hh, phi, v, phi1, v1, phi_crit, 0.0)
                 elif v < 0.0:  # beyond the crest, closing, and turning back open: collapse
-                    s_c = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                    s_c = _hermite_root(hh, v, k1, v1, k7, 0.0, 0.0)
                 else:
                     s_c = 0.0
                 if ev_kind == 0 or s_c < s_ev:
@@ -582,7 +776,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
             # ---- peak of the half cycle over [t, t + s_ev] (extremum of the interpolant)
             pk = max(phi, hermite(s_ev, hh, phi, v, phi1, v1))
             if v > 0.0 and v1 <= 0.0:
-                s_top = _hermite_root(hh, v, k1, v1, k7, 0.0)
+                s_top = _hermite_root(hh, v, k1, v1, k7, 0.0, 0.0)
                 if s_top <= s_ev:
                     pk = max(pk, hermite(s_top, hh, phi, v, phi1, v1))
             if pk > peaks[half - 1]:
@@ -590,8 +784,8 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
             if ev_kind == 0:
                 t_new = t + hh if t + hh < t_stop else t_stop
                 if i_ev < n_eval:
-                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_new, hh, t_eval, eval_out, i_ev, row)
+                    i_ev, extra = _record_states(piece, t, phi, v, k1, t_new, hh, requested,
+                                                 i_ev)
                     n_rhs += extra
                 t = t_new
                 phi, v, k1 = phi1, v1, k7
@@ -609,8 +803,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                         hist[n_hist, 5] = row
                     n_hist += 1
                 if (row_tail and not excitation_over and phi >= phi_crit and v >= 0.0
-                        and no_return(mech, kind, params, tail, t_left, phi, v, g, kappa2,
-                                      v_crest, v_toggle[row])):
+                        and no_return(piece, phi, v, kappa2, v_crest, v_toggle[row])):
                     # past the crest, opening, and the rest of the record cannot return it
                     outcome = OUTCOME_COLLAPSE
                     final = FINAL_COLLAPSED
@@ -620,12 +813,11 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                     break
                 continue
             if ev_kind == 1:
-                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                            s_ev, 0.0, s_lo, hh)
+                s, ph_e, v_e, a_e = _locate(piece, t, phi, v, k1, s_ev, 0.0, s_lo, hh)
                 t_imp = t + s
                 if i_ev < n_eval:  # up to the impact: the closing mechanism
-                    i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v,
-                                                 k1, t_imp, s, t_eval, eval_out, i_ev, row)
+                    i_ev, extra = _record_states(piece, t, phi, v, k1, t_imp, s, requested,
+                                                 i_ev)
                     n_rhs += extra
                 nrow = nxt[row]
                 v_after = ratio[row] * abs(v_e)
@@ -655,7 +847,7 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                 if nrow != row:  # the post mechanism's row, once per half cycle
                     row = nrow
                     (mech, phi_crit, phi_toggle, meff0, kappa2, v_crest,
-                     row_tail) = _row_terms(mechs, row, use_tail, v_toggle)
+                     row_tail) = _row_terms(table, row, use_tail)
                 # peak rotation of the coming half cycle on a linear potential g G0 phi
                 # (gravity with the vertical ground acceleration at the impact)
                 g_imp = g + vertical_in_piece(kind, params, t, t_left)
@@ -693,18 +885,16 @@ def simulate_kernel_eval(mechs, nxt, flip, ratio, kind, params, g, t_end, rtol, 
                         hist[n_hist, 5] = row
                     n_hist += 1
                 if side == 0 and row != 0:  # locked: the next onset opens row 0 (or its mirror)
-                    row = 0
+                    row = np.int64(0)
                     (mech, phi_crit, phi_toggle, meff0, kappa2, v_crest,
-                     row_tail) = _row_terms(mechs, row, use_tail, v_toggle)
+                     row_tail) = _row_terms(table, row, use_tail)
                 continue
             # collapse
             s = s_ev
             if ev_kind == 2 and 0.0 < s_ev < hh and phi < phi_crit:
-                s, ph_e, v_e, a_e = _locate(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                            s_ev, phi_crit, 0.0, hh)
+                s, ph_e, v_e, a_e = _locate(piece, t, phi, v, k1, s_ev, phi_crit, 0.0, hh)
             if i_ev < n_eval:
-                i_ev, extra = _record_states(mech, kind, params, side, g, t, t_left, phi, v, k1,
-                                             t + s, s, t_eval, eval_out, i_ev, row)
+                i_ev, extra = _record_states(piece, t, phi, v, k1, t + s, s, requested, i_ev)
                 n_rhs += extra
             outcome = OUTCOME_COLLAPSE
             final = FINAL_COLLAPSED
@@ -763,16 +953,17 @@ def table_energies(mechs, g):
 
 
 @nb.njit(cache=True, nogil=True)
-def last_impact_energy(impacts, n_all, t_exc, meff0, barrier, ct_max, undescribed):
+def last_impact_energy(impacts, n_all, t_exc, table, meff0, barrier):
     """The kinetic energy ``1/2 m_eff(0) phi'^2`` the run's last impact left, as a fraction of
     the least crest barrier (`table_energies`), where the free-rocking proof applies to
-    it; NaN where it does not.
+    it; NaN where it does not. ``meff0`` and ``barrier`` are `table_energies` of the `Table`
+    ``table``.
 
     It applies when the last impact is recorded (``1 <= n_all <= impacts.shape[0]``: the run did
     not go on past its cap), came at or after the end of the excitation ``t_exc``, onto a row of
-    the table (``impacts[k, 4] >= 0``), every row's impact keeps ``c_T <= 1`` (``ct_max``), and
-    the barrier is positive; and, for a table with a row whose impact the law does not describe
-    (``undescribed``), once such an impact has happened (the verdict is then indeterminate
+    the table (``impacts[k, 4] >= 0``), every row's impact keeps ``c_T <= 1`` (``table.ct_max``),
+    and the barrier is positive; and, for a table with a row whose impact the law does not
+    describe (``table.undescribed``), once such an impact has happened (the verdict is then indeterminate
     anyway: before that, an undescribed impact may still come). A fraction below
     ``1 - ENERGY_MARGIN`` proves that the arch never reaches a crest again.
     """
@@ -780,7 +971,8 @@ def last_impact_energy(impacts, n_all, t_exc, meff0, barrier, ct_max, undescribe
         return math.nan
     k = n_all - 1
     row = int(impacts[k, 4])
-    if impacts[k, 0] < t_exc or row < 0 or ct_max > 1.0:
+    undescribed = table.undescribed
+    if impacts[k, 0] < t_exc or row < 0 or table.ct_max > 1.0:
         return math.nan
     if not (math.isfinite(barrier) and barrier > 0.0):
         return math.nan

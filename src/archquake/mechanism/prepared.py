@@ -36,7 +36,7 @@ from archquake.geometry.arch import Arch  # noqa: F401  (doctests)
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.hinges import HingeMechanism
 from archquake.limit.analysis import hinges_of
-from archquake.mechanism._kernels import linkage_limits_compiled
+from archquake.mechanism._kernels import Table, linkage_limits_compiled
 from archquake.mechanism.impact import (
     ImpactSolution,
     check_impact_law,
@@ -305,6 +305,10 @@ def impact_table(prepared: PreparedMechanism, cap: int = MAX_REACHABLE) -> Impac
                        tuple(validity))
 
 
+#: Packed kernel tables kept per prepared mechanism (one per prescribed c_v, and the law's).
+KERNEL_TABLES = 8
+
+
 @dataclass(frozen=True)
 class PreparedMechanism:
     """A mechanism packed for the kernels, with its impact solution (reusable across runs).
@@ -389,6 +393,32 @@ class PreparedMechanism:
         """True if the impact law (with ``restitution`` prescribed or not) describes this arch's
         impacts (`describes`)."""
         return self.impact.describes(prescribed=restitution is not None)
+
+    def kernel_table(self, restitution: float | None = None) -> Table:
+        """The impact table under the law, packed for the compiled kernels
+        (`archquake.mechanism._kernels.Table`), for a prescribed c_v ``restitution`` (already
+        checked: `check_restitution`) or the law's (None). The no-return criterion is off on
+        every row (``v_toggle`` nan): a record's run sets it.
+
+        Memoised for the last `KERNEL_TABLES` values of ``restitution`` (building it costs more
+        than a short time history's own overhead); the kernels only read it."""
+        tables = self._kernel_tables
+        packed = tables.get(restitution)
+        if packed is None:
+            table = self.table
+            mechs, nxt, flip, ratio = table.kernel_arrays(restitution)
+            packed = Table(mechs, nxt, flip, ratio,
+                           np.ascontiguousarray(~table.described(self.impact.law, restitution)),
+                           float(np.max(table.restitution_cts(restitution))),
+                           np.full(mechs.shape[0], np.nan))
+            if len(tables) >= KERNEL_TABLES:
+                tables.pop(next(iter(tables)))
+            tables[restitution] = packed
+        return packed
+
+    @cached_property
+    def _kernel_tables(self) -> dict[float | None, Table]:
+        return {}
 
     @classmethod
     def build(cls, arch_or_mechanism: VoussoirChain | HingeMechanism | PreparedMechanism,

@@ -145,6 +145,18 @@ class SolverOptions:
             object.__setattr__(self, "output_interval",
                                require_finite("output_interval", self.output_interval, "s"))
 
+    def kernel_settings(self, g: float, t_end: float = math.nan, *, dt_out: float = 0.0,
+                        dt_lock: float | None = None, hist_limit: int = 1,
+                        initial_rate: float = 0.0) -> np.ndarray:
+        """These tolerances, rest rotation and cap on impacts as the compiled kernels' settings
+        array (`archquake.mechanism._kernels.settings`, which gives the other arguments),
+        with gravity ``g`` (m/s^2) and the end of the analysis ``t_end`` (s; the batches set
+        each case's). The output interval is ``dt_out`` (s; default none), not
+        ``output_interval``, which `simulate` resolves first."""
+        return K.settings(float(g), float(t_end), self.rtol, self.atol, self.rest_rotation,
+                          int(self.max_impacts), dt_out=dt_out, dt_lock=dt_lock,
+                          hist_limit=hist_limit, initial_rate=initial_rate)
+
 
 @dataclass(frozen=True)
 class History:
@@ -506,19 +518,16 @@ def mechanism_events(prepared: PreparedMechanism, impacts: np.ndarray, onsets: n
     return tuple(e[2] for e in events)
 
 
-def last_impact_fraction(prepared: PreparedMechanism, mechs: np.ndarray, impacts: np.ndarray,
-                         n_all: int, excitation: float, restitution: float | None,
+def last_impact_fraction(table: K.Table, impacts: np.ndarray, n_all: int, excitation: float,
                          g: float) -> float:
     """The kinetic energy the run's last impact left, as a fraction of the least crest barrier,
     where the free-rocking proof applies to it (NaN where not): the batches' proof,
-    `archquake.mechanism._kernels.last_impact_energy`, with the table's energies, c_T and
-    described rows for ``restitution`` (prescribed c_v or None)."""
-    table = prepared.table
-    meff0, barrier = K.table_energies(mechs, g)
-    undescribed = np.ascontiguousarray(~table.described(prepared.impact.law, restitution))
-    ct_max = float(np.max(table.restitution_cts(restitution)))
-    return float(K.last_impact_energy(impacts, int(n_all), float(excitation), meff0,
-                                      float(barrier), ct_max, undescribed))
+    `archquake.mechanism._kernels.last_impact_energy`, with the energies, c_T and described
+    rows of the packed impact table ``table``
+    (`archquake.mechanism.prepared.PreparedMechanism.kernel_table`)."""
+    meff0, barrier = K.table_energies(table.mechs, g)
+    return float(K.last_impact_energy(impacts, int(n_all), float(excitation), table, meff0,
+                                      float(barrier)))
 
 
 def conclude_run(computed: Outcome, final: FinalState | int, *, impacts: int, max_impacts: int,
@@ -633,7 +642,7 @@ def simulate(
     require_instance("options", options, SolverOptions, "a SolverOptions")
     model_cv = prepared.impact.restitution_cv
     cv = prepared.restitution_for(restitution)
-    mechs, nxt, flip, ratio = prepared.table.kernel_arrays(check_restitution(restitution))
+    table = prepared.kernel_table(check_restitution(restitution))
     initial_rate = require_finite("initial_rate", initial_rate, "rad/s")
     if initial_rate < 0:
         raise InvalidParameterError(f"initial_rate must be >= 0 rad/s, got {initial_rate:g}")
@@ -669,6 +678,11 @@ def simulate(
     else:
         cap = 1
     tail, v_toggle = _record_tail(prepared, kind, params)
+    table = table._replace(v_toggle=v_toggle)
+    exc = K.excitation(kind, params, tail)
+    run = options.kernel_settings(g, float(t_end), dt_out=float(dt_out), dt_lock=float(dt_lock),
+                                  hist_limit=MAX_HISTORY_SAMPLES,
+                                  initial_rate=float(initial_rate))
     reruns = 0
     while True:
         hist = np.zeros((cap, K.HIST_COLUMNS))
@@ -678,11 +692,8 @@ def simulate(
         onsets = np.zeros((n_imp_cap + 1, 2))
         eval_out = np.zeros((requested.size, K.HIST_COLUMNS))
         outcome, final, collapse_half, n_eval = K.simulate_kernel_eval(
-            mechs, nxt, flip, ratio, kind, params, g, float(t_end), options.rtol, options.atol,
-            options.rest_rotation, n_imp_cap, float(dt_out), hist, impacts, peaks, counters,
-            onsets, float(initial_rate), requested, eval_out, float(dt_lock),
-            MAX_HISTORY_SAMPLES, tail, v_toggle,
-        )
+            table, exc, run, K.Output(hist, impacts, peaks, counters, onsets),
+            K.Requested(requested, eval_out))
         if counters[8]:
             raise InvalidParameterError(
                 f"the history would hold more than {MAX_HISTORY_SAMPLES:,} samples "
@@ -719,8 +730,7 @@ def simulate(
                  else prepared.describes_impact(restitution))
     final_state = _FINALS[int(final)]
     n_all = int(counters[1])
-    fraction = last_impact_fraction(prepared, mechs, impacts, n_all, excitation,
-                                    check_restitution(restitution), g)
+    fraction = last_impact_fraction(table, impacts, n_all, excitation, g)
     settled, reason = conclude_run(computed, final_state, impacts=n_all, max_impacts=n_imp_cap,
                                    t_end=float(t_end), excitation_end=excitation,
                                    energy_fraction=fraction)
