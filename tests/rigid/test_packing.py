@@ -1,9 +1,8 @@
-"""How the rigid chain's kernels are fed: packed arguments, a model packed once, stepping loops
-without reference counting.
+"""How the rigid chain's kernels are fed: a model packed once, stepping loops without reference
+counting (the kernels' packed arguments: tests/test_kernel_arity.py).
 
-Oracles: the source itself (the number of parameters of every function, read with ``ast``), object
-identity (a model's derived forms are built once), and numba's compile options (the stepping loops
-are compiled without reference counting, the step's cost measured in
+Oracles: object identity (a model's derived forms are built once), and numba's compile options
+(the stepping loops are compiled without reference counting, the step's cost measured in
 docs/notes/measurements.md, "The rigid chain's step without reference counting"). The loops'
 numbers are held bit for bit elsewhere: ``test_step_work_arrays_carry_nothing_between_steps``
 (tests/rigid/test_chain.py) and the digests (tests/test_digest.py).
@@ -11,41 +10,11 @@ numbers are held bit for bit elsewhere: ``test_step_work_arrays_carry_nothing_be
 
 from __future__ import annotations
 
-import ast
 import math
-from pathlib import Path
 
-import pytest
-
-import archquake.rigid as rigid_pkg
 from archquake.geometry import Arch
 
-#: The repository's rule: no function takes 15 or more arguments (pack them).
-MAX_ARGUMENTS = 14
-RIGID = Path(rigid_pkg.__file__).parent
 OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
-
-
-def _arities(path: Path) -> list[tuple[str, int]]:
-    out = []
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
-            a = node.args
-            n = (len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs) + (a.vararg is not None)
-                 + (a.kwarg is not None))
-            out.append((node.name, n))
-    return out
-
-
-@pytest.mark.parametrize("module", ["_step_kernels.py", "_verdict_kernels.py", "_event_kernels.py",
-                                    "_force_kernels.py", "_input_kernels.py", "model.py",
-                                    "steps.py", "verdict.py", "events.py", "forces.py"])
-def test_no_function_takes_15_arguments(module):
-    """Every function of the rigid chain's kernels and of the modules that pack for them takes
-    at most 14 arguments (the kernels read packed tuples: `Chain`, `Stepping`, `Geometry`,
-    `Work`, the event integrator's `Chain`, `Span`, `State`, `Links`, `Output`)."""
-    wide = [(name, n) for name, n in _arities(RIGID / module) if n > MAX_ARGUMENTS]
-    assert not wide, f"{module}: {wide}"
 
 
 def test_model_derived_forms_are_built_once():
