@@ -3,7 +3,9 @@
 #               warm), reproduce Oppenheim's arch into out/ and assess the example bridge
 #               (examples/bridge.toml, quick mode) into out/bridge/
 #   make test   create .venv, install archquake with its test dependencies, run ruff, mypy
-#               (0 errors) and the test suite
+#               (0 errors) and the test suite (without the full-resolution studies marked slow,
+#               each of which has a quick version in it; run those with
+#               .venv/bin/python -m pytest -m slow)
 PYTHON ?= python3.11
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -49,11 +51,12 @@ test: $(STAMP_TEST)
 	$(BIN)/ruff check src tests benchmarks examples
 	@# mypy runs beside everything else (it fills the cores the others leave idle); numba's
 	@# kernels are compiled once, by archquake warm in two processes (their workloads balanced),
-	@# before the test workers start: otherwise each worker compiles every kernel it calls
+	@# before the test workers start: otherwise each worker compiles every kernel it calls. The
+	@# workers take whole files, the longest first (tests/conftest.py orders them)
 	$(BIN)/mypy src/archquake > .mypy.out 2>&1 & mypy=$$!; \
 	$(BIN)/archquake warm --only $(WARM_A) & warm=$$!; \
 	$(BIN)/archquake warm --only $(WARM_B); warmed=$$?; wait $$warm || warmed=1; \
-	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile; tests=$$?; \
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder; tests=$$?; \
 	wait $$mypy; typing=$$?; cat .mypy.out; rm -f .mypy.out; \
 	test $$warmed = 0 && test $$tests = 0 && test $$typing = 0
 

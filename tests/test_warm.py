@@ -97,6 +97,9 @@ def test_a_workload_compiles_once_then_loads(tmp_path):
     assert first["compiled"] >= 1 and first["steps"][0]["loaded"] == 0
     assert second["compiled"] == 0 and second["steps"][0]["loaded"] == first["compiled"]
     assert all(str(cache) in path for path in first["cache_dirs"])
+    # each step's CPU time (this process's) is reported beside its wall time, and summed
+    assert all(s["cpu_s"] > 0.0 for s in first["steps"])
+    assert first["cpu_s"] == pytest.approx(sum(s["cpu_s"] for s in first["steps"]), rel=1e-12)
 
 
 #: Commands a user runs first, each on a short problem: after ``archquake warm`` none may compile.

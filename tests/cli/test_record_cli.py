@@ -84,3 +84,30 @@ def test_malformed_file_exits_2_with_one_line(tmp_path, capsys, name, content, f
 def test_bad_scale_exits_2(northridge_csv, capsys):
     assert cli_main.main(["record", str(northridge_csv), "--scale", "-1"]) == 2
     assert "--scale must be in (0, 1000]" in capsys.readouterr().err
+
+
+def test_record_vertical_measures(tmp_path, capsys):
+    """The vertical's intensity measures are those of the file read alone (`intensity_measures`
+    of `read_record`), and V/H their ratio to the horizontal's."""
+    import numpy as np
+
+    from archquake.ground import read_record
+    from archquake.ground.measures import intensity_measures
+
+    t = np.arange(0.0, 4.0 + 1e-9, 0.01)
+    h = 0.3 * np.sin(2 * np.pi * 2 * t) * np.exp(-((t - 1.5) / 0.6) ** 2)
+    v = 0.2 * np.sin(2 * np.pi * 7 * t) * np.exp(-((t - 1.2) / 0.4) ** 2)
+    np.savetxt(tmp_path / "h.csv", np.column_stack([t, h]), delimiter=",")
+    np.savetxt(tmp_path / "v.csv", np.column_stack([t, v]), delimiter=",")
+    args = ["record", str(tmp_path / "h.csv"), "--units", "g", "--record-vertical",
+            str(tmp_path / "v.csv"), "--periods", "0.2"]
+    assert cli_main.main([*args, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    alone = intensity_measures(read_record(tmp_path / "v.csv", units="g"), periods=[0.2])
+    assert out["vertical"]["intensity_measures"]["pga_g"] == alone.pga_g
+    assert out["vertical"]["intensity_measures"]["arias_m_s"] == alone.arias_m_s
+    assert out["vertical"]["v_over_h"]["pga"] == alone.pga_g / out["intensity_measures"]["pga_g"]
+    assert cli_main.main(args) == 0
+    assert "V/H" in capsys.readouterr().out
+    assert cli_main.main([*args, "--spectrum"]) == 2
+    assert "--record-vertical applies only without --spectrum" in capsys.readouterr().err

@@ -25,6 +25,7 @@ def run_example(*args: str) -> str:
     ("earthquake_record.py", ["synthetic:", "x1:"]),
     ("sweep.py", ["4 cases, 4 computed", "rerun: 0 computed, 4 already stored"]),
     ("bridge_loads.py", ["bare ring: lambda 0.0488 g", "adequacy factor of a 100 kN/m axle"]),
+    ("near_field_vertical.py", ["bridge ring: lambda 0.0488 g", "MP-0.8s", "with vertical"]),
 ])
 def test_example_runs_quick(script, expected):
     out = run_example(f"examples/{script}", "--quick")

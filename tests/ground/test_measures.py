@@ -262,3 +262,29 @@ def test_northridge_measures_are_stable(northridge):
     assert m.pga_g == pytest.approx(0.415325, rel=1e-12)
     assert m.pgv_m_s == pytest.approx(0.4527, rel=1e-3)
     assert m.arias_m_s == pytest.approx(0.8895, rel=1e-3)
+
+
+def test_records_on_one_time_step_share_their_oscillator_coefficients(monkeypatch):
+    """The spectrum's cost bounded by a count, as solve_ivp's by nfev: the state-transition
+    matrices (one matrix exponential per period and time step) of a record serve every other
+    record sampled at the same step, and the spectra stay bit-for-bit those computed afresh.
+    Oracle: calls of scipy.linalg.expm counted; the spectra compared with np.array_equal."""
+    import scipy.linalg
+
+    from archquake.ground import Record
+    from archquake.ground.measures import _transition, response_spectrum
+
+    calls = []
+    expm = scipy.linalg.expm
+    monkeypatch.setattr(scipy.linalg, "expm", lambda m: calls.append(1) or expm(m))
+    rng = np.random.default_rng(7)
+    first, second = (Record(rng.normal(0.0, 1.0, 400), 0.01, name=n) for n in ("a", "b"))
+    periods = (0.2, 0.5, 1.0)
+    _transition.cache_clear()
+    sa_first = response_spectrum(first, periods)
+    computed = len(calls)
+    sa_second = response_spectrum(second, periods)
+    assert computed >= len(periods) and len(calls) == computed  # none computed again
+    _transition.cache_clear()
+    assert np.array_equal(response_spectrum(second, periods), sa_second)
+    assert np.array_equal(response_spectrum(first, periods), sa_first)

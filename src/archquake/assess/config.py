@@ -21,6 +21,10 @@ computation.
     site_pga_override = false        # true: site_pga_g replaces the [site] table's PGA
     suite = "near-field-pulse"       # a FEMA P695 set, a folder, a .list file, or a list of files
     units = "g"                      # units of CSV records (g, m/s2, cm/s2): required with them
+    vertical_ratio = 0.5             # the pulses' vertical part R (R a s(t) upward), in [-2, 2]:
+                                     # the vertical section compares the pulses with and without
+                                     # it (a .list suite naming each record's vertical after it
+                                     # compares the records the same way)
 
     [options]
     model = "rigid"         # the model of every verdict: "rigid" (default, the chain of rigid
@@ -62,7 +66,7 @@ from archquake.geometry.loads import LOADS_KEYS  # the keys of [loads], as the s
 ARCH_KEYS = ("radius", "thickness_ratio", "embrace_deg", "voussoirs", "depth", "density", "shape",
              "span", "rise", "thickness", "joints", "pier_height", "pier_width", "pier_courses",
              "blocks", "friction")
-SEISMIC_KEYS = ("site_pga_g", "site_pga_override", "suite", "units")
+SEISMIC_KEYS = ("site_pga_g", "site_pga_override", "suite", "units", "vertical_ratio")
 OPTION_KEYS = ("model", "impact", "restitution", "dem")
 #: The models an assessment's verdicts may rest on (the DEM is its check, ``dem = true``).
 ASSESS_MODELS = ("rigid", "fourlink")
@@ -112,6 +116,10 @@ class AssessConfig:
         The ``[loads]`` table (`loads_from_table`): every
         section carries its dead loads (`dead_loads`); its traffic is the traffic
         check's.
+    vertical_ratio : float or None
+        ``[seismic] vertical_ratio``: the pulses' vertical part R, in [-2, 2] (None: not given).
+    suite_vertical : bool
+        Some record of the suite carries its vertical component (a ``.list`` file naming it).
     """
 
     arch: Any
@@ -128,6 +136,8 @@ class AssessConfig:
     site_pga_source: str | None = None
     notes: tuple[str, ...] = ()
     loads: Any = None
+    vertical_ratio: float | None = None
+    suite_vertical: bool = False
 
     @property
     def dead_loads(self):
@@ -150,6 +160,8 @@ class AssessConfig:
             out["site"] = self.site.canonical()
         if self.loads is not None:
             out["loads"] = self.loads.to_dict()
+        if self.vertical_ratio is not None:
+            out["vertical_ratio"] = self.vertical_ratio
         return out
 
     @property
@@ -292,8 +304,14 @@ def parse_config(data: dict, *, source: str = "assessment",
     if site is None and suite is None and "site" not in data:
         raise _fail(source, "[seismic]", "needs site_pga_g (g) and/or suite (a record set), "
                                          "or a [site] table")
-    if suite is not None:
-        check_suite(source, suite, units, base_dir)
+    suite_vertical = suite is not None and check_suite(source, suite, units, base_dir)
+    vertical_ratio = None
+    if "vertical_ratio" in seismic:
+        vertical_ratio = _number(source, "[seismic] vertical_ratio", seismic["vertical_ratio"])
+        if not -2.0 <= vertical_ratio <= 2.0:
+            raise _fail(source, "[seismic] vertical_ratio", f"must be in [-2, 2] (the pulses' "
+                                                            f"vertical over their horizontal), "
+                                                            f"got {vertical_ratio:g}")
 
     options = data.get("options", {})
     from archquake.models import model_of, takes
@@ -349,7 +367,8 @@ def parse_config(data: dict, *, source: str = "assessment",
                          "beyond design practice: is it in g (not m/s^2)?")
     return AssessConfig(spec, friction, site, suite, units, impact, restitution, dem, source,
                         model=model, site=site_table, site_pga_source=site_source,
-                        notes=tuple(notes), loads=loads)
+                        notes=tuple(notes), loads=loads, vertical_ratio=vertical_ratio,
+                        suite_vertical=bool(suite_vertical))
 
 
 def _loads(source: str, table: Any, arch) -> Any:
@@ -430,14 +449,17 @@ def _site_pga(source: str, given: float | None, override: bool, site: SiteConfig
 
 
 def check_suite(source: str, suite: str | tuple[str, ...], units: str | None,
-                base_dir: Path, *, key: str = "[seismic] suite") -> None:
+                base_dir: Path, *, key: str = "[seismic] suite") -> bool:
     """Read every record of the suite as the records section will, so that a malformed file or
     a missing ``units`` stops the run before anything is computed, in one line naming the key
-    and the file as the assessment file names it (relative to it)."""
+    and the file as the assessment file names it (relative to it). True if some record carries
+    its vertical component."""
+    from archquake.ground.base import has_vertical
     from archquake.ground.suites import load_suite
 
     try:
-        load_suite(list(suite) if isinstance(suite, tuple) else suite, units=units)
+        loaded = load_suite(list(suite) if isinstance(suite, tuple) else suite, units=units)
+        return any(has_vertical(r) for r in loaded)
     except ArchquakeError as exc:
         text = str(exc)
         for root in {str(base_dir.resolve()), str(base_dir)}:

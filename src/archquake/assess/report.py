@@ -94,6 +94,8 @@ def elements(rep) -> list[tuple]:
     else:
         _pulses(el, rep, cfg, pu)
     _records_dem_validity(el, rep, cfg, s, pu)
+    if "vertical" in s:
+        _vertical(el, s["vertical"])
     if "codecheck" in s:
         report_code_check(el, rep, s["codecheck"])
     el.append(("h2", "verdict", "8. Verdict"))
@@ -115,6 +117,45 @@ def elements(rep) -> list[tuple]:
                        f"{' (partly cached)' if any(rep.cached.values()) else ''}. "
                        "Sections: " + ", ".join(titles) + "."))
     return el
+
+
+def _vertical(el: list, v: dict) -> None:
+    """The vertical section: the runs with and without the vertical, side by side."""
+    el.append(("h2", "vertical", "7. The vertical component"))
+    el.append(("p", "The vertical ground acceleration a_v(t) acts as gravity g + a_v(t) in "
+                    f"every run of the {_model_name(v['model'])}; each row gives the same runs "
+                    "with and without it."))
+    pu = v.get("pulses")
+    if pu is not None:
+        el.append(("p", f"Step pulses with a vertical part R = {v['vertical_ratio']:g} (R a s(t) "
+                        "upward, s(t) the pulse's own shape): the least magnitude that collapses "
+                        f"the arch on a grid {100 * pu['grid_step']:g} % apart up to "
+                        f"{pu['top_g']:.3g} g (the vertical lifts the arch off at "
+                        f"{pu['lift_off_g']:.3g} g)."))
+        el.append(("table", ["t_p (s)", "without (g)", f"R = {v['vertical_ratio']:g} (g)",
+                             "change"],
+                   [[f"{r['duration_s']:.3g}", _f(r["first_collapse_g"]),
+                     _f(r["first_collapse_vertical_g"]), _change(r["first_collapse_g"],
+                                                                  r["first_collapse_vertical_g"])]
+                    for r in pu["rows"]]))
+    rows = v.get("records")
+    if rows:
+        el.append(("p", "Records with their vertical component: the first collapsing PGA of "
+                        "the records section (both components scaled together) beside the IDA "
+                        "of the horizontal alone, up to the same ceiling "
+                        f"{v['records_ceiling_g']:.3g} g."))
+        el.append(("table", ["record", "V/H (PGA)", "with the vertical (g)",
+                             "horizontal alone (g)", "change"],
+                   [[r["record"], f"{r['v_over_h_pga']:.2f}", _f(r["first_collapse_g"]),
+                     _f(r["first_collapse_horizontal_only_g"]),
+                     _change(r["first_collapse_horizontal_only_g"], r["first_collapse_g"])]
+                    for r in rows]))
+
+
+def _change(without: float | None, with_vertical: float | None) -> str:
+    if without is None or with_vertical is None:
+        return "-"
+    return f"{100 * (with_vertical / without - 1):+.1f} %"
 
 
 def _loads(el: list, a: dict) -> None:

@@ -82,8 +82,10 @@ def section_names(config: AssessConfig, arch=None) -> list[str]:
         names.remove("codecheck")
     if config.loads is None or config.loads.traffic is None:
         names.remove("traffic")
+    if not (config.vertical_ratio or (config.suite_vertical and "records" in names)):
+        names.remove("vertical")
     if arch is not None and dynamics_refusal(arch, config.model) is not None:
-        names = [n for n in names if n not in ("pulses", "records", "dem")]
+        names = [n for n in names if n not in ("pulses", "records", "dem", "vertical")]
     return names
 
 
@@ -183,7 +185,8 @@ def _tagged(progress: Callable[[str], None] | None, name: str
 #: added to it afterwards (`with_dem_warnings`).
 NEEDS: dict[str, tuple[str, ...]] = {
     "arch": (), "static": (), "traffic": (), "codecheck": (), "pulses": (), "records": (),
-    "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records")}
+    "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records"),
+    "vertical": ("records",)}
 
 
 def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> None:

@@ -747,6 +747,75 @@ def section_records(ctx: Context) -> StudyResult:
                                f"{res.ceiling:.3g} g)."),), (), data)
 
 
+# ----------------------------------------------------------------------------- the vertical
+def section_vertical(ctx: Context) -> StudyResult:
+    """What the vertical ground motion changes, side by side with the runs without it: the
+    least collapsing step magnitude at the mode's durations under the pulses' vertical part
+    (``[seismic] vertical_ratio``) and without it, on a grid 2 % apart (4 % quick) from lambda
+    up to the records' ceiling or the vertical's lift-off; and each record that carries its
+    vertical component: its first collapsing PGA in the records section (both components scaled
+    together) beside the IDA of its horizontal alone."""
+    from archquake.ground.base import has_vertical, lift_off_factor
+    from archquake.ground.pulses import StepImpulse
+
+    cfg = ctx.config
+    data: dict[str, Any] = {"model": cfg.model, "vertical_ratio": cfg.vertical_ratio}
+    lam = ctx.collapse_acceleration_g()
+    if cfg.vertical_ratio:
+        ratio = float(cfg.vertical_ratio)
+        top = rigid_scan_ceiling(lam, ctx.site)
+        lift = lift_off_factor(StepImpulse.from_g(1.0, 1.0, vertical=ratio), STANDARD_GRAVITY)
+        top = min(top, 0.999 * lift)
+        grid = np.exp(np.arange(math.log(lam), math.log(top), math.log(
+            1.04 if ctx.mode.quick else 1.02)))
+        rows: list[dict[str, Any]] = []
+        durations = ctx.mode.durations[::2]
+        with ctx.counter("vertical pulse time histories", 2 * durations.size) as tick:
+            for tp in durations:
+                first = []
+                for r in (0.0, ratio):
+                    motions = [StepImpulse.from_g(float(a), float(tp), vertical=r)
+                               for a in grid]
+                    outcomes = _model_outcomes(ctx, motions, [None] * len(motions))
+                    hit = [a for a, o in zip(grid, outcomes, strict=True) if o == "collapse"]
+                    first.append(float(hit[0]) if hit else None)
+                    tick(len(rows) * 2 + len(first))
+                rows.append({"duration_s": float(tp), "first_collapse_g": first[0],
+                             "first_collapse_vertical_g": first[1]})
+        data["pulses"] = {"family": "step", "grid_step": 0.04 if ctx.mode.quick else 0.02,
+                          "top_g": float(top), "lift_off_g": float(lift), "rows": rows}
+    records = ctx.prior.get("records")
+    if cfg.suite_vertical and records is not None:
+        from archquake.ground.suites import load_suite
+        from archquake.ida import incremental_dynamic_analysis
+        from archquake.sweeps import CaseOptions, ResultStore
+
+        suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                           units=cfg.units)
+        used = ctx.mode.records(suite.records)
+        both = [(i, r) for i, r in enumerate(used) if has_vertical(r)]
+        store_path = (ctx.out / "cache" / f"ida-horizontal-{cfg.digest}-"
+                      f"{'quick' if ctx.mode.quick else 'full'}.sqlite")
+        store_path.parent.mkdir(parents=True, exist_ok=True)
+        options = (CaseOptions(restitution=cfg.restitution, impact=cfg.impact)
+                   if cfg.model == "fourlink" else CaseOptions())
+        ctx.say(f"  IDA of the horizontal alone of {len(both)} records")
+        with ResultStore(store_path) as store:
+            res = incremental_dynamic_analysis(
+                cfg.arch, [r.horizontal for _, r in both], "pga", store, options=options,
+                model=cfg.model, ceiling=records["ceiling_g"],
+                **({} if ctx.loads is None else {"loads": ctx.loads}), **ctx.mode.ida)
+        data["records"] = [
+            {"record": records["records_used"][i], "horizontal": r.horizontal.name,
+             "vertical": r.vertical.name,
+             "v_over_h_pga": float(r.vertical.peak / r.horizontal.peak),
+             "first_collapse_g": records["first_collapse_g"][i],
+             "first_collapse_horizontal_only_g": _num(x)}
+            for (i, r), x in zip(both, res.first_collapse_levels, strict=True)]
+        data["records_ceiling_g"] = records["ceiling_g"]
+    return StudyResult("vertical", "The vertical component", (), (), (), data)
+
+
 # ----------------------------------------------------------------------------- 5. DEM
 def _dem_outcome(arch, motion, duration: float) -> str:
     """One DEM run: its outcome's word (module level: picklable)."""
@@ -1375,7 +1444,7 @@ SECTIONS: tuple[tuple[str, Callable[[Context], StudyResult]], ...] = (
     ("arch", section_arch), ("static", section_static), ("traffic", section_traffic),
     ("pulses", section_pulses),
     ("records", section_records), ("dem", section_dem), ("validity", section_validity),
-    ("codecheck", section_code_check))
+    ("vertical", section_vertical), ("codecheck", section_code_check))
 
 __all__ = ["ASSUMPTIONS", "COLLAPSE_LIKELIER", "LOADS_ASSUMPTION", "TRAFFIC_POSITIONS",
            "assumptions", "OUTCOMES", "Context", "Mode", "Progress",

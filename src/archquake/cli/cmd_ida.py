@@ -51,6 +51,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--records", required=True, metavar="SUITE",
                    help="a suite name (see 'archquake records', e.g. near-field-pulse), a "
                         "folder of .AT2/.csv files, a .list file or one accelerogram")
+    p.add_argument("--record-vertical", type=path_argument, metavar="FILE", default=None,
+                   help="the vertical component (positive upward) of a --records of one record; "
+                        "scaled with it (a suite's: its .list names each after its record)")
     p.add_argument("--units", metavar="UNITS", help="units of CSV/text records: g, m/s2 or cm/s2")
     p.add_argument("--dt", type=number, metavar="S", help="time step of one-column records, s")
     p.add_argument("--im", default="pga", metavar="IM",
@@ -132,7 +135,8 @@ def run(args: argparse.Namespace) -> int:
     spec = ArchSpec(arch.radius, arch.thickness / arch.radius, math.degrees(arch.embrace),
                     arch.voussoirs, arch.depth, arch.density)
     try:
-        suite = suite_from_args(args.records, args.units, args.dt)
+        suite = suite_from_args(args.records, args.units, args.dt,
+                                vertical=args.record_vertical)
     except ArchquakeError as exc:
         raise InvalidParameterError(f"--records: {exc}") from None
     options = CaseOptions(**impact_from_args(args))
@@ -227,6 +231,10 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
         extra = f"; {len(r.resurrections)} resurrection(s)" if r.resurrections else ""
         print(f"  {r.name:<{width}}  {first.lower_edge if first else math.nan:12.4g}  "
               f"{runs}{extra}")
+    for r in result.records:
+        if r.ceiling < result.ceiling * (1 - 1e-9):  # its vertical lifts the arch off above
+            print(f"  {r.name}: levels up to {r.ceiling:.4g} {u}, where its vertical component "
+                  "reaches g downward (the arch would leave its supports)")
     levels = fits["levels"]
     print("collapse fraction per level:")
     print("  " + "  ".join(f"{x:.3g}:{p:.2f}" for x, p in zip(levels, fits["fraction"],

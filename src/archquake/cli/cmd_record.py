@@ -63,6 +63,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="PEER .AT2 (values in g), .csv/.txt with two columns time (s), "
                         "acceleration, or one column of accelerations with --dt")
     add_record_file_arguments(p)
+    p.add_argument("--record-vertical", type=path_argument, metavar="FILE", default=None,
+                   help="the record's vertical component (same formats, --units, --dt and "
+                        "--scale; positive upward): its intensity measures and V/H are "
+                        "printed too")
     p.add_argument("--scale", type=number, metavar="S",
                    help=f"factor applied to every value ({SCALE_RANGE[0]:g} < S <= "
                         f"{SCALE_RANGE[1]:g}; default 1)")
@@ -87,26 +91,25 @@ def run(args: argparse.Namespace) -> int:
     refuse_unless({"--plot": args.plot}, args.spectrum, "with --spectrum")
     if args.periods is None:
         args.periods = period_grid(*DEFAULT_PERIOD_GRID_S) if args.spectrum else DEFAULT_PERIODS
-    record = record_from_args(args.file, args.units, args.scale, g=g, dt=args.dt)
-    if args.baseline is not None:
-        if not 0 <= args.baseline <= 5:
-            raise InvalidParameterError(f"--baseline must be a degree from 0 to 5, got "
-                                        f"{args.baseline}")
-        record = baseline_corrected(record, order=args.baseline)
-    if args.resample is not None:
-        if args.resample <= 0:
-            raise InvalidParameterError(f"--resample must be a time step > 0 s, got "
-                                        f"{args.resample:g}")
-        record = resampled(record, args.resample)
+    record = _processed(record_from_args(args.file, args.units, args.scale, g=g, dt=args.dt),
+                        args)
     if args.spectrum:
+        refuse_unless({"--record-vertical": args.record_vertical}, False, "without --spectrum")
         return _spectrum(record, args, g)
     ims = intensity_measures(record, periods=args.periods, g=g)
+    vertical = None
+    if args.record_vertical is not None:
+        vertical = vertical_summary(_processed(record_from_args(
+            args.record_vertical, args.units, args.scale, g=g, dt=args.dt), args),
+            ims, args.periods, g)
     summary = record.to_dict(g=g)
     is_text = args.file.suffix.lower() in (".csv", ".txt")
     summary["units_in_file"] = args.units if is_text else "g"  # a text file needs --units
     summary["g_m_s2"] = g
     summary["baseline_order"] = args.baseline
     summary["intensity_measures"] = ims.to_dict()
+    if vertical is not None:
+        summary["vertical"] = vertical
     if args.json:
         print_json(summary)
         return 0
@@ -141,8 +144,51 @@ def run(args: argparse.Namespace) -> int:
     for period, sa in ims.sa_g.items():
         lines.append(f"Sa({period:g} s) {' ' * max(0, 4 - len(f'{period:g}'))}{sa:.4g} g "
                      f"({100 * DEFAULT_DAMPING:g} % damping)")
+    if vertical is not None:
+        v = vertical["intensity_measures"]
+        lines += [
+            f"vertical   {vertical['name']} ({vertical['points']} points, dt "
+            f"{vertical['dt_s']:g} s), positive upward",
+            f"  PGA      {v['pga_g']:.4g} g (V/H {vertical['v_over_h']['pga']:.3g})",
+            f"  PGV      {v['pgv_m_s']:.4g} m/s",
+            f"  Arias    {v['arias_m_s']:.4g} m/s",
+            f"  D5-95    {v['d5_95_s']:.4g} s",
+        ]
+        for period, sa in v["sa_g"].items():
+            lines.append(f"  Sa({period} s) {sa:.4g} g (V/H {vertical['v_over_h']['sa'][period]:.3g})")
     print("\n".join(lines))
     return 0
+
+
+def _processed(record, args: argparse.Namespace):
+    """The record with --baseline and --resample applied (both components alike)."""
+    if args.baseline is not None:
+        if not 0 <= args.baseline <= 5:
+            raise InvalidParameterError(f"--baseline must be a degree from 0 to 5, got "
+                                        f"{args.baseline}")
+        record = baseline_corrected(record, order=args.baseline)
+    if args.resample is not None:
+        if args.resample <= 0:
+            raise InvalidParameterError(f"--resample must be a time step > 0 s, got "
+                                        f"{args.resample:g}")
+        record = resampled(record, args.resample)
+    return record
+
+
+def vertical_summary(vertical, horizontal_ims, periods, g: float) -> dict:
+    """A vertical component's description and intensity measures for JSON, with the V/H
+    ratios of its PGA and Sa(T) to the horizontal's (``horizontal_ims``)."""
+    ims = intensity_measures(vertical, periods=periods, g=g)
+    h = horizontal_ims
+
+    def ratio(a: float, b: float) -> float:
+        return a / b if b > 0 else math.nan
+
+    return vertical.to_dict(g=g) | {
+        "intensity_measures": ims.to_dict(),
+        "v_over_h": {"pga": ratio(ims.pga_g, h.pga_g),
+                     "sa": {f"{p:g}": ratio(ims.sa_g[p], h.sa_g[p]) for p in ims.sa_g}},
+    }
 
 
 def _spectrum(record, args: argparse.Namespace, g: float) -> int:

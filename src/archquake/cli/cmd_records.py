@@ -5,7 +5,11 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from archquake.cli.cmd_record import add_record_file_arguments, print_spectrum_table
+from archquake.cli.cmd_record import (
+    add_record_file_arguments,
+    print_spectrum_table,
+    vertical_summary,
+)
 from archquake.cli.common import (
     add_output_arguments,
     comma_numbers,
@@ -18,6 +22,7 @@ from archquake.cli.common import (
 from archquake.cli.site_options import add_site_options, site_options_given, spectrum_from_args
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
+from archquake.ground.base import has_vertical
 from archquake.ground.measures import intensity_measures
 from archquake.ground.periods import DEFAULT_PERIOD_GRID_S, period_grid
 from archquake.ground.response_spectra import record_spectra
@@ -140,10 +145,12 @@ def run(args: argparse.Namespace) -> int:
         args.periods = (1.0,)
     rows: list[dict[str, Any]] = []
     for r in suite:
-        ims = intensity_measures(r, periods=args.periods, g=g).to_dict()
+        measures = intensity_measures(r, periods=args.periods, g=g)
         rows.append({"name": r.name, "component": r.component, "points": r.points,
                      "dt_s": r.dt, "duration_s": r.duration, "scale": r.scale,
-                     "intensity_measures": ims, "metadata": r.metadata})
+                     "intensity_measures": measures.to_dict(), "metadata": r.metadata})
+        if has_vertical(r):  # a .list suite's record with its vertical component
+            rows[-1]["vertical"] = vertical_summary(r.vertical, measures, args.periods, g)
     if args.json:
         print_json({"suite": suite.name, "description": suite.description,
                     "source": suite.source, "units_in_files": units or "g",
@@ -161,6 +168,14 @@ def run(args: argparse.Namespace) -> int:
         sa = "".join(f"  {v:10.4g}" for v in m["sa_g"].values())
         print(f"{row['name'][:28]:28s} {event[:26]:26s} {m['pga_g']:6.3f} {m['pgv_m_s']:8.3f} "
               f"{m['arias_m_s']:10.3f} {m['d5_95_s']:7.2f} {m['mean_period_s']:6.3f}{sa}")
+        if "vertical" in row:
+            v = row["vertical"]
+            m = v["intensity_measures"]
+            sa = "".join(f"  {x:10.4g}" for x in m["sa_g"].values())
+            label, ratio = "  vertical " + str(v["name"])[:17], f"V/H {v['v_over_h']['pga']:.2f}"
+            print(f"{label:28s} {ratio:26s} "
+                  f"{m['pga_g']:6.3f} {m['pgv_m_s']:8.3f} {m['arias_m_s']:10.3f} "
+                  f"{m['d5_95_s']:7.2f} {m['mean_period_s']:6.3f}{sa}")
     return 0
 
 

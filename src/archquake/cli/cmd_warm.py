@@ -33,14 +33,16 @@ def run(args: argparse.Namespace) -> int:
 
     def progress(step: WarmStep) -> None:
         if not args.json:
-            print(f"{step.name:<10} {step.seconds:6.1f} s  {step.compiled:3d} compiled, "
-                  f"{step.loaded:3d} loaded from the cache", flush=True)
+            print(f"{step.name:<10} {step.seconds:6.1f} s ({step.cpu_seconds:6.1f} s CPU)  "
+                  f"{step.compiled:3d} compiled, {step.loaded:3d} loaded from the cache",
+                  flush=True)
 
     report = warm(args.only, progress=progress)
     if args.json:
         print_json(report.to_dict())
         return 0
-    print(f"{'total':<10} {report.seconds:6.1f} s  {report.compiled:3d} kernel signatures compiled")
+    print(f"{'total':<10} {report.seconds:6.1f} s ({report.cpu_seconds:6.1f} s CPU)  "
+          f"{report.compiled:3d} kernel signatures compiled")
     for path in report.cache_dirs:
         print(f"cache      {path}")
     return 0

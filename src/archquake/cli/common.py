@@ -649,18 +649,31 @@ def record_from_args(path: Path, units: str | None, scale: float | None, *,
     return record
 
 
-def suite_from_args(name: str, units: str | None, dt: float | None, **kwargs: Any):
+def suite_from_args(name: str, units: str | None, dt: float | None, *,
+                    vertical: Path | None = None, **kwargs: Any):
     """`archquake.ground.suites.load_suite` on the command line: a CSV or text file of
-    the suite without ``--units`` is refused naming ``--units`` and its choices."""
-    from archquake.ground.suites import MISSING_UNITS, load_suite
+    the suite without ``--units`` is refused naming ``--units`` and its choices. ``vertical``
+    (``--record-vertical``) is the vertical component of a suite of one record."""
+    from archquake.ground.suites import MISSING_UNITS, Suite, load_suite
 
     try:
-        return load_suite(name, units=units, dt=dt, **kwargs)
+        suite = load_suite(name, units=units, dt=dt, **kwargs)
     except InvalidParameterError as exc:
         if units is None and str(exc).startswith(MISSING_UNITS):
             raise InvalidParameterError(
                 f"--units {{{','.join(RECORD_UNITS)}}} is needed: {exc}") from None
         raise
+    if vertical is None:
+        return suite
+    from archquake.ground.vertical import WithVertical
+
+    if len(suite) != 1 or not isinstance(suite.records[0], Record):
+        raise InvalidParameterError(
+            f"--record-vertical pairs with one record, but {name} holds {len(suite)}; give "
+            "a suite's vertical components in a .list file, each after its record on one line")
+    both = WithVertical(suite.records[0], record_from_args(vertical, units, None, dt=dt))
+    return Suite(suite.name, (both,), suite.description + ", with its vertical component",
+                 suite.source, suite.metadata)
 
 
 def ground_motion_from_args(args: argparse.Namespace, *,

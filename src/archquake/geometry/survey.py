@@ -136,10 +136,19 @@ def chain_from_polygons(polygons, *, depth: float = 1.0, density: float = 2000.0
     tol = 1e-6 * size
     nb = len(polys)
     shared: dict[tuple[int, int], np.ndarray] = {}
+    # a vertex within tol of another block lies in that block's bounding box grown by tol: the
+    # distances are taken between those vertices only (a surveyed block has thousands)
+    box_low = [p.min(axis=0) - tol for p in polys]
+    box_high = [p.max(axis=0) + tol for p in polys]
     for a in range(nb):
         for b in range(a + 1, nb):
-            d = np.hypot(*(polys[a][:, None, :] - polys[b][None, :, :]).transpose(2, 0, 1))
-            ia = np.nonzero(d.min(axis=1) <= tol)[0]
+            near_a = np.nonzero(np.all((polys[a] >= box_low[b]) & (polys[a] <= box_high[b]), axis=1))[0]
+            near_b = np.all((polys[b] >= box_low[a]) & (polys[b] <= box_high[a]), axis=1)
+            if len(near_a) < 2 or not near_b.any():
+                continue
+            d = np.hypot(*(polys[a][near_a, None, :] - polys[b][None, near_b, :])
+                         .transpose(2, 0, 1))
+            ia = near_a[np.nonzero(d.min(axis=1) <= tol)[0]]
             if len(ia) >= 2:
                 pts = polys[a][ia]
                 # the two extreme shared vertices are the joint's ends

@@ -15,11 +15,20 @@ kind        params (float64)                   x_g''(t)
                                                [t_p, 3 t_p), 0 after (Oppenheim's impulse)
 1 sine      [a, T, direction(, R)]             direction*a*sin(2 pi t/T) on [0, T), 0 after
 2 sampled   [t0, dt, x_0, x_1, ..., x_{N-1}]   linear between samples, 0 outside
+3 sampled   [N, t0, dt, x_0, ..., x_{N-1},     the horizontal as kind 2; the upward a_v(t)
+  with its  t0v, dtv, v_0, ..., v_{M-1}]       linear between its own samples v, 0 outside
+  vertical
 ==========  =================================  ==========================================
 
 A pulse with a vertical carries [R, c] as its fourth and fifth parameters: the upward ground
 acceleration is then a_v(t) = R * direction * x_g''(t) + c, the pulse's own shape (first lobe
 +1) times R a, plus a steady c m/s^2 held through the whole run.
+
+A record with its vertical component (kind 3) keeps each component on its own time step: no
+resampling, so the compiled a_v(t) is the vertical file's own linear interpolation, exactly
+what the Python side (`WithVertical.vertical_acceleration`) evaluates, and the breakpoints are
+the union of both components' sample times. Two components of one station share their time
+step, and then the union is one grid.
 """
 
 from __future__ import annotations
@@ -35,6 +44,7 @@ from archquake.errors import InvalidParameterError
 KIND_STEP = 0
 KIND_SINE = 1
 KIND_SAMPLED = 2
+KIND_SAMPLED_VERTICAL = 3
 
 
 @runtime_checkable
@@ -83,15 +93,13 @@ TIME_RESOLUTION = 1e-9
 #: What each kind's shortest piece is called, for the error message.
 _PIECE_NAMES = {KIND_STEP: ("pulse duration t_p", 1.0),  # pieces t_p and 2 t_p
                 KIND_SINE: ("period T", 0.25),  # quarter periods (breakpoints at the extrema)
-                KIND_SAMPLED: ("record time step DT", 1.0)}
+                KIND_SAMPLED: ("record time step DT", 1.0),
+                KIND_SAMPLED_VERTICAL: ("record time step DT", 1.0)}
 
 
-def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
-                 vertical: str | None = None) -> GroundMotion:
+def check_motion(motion: object, needs: tuple[str, ...] | None = None) -> GroundMotion:
     """``motion`` itself if it is a ground motion (or, given ``needs``, has those attributes:
-    what a model reads of it); else the one line that says what is. A model that does not
-    read the vertical ground acceleration names itself in ``vertical``, and a motion with a
-    vertical is refused for it (`refuse_vertical`)."""
+    what a model reads of it); else the one line that says what is."""
     ok = (isinstance(motion, GroundMotion) if needs is None
           else all(hasattr(motion, name) for name in needs))
     if not ok:
@@ -99,8 +107,6 @@ def check_motion(motion: object, needs: tuple[str, ...] | None = None, *,
             f"motion must be a ground motion from archquake.ground (StepImpulse, SinePulse or "
             f"Record), e.g. StepImpulse.from_g(1.0, 0.27) for 1.0 g during t_p = 0.27 s; got "
             f"{type(motion).__name__}")
-    if vertical is not None:
-        refuse_vertical(motion, vertical)
     return cast(GroundMotion, motion)
 
 
@@ -110,15 +116,6 @@ def has_vertical(motion: object) -> bool:
     v = getattr(motion, "vertical", 0.0)
     return (v is not None and not isinstance(v, (int, float))) or bool(
         v or getattr(motion, "steady_vertical", 0.0))
-
-
-def refuse_vertical(motion: object, model: str) -> None:
-    """The one line for a model that does not read the vertical ground acceleration yet."""
-    if has_vertical(motion):
-        raise InvalidParameterError(
-            f"{model} does not take the vertical ground acceleration yet: drop the pulse's "
-            "vertical (--vertical), or run the rigid chain's time stepper (--model rigid) or the "
-            "four-link model (--model fourlink)")
 
 
 def time_floor(time_scale: float, duration: float) -> float:
@@ -149,6 +146,11 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
     (t_p, T or the record's DT) and its lower bound.
     """
     name, fraction = _PIECE_NAMES[kind]
+    if kind == KIND_SAMPLED_VERTICAL:  # each component on its own step
+        n = int(params[0])
+        check_time_resolution(KIND_SAMPLED, params[1:3 + n], time_scale)
+        check_time_resolution(KIND_SAMPLED, params[3 + n:], time_scale)
+        return
     if kind == KIND_SAMPLED:
         value = float(params[1])
         duration = float(params[0] + params[1] * (params.shape[0] - 3))
@@ -166,35 +168,62 @@ def check_time_resolution(kind: int, params: np.ndarray, time_scale: float) -> N
             f"are below the integrator's time resolution), got {value:g}")
 
 
+def _vertical_extremes(kind: int, params: np.ndarray) -> tuple[float, float] | None:
+    """(lowest upward ground acceleration, its steady part c), m/s^2, of a motion with a
+    vertical (a record's: its lowest sample, or 0); None without one."""
+    if kind == KIND_SAMPLED_VERTICAL:  # a record's vertical: its lowest sample
+        return min(float(np.min(params[5 + int(params[0]):])), 0.0), 0.0
+    if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
+        return None
+    a, r, c = float(params[0]), float(params[3]), float(params[4])
+    return c + (min(r * a, -0.5 * r * a) if kind == KIND_STEP else -abs(r) * a), c
+
+
 def check_lift_off(kind: int, params: np.ndarray, g: float) -> None:
     """Refuse a motion whose vertical part reaches g downward: with g + a_v(t) <= 0 the arch
     leaves its supports, which no model here describes (the rigid-body equations assume the
     blocks stay pressed together by gravity)."""
-    if kind not in (KIND_STEP, KIND_SINE) or params.shape[0] <= 3:
+    extremes = _vertical_extremes(kind, params)
+    if extremes is None:
         return
-    a, r, c = float(params[0]), float(params[3]), float(params[4])
-    lowest = c + (min(r * a, -0.5 * r * a) if kind == KIND_STEP else -abs(r) * a)
-    if not g + lowest > 0.0:
+    lowest = extremes[0]
+    if g + lowest > 0.0:
+        return
+    if kind == KIND_SAMPLED_VERTICAL:
         raise InvalidParameterError(
-            f"the vertical ground acceleration (R = {r:g}, a = {a / g:.3g} g, steady "
-            f"{c / g:.3g} g) reaches {-lowest / g:.3g} g downward: g + a_v <= 0 lifts the arch "
-            "off its supports, outside every model; keep the downward vertical below g")
+            f"the vertical component reaches {-lowest / g:.3g} g downward: g + a_v <= 0 "
+            "lifts the arch off its supports, outside every model; lower --scale")
+    a, r, c = float(params[0]), float(params[3]), float(params[4])
+    raise InvalidParameterError(
+        f"the vertical ground acceleration (R = {r:g}, a = {a / g:.3g} g, steady "
+        f"{c / g:.3g} g) reaches {-lowest / g:.3g} g downward: g + a_v <= 0 lifts the arch "
+        "off its supports, outside every model; keep the downward vertical below g")
+
+
+def lift_off_factor(motion: object, g: float) -> float:
+    """The factor of ``motion.scaled`` at which its vertical reaches g downward (the arch
+    leaves its supports there, `check_lift_off`); inf for a motion without a downward
+    vertical. Scaling scales every acceleration, the vertical's (a pulse's steady c too).
+
+    >>> from archquake.ground.pulses import StepImpulse
+    >>> lift_off_factor(StepImpulse(2.0, 0.1, vertical=-0.5), 9.8)  # -0.5 * 2 f = -9.8
+    9.8
+    """
+    spec = getattr(motion, "kernel_spec", None)
+    if spec is None or not has_vertical(motion):
+        return math.inf
+    extremes = _vertical_extremes(*spec())
+    if extremes is None or not extremes[0] < 0.0:
+        return math.inf
+    return g / -extremes[0]
 
 
 def check_motion_lift_off(motion: object, g: float) -> None:
     """`check_lift_off` for any motion with a vertical: a pulse's, or a record's vertical
     component (its lowest sample)."""
-    if not has_vertical(motion):
-        return
-    vertical = getattr(motion, "vertical", None)
-    samples = getattr(vertical, "accelerations", None)
-    if samples is None:
+    if has_vertical(motion):
         kind, params = cast(GroundMotion, motion).kernel_spec()
         check_lift_off(kind, params, g)
-    elif not g + float(np.min(samples)) > 0.0:
-        raise InvalidParameterError(
-            f"the vertical component reaches {-float(np.min(samples)) / g:.3g} g downward: "
-            "g + a_v <= 0 lifts the arch off its supports, outside every model; lower --scale")
 
 
 def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
@@ -225,7 +254,11 @@ def motion_label(motion: GroundMotion | Mapping[str, Any]) -> str:
         return f"step a = {d['magnitude_g']:.3g} g, t_p = {d['duration_s']:.3g} s" + towards + up
     if d.get("type") == "sine":
         return f"sine a = {d['magnitude_g']:.3g} g, T = {d['period_s']:.3g} s" + towards + up
-    return str(d.get("name", getattr(motion, "name", "record")))
+    name = str(d.get("name", getattr(motion, "name", "record")))
+    vertical = d.get("vertical")
+    if isinstance(vertical, Mapping):  # a record with its vertical component
+        name += f" with its vertical {vertical.get('name')} (PGA {vertical.get('pga_g', 0):.3g} g)"
+    return name
 
 
 def acceleration_peaks(motion: object) -> tuple[float, float] | None:
@@ -258,6 +291,6 @@ def acceleration_peaks(motion: object) -> tuple[float, float] | None:
 
 
 __all__ = ["GroundMotion", "acceleration_peaks", "check_lift_off", "check_motion",
-           "check_motion_lift_off", "has_vertical", "refuse_vertical", "motion_label",
-           "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "TIME_RESOLUTION", "check_time_resolution",
-           "time_floor"]
+           "check_motion_lift_off", "has_vertical", "lift_off_factor", "motion_label",
+           "KIND_STEP", "KIND_SINE", "KIND_SAMPLED", "KIND_SAMPLED_VERTICAL", "TIME_RESOLUTION",
+           "check_time_resolution", "time_floor"]

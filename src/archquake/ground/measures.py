@@ -40,6 +40,7 @@ import math
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numba as nb
 import numpy as np
@@ -474,21 +475,29 @@ def _periods(periods: Iterable[float]) -> np.ndarray:
     return p
 
 
+@lru_cache(maxsize=8192)
 def _transition(omega: float, zeta: float, h: float) -> np.ndarray:
     """2x4 coefficients c with [u, v](t+h) = c @ [u, v, a(t), a(t+h)](t) for input linear on
     [t, t+h], from the state-transition matrix of the augmented system
-    z = [u, v, a, a'], z' = [[0,1,0,0], [-w^2,-2 zeta w,-1,0], [0,0,0,1], [0,0,0,0]] z."""
+    z = [u, v, a, a'], z' = [[0,1,0,0], [-w^2,-2 zeta w,-1,0], [0,0,0,1], [0,0,0,0]] z.
+
+    Kept for the next call with the same three numbers (read-only): the spectra of a suite's
+    records at the same periods share their time steps, and each matrix exponential costs far
+    more than the oscillator's run through a record."""
     from scipy.linalg import expm  # (lazy: keeps ``import archquake`` light)
 
     if h == 0.0:
-        return np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]])
-    m = np.array([[0.0, 1.0, 0.0, 0.0],
-                  [-omega * omega, -2.0 * zeta * omega, -1.0, 0.0],
-                  [0.0, 0.0, 0.0, 1.0],
-                  [0.0, 0.0, 0.0, 0.0]])
-    e = expm(m * h)[:2]
-    # a' = (a1 - a0)/h: the columns of a0 and a1
-    return np.column_stack([e[:, 0], e[:, 1], e[:, 2] - e[:, 3] / h, e[:, 3] / h])
+        c = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]])
+    else:
+        m = np.array([[0.0, 1.0, 0.0, 0.0],
+                      [-omega * omega, -2.0 * zeta * omega, -1.0, 0.0],
+                      [0.0, 0.0, 0.0, 1.0],
+                      [0.0, 0.0, 0.0, 0.0]])
+        e = expm(m * h)[:2]
+        # a' = (a1 - a0)/h: the columns of a0 and a1
+        c = np.column_stack([e[:, 0], e[:, 1], e[:, 2] - e[:, 3] / h, e[:, 3] / h])
+    c.setflags(write=False)
+    return c
 
 
 @nb.njit(cache=True, nogil=True)
@@ -536,9 +545,8 @@ def _spectrum(t: np.ndarray, a: np.ndarray, periods: np.ndarray, zeta: float) ->
         m = max(1, math.ceil(h_max * _SUBSTEPS_PER_PERIOD / period))
         coefs = np.stack([_transition(omega, zeta, float(h) / m) for h in h_unique])
         h_tail = period / _SUBSTEPS_PER_PERIOD
-        tail = _transition(omega, zeta, h_tail)
-        peak = _peak_displacement(a, which, coefs, m, np.ascontiguousarray(tail),
-                                  _SUBSTEPS_PER_PERIOD + 1)
+        tail = np.array(_transition(omega, zeta, h_tail))  # (a writable copy, as the kernel takes)
+        peak = _peak_displacement(a, which, coefs, m, tail, _SUBSTEPS_PER_PERIOD + 1)
         out[j] = omega * omega * peak
     return out
 

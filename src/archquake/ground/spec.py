@@ -152,6 +152,7 @@ class ExcitationSpec:
 
     def build(self, *, g: float = STANDARD_GRAVITY):
         """The `GroundMotion` (SI)."""
+        from archquake.ground.base import has_vertical
         from archquake.ground.pulses import SinePulse, StepImpulse
 
         assert self.direction is not None  # __post_init__ sets -1 or +1
@@ -165,6 +166,8 @@ class ExcitationSpec:
                                     vertical=self.vertical_ratio or 0.0)
         if self.motion is not None:
             assert self.scale is not None  # __post_init__ sets it for a record
+            if self.direction < 0 and has_vertical(self.motion):  # the horizontal only
+                return self.motion.mirrored().scaled(self.scale)
             return self.motion.scaled(self.scale * self.direction)
         return _load_record(self, g=g)
 

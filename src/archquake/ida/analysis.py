@@ -93,7 +93,9 @@ class RecordIda:
     peak_rotation : ndarray
         Largest mechanism rotation of each run, rad (for a collapse: where the run stopped).
     start, ceiling : float
-        First level (PGA = lambda g) and ceiling (IM units).
+        First level (PGA = lambda g) and ceiling (IM units): the suite's, or lower, just below
+        the level at which the record's vertical component reaches g downward (the arch
+        leaves its supports there, outside every model).
     """
 
     name: str
@@ -372,6 +374,7 @@ def incremental_dynamic_analysis(
     -------
     IdaResult
     """
+    from archquake.ground.base import lift_off_factor
     from archquake.ida.batch import BATCHES, rigid_half_step_verdicts
     from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import mechanism_limits
@@ -413,10 +416,14 @@ def incremental_dynamic_analysis(
                 "hunt_step": hunt_step, "hunt_growth": hunt_growth,
                 "restitution": options.restitution, "impact": options.impact or "paper",
                 "t_end_s": options.t_end_s}
+    # a record's vertical scales with it: each record's levels end below the one at which its
+    # vertical reaches g downward (the arch leaves its supports there, outside every model)
+    ceilings = [min(float(ceiling), float(x0 * (lift_off_factor(m, g) * (1 - 1e-9)) ** k))
+                for m, x0 in zip(motions, im0, strict=True)]
     hf = []
-    for s in starts:
-        start = min(float(s), float(ceiling))
-        hf.append(HuntFill(start, float(ceiling), precision, fill, hunt_step, hunt_growth))
+    for s, top in zip(starts, ceilings, strict=True):
+        start = min(float(s), top)
+        hf.append(HuntFill(start, top, precision, fill, hunt_step, hunt_growth))
 
     digests = [motion_digest(m) for m in motions]  # each record's id part, hashed once
 
@@ -493,7 +500,7 @@ def incremental_dynamic_analysis(
             outcomes=tuple(r.outcome for r in recs),
             collapse_half_cycles=tuple(r.outputs.get("collapse_half_cycle") for r in recs),
             peak_rotation=np.array([_peak(r.outputs) for r in recs]),
-            start=hf[i].start, ceiling=float(ceiling)))
+            start=hf[i].start, ceiling=ceilings[i]))
     return IdaResult(arch=arch, model=model, im=measure, records=tuple(records), loads=loads,
                      settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
                      rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,

@@ -76,7 +76,7 @@ from archquake.ground._kernel import (
     next_breakpoint,
     vertical_in_piece,
 )
-from archquake.ground.base import KIND_SAMPLED, KIND_STEP
+from archquake.ground.base import KIND_SAMPLED, KIND_SAMPLED_VERTICAL, KIND_STEP
 from archquake.mechanism.kinematics import (
     G0,
     H0,
@@ -413,7 +413,7 @@ def find_onset(mech, exc, g, t, t_limit):
     t_cur = t
     while t_cur < t_limit:
         t_next = min(next_breakpoint(kind, params, t_cur), t_limit)
-        nsub = 1 if kind == KIND_STEP else (2 if kind == KIND_SAMPLED else 64)
+        nsub = 1 if kind == KIND_STEP else (2 if kind >= KIND_SAMPLED else 64)
         prev_t = t_cur
         for j in range(nsub + 1):
             tj = t_cur + (t_next - t_cur) * j / nsub
@@ -488,7 +488,9 @@ def no_return(piece, phi, v, kappa2, v_crest, v_toggle):
     a relative margin of 1e-9).
     """
     mech, params, tail, t_left, g = piece.mech, piece.exc.params, piece.exc.tail, piece.t_left, piece.g
-    t0, dt = params[0], params[1]
+    # the tail's grid: the horizontal's samples (a record with its vertical: after its count)
+    t0, dt = ((params[1], params[2]) if piece.exc.kind == KIND_SAMPLED_VERTICAL
+              else (params[0], params[1]))
     n = tail.shape[0]
     i = int(math.floor((t_left - t0) / dt + 1e-9))
     if i < 0:

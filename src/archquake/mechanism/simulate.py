@@ -445,12 +445,18 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
     (`archquake.mechanism._kernels.no_return`). The tail is empty (the criterion off) for
     the pulses; a row's toggle value is nan (the criterion off on that row) if the potential
     does not decrease from its crest to its toggle (sampled at 257 points), which the
-    criterion's bound assumes."""
-    from archquake.ground.base import KIND_SAMPLED
+    criterion's bound assumes.
+
+    A record with its vertical component: the vertical's power on the mechanism,
+    -a_v V'(phi) phi', obeys the horizontal's bound (|V'| <= sqrt(M m_eff) by the same
+    Cauchy-Schwarz step, V the moving links' potential/g), so the criterion holds with the
+    tail of |x_g''| + |a_v|: on the horizontal's grid, continued to the vertical's end, the
+    vertical's part taken from its last sample at or before each time (an upper bound)."""
+    from archquake.ground.base import KIND_SAMPLED, KIND_SAMPLED_VERTICAL
 
     rows = prepared.table.packed
     v_toggle = np.full(rows.shape[0], np.nan)
-    if kind != KIND_SAMPLED:
+    if kind not in (KIND_SAMPLED, KIND_SAMPLED_VERTICAL):
         return np.empty(0), v_toggle
     for r, packed in enumerate(rows):
         value = _toggle_potential(np.ascontiguousarray(packed).tobytes())
@@ -458,9 +464,24 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
             v_toggle[r] = value
     if not np.any(np.isfinite(v_toggle)):
         return np.empty(0), v_toggle
-    x = np.abs(params[2:])
-    dt = float(params[1])
-    signed = params[2:]
+    if kind == KIND_SAMPLED:
+        return _abs_tail(params[2:], float(params[1])), v_toggle
+    n = int(params[0])
+    t0, dt = float(params[1]), float(params[2])
+    t0v, dtv, v = float(params[3 + n]), float(params[4 + n]), params[5 + n:]
+    end_v = t0v + dtv * (v.size - 1)
+    points = max(n, int(math.ceil((end_v - t0) / dt)) + 1)
+    tail = np.zeros(points)
+    tail[:n] = _abs_tail(params[3:3 + n], dt)
+    j = np.floor((t0 + dt * np.arange(points) - t0v) / dtv + 1e-9).astype(np.intp)
+    tail += _abs_tail(v, dtv)[np.clip(j, 0, v.size - 1)]
+    return np.ascontiguousarray(tail), v_toggle
+
+
+def _abs_tail(signed: np.ndarray, dt: float) -> np.ndarray:
+    """``int_{t_i}^{end} |x| dt`` from each sample of a record linear between its samples
+    ``signed`` (time step ``dt``), exact, sign changes included; (n,)."""
+    x = np.abs(signed)
     lo, hi = signed[:-1], signed[1:]
     same = lo * hi >= 0.0
     den = np.where(same, 1.0, x[:-1] + x[1:])
@@ -468,7 +489,7 @@ def _record_tail(prepared: PreparedMechanism, kind: int,
                      0.5 * dt * (lo * lo + hi * hi) / den)
     tail = np.zeros(x.size)
     tail[:-1] = np.cumsum(piece[::-1])[::-1]
-    return np.ascontiguousarray(tail), v_toggle
+    return np.ascontiguousarray(tail)
 
 
 @lru_cache(maxsize=64)

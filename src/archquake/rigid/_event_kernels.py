@@ -63,7 +63,7 @@ import numpy as np
 import archquake._dopri as DP  # the Dormand-Prince 5(4) tableau
 import archquake.rigid._step_kernels as RK
 from archquake.dem._kernels import collapsed
-from archquake.ground._kernel import ground_in_piece, next_breakpoint
+from archquake.ground._kernel import ground_in_piece, next_breakpoint, vertical_in_piece
 
 #: Most hinges a mode may have.
 MAX_HINGES = 24
@@ -580,9 +580,10 @@ def margins(K, jh, ch, forces, n, weight, skip):
 
 
 @nb.njit(cache=True)
-def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed):
-    """dy/dt for y = (beta, beta', W_in): False if singular."""
-    ok = dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, ax, g, ws, closed)
+def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed, av):
+    """dy/dt for y = (beta, beta', W_in): False if singular. ``av``: the upward ground
+    acceleration (m/s^2): the links move under gravity g + av, and W_in counts its work."""
+    ok = dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, ax, g + av, ws, closed)
     bdd = ws[11]
     vG = ws[6]
     for i in range(K):
@@ -591,6 +592,9 @@ def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed):
     pw = 0.0
     for k in range(1, K + 1):
         pw -= ax * lm[k] * vG[k, 0]
+    if av != 0.0:  # the vertical's work (without one, W_in as before to the bit)
+        for k in range(1, K + 1):
+            pw -= av * lm[k] * vG[k, 1]
     ydot[2 * K] = pw
     return ok
 
@@ -613,26 +617,28 @@ def dopri_step(K, jh, ch, t, h, y, f0, p0, links, span, ws, ks, y1, f1):
     for i in range(m):
         ytmp[i] = y[i] + h * DP.A21 * f0[i]
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C2 * h, t), g, ws,
-              k2, closed)
+              k2, closed, vertical_in_piece(kind, gp, t + DP.C2 * h, t))
     for i in range(m):
         ytmp[i] = y[i] + h * (DP.A31 * f0[i] + DP.A32 * k2[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C3 * h, t), g, ws,
-              k3, closed)
+              k3, closed, vertical_in_piece(kind, gp, t + DP.C3 * h, t))
     for i in range(m):
         ytmp[i] = y[i] + h * (DP.A41 * f0[i] + DP.A42 * k2[i] + DP.A43 * k3[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C4 * h, t), g, ws,
-              k4, closed)
+              k4, closed, vertical_in_piece(kind, gp, t + DP.C4 * h, t))
     for i in range(m):
         ytmp[i] = y[i] + h * (DP.A51 * f0[i] + DP.A52 * k2[i] + DP.A53 * k3[i] + DP.A54 * k4[i])
     ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + DP.C5 * h, t), g, ws,
-              k5, closed)
+              k5, closed, vertical_in_piece(kind, gp, t + DP.C5 * h, t))
     for i in range(m):
         ytmp[i] = y[i] + h * (DP.A61 * f0[i] + DP.A62 * k2[i] + DP.A63 * k3[i] + DP.A64 * k4[i]
                               + DP.A65 * k5[i])
-    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, k6, closed)
+    ok &= rhs(K, jh, ch, ytmp, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, k6, closed,
+              vertical_in_piece(kind, gp, t + h, t))
     for i in range(m):
         y1[i] = y[i] + h * (DP.B1 * f0[i] + DP.B3 * k3[i] + DP.B4 * k4[i] + DP.B5 * k5[i] + DP.B6 * k6[i])
-    ok &= rhs(K, jh, ch, y1, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, f1, closed)
+    ok &= rhs(K, jh, ch, y1, p0, lm, lg0, li, ground_in_piece(kind, gp, t + h, t), g, ws, f1, closed,
+              vertical_in_piece(kind, gp, t + h, t))
     if not ok:
         return math.inf
     err = 0.0
@@ -921,27 +927,34 @@ def _remove_hinge(K, jh, ch, y, pos):
 
 
 @nb.njit(cache=True)
-def onset_time(kind, gp, t, t_end, lam_pos, lam_neg):
+def _unsafe(kind, gp, ts, t, lam_pos, lam_neg, g):
+    """Whether the ground acceleration at ``ts`` (in the piece of ``t``) leaves the safe domain
+    x_g'' in [-lam_neg, lam_pos] (m/s^2, at gravity g), both ends scaled by (g + a_v) / g."""
+    a = ground_in_piece(kind, gp, ts, t)
+    s = 1.0 + vertical_in_piece(kind, gp, ts, t) / g
+    return a > lam_pos * s or a < -lam_neg * s
+
+
+@nb.njit(cache=True)
+def onset_time(kind, gp, t, t_end, lam_pos, lam_neg, g):
     """First time in [t, t_end) at which the ground acceleration leaves the safe domain
-    (x_g'' > lam_pos or x_g'' < -lam_neg, m/s^2); inf if none. Sub-steps of at most 1 ms within
-    each piece of the motion, then bisection to 1e-13 s."""
+    (x_g'' > lam_pos or x_g'' < -lam_neg, m/s^2, both times (g + a_v) / g under a vertical
+    ground acceleration a_v); inf if none. Sub-steps of at most 1 ms within each piece of the
+    motion, then bisection to 1e-13 s."""
     while t < t_end:
         bp = min(next_breakpoint(kind, gp, t), t_end)
-        a0 = ground_in_piece(kind, gp, t, t)
-        if a0 > lam_pos or a0 < -lam_neg:
+        if _unsafe(kind, gp, t, t, lam_pos, lam_neg, g):
             return t
         nsub = max(1, int(math.ceil((bp - t) / 1e-3)))
         prev = t
         for s in range(1, nsub + 1):
             ts = t + (bp - t) * s / nsub
-            a = ground_in_piece(kind, gp, ts, t)
-            if a > lam_pos or a < -lam_neg:
+            if _unsafe(kind, gp, ts, t, lam_pos, lam_neg, g):
                 lo = prev
                 hi = ts
                 for _ in range(80):
                     mid = 0.5 * (lo + hi)
-                    am = ground_in_piece(kind, gp, mid, t)
-                    if am > lam_pos or am < -lam_neg:
+                    if _unsafe(kind, gp, mid, t, lam_pos, lam_neg, g):
                         hi = mid
                     else:
                         lo = mid
@@ -1192,7 +1205,7 @@ def run(chain, span, state, output, written):
     while t < t_end - 1e-13:
         # ---------------------------------------------------------------- locked, at rest
         if K == 0:
-            t_on = onset_time(kind, gp, t, t_end, lam_pos, lam_neg)
+            t_on = onset_time(kind, gp, t, t_end, lam_pos, lam_neg, g)
             t_stop = min(t_on, t_end)
             written, col = _emit(chain, span, state, output, links, t_stop, written,
                                   (y, f0, y, f0, t, 0.0), K, jh, ch, ws, yo)
@@ -1201,16 +1214,18 @@ def run(chain, span, state, output, written):
                 break
             t = t_on
             ax = ground_in_piece(kind, gp, t, t)
+            av = vertical_in_piece(kind, gp, t, t)
+            s_on = 1.0 + av / g  # the thresholds at gravity g + av
             if ax > 0.0:
-                ax = max(ax, lam_pos * (1.0 + 1e-6))
+                ax = max(ax, lam_pos * s_on * (1.0 + 1e-6))
             else:
-                ax = min(ax, -lam_neg * (1.0 + 1e-6))
+                ax = min(ax, -lam_neg * s_on * (1.0 + 1e-6))
             for b in range(n):
                 qf[b, 0] = X0[b, 0]
                 qf[b, 1] = X0[b, 1]
                 qf[b, 2] = 0.0
                 vf[b, 0] = -ax
-                vf[b, 1] = -g
+                vf[b, 1] = -(g + av)
                 vf[b, 2] = 0.0
             geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
             nrm = geo.nrm
@@ -1241,7 +1256,8 @@ def run(chain, span, state, output, written):
         else:
             # ------------------------------------------------------------ one step
             ax0 = ground_in_piece(kind, gp, t, t)
-            if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed):
+            if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed,
+                       vertical_in_piece(kind, gp, t, t)):
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
                                                   WHY_SINGULAR, t), written
             counters[N_EVALS] += 1
@@ -1289,7 +1305,8 @@ def run(chain, span, state, output, written):
                     ev_kind = 1
                     ev_i = i
             ax1 = ground_in_piece(kind, gp, t1, t)
-            joint_forces(chain, K, jh, ch, ws, ax1, g, forces)
+            g1 = g + vertical_in_piece(kind, gp, t1, t)  # gravity with the vertical
+            joint_forces(chain, K, jh, ch, ws, ax1, g1, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if fr > diag[E_FRICTION]:
                 diag[E_FRICTION] = fr
@@ -1297,9 +1314,10 @@ def run(chain, span, state, output, written):
             if lo >= -ftol and ho >= -ftol:
                 tm = t + 0.5 * hh
                 hermite(y, f0, y1, f1, t, hh, tm, 2 * K + 1, ytmp)
+                gm = g + vertical_in_piece(kind, gp, tm, t)
                 dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li,
-                         ground_in_piece(kind, gp, tm, t), g, ws, closed)
-                joint_forces(chain, K, jh, ch, ws, ground_in_piece(kind, gp, tm, t), g, forces)
+                         ground_in_piece(kind, gp, tm, t), gm, ws, closed)
+                joint_forces(chain, K, jh, ch, ws, ground_in_piece(kind, gp, tm, t), gm, forces)
                 lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
                 counters[N_EVALS] += 1
                 if lo_m < lo:
@@ -1313,8 +1331,9 @@ def run(chain, span, state, output, written):
                     mid = 0.5 * (a_ + b_)
                     hermite(y, f0, y1, f1, t, hh, mid, 2 * K + 1, ytmp)
                     axm = ground_in_piece(kind, gp, mid, t)
-                    dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li, axm, g, ws, closed)
-                    joint_forces(chain, K, jh, ch, ws, axm, g, forces)
+                    gm = g + vertical_in_piece(kind, gp, mid, t)
+                    dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li, axm, gm, ws, closed)
+                    joint_forces(chain, K, jh, ch, ws, axm, gm, forces)
                     lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
                     counters[N_EVALS] += 1
                     if lo_m < 0.0 or ho_m < 0.0:
@@ -1364,8 +1383,9 @@ def run(chain, span, state, output, written):
             if ev_kind == 2:
                 # which margin: recompute at the event
                 axe = ground_in_piece(kind, gp, t, t_step)
-                dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axe, g, ws, closed)
-                joint_forces(chain, K, jh, ch, ws, axe, g, forces)
+                ge = g + vertical_in_piece(kind, gp, t, t_step)
+                dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axe, ge, ws, closed)
+                joint_forces(chain, K, jh, ch, ws, axe, ge, forces)
                 lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
                 if ho < lo:
                     return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
@@ -1474,10 +1494,11 @@ def run(chain, span, state, output, written):
         # ---------------------------------------------------------------- consistency
         for _ in range(2 * nj):
             axc = ground_in_piece(kind, gp, t, t)
-            if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, g, ws, closed):
+            gc = g + vertical_in_piece(kind, gp, t, t)
+            if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, gc, ws, closed):
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
                                                   WHY_SINGULAR, t), written
-            joint_forces(chain, K, jh, ch, ws, axc, g, forces)
+            joint_forces(chain, K, jh, ch, ws, axc, gc, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if ho < -ftol:
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,

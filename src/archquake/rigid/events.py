@@ -27,7 +27,7 @@ import archquake.rigid._event_kernels as EK
 import archquake.rigid._step_kernels as RK
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
-from archquake.ground.base import refuse_vertical
+from archquake.ground.base import check_motion_lift_off
 from archquake.rigid.model import (
     DEFAULT_TIME_STEP,
     GAP_TOLERANCE,
@@ -35,6 +35,7 @@ from archquake.rigid.model import (
     SOLVER_TOLERANCE,
     RigidModel,
     mean_acceleration,
+    mean_vertical,
 )
 
 #: Relative and absolute (rad, rad/s) tolerances of the Dormand-Prince steps. With these and
@@ -314,7 +315,7 @@ def _stepper_window(model: EventModel, motion, chain: EK.Chain, state: EK.State,
             cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0,
                               RK.METHOD_DIRECT, correction=False)
             RK.run(r.chain, cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
-                   acc, np.empty(0), RK.Record(ns, oq, ov, od), dg)
+                   acc, mean_vertical(motion, t, h, ns), RK.Record(ns, oq, ov, od), dg)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
         i = k - 1
@@ -367,7 +368,7 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
     settings = DemSettings() if settings is None else settings
     n = r.n_bodies
     lref = model.lref
-    refuse_vertical(motion, "the rigid chain")
+    check_motion_lift_off(motion, g)
     kind, gp = motion.kernel_spec()
     t_exc = excitation_end(motion)
     t_exc = math.inf if t_exc is None else float(t_exc)
