@@ -48,8 +48,8 @@ def main() -> dict:
         t_new, new = cpu(arch, motion, h, "direct")
         t_old, old = cpu(arch, motion, h, "pgs")
         out[label] = (t_old, t_new)
-        print(f"  {label:40s} pgs {t_old:7.2f} s ({old.result.outcome.value}), default "
-              f"{t_new:6.3f} s ({new.result.outcome.value}): {t_old / t_new:6.1f} times faster")
+        print(f"  {label:40s} pgs {t_old:7.2f} s ({old.outcome.value}), default "
+              f"{t_new:6.3f} s ({new.outcome.value}): {t_old / t_new:6.1f} times faster")
         print(f"  {'':40s} stepping alone: pgs {old.wall_s:7.2f} s, default {new.wall_s:6.3f} s "
               f"(wall): {old.wall_s / new.wall_s:6.1f} times faster")
     return out

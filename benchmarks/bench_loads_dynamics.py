@@ -19,7 +19,7 @@ from timing import BRIDGE_ARGS as BRIDGE  # benchmarks/timing.py
 from timing import best_of
 from timing import best_process as _process
 
-from archquake.dem.assembly import build_arch_assembly
+from archquake.blocks.assembly import build_arch_assembly
 from archquake.geometry import Arch
 from archquake.geometry.loads import Fill, Loads
 from archquake.ground import StepImpulse

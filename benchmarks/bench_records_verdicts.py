@@ -30,8 +30,8 @@ import numpy as np
 
 import archquake.rigid._verdict_kernels as VK
 import archquake.rigid.verdict as V
+from archquake.blocks.criteria import BlockCriteria
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.settings import DemSettings
 from archquake.geometry import Arch
 from archquake.ground.suites import load_suite
 from archquake.rigid._input_kernels import suffix_maxima
@@ -58,7 +58,7 @@ def plain_suffix(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def reference(arch, motions, threads: int) -> list[str]:
     """The batch as it ran before (module docstring): the verdicts' outcomes."""
-    settings = DemSettings()
+    settings = BlockCriteria()
     model = V.rigid_model(arch)
     packed = V._packed(model, settings)
     h = V.verdict_time_step(model)

@@ -1,6 +1,6 @@
-"""Benchmark: the rigid chain's post-processing (the samples -> DemResult path,
-``rigid_chain._samples_to_result``, and the verdict sweeps read), against main's per-sample
-and per-joint code (:mod:`archquake.dem._result_reference`) measured in the same run, on the
+"""Benchmark: the rigid chain's post-processing (the samples -> BlockResult path,
+``rigid_chain._samples_to_run``, and the verdict sweeps read), against main's per-sample
+and per-joint code (:mod:`archquake.blocks._result_reference`) measured in the same run, on the
 4 s history of bench_rigid_chain.py (Oppenheim's arch, step 1.0 g, t_p 0.20 s, h 1e-4 s,
 output every 5e-4 s: 8001 samples), then rigid_to_verdict's whole call against its stepping.
 
@@ -15,8 +15,8 @@ import time
 import numpy as np
 from timing import best_of  # benchmarks/timing.py
 
-from archquake.dem import _result_reference as REF
-from archquake.dem import result as R
+from archquake.blocks import _result_reference as REF
+from archquake.blocks import result as R
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse
 from archquake.rigid import run as RC
@@ -29,20 +29,20 @@ def main() -> dict:
     model = RC.RigidModel.build(arch)
     RC.simulate_rigid(model, motion, duration=0.05)  # compile / load the cache
     seen: dict = {}
-    inner = RC._samples_to_result
+    inner = RC._samples_to_run
 
     def spy(model, motion, settings, **samples):
         seen.update(samples, settings=settings)
         return inner(model, motion, settings, **samples)
 
-    RC._samples_to_result = spy  # type: ignore[assignment]
+    RC._samples_to_run = spy  # type: ignore[assignment]
     try:
         run = RC.simulate_rigid(model, motion, duration=4.0)
     finally:
-        RC._samples_to_result = inner  # type: ignore[assignment]
+        RC._samples_to_run = inner  # type: ignore[assignment]
     samples = dict(seen)
     settings = samples.pop("settings")
-    res = run.result
+    res = run
     asm, pos, t = res.assembly, res.positions, res.times
     q, v = samples["q"], samples["v"]
     ug, vg = samples["ground_displacement"], samples["ground_velocity"]
@@ -53,10 +53,10 @@ def main() -> dict:
          lambda: np.array([REF.absolute(model, a, b, u, w) for a, b, u, w in zip(q, v, ug, vg)])),
         ("joint_kinematics", lambda: R.joint_kinematics(asm, pos),
          lambda: REF.joint_kinematics(asm, pos)),
-        ("collapse_time", lambda: R.collapse_time(asm, res.settings, t, pos),
-         lambda: REF.collapse_time(asm, res.settings, t, pos)),
-        ("crossings", lambda: R.crossings(t, res.rotation, res.settings.hinge_opening),
-         lambda: REF.crossings(t, res.rotation, res.settings.hinge_opening)),
+        ("collapse_time", lambda: R.collapse_time(asm, res.criteria, t, pos),
+         lambda: REF.collapse_time(asm, res.criteria, t, pos)),
+        ("crossings", lambda: R.crossings(t, res.rotation, res.criteria.hinge_opening),
+         lambda: REF.crossings(t, res.rotation, res.criteria.hinge_opening)),
         ("hinge_sets (to_dict)", lambda: R.hinge_sets(res), lambda: REF.hinge_sets(res)),
     ]
     out = {"stepping_s": run.wall_s, "call_s": call}
@@ -71,13 +71,13 @@ def main() -> dict:
     post = best_of(lambda: inner(model, motion, settings, **samples))
     fs = best_of(lambda: run.to_dict(joint_forces=False))
     out.update(samples_to_result_s=post, to_dict_s=fs)
-    print(f"  _samples_to_result (states, energies, DemResult.from_samples) {post * 1e3:7.2f} ms")
+    print(f"  _samples_to_run (states, energies, BlockResult.from_samples) {post * 1e3:7.2f} ms")
     print(f"  RigidRun.to_dict(joint_forces=False), as sweeps call it        {fs * 1e3:7.2f} ms")
     t0 = time.perf_counter()
     verdict = rigid_to_verdict(arch, motion)
     whole = time.perf_counter() - t0
     out["verdict_s"] = (whole, verdict.wall_s)
-    print(f"rigid_to_verdict ({verdict.result.times.size} samples, {verdict.outcome.value}): "
+    print(f"rigid_to_verdict ({verdict.times.size} samples, {verdict.outcome.value}): "
           f"{whole * 1e3:.1f} ms, stepping {verdict.wall_s * 1e3:.1f} ms, the rest "
           f"{(whole - verdict.wall_s) * 1e3:.1f} ms")
     return out

@@ -39,8 +39,11 @@ ROOT = Path(archquake.__file__).parent
 #: - geometry (the arch) -> ground (motions) -> codes (design codes' elastic spectra, numbers
 #:   only) -> limit (statics of the arch) -> validation (closed
 #:   forms and the paper's numbers, read by the DEM's post-processing);
+#: - blocks: what the two block models stand on (assemblies, the thresholds of their verdict,
+#:   their result and its post-processing);
 #: - the three models, each on what is below: mechanism (the paper's four-link model), dem, and
-#:   rigid (built on the DEM's blocks and post-processing), each with its own run to a verdict;
+#:   rigid (on the blocks; it imports nothing from dem: `test_rigid_imports_nothing_from_dem`),
+#:   each with its own run to a verdict;
 #: - models: the one way to run any of the three (their names and ``run``), above them and
 #:   below everything that runs a model by its name;
 #: - thrust (the line of thrust in motion, from the four-link model), domains (failure domains
@@ -60,6 +63,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("codes",),
     ("limit",),
     ("validation",),
+    ("blocks",),
     ("mechanism",),
     ("dem",),
     ("rigid",),
@@ -250,3 +254,35 @@ def test_the_reader_sees_function_level_imports(tmp_path):
     assert ("archquake.geometry.arch", "archquake.cli.main") in edges
     assert cycles(edges) == [["archquake.cli.main", "archquake.geometry.arch"]]
     assert imports_up(pkg) == ["archquake.geometry.arch -> archquake.cli.main"]
+
+
+def imports_between(source: str, target: str, root: Path = ROOT) -> list[str]:
+    """Module imports from the unit ``source`` into the unit ``target`` (as `module_edges`
+    reads them: function-level imports and ``TYPE_CHECKING`` blocks included)."""
+    return sorted(f"{a} -> {b}" for a, b in module_edges(root)
+                  if unit_of(a) == source and unit_of(b) == target)
+
+
+def test_rigid_imports_nothing_from_dem():
+    """The rigid chain stands on the blocks, not on the distinct-element model: no module of
+    ``rigid`` imports a module of ``dem`` (exact: the count is zero). Oracle: the source parsed
+    with ``ast``."""
+    assert imports_between("rigid", "dem") == []
+
+
+def test_the_rigid_dem_check_can_fail(tmp_path):
+    """An import of the DEM from a rigid module, at module level or inside a function, is seen
+    (a package written here)."""
+    pkg = tmp_path / "archquake"
+    for unit in ("rigid", "dem"):
+        (pkg / unit).mkdir(parents=True)
+        (pkg / unit / "__init__.py").write_text("")
+    (pkg / "__init__.py").write_text("_LAZY = {}\n")
+    (pkg / "errors.py").write_text("")
+    (pkg / "dem" / "settings.py").write_text("class DemSettings: ...\n")
+    (pkg / "rigid" / "run.py").write_text("def f():\n    from archquake.dem.settings import "
+                                          "DemSettings\n")
+    (pkg / "rigid" / "steps.py").write_text("import archquake.dem.settings as S\n")
+    assert imports_between("rigid", "dem", pkg) == [
+        "archquake.rigid.run -> archquake.dem.settings",
+        "archquake.rigid.steps -> archquake.dem.settings"]

@@ -11,7 +11,7 @@ Oracles:
 
 * the source, parsed with ``ast`` (every import, those inside functions included): a name
   ``_x`` is private to its package, so ``from archquake.<other package>... import _x`` is an
-  error; a private module of another package (``archquake.dem._kernels``) may be imported only
+  error; a private module of another package (``archquake.blocks._kernels``) may be imported only
   by a private module (a compiled kernel calling another package's kernel: numba needs the
   function itself), except for the few listed in :data:`PRIVATE_MODULE_USES` with their
   reason. The root package's own private modules (``archquake._validate``, ``_json``,
@@ -34,10 +34,10 @@ DATA = Path(__file__).parent / "data" / "public_api.json"
 
 #: (importing module, imported private module) -> why it is allowed.
 PRIVATE_MODULE_USES: dict[tuple[str, str], str] = {
-    ("archquake.rigid.events", "archquake.dem._kernels"):
-        "the rigid chain is built on the DEM's packed blocks and collapse criteria",
-    ("archquake.rigid.steps", "archquake.dem._kernels"):
-        "the rigid chain is built on the DEM's packed blocks and collapse criteria",
+    ("archquake.rigid.events", "archquake.blocks._kernels"):
+        "the rigid chain checks the block models' compiled collapse criteria between its runs",
+    ("archquake.rigid.steps", "archquake.blocks._kernels"):
+        "the rigid chain checks the block models' compiled collapse criteria between its runs",
     ("archquake.ida.batch", "archquake.domains._kernels"):
         "the IDA batch decodes the domains' batch kernel's outcome codes",
     ("archquake.ida.batch", "archquake.mechanism._kernels"):

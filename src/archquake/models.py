@@ -257,7 +257,7 @@ def _block_body(arch, loads):
     """What a block model runs: ``arch`` itself, or its assembly carrying ``loads``."""
     if loads is None or loads.empty:
         return arch
-    from archquake.dem.assembly import build_arch_assembly
+    from archquake.blocks.assembly import build_arch_assembly
 
     return build_arch_assembly(arch, loads=loads)
 
@@ -278,22 +278,23 @@ def _run_rigid(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
                                     "time_step)")
     arch = _built(arch)
     body = _block_body(arch, o.loads)
+    criteria = None if o.dem is None else o.dem.criteria  # what the rigid chain reads of them
     if o.t_end is not None:  # a given end is run as given
         return simulate_rigid(body, motion, duration=o.t_end, friction=o.friction, g=o.g,
-                              solver=solver, progress=progress, settings=o.dem,
+                              solver=solver, progress=progress, settings=criteria,
                               time_step=DEFAULT_TIME_STEP if o.time_step is None else o.time_step)
     if verdict_step and to_verdict:  # the compiled verdict path, no history
         from archquake.rigid.verdict import rigid_verdict
 
-        return rigid_verdict(body, motion, g=o.g, guard=o.guard, settings=o.dem)
+        return rigid_verdict(body, motion, g=o.g, guard=o.guard, settings=criteria)
     if verdict_step:  # the history, integrated once at the verdict's step, guarded
         from archquake.rigid.run import run_guarded
 
         return run_guarded(arch, motion, g=o.g, loads=o.loads, progress=progress,
-                           guard=o.guard, settings=o.dem)
+                           guard=o.guard, settings=criteria)
     return rigid_to_verdict(arch, motion, friction=o.friction, g=o.g, solver=solver,
                             time_step=o.time_step, progress=progress, loads=o.loads,
-                            settings=o.dem)
+                            settings=criteria)
 
 
 def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
@@ -382,7 +383,7 @@ def run(model: str | Model, arch, motion, *, options: RunOptions | None = None,
         `archquake.result.ModelResult` (``to_dict()`` starts with
         `archquake.outcome.RESULT_KEYS`): a `SimulationResult` (``fourlink``), a `RigidRun`
         (``rigid``; a `GuardedRun` at the verdict's step, a `RigidVerdict` for a verdict run)
-        or a `DemResult` (``dem``).
+        or a `archquake.blocks.BlockResult` (``dem``).
 
     Raises
     ------

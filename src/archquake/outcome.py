@@ -27,7 +27,7 @@ class Outcome(str, Enum):
         analytical model, `conclude`: it came to rest after the excitation, or after the
         excitation its energy fell below every crest barrier; the block models, the DEM and
         the rigid chain: it came to rest after the excitation,
-        `archquake.dem.result.settled`).
+        `archquake.blocks.result.settled`).
     ``collapse``
         The arch collapsed (each model states its criterion: the analytical model when the
         mechanism passes the crest of its potential energy after the excitation or reaches

@@ -3,7 +3,7 @@
 `archquake.simulate` (the paper's four-link model) returns a
 `SimulationResult`, `archquake.simulate_rigid` (the chain of
 rigid voussoirs) a `RigidRun` and `archquake.simulate_dem` (the
-distinct-element model) a `DemResult`. Each has its own extras, and all
+distinct-element model) a `BlockResult`. Each has its own extras, and all
 three satisfy `ModelResult`: the same attributes, with the same meaning and units, so
 that a notebook comparing the models reads them alike. The attributes are views of what the
 result holds (or computed from it on first use), not copies.
@@ -80,7 +80,7 @@ class ModelResult(Protocol):
     rotation : ndarray (nt,)
         The mechanism's rotation, rad: > 0 while the first mechanism (the one a ground
         acceleration towards -x opens) is open, < 0 in its mirror image. The four-link
-        model's phi; the block models' chord rotation (`archquake.dem.result`).
+        model's phi; the block models' chord rotation (`archquake.blocks.result`).
     kinetic, potential : ndarray (nt,)
         Kinetic energy relative to the ground and gravitational potential energy from the
         undisplaced arch, J.

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 KERNEL_MODULES: tuple[str, ...] = (
     "archquake.ground._kernel",
     "archquake.ground.measures",
+    "archquake.blocks._kernels",
     "archquake.mechanism._kernels",
     "archquake.rigid._input_kernels",
     "archquake.rigid._step_kernels",

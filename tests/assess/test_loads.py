@@ -206,7 +206,7 @@ def test_dem_check_runs_the_loaded_assembly(tmp_path, monkeypatch):
     fill: the assembly's masses are the voussoirs' plus the carried ones."""
     from archquake.assess import sections
     from archquake.assess.sections import section_dem
-    from archquake.dem.assembly import Assembly
+    from archquake.blocks.assembly import Assembly
 
     bodies = []
     monkeypatch.setattr(sections, "_dem_outcome",

@@ -223,7 +223,7 @@ def test_the_quick_rigid_scan_finds_the_band_below_its_first_magnitude():
 
 
 def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path, monkeypatch):
-    """The DEM reads "survives" only after a still window (:func:`archquake.dem.result.settled`:
+    """The DEM reads "survives" only after a still window (:func:`archquake.blocks.result.settled`:
     REST_WINDOW sqrt(L/g)) that begins once the ground motion has ended. The governing record
     is therefore cut where 95 % of its Arias intensity has arrived and run 3 s past the cut;
     a window that ended before the record did could only give collapse or indeterminate.
@@ -232,9 +232,9 @@ def test_the_dem_check_runs_the_record_past_its_end_so_the_dem_can_rest(tmp_path
 
     from archquake.assess import sections
     from archquake.assess.sections import Context, Mode, section_dem, strong_motion_end
+    from archquake.blocks.assembly import dem_assembly
+    from archquake.blocks.result import settled
     from archquake.constants import STANDARD_GRAVITY
-    from archquake.dem.assembly import dem_assembly
-    from archquake.dem.result import settled
     from archquake.ground.suites import load_suite
 
     asked = []

@@ -115,9 +115,9 @@ def test_domain_with_fill_starts_at_the_loaded_lambda_and_says_what_the_chain_do
     """The rigid chain's domain of the filled bridge at t_p = 0.3 s: no hinging below the
     loaded lambda (1e-12), and single runs of the same chain either side of the boundary
     (0.01 g brackets) collapse above it and not below."""
+    from archquake.blocks.assembly import build_arch_assembly
     from archquake.compare.domains import DOMAIN_TAIL
     from archquake.constants import STANDARD_GRAVITY as G
-    from archquake.dem.assembly import build_arch_assembly
     from archquake.ground import StepImpulse
     from archquake.rigid import rigid_verdict
 

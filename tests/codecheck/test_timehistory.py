@@ -35,7 +35,7 @@ def test_chain_displacement_is_the_curve_displacement(three):
     arch, curve = three
     assert curve.mechanism.prepared.mechanism.joints == (0, 1, 2, 3)
     run = simulate_rigid(arch, StepImpulse.from_g(2 * curve.alpha0, 0.25), duration=0.6)
-    res = run.result
+    res = run
     d = chain_displacement(curve, res)
     opening = (res.rotation > 1e-4) & (res.rotation < curve.phi0_rad)
     assert opening.sum() > 100 and d.max() > 0.1 * curve.d0_m
@@ -89,7 +89,7 @@ def test_capacity_brackets_the_four_link_threshold(three):
     def run_once(a, motion):
         key = round(float(motion.magnitude), 12)
         if key not in runs:
-            runs[key] = rigid_to_verdict(a, motion).result
+            runs[key] = rigid_to_verdict(a, motion)
         return runs[key]
 
     cap = time_history_capacity(curve, [StepImpulse.from_g(1.0, tp)] * 7, 1.0, 0.8, "SLV",

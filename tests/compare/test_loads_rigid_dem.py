@@ -15,9 +15,9 @@ import math
 
 import pytest
 
+from archquake.blocks.assembly import build_arch_assembly
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.dem import DemSettings
-from archquake.dem.assembly import build_arch_assembly
 from archquake.dem.run import dem_to_verdict
 from archquake.geometry.arch import Arch
 from archquake.geometry.loads import Fill, Loads

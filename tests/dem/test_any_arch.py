@@ -14,9 +14,9 @@ import math
 import numpy as np
 import pytest
 
+from archquake.blocks.assembly import dem_assembly, three_voussoir_assembly
 from archquake.compare import compare_history
 from archquake.dem import DemSettings, build_arch_assembly, simulate_dem
-from archquake.dem.assembly import dem_assembly, three_voussoir_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry import Arch
 from archquake.ground import StepImpulse

@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from archquake.dem.assembly import PASSIVE_LEFT_OUT, build_arch_assembly, dem_assembly
+from archquake.blocks.assembly import PASSIVE_LEFT_OUT, build_arch_assembly, dem_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.loads import (
@@ -138,8 +138,8 @@ def test_the_event_integrator_conserves_energy_with_the_fill():
     run = simulate_rigid(build_arch_assembly(arch, loads=loads), StepImpulse.from_g(0.12, 0.08),
                          duration=0.1, solver="events")
     events = run.to_dict()["rigid"]["events"]
-    assert run.result.onset_time is not None and events["closures"] == 0
-    assert abs(run.result.energy_error) < 1e-8
+    assert run.onset_time is not None and events["closures"] == 0
+    assert abs(run.energy_error) < 1e-8
 
 
 def test_loads_the_dynamics_do_not_carry_are_refused_in_one_line():

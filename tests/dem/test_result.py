@@ -10,9 +10,9 @@ import sys
 import numpy as np
 import pytest
 
+from archquake.blocks.assembly import block_on_base
+from archquake.blocks.result import crown_height, mirror_link
 from archquake.dem import DemSettings, build_arch_assembly, simulate_dem
-from archquake.dem.assembly import block_on_base
-from archquake.dem.result import crown_height, mirror_link
 from archquake.geometry import Arch
 from archquake.ground.pulses import StepImpulse
 from archquake.outcome import RESULT_KEYS, Outcome

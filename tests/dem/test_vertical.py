@@ -52,7 +52,7 @@ def test_rigid_chain_and_dem_share_the_motion_to_the_first_impact_under_r_minus_
     impact within 1 %, the pulse's input work within 1.5 % (measured: 0.4 %, 0.3 %, 0.7 %)."""
     motion = StepImpulse.from_g(0.6, 0.4, vertical=-0.5)
     dem = simulate_dem(OPPENHEIM, motion, DemSettings(duration=1.3))
-    rigid = simulate_rigid(OPPENHEIM, motion, duration=1.3).result
+    rigid = simulate_rigid(OPPENHEIM, motion, duration=1.3)
     assert dem.first_impact_time is not None and rigid.first_impact_time is not None
     assert abs(dem.peak_rotation[0] / rigid.peak_rotation[0] - 1.0) < 0.02
     assert abs(dem.first_impact_time / rigid.first_impact_time - 1.0) < 0.01

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from archquake.dem.assembly import build_arch_assembly
+from archquake.blocks.assembly import build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.carrying import CarryingChain
@@ -102,7 +102,7 @@ def test_the_first_half_cycle_is_the_rigid_chain_cut_at_the_loaded_hinges(name, 
     four = simulate(PreparedMechanism.build(arch, loads=loads), motion, t_end=2.0)
     assert four.impact_times.size and four.history is not None
     first = float(four.impact_times[0])
-    chain = simulate_rigid(asm, motion, duration=first).result
+    chain = simulate_rigid(asm, motion, duration=first)
     t = np.linspace(0.05, 0.9 * first, 12)
     phi = np.interp(t, four.history.t, four.history.phi)
     rot = np.interp(t, chain.times, chain.rotation)

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
+from archquake.blocks.assembly import block_on_base
 from archquake.constants import STANDARD_GRAVITY as G
-from archquake.dem.assembly import block_on_base
 from archquake.rigid import RigidModel
 from archquake.validation import housner
 

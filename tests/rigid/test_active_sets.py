@@ -28,5 +28,5 @@ def test_no_step_of_the_bridge_runs_gauss_seidel_to_its_limit():
     assert record.name.startswith("IMPVALL-H-E06")
     motion = record.scaled(0.11 / im_value(record, "pga"))
     run = simulate_rigid(arch, motion, duration=8.5, time_step=verdict_time_step(arch))
-    assert run.result.outcome is Outcome.COLLAPSE
+    assert run.outcome is Outcome.COLLAPSE
     assert ACTIVE_SET_ITERATIONS < run.max_sweeps < MAX_SWEEPS

@@ -42,9 +42,9 @@ def test_the_onset_test_flips_at_the_bisected_onset():
 ], ids=["zero", "1e-308 g", "record x 1e-320"])
 def test_a_motion_below_the_onset_takes_no_step(motion):
     run = simulate_rigid(OPPENHEIM, motion, duration=5.0)
-    assert run.at_rest and run.result.n_steps == 0
+    assert run.at_rest and run.n_steps == 0
     assert run.outcome is Outcome.NO_HINGING
-    assert np.all(run.result.kinetic == 0.0) and np.all(run.result.damping == 0.0)
+    assert np.all(run.kinetic == 0.0) and np.all(run.damping == 0.0)
     assert run.to_dict()["rigid"]["below_onset"] is True
 
 
@@ -74,14 +74,14 @@ def test_the_stepper_agrees_below_the_onset(monkeypatch):
     assert stays_at_rest(rigid_model(OPPENHEIM), motion)
     monkeypatch.setattr(R, "stays_at_rest", lambda *a, **k: False)
     stepped = simulate_rigid(OPPENHEIM, motion, duration=0.8)
-    assert stepped.outcome is Outcome.NO_HINGING and stepped.result.n_steps > 0
-    assert float(np.abs(stepped.result.rotation).max()) < 1e-9
+    assert stepped.outcome is Outcome.NO_HINGING and stepped.n_steps > 0
+    assert float(np.abs(stepped.rotation).max()) < 1e-9
 
 
 def test_friction_keeps_stepping():
     """Coulomb joints may slip below the onset of hinging: the test does not apply."""
     run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(0.0, 0.1), duration=0.05, friction=0.8)
-    assert not run.at_rest and run.result.n_steps > 0
+    assert not run.at_rest and run.n_steps > 0
 
 
 def test_a_chain_that_moves_under_its_own_weight_has_onset_zero_at_once(monkeypatch):

@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from archquake import Arch
+from archquake.blocks.assembly import block_on_base, build_arch_assembly
 from archquake.constants import STANDARD_GRAVITY as G
-from archquake.dem.assembly import block_on_base, build_arch_assembly
 from archquake.ground import StepImpulse
 from archquake.ground.records import Record
 from archquake.limit import hinges_of
@@ -52,7 +52,7 @@ def test_rocking_block_reproduces_housner(block_run):
     ratio across the impact (Housner's r = 1 - 1.5 sin^2 alpha, 1e-3: one step of gravity on
     either side), and the peak on the other side (from r, 1e-3)."""
     run, ref = block_run
-    res = run.result
+    res = run
     th, t, w = res.positions[:, 1, 2], res.times, res.velocities[:, 1, 2]
     k = int(np.flatnonzero(th >= 0)[0])
     ti = t[k - 1] + (t[k] - t[k - 1]) * (-th[k - 1]) / (th[k] - th[k - 1])
@@ -71,7 +71,7 @@ def test_rocking_block_energy_conserved_before_the_impact(block_run):
     energy (measured 1.6e-7 at h = 2.5e-5 s, 1.2e-6 at 1e-4 s), and the corner does not sink
     by more than 1e-5 of the block width."""
     run, ref = block_run
-    res = run.result
+    res = run
     th = res.positions[:, 1, 2]
     k = int(np.flatnonzero(th >= 0)[0])
     e = res.kinetic + res.potential
@@ -124,7 +124,7 @@ def test_three_block_arch_rocks_as_the_four_link_mechanism():
     ref = simulate(PreparedMechanism.build(OPPENHEIM), REST, initial_rate=rate, t_end=4.0)
     t_imp = float(ref.impact_times[0])
     run = simulate_rigid(asm, REST, duration=t_imp + 0.05, time_step=5e-5, initial=(q, v))
-    res = run.result
+    res = run
     assert float(res.impact_times[0]) == pytest.approx(t_imp, rel=1e-3)
     assert float(res.peak_rotation[0]) == pytest.approx(float(ref.peak_rotation[0]), rel=1e-3)
     e = res.kinetic + res.potential
@@ -150,7 +150,7 @@ def test_voussoir_arch_follows_the_four_link_mechanism_while_it_is_admissible():
     times = np.linspace(0.05, 0.19, 8)
     ref = simulate(OPPENHEIM, motion, t_eval=times, t_end=0.25)
     run = simulate_rigid(OPPENHEIM, motion, duration=0.2, time_step=1e-4, output_interval=1e-4)
-    res = run.result
+    res = run
     phi = np.interp(times, res.times, res.rotation)
     exact = ref.evaluated.signed_rotation
     assert np.all(exact > 0)
@@ -173,7 +173,7 @@ def test_onset_just_above_lambda_opens_the_limit_analysis_hinges():
     run = simulate_rigid(OPPENHEIM, ramp_and_hold(a, 1e-3, 1.0), duration=0.6, time_step=1e-4)
     mech = prep.mechanism
     want = " ".join(f"{j}{f.value[0]}" for j, f in zip(mech.joints, mech.faces))
-    assert _label(dem_hinges(run.result, 0.6)) == want
+    assert _label(dem_hinges(run, 0.6)) == want
 
 
 def test_mirror_symmetry():
@@ -186,11 +186,11 @@ def test_mirror_symmetry():
     pulse = RectangularPulse(-2.0 * 0.37 * G, 0.283)
     a = simulate_rigid(OPPENHEIM, pulse, duration=0.8, time_step=1e-4)
     b = simulate_rigid(OPPENHEIM, pulse.mirrored(), duration=0.8, time_step=1e-4)
-    pa = a.result.positions[:, 2:, :]
-    pb = b.result.positions[:, 2:, :][:, ::-1, :] * np.array([-1.0, 1.0, -1.0])
+    pa = a.positions[:, 2:, :]
+    pb = b.positions[:, 2:, :][:, ::-1, :] * np.array([-1.0, 1.0, -1.0])
     scale = np.array([1.0, 1.0, OPPENHEIM.radius])
     assert np.max(np.abs((pa - pb) * scale)) < 1e-6 * OPPENHEIM.thickness
-    assert np.max(np.abs(a.result.rotation)) > 0.01  # it did rock
+    assert np.max(np.abs(a.rotation)) > 0.01  # it did rock
 
 
 def test_a_pivot_in_persistent_contact_does_not_slip():
@@ -207,7 +207,7 @@ def test_a_pivot_in_persistent_contact_does_not_slip():
     arch = shaped("parabolic", span=10, rise=4, thickness=0.8, voussoirs=10)
     motion = StepImpulse.from_g(3.0 * limit_analysis(arch).collapse_acceleration_g, 0.5)
     for solver in ("direct", "events"):
-        res = simulate_rigid(arch, motion, duration=0.3, solver=solver).result
+        res = simulate_rigid(arch, motion, duration=0.3, solver=solver)
         early = res.times < 0.29
         assert np.max(np.abs(res.joint_slip[early])) < 1e-6, solver
         assert np.max(res.joint_opening[early]) > 0.05  # it did rock: a hinge open 5 cm
@@ -226,9 +226,9 @@ def test_direct_solve_is_the_converged_gauss_seidel():
     b = simulate_rigid(OPPENHEIM, pulse, duration=0.8, time_step=1e-4, solver="pgs",
                        solver_tolerance=1e-13)
     scale = np.array([1.0, 1.0, OPPENHEIM.radius])
-    diff = (a.result.positions - b.result.positions)[:, 2:, :] * scale
+    diff = (a.positions - b.positions)[:, 2:, :] * scale
     assert np.max(np.abs(diff)) < 1e-10 * OPPENHEIM.thickness
-    assert np.max(np.abs(a.result.rotation)) > 0.01  # it did rock
+    assert np.max(np.abs(a.rotation)) > 0.01  # it did rock
 
 
 def test_energy_kept_converges_in_the_time_step():
@@ -254,7 +254,7 @@ def test_dynamic_similarity():
                            output_interval=1e-3)
     big = simulate_rigid(OPPENHEIM.scaled(4.0), RectangularPulse(a, 0.566), duration=1.8,
                          time_step=2e-4, output_interval=2e-3)
-    rs, rb = small.result, big.result
+    rs, rb = small, big
     assert np.allclose(rb.times, 2.0 * rs.times)
     assert np.max(np.abs(rb.rotation - rs.rotation)) < 1e-7
     es = (rs.kinetic + rs.potential) / (rs.kinetic + rs.potential).max()
@@ -284,7 +284,7 @@ def test_coulomb_block_slides_as_a_particle(a_g, slides):
     mu, t_end = 0.3, 0.5
     run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(a_g * G, t_end),
                          duration=t_end, time_step=1e-4, friction=mu)
-    res = run.result
+    res = run
     rel = res.positions[-1, 1, 0] - res.base_displacement[-1]
     if not slides:
         assert abs(rel) < 1e-9
@@ -363,7 +363,7 @@ def test_contacts_at_rest_book_half_m_g2_h_per_second(monkeypatch):
     mass = float(np.sum(model.mass))
     for h in (1e-3, 5e-4):
         run = simulate_rigid(model, REST, duration=1.0, time_step=h)
-        booked = float(run.result.damping[-1])
-        expected = 0.5 * mass * G**2 * h * float(run.result.times[-1])
+        booked = float(run.damping[-1])
+        expected = 0.5 * mass * G**2 * h * float(run.times[-1])
         assert booked == pytest.approx(expected, rel=2e-3)
-        assert run.result.kinetic.max() < 1e-12 * mass * G * OPPENHEIM.thickness
+        assert run.kinetic.max() < 1e-12 * mass * G * OPPENHEIM.thickness

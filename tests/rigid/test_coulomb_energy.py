@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 
 from archquake import Arch
+from archquake.blocks.assembly import block_on_base
 from archquake.compare.rigid import oppenheim, step_collapses
 from archquake.constants import STANDARD_GRAVITY as G
-from archquake.dem.assembly import block_on_base
 from archquake.ground.pulses import RectangularPulse, SinePulse, StepImpulse
 from archquake.outcome import Outcome
 from archquake.rigid import RigidModel, simulate_rigid
@@ -68,7 +68,7 @@ def test_sliding_block_dissipates_mu_n_times_its_slip(solver):
     model = RigidModel.build(block_on_base(2.0, 0.4))
     run = simulate_rigid(model, RectangularPulse(a, tp), duration=1.0, time_step=1e-4,
                          friction=mu, solver=solver)
-    res = run.result
+    res = run
     mass = float(model.mass[0])
     slip = -(res.positions[:, 1, 0] - res.base_displacement)
     k = int(np.searchsorted(res.times, tp))
@@ -106,7 +106,7 @@ def test_above_the_demand_the_history_is_the_no_sliding_chains(no_sliding, mu, t
     demand = no_sliding.friction_demand
     k = int(np.flatnonzero(demand >= mu)[0])
     assert no_sliding.times[k] == pytest.approx(t_slip, abs=1e-9)
-    np.testing.assert_array_equal(run.result.positions[:k], no_sliding.result.positions[:k])
+    np.testing.assert_array_equal(run.positions[:k], no_sliding.positions[:k])
     assert run.outcome is no_sliding.outcome is Outcome.SURVIVES
     np.testing.assert_allclose(run.peak_rotation[:3], no_sliding.peak_rotation[:3], rtol=0.03)
 

@@ -53,7 +53,7 @@ def _model(name):
 
 
 def _verdict(run):
-    r = run.result
+    r = run
     return r.outcome.value, (r.collapse_half_cycle if r.outcome.value == "collapse" else None)
 
 
@@ -88,7 +88,7 @@ def test_nothing_moves_below_the_onset(motion_of, monkeypatch):
     monkeypatch.setattr(R, "stays_at_rest", lambda *a, **k: False)
     ev = simulate_rigid(model, motion, duration=2.0, solver="events")
     assert ev.events["counters"][EK.N_ONSETS] == 0 and ev.events["windows_s"] == []
-    assert np.abs(ev.result.joint_opening).max() < 1e-12
+    assert np.abs(ev.joint_opening).max() < 1e-12
     st = simulate_rigid(model, motion, duration=2.0)
     assert ev.outcome.value == st.outcome.value == "no_hinging"
 
@@ -118,8 +118,8 @@ def test_verdicts_are_the_time_steppers(name, family, factor, duration, t_end):
     ev = simulate_rigid(model, motion, duration=t_end, solver="events")
     st = simulate_rigid(model, motion, duration=t_end)
     assert _verdict(ev) == _verdict(st)
-    assert ev.result.onset_time == pytest.approx(st.result.onset_time, abs=5.1e-4)
-    assert np.all(np.isfinite(ev.result.positions))
+    assert ev.onset_time == pytest.approx(st.onset_time, abs=5.1e-4)
+    assert np.all(np.isfinite(ev.positions))
 
 
 def _quiet_record(lam, quiet=2.0, factor=1.6, period=0.4, dt=0.01, length=6.0):
@@ -148,7 +148,7 @@ def test_record_onset_is_located_within_its_sample_interval():
     assert onsets[0] == pytest.approx(t_cross, abs=1e-9)
     assert t[k - 1] < onsets[0] < t[k]
     st = simulate_rigid(model, rec, duration=8.0)
-    assert ev.result.onset_time == pytest.approx(st.result.onset_time, abs=1e-9)
+    assert ev.onset_time == pytest.approx(st.onset_time, abs=1e-9)
     assert _verdict(ev) == _verdict(st) == ("survives", None)
 
 
@@ -165,7 +165,7 @@ def test_resumes_only_from_a_state_on_a_hinge_set():
     assert EK.WHY_SEPARATION in raw["window_why"]
     log = raw["log"]
     resumes = log[log[:, 1] == 6, 0]
-    res = ev.result
+    res = ev
     fb = model.free_blocks
     lref = model.assembly.reference_length
     for t_r in resumes:
@@ -176,7 +176,7 @@ def test_resumes_only_from_a_state_on_a_hinge_set():
         gaps = RK.geometry(q, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
                            model.t0)[0]
         assert gaps.min(axis=1).max() <= EK.RESUME_SEPARATION * lref
-    assert ev.outcome.value == "collapse" and ev.result.collapse_half_cycle == 1
+    assert ev.outcome.value == "collapse" and ev.collapse_half_cycle == 1
 
 
 def test_until_rest_waits_for_the_rest_window():
@@ -189,5 +189,5 @@ def test_until_rest_waits_for_the_rest_window():
     motion = SinePulse.from_g(2 * lam, 0.6)
     ev = simulate_rigid(model, motion, duration=3.6, solver="events", until_rest=15.0)
     st = simulate_rigid(model, motion, duration=3.6, until_rest=15.0)
-    assert ev.result.final_state == "rest" and ev.result.times[-1] > 3.6
+    assert ev.final_state == "rest" and ev.times[-1] > 3.6
     assert _verdict(ev) == _verdict(st) == ("survives", None)

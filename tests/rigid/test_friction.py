@@ -20,8 +20,8 @@ import pytest
 
 import archquake.rigid._step_kernels as RK
 from archquake import Arch
+from archquake.blocks.assembly import block_on_base
 from archquake.constants import STANDARD_GRAVITY as G
-from archquake.dem.assembly import block_on_base
 from archquake.ground.pulses import RectangularPulse, SinePulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.rigid import RigidModel, simulate_rigid
@@ -74,7 +74,7 @@ def test_block_under_a_ground_acceleration_near_mu_g(solver, a_ratio):
     a = a_ratio * mu * G
     run = simulate_rigid(block_on_base(2.0, 0.4), RectangularPulse(a, t_end), duration=t_end,
                          time_step=1e-4, friction=mu, solver=solver)
-    res = run.result
+    res = run
     rel = res.positions[-1, 1, 0] - res.base_displacement[-1]
     if a_ratio < 1.0:
         assert abs(rel) < 1e-9
@@ -95,19 +95,19 @@ def test_rocking_with_a_large_coefficient_is_the_no_slip_chain(released_block):
                                 output_interval=1e-4, initial=initial, friction=mu, solver=solver)
             for key, mu, solver in (("none", None, "direct"), ("direct", 1.0, "direct"),
                                     ("pgs", 1.0, "pgs"))}
-    np.testing.assert_array_equal(runs["direct"].result.positions,
-                                  runs["none"].result.positions)
+    np.testing.assert_array_equal(runs["direct"].positions,
+                                  runs["none"].positions)
     assert runs["none"].max_friction_demand < 0.25
-    th = runs["direct"].result.positions[:, 1, 2]
-    t = runs["direct"].result.times
+    th = runs["direct"].positions[:, 1, 2]
+    t = runs["direct"].times
     k = int(np.flatnonzero(th >= 0)[0])
     t1 = t[k - 1] + (t[k] - t[k - 1]) * (-th[k - 1]) / (th[k] - th[k - 1])
     assert t1 == pytest.approx(ref["t1"], rel=1e-4)
-    assert np.max(np.abs(runs["pgs"].result.positions[:, 1, 2] - th)) < 1e-9
+    assert np.max(np.abs(runs["pgs"].positions[:, 1, 2] - th)) < 1e-9
 
 
 def _outcome(run):
-    res = run.result
+    res = run
     return (res.outcome, len(res.impact_times), res.collapse_time, res.first_impact_time)
 
 

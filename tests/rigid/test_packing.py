@@ -20,7 +20,7 @@ OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 def test_model_derived_forms_are_built_once():
     """A `RigidModel`'s packed arrays and its event-integrator layout are built once and kept on
     it; the verdict path finds the same objects, and the model remembers its arch."""
-    from archquake.dem.settings import DemSettings
+    from archquake.blocks.criteria import BlockCriteria
     from archquake.rigid.events import EventModel
     from archquake.rigid.verdict import _packed, rigid_model
 
@@ -29,8 +29,8 @@ def test_model_derived_forms_are_built_once():
     assert model.chain is model.chain
     assert model.events is model.events
     assert EventModel.of(model) is model.events
-    assert _packed(model, DemSettings()) is _packed(model, DemSettings())  # hashed by identity
-    assert _packed(model, DemSettings()).chain is model.chain
+    assert _packed(model, BlockCriteria()) is _packed(model, BlockCriteria())  # hashed by identity
+    assert _packed(model, BlockCriteria()).chain is model.chain
 
 
 def test_stepping_loops_are_compiled_without_reference_counting():

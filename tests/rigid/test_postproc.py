@@ -1,9 +1,9 @@
-"""The rigid chain's post-processing, vectorised (the samples -> DemResult path that any stepper
-of the model calls, ``rigid_chain._samples_to_result``), gives what the per-sample code did.
+"""The rigid chain's post-processing, vectorised (the samples -> BlockResult path that any stepper
+of the model calls, ``rigid_chain._samples_to_run``), gives what the per-sample code did.
 
 Oracle: the per-sample and per-joint code of main before the vectorisation, kept verbatim as
-plain references in :mod:`archquake.dem._result_reference` (test and benchmark only), run on
-the very samples a history hands to ``_samples_to_result``. The new code performs the same
+plain references in :mod:`archquake.blocks._result_reference` (test and benchmark only), run on
+the very samples a history hands to ``_samples_to_run``. The new code performs the same
 floating-point operations in the same order, so arrays are compared exactly, except the
 joint kinematics (a compiled loop: 1e-12 m, against openings of 1e-4..1e-1 m; measured
 bit-identical here); discrete results (outcome, onset sample, number of impacts, hinge
@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 
 from archquake import Arch
-from archquake.dem import _result_reference as REF
-from archquake.dem.assembly import block_on_base, build_arch_assembly
-from archquake.dem.result import collapse_time, crossings, joint_kinematics, mirror_link
-from archquake.dem.settings import DemSettings
+from archquake.blocks import _result_reference as REF
+from archquake.blocks.assembly import block_on_base, build_arch_assembly
+from archquake.blocks.criteria import BlockCriteria
+from archquake.blocks.result import collapse_time, crossings, joint_kinematics, mirror_link
 from archquake.ground import StepImpulse
 from archquake.outcome import Outcome
 from archquake.rigid import run as RC
@@ -35,15 +35,15 @@ OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
 
 # ----------------------------------------------------------------------- the histories
 def _run(monkeypatch, motion, duration):
-    """A history and the samples its stepper handed to ``_samples_to_result``."""
+    """A history and the samples its stepper handed to ``_samples_to_run``."""
     seen = {}
-    inner = RC._samples_to_result
+    inner = RC._samples_to_run
 
     def spy(model, motion, settings, **samples):
         seen.update(samples, model=model, settings=settings)
         return inner(model, motion, settings, **samples)
 
-    monkeypatch.setattr(RC, "_samples_to_result", spy)
+    monkeypatch.setattr(RC, "_samples_to_run", spy)
     return RC.simulate_rigid(OPPENHEIM, motion, duration=duration), seen
 
 
@@ -54,7 +54,7 @@ def _run(monkeypatch, motion, duration):
 ])
 def test_vectorised_post_processing_is_mains(monkeypatch, motion, duration, outcome):
     run, s = _run(monkeypatch, motion, duration)
-    res, model = run.result, s["model"]
+    res, model = run, s["model"]
     assert res.outcome is outcome
     # states and energies: as main's per-sample closure and sums built them
     states = np.array([REF.absolute(model, a, b, u, w) for a, b, u, w in zip(
@@ -76,12 +76,12 @@ def test_vectorised_post_processing_is_mains(monkeypatch, motion, duration, outc
     opening, slip = REF.joint_kinematics(asm, states[:, :, :3])
     np.testing.assert_allclose(res.joint_opening, opening, rtol=0, atol=1e-12)
     np.testing.assert_allclose(res.joint_slip, slip, rtol=0, atol=1e-12)
-    thr = res.settings.hinge_opening * asm.reference_length
+    thr = res.criteria.hinge_opening * asm.reference_length
     assert res.onset_time == float(res.times[np.argmax(np.any(opening > thr, axis=(1, 2)))])
-    assert res.collapse_time == REF.collapse_time(asm, res.settings, res.times, states[:, :, :3])
+    assert res.collapse_time == REF.collapse_time(asm, res.criteria, res.times, states[:, :, :3])
     stop = len(res.times) if res.collapse_time is None else int(
         np.searchsorted(res.times, res.collapse_time))
-    impacts = REF.crossings(res.times, res.rotation, res.settings.hinge_opening, stop)
+    impacts = REF.crossings(res.times, res.rotation, res.criteria.hinge_opening, stop)
     assert impacts.size == res.impact_times.size
     np.testing.assert_allclose(res.impact_times, impacts, rtol=0, atol=1e-12)
     if outcome is not Outcome.COLLAPSE:
@@ -111,7 +111,7 @@ def test_compiled_joint_kinematics_and_collapse_match_the_per_joint_code(arch):
     np.testing.assert_allclose(slip, want_slip, rtol=0, atol=1e-12)
     assert np.array_equal(np.signbit(opening[0]), np.signbit(want_opening[0]))
     t = np.arange(nt) * 1e-3
-    settings = DemSettings()
+    settings = BlockCriteria()
     assert collapse_time(asm, settings, t, pos) is None
     pos[-30:, asm.crown_block, 2] = 2.0  # turned past collapse_rotation
     pos[-20:, :, 1] -= 2.0 * asm.reference_length  # the crown has fallen
@@ -163,8 +163,8 @@ def test_rest_check_on_chunks_is_the_per_sample_check():
     motion = StepImpulse.from_g(0.6, 0.10)
     run = RC.simulate_rigid(OPPENHEIM, motion, duration=3.5, until_rest=8.0)
     model = RC.RigidModel.build(OPPENHEIM)
-    g = run.result.g
-    t, v = run.result.times, run.result.velocities[:, model.free_blocks]
+    g = run.g
+    t, v = run.times, run.velocities[:, model.free_blocks]
     answers = set()
     for size in (1, 7, 100):
         for end in range(2, len(t) + 1, 450):
@@ -178,7 +178,7 @@ def test_rest_check_on_chunks_is_the_per_sample_check():
 
 
 def test_production_code_does_not_import_the_plain_reference():
-    """dem/_result_reference.py is test and benchmark only: a rigid run to its summary does not
+    """blocks/_result_reference.py is test and benchmark only: a rigid run to its summary does not
     load it."""
     code = (
         "import sys, math\n"
@@ -188,7 +188,7 @@ def test_production_code_does_not_import_the_plain_reference():
         "run = simulate_rigid(Arch(10.0, 1.5, math.radians(157.5), 7), StepImpulse.from_g(1.0, 0.2),"
         " duration=0.3)\n"
         "run.to_dict(joint_forces=False)\n"
-        "print('archquake.dem._result_reference' in sys.modules)\n"
+        "print('archquake.blocks._result_reference' in sys.modules)\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

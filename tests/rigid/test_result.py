@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from archquake import Arch
+from archquake.blocks.result import rest_threshold, settled
 from archquake.constants import STANDARD_GRAVITY as G
-from archquake.dem.result import rest_threshold, settled
 from archquake.ground import StepImpulse
 from archquake.ground.pulses import RectangularPulse
 from archquake.outcome import Outcome
@@ -42,7 +42,7 @@ def test_hinge_sets_of_the_four_link_phase(four_hinge_run):
     0i 3e 5i 7e, one degree of freedom. Its hinges are reported as their openings pass the
     threshold (``hinge_opening`` t), so under this slow onset they appear one by one: every
     set is a subset of the mechanism's."""
-    sets = four_hinge_run.result.hinge_sets()
+    sets = four_hinge_run.hinge_sets()
     assert sets[0].kind == "onset"
     assert all(set(e.hinges.split()) <= {"0i", "3e", "5i", "7e"} for e in sets)
     last = sets[-1]
@@ -61,8 +61,8 @@ def _mirror(label: str, n_joints: int) -> str:
 def test_hinge_sets_are_mirror_symmetric(mirrored_runs):
     """The mirrored pulse passes through the mirrored hinge sets (joint j <-> n - j, same face),
     at the same times, through the onset, a five-hinge phase (2 dof) and migrations."""
-    a, b = (r.result.hinge_sets() for r in mirrored_runs)
-    nj = len(mirrored_runs[0].result.assembly.joints)
+    a, b = (r.hinge_sets() for r in mirrored_runs)
+    nj = len(mirrored_runs[0].assembly.joints)
     assert [(e.time_s, _mirror(e.hinges, nj), e.kind) for e in a] == [
         (e.time_s, e.hinges, e.kind) for e in b]
     assert max(e.degrees_of_freedom for e in a) >= 2  # a five-hinge phase
@@ -81,7 +81,7 @@ def rocking_cut_short():
 def test_a_run_cut_short_while_rocking_is_not_survival(rocking_cut_short):
     """The verdict: 'survives' only at rest after the excitation; cut while rocking, the rigid
     chain reports 'indeterminate' with the reason."""
-    res = rocking_cut_short.result
+    res = rocking_cut_short
     assert res.impact_times.size >= 4 and res.collapse_time is None
     assert res.outcome is Outcome.INDETERMINATE and res.final_state == "moving"
     out = rocking_cut_short.to_dict()
@@ -94,7 +94,7 @@ def test_until_rest_extends_the_run_to_a_verdict():
     the cap."""
     run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.20), duration=3.0,
                          output_interval=1e-3, until_rest=30.0)
-    res = run.result
+    res = run
     assert res.outcome is Outcome.SURVIVES and res.final_state == "rest"
     assert 3.5 < res.end_time < 8.0
     k_max, window = rest_threshold(res.assembly, res.g)
@@ -105,7 +105,7 @@ def test_until_rest_extends_the_run_to_a_verdict():
 def test_settled_needs_the_whole_window_after_the_excitation(rocking_cut_short):
     """The rule itself: a still window that starts before the excitation ends, or is shorter
     than sqrt(L/g), is not rest; a zero of the kinetic energy at a reversal is not rest."""
-    res = rocking_cut_short.result
+    res = rocking_cut_short
     k_max, window = rest_threshold(res.assembly, res.g)
     t = np.linspace(0.0, 2.0 * window, 101)
     still = np.zeros_like(t)
@@ -126,7 +126,7 @@ def test_forces_of_the_four_link_phase_are_its_statics(four_hinge_run):
     from archquake.mechanism.prepared import PreparedMechanism
     from archquake.thrust.states import state_at
 
-    motion = four_hinge_run.motion
+    motion = four_hinge_run.ground_motion
     times = np.array([0.12, 0.15, 0.18])
     ref = simulate(OPPENHEIM, motion, t_eval=times, t_end=0.25,
                    options=SolverOptions(output_interval=0.0)).evaluated
@@ -154,8 +154,8 @@ def test_the_compiled_force_probe_is_its_plain_twin(friction):
 
     run = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, 0.27), duration=1.2,
                          friction=friction, output_interval=1e-3)
-    fast = joint_forces(run, run.motion)
-    plain = joint_forces_reference(run, run.motion)
+    fast = joint_forces(run, run.ground_motion)
+    plain = joint_forces_reference(run, run.ground_motion)
     assert plain.impulsive.any() and plain.unique.any() and not plain.unique.all()  # exercised
     assert np.array_equal(fast.unique, plain.unique)
     assert np.array_equal(fast.impulsive, plain.impulsive)
@@ -174,10 +174,10 @@ def test_at_rest_the_forces_are_indeterminate_but_in_equilibrium():
     determinate holds: the springings carry the weight and the ground's inertia force."""
     motion = StepImpulse.from_g(0.30, 0.2)
     run = simulate_rigid(OPPENHEIM, motion, duration=0.3, output_interval=1e-2)
-    assert run.result.outcome is Outcome.NO_HINGING
+    assert run.outcome is Outcome.NO_HINGING
     f = run.joint_forces
     assert not f.unique.any() and run.to_dict()["joint_forces"]["max_friction_demand"] is None
-    model = run.result.assembly
+    model = run.assembly
     n0, t0 = [], []
     for jt in (model.joints[0], model.joints[-1]):
         p = np.asarray(jt.points, float)

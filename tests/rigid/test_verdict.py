@@ -40,7 +40,7 @@ def test_verdict_is_the_recorded_runs(tp, outcome, half):
     v = rigid_verdict(OPPENHEIM, StepImpulse.from_g(1.0, tp), time_step=h, guard=False)
     end = v.end_time_s if v.outcome is Outcome.SURVIVES else v.end_time_s + 0.1
     r = simulate_rigid(OPPENHEIM, StepImpulse.from_g(1.0, tp), duration=end, time_step=h,
-                       output_interval=h).result
+                       output_interval=h)
     assert v.outcome.value == r.outcome.value == outcome
     assert v.collapse_half_cycle == r.collapse_half_cycle == half
     if half is not None:

@@ -408,7 +408,7 @@ def _loads(source: str, table: Any, arch) -> Any:
     if loads.traffic is not None and loads.traffic.position > span:
         raise _fail(source, "[loads] traffic position", f"= {loads.traffic.position:g} m {where}")
     if loads.passive is not None:
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+        from archquake.blocks.assembly import PASSIVE_LEFT_OUT
 
         raise _fail(source, "[loads] passive", f"is not taken by an assessment: "
                                                f"{PASSIVE_LEFT_OUT}; leave it out "

@@ -156,10 +156,10 @@ class Context:
 
     def rigid_body(self):
         """What the rigid chain and the DEM run: the arch, or with loads its assembly whose
-        blocks carry them (`archquake.dem.assembly.build_arch_assembly`)."""
+        blocks carry them (`archquake.blocks.assembly.build_arch_assembly`)."""
         if self.loads is None:
             return self.arch
-        from archquake.dem.assembly import build_arch_assembly
+        from archquake.blocks.assembly import build_arch_assembly
 
         return build_arch_assembly(self.arch, loads=self.loads)
 
@@ -798,7 +798,7 @@ def section_vertical(ctx: Context) -> StudyResult:
                       f"{'quick' if ctx.mode.quick else 'full'}.sqlite")
         store_path.parent.mkdir(parents=True, exist_ok=True)
         options = (CaseOptions(restitution=cfg.restitution, impact=cfg.impact)
-                   if cfg.model == "fourlink" else CaseOptions())
+                   if models.takes(cfg.model, "restitution") else CaseOptions())
         ctx.say(f"  IDA of the horizontal alone of {len(both)} records")
         with ResultStore(store_path) as store:
             res = incremental_dynamic_analysis(

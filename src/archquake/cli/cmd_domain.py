@@ -253,7 +253,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
         domain_comparison_figure([comp], args.plot)
     assembly = None
     if loads is not None:
-        from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+        from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
 
         assembly = dem_assembly(arch, VOUSSOIRS, loads=loads).to_dict()
     if args.json:
@@ -314,8 +314,8 @@ def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations,
     import csv
 
     from archquake import models
+    from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
     from archquake.compare import dem_failure_domain
-    from archquake.dem.assembly import VOUSSOIRS, dem_assembly
 
     who = models.spec(model).short
     dd = dem_failure_domain(arch, args.pulse, durations, assembly=VOUSSOIRS, settings=settings,

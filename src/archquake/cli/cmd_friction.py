@@ -144,7 +144,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
            "static_joint": static.min_friction_joint,
            "joint_forces": summary, "arch": arch.describe(), "motion": motion.to_dict()}
     if loads is not None:
-        out["assembly"] = run.result.assembly.to_dict()
+        out["assembly"] = run.assembly.to_dict()
     if args.json:
         print_json(out)
         return 0
@@ -167,5 +167,5 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
           "joints carrying < 1 % of the weight")
     from archquake.cli.dem_run import print_loads
 
-    print_loads(run.result.assembly.to_dict())
+    print_loads(run.assembly.to_dict())
     return 0

@@ -181,7 +181,7 @@ def run(args: argparse.Namespace) -> int:
                for k in ("first_collapse", "collapse_fraction")}}
     out["dispersion_by_im"] = dispersion
     if loads is not None:
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+        from archquake.blocks.assembly import PASSIVE_LEFT_OUT
 
         out["passive_pressure"] = PASSIVE_LEFT_OUT
     if args.json:
@@ -205,7 +205,7 @@ def _print_text(result, suite, fits, dispersion, divisor, args) -> None:
           + (f"; impact law {result.settings.get('impact', 'paper')}"
              if models.takes(result.model, "impact") else ""))
     if result.loads is not None:
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+        from archquake.blocks.assembly import PASSIVE_LEFT_OUT
 
         print("loads: the arch carries its fill and loads in every run (lambda is the loaded "
               f"arch's); {PASSIVE_LEFT_OUT}")

@@ -139,7 +139,7 @@ def run(args: argparse.Namespace) -> int:
     summary["study"] = study.name
     loads = study.cases[0].loads if study.cases else None
     if loads is not None:  # [loads]: every case carries the same
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+        from archquake.blocks.assembly import PASSIVE_LEFT_OUT
 
         summary["loads"] = loads.to_dict()
         summary["passive_pressure"] = PASSIVE_LEFT_OUT

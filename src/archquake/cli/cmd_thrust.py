@@ -119,7 +119,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     duration = max(max(args.times), 1e-3) + 1e-3
     progress = rigid_work("thrust", arch, motion, duration, DEFAULT_TIME_STEP, length="--times")
     run = simulate_rigid(loaded_body(arch, loads), motion, duration=duration, progress=progress)
-    collapse = run.result.collapse_time
+    collapse = run.collapse_time
     if collapse is not None and max(args.times) > collapse:
         raise InvalidParameterError(
             f"--times must be before the collapse at t = {collapse:.3f} s, got "
@@ -129,10 +129,10 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     snaps = [on_arch_joints(forces.state_at(t), numbers, arch.voussoirs + 1)
              for t in args.times]
     if args.json:
-        extra = {} if loads is None else {"assembly": run.result.assembly.to_dict()}
+        extra = {} if loads is None else {"assembly": run.assembly.to_dict()}
         print_json({"model": "rigid", "arch": arch.describe(), "motion": motion.to_dict(),
                     "outcome": run.outcome.value,
-                    "collapse_time_s": run.result.collapse_time, "states": snaps, **extra})
+                    "collapse_time_s": run.collapse_time, "states": snaps, **extra})
         return 0
     print(f"{motion.name} (chain of rigid voussoirs; the line of thrust as e / (d/2) per joint, "
           "+-1 at a face: an open hinge, or one about to open)")
@@ -143,9 +143,9 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
         print(f"{s['sample_time_s']:8.3f}  {','.join(map(str, s['face_joints'])) or '-':<19} "
               f"{line:<36} "
               + ("-" if fd is None else f"{fd:.3f} (joint {s['max_friction_demand_joint']})"))
-    if run.result.collapse_time is not None:
-        print(f"collapse at t = {run.result.collapse_time:.3f} s")
+    if run.collapse_time is not None:
+        print(f"collapse at t = {run.collapse_time:.3f} s")
     from archquake.cli.dem_run import print_loads
 
-    print_loads(run.result.assembly.to_dict())
+    print_loads(run.assembly.to_dict())
     return 0

@@ -1,6 +1,6 @@
 """``archquake run --model dem``: one distinct-element time history (the paper's UDEC model).
 
-The output is ``DemResult.to_dict()``: the four-link run's keys
+The output is ``BlockResult.to_dict()``: the four-link run's keys
 (`archquake.outcome.RESULT_KEYS`: outcome, collapse_half_cycle, collapse_time_s,
 onset_time_s, impact_times_s, peak_rotation_rad, ...) followed by the DEM's own.
 """
@@ -150,7 +150,7 @@ def run(args: argparse.Namespace, arch, motion, options) -> int:
 def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
                    print_text, label: str | None = None, history=None) -> int:
     """The output of a block-model run (the DEM, or the rigid chain read by the DEM's own
-    post-processing, ``result`` a `DemResult`): the ``--plot``,
+    post-processing, ``result`` a `BlockResult`): the ``--plot``,
     ``--animate`` and ``--history`` files, then ``out`` (the run's ``to_dict()``, completed with
     the arch and the excitation) as JSON with ``--json``, else ``print_text(out)`` and the files
     written. ``history``: the run whose ``to_csv`` writes ``--history`` (default ``result``).

@@ -228,7 +228,7 @@ def fourlink_masses(prepared) -> dict:
     and the carried, in all and per link AB, BC, CD, kg; passive pressure left out."""
     import numpy as np
 
-    from archquake.dem.assembly import PASSIVE_LEFT_OUT
+    from archquake.blocks.assembly import PASSIVE_LEFT_OUT
     from archquake.geometry.loads import held_joints
 
     chain = prepared.mechanism.arch
@@ -259,7 +259,7 @@ def dynamic_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: 
             "--model fourlink does not carry fill, backing or loads in this command: use "
             "--model rigid (the default)")
     if loads.passive is not None:
-        from archquake.dem.assembly import PASSIVE_LEFT_OUT
+        from archquake.blocks.assembly import PASSIVE_LEFT_OUT
 
         raise InvalidParameterError(f"--passive: {PASSIVE_LEFT_OUT}; leave it out")
     if any(not p.moves_with_arch for p in loads.point_loads):

@@ -60,7 +60,7 @@ def run(args: argparse.Namespace, arch, motion, options) -> int:
     if out.get("joint_forces"):
         out["joint_forces"] = on_arch_joints(out["joint_forces"], joint_numbers(recorded),
                                              arch.voussoirs + 1)
-    return emit_block_run(args, arch, motion, recorded.result, out, _print_text,
+    return emit_block_run(args, arch, motion, recorded, out, _print_text,
                           label="rigid chain", history=recorded)
 
 
@@ -68,7 +68,7 @@ def loaded_body(arch, loads):
     """What the rigid chain runs: ``arch`` itself, or its assembly carrying ``loads``."""
     if loads is None:
         return arch
-    from archquake.dem.assembly import build_arch_assembly
+    from archquake.blocks.assembly import build_arch_assembly
 
     return build_arch_assembly(arch, loads=loads)
 
@@ -76,7 +76,7 @@ def loaded_body(arch, loads):
 def joint_numbers(run) -> list[int] | None:
     """The arch's joint number of each joint the run records, or None where they are all of
     them in order (the joints inside a backing are not recorded)."""
-    asm = run.result.assembly
+    asm = run.assembly
     cuts = asm.meta.get("cut_joints")
     numbers = [int(cuts[j.index]) for j in asm.joints] if cuts else None
     return None if numbers is None or numbers == list(range(len(numbers))) else numbers

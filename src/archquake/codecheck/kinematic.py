@@ -210,9 +210,9 @@ class RockingBlock:
     @classmethod
     def on_base(cls, width: float, height: float, *, density: float = 2000.0,
                 depth: float = 1.0) -> RockingBlock:
-        """The block of `archquake.dem.assembly.block_on_base` (``width`` b x ``height``
+        """The block of `archquake.blocks.assembly.block_on_base` (``width`` b x ``height``
         h, m) on its right toe (b/2, 0)."""
-        from archquake.dem.assembly import block_on_base
+        from archquake.blocks.assembly import block_on_base
 
         asm = block_on_base(width, height, density=density, depth=depth)
         return cls(float(asm.masses[1]), asm.centroids[1].copy(), np.array([0.5 * width, 0.0]))

@@ -30,7 +30,7 @@ from archquake.errors import InvalidParameterError
 #: The fewest records whose mean response the code lets one use (NTC 2018 §7.3.5).
 MIN_RECORDS = 7
 #: First of the rigid chain's blocks that is a voussoir (blocks 0 and 1 are the abutments:
-#: `archquake.dem.assembly.build_arch_assembly`).
+#: `archquake.blocks.assembly.build_arch_assembly`).
 _FIRST_VOUSSOIR = 2
 
 
@@ -112,8 +112,8 @@ def chain_displacement(curve: CapacityCurve, result) -> np.ndarray:
     curve : CapacityCurve
         Of the arch's four-hinge mechanism (its moving voussoirs, control point and virtual
         field define d).
-    result : DemResult
-        The run's samples (``RigidRun.result``): absolute positions, the ground's displacement.
+    result : BlockResult
+        The run's samples (a `RigidRun`): absolute positions, the ground's displacement.
 
     Returns
     -------
@@ -149,7 +149,7 @@ def _default_run(arch, motion):
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     options = models.RunOptions(time_step=DEFAULT_TIME_STEP)
-    return models.run(models.Model.RIGID, arch, motion, options=options).result
+    return models.run(models.Model.RIGID, arch, motion, options=options)
 
 
 def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str = "SLV", *,
@@ -165,7 +165,7 @@ def time_history_check(curve: CapacityCurve, records: Sequence, limit_state: str
         compatible with the site's spectrum at ``limit_state``.
     limit_state : {'SLV', 'SLC'}
     run : callable, optional
-        ``run(arch, motion) -> DemResult``; default the rigid chain to a verdict.
+        ``run(arch, motion) -> BlockResult``; default the rigid chain to a verdict.
 
     Returns
     -------

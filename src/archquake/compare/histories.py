@@ -2,13 +2,13 @@
 
 The four-link model (`archquake.mechanism.simulate`) gives phi(t), the rotation of the
 open mechanism's first link; the distinct-element model (`archquake.dem.simulate_dem`)
-gives ``DemResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
+gives ``BlockResult.rotation``, the rotation of the chord from hinge A to hinge B (for the arch
 cut at the four-link model's hinges, link AB itself; for the voussoir arch, voussoirs A..B taken as
 one link). Both are signed: > 0 while the first mechanism is open, < 0 in the mirrored one.
 
 Both results speak one vocabulary (`Outcome`, impact times, peak
 rotation per half cycle, collapse half cycle: the DEM result computes its own, see
-`archquake.dem.result`); this module only runs the two models and compares them (each
+`archquake.blocks.result`); this module only runs the two models and compares them (each
 model's run to a verdict lives with the model: `archquake.rigid.run.rigid_to_verdict`,
 `archquake.dem.run.dem_to_verdict`).
 """
@@ -22,8 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.compare)
+from archquake.blocks.assembly import (  # noqa: F401  (re-exported by archquake.compare)
     ASSEMBLIES,
     HINGES,
     VOUSSOIRS,
@@ -32,6 +31,7 @@ from archquake.dem.assembly import (  # noqa: F401  (re-exported by archquake.co
     dem_assembly,
     three_voussoir_assembly,
 )
+from archquake.constants import STANDARD_GRAVITY
 from archquake.dem.run import default_dem_duration  # noqa: F401  (re-exported by archquake.compare)
 from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
@@ -40,7 +40,7 @@ from archquake.ground.base import GroundMotion
 from archquake.validation.paper import FIGURE4_DURATIONS
 
 if TYPE_CHECKING:
-    from archquake.dem.result import DemResult
+    from archquake.blocks.result import BlockResult
     from archquake.mechanism.simulate import SimulationResult
 
 # ----------------------------------------------------------------------------- comparison
@@ -53,7 +53,7 @@ class HistoryComparison:
     analytical : SimulationResult
         The four-link model's run.
         With its history.
-    dem : DemResult
+    dem : BlockResult
     assembly : str
         ``'voussoirs'`` or ``'hinges'`` (the three-voussoir arch).
     window : float
@@ -68,7 +68,7 @@ class HistoryComparison:
     """
 
     analytical: SimulationResult = field(repr=False)
-    dem: DemResult = field(repr=False)
+    dem: BlockResult = field(repr=False)
     assembly: str
     window: float
     max_difference: float

@@ -5,7 +5,7 @@ mechanism), sized so that the analytical first half cycle peaks at ``target`` ti
 rotation; after the pulse the ground moves at constant velocity, so the motion is free rocking in
 an inertial frame. In the DEM (every voussoir a block, the paper's stiffness and damping):
 
-* the impact is the first zero crossing of the rotation measure (``DemResult.first_impact_time``);
+* the impact is the first zero crossing of the rotation measure (``BlockResult.first_impact_time``);
 * the kinetic-energy ratio across it is measured with the mechanical energy (kinetic + potential +
   contact strain, relative to the ground), which carries the kinetic energy through the
   finite-duration impact:  ``c_T = (E(t_i + window) - E_rest) / (E(t_i - window) - E_rest)``,
@@ -311,7 +311,7 @@ def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float 
 
 def half_cycle_of(res, tp: float, t_imp: float, *, window: float = 0.01) -> DemHalfCycle:
     """The `DemHalfCycle` measures of a recorded run ``res`` (a
-    `archquake.dem.DemResult`, from the DEM or from the rigid chain,
+    `archquake.blocks.BlockResult`, from the DEM or from the rigid chain,
     `archquake.rigid`) under the comparison's pulse of duration ``tp`` s,
     ``t_imp`` s being the fixed-hinge model's first impact (the end of the hinge sequence when
     the run has none)."""

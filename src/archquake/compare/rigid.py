@@ -42,7 +42,7 @@ def rigid_half_cycle(arch: Arch, *, time_step: float | None = None, window: floa
     run = simulate_rigid(arch, pulse, duration=t_imp * 1.5 + 0.1,
                          time_step=DEFAULT_TIME_STEP if time_step is None else time_step, g=g,
                          solver=solver)
-    return half_cycle_of(run.result, tp, t_imp, window=window), run
+    return half_cycle_of(run, tp, t_imp, window=window), run
 
 
 def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
@@ -72,7 +72,7 @@ def step_collapses(model: str, arch: Arch, magnitude_g: float, tp: float, *,
                          solver_tolerance=(SOLVER_TOLERANCE if solver_tolerance is None
                                            else solver_tolerance), solver=solver,
                          friction=friction)
-    return run.result.outcome.value == "collapse"
+    return run.outcome.value == "collapse"
 
 
 @dataclass(frozen=True)

@@ -20,14 +20,14 @@ from archquake.geometry.arch import Arch
 from archquake.validation.paper import FIGURE9_TIMES, FIGURE10_DAMPING, FIGURE10_PULSE, FIGURE10_TIME
 
 if TYPE_CHECKING:
-    from archquake.dem.result import DemResult
+    from archquake.blocks.result import BlockResult
 
 
 def dem_hinges(result, time: float, *, relative: float = 0.1) -> list[tuple[int, str]]:
     """(joint, face) of the DEM hinges at the recorded sample nearest ``time`` (s): the block
-    models' one rule, `archquake.dem.result.open_hinges` (a tenth of the widest
+    models' one rule, `archquake.blocks.result.open_hinges` (a tenth of the widest
     opening)."""
-    from archquake.dem.result import open_hinges
+    from archquake.blocks.result import open_hinges
 
     return open_hinges(result, time, relative=relative)
 
@@ -60,14 +60,14 @@ class HingeComparison:
     dem : tuple
         Per time, the DEM's hinges as (joint, face) pairs.
     states : tuple of MotionState
-    dem_result : DemResult
+    dem_result : BlockResult
     """
 
     times: tuple
     analytical: tuple
     dem: tuple
     states: tuple = field(repr=False)
-    dem_result: DemResult = field(repr=False)
+    dem_result: BlockResult = field(repr=False)
     seconds: float = 0.0
 
     def rows(self) -> list[dict]:
@@ -112,14 +112,14 @@ class ReducedDampingSnapshot:
 
     Attributes
     ----------
-    reduced, paper : DemResult
+    reduced, paper : BlockResult
     time : float, s
     reduced_displacements, paper_displacements : dict
         `joint_displacements` at ``time``.
     """
 
-    reduced: DemResult = field(repr=False)
-    paper: DemResult = field(repr=False)
+    reduced: BlockResult = field(repr=False)
+    paper: BlockResult = field(repr=False)
     time: float
     reduced_displacements: dict = field(repr=False)
     paper_displacements: dict = field(repr=False)

@@ -3,15 +3,21 @@ contacts, explicit central-difference time stepping with Rayleigh damping (in th
 UDEC as used by De Lorenzis, DeJong & Ochsendorf 2007).
 
 Template -> model -> contacts -> analysis: `build_arch_assembly` /
-`block_on_base` build an `Assembly`; `simulate_dem` runs it under any
-ground motion and returns a frozen `DemResult`, which speaks the analytical model's
-vocabulary (`Outcome`, impacts, half cycles, ``to_dict()`` keys).
+`block_on_base` build an `Assembly` (`archquake.blocks.assembly`, shared with the rigid
+chain); `simulate_dem` runs it under any ground motion and returns a frozen
+`archquake.blocks.BlockResult`, which speaks the analytical model's vocabulary (`Outcome`,
+impacts, half cycles, ``to_dict()`` keys). ``DemResult`` is the same class under its former
+name, kept for one release.
 """
 
-from archquake.dem.assembly import Assembly, Joint, RotationLink, block_on_base, build_arch_assembly
-from archquake.dem.result import DemResult
+from archquake.blocks.assembly import Assembly, Joint, RotationLink, block_on_base, build_arch_assembly
+from archquake.blocks.result import BlockResult
 from archquake.dem.run import simulate_dem, stable_time_step
 from archquake.dem.settings import NO_SLIDING, ContactLaw, DemSettings
+
+#: The result of `simulate_dem`: `archquake.blocks.BlockResult` under its former name (kept for
+#: one release).
+DemResult = BlockResult
 
 __all__ = [
     "Assembly",

@@ -4,7 +4,7 @@ The three layers follow scipy's ``solve_ivp``: the compiled step
 (`archquake.dem._kernels.step`, NumPy reference in `archquake.dem._reference`), a
 stepper loop with a written contract (`archquake.dem._kernels.run`), and this driver that
 packs the assembly, chooses the time step, brings the assembly to rest under gravity, runs it
-and hands the samples to `DemResult`, which classifies the run.
+and hands the samples to `archquake.blocks.BlockResult`, which classifies the run.
 
 Frames. Positions and velocities are absolute; the base blocks move with the ground, whose
 velocity and displacement are the central-difference integrals of x_g''(t_n) taken inside the
@@ -16,7 +16,7 @@ alpha = 6.28e-5 1/s either choice changes the forces by < 1e-4 of the weight).
 Stiffness-proportional damping acts on the contact relative velocities (frame-independent).
 Energies are those of the motion relative to the ground, where the ground's acceleration is
 the inertial body force -m x_g'': kinetic + potential + strain + damping + friction - input
-work stays constant (`DemResult.energy_error`).
+work stays constant (`BlockResult.energy_error`).
 """
 
 from __future__ import annotations
@@ -27,10 +27,11 @@ import numpy as np
 
 import archquake.dem._kernels as K
 from archquake._validate import require_gravity
+from archquake.blocks.assembly import Assembly, build_arch_assembly
+from archquake.blocks.criteria import DEFAULT_TAIL, default_window
+from archquake.blocks.result import BlockResult, collapse_parameters, crown_height, excitation_end
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem._kernels import Packed
-from archquake.dem.assembly import Assembly, build_arch_assembly
-from archquake.dem.result import DemResult, collapse_parameters, crown_height, excitation_end
 from archquake.dem.settings import DemSettings
 from archquake.errors import InvalidParameterError, SolverError
 from archquake.geometry.arch import Arch
@@ -292,7 +293,7 @@ def simulate_dem(
     *,
     g: float = STANDARD_GRAVITY,
     broad_phase: bool = True,
-) -> DemResult:
+) -> BlockResult:
     """Run the distinct-element model of an arch (or any block assembly) under ``motion``.
 
     Parameters
@@ -313,7 +314,7 @@ def simulate_dem(
 
     Returns
     -------
-    DemResult
+    BlockResult
     """
     assembly = (
         build_arch_assembly(arch_or_assembly) if isinstance(arch_or_assembly, VoussoirChain)
@@ -367,7 +368,8 @@ def simulate_dem(
     par = _params(assembly, settings, dt, g, broad_phase=broad_phase)
     acc = np.zeros(K.N_ACC)
     # the crown's drop is measured from its height at t = 0, after settling (set below)
-    cpar = collapse_parameters(assembly, settings, math.nan)
+    criteria = settings.criteria
+    cpar = collapse_parameters(assembly, criteria, math.nan)
 
     def advance(packed, span, out):
         ref = packed.state[:, :3].copy()
@@ -393,13 +395,14 @@ def simulate_dem(
     packed.state[:, 3:] = 0.0
     packed = packed._replace(y_ref=packed.state[:, 1].copy())
     acc[:] = 0.0
-    cpar[K.C_CROWN_Y0] = crown_height(assembly, packed.state[None, :, :3])[0]
+    cpar[:] = collapse_parameters(assembly, criteria,
+                                  crown_height(assembly, packed.state[None, :, :3])[0])
     out = K.Output(np.zeros(n_out), np.zeros((n_out, assembly.n_blocks, 6)), np.zeros((n_out, 8)),
                    np.zeros(1, dtype=np.int64))
     span = K.Span(0, n_steps, out_every, True, False, settings.stop_at_collapse)
     packed, taken = advance(packed, span, out)
     k = int(out.written[0])
-    return DemResult.from_samples(
+    return BlockResult.from_samples(
         assembly, settings,
         motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(motion)}, g,
         dt, omega, taken, settle_steps, out.times[:k], out.states[:k], out.energies[:k],
@@ -418,18 +421,11 @@ __all__ = [
 
 
 # ----------------------------------------------------------------------------- to a verdict
-#: Seconds simulated after the end of the excitation, in units of sqrt(R/g), when no duration
-#: is given: Oppenheim's arch at a = 1.0 g, t_p = 0.27 s collapses 2.4 s after the impulse ends
-#: (3.18 s; 3.35 s under the mirror-image pulse), so 5 sqrt(R/g) (5.05 s there) covers the
-#: second half cycle.
-DEFAULT_TAIL = 5.0
-
-
 def default_dem_duration(arch, motion: GroundMotion, *, tail: float = DEFAULT_TAIL,
                          g: float = STANDARD_GRAVITY) -> float:
     """End of the excitation plus ``tail`` sqrt(R/g), s: the DEM's default simulated time
-    (``arch``: anything with a ``radius``, m)."""
-    return float(motion.duration) + tail * math.sqrt(arch.radius / g)
+    (``arch``: anything with a ``radius``, m): `archquake.blocks.default_window`."""
+    return default_window(motion, arch.radius, tail=tail, g=g)
 
 
 #: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
@@ -438,10 +434,10 @@ VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
 
 def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
                    radius: float | None = None, tails=VERDICT_TAILS,
-                   g: float = STANDARD_GRAVITY) -> DemResult:
+                   g: float = STANDARD_GRAVITY) -> BlockResult:
     """The DEM run long enough for a verdict: for the end of the excitation plus each of
     ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
-    never hinged, or is at rest: `archquake.dem.result.settled`); the last run is returned
+    never hinged, or is at rest: `archquake.blocks.result.settled`); the last run is returned
     (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
     resumed, so each try reruns from the start: a run that needs the second tail costs about
     three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
@@ -456,7 +452,7 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     base = DemSettings() if settings is None else settings
     result = None
     for tail in tails:
-        duration = float(motion.duration) + float(tail) * math.sqrt(r / g)
+        duration = default_window(motion, r, tail=tail, g=g)
         if result is not None and duration > DEM_T_END_MAX_S:
             break
         result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)

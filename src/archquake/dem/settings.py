@@ -3,7 +3,7 @@
 Units are SI throughout. Joint stiffnesses are given per unit joint area (Pa/m, i.e. stress per
 unit overlap, as UDEC's ``jkn``/``jks``); each contact point turns them into a spring in N/m by
 multiplying with the block depth and its tributary contact length (see
-`archquake.dem.assembly`).
+`archquake.blocks.assembly`).
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from archquake._validate import require_finite, require_positive, require_range
+from archquake.blocks.criteria import MAX_DURATION, BlockCriteria
 from archquake.errors import InvalidParameterError
 
 #: Friction coefficient used when none is given: large enough that nothing slides (the paper's
@@ -26,7 +27,6 @@ STIFFNESS_RANGE_PA_M = (1.0e3, 1.0e24)
 MAX_FRICTION = 1.0e9
 MAX_RAYLEIGH_ALPHA = 1.0e6  # 1/s
 MAX_RAYLEIGH_BETA = 10.0  # s
-MAX_DURATION = 1.0e6  # s
 TIME_STEP_RANGE = (1.0e-12, 1.0)  # s
 
 
@@ -113,16 +113,10 @@ class DemSettings:
         Time, s (>= 0), for which the assembly is brought to rest under gravity (kinetic
         damping) before the ground starts to move, so that the joints carry their static
         forces at t = 0 (UDEC practice: solve to equilibrium, then shake).
-    collapse_drop : float
-        Collapse when the crown point drops by more than this fraction of the assembly's
-        reference length (the arch thickness t) (> 0).
-    collapse_rotation : float
-        Collapse when any block has turned by more than this, rad (> 0).
-    hinge_opening : float
-        A joint counts as open (a hinge) when its gap exceeds this fraction of the reference
-        length (> 0).
-    stop_at_collapse : bool
-        Stop the run at the first output sample that meets a collapse criterion.
+    collapse_drop, collapse_rotation, hinge_opening, stop_at_collapse
+        The thresholds both block models read, held as a
+        `archquake.blocks.criteria.BlockCriteria` (``criteria``; see it for their
+        meaning and units).
     """
 
     contact: ContactLaw = ContactLaw()
@@ -180,18 +174,23 @@ class DemSettings:
             raise InvalidParameterError(
                 f"settle_time must be in [0, {MAX_DURATION:g}] s, got {settle:g}")
         object.__setattr__(self, "settle_time", settle)
-        object.__setattr__(
-            self, "collapse_drop", require_positive("collapse_drop", self.collapse_drop)
-        )
-        object.__setattr__(
-            self,
-            "collapse_rotation",
-            require_positive("collapse_rotation", self.collapse_rotation, "rad"),
-        )
-        object.__setattr__(
-            self, "hinge_opening", require_positive("hinge_opening", self.hinge_opening)
-        )
-        object.__setattr__(self, "stop_at_collapse", bool(self.stop_at_collapse))
+        criteria = BlockCriteria(hinge_opening=self.hinge_opening,
+                                 collapse_rotation=self.collapse_rotation,
+                                 collapse_drop=self.collapse_drop,
+                                 stop_at_collapse=self.stop_at_collapse)
+        object.__setattr__(self, "collapse_drop", criteria.collapse_drop)
+        object.__setattr__(self, "collapse_rotation", criteria.collapse_rotation)
+        object.__setattr__(self, "hinge_opening", criteria.hinge_opening)
+        object.__setattr__(self, "stop_at_collapse", criteria.stop_at_collapse)
+
+    @property
+    def criteria(self) -> BlockCriteria:
+        """The thresholds both block models read (`archquake.blocks.criteria.BlockCriteria`):
+        ``hinge_opening``, ``collapse_rotation``, ``collapse_drop``, ``stop_at_collapse``."""
+        return BlockCriteria(hinge_opening=self.hinge_opening,
+                             collapse_rotation=self.collapse_rotation,
+                             collapse_drop=self.collapse_drop,
+                             stop_at_collapse=self.stop_at_collapse)
 
     @staticmethod
     def rayleigh_from_minimum(f_min: float, xi_min: float) -> tuple[float, float]:

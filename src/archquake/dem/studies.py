@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
+from archquake.blocks.assembly import Assembly, block_on_base
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import Assembly, block_on_base
 from archquake.dem.run import simulate_dem
 from archquake.dem.settings import DemSettings
 from archquake.ground.records import Record

@@ -11,6 +11,7 @@ import time
 from collections.abc import Callable
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,6 +19,9 @@ from archquake import models
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains.batch import PulseFamily, PulseOutcomes
 from archquake.outcome import Outcome
+
+if TYPE_CHECKING:
+    pass
 
 #: The block models a domain may be searched with: the DEM and the rigid chain.
 BLOCK_MODELS = ("dem", "rigid")
@@ -61,7 +65,7 @@ def rigid_pulse_outcomes(assembly, family: PulseFamily, points, settings, tail_s
 
     motions = [family.motion(a, d, g=g) for a, d in points]
     verdicts = rigid_verdicts(assembly, motions, duration=[m.duration + tail_s for m in motions],
-                              settings=settings, g=g, threads=threads)
+                              settings=settings.criteria, g=g, threads=threads)
     out = []
     for v in verdicts:
         if v.outcome is Outcome.COLLAPSE:

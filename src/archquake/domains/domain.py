@@ -345,7 +345,7 @@ def _predicate(res, criterion: str) -> np.ndarray:
 
 def _rigid_evaluator(arch, family, restitution, impact, g: float, threads: int | None):
     """The rigid chain's outcomes for `failure_domain` (``model='rigid'``)."""
-    from archquake.dem.assembly import VOUSSOIRS, dem_assembly
+    from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
     from archquake.dem.settings import DemSettings
     from archquake.domains.blocks import DOMAIN_TAIL, DemPulseEvaluator
 

@@ -160,7 +160,7 @@ def _body(arch, loads):
     built = arch.build()
     if loads is None:
         return built
-    from archquake.dem.assembly import build_arch_assembly
+    from archquake.blocks.assembly import build_arch_assembly
 
     return build_arch_assembly(built, loads=loads)
 

@@ -6,7 +6,7 @@ a ground acceleration towards -x opens them (the paper's Figure 1). `PreparedMec
 packs that mechanism for the compiled kernels (`pack_mechanism`) with its impact solution
 (Eq. 4), once, and is what the time histories (`archquake.mechanism.simulate`), the domain
 search (`archquake.domains`), the thrust line in motion (`archquake.thrust`) and the
-distinct-element assemblies (`archquake.dem.assembly`) all start from.
+distinct-element assemblies (`archquake.blocks.assembly`) all start from.
 
 Its properties are the mechanism's scalar characteristics, so that no code outside
 `archquake.mechanism` reads the packed layout:

@@ -34,7 +34,7 @@ def save_dem_rotation(result, path: str | Path, *, label: str | None = None) -> 
 def plot_hinge_sets(result, ax, *, labels: int = 12):
     """The number of open hinges of a block model against time (a step line), each change of
     the hinge set marked and, when there are at most ``labels`` changes, labelled with its
-    hinges (``DemResult.hinge_sets``)."""
+    hinges (``BlockResult.hinge_sets``)."""
     sets = result.hinge_sets()
     end = result.end_time
     if sets:
@@ -173,7 +173,7 @@ def figure9_comparison(arch, states: Sequence, dem_result, path: str | Path) -> 
 def figure10(result, time: float, path: str | Path, *, reference=None) -> Path:
     """Figure 10: the DEM snapshot at ``time`` and the relative displacements of the voussoirs
     at every joint (slip along the joint and opening at its intrados and extrados ends, mm);
-    ``reference`` (another DemResult, e.g. with the paper's damping) drawn alongside."""
+    ``reference`` (another BlockResult, e.g. with the paper's damping) drawn alongside."""
     from archquake.compare.snapshots import joint_displacements
 
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11.0, 4.0),

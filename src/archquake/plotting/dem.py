@@ -32,7 +32,7 @@ def plot_dem_snapshot(result, time: float, ax=None, *, arrows: bool = True,
 
     Parameters
     ----------
-    result : DemResult
+    result : BlockResult
     time : float
         s; the nearest recorded sample is drawn.
     ax : matplotlib Axes, optional
@@ -85,7 +85,7 @@ def plot_dem_snapshot(result, time: float, ax=None, *, arrows: bool = True,
     ax.autoscale_view()
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    from archquake.dem.result import hinge_label, open_hinges
+    from archquake.blocks.result import hinge_label, open_hinges
 
     ax.set_title(f"t = {result.times[k]:.2f} s   {hinge_label(open_hinges(result, result.times[k]))}",
                  fontsize=9)

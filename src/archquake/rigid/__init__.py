@@ -1,7 +1,7 @@
 """The rigid-block chain: rigid voussoirs with unilateral, plastic, no-slip (or Coulomb) joint
 contacts and any number of open hinges, the rigid limit of the distinct-element model.
 
-`model` packs an arch (or any block assembly, `archquake.dem`'s
+`model` packs an arch (or any block assembly, `archquake.blocks`'s
 description) and holds the tolerances every integrator reads; two integrators read it: the
 Moreau-Jean time stepper (`steps`) and the event integrator
 (`events`); `forces` recovers the joint forces of a

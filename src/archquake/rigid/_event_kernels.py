@@ -62,7 +62,7 @@ import numpy as np
 
 import archquake._dopri as DP  # the Dormand-Prince 5(4) tableau
 import archquake.rigid._step_kernels as RK
-from archquake.dem._kernels import collapsed
+from archquake.blocks._kernels import collapsed
 from archquake.ground._kernel import ground_in_piece, next_breakpoint, vertical_in_piece
 
 #: Most hinges a mode may have.
@@ -137,7 +137,7 @@ class Chain(NamedTuple):
     a springing); ``arm_a``, ``arm_b`` the corners from those blocks' centroids, m (as the
     time stepper's `archquake.rigid._step_kernels` reads them). ``free_blocks`` and ``free``: the
     blocks the collapse criterion reads, and 1 for each movable block. ``cpar``: the collapse
-    criterion's parameters (`archquake.dem._kernels.collapsed`). ``lref``: the chain's
+    criterion's parameters (`archquake.blocks._kernels.collapsed`). ``lref``: the chain's
     reference length L, m (the radius of a circular arch).
     """
 

@@ -1,6 +1,6 @@
 """Compiled verdict-only run of the rigid chain (numba): the Moreau-Jean step of
 `archquake.rigid._step_kernels.run` (the same step, bit for bit, through
-``project_direct``), with the verdict of `archquake.dem.result.DemResult.from_samples`
+``project_direct``), with the verdict of `archquake.blocks.result.BlockResult.from_samples`
 read on the fly instead of from recorded samples, and three shortcuts that do not change it:
 
 * **skip at rest**: while the chain is untouched at rest (q, v exactly the rest state) and the
@@ -12,7 +12,7 @@ read on the fly instead of from recorded samples, and three shortcuts that do no
   (zeroing it and skipping changed verdicts at threshold levels of the bridge example under
   near-field records);
 * **stop at collapse**: at the first step meeting a collapse criterion
-  (`archquake.dem._kernels.collapsed`);
+  (`archquake.blocks._kernels.collapsed`);
 * **stop at proven rest**: at rest with the rest of the ground motion inside the safe domain (a
   suffix maximum of the ground acceleration): untouched, or, after a motion, settled (kinetic
   energy below ``REST_KINETIC`` W L for a rest window, every joint closed, the safe domain
@@ -24,8 +24,8 @@ read on the step's mid-step corner gaps (``_rigid_kernels.geometry``), the DEM's
 joint openings: both are the opening of a joint end beyond ``hinge_opening`` L.
 
 The impacts before a collapse (its half cycle) are the sign changes of the rotation measure
-(`archquake.dem.result.crossings`), counted on both the assembly's rotation link and its
-mirror image; the caller picks one with `archquake.dem.result.mirror_opens_first`'s rule.
+(`archquake.blocks.result.crossings`), counted on both the assembly's rotation link and its
+mirror image; the caller picks one with `archquake.blocks.result.mirror_opens_first`'s rule.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ import numba as nb
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
-from archquake.dem import _kernels as DK
+from archquake.blocks import _kernels as DK
 
 #: Parameters, ``par`` (float64).
 P_H = 0  # s, time step
@@ -90,7 +90,7 @@ class Frame(NamedTuple):
     """The assembly's arrays the verdict reads besides the `Chain`:
     ``base_state`` (n_blocks, 3) every block's undisplaced x, y (m), theta (rad);
     ``free_blocks`` (nb,) int the assembly index of each free body; ``free_mask`` (n_blocks,)
-    int 1 for a free block; ``cpar``: `archquake.dem.result.collapse_parameters`;
+    int 1 for a free block; ``cpar``: `archquake.blocks.result.collapse_parameters`;
     ``links_block`` (2, 2) int, ``links_local`` (2, 2, 2) m, ``links_sign`` (2,): the two
     rotation links (the assembly's, its mirror image), their blocks and points relative to the
     blocks' centroids."""
@@ -308,7 +308,7 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
             drop = (cpar[DK.C_CROWN_Y0] - yc) / cpar[DK.C_CROWN_DROP]
             if drop > peak_drop:
                 peak_drop = drop
-        # the rotation measure's sign changes (archquake.dem.result.crossings)
+        # the rotation measure's sign changes (archquake.blocks.result.crossings)
         for ell in range(2):
             a = _chord_angle(st, links_block, links_local, ell)
             # d wrapped into [-pi, pi), the modulo only when needed (the same numbers)

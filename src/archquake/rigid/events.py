@@ -291,7 +291,7 @@ def _stepper_window(model: EventModel, motion, chain: EK.Chain, state: EK.State,
     q, v, diag, state_all = state.fq, state.fv, state.diag, state.state_all
     out_q, out_v, out_e = output
     free, cpar = chain.free, chain.cpar
-    import archquake.dem._kernels as DK
+    import archquake.blocks._kernels as DK
 
     r = model.rigid
     lref = model.lref
@@ -354,18 +354,18 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
         ``counters`` and ``log`` (``_event_kernels.run``); ``max_drift_m``; ``state``: the final
         (st, y) of the kernel; ``wall_s``.
     """
-    import archquake.dem._kernels as DK
-    from archquake.dem.result import (
+    import archquake.blocks._kernels as DK
+    from archquake.blocks.criteria import block_criteria
+    from archquake.blocks.result import (
         collapse_parameters,
         crown_height,
         excitation_end,
         settled,
     )
-    from archquake.dem.settings import DemSettings
 
     r = model.rigid
     asm = r.assembly
-    settings = DemSettings() if settings is None else settings
+    settings = block_criteria(settings, caller="run_events")
     n = r.n_bodies
     lref = model.lref
     check_motion_lift_off(motion, g)

@@ -217,11 +217,11 @@ def _independent(h: np.ndarray) -> bool:
 def _setup(run, motion, g: float | None, every: int) -> dict:
     """What both probes of `joint_forces` read: the model, the step and the projection's
     settings, the samples used and their ground accelerations."""
-    res = run.result
+    res = run
     g = res.g if g is None else float(g)
     model = RigidModel.build(res.assembly)
-    stepped = bool(np.isfinite(run.time_step))
-    h = run.time_step if stepped else DEFAULT_TIME_STEP
+    stepped = bool(np.isfinite(run.stepper_time_step))
+    h = run.stepper_time_step if stepped else DEFAULT_TIME_STEP
     lref = res.assembly.reference_length
     # a stepper's run: its step, position-level correction included (the tangential part
     # needs the run's contact history and is left out); an event run's: the plain cone
@@ -240,7 +240,9 @@ def _setup(run, motion, g: float | None, every: int) -> dict:
     return {"res": res, "g": g, "model": model, "h": h, "lref": lref, "correction": correction,
             "hold": hold, "gap_tol": GAP_TOLERANCE * lref,
             "tol": SOLVER_TOLERANCE * np.sqrt(g * lref),
-            "mu": 0.0 if run.friction is None else float(run.friction), "picks": picks,
+            "mu": (0.0 if run.friction_coefficient is None
+                   else float(run.friction_coefficient)),
+            "picks": picks,
             "times": times, "acc": acc, "depth": depth, "vacc": vacc}
 
 
@@ -324,9 +326,9 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     """The joint forces of ``run`` (a `RigidRun`) at its
     recorded samples, under the ``motion`` it was run with (module docstring).
 
-    Friction: the run's (``run.friction``; None, no slip). ``every``: use every this many
-    recorded samples. Cost: one contact projection per sample used, all in one compiled call
-    (`archquake.rigid._force_kernels.probe`; `joint_forces_reference` is its
+    Friction: the run's (``run.friction_coefficient``; None, no slip). ``every``: use every
+    this many recorded samples. Cost: one contact projection per sample used, all in one
+    compiled call (`archquake.rigid._force_kernels.probe`; `joint_forces_reference` is its
     plain twin), which also proves most samples' rank test by a bound; the SVD settles the
     rest. A run of the event integrator (``solver="events"``, no time step of its own)
     is probed with the stepper's default step."""

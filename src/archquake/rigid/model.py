@@ -7,7 +7,7 @@ mechanisms and had to re-express the configuration at each switch. The DEM shows
 phases of 0.1-0.4 s and joints closing one after another. A chain of rigid blocks whose joints
 may open at either corner has all of these motions at once, and needs no choice of mechanism:
 
-* each block (every voussoir, `archquake.dem.assembly.Assembly`, the DEM's own
+* each block (every voussoir, `archquake.blocks.assembly.Assembly`, the DEM's own
   description, so both models read the same blocks, masses and joints) is a rigid body
   (x, y, theta), in the frame of the ground (inertial load -m x_g'');
 * each joint has two corner contacts (intrados, extrados) with a unilateral normal constraint
@@ -32,9 +32,9 @@ active contacts changes during a half cycle tens of times, and closures accumula
 joint can reopen its neighbour at once); Moreau-Jean needs no event location and is robust to
 accumulation, at first order in h. The convergence in h is measured (docs/notes/mechanism.md).
 
-Energies are relative to the ground. The results are a `archquake.dem.DemResult` built
-by the DEM's own post-processing (`DemResult.from_samples`, through
-`archquake.rigid.run._samples_to_result`, which any integrator's samples go to), so impacts,
+Energies are relative to the ground. The results are a `archquake.blocks.BlockResult` built
+by the DEM's own post-processing (`BlockResult.from_samples`, through
+`archquake.rigid.run._samples_to_run`, which any integrator's samples go to), so impacts,
 hinges, collapse criteria and the rotation measure are read exactly as in the DEM; in it,
 ``strain`` is zero and the ``damping`` column holds the energy removed by the contact
 projections (the plastic impacts, the scheme's O(h) loss in persistent contacts, and the
@@ -53,8 +53,8 @@ import numpy as np
 
 import archquake.rigid._input_kernels as IK
 import archquake.rigid._step_kernels as RK
+from archquake.blocks.assembly import Assembly, build_arch_assembly
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import Assembly, build_arch_assembly
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import has_vertical

@@ -1,10 +1,13 @@
 """Running the rigid-block chain (`archquake.rigid.model`) to a verdict: ``simulate_rigid``
 and its result, `RigidRun`.
 
-The stepper (`archquake.rigid.steps`) and the event integrator
-(`archquake.rigid.events`) hand back their samples; here they become a
-`archquake.dem.DemResult` by the DEM's own post-processing
-(`DemResult.from_samples`, through `_samples_to_result`), so impacts, hinges,
+One driver, ``simulate_rigid``: it validates the run, picks the integrator (a strategy:
+the time stepper, `archquake.rigid.steps`, through `_time_steps`; the event
+integrator, `archquake.rigid.events`, through `_events`; or none, `_below_onset`, for a
+motion that never reaches the onset of hinging), each of which runs (and goes on until rest)
+its own way and hands back its samples, an `Integrated`; they become a `RigidRun`, a
+`archquake.blocks.BlockResult` built by the block models' own post-processing
+(`BlockResult.from_samples`, through `_samples_to_run`), so impacts, hinges,
 collapse criteria and the rotation measure are read exactly as in the DEM. In it, ``strain`` is
 zero and the ``damping`` column holds the energy removed by the contact projections (the
 plastic impacts, the scheme's O(h) loss in persistent contacts, and the position correction's
@@ -14,23 +17,28 @@ work, ``RigidRun.correction_work``), not Rayleigh damping.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
-from pathlib import Path
 
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
 from archquake._validate import require_gravity, require_positive, require_range
+from archquake.blocks.assembly import Assembly
+from archquake.blocks.criteria import (
+    MAX_DURATION,
+    BlockCriteria,
+    BlockRunSettings,
+    block_criteria,
+    default_window,
+)
+from archquake.blocks.result import BlockResult, excitation_end
 from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import Assembly
-from archquake.dem.result import DemResult, HingeSet, excitation_end
-from archquake.dem.settings import MAX_DURATION, DemSettings
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion, check_motion_lift_off
 from archquake.outcome import Outcome
-from archquake.result import write_csv
 from archquake.rigid.events import (
     EventModel,
     events_summary,
@@ -50,11 +58,15 @@ from archquake.rigid.model import (
 from archquake.rigid.steps import METHODS, run_steps
 
 
-@dataclass(frozen=True)
-class RigidRun:
-    """A rigid-chain history.
+@dataclass(frozen=True, kw_only=True)
+class RigidRun(BlockResult):
+    """A rigid-chain history: the block post-processing's result (`BlockResult`: times,
+    positions, outcome, impacts, ... read exactly as the DEM's, module docstring) and the
+    stepper's own record.
 
-    ``result``: the samples as a `DemResult` (module docstring); ``time_step`` s;
+    The stepper's fields: ``stepper_time_step``: the time stepper's step h, s (NaN for the
+    event integrator, whose step is adaptive; ``time_step`` is then the output interval, as the
+    settings record it);
     ``max_penetration_m``: largest negative gap of the run (the velocity-level scheme's drift);
     ``correction_work``: J, the part of the ``damping`` column (the kinetic energy the contact
     projections removed) that is the work of the position-level correction
@@ -67,41 +79,48 @@ class RigidRun:
     (``_step_kernels.D_CONTACT_WORK``, the energy they dissipate: what closes the balance,
     `energy`) and its part on the slipping joints (``D_FRICTION_WORK``); None for the
     event integrator, whose ``damping`` column is its impacts' loss;
-    ``friction``: the joints' Coulomb coefficient, None for no sliding; ``motion``: the ground
-    motion it was run with; ``events``: with ``solver="events"``, the event integrator's
-    record (`archquake.rigid.events.run_events`: counters, the event log, the
-    times the time stepper took over), else None (and ``time_step`` is then NaN: the step is
-    adaptive); ``at_rest``: the motion never reaches the onset of hinging
-    (`archquake.rigid.events.stays_at_rest`), so no step was taken: the samples are the
-    chain at rest on the moving ground.
+    ``friction_coefficient``: the joints' Coulomb coefficient, None for no sliding (the
+    ``friction`` column is the block result's energy, J); ``ground_motion``: the ground motion
+    it was run with (``motion`` is its ``to_dict()``); ``events``: with ``solver="events"``,
+    the event integrator's record (`archquake.rigid.events.run_events`: counters, the event
+    log, the times the time stepper took over), else None; ``at_rest``: the motion never
+    reaches the onset of hinging (`archquake.rigid.events.stays_at_rest`), so no step was
+    taken: the samples are the chain at rest on the moving ground.
     """
 
-    result: DemResult
-    time_step: float
+    stepper_time_step: float
     max_penetration_m: float
     friction_demand: np.ndarray
     max_sweeps: int
     residual: float
     wall_s: float
-    friction: float | None = None
-    motion: object = field(default=None, repr=False, compare=False)
+    friction_coefficient: float | None = None
+    ground_motion: object = field(default=None, repr=False, compare=False)
     correction_work: float = 0.0
     events: dict | None = field(default=None, repr=False, compare=False)
     contact_work: np.ndarray | None = field(default=None, repr=False, compare=False)
     friction_work: np.ndarray | None = field(default=None, repr=False, compare=False)
     at_rest: bool = False
 
+    @property
+    def result(self) -> RigidRun:
+        """The run itself (deprecated: a `RigidRun` is its block result; read its fields
+        directly, ``run.outcome`` for ``run.result.outcome``)."""
+        warnings.warn("RigidRun.result is the run itself: read run.<name> for "
+                      "run.result.<name>; this is accepted until the next release",
+                      DeprecationWarning, stacklevel=2)
+        return self
+
     @cached_property
     def energy(self) -> EnergyBalance:
         """The run's energy balance (`EnergyBalance`, `energy_balance`)."""
-        res = self.result
-        contacts = res.damping if self.contact_work is None else self.contact_work
+        contacts = self.damping if self.contact_work is None else self.contact_work
         friction = np.zeros_like(contacts) if self.friction_work is None else self.friction_work
-        asm = res.assembly
+        asm = self.assembly
         free_mass = float(np.sum(asm.masses[~np.asarray(asm.base, dtype=bool)]))
-        ground = 0.5 * free_mass * float(np.max(np.abs(res.base_velocity), initial=0.0)) ** 2
-        return energy_balance(res.times, res.kinetic, res.potential, contacts, friction,
-                              res.input_work, ground_kinetic=ground)
+        ground = 0.5 * free_mass * float(np.max(np.abs(self.base_velocity), initial=0.0)) ** 2
+        return energy_balance(self.times, self.kinetic, self.potential, contacts, friction,
+                              self.input_work, ground_kinetic=ground)
 
     @property
     def max_friction_demand(self) -> float:
@@ -112,124 +131,49 @@ class RigidRun:
         """The joint forces, line of thrust and friction demand at the recorded samples (at most
         ``FORCE_SAMPLES`` of them, evenly strided):
         `archquake.rigid.forces.joint_forces`, with its reporting rule."""
-        if self.motion is None:
+        if self.ground_motion is None:
             raise InvalidParameterError("this run does not know its ground motion")
         if self.at_rest:  # the locked arch: indeterminate at every sample (forces module)
             from archquake.rigid.forces import joint_forces_at_rest
 
-            return joint_forces_at_rest(self, self.motion)
-        every = max(1, -(-self.result.times.size // FORCE_SAMPLES))
-        return _joint_forces(self, self.motion, every=every)
-
-    @property
-    def outcome(self) -> Outcome:
-        """The `Outcome` (the DEM's post-processing, ``result``)."""
-        return self.result.outcome
-
-    # what every model's result has (archquake.result.ModelResult), read from ``result``
-    @property
-    def verdict_reason(self) -> str:
-        """Why the outcome is what it is, in one sentence (``result.verdict_reason``)."""
-        return self.result.verdict_reason
-
-    @property
-    def times(self) -> np.ndarray:
-        """The samples' times, s."""
-        return self.result.times
-
-    @property
-    def rotation(self) -> np.ndarray:
-        """The mechanism's rotation, rad (``result.rotation``)."""
-        return self.result.rotation
-
-    @property
-    def crown_displacement(self) -> np.ndarray:
-        """(nt, 2): the crown's displacement relative to the ground, m."""
-        return self.result.crown_displacement
-
-    @property
-    def kinetic(self) -> np.ndarray:
-        """Kinetic energy relative to the ground, J."""
-        return self.result.kinetic
-
-    @property
-    def potential(self) -> np.ndarray:
-        """Gravitational potential energy from the undisplaced arch, J."""
-        return self.result.potential
-
-    @property
-    def impact_times(self) -> np.ndarray:
-        """s, before the collapse."""
-        return self.result.impact_times
-
-    @property
-    def hinge_events(self) -> tuple[HingeSet, ...]:
-        """Every hinge set the chain passed through (``result.hinge_sets()``)."""
-        return self.result.hinge_events
-
-    @property
-    def onset_time(self) -> float | None:
-        """When hinging started, s."""
-        return self.result.onset_time
-
-    @property
-    def collapse_time(self) -> float | None:
-        """When a collapse criterion was met, s."""
-        return self.result.collapse_time
-
-    @property
-    def peak_rotation(self) -> np.ndarray:
-        """The largest rotation of each half cycle, rad."""
-        return self.result.peak_rotation
-
-    @property
-    def collapse_half_cycle(self) -> int | None:
-        """1 + the impacts before the collapse."""
-        return self.result.collapse_half_cycle
-
-    @property
-    def g(self) -> float:
-        """Gravity, m/s^2."""
-        return self.result.g
+            return joint_forces_at_rest(self, self.ground_motion)
+        every = max(1, -(-self.times.size // FORCE_SAMPLES))
+        return _joint_forces(self, self.ground_motion, every=every)
 
     def to_table(self) -> dict[str, np.ndarray]:
-        """Columns for a tabular export: ``result.to_table()``
+        """Columns for a tabular export: `BlockResult.to_table`
         (`archquake.result.TABLE_COLUMNS` first) with the contacts' work in place of the
         DEM's sinks (``dissipated_contacts_J``, ``dissipated_friction_J``: its part on slipping
         joints; `energy`), then the friction demand."""
-        out = self.result.to_table()
+        out = super().to_table()
         for key in ("strain_J", "damping_J", "friction_J"):
             del out[key]
-        contacts = self.result.damping if self.contact_work is None else self.contact_work
+        contacts = self.damping if self.contact_work is None else self.contact_work
         out["dissipated_contacts_J"] = contacts
         out["dissipated_friction_J"] = (np.zeros_like(contacts) if self.friction_work is None
                                         else self.friction_work)
-        if self.friction_demand.shape == self.result.times.shape:
+        if self.friction_demand.shape == self.times.shape:
             out["friction_demand"] = self.friction_demand
         return out
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write `to_table` as CSV (`archquake.result.write_csv`)."""
-        return write_csv(self.to_table(), path)
-
     def to_dict(self, *, joint_forces: bool = True) -> dict:
-        """Summary for JSON: ``DemResult.to_dict()`` (the keys of
+        """Summary for JSON: `BlockResult.to_dict` (the keys of
         `archquake.outcome.RESULT_KEYS` first) with ``model`` ``"rigid"`` (as ``--model``
         names it), then the
         stepper's own diagnostics under ``rigid``. ``joint_forces=False`` leaves out the joint
         forces' summary (a post-processing that costs more than the run: sweeps skip it)."""
-        out = self.result.to_dict()
+        out = super().to_dict()
         del out["dissipated_damping_J"], out["dissipated_friction_J"]  # the DEM's sinks
         out.update(self.energy.to_dict())
         out["model"] = "rigid"
-        out["friction_coefficient"] = self.friction
-        if joint_forces and self.motion is not None:
+        out["friction_coefficient"] = self.friction_coefficient
+        if joint_forces and self.ground_motion is not None:
             out["joint_forces"] = self.joint_forces.summary()
         solver = ("none: below the onset" if self.at_rest
                   else "events" if self.events is not None else "time stepping")
         out["rigid"] = {"solver": solver,
                         "time_step_s": (None if self.events is not None or self.at_rest
-                                        else self.time_step),
+                                        else self.stepper_time_step),
                         "max_penetration_m": self.max_penetration_m,
                         "correction_work_j": self.correction_work,
                         "max_sweeps": self.max_sweeps, "residual_m_s": self.residual,
@@ -241,7 +185,7 @@ class RigidRun:
 
 def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, motion, *,
                    duration: float = 3.0, time_step: float = DEFAULT_TIME_STEP,
-                   output_interval: float = 5e-4, settings: DemSettings | None = None,
+                   output_interval: float = 5e-4, settings: BlockCriteria | None = None,
                    initial: tuple[np.ndarray, np.ndarray] | None = None,
                    g: float = STANDARD_GRAVITY, chunk: float = 0.05,
                    solver_tolerance: float = SOLVER_TOLERANCE,
@@ -252,14 +196,16 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     Parameters
     ----------
     arch_or_assembly : VoussoirChain, Assembly or RigidModel
-        An arch is built with `archquake.dem.assembly.build_arch_assembly` (every
+        An arch is built with `archquake.blocks.assembly.build_arch_assembly` (every
         voussoir a block), as the DEM does.
     motion : GroundMotion
     duration, time_step, output_interval : float
         s. The output interval is rounded to a whole number of steps.
-    settings : DemSettings, optional
-        Only its thresholds are read (``hinge_opening``, the collapse criteria,
-        ``stop_at_collapse``), so that the results are classified as the DEM's are.
+    settings : BlockCriteria, optional
+        The thresholds the samples are classified by (``hinge_opening``, the collapse
+        criteria, ``stop_at_collapse``), as the DEM's are (default ``BlockCriteria()``). A
+        `archquake.dem.DemSettings` is still accepted for one release (its ``criteria``
+        are read), with a `DeprecationWarning`.
     initial : (q, v), optional
         Initial configuration and velocity, (nb, 3) each (default: rest, undisplaced).
     g : float
@@ -282,7 +228,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
         contact event (`archquake.rigid.events`; no friction, from rest;
         ``time_step`` and ``chunk`` are not used).
     until_rest : float, optional
-        s: if the arch has neither collapsed nor come to rest (`archquake.dem.result.settled`)
+        s: if the arch has neither collapsed nor come to rest (`archquake.blocks.result.settled`)
         by ``duration``, go on, checking every ``chunk`` s, until it does or this time is
         reached. Without it (default) the run ends at ``duration``; the verdict is
         ``indeterminate`` if the arch is still moving then.
@@ -303,7 +249,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                                    high_open=False)
     model = arch_or_assembly if isinstance(arch_or_assembly, RigidModel) else RigidModel.build(
         arch_or_assembly)
-    settings = DemSettings() if settings is None else settings
+    settings = block_criteria(settings, caller="simulate_rigid")
     mu = 0.0 if friction is None else float(friction)
     if friction is not None and not (mu > 0 and math.isfinite(mu)):
         raise InvalidParameterError(f"friction must be a finite coefficient > 0, got {friction!r}")
@@ -320,32 +266,22 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
     if solver != "events":  # the bound first (arithmetic; the onset test projects the chain)
         check_work(model.n_bodies, duration if until_rest is None else max(duration, until_rest),
                    h)
+    # the integrator (a strategy: each runs, and resumes until rest, its own way), then the
+    # one result
+    got: Integrated
     if friction is None and initial is None and stays_at_rest(model, motion, g=g):
-        return _at_rest(model, motion, settings, duration=duration,
-                        output_interval=output_interval, g=g,
-                        time_step=math.nan if solver == "events" else h)
-    if solver == "events":
-        return _simulate_events(model, motion, settings, duration=duration,
-                                output_interval=output_interval, g=g, until_rest=until_rest)
-    s = run_steps(model, motion, settings, duration=duration, time_step=h,
-                  output_interval=output_interval, initial=initial, g=g, chunk=chunk,
-                  solver_tolerance=solver_tolerance, friction=mu, solver=solver,
-                  until_rest=until_rest, progress=progress)
-    da = s.diag
-    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
-                             output_interval=s.output_interval, n_steps=s.n_steps,
-                             times=s.times, q=s.q, v=s.v, dissipated=da[:, RK.D_DISSIPATED],
-                             input_work=da[:, RK.D_INPUT],
-                             ground_displacement=s.ground_displacement,
-                             ground_velocity=s.ground_velocity)
-    return RigidRun(result=res, time_step=h,
-                    max_penetration_m=float(da[:, RK.D_PENETRATION].max(initial=0.0)),
-                    friction_demand=da[:, RK.D_FRICTION].copy(), max_sweeps=s.max_sweeps,
-                    residual=float(da[:, RK.D_RESIDUAL].max(initial=0.0)), wall_s=s.wall_s,
-                    friction=friction, motion=motion,
-                    correction_work=float(da[-1, RK.D_CORRECTION]),
-                    contact_work=da[:, RK.D_CONTACT_WORK].copy(),
-                    friction_work=da[:, RK.D_FRICTION_WORK].copy())
+        got = _below_onset(model, motion, duration=duration, output_interval=output_interval,
+                           time_step=math.nan if solver == "events" else h)
+    elif solver == "events":
+        got = _events(model, motion, settings, duration=duration,
+                      output_interval=output_interval, g=g, until_rest=until_rest)
+    else:
+        got = _time_steps(model, motion, settings, duration=duration, time_step=h,
+                          output_interval=output_interval, initial=initial, g=g, chunk=chunk,
+                          solver_tolerance=solver_tolerance, friction=friction, solver=solver,
+                          until_rest=until_rest, progress=progress)
+    return _samples_to_run(model, motion, settings, g=g, duration=duration, **got.samples(),
+                           **got.extras)
 
 
 #: A residual of the energy balance above this fraction of its scale is a warning on the run.
@@ -440,18 +376,82 @@ def energy_balance(times: np.ndarray, kinetic: np.ndarray, potential: np.ndarray
                          residual=residual, warning=warning)
 
 
-#: Most samples of a run at rest (`_at_rest`): its history is constant, so a long
+@dataclass(frozen=True)
+class Integrated:
+    """What an integrator of the chain hands `simulate_rigid`, which builds the result from
+    it, once (`_samples_to_run`).
+
+    ``time_step``: the step the run's settings record, s; ``output_interval`` s;
+    ``n_steps``: steps taken; ``times`` (nt,) s; ``q``, ``v`` (nt, nb, 3): the free bodies'
+    configurations and velocities relative to the ground; ``dissipated``, ``input_work`` (nt,)
+    J: the energy the contacts removed (the ``damping`` column) and the inertial load's work,
+    since t = 0; ``ground_displacement`` (m), ``ground_velocity`` (m/s) (nt,); ``extras``: the
+    integrator's own fields of `RigidRun` (``stepper_time_step``, ``max_penetration_m``,
+    ...)."""
+
+    time_step: float
+    output_interval: float
+    n_steps: int
+    times: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    dissipated: np.ndarray
+    input_work: np.ndarray
+    ground_displacement: np.ndarray
+    ground_velocity: np.ndarray
+    extras: dict = field(default_factory=dict)
+
+    def samples(self) -> dict:
+        """The samples, as `_samples_to_run`'s keywords."""
+        return {"time_step": self.time_step, "output_interval": self.output_interval,
+                "n_steps": self.n_steps, "times": self.times, "q": self.q, "v": self.v,
+                "dissipated": self.dissipated, "input_work": self.input_work,
+                "ground_displacement": self.ground_displacement,
+                "ground_velocity": self.ground_velocity}
+
+
+def _time_steps(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
+                time_step: float, output_interval: float,
+                initial: tuple[np.ndarray, np.ndarray] | None, g: float, chunk: float,
+                solver_tolerance: float, friction: float | None, solver: str,
+                until_rest: float | None, progress) -> Integrated:
+    """The Moreau-Jean time stepper (`archquake.rigid.steps.run_steps`; ``solver`` "direct"
+    or "pgs", ``friction`` the joints' Coulomb coefficient or None), arguments validated by
+    `simulate_rigid`."""
+    h = time_step
+    s = run_steps(model, motion, settings, duration=duration, time_step=h,
+                  output_interval=output_interval, initial=initial, g=g, chunk=chunk,
+                  solver_tolerance=solver_tolerance,
+                  friction=0.0 if friction is None else float(friction), solver=solver,
+                  until_rest=until_rest, progress=progress)
+    da = s.diag
+    return Integrated(
+        time_step=h, output_interval=s.output_interval, n_steps=s.n_steps, times=s.times,
+        q=s.q, v=s.v, dissipated=da[:, RK.D_DISSIPATED], input_work=da[:, RK.D_INPUT],
+        ground_displacement=s.ground_displacement, ground_velocity=s.ground_velocity,
+        extras={"stepper_time_step": h,
+                "max_penetration_m": float(da[:, RK.D_PENETRATION].max(initial=0.0)),
+                "friction_demand": da[:, RK.D_FRICTION].copy(), "max_sweeps": s.max_sweeps,
+                "residual": float(da[:, RK.D_RESIDUAL].max(initial=0.0)), "wall_s": s.wall_s,
+                "friction_coefficient": friction, "ground_motion": motion,
+                "correction_work": float(da[-1, RK.D_CORRECTION]),
+                "contact_work": da[:, RK.D_CONTACT_WORK].copy(),
+                "friction_work": da[:, RK.D_FRICTION_WORK].copy()})
+
+
+#: Most samples of a run at rest (`_below_onset`): its history is constant, so a long
 #: window is sampled more coarsely than ``output_interval``.
 REST_SAMPLES = 10_000
 
 
-def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: float,
-             output_interval: float, g: float, time_step: float) -> RigidRun:
+def _below_onset(model: RigidModel, motion, *, duration: float, output_interval: float,
+                 time_step: float) -> Integrated:
     """The run of a chain that the motion never moves (`stays_at_rest`): at rest relative
     to the ground over ``duration`` s, sampled every ``output_interval`` s (at most
     `REST_SAMPLES` samples), no step taken, no energy exchanged (the inertia force does
     no work on a body that does not move relative to the ground), read by the same
-    post-processing as a stepped run: ``no_hinging``."""
+    post-processing as a stepped run: ``no_hinging``. ``time_step``: the stepper's, s (NaN
+    for the event integrator)."""
     import time as _time
 
     start = _time.perf_counter()
@@ -464,20 +464,20 @@ def _at_rest(model: RigidModel, motion, settings: DemSettings, *, duration: floa
     ug, vg = ground_kinematics(motion, times, step=max(1e-4, duration / 1e6))
     zeros = np.zeros(n + 1)
     h = time_step if math.isfinite(time_step) else output_interval
-    res = _samples_to_result(model, motion, settings, g=g, time_step=h, duration=duration,
-                             output_interval=interval, n_steps=0, times=times, q=q, v=v,
-                             dissipated=zeros, input_work=zeros, ground_displacement=ug,
-                             ground_velocity=vg)
-    return RigidRun(result=res, time_step=time_step, max_penetration_m=0.0,
-                    friction_demand=zeros.copy(), max_sweeps=0, residual=0.0,
-                    wall_s=_time.perf_counter() - start, friction=None, motion=motion,
-                    contact_work=zeros.copy(), friction_work=zeros.copy(), at_rest=True)
+    return Integrated(
+        time_step=h, output_interval=interval, n_steps=0, times=times, q=q, v=v,
+        dissipated=zeros, input_work=zeros, ground_displacement=ug, ground_velocity=vg,
+        extras={"stepper_time_step": time_step, "max_penetration_m": 0.0,
+                "friction_demand": zeros.copy(), "max_sweeps": 0, "residual": 0.0,
+                "wall_s": _time.perf_counter() - start, "friction_coefficient": None,
+                "ground_motion": motion, "contact_work": zeros.copy(),
+                "friction_work": zeros.copy(), "at_rest": True})
 
 
-def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, duration: float,
-                     output_interval: float, g: float, until_rest: float | None) -> RigidRun:
-    """``simulate_rigid(..., solver="events")``: `
-    run_events` and the same post-processing as the time stepper's."""
+def _events(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
+            output_interval: float, g: float, until_rest: float | None) -> Integrated:
+    """``simulate_rigid(..., solver="events")``: the event integrator,
+    `archquake.rigid.events.run_events`, its samples from the rest state on."""
     em = EventModel.of(model)
     raw = run_events(em, motion, duration=duration, output_interval=output_interval, g=g,
                      settings=settings, until_rest=until_rest)
@@ -488,24 +488,23 @@ def _simulate_events(model: RigidModel, motion, settings: DemSettings, *, durati
     e = np.vstack([np.zeros((1, raw["e"].shape[1])), raw["e"]])
     ug, vg = ground_kinematics(motion, times)
     # the settings record a finite step: the output interval (the integrator's own is adaptive)
-    res = _samples_to_result(model, motion, settings, g=g, time_step=output_interval,
-                             duration=duration, output_interval=output_interval,
-                             n_steps=int(raw["counters"][0]), times=times, q=q, v=v,
-                             dissipated=e[:, 2], input_work=e[:, 3], ground_displacement=ug,
-                             ground_velocity=vg)
-    return RigidRun(result=res, time_step=math.nan, max_penetration_m=raw["max_drift_m"],
-                    friction_demand=e[:, 4].copy(), max_sweeps=int(raw["counters"][9]),
-                    residual=0.0, wall_s=raw["wall_s"], friction=None, motion=motion,
-                    events=raw)
+    return Integrated(
+        time_step=output_interval, output_interval=output_interval,
+        n_steps=int(raw["counters"][0]), times=times, q=q, v=v, dissipated=e[:, 2],
+        input_work=e[:, 3], ground_displacement=ug, ground_velocity=vg,
+        extras={"stepper_time_step": math.nan, "max_penetration_m": raw["max_drift_m"],
+                "friction_demand": e[:, 4].copy(), "max_sweeps": int(raw["counters"][9]),
+                "residual": 0.0, "wall_s": raw["wall_s"], "friction_coefficient": None,
+                "ground_motion": motion, "events": raw})
 
 
-def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: float,
-                       time_step: float, duration: float, output_interval: float, n_steps: int,
-                       times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
-                       input_work: np.ndarray, ground_displacement: np.ndarray,
-                       ground_velocity: np.ndarray) -> DemResult:
-    """The recorded samples of a rigid-chain run as a `DemResult` (the DEM's
-    post-processing, `DemResult.from_samples`; module docstring): what any stepper of
+def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, *, g: float,
+                    time_step: float, duration: float, output_interval: float, n_steps: int,
+                    times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
+                    input_work: np.ndarray, ground_displacement: np.ndarray,
+                    ground_velocity: np.ndarray, **extras) -> RigidRun:
+    """The recorded samples of a rigid-chain run as a `RigidRun` (the block models'
+    post-processing, `BlockResult.from_samples`; module docstring): what any integrator of
     this model hands back.
 
     Parameters
@@ -513,9 +512,9 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
     model : RigidModel
     motion : GroundMotion
         Recorded by its ``to_dict()``; its ``duration`` is the end of the excitation.
-    settings : DemSettings
+    settings : BlockCriteria
         The thresholds of the verdict; recorded with ``duration``, ``time_step`` and
-        ``output_interval`` (s) replaced.
+        ``output_interval`` (s), a `BlockRunSettings`.
     g : float
         m/s^2.
     n_steps : int
@@ -530,6 +529,8 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
         inertial load, since t = 0.
     ground_displacement, ground_velocity : ndarray (nt,)
         The ground's x_g (m) and x_g' (m/s).
+    **extras
+        The integrator's own fields of `RigidRun`.
     """
     states = absolute_states(model, q, v, ground_displacement, ground_velocity)
     kin = 0.5 * ((v[:, :, 0] ** 2 + v[:, :, 1] ** 2) @ model.mass + v[:, :, 2] ** 2 @ model.inertia)
@@ -543,12 +544,11 @@ def _samples_to_result(model: RigidModel, motion, settings: DemSettings, *, g: f
     energies[:, 7] = ground_velocity
     motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
         motion, "name", motion))}
-    return DemResult.from_samples(model.assembly,
-                                  settings.with_(duration=duration, time_step=time_step,
-                                                 output_interval=output_interval),
-                                  motion_d, g, time_step, math.nan, n_steps, 0, times, states,
-                                  energies, excitation_end=excitation_end(motion))
-
+    record = BlockRunSettings(settings, duration=duration, time_step=time_step,
+                              output_interval=output_interval)
+    return RigidRun.from_samples(model.assembly, record, motion_d, g, time_step, math.nan,
+                                 n_steps, 0, times, states, energies,
+                                 excitation_end=excitation_end(motion), **extras)
 
 
 __all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "simulate_rigid"]
@@ -556,16 +556,15 @@ __all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "sim
 
 # ----------------------------------------------------------------------------- to a verdict
 def rigid_window(arch, motion, *, g: float = STANDARD_GRAVITY) -> tuple[float, float]:
-    """The window of `rigid_to_verdict`, s: its first run (`archquake.dem.run.default_dem_duration`,
+    """The window of `rigid_to_verdict`, s: its first run (`archquake.blocks.default_window`,
     the end of the excitation + 5 sqrt(R/g)) and the latest it goes on to while the arch
     still moves (`archquake.ranges.default_t_end`: the end of the excitation + 60 sqrt(R/g),
     the four-link model's default end). Its length is bounded only by the work it costs
     (`archquake.rigid.model.check_work`): the chain resumes where it stopped, and skips
     nothing it needs. ``arch``: anything with a ``radius``, m."""
-    from archquake.dem.run import default_dem_duration
     from archquake.ranges import default_t_end
 
-    d = default_dem_duration(arch, motion, g=g)
+    d = default_window(motion, arch.radius, g=g)
     return d, max(d, float(default_t_end(np.asarray(motion.duration), arch.radius, g)))
 
 
@@ -573,7 +572,7 @@ def rigid_to_verdict(arch, motion, *, friction: float | None = None,
                      g: float = STANDARD_GRAVITY, settings=None, solver: str = "direct",
                      time_step: float | None = None, progress=None, loads=None) -> RigidRun:
     """The rigid chain (`simulate_rigid`) run to a verdict: to
-    `archquake.dem.run.default_dem_duration` (the end of the excitation + 5 sqrt(R/g)) and, if
+    `archquake.blocks.default_window` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the end of the
     excitation + 60 sqrt(R/g) (`rigid_window`), however long the record. The rigid chain
     resumes where it stopped (unlike the DEM, `archquake.dem.run.dem_to_verdict`), so a long
@@ -590,8 +589,8 @@ def rigid_to_verdict(arch, motion, *, friction: float | None = None,
         Coulomb coefficient of every joint; None: no sliding.
     g : float
         m/s^2.
-    settings : DemSettings, optional
-        Thresholds of the verdict (default ``DemSettings()``).
+    settings : BlockCriteria, optional
+        Thresholds of the verdict (default ``BlockCriteria()``).
     solver : {"direct", "events"}
         How the chain is integrated (`simulate_rigid`).
     time_step : float, optional
@@ -599,7 +598,7 @@ def rigid_to_verdict(arch, motion, *, friction: float | None = None,
     progress : callable, optional
         ``simulate_rigid``'s.
     loads : Loads, optional
-        What the arch carries (`archquake.dem.assembly.build_arch_assembly`).
+        What the arch carries (`archquake.blocks.assembly.build_arch_assembly`).
 
     Returns
     -------
@@ -613,7 +612,7 @@ def rigid_to_verdict(arch, motion, *, friction: float | None = None,
     d, cap = rigid_window(arch, motion, g=g)
     body = arch
     if loads is not None and not loads.empty:
-        from archquake.dem.assembly import build_arch_assembly
+        from archquake.blocks.assembly import build_arch_assembly
 
         body = build_arch_assembly(arch, loads=loads)
     if time_step is None:
@@ -711,7 +710,7 @@ def lengthening(run) -> float:
 
 def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
                 progress=None, guard: bool = True,
-                settings: DemSettings | None = None) -> GuardedRun:
+                settings: BlockCriteria | None = None) -> GuardedRun:
     """The rigid chain to a verdict (`rigid_to_verdict`), integrated once at the verdict
     path's step (`archquake.rigid.verdict.verdict_time_step`: scaled with the voussoirs'
     thickness, 1e-3 s on Oppenheim's arch), under the verdict path's guard: a run whose
@@ -733,8 +732,8 @@ def run_guarded(arch, motion, *, g: float = STANDARD_GRAVITY, loads=None,
         ``simulate_rigid``'s, for the run at the verdict's step (not for the guard's rerun).
     guard : bool
         False: no rerun (the verdict at the step alone).
-    settings : DemSettings, optional
-        Thresholds of the verdict (default ``DemSettings()``).
+    settings : BlockCriteria, optional
+        Thresholds of the verdict (default ``BlockCriteria()``).
 
     Returns
     -------

@@ -16,14 +16,14 @@ from dataclasses import dataclass
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
-from archquake.dem.result import (
+from archquake.blocks.criteria import BlockCriteria
+from archquake.blocks.result import (
     collapse_parameters,
     crown_height,
     excitation_end,
     rest_threshold,
     settled,
 )
-from archquake.dem.settings import DemSettings
 from archquake.errors import SolverError
 from archquake.rigid.model import (
     GAP_TOLERANCE,
@@ -63,7 +63,7 @@ class SteppedSamples:
 
 
 def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool:
-    """The samples so far end at rest (`archquake.dem.result.settled`). ``times`` and
+    """The samples so far end at rest (`archquake.blocks.result.settled`). ``times`` and
     ``vs`` are the recorded chunks, (n,) and (n, nb, 3) each; only the last window's are read."""
     window = rest_threshold(model.assembly, g)[1]
     t_last = float(times[-1][-1])
@@ -79,7 +79,7 @@ def _at_rest(model: RigidModel, g: float, times: list, vs: list, motion) -> bool
     return settled(model.assembly, g, t[k - 1:], np.array(kin), excitation_end(motion))
 
 
-def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: float,
+def run_steps(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
               time_step: float, output_interval: float,
               initial: tuple[np.ndarray, np.ndarray] | None, g: float, chunk: float,
               solver_tolerance: float, friction: float, solver: str,
@@ -90,7 +90,7 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
     ----------
     model : RigidModel
     motion : GroundMotion
-    settings : DemSettings
+    settings : BlockCriteria
         Its collapse criteria and ``stop_at_collapse`` are read.
     duration, time_step, output_interval, chunk : float
         s (validated by the caller).
@@ -108,7 +108,7 @@ def run_steps(model: RigidModel, motion, settings: DemSettings, *, duration: flo
     progress : callable, optional
         ``progress(steps_done, steps_at_most)``, called after each chunk.
     """
-    import archquake.dem._kernels as DK
+    import archquake.blocks._kernels as DK
 
     asm = model.assembly
     mu = friction

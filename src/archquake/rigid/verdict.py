@@ -19,7 +19,7 @@ and many histories in one compiled, threaded call.
 * **Fast** (`archquake.rigid._verdict_kernels`): the whole history is one compiled
   call; steps of the untouched chain under a ground acceleration inside the safe domain are
   skipped; the run stops at collapse or once rest is proven; no samples are recorded and no
-  `DemResult` is built.
+  `BlockResult` is built.
 
 `rigid_verdict` is one history; `rigid_verdicts` runs many over a thread pool (the
 kernel releases the GIL), for failure domains, IDA and sweeps.
@@ -41,9 +41,10 @@ import numpy as np
 import archquake.rigid._input_kernels as IK
 import archquake.rigid._step_kernels as RK
 import archquake.rigid._verdict_kernels as VK
-from archquake.constants import STANDARD_GRAVITY
-from archquake.dem.assembly import Assembly
-from archquake.dem.result import (
+from archquake.blocks.assembly import Assembly
+from archquake.blocks.criteria import BlockCriteria, block_criteria
+from archquake.blocks.criteria import default_window as block_window
+from archquake.blocks.result import (
     REST_KINETIC,
     collapse_parameters,
     crown_height,
@@ -51,7 +52,7 @@ from archquake.dem.result import (
     mirror_link,
     rest_threshold,
 )
-from archquake.dem.settings import DemSettings
+from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import ArchquakeError, InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion_lift_off
@@ -158,13 +159,13 @@ class _Packed:
 
 
 @functools.lru_cache(maxsize=64)
-def _packed(model: RigidModel, settings: DemSettings) -> _Packed:
+def _packed(model: RigidModel, settings: BlockCriteria) -> _Packed:
     """A model's arrays for `verdict_run` under ``settings``, built once for each (a model
     hashes by identity)."""
     return _pack(model, settings)
 
 
-def _pack(model: RigidModel, settings: DemSettings) -> _Packed:
+def _pack(model: RigidModel, settings: BlockCriteria) -> _Packed:
     asm = model.assembly
     nblocks = len(asm.base)
     base_state = np.zeros((nblocks, 3))
@@ -208,7 +209,7 @@ class RigidVerdict:
         Largest fall of the crown before any collapse, a fraction of the collapse drop.
     max_rotation_rad : float
         The largest |rotation| of the chord of the rotation link (hinge A to hinge B, as
-        ``DemResult.rotation``) before the verdict, rad (at the collapse for a collapse).
+        ``BlockResult.rotation``) before the verdict, rad (at the collapse for a collapse).
     lengthening : float
         The longest half cycle after the first (a collapse's up to the collapse) over the
         first (0 without an impact): the guard's measure of nearness.
@@ -263,7 +264,7 @@ class RigidVerdict:
                 "rest_proven": self.rest_proven}
 
 
-def _params(model: RigidModel, packed: _Packed, settings: DemSettings, h: float, g: float,
+def _params(model: RigidModel, packed: _Packed, settings: BlockCriteria, h: float, g: float,
             exc_end: float, skip: bool, solver_tolerance: float) -> np.ndarray:
     lref = model.assembly.reference_length
     k_rest, window = rest_threshold(model.assembly, g)
@@ -437,7 +438,7 @@ def _threads(threads: int | None) -> int:
 def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions: Sequence,
                    *, duration: float | Sequence[float] | None = None,
                    until_rest: float | Sequence[float] | None = None,
-                   time_step: float | None = None, settings: DemSettings | None = None,
+                   time_step: float | None = None, settings: BlockCriteria | None = None,
                    g: float = STANDARD_GRAVITY, guard: bool = True, skip_at_rest: bool = True,
                    solver_tolerance: float = SOLVER_TOLERANCE,
                    threads: int | None = None) -> list[RigidVerdict]:
@@ -458,8 +459,10 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
         s: go on past ``duration`` while the arch moves, up to this time.
     time_step : float, optional
         s (default `verdict_time_step`).
-    settings : DemSettings, optional
-        Thresholds of the verdict (hinge opening, collapse criteria), as the DEM's.
+    settings : BlockCriteria, optional
+        Thresholds of the verdict (hinge opening, collapse criteria), as the DEM's (a
+        `archquake.dem.DemSettings` is accepted for one release, with a
+        `DeprecationWarning`).
     g : float
         m/s^2.
     guard : bool
@@ -476,7 +479,7 @@ def rigid_verdicts(arch_or_model: VoussoirChain | Assembly | RigidModel, motions
     list of RigidVerdict, in the order of ``motions``.
     """
     model = rigid_model(arch_or_model)
-    settings = DemSettings() if settings is None else settings
+    settings = block_criteria(settings, caller="rigid_verdicts")
     h = verdict_time_step(model, g=g) if time_step is None else float(time_step)
     if not (h > 0 and math.isfinite(h)):
         raise InvalidParameterError(f"time_step must be > 0 s, got {time_step!r}")
@@ -567,12 +570,12 @@ def default_window(arch_or_model, motion, g: float) -> float:
     if radius is None:
         raise InvalidParameterError("give duration: a block assembly has no radius to scale "
                                     "the default window by")
-    return min(end + WINDOW_TAIL * math.sqrt(float(radius) / g), max(DEM_T_END_MAX_S, end))
+    return min(block_window(motion, radius, tail=WINDOW_TAIL, g=g), max(DEM_T_END_MAX_S, end))
 
 
 def rigid_verdict(arch_or_model: VoussoirChain | Assembly | RigidModel, motion, *,
                   duration: float | None = None, until_rest: float | None = None,
-                  time_step: float | None = None, settings: DemSettings | None = None,
+                  time_step: float | None = None, settings: BlockCriteria | None = None,
                   g: float = STANDARD_GRAVITY, guard: bool = True,
                   skip_at_rest: bool = True,
                   solver_tolerance: float = SOLVER_TOLERANCE) -> RigidVerdict:

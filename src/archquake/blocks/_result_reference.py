@@ -1,6 +1,6 @@
 """Plain references of the block models' post-processing: main's per-sample, per-joint and
 per-pair code before it was vectorised (the rigid chain's ``absolute`` closure and rest check;
-`archquake.dem.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
+`archquake.blocks.result`'s ``joint_kinematics``, ``collapse_time``, ``crossings``,
 ``hinge_sets`` and ``mirror_link``), kept verbatim. Test and benchmark only: no production
 code imports it (tests/rigid/test_postproc.py holds the fast code to it, and
 benchmarks/bench_rigid_postproc.py measures against it).
@@ -12,9 +12,9 @@ import math
 
 import numpy as np
 
-import archquake.dem._kernels as K
-from archquake.dem.assembly import RotationLink
-from archquake.dem.result import (
+import archquake.blocks._kernels as K
+from archquake.blocks.assembly import RotationLink
+from archquake.blocks.result import (
     HingeSet,
     _hinges_at,
     carry,
@@ -111,7 +111,7 @@ def hinge_sets(result, every=0.005, relative=0.1):
     out = []
     last = ""
     for k in range(0, min(end, t.size), stride):
-        h = _hinges_at(result.assembly, result.settings, result.joint_opening[k], relative)
+        h = _hinges_at(result.assembly, result.criteria, result.joint_opening[k], relative)
         label = hinge_label(h)
         if label == last:
             continue

@@ -1,4 +1,5 @@
-"""Block assemblies for the distinct-element model: an arch on its abutments, a block on a base.
+"""Block assemblies for the block models (the distinct-element model and the rigid chain): an
+arch on its abutments, a block on a base.
 
 The arch's hinges come from the one place that answers "which hinges does this arch have",
 `archquake.limit.hinges_of` (the equivalent static analysis), so the DEM
@@ -318,7 +319,7 @@ def build_arch_assembly(
     voussoirs (groups) from left to right. Masses and inertias are Arch's exact
     annular-sector values, not the quadrilaterals' (the straight chords cut off a sliver).
 
-    The rotation measure (``DemResult.rotation``) is the rotation, in the opening sense of the
+    The rotation measure (``BlockResult.rotation``) is the rotation, in the opening sense of the
     first mechanism, of the chord from hinge A (carried by the block just right of joint A) to
     hinge B (carried by the block just left of joint B): for an arch cut at the hinges this is
     the rotation of link AB itself, the analytical phi; for the voussoir arch it is the

@@ -1,12 +1,14 @@
-"""The result of a distinct-element run, in the analytical model's vocabulary.
+"""The result of a block model's run (the distinct-element model, the rigid chain), in the
+analytical model's vocabulary.
 
-`DemResult` holds the sampled histories of a run (`archquake.dem.simulate_dem`)
-and computes from them what the analytical `SimulationResult`
-reports: the `Outcome`, the onset of hinging, the impacts, the peak
+`BlockResult` holds the sampled histories of a run (`archquake.dem.simulate_dem`,
+`archquake.rigid.simulate_rigid`) and computes from them what the analytical
+`SimulationResult` reports: the `Outcome`, the onset of hinging, the impacts, the peak
 rotation of each half cycle, the collapse half cycle and time, and ``to_dict()`` with the keys
 of `archquake.outcome.RESULT_KEYS`. The post-processing (joint openings and slips, the
-rotation measure, the collapse criteria) lives here too; the driver (`archquake.dem.run`)
-only packs, steps and records.
+rotation measure, the collapse criteria of `archquake.blocks.criteria.BlockCriteria`) lives
+here too; the drivers (`archquake.dem.run`, `archquake.rigid.run`) only pack, step and
+record.
 
 The rotation measure
 --------------------
@@ -22,7 +24,7 @@ cycles and outcome.
 Impacts
 -------
 The DEM's impacts are the sign changes of the rotation measure before the collapse, each
-counted only after the rotation has exceeded ``settings.hinge_opening`` rad on the current side
+counted only after the rotation has exceeded ``criteria.hinge_opening`` rad on the current side
 (small rocking below it, contact vibration at rest, is not counted); times are interpolated
 linearly between samples. The collapse half cycle is 1 + the impacts before the collapse.
 """
@@ -32,14 +34,30 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Protocol, Self
 
 import numpy as np
 
-import archquake.dem._kernels as K
-from archquake.dem.assembly import Assembly, RotationLink
-from archquake.dem.settings import DemSettings
+import archquake.blocks._kernels as K
+from archquake.blocks.assembly import Assembly, RotationLink
+from archquake.blocks.criteria import BlockCriteria
 from archquake.outcome import Outcome
 from archquake.result import shared_columns, shared_keys, write_csv
+
+
+class RunSettings(Protocol):
+    """What a `BlockResult` records of its run's settings: their ``criteria``, the planned
+    ``duration`` (s) and ``to_dict()`` (JSON ``settings``): an
+    `archquake.dem.DemSettings` for the distinct-element model, a
+    `archquake.blocks.criteria.BlockRunSettings` for the rigid chain."""
+
+    @property
+    def criteria(self) -> BlockCriteria: ...
+
+    @property
+    def duration(self) -> float: ...
+
+    def to_dict(self) -> dict: ...
 
 
 # --------------------------------------------------------------------------- kinematics
@@ -85,7 +103,7 @@ def joint_kinematics(assembly: Assembly, pos: np.ndarray) -> tuple[np.ndarray, n
     Each end's gap is the right block's copy of the end point minus the left block's
     (`carry`), resolved on the joint's normal and tangent turned with the left block;
     the slip is the tangential gap at the more closed end. One compiled loop,
-    `archquake.dem._kernels.joint_openings`, over every sample and joint."""
+    `archquake.blocks._kernels.joint_openings`, over every sample and joint."""
     nt = pos.shape[0]
     nj = len(assembly.joints)
     opening = np.zeros((nt, nj, 2))
@@ -186,30 +204,31 @@ def crown_height(assembly: Assembly, pos: np.ndarray) -> np.ndarray:
     return carry(assembly, pos, assembly.crown_block, assembly.crown_point)[:, 1]
 
 
-def collapse_parameters(assembly: Assembly, settings: DemSettings, crown_y0: float) -> np.ndarray:
-    """The packed collapse criteria of `archquake.dem._kernels.collapsed`: a free block's
+def collapse_parameters(assembly: Assembly, criteria: BlockCriteria, crown_y0: float
+                        ) -> np.ndarray:
+    """The packed collapse criteria of `archquake.blocks._kernels.collapsed`: a free block's
     centroid below the springings, a block turned by more than ``collapse_rotation``, or the
     crown fallen by more than ``collapse_drop`` reference lengths below ``crown_y0`` (m, its
     height at the start of the ground motion)."""
     cpar = np.zeros(K.N_COLLAPSE)
     cpar[K.C_BASE] = assembly.base_level
-    cpar[K.C_ROT] = settings.collapse_rotation
+    cpar[K.C_ROT] = criteria.collapse_rotation
     cpar[K.C_CROWN_BLOCK] = assembly.crown_block
     cpar[K.C_CROWN_LX], cpar[K.C_CROWN_LY] = (
         np.asarray(assembly.crown_point) - assembly.centroids[assembly.crown_block]
     )
     cpar[K.C_CROWN_Y0] = crown_y0
-    cpar[K.C_CROWN_DROP] = settings.collapse_drop * assembly.reference_length
+    cpar[K.C_CROWN_DROP] = criteria.collapse_drop * assembly.reference_length
     return cpar
 
 
-def collapse_time(assembly: Assembly, settings: DemSettings, t: np.ndarray, pos: np.ndarray
+def collapse_time(assembly: Assembly, criteria: BlockCriteria, t: np.ndarray, pos: np.ndarray
                   ) -> float | None:
     """The first sample meeting a collapse criterion, s (the crown's drop measured from the
     first sample), or None."""
     if len(t) == 0:
         return None
-    cpar = collapse_parameters(assembly, settings, float(crown_height(assembly, pos[:1])[0]))
+    cpar = collapse_parameters(assembly, criteria, float(crown_height(assembly, pos[:1])[0]))
     free = (~np.asarray(assembly.base)).astype(np.int64)
     k = K.first_collapsed(np.ascontiguousarray(pos[:, :, :3], dtype=float), free, cpar)
     return float(t[k]) if k >= 0 else None
@@ -321,10 +340,10 @@ HINGE_RELATIVE = 0.1
 HINGE_SAMPLING_S = 0.005
 
 
-def _hinges_at(assembly: Assembly, settings: DemSettings, opening_k: np.ndarray,
+def _hinges_at(assembly: Assembly, criteria: BlockCriteria, opening_k: np.ndarray,
                relative: float) -> list[tuple[int, str]]:
     widest = opening_k.max(axis=1)
-    floor = max(settings.hinge_opening * assembly.reference_length,
+    floor = max(criteria.hinge_opening * assembly.reference_length,
                 relative * float(widest.max(initial=0.0)))
     joints = assembly.meta.get("cut_joints", list(range(len(opening_k))))
     out = []
@@ -335,19 +354,19 @@ def _hinges_at(assembly: Assembly, settings: DemSettings, opening_k: np.ndarray,
     return out
 
 
-def open_hinges(result: DemResult, time: float, *, relative: float = HINGE_RELATIVE
+def open_hinges(result: BlockResult, time: float, *, relative: float = HINGE_RELATIVE
                 ) -> list[tuple[int, str]]:
     """(joint, face) of the hinges of a block model at the recorded sample nearest ``time`` (s).
 
     A joint is a hinge when its wider end is open by more than ``relative`` times the widest
-    opening of any joint at that instant (and by more than ``settings.hinge_opening`` t); its
+    opening of any joint at that instant (and by more than ``criteria.hinge_opening`` t); its
     face is the other, more closed, end. The relative threshold keeps the four-or-so working
     hinges and drops the sub-millimetre gaps that the rocking blocks open at other joints
     (at t = 0.5 s of Figure 9: 76 and 99 mm at the working hinges, < 5 mm elsewhere but one).
     (Also `archquake.compare.dem_hinges`.)
     """
     k = int(np.argmin(np.abs(result.times - time)))
-    return _hinges_at(result.assembly, result.settings, result.joint_opening[k], relative)
+    return _hinges_at(result.assembly, result.criteria, result.joint_opening[k], relative)
 
 
 def hinge_label(hinges: list[tuple[int, str]]) -> str:
@@ -375,7 +394,7 @@ class HingeSet:
                 "degrees_of_freedom": self.degrees_of_freedom, "kind": self.kind}
 
 
-def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
+def hinge_sets(result: BlockResult, *, every: float = HINGE_SAMPLING_S,
                relative: float = HINGE_RELATIVE) -> tuple[HingeSet, ...]:
     """Every hinge set the arch passed through, with the time it was first seen: the open
     hinges (`open_hinges`) read every ``every`` s (at least every sample) until the
@@ -395,7 +414,7 @@ def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
     opening = result.joint_opening[ks]
     widest = opening.max(axis=2)
     top = relative * widest.max(axis=1, initial=0.0)
-    thr = result.settings.hinge_opening * result.assembly.reference_length
+    thr = result.criteria.hinge_opening * result.assembly.reference_length
     floor = np.where(top > thr, top, thr)
     hinge = widest > floor[:, None]
     closed = np.where(hinge, np.argmin(opening, axis=2), -1)
@@ -419,9 +438,10 @@ def hinge_sets(result: DemResult, *, every: float = HINGE_SAMPLING_S,
 
 # --------------------------------------------------------------------------- result
 @dataclass(frozen=True)
-class DemResult:
-    """Histories of a distinct-element run, sampled every ``output_interval``, and what became
-    of the assembly in the analytical model's vocabulary.
+class BlockResult:
+    """Histories of a block model's run (the distinct-element model, the rigid chain), sampled
+    every ``output_interval``, and what became of the assembly in the analytical model's
+    vocabulary. (``archquake.dem.DemResult`` is this class, under its former name.)
 
     Attributes
     ----------
@@ -450,7 +470,7 @@ class DemResult:
         shear energy released when a contact opens), work of the inertial load -m x_g''.
     outcome : Outcome
     onset_time : float or None
-        s: first sample with a joint open by more than ``settings.hinge_opening *
+        s: first sample with a joint open by more than ``criteria.hinge_opening *
         reference_length``.
     impact_times : ndarray (k,)
         s: the sign changes of ``rotation`` before the collapse (module docstring).
@@ -466,6 +486,21 @@ class DemResult:
     time_step : float
         s. ``n_steps`` steps were taken after settling (fewer if the run stopped at the
         collapse), ``settle_steps`` before.
+    omega_max : float
+        rad/s, the highest contact frequency of the distinct-element model (NaN where it does
+        not apply).
+    settings : RunSettings
+        The run's settings as ``to_dict()`` records them: their ``criteria`` (a
+        `BlockCriteria`) classify the samples, ``duration`` (s) is the planned length.
+    assembly : Assembly
+    motion : dict
+        The ground motion's ``to_dict()``.
+    g : float
+        m/s^2.
+    final_state : str
+        ``collapsed``, ``rest`` or ``moving``.
+    excitation_end : float or None
+        s, when the ground motion ends.
     """
 
     times: np.ndarray
@@ -493,7 +528,7 @@ class DemResult:
     omega_max: float
     n_steps: int
     settle_steps: int
-    settings: DemSettings
+    settings: RunSettings
     assembly: Assembly
     motion: dict
     g: float
@@ -501,10 +536,10 @@ class DemResult:
     excitation_end: float | None = None
 
     @classmethod
-    def from_samples(cls, assembly: Assembly, settings: DemSettings, motion: dict, g: float,
+    def from_samples(cls, assembly: Assembly, settings: RunSettings, motion: dict, g: float,
                      time_step: float, omega_max: float, n_steps: int, settle_steps: int,
                      times: np.ndarray, states: np.ndarray, energies: np.ndarray, *,
-                     excitation_end: float | None = None) -> DemResult:
+                     excitation_end: float | None = None, **extras: Any) -> Self:
         """Post-process the recorded samples of a run.
 
         The verdict (docs/notes/mechanism.md, "An honest verdict for the block models"):
@@ -516,26 +551,31 @@ class DemResult:
 
         Parameters
         ----------
+        settings : RunSettings
+            Its ``criteria`` are read; it is recorded as it is.
         excitation_end : float, optional
             s: when the ground motion ends (None: the rest window is not checked against it).
         times : (nt,), s
         states : (nt, nb, 6): x, y, theta, vx, vy, omega per block
         energies : (nt, 8): kinetic, potential, strain, damping, friction, input work (J),
             base displacement (m), base velocity (m/s)
+        **extras
+            Further fields of a subclass (the rigid chain's `archquake.rigid.RigidRun`).
         """
         t = np.array(times, dtype=float)
         pos = states[:, :, :3].copy()
         vel = states[:, :, 3:].copy()
         e = energies
         opening, slip = joint_kinematics(assembly, pos)
-        thr = settings.hinge_opening * assembly.reference_length
+        criteria = settings.criteria
+        thr = criteria.hinge_opening * assembly.reference_length
         open_any = np.any(opening > thr, axis=(1, 2)) if opening.size else np.zeros(len(t), bool)
         onset = float(t[np.argmax(open_any)]) if np.any(open_any) else None
         rot, link = rotation_measure(assembly, pos,
                                      mirrored=mirror_opens_first(t, e[:, 7], onset))
-        t_collapse = collapse_time(assembly, settings, t, pos)
+        t_collapse = collapse_time(assembly, criteria, t, pos)
         stop = len(t) if t_collapse is None else int(np.searchsorted(t, t_collapse))
-        impacts = crossings(t, rot, settings.hinge_opening, stop)
+        impacts = crossings(t, rot, criteria.hinge_opening, stop)
         if onset is None:
             peaks = np.zeros(0)
         else:
@@ -561,8 +601,13 @@ class DemResult:
             collapse_half_cycle=half, collapse_time=t_collapse, time_step=time_step,
             omega_max=omega_max, n_steps=n_steps, settle_steps=settle_steps, settings=settings,
             assembly=assembly, motion=motion, g=g, final_state=final,
-            excitation_end=excitation_end,
+            excitation_end=excitation_end, **extras,
         )
+
+    @property
+    def criteria(self) -> BlockCriteria:
+        """The thresholds the samples were classified by (``settings.criteria``)."""
+        return self.settings.criteria
 
     @property
     def verdict_reason(self) -> str:
@@ -622,7 +667,7 @@ class DemResult:
     @property
     def hinge_open(self) -> np.ndarray:
         """(nt, nj, 2) bool: joint end open beyond the hinge threshold."""
-        thr = self.settings.hinge_opening * self.assembly.reference_length
+        thr = self.criteria.hinge_opening * self.assembly.reference_length
         return self.joint_opening > thr
 
     def to_dict(self) -> dict:
@@ -693,7 +738,8 @@ __all__ = [
     "REST_KINETIC",
     "REST_WINDOW",
     "HINGE_SAMPLING_S",
-    "DemResult",
+    "BlockResult",
+    "RunSettings",
     "HingeSet",
     "collapse_parameters",
     "collapse_time",
