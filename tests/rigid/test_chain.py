@@ -324,7 +324,7 @@ def test_step_work_arrays_carry_nothing_between_steps():
     oq, ov = np.zeros((n, m.n_bodies, 3)), np.zeros((n, m.n_bodies, 3))
     run_p, run_slip = p_warm, slip
     cfg = RK.stepping(h, G, gap_tol, tol, MAX_SWEEPS, 0.0, RK.METHOD_DIRECT, True, hold)
-    RK.run(RK.pack_chain(m), cfg, RK.State(q, v, p_warm, slip), acc, np.empty(0),
+    RK.run(m.chain, cfg, RK.State(q, v, p_warm, slip), acc, np.empty(0),
            RK.Record(1, oq, ov, np.zeros((n, RK.N_DIAG))), np.zeros(RK.N_DIAG))
     q, v = q0.copy(), v0.copy()
     p_warm = np.zeros((m.ja.size, 3))
@@ -335,11 +335,9 @@ def test_step_work_arrays_carry_nothing_between_steps():
         vf = v.copy()
         vf[:, 0] -= h * acc[k]
         vf[:, 1] -= h * G
-        gaps, nrm, tan, pts = RK.geometry(qm, m.ja, m.jb, m.arm_a, m.arm_b, m.n0, m.t0)
-        vn, imp, _, _ = RK.project_direct(qm, vf, 1.0 / m.mass, 1.0 / m.inertia, m.ja, m.jb,
-                                          gaps, nrm, tan, pts, gap_tol, p_warm, tol, MAX_SWEEPS,
-                                          0.0, RK.ACTIVE_SET_ITERATIONS, h, hold, slip,
-                                          np.zeros(1))
+        geo = m.geometry(qm)
+        gaps = geo.gaps
+        vn, imp, _, _ = RK.project_direct(m.chain, cfg, qm, geo, vf, p_warm, slip, np.zeros(1))
         p_warm = imp.copy()
         v = vn.copy()
         q = qm + 0.5 * h * vn

@@ -43,15 +43,15 @@ def test_one_step_of_a_sliding_block_is_a_particle_on_a_rough_plane(method, rati
     mu, h = 0.3, 1e-3
     m = RigidModel.build(block_on_base(2.0, 0.4))
     q, _ = m.rest()
-    gaps, nrm, tan, pts = RK.geometry(q, m.ja, m.jb, m.arm_a, m.arm_b, m.n0, m.t0)
+    geo = m.geometry(q)
     scale = mu * G * h
+    cfg = RK.solving(GAP_TOLERANCE * m.assembly.reference_length, 1e-15, 100_000, mu)
     for sign in (1.0, -1.0):
         vx = sign * ratio * scale
         vf = np.array([[vx, -G * h, 0.0]])
-        args = (q, vf, 1.0 / m.mass, 1.0 / m.inertia, m.ja, m.jb, gaps, nrm, tan, pts,
-                GAP_TOLERANCE * m.assembly.reference_length, np.zeros((1, 3)), 1e-15, 100_000, mu)
+        args = (m.chain, cfg, q, geo, vf, np.zeros((1, 3)))
         if method == RK.METHOD_DIRECT:  # called as the event integrator calls it
-            vn, imp, _, _ = RK.project_direct(*args, RK.ACTIVE_SET_ITERATIONS)
+            vn, imp, _, _ = RK.project_direct(*args)
         else:
             vn, imp, _, _ = RK.project(*args)
         expected = 0.0 if ratio <= 1.0 else vx - sign * scale

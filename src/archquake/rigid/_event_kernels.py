@@ -204,6 +204,17 @@ class State(NamedTuple):
     state_all: np.ndarray
 
 
+class Links(NamedTuple):
+    """The links of the current hinge set (`link_properties`, updated in place at each
+    change): mass ``lm`` (MAX_HINGES + 1,) kg, centroid ``lg0`` (MAX_HINGES + 1, 2) m and
+    inertia ``li`` kg m^2 of each; ``closed``: the chain ends on a second springing."""
+
+    lm: np.ndarray
+    lg0: np.ndarray
+    li: np.ndarray
+    closed: bool
+
+
 class Output(NamedTuple):
     """The samples `run` writes: block positions ``q`` and velocities ``v`` (cap, n, 3)
     and energies ``e`` (cap, 5: kinetic, potential, dissipated, input work (J), friction
@@ -462,12 +473,22 @@ def _link_of(K, jh, b):
 
 
 @nb.njit(cache=True)
-def joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, ax, g, out):
-    """Every joint's force from its left part on its right part, after `dynamics`:
+def joint_forces(chain, K, jh, ch, ws, ax, g, out):
+    """Every joint's force from its left part on its right part, after `dynamics` (the
+    `Chain` ``chain``, the hinge set ``K``, ``jh``, ``ch``, ground acceleration ``ax`` and
+    gravity ``g``, m/s^2):
     ``out[j] = (f0, f1, N, V)`` (``out`` has a row per joint: n + 1 for a closed chain, n for
     an open one) N, the corner normal forces of a locked joint (f0 + f1 = N) or,
     at a hinge, (nan, nan, N, V); V the shear."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
+    X0 = chain.X0
+    mb = chain.mb
+    ib = chain.ib
+    p0 = chain.p0
+    n0 = chain.n0
+    hw = chain.hw
+    sg = chain.sg
+    n = X0.shape[0]
     fx = -mu[1]
     fy = -mu[2]
     xx = dd[K, 0]
@@ -579,12 +600,19 @@ def rhs(K, jh, ch, y, p0, lm, lg0, li, ax, g, ws, ydot, closed, av):
 
 
 @nb.njit(cache=True)
-def dopri_step(K, jh, ch, t, h, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytmp, y1, f1,
-               rtol, atol, closed):
-    """One Dormand-Prince step from (t, y) with derivative f0: y1, f1 = f(t + h, y1); returns
-    the error norm (<= 1 accepts), or inf if an evaluation was singular."""
+def dopri_step(K, jh, ch, t, h, y, f0, p0, links, span, ws, ks, y1, f1):
+    """One Dormand-Prince step from (t, y) with derivative f0: y1, f1 = f(t + h, y1) (the
+    ground motion, ``g``, ``rtol`` and ``atol`` of the `Span` ``span``; ``links`` the
+    `Links`; ``ks`` the stages' work arrays, six of 2 MAX_HINGES + 1); returns the error norm
+    (<= 1 accepts), or inf if an evaluation was singular."""
     m = 2 * K + 1
-    k2, k3, k4, k5, k6 = ks[0], ks[1], ks[2], ks[3], ks[4]
+    k2, k3, k4, k5, k6, ytmp = ks[0], ks[1], ks[2], ks[3], ks[4], ks[5]
+    lm, lg0, li, closed = links
+    kind = span.kind
+    gp = span.gp
+    g = span.g
+    rtol = span.rtol
+    atol = span.atol
     ok = True
     for i in range(m):
         ytmp[i] = y[i] + h * DP.A21 * f0[i]
@@ -746,11 +774,17 @@ def _corner_normal_velocity(q, v, j, c, ja, jb, arm_a, arm_b, nrm):
 
 
 @nb.njit(cache=True)
-def modes_after_projection(q, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm, rel_tol, vel_tol,
-                           jh, ch, rates, abs_tol):
+def modes_after_projection(blocks, sg, q, vn, nrm, beta_j, rel_tol, vel_tol, abs_tol, jh, ch,
+                           rates):
     """The hinge set after a projection: a joint open before (``beta_j != 0``) stays a hinge on
     its corner; a closed joint whose relative rotation rate is nonzero opens on the corner its
-    rate turns about. Returns (K, ok): ok False if a joint separates (its pivot moving away)."""
+    rate turns about (the joints of ``blocks``, `archquake.rigid._step_kernels.Chain`, ``sg``
+    their t x n, ``nrm`` their normals at ``q``). Returns (K, ok): ok False if a joint
+    separates (its pivot moving away)."""
+    ja = blocks.ja
+    jb = blocks.jb
+    arm_a = blocks.arm_a
+    arm_b = blocks.arm_b
     nj = beta_j.shape[0]
     big = 0.0
     for j in range(nj):
@@ -781,11 +815,18 @@ def modes_after_projection(q, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm, rel_tol
 
 
 @nb.njit(cache=True)
-def metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws, n, closed):
+def metric_projection(chain, K, jh, ch, y, vn, links, ws):
     """Rates y[K:2K] of the hinge set (jh, ch) nearest, in the kinetic-energy metric, to the
     block velocities ``vn`` (n, 3) (at the configuration y[:K]): the normal equations
-    M beta' = J^T M_b vn under the closure C beta' = 0. Returns False if singular."""
+    M beta' = J^T M_b vn under the closure C beta' = 0 (the `Chain` ``chain``, the
+    `Links` ``links``). Returns False if singular."""
     th, dd, P, vP, G, om, vG, aG, al, A, r, bdd, mu = ws
+    lm, lg0, li, closed = links
+    p0 = chain.p0
+    X0 = chain.X0
+    mb = chain.mb
+    ib = chain.ib
+    n = X0.shape[0]
     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, th, dd, P, vP, G, om, vG)
     m_ = _kkt_matrix(K, P, G, dd, lm, li, A, r, closed)
     k = 0
@@ -926,11 +967,25 @@ def onset_time(kind, gp, t, t_end, lam_pos, lam_neg, g):
 
 
 @nb.njit(cache=True)
-def _emit(t_to, written, cap, dt_out, y0, f0, y1, f1, t0, h, K, jh, ch, p0, lg0, lm, li, X0, ws,
-          n, g, diag, out_q, out_v, out_e, state_all, freemap, free, cpar, stop_at_collapse,
-          yo):
-    """Write the samples at k dt_out <= t_to from the step's interpolant; returns (written,
-    collapsed)."""
+def _emit(chain, span, state, output, links, t_to, written, step, K, jh, ch, ws, yo):
+    """Write the samples at k dt_out <= t_to from the interpolant of the step ``step`` = (y0,
+    f0, y1, f1, t0, h) into ``output`` (`Output`; ``span.dt_out``, `Span`); returns
+    (written, collapsed)."""
+    y0, f0, y1, f1, t0, h = step
+    out_q, out_v, out_e = output
+    cap = out_q.shape[0]
+    dt_out = span.dt_out
+    g = span.g
+    stop_at_collapse = span.stop_at_collapse
+    diag = state.diag
+    state_all = state.state_all
+    lm, lg0, li, _ = links
+    p0 = chain.p0
+    X0 = chain.X0
+    freemap = chain.free_blocks
+    free = chain.free
+    cpar = chain.cpar
+    n = X0.shape[0]
     m = 2 * K + 1
     while written < cap and dt_out * (written + 1) <= t_to + 1e-12 * (1.0 + t_to):
         ts = dt_out * (written + 1)
@@ -990,10 +1045,18 @@ def _save(t, K, y, tt, st, diag):
 
 
 @nb.njit(cache=True)
-def _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv, why, t, tt, st, diag):
+def _fallback(chain, state, links, K, jh, ch, ws, why, t):
     """Stop for a hand-over to the time stepper (`_save`): the block positions and
-    velocities of the reduced state into ``fq``, ``fv``; returns ``why``."""
-    _save(t, K, y, tt, st, diag)
+    velocities of the reduced state (``state.y``) into ``state.fq``, ``state.fv``; returns
+    ``why``."""
+    y = state.y
+    fq = state.fq
+    fv = state.fv
+    lg0 = links.lg0
+    p0 = chain.p0
+    X0 = chain.X0
+    n = X0.shape[0]
+    _save(t, K, y, state.tt, state.st, state.diag)
     if K == 0:
         for b in range(n):
             fq[b, 0] = X0[b, 0]
@@ -1028,7 +1091,7 @@ def run(chain, span, state, output, written):
     X0, mb, ib, S0, S1, S2, p0, n0, t0, hw, sg, ja, jb, arm_a, arm_b, freemap, free, cpar, lref = (
         chain)
     kind, gp, g, t_end, t_exc_end, lam_pos, lam_neg, rtol, atol, h_max, dt_out = span[:11]
-    stop_at_collapse, resume = span.stop_at_collapse, span.resume
+    resume = span.resume
     st, y, tt, counters, diag, fq, fv, log, state_all = state
     out_q, out_v, out_e = output
     n = X0.shape[0]
@@ -1036,11 +1099,11 @@ def run(chain, span, state, output, written):
     jh = st[1:1 + MX]
     ch = st[1 + MX:1 + 2 * MX]
     K = st[0]
-    cap = out_q.shape[0]
     ws = workspace(MX)
-    ks = (np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1),
-          np.zeros(2 * MX + 1))
     ytmp = np.zeros(2 * MX + 1)
+    # the Dormand-Prince stages and their argument (`dopri_step`)
+    ks = (np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1),
+          np.zeros(2 * MX + 1), ytmp)
     y1 = np.zeros(2 * MX + 1)
     f0 = np.zeros(2 * MX + 1)
     f1 = np.zeros(2 * MX + 1)
@@ -1051,6 +1114,7 @@ def run(chain, span, state, output, written):
     lstart = np.zeros(MX + 2, np.int64)
     nj = ja.shape[0]
     closed = nj == n + 1
+    links = Links(lm, lg0, li, closed)
     kmin = 4 if closed else 1  # fewest hinges of a mechanism
     forces = np.zeros((nj, 4))
     skip = np.zeros(nj, np.bool_)
@@ -1066,6 +1130,7 @@ def run(chain, span, state, output, written):
     vf = np.zeros((n, 3))
     inv_m = 1.0 / mb
     inv_i = 1.0 / ib
+    blocks = RK.Chain(mb, ib, inv_m, inv_i, ja, jb, arm_a, arm_b, n0, t0)
     p_guess = np.ones((nj, 3))
     weight = g * S0[n]
     ftol = 1e-9
@@ -1077,6 +1142,11 @@ def run(chain, span, state, output, written):
     onset_sets = np.int64(RK.ACTIVE_SET_ITERATIONS)
     impact_sets = np.int64(IMPACT_ACTIVE_SETS)
     gap_tol = 1e-9 * lref
+    # the contact solves' settings: the onset's Gauss projection, the impacts' projection
+    onset_cfg = RK.Stepping(0.0, 0.0, gap_tol, 1e-13 * math.sqrt(g * lref), int(max_sweeps),
+                            0.0, RK.METHOD_DIRECT, 0.0, 0.0, int(onset_sets))
+    impact_cfg = RK.Stepping(0.0, 0.0, gap_tol, 1e-11 * math.sqrt(g * lref), int(max_sweeps),
+                             0.0, RK.METHOD_DIRECT, 0.0, 0.0, int(impact_sets))
     ev_ring = np.full(CHATTER_EVENTS, -math.inf)
     ev_pos = 0
     link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
@@ -1125,7 +1195,7 @@ def run(chain, span, state, output, written):
         else:
             pinned[:K] = False
             project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
-            metric_projection(K, jh, ch, y, fv, p0, lm, lg0, li, X0, mb, ib, ws, n, closed)
+            metric_projection(chain, K, jh, ch, y, fv, links, ws)
             project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
             kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2], ws[3],
                        ws[4], ws[5], ws[6])
@@ -1137,9 +1207,8 @@ def run(chain, span, state, output, written):
         if K == 0:
             t_on = onset_time(kind, gp, t, t_end, lam_pos, lam_neg, g)
             t_stop = min(t_on, t_end)
-            written, col = _emit(t_stop, written, cap, dt_out, y, f0, y, f0, t, 0.0, K, jh, ch,
-                                 p0, lg0, lm, li, X0, ws, n, g, diag, out_q, out_v, out_e,
-                                 state_all, freemap, free, cpar, stop_at_collapse, yo)
+            written, col = _emit(chain, span, state, output, links, t_stop, written,
+                                  (y, f0, y, f0, t, 0.0), K, jh, ch, ws, yo)
             if t_on >= t_end:
                 t = t_end
                 break
@@ -1158,19 +1227,17 @@ def run(chain, span, state, output, written):
                 vf[b, 0] = -ax
                 vf[b, 1] = -(g + av)
                 vf[b, 2] = 0.0
-            gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
-            acc, imp, _, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts,
-                                               gap_tol, np.zeros((nj, 3)),
-                                               1e-13 * math.sqrt(g * lref), max_sweeps, 0.0,
-                                               onset_sets)
+            geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+            nrm = geo.nrm
+            acc, imp, _, _ = RK.project_direct(blocks, onset_cfg, qf, geo, vf, np.zeros((nj, 3)))
             beta_j[:] = 0.0
-            K2, ok = modes_after_projection(qf, acc, beta_j, sg, ja, jb, arm_a, arm_b, nrm, 1e-7,
-                                            1e-7 * (g + abs(ax)), jh2, ch2, rates,
-                                            1e-9 * g / lref)
+            K2, ok = modes_after_projection(blocks, sg, qf, acc, nrm, beta_j, 1e-7,
+                                            1e-7 * (g + abs(ax)), 1e-9 * g / lref, jh2, ch2,
+                                            rates)
             counters[N_ONSETS] += 1
             if not ok or K2 > MX:
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_SEPARATION, t, tt, st, diag), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  WHY_SEPARATION, t), written
             if K2 < kmin:
                 t += 1e-9  # no motion after all (at the threshold): keep scanning
                 continue
@@ -1191,20 +1258,19 @@ def run(chain, span, state, output, written):
             ax0 = ground_in_piece(kind, gp, t, t)
             if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed,
                        vertical_in_piece(kind, gp, t, t)):
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_SINGULAR, t, tt, st, diag), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  WHY_SINGULAR, t), written
             counters[N_EVALS] += 1
             while True:
                 bp = next_breakpoint(kind, gp, t)
                 hh = min(h, h_max, bp - t, t_end - t)
-                err = dopri_step(K, jh, ch, t, hh, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks,
-                                 ytmp, y1, f1, rtol, atol, closed)
+                err = dopri_step(K, jh, ch, t, hh, y, f0, p0, links, span, ws, ks, y1, f1)
                 counters[N_EVALS] += 6
                 if err <= 1.0:
                     break
                 if not math.isfinite(err) or hh < 1e-12:
-                    return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      WHY_SINGULAR, t, tt, st, diag), written
+                    return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                      WHY_SINGULAR, t), written
                 h = hh * max(0.2, 0.9 * err ** -0.2)
                 counters[N_REJECTED] += 1
             fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
@@ -1240,7 +1306,7 @@ def run(chain, span, state, output, written):
                     ev_i = i
             ax1 = ground_in_piece(kind, gp, t1, t)
             g1 = g + vertical_in_piece(kind, gp, t1, t)  # gravity with the vertical
-            joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, ax1, g1, forces)
+            joint_forces(chain, K, jh, ch, ws, ax1, g1, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if fr > diag[E_FRICTION]:
                 diag[E_FRICTION] = fr
@@ -1251,8 +1317,7 @@ def run(chain, span, state, output, written):
                 gm = g + vertical_in_piece(kind, gp, tm, t)
                 dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li,
                          ground_in_piece(kind, gp, tm, t), gm, ws, closed)
-                joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg,
-                             ground_in_piece(kind, gp, tm, t), gm, forces)
+                joint_forces(chain, K, jh, ch, ws, ground_in_piece(kind, gp, tm, t), gm, forces)
                 lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
                 counters[N_EVALS] += 1
                 if lo_m < lo:
@@ -1268,8 +1333,7 @@ def run(chain, span, state, output, written):
                     axm = ground_in_piece(kind, gp, mid, t)
                     gm = g + vertical_in_piece(kind, gp, mid, t)
                     dynamics(K, jh, ch, ytmp[:K], ytmp[K:2 * K], p0, lm, lg0, li, axm, gm, ws, closed)
-                    joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axm, gm,
-                                 forces)
+                    joint_forces(chain, K, jh, ch, ws, axm, gm, forces)
                     lo_m, _, _, ho_m, _, _ = margins(K, jh, ch, forces, n, weight, skip)
                     counters[N_EVALS] += 1
                     if lo_m < 0.0 or ho_m < 0.0:
@@ -1282,9 +1346,8 @@ def run(chain, span, state, output, written):
                     t_ev = b_
                     ev_kind = 2
             if t_ev == math.inf:
-                written, col = _emit(t1, written, cap, dt_out, y, f0, y1, f1, t, hh, K, jh, ch,
-                                     p0, lg0, lm, li, X0, ws, n, g, diag, out_q, out_v, out_e,
-                                     state_all, freemap, free, cpar, stop_at_collapse, yo)
+                written, col = _emit(chain, span, state, output, links, t1, written,
+                                      (y, f0, y1, f1, t, hh), K, jh, ch, ws, yo)
                 for i in range(2 * K + 1):
                     y[i] = y1[i]
                 t = t1
@@ -1301,12 +1364,10 @@ def run(chain, span, state, output, written):
             # -------- reach the event
             if t_ev > t:
                 he = t_ev - t
-                dopri_step(K, jh, ch, t, he, y, f0, p0, lm, lg0, li, kind, gp, g, ws, ks, ytmp,
-                           y1, f1, rtol, atol, closed)
+                dopri_step(K, jh, ch, t, he, y, f0, p0, links, span, ws, ks, y1, f1)
                 counters[N_EVALS] += 6
-                written, col = _emit(t_ev, written, cap, dt_out, y, f0, y1, f1, t, he, K, jh,
-                                     ch, p0, lg0, lm, li, X0, ws, n, g, diag, out_q, out_v,
-                                     out_e, state_all, freemap, free, cpar, stop_at_collapse, yo)
+                written, col = _emit(chain, span, state, output, links, t_ev, written,
+                                      (y, f0, y1, f1, t, he), K, jh, ch, ws, yo)
                 for i in range(2 * K + 1):
                     y[i] = y1[i]
                 t = t_ev
@@ -1317,22 +1378,21 @@ def run(chain, span, state, output, written):
             ev_ring[ev_pos % CHATTER_EVENTS] = t
             ev_pos += 1
             if ev_pos >= CHATTER_EVENTS and t - ev_ring[ev_pos % CHATTER_EVENTS] < CHATTER_WINDOW:
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_CHATTER, t, tt, st, diag), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws, WHY_CHATTER, t), written
             h = min(h_next, 1e-3)
             if ev_kind == 2:
                 # which margin: recompute at the event
                 axe = ground_in_piece(kind, gp, t, t_step)
                 ge = g + vertical_in_piece(kind, gp, t, t_step)
                 dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axe, ge, ws, closed)
-                joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axe, ge, forces)
+                joint_forces(chain, K, jh, ch, ws, axe, ge, forces)
                 lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
                 if ho < lo:
-                    return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      WHY_TENSILE_HINGE, t, tt, st, diag), written
+                    return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                      WHY_TENSILE_HINGE, t), written
                 if K + 1 > MX:
-                    return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                      WHY_TOO_MANY_HINGES, t, tt, st, diag), written
+                    return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                      WHY_TOO_MANY_HINGES, t), written
                 K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
                 counters[N_OPENINGS] += 1
                 _log(log, counters, t, 2, lj, K)
@@ -1363,20 +1423,18 @@ def run(chain, span, state, output, written):
                 beta_j[:] = 0.0
                 for i in range(K):
                     beta_j[jh[i]] = y[i]
-                gaps, nrm, tan, pts = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+                geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
+                nrm = geo.nrm
                 vscale = 0.0
                 for b in range(n):
                     vscale = max(vscale, abs(vf[b, 0]) + abs(vf[b, 1]) + abs(vf[b, 2]) * lref)
                 # the guessed active set: every touching corner pushes (the exact solve drops
                 # the tensile ones)
-                vn, imp, nsolve, _ = RK.project_direct(qf, vf, inv_m, inv_i, ja, jb, gaps, nrm,
-                                                       tan, pts, gap_tol, p_guess,
-                                                       1e-11 * math.sqrt(g * lref), max_sweeps,
-                                                       0.0, impact_sets)
+                vn, imp, nsolve, _ = RK.project_direct(blocks, impact_cfg, qf, geo, vf, p_guess)
                 counters[N_SOLVES] += nsolve
-                K2, ok = modes_after_projection(qf, vn, beta_j, sg, ja, jb, arm_a, arm_b, nrm,
-                                                1e-8, 1e-7 * max(vscale, 1e-300), jh2, ch2,
-                                                rates, 1e-12 * math.sqrt(g / lref))
+                K2, ok = modes_after_projection(blocks, sg, qf, vn, nrm, beta_j, 1e-8,
+                                                1e-7 * max(vscale, 1e-300),
+                                                1e-12 * math.sqrt(g / lref), jh2, ch2, rates)
                 if not ok or K2 > MX:
                     _save(t, K, y, tt, st, diag)
                     fq[:, :] = qf
@@ -1416,10 +1474,9 @@ def run(chain, span, state, output, written):
                 link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
                 kin1 = 0.0
                 if K >= kmin - 1 and K > 0:
-                    if not metric_projection(K, jh, ch, y, vn, p0, lm, lg0, li, X0, mb, ib, ws,
-                                             n, closed):
-                        return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                          WHY_SINGULAR, t, tt, st, diag), written
+                    if not metric_projection(chain, K, jh, ch, y, vn, links, ws):
+                        return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                          WHY_SINGULAR, t), written
                     pinned[:K] = False
                     project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
                     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2],
@@ -1439,18 +1496,18 @@ def run(chain, span, state, output, written):
             axc = ground_in_piece(kind, gp, t, t)
             gc = g + vertical_in_piece(kind, gp, t, t)
             if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, gc, ws, closed):
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_SINGULAR, t, tt, st, diag), written
-            joint_forces(K, jh, ch, ws, n, X0, mb, ib, p0, n0, t0, hw, sg, axc, gc, forces)
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  WHY_SINGULAR, t), written
+            joint_forces(chain, K, jh, ch, ws, axc, gc, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if ho < -ftol:
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_TENSILE_HINGE, t, tt, st, diag), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  WHY_TENSILE_HINGE, t), written
             if lo >= -ftol:
                 break
             if K + 1 > MX:
-                return STATUS_FALLBACK, _fallback(K, jh, ch, y, p0, lg0, X0, ws, n, fq, fv,
-                                                  WHY_TOO_MANY_HINGES, t, tt, st, diag), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  WHY_TOO_MANY_HINGES, t), written
             K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
             counters[N_OPENINGS] += 1
             _log(log, counters, t, 2, lj, K)

@@ -114,23 +114,22 @@ def rank_certificate(q, act, ja, jb, nrm, tan, pts, isq_m, isq_i):
 
 
 @nb.njit(cache=True)
-def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0, t0, h, g,
-          gap_tol, tol, max_sweeps, mu, correction, hold, lref, impulsive_factor, vacc):
+def probe(chain, cfg, pos, vel, base_u, base_v, acc, lref, impulsive_factor, vacc):
     """The joint impulses of the chain's next step at each sample, and what the rank test needs.
 
     Parameters
     ----------
+    chain : Chain
+        The `RigidModel`'s packed arrays (`archquake.rigid._step_kernels.Chain`).
+    cfg : Stepping
+        The step ``h`` (s), gravity ``g`` (m/s^2) and the projection's settings, as
+        `project` takes them (``h_corr``: the position-level correction's time, s).
     pos, vel : ndarray (nt, nb, 3)
         The free bodies' absolute configurations (m, m, rad) and velocities at the samples.
     base_u, base_v : ndarray (nt,)
         Ground displacement (m) and velocity (m/s) at the samples.
     acc : ndarray (nt,)
         The ground acceleration over each sample's step, m/s^2.
-    mass, inertia, ja, jb, arm_a, arm_b, n0, t0
-        The `RigidModel`'s arrays.
-    h, g, gap_tol, tol, max_sweeps, mu, correction, hold
-        The step (s), gravity (m/s^2) and the projection's settings, as
-        `project` takes them.
     lref : float
         The assembly's reference length, m (a rotation rate's velocity).
     impulsive_factor : float
@@ -157,9 +156,15 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
         -1 left to the SVD.
     """
     nt, nb_, _ = pos.shape
+    ja = chain.ja
+    jb = chain.jb
     nj = ja.shape[0]
-    inv_m = 1.0 / mass
-    inv_i = 1.0 / inertia
+    h = cfg.h
+    g = cfg.g
+    gap_tol = cfg.gap_tol
+    hold = cfg.hold
+    inv_m = chain.inv_m
+    inv_i = chain.inv_i
     isq_m = np.sqrt(inv_m)
     isq_i = np.sqrt(inv_i)
     certified = np.zeros(nt, dtype=np.int8)
@@ -179,7 +184,8 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
             q[b, 0] -= base_u[k]
             v[b, 0] -= base_v[k]
         qm = q + half_h * v
-        gaps, nrm, tan, pts = RK.geometry(qm, ja, jb, arm_a, arm_b, n0, t0)
+        geo = RK.geometry(qm, ja, jb, chain.arm_a, chain.arm_b, chain.n0, chain.t0)
+        gaps, nrm, tan, pts = geo
         vf = v.copy()
         gk = g + vacc[k] if vacc.shape[0] > 0 else g
         for b in range(nb_):
@@ -190,8 +196,7 @@ def probe(pos, vel, base_u, base_v, acc, mass, inertia, ja, jb, arm_a, arm_b, n0
                 active[k, j, c] = (gaps[j, c] <= gap_tol
                                    or (p_warm[j, c] > 0.0 and gaps[j, c] <= hold))
         certified[k] = rank_certificate(qm, active[k], ja, jb, nrm, tan, pts, isq_m, isq_i)
-        vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
-                                   p_warm, tol, max_sweeps, mu, correction, hold)
+        vn, imp, _, _ = RK.project(chain, cfg, qm, geo, vf, p_warm)
         jump = -math.inf
         for b in range(nb_):
             dx = vn[b, 0] - v[b, 0]

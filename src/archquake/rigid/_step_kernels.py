@@ -94,7 +94,7 @@ SI units throughout: masses kg, inertias kg m^2, impulses N s.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -136,6 +136,13 @@ REFINEMENTS = 6
 ACTIVE_SET_ITERATIONS = 24
 
 
+#: numba's option to compile a kernel without reference counting (a private option of numba,
+#: hence passed by name). The stepping loops (`_steps`, the verdict's) are compiled so: they
+#: allocate nothing, and with reference counting each step took and dropped a reference to
+#: every array of the packed tuples it passes on (`advance`).
+NO_REFCOUNT: dict[str, Any] = {"_nrt": False}
+
+
 class Chain(NamedTuple):
     """The chain's packed arrays (`archquake.rigid.model.RigidModel`'s): per free body
     ``mass`` (kg), ``inertia`` (kg m^2) and their inverses ``inv_m``, ``inv_i``; per joint the
@@ -167,7 +174,8 @@ class Stepping(NamedTuple):
     below it), ``tol`` (m/s, the solver's), ``max_iter`` (Gauss-Seidel sweeps), ``mu``
     (friction coefficient, 0: no slip), ``method`` (`METHOD_PGS` or
     `METHOD_DIRECT`), ``h_corr`` (s, the position correction's time, 0: none) and
-    ``hold`` (m, its hold; module docstring)."""
+    ``hold`` (m, its hold; module docstring), ``max_sets`` (active sets the direct solve
+    tries before Gauss-Seidel, `project_direct`)."""
 
     h: float
     g: float
@@ -178,15 +186,37 @@ class Stepping(NamedTuple):
     method: int
     h_corr: float
     hold: float
+    max_sets: int
 
 
 def stepping(h: float, g: float, gap_tol: float, tol: float, max_iter: int, mu: float,
-             method: int, correction: bool = True, hold_tol: float = 0.0) -> Stepping:
+             method: int, correction: bool = True, hold_tol: float = 0.0,
+             max_sets: int = ACTIVE_SET_ITERATIONS) -> Stepping:
     """A `Stepping` (types fixed for the compiled kernels): ``correction`` False turns
     the position-level correction off (``h_corr`` and ``hold`` 0)."""
     return Stepping(float(h), float(g), float(gap_tol), float(tol), int(max_iter), float(mu),
                     int(method), float(h) if correction else 0.0,
-                    float(hold_tol) if correction else 0.0)
+                    float(hold_tol) if correction else 0.0, int(max_sets))
+
+
+def solving(gap_tol: float, tol: float, max_iter: int, mu: float = 0.0, *,
+            correction: float = 0.0, hold_tol: float = 0.0,
+            max_sets: int = ACTIVE_SET_ITERATIONS) -> Stepping:
+    """The `Stepping` of one contact projection alone (`project`, `project_direct`: no
+    step, so ``h`` and ``g`` 0): ``correction`` (s) the position-level correction's time, 0
+    for the velocity-level cone alone, ``hold_tol`` (m) its hold."""
+    return Stepping(0.0, 0.0, float(gap_tol), float(tol), int(max_iter), float(mu),
+                    METHOD_DIRECT, float(correction), float(hold_tol), int(max_sets))
+
+
+class Geometry(NamedTuple):
+    """`geometry`'s arrays at a configuration: corner ``gaps`` (nj, 2) m, joint normals
+    ``nrm`` and tangents ``tan`` (nj, 2), corner positions ``pts`` (nj, 2, 2, 2) m."""
+
+    gaps: np.ndarray
+    nrm: np.ndarray
+    tan: np.ndarray
+    pts: np.ndarray
 
 
 class State(NamedTuple):
@@ -231,17 +261,19 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
     tan = np.zeros((nj, 2))
     pts = np.zeros((nj, 2, 2, 2))
     geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, np.zeros((q.shape[0], 2)))
-    return gaps, nrm, tan, pts
+    return Geometry(gaps, nrm, tan, pts)
 
 
 @nb.njit(cache=True, inline="always")
-def _corner(q, trig, body, arm):
-    """`_point` with the body's cos and sin read from ``trig`` (the same numbers)."""
+def _corner(q, trig, body, arms, j, k):
+    """`_point` of corner ``k`` of joint ``j`` (``arms[j, k]``, read by scalar indexing) with
+    the body's cos and sin read from ``trig`` (the same numbers)."""
     if body < 0:
-        return arm[0], arm[1]
+        return arms[j, k, 0], arms[j, k, 1]
     c = trig[body, 0]
     s = trig[body, 1]
-    return q[body, 0] + c * arm[0] - s * arm[1], q[body, 1] + s * arm[0] + c * arm[1]
+    return (q[body, 0] + c * arms[j, k, 0] - s * arms[j, k, 1],
+            q[body, 1] + s * arms[j, k, 0] + c * arms[j, k, 1])
 
 
 @nb.njit(cache=True, inline="always")
@@ -264,8 +296,8 @@ def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
         tan[j, 0] = c * t0[j, 0] - s * t0[j, 1]
         tan[j, 1] = s * t0[j, 0] + c * t0[j, 1]
         for k in range(2):
-            ax, ay = _corner(q, trig, ja[j], arm_a[j, k])
-            bx, by = _corner(q, trig, jb[j], arm_b[j, k])
+            ax, ay = _corner(q, trig, ja[j], arm_a, j, k)
+            bx, by = _corner(q, trig, jb[j], arm_b, j, k)
             pts[j, k, 0, 0] = ax
             pts[j, k, 0, 1] = ay
             pts[j, k, 1, 0] = bx
@@ -273,46 +305,46 @@ def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
             gaps[j, k] = (bx - ax) * nrm[j, 0] + (by - ay) * nrm[j, 1]
 
 
-@nb.njit(cache=True)
-def _row(q, body, px, py, dx, dy, sign, out):
-    """Jacobian entries (3,) of ``sign`` times the velocity of the body point (px, py) along d."""
+@nb.njit(cache=True, inline="always")
+def _row(q, body, px, py, dx, dy, sign, out, r):
+    """Jacobian entries ``out[r]`` (3,) of ``sign`` times the velocity of the body point (px,
+    py) along d."""
     if body < 0:
-        out[0] = 0.0
-        out[1] = 0.0
-        out[2] = 0.0
+        out[r, 0] = 0.0
+        out[r, 1] = 0.0
+        out[r, 2] = 0.0
         return
     rx = px - q[body, 0]
     ry = py - q[body, 1]
-    out[0] = sign * dx
-    out[1] = sign * dy
-    out[2] = sign * (rx * dy - ry * dx)
-
-
-@nb.njit(cache=True)
-def _rows(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol):
-    """The rows of the active contacts, in joint order (per joint: normal at corner 0, normal at
-    corner 1, tangential): (nrows, rows_j, rows_k, ja_rows, jb_rows, diag, offset), ``diag[r]``
-    the Delassus diagonal (m/s per N s), ``offset[r]`` (tangential rows) the tangential offset
-    (P_b - P_a) . t of the row's point, m. A corner is active when its gap is <= ``gap_tol``, or <=
-    ``hold_tol`` (m) if it pushed at the previous step (``p_warm`` > 0; the position-level
-    correction's hold, `run`)."""
-    nj = ja.shape[0]
-    rows_j = np.zeros(3 * nj, np.int64)
-    rows_k = np.zeros(3 * nj, np.int64)
-    ja_rows = np.zeros((3 * nj, 3))
-    jb_rows = np.zeros((3 * nj, 3))
-    offset = np.zeros(3 * nj)
-    diag_all = np.zeros(3 * nj)
-    nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
-                       rows_j, rows_k, ja_rows, jb_rows, diag_all, offset)
-    return nrows, rows_j, rows_k, ja_rows, jb_rows, diag_all[:nrows].copy(), offset
+    out[r, 0] = sign * dx
+    out[r, 1] = sign * dy
+    out[r, 2] = sign * (rx * dy - ry * dx)
 
 
 @nb.njit(cache=True, inline="always")
-def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol, rows_j,
-               rows_k, ja_rows, jb_rows, diag, offset):
-    """`_rows` written into preallocated arrays of 3 nj rows (the first ``nrows`` are
-    set); returns ``nrows``."""
+def _rows_into(chain, q, geo, gap_tol, hold_tol, p_warm, ws):
+    """The rows of the active contacts at ``q`` (`Geometry` ``geo``), in joint order (per
+    joint: normal at corner 0, normal at corner 1, tangential), written into ``ws`` (`Work`,
+    3 nj rows, the first ``nrows`` set): ``rows_j``, ``rows_k`` (joint, row kind),
+    ``ja_rows``, ``jb_rows`` (the Jacobian entries on either side), ``diag`` (the Delassus
+    diagonal, m/s per N s) and ``offset`` (tangential rows: the tangential offset (P_b - P_a) . t
+    of the row's point, m). A corner is active when its gap is <= ``gap_tol``, or <=
+    ``hold_tol`` (m) if it pushed at the previous step (``p_warm`` > 0; the position-level
+    correction's hold, `run`). Returns ``nrows``."""
+    ja = chain.ja
+    jb = chain.jb
+    inv_m = chain.inv_m
+    inv_i = chain.inv_i
+    gaps = geo.gaps
+    nrm = geo.nrm
+    tan = geo.tan
+    pts = geo.pts
+    rows_j = ws.rows_j
+    rows_k = ws.rows_k
+    ja_rows = ws.ja_rows
+    jb_rows = ws.jb_rows
+    diag = ws.diag
+    offset = ws.offset
     nj = ja.shape[0]
     nrows = 0
     for j in range(nj):
@@ -324,9 +356,9 @@ def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, ho
                 rows_k[nrows] = k
                 offset[nrows] = 0.0
                 _row(q, ja[j], pts[j, k, 0, 0], pts[j, k, 0, 1], nrm[j, 0], nrm[j, 1], -1.0,
-                     ja_rows[nrows])
+                     ja_rows, nrows)
                 _row(q, jb[j], pts[j, k, 1, 0], pts[j, k, 1, 1], nrm[j, 0], nrm[j, 1], 1.0,
-                     jb_rows[nrows])
+                     jb_rows, nrows)
                 nrows += 1
         if act0 or act1:
             # no slip at the active corner, or at the mid-point when both are active
@@ -338,8 +370,8 @@ def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, ho
             rows_j[nrows] = j
             rows_k[nrows] = 2
             offset[nrows] = (bx - ax) * tan[j, 0] + (by - ay) * tan[j, 1]
-            _row(q, ja[j], ax, ay, tan[j, 0], tan[j, 1], -1.0, ja_rows[nrows])
-            _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, jb_rows[nrows])
+            _row(q, ja[j], ax, ay, tan[j, 0], tan[j, 1], -1.0, ja_rows, nrows)
+            _row(q, jb[j], bx, by, tan[j, 0], tan[j, 1], 1.0, jb_rows, nrows)
             nrows += 1
     for r in range(nrows):
         j = rows_j[r]
@@ -352,23 +384,6 @@ def _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, ho
             d += (jb_rows[r, 0] ** 2 + jb_rows[r, 1] ** 2) * inv_m[b] + jb_rows[r, 2] ** 2 * inv_i[b]
         diag[r] = d
     return nrows
-
-
-@nb.njit(cache=True)
-def _targets(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref):
-    """The rows' bounds (nrows,), m/s, of the position-level correction (`run`), all zero
-    when ``correction <= 0`` (s; the velocity-level cone alone).
-
-    Normal row of an active corner open by g_c > 0 (m): -g_c / ``correction`` (pulled shut in
-    one step; a penetration, g_c < 0, is not pushed out: that would throw the corner out at
-    |g_c| / h, a restitution the plastic model has not, docs/notes/mechanism.md). Tangential row:
-    -(offset - ref) / ``correction``, ref = ``slip_ref[j]`` (m), the joint's tangential offset
-    when its contact began (recorded here, in place, when ``slip_ref[j]`` is NaN; set back to
-    NaN when the joint has no row). ``slip_ref`` None: tangential bounds zero."""
-    target = np.zeros(nrows)
-    seen = np.zeros(0 if slip_ref is None else slip_ref.shape[0], np.bool_)
-    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, seen)
-    return target
 
 
 @nb.njit(cache=True, inline="always")
@@ -399,7 +414,7 @@ def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, tar
                 slip_ref[j] = math.nan
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, **NO_REFCOUNT)
 def _correction_work(nrows, p, target):
     """-sum_r p_r target_r, J: the part of the kinetic energy a projection removes that is the
     position-level correction's (impulses ``p`` N s, bounds ``target`` m/s; `run`)."""
@@ -409,15 +424,29 @@ def _correction_work(nrows, p, target):
     return w
 
 
-@nb.njit(cache=True)
-def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv_i, tol,
-         max_iter, mu, target):
-    """Projected over-relaxed Gauss-Seidel from the impulses ``p`` (nrows,), already applied to
-    ``v``; both updated in place. ``target`` (nrows,), m/s: the rows' bounds, H_r v >= target[r]
-    (normal rows) or H_r v = target[r] (tangential rows, always 0) (`_targets`). Returns
-    (sweeps, residual m/s)."""
-    nj = ja.shape[0]
-    pn_joint = np.zeros(nj)
+@nb.njit(cache=True, **NO_REFCOUNT)
+def _pgs(chain, cfg, v, p, nrows, ws):
+    """Projected over-relaxed Gauss-Seidel on the rows of ``ws`` (`Work`, `_rows_into`) from the
+    impulses ``p`` (nrows,), already applied to ``v``; both updated in place. ``ws.target``
+    (nrows,), m/s: the rows' bounds, H_r v >= target[r] (normal rows) or H_r v = target[r]
+    (tangential rows) (`_targets_into`); ``cfg.tol``, ``cfg.max_iter`` and ``cfg.mu`` as
+    `Stepping`'s. Returns (sweeps, residual m/s)."""
+    ja = chain.ja
+    jb = chain.jb
+    inv_m = chain.inv_m
+    inv_i = chain.inv_i
+    rows_j = ws.rows_j
+    rows_k = ws.rows_k
+    ja_rows = ws.ja_rows
+    jb_rows = ws.jb_rows
+    diag = ws.diag
+    target = ws.target
+    pn_joint = ws.pn
+    tol = cfg.tol
+    max_iter = cfg.max_iter
+    mu = cfg.mu
+    for j in range(ja.shape[0]):
+        pn_joint[j] = 0.0
     for r in range(nrows):
         if rows_k[r] < 2:
             pn_joint[rows_j[r]] += p[r]
@@ -428,8 +457,6 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
         change = 0.0
         for r in range(nrows):
             j = rows_j[r]
-            a = ja[j]
-            b = jb[j]
             w = _row_velocity(v, r, rows_j, ja, jb, ja_rows, jb_rows) - target[r]
             new = p[r] - RELAX * w / diag[r]
             if rows_k[r] < 2:
@@ -441,7 +468,7 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
                 new = min(max(new, -bound), bound)
             dp = new - p[r]
             if dp != 0.0:
-                _apply(v, a, b, ja_rows[r], jb_rows[r], dp, inv_m, inv_i)
+                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, dp, inv_m, inv_i)
                 p[r] = new
                 dv = abs(dp) * diag[r]
                 if dv > change:
@@ -452,42 +479,55 @@ def _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m, inv
 
 
 @nb.njit(cache=True)
-def project(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol, max_iter,
-            mu, correction=0.0, hold_tol=0.0, slip_ref=None, work=None):
+def project(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
     """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
     contacts (module docstring, step 4), by projected Gauss-Seidel alone (the plain stepper,
     ``method = 0`` of `run`).
 
-    ``mu``: friction coefficient; ``mu <= 0`` means no slip (the tangential impulse is free).
-    ``correction``: s, > 0 for the position-level correction of step 4 (the normal rows bound
-    H_n v >= -gap / ``correction``, `_targets`); 0 (default): the cone H_n v >= 0.
+    Parameters
+    ----------
+    chain : Chain
+    cfg : Stepping
+        ``gap_tol``, ``tol``, ``max_iter``; ``mu`` the friction coefficient (``mu <= 0``: no
+        slip, the tangential impulse is free); ``h_corr`` (s) > 0 for the position-level
+        correction of step 4 (the normal rows bound H_n v >= -gap / ``h_corr``,
+        `_targets_into`), 0: the cone H_n v >= 0; ``hold`` (m) its hold (`solving`).
+    q : ndarray (nb, 3)
+        The configuration, and ``geo`` its `Geometry`.
+    v_free : ndarray (nb, 3)
+        The unconstrained velocity.
+    p_warm : ndarray (nj, 3)
+        The previous impulses, N s (the warm start).
+    slip_ref, work : ndarray or None
+        The joints' reference offsets and the correction's work (`run`).
 
     Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
     N s; sweeps taken; final residual m/s)."""
-    ws = workspace(inv_m.shape[0], ja.shape[0])
-    sweeps, change = _project_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
-                                   p_warm, tol, max_iter, mu, correction, hold_tol, slip_ref,
-                                   work, ws)
+    ws = workspace(chain.inv_m.shape[0], chain.ja.shape[0])
+    sweeps, change = _project_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws)
     return ws.vn, ws.imp, sweeps, change
 
 
 @nb.njit(cache=True, inline="always")
-def _project_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
-                  max_iter, mu, correction, hold_tol, slip_ref, work, ws):
+def _project_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     """`project` in the work arrays ``ws`` (`Work`): the velocity is written into
     ``ws.vn``, the impulses into ``ws.imp``, the slipping joints into ``ws.slip_p``,
     ``ws.t_ja``, ``ws.t_jb`` (`_record_slip`); returns (sweeps, residual)."""
+    ja = chain.ja
+    jb = chain.jb
+    inv_m = chain.inv_m
+    inv_i = chain.inv_i
+    mu = cfg.mu
     nj = ja.shape[0]
     rows_j = ws.rows_j
     rows_k = ws.rows_k
     ja_rows = ws.ja_rows
     jb_rows = ws.jb_rows
-    diag = ws.diag
     target = ws.target
     p = ws.p
-    nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
-                       rows_j, rows_k, ja_rows, jb_rows, diag, ws.offset)
-    _targets_into(nrows, rows_j, rows_k, gaps, ws.offset, correction, slip_ref, target, ws.seen)
+    nrows = _rows_into(chain, q, geo, cfg.gap_tol, cfg.hold, p_warm, ws)
+    _targets_into(nrows, rows_j, rows_k, geo.gaps, ws.offset, cfg.h_corr, slip_ref, target,
+                  ws.seen)
     v = ws.vn
     _copy3(v, v_free)
     pn_joint = ws.pn
@@ -503,9 +543,8 @@ def _project_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
         elif mu > 0.0:
             p[r] = min(max(p[r], -mu * pn_joint[j]), mu * pn_joint[j])
         if p[r] != 0.0:
-            _apply(v, ja[j], jb[j], ja_rows[r], jb_rows[r], p[r], inv_m, inv_i)
-    sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
-                          inv_i, tol, max_iter, mu, target)
+            _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
+    sweeps, change = _pgs(chain, cfg, v, p, nrows, ws)
     imp = ws.imp
     for j in range(nj):
         imp[j, 0] = 0.0
@@ -629,9 +668,7 @@ def _envelope_solve(w_mat, first, n, rhs, out):
 
 
 @nb.njit(cache=True)
-def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
-                   max_iter, mu, max_sets=ACTIVE_SET_ITERATIONS, correction=0.0, hold_tol=0.0,
-                   slip_ref=None, work=None):
+def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
     """The same contact step as `project`, solved exactly on a guessed active set,
     Gauss-Seidel only when the guess fails, or (``mu > 0``) when a joint's tangential impulse
     leaves its Coulomb cone (module docstring, step 4).
@@ -647,21 +684,17 @@ def project_direct(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol
     start, the velocity is unique). The result is accepted when it satisfies the cone's
     conditions to ``tol``: normal impulses in S >= -tol / W_rr, normal rows outside S separating
     (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
-    to ``max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
+    to ``cfg.max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
     (`_pgs`) finishes from the previous step's impulses. With ``mu > 0`` an accepted
     set's impulses are tested against the Coulomb cones, |p_T| <= mu (p_N0 + p_N1) + tol /
     W_TT at every joint (`_in_cone`): kept if they pass (every joint sticks), otherwise
     clamped into the cones (`_clamp_to_cone`) and finished by the clamped Gauss-Seidel.
-    ``correction``: as `project` (the equalities and the separating test then read
-    H_r v = target_r, H_r v >= target_r - tol). Returns as `project`; the count is the
-    number of factorised active sets plus any Gauss-Seidel sweeps."""
-    ws = workspace(inv_m.shape[0], ja.shape[0])
-    v = ws.vn
-    imp = ws.imp
-    count, change = _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol,
-                                 p_warm, tol, max_iter, mu, max_sets, correction, hold_tol,
-                                 slip_ref, work, ws)
-    return v, imp, count, change
+    The parameters are `project`'s (with ``cfg.h_corr`` > 0 the equalities and the
+    separating test read H_r v = target_r, H_r v >= target_r - tol). Returns as `project`;
+    the count is the number of factorised active sets plus any Gauss-Seidel sweeps."""
+    ws = workspace(chain.inv_m.shape[0], chain.ja.shape[0])
+    count, change = _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws)
+    return ws.vn, ws.imp, count, change
 
 
 class Work(NamedTuple):
@@ -735,10 +768,15 @@ def workspace(nbody, nj):
 
 
 @nb.njit(cache=True, inline="always")
-def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, tol,
-                 max_iter, mu, max_sets, correction, hold_tol, slip_ref, work, ws):
+def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     """`project_direct` in the work arrays ``ws`` (`Work`): the velocity is
     written into ``ws.vn``, the impulses into ``ws.imp``; returns (count, residual)."""
+    ja = chain.ja
+    jb = chain.jb
+    inv_m = chain.inv_m
+    inv_i = chain.inv_i
+    tol = cfg.tol
+    mu = cfg.mu
     nj = ja.shape[0]
     v = ws.vn
     imp = ws.imp
@@ -765,13 +803,12 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     ha = ws.ha
     hb = ws.hb
     tg = ws.tg
-    nrows = _rows_into(q, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, p_warm, hold_tol,
-                       rows_j, rows_k, ja_rows, jb_rows, diag, offset)
+    nrows = _rows_into(chain, q, geo, cfg.gap_tol, cfg.hold, p_warm, ws)
     for j in range(nj):
         imp[j, 0] = 0.0
         imp[j, 1] = 0.0
         imp[j, 2] = 0.0
-    _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, target, ws.seen)
+    _targets_into(nrows, rows_j, rows_k, geo.gaps, offset, cfg.h_corr, slip_ref, target, ws.seen)
     if nrows == 0:
         _record_slip(0, rows_j, rows_k, ws.p, 0.0, ja_rows, jb_rows, slip_ref, ws)
         _copy3(v, v_free)
@@ -784,7 +821,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
     nbody = inv_m.shape[0]
     solves = 0
     accepted = False
-    for _ in range(max_sets):
+    for _ in range(cfg.max_sets):
         solves += 1
         # v_w and p: the previous impulses on S
         _copy3(v, v_free)
@@ -946,8 +983,7 @@ def _direct_into(q, v_free, inv_m, inv_i, ja, jb, gaps, nrm, tan, pts, gap_tol, 
         for r in range(nrows):
             if p[r] != 0.0:
                 _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
-        sweeps, change = _pgs(v, p, nrows, rows_j, rows_k, ja_rows, jb_rows, diag, ja, jb, inv_m,
-                              inv_i, tol, max_iter, mu, target)
+        sweeps, change = _pgs(chain, cfg, v, p, nrows, ws)
         _record_slip(nrows, rows_j, rows_k, p, mu, ja_rows, jb_rows, slip_ref, ws)
     else:
         _record_slip(nrows, rows_j, rows_k, p, 0.0, ja_rows, jb_rows, slip_ref, ws)
@@ -971,7 +1007,7 @@ def _joint_normal(r, rows_j, rows_k, p):
     return pn
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, **NO_REFCOUNT)
 def _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
     """Every active joint's tangential impulse lies in its Coulomb cone, |p_T| <= mu p_N
     (p_N = p_N0 + p_N1, N s), to the solve's accuracy ``tol`` / W_TT (``tol`` m/s, W_TT the
@@ -985,7 +1021,7 @@ def _in_cone(nrows, rows_j, rows_k, p, diag, mu, tol):
     return True
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, **NO_REFCOUNT)
 def _clamp_to_cone(nrows, rows_j, rows_k, p, mu):
     """Project the impulses ``p`` (nrows,) in place: normal ones to p_N >= 0, then each
     tangential one to |p_T| <= mu p_N of its joint (Gauss-Seidel's start after a failed stick
@@ -999,18 +1035,6 @@ def _clamp_to_cone(nrows, rows_j, rows_k, p, mu):
             p[r] = min(max(p[r], -bound), bound)
 
 
-@nb.njit(cache=True)
-def _apply(v, a, b, ra, rb, dp, inv_m, inv_i):
-    if a >= 0:
-        v[a, 0] += ra[0] * dp * inv_m[a]
-        v[a, 1] += ra[1] * dp * inv_m[a]
-        v[a, 2] += ra[2] * dp * inv_i[a]
-    if b >= 0:
-        v[b, 0] += rb[0] * dp * inv_m[b]
-        v[b, 1] += rb[1] * dp * inv_m[b]
-        v[b, 2] += rb[2] * dp * inv_i[b]
-
-
 @nb.njit(cache=True, nogil=True, inline="always")
 def advance(chain, cfg, state, acc_k, ws, av_k):
     """One Moreau-Jean step of the `Chain` ``chain`` from ``state`` (`State`)
@@ -1021,7 +1045,12 @@ def advance(chain, cfg, state, acc_k, ws, av_k):
     v = vn, q = qm + h/2 vn (step 5) and the warm start. The step writes into ``ws``
     (`Work`, allocated once per run): ``ws.qm``, ``ws.gaps`` (at qm), ``ws.vf`` (v_free),
     ``ws.vn``, ``ws.imp`` (nj, 3) and ``ws.corr`` (the correction's work). Returns (sweeps,
-    residual m/s)."""
+    residual m/s).
+
+    Inlined into the stepping loops (`_steps`, the verdict's), which are compiled without
+    numba's reference counting: in a loop that passes the packed tuples to a call, each step
+    took and dropped a reference to each of their 52 arrays (104 atomic operations, 15 % of a
+    step on Oppenheim's arch)."""
     q = state.q
     v = state.v
     h = cfg.h
@@ -1037,16 +1066,13 @@ def advance(chain, cfg, state, acc_k, ws, av_k):
     for i in range(nb_):
         vf[i, 0] -= h * acc_k
         vf[i, 1] -= h * (cfg.g + av_k)
+    geo = Geometry(ws.gaps, ws.nrm, ws.tan, ws.pts)
     if cfg.method == METHOD_DIRECT:
-        sweeps, res = _direct_into(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb, ws.gaps,
-                                   ws.nrm, ws.tan, ws.pts, cfg.gap_tol, state.p_warm, cfg.tol,
-                                   cfg.max_iter, cfg.mu, ACTIVE_SET_ITERATIONS, cfg.h_corr,
-                                   cfg.hold, state.slip_ref, ws.corr, ws)
+        sweeps, res = _direct_into(chain, cfg, qm, geo, vf, state.p_warm, state.slip_ref, ws.corr,
+                                   ws)
     else:
-        sweeps, res = _project_into(qm, vf, chain.inv_m, chain.inv_i, chain.ja, chain.jb,
-                                    ws.gaps, ws.nrm, ws.tan, ws.pts, cfg.gap_tol, state.p_warm,
-                                    cfg.tol, cfg.max_iter, cfg.mu, cfg.h_corr, cfg.hold,
-                                    state.slip_ref, ws.corr, ws)
+        sweeps, res = _project_into(chain, cfg, qm, geo, vf, state.p_warm, state.slip_ref,
+                                    ws.corr, ws)
     return sweeps, res
 
 
@@ -1060,6 +1086,14 @@ def run(chain, cfg, state, acc, vacc, record, diag):
     diagnostics after every ``record.out_every`` steps into row ``k // out_every`` of
     ``record``'s arrays (`Record`). ``state`` (`State`) and ``diag`` (the running
     D_* values) are updated in place. Returns the number of sweeps of the worst step."""
+    return _steps(chain, cfg, state, acc, vacc, record, diag,
+                  workspace(chain.mass.shape[0], chain.ja.shape[0]))
+
+
+@nb.njit(cache=True, **NO_REFCOUNT)
+def _steps(chain, cfg, state, acc, vacc, record, diag, ws):
+    """`run`'s loop, in the work arrays ``ws`` (`workspace`): compiled without reference
+    counting (`advance`), so it allocates nothing."""
     q = state.q
     v = state.v
     p_warm = state.p_warm
@@ -1071,13 +1105,14 @@ def run(chain, cfg, state, acc, vacc, record, diag):
     nb_ = mass.shape[0]
     nj = chain.ja.shape[0]
     worst = 0
-    ws = workspace(nb_, nj)
     vf = ws.vf
     vn = ws.vn
     imp = ws.imp
     gaps = ws.gaps
     qm = ws.qm
-    m_max = mass.max()
+    m_max = mass[0]
+    for i in range(1, nb_):
+        m_max = max(m_max, mass[i])
     vertical = vacc.shape[0] > 0
     for k in range(acc.shape[0]):
         av = vacc[k] if vertical else 0.0
@@ -1138,9 +1173,12 @@ def run(chain, cfg, state, acc, vacc, record, diag):
                 q[i, c] = qm[i, c] + 0.5 * h * vn[i, c]
         if (k + 1) % out_every == 0:
             row = (k + 1) // out_every - 1
-            record.q[row] = q
-            record.v[row] = v
-            record.diag[row] = diag
+            for i in range(nb_):
+                for c in range(3):
+                    record.q[row, i, c] = q[i, c]
+                    record.v[row, i, c] = v[i, c]
+            for c in range(diag.shape[0]):
+                record.diag[row, c] = diag[c]
             diag[D_PENETRATION] = 0.0
             diag[D_FRICTION] = 0.0
             diag[D_ITERATIONS] = 0.0

@@ -148,9 +148,48 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_
     ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
     (magnitude) from step k to the end, m/s^2; ``par``: `N_PAR` parameters (P_*);
     ``vacc``, ``skip_acc``: as `Histories` (the suffix maxima are then skip_acc's)."""
+    nb_ = chain.mass.shape[0]
+    nj = chain.ja.shape[0]
+    q = np.zeros((nb_, 3))
+    for i in range(nb_):
+        for c in range(3):
+            q[i, c] = frame.base_state[frame.free_blocks[i], c]
+    state = RK.State(q, np.zeros((nb_, 3)), np.zeros((nj, 3)), np.full(nj, np.nan))
+    # the rotation measure on both links: unwrapped angle, arming state (0: not armed, else
+    # the sign of the side it is armed on), impacts and their times, peaks
+    measure = Rotation(np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
+                       np.full(2, np.nan), np.full(2, np.nan), np.zeros(2), np.zeros(2),
+                       np.zeros(2))
+    _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc, state,
+                   RK.workspace(nb_, nj), frame.base_state.copy(), measure)
+
+
+class Rotation(NamedTuple):
+    """The rotation measure of `verdict_run` on its two links (2,) each: ``rot0`` and
+    ``ang_prev`` the chord's first and latest angle (rad), ``rot`` its unwrapped change,
+    ``armed`` (0, or the sign of the side armed on), ``impacts``, ``last_impact``,
+    ``first_impact`` (s, NaN: none), ``longest`` (s), ``prev_rot``, ``peak_rot`` (rad)."""
+
+    rot0: np.ndarray
+    ang_prev: np.ndarray
+    rot: np.ndarray
+    armed: np.ndarray
+    impacts: np.ndarray
+    last_impact: np.ndarray
+    first_impact: np.ndarray
+    longest: np.ndarray
+    prev_rot: np.ndarray
+    peak_rot: np.ndarray
+
+
+@nb.njit(cache=True, nogil=True, **RK.NO_REFCOUNT)
+def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc, state,
+                   ws, st, measure):
+    """`verdict_run`'s loop from the rest state ``state`` (`RK.State`), in the work arrays
+    ``ws`` (`RK.workspace`), ``st`` (n_blocks, 3) the blocks' states, ``measure`` (`Rotation`,
+    zeroed): compiled without reference counting (`RK.advance`), it allocates nothing."""
     mass = chain.mass
     inertia = chain.inertia
-    base_state = frame.base_state
     free_blocks = frame.free_blocks
     free_mask = frame.free_mask
     cpar = frame.cpar
@@ -166,32 +205,25 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_
     safe_pos = par[P_SAFE_POS]
     safe_neg = par[P_SAFE_NEG]
     margin = par[P_REST_MARGIN]
-    q = np.zeros((nb_, 3))
-    v = np.zeros((nb_, 3))
-    st = base_state.copy()
-    for i in range(nb_):
-        for c in range(3):
-            q[i, c] = base_state[free_blocks[i], c]
-    p_warm = np.zeros((nj, 3))
-    state = RK.State(q, v, p_warm, np.full(nj, np.nan))
-    ws = RK.workspace(nb_, nj)
+    q = state.q
+    v = state.v
+    p_warm = state.p_warm
     cfg = RK.Stepping(h, g, par[P_GAP_TOL], par[P_TOL], int(par[P_MAX_ITER]), 0.0,
-                      RK.METHOD_DIRECT, h, par[P_HOLD_TOL])
+                      RK.METHOD_DIRECT, h, par[P_HOLD_TOL], RK.ACTIVE_SET_ITERATIONS)
     gaps = ws.gaps
     vn = ws.vn
     imp = ws.imp
     qm = ws.qm
-    # the rotation measure on both links: unwrapped angle, arming state
-    rot0 = np.zeros(2)
-    ang_prev = np.zeros(2)
-    rot = np.zeros(2)
-    armed = np.zeros(2)  # 0: not armed, else the sign of the side it is armed on
-    impacts = np.zeros(2)
-    last_impact = np.full(2, np.nan)
-    first_impact = np.full(2, np.nan)
-    longest = np.zeros(2)
-    prev_rot = np.zeros(2)
-    peak_rot = np.zeros(2)
+    rot0 = measure.rot0
+    ang_prev = measure.ang_prev
+    rot = measure.rot
+    armed = measure.armed
+    impacts = measure.impacts
+    last_impact = measure.last_impact
+    first_impact = measure.first_impact
+    longest = measure.longest
+    prev_rot = measure.prev_rot
+    peak_rot = measure.peak_rot
     for ell in range(2):
         rot0[ell] = _chord_angle(st, links_block, links_local, ell)
         ang_prev[ell] = rot0[ell]

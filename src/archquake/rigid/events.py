@@ -69,9 +69,6 @@ ONSET_CEILING_G = 1.0e6
 #: through the projection's tolerances) is found so by one projection first.
 ONSET_FLOOR_G = 1.0e-9
 
-_MODELS: dict[int, EventModel] = {}
-
-
 @dataclass(frozen=True)
 class EventModel:
     """A `RigidModel` laid out for the event integrator:
@@ -121,16 +118,9 @@ class EventModel:
 
     @classmethod
     def of(cls, rigid: RigidModel) -> EventModel:
-        """`build`, memoised on the rigid model (its onset thresholds are computed once)."""
-        key = id(rigid)
-        hit = _MODELS.get(key)
-        if hit is not None and hit.rigid is rigid:
-            return hit
-        em = cls.build(rigid)
-        if len(_MODELS) > 64:
-            _MODELS.clear()
-        _MODELS[key] = em
-        return em
+        """`build`, once per rigid model (``rigid.events``: its onset thresholds are computed
+        once)."""
+        return rigid.events
 
     @property
     def closed(self) -> bool:
@@ -150,16 +140,15 @@ class EventModel:
         a = np.zeros((n, 3))
         a[:, 0] = -ax_g
         a[:, 1] = -1.0
-        gaps, nrm, tan, pts = RK.geometry(q, r.ja, r.jb, r.arm_a, r.arm_b, r.n0, r.t0)
-        acc, _, _, _ = RK.project_direct(q, a, 1.0 / self.mb, 1.0 / self.ib, r.ja, r.jb, gaps,
-                                         nrm, tan, pts, 1e-9 * self.lref,
-                                         np.zeros((len(r.ja), 3)), 1e-13 * math.sqrt(self.lref),
-                                         EK.SOLVE_SWEEPS, 0.0, RK.ACTIVE_SET_ITERATIONS)
+        geo = r.geometry(q)
+        nrm = geo.nrm
+        cfg = RK.solving(1e-9 * self.lref, 1e-13 * math.sqrt(self.lref), EK.SOLVE_SWEEPS)
+        acc, _, _, _ = RK.project_direct(r.chain, cfg, q, geo, a, np.zeros((len(r.ja), 3)))
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
-        k, _ = EK.modes_after_projection(q, acc, np.zeros(nj), self.sg, r.ja, r.jb, r.arm_a,
-                                         r.arm_b, nrm, 1e-7, 1e-7 * (1 + abs(ax_g)), jh,
-                                         jh.copy(), np.zeros(nj), 1e-9 / self.lref)
+        k, _ = EK.modes_after_projection(r.chain, self.sg, q, acc, nrm, np.zeros(nj), 1e-7,
+                                         1e-7 * (1 + abs(ax_g)), 1e-9 / self.lref, jh, jh.copy(),
+                                         np.zeros(nj))
         return k >= (4 if self.closed else 1)
 
     @cached_property
@@ -290,13 +279,18 @@ def ground_kinematics(motion, times: np.ndarray, step: float = 1e-4
     return np.interp(times, grid, ug), np.interp(times, grid, vg)
 
 
-def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, dt_out: float,
-                    out_q, out_v, out_e, written: int, diag, g: float, state_all, free, cpar,
-                    stop_at_collapse: bool) -> tuple[int, float, bool]:
+def _stepper_window(model: EventModel, motion, chain: EK.Chain, state: EK.State,
+                    output: EK.Output, t0: float, window: float, dt_out: float, written: int,
+                    g: float, stop_at_collapse: bool) -> tuple[int, float, bool]:
     """Run the time stepper (`archquake.rigid._step_kernels.run`, direct solve, its
-    default step) from (q, v) at t0 to the first output time at least ``window`` s later,
-    writing the samples it passes; (q, v) become its end state. Returns (samples written, end
-    time, collapsed)."""
+    default step) from the block state (q, v) = (``state.fq``, ``state.fv``) at t0 to the
+    first output time at least ``window`` s later, writing the samples it passes into
+    ``output`` (every ``dt_out`` s) and the energies into ``state.diag``; (q, v) become its end
+    state. The collapse criterion is ``chain``'s. Returns (samples written, end time,
+    collapsed)."""
+    q, v, diag, state_all = state.fq, state.fv, state.diag, state.state_all
+    out_q, out_v, out_e = output
+    free, cpar = chain.free, chain.cpar
     import archquake.blocks._kernels as DK
 
     r = model.rigid
@@ -320,7 +314,7 @@ def _stepper_window(model: EventModel, motion, q, v, t0: float, window: float, d
             acc = mean_acceleration(motion, t, h, ns)
             cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, 0.0,
                               RK.METHOD_DIRECT, correction=False)
-            RK.run(RK.pack_chain(r), cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
+            RK.run(r.chain, cfg, RK.State(q, v, p_warm, np.full(len(r.ja), np.nan)),
                    acc, mean_vertical(motion, t, h, ns), RK.Record(ns, oq, ov, od), dg)
         diag[EK.E_DISSIPATED] += dg[RK.D_DISSIPATED]
         diag[EK.E_INPUT] += dg[RK.D_INPUT]
@@ -422,8 +416,8 @@ def run_events(model: EventModel, motion, *, duration: float, output_interval: f
             windows.append(float(tt[0]))
             whys.append(int(why))
             written, t_w, collapsed = _stepper_window(
-                model, motion, fq, fv, float(tt[0]), fallback_window * math.sqrt(lref / g),
-                output_interval, out_q, out_v, out_e, written, diag, g, state_all, free, cpar,
+                model, motion, chain, state, output, float(tt[0]),
+                fallback_window * math.sqrt(lref / g), output_interval, written, g,
                 bool(settings.stop_at_collapse))
             if collapsed:
                 status = EK.STATUS_COLLAPSE

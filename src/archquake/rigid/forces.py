@@ -340,16 +340,21 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     pos = res.positions[picks][:, fb, :]
     vel = res.velocities[picks][:, fb, :]
     imp, impulsive, active, qm, nrm, tan, pts, certified = FK.probe(
-        pos, vel, res.base_displacement[picks], res.base_velocity[picks], s["acc"],
-        model.mass, model.inertia, model.ja, model.jb, model.arm_a, model.arm_b, model.n0,
-        model.t0, s["h"], s["g"], s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"],
-        s["correction"], s["hold"], s["lref"], IMPULSIVE, s["vacc"])
+        model.chain, _probe_stepping(s), pos, vel, res.base_displacement[picks],
+        res.base_velocity[picks], s["acc"], s["lref"], IMPULSIVE, s["vacc"])
     unique = certified == 1
     open_ = np.flatnonzero(certified < 0)  # not settled by the certificate: the SVD decides
     if open_.size:
         unique[open_] = _unique(model, active[open_], qm[open_], nrm[open_], tan[open_],
                                 pts[open_])
     return _history(s, imp, unique, impulsive)
+
+
+def _probe_stepping(s: dict) -> RK.Stepping:
+    """The probe's step and projection settings (`_setup`'s) as a `RK.Stepping`."""
+    return RK.Stepping(float(s["h"]), float(s["g"]), float(s["gap_tol"]), float(s["tol"]),
+                       MAX_SWEEPS, float(s["mu"]), RK.METHOD_PGS, float(s["correction"]),
+                       float(s["hold"]), RK.ACTIVE_SET_ITERATIONS)
 
 
 def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
@@ -376,10 +381,8 @@ def joint_forces_at_rest(run, motion, *, g: float | None = None, every: int = 1
     pos = np.broadcast_to(q0, (3, *q0.shape)).copy()
     vel = np.broadcast_to(v0, (3, *v0.shape)).copy()
     zeros = np.zeros(3)
-    imp3 = FK.probe(pos, vel, zeros, zeros, levels, model.mass, model.inertia, model.ja,
-                    model.jb, model.arm_a, model.arm_b, model.n0, model.t0, s["h"], s["g"],
-                    s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"], s["correction"], s["hold"],
-                    s["lref"], IMPULSIVE, s["vacc"])[0]
+    imp3 = FK.probe(model.chain, _probe_stepping(s), pos, vel, zeros, zeros, levels, s["lref"],
+                    IMPULSIVE, s["vacc"])[0]
     up = acc >= 0.0
     peak = np.where(up, levels[1], levels[2])
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -416,9 +419,10 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
         gk = g + s["vacc"][k] if s["vacc"].size else g
         vf[:, 0] -= h * acc[k]
         vf[:, 1] -= h * gk
-        vn, imp, _, _ = RK.project(qm, vf, inv_m, inv_i, model.ja, model.jb, gaps, nrm, tan,
-                                   pts, s["gap_tol"], p_warm, s["tol"], MAX_SWEEPS, s["mu"],
-                                   s["correction"], hold)
+        cfg = RK.solving(s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"], correction=s["correction"],
+                         hold_tol=hold)
+        vn, imp, _, _ = RK.project(model.chain, cfg, qm, RK.Geometry(gaps, nrm, tan, pts), vf,
+                                   p_warm)
         unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts,
                                        s["gap_tol"], isq_m, isq_i, p_warm, hold))
         p_warm = imp

@@ -46,6 +46,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -59,6 +61,9 @@ from archquake.ground.base import has_vertical
 from archquake.ground.pulses import RectangularPulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
+
+if TYPE_CHECKING:
+    from archquake.rigid.events import EventModel
 
 #: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
 #: over Oppenheim's first half cycle by < 0.01).
@@ -83,7 +88,7 @@ ACC_SAMPLES = 16
 
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class RigidModel:
     """An `Assembly` packed for the stepper: free bodies and joint corners.
 
@@ -91,7 +96,13 @@ class RigidModel:
     ``ja[j]``/``jb[j]`` are the free bodies on its ``left``/``right`` side (-1: the base),
     ``arm_a[j, c]``/``arm_b[j, c]`` corner c's position relative to that body's centroid in the
     undisplaced assembly (for a base side, the corner itself), m; ``n0[j]`` the joint normal
-    from left into right, ``t0[j]`` the direction from corner 0 to corner 1."""
+    from left into right, ``t0[j]`` the direction from corner 0 to corner 1; ``arch`` the arch
+    it was built from (None: built from an assembly).
+
+    A model is built once and its derived forms are computed once, on it: the compiled
+    kernels' packed arrays (`chain`) and the event integrator's layout with its onset
+    accelerations (`events`). Models compare and hash by identity (their arrays have no
+    equality of their own), so functions of a model can be memoised on it."""
 
     assembly: Assembly
     body: np.ndarray
@@ -105,6 +116,7 @@ class RigidModel:
     arm_b: np.ndarray
     n0: np.ndarray
     t0: np.ndarray
+    arch: VoussoirChain | None = None
 
     @classmethod
     def build(cls, arch_or_assembly: VoussoirChain | Assembly) -> RigidModel:
@@ -140,7 +152,8 @@ class RigidModel:
             arm_b[j] = p - (cents[joint.right] if jb[j] >= 0 else 0.0)
         return cls(asm, body, free_blocks, np.asarray(asm.masses, float)[free_blocks].copy(),
                    np.asarray(asm.inertias, float)[free_blocks].copy(), cents[free_blocks].copy(),
-                   ja, jb, arm_a, arm_b, n0, t0)
+                   ja, jb, arm_a, arm_b, n0, t0,
+                   arch_or_assembly if isinstance(arch_or_assembly, VoussoirChain) else None)
 
     @property
     def n_bodies(self) -> int:
@@ -152,10 +165,29 @@ class RigidModel:
         q[:, :2] = self.centroids
         return q, np.zeros_like(q)
 
+    @cached_property
+    def chain(self) -> RK.Chain:
+        """The packed arrays of the compiled kernels (`archquake.rigid._step_kernels.Chain`),
+        built once."""
+        return RK.pack_chain(self)
+
+    @cached_property
+    def events(self) -> EventModel:
+        """The model laid out for the event integrator (`archquake.rigid.events.EventModel`),
+        built once: its onset accelerations are computed once per model."""
+        from archquake.rigid.events import EventModel
+
+        return EventModel.build(self)
+
+    def geometry(self, q: np.ndarray) -> RK.Geometry:
+        """The corner gaps, joint normals and tangents and corner positions
+        (`archquake.rigid._step_kernels.Geometry`) of the configuration ``q`` (nb, 3)."""
+        return RK.geometry(np.asarray(q, float), self.ja, self.jb, self.arm_a, self.arm_b,
+                           self.n0, self.t0)
+
     def gaps(self, q: np.ndarray) -> np.ndarray:
         """Corner gaps (nj, 2), m, of the configuration ``q`` (nb, 3), positive open."""
-        return RK.geometry(np.asarray(q, float), self.ja, self.jb, self.arm_a, self.arm_b,
-                           self.n0, self.t0)[0]
+        return self.geometry(q).gaps
 
     def kinetic_energy(self, v: np.ndarray) -> float:
         """J, of the velocities ``v`` (nb, 3)."""
@@ -170,14 +202,11 @@ class RigidModel:
         """One contact projection at configuration ``q`` of the velocity ``v`` (no time step:
         an impact): the velocities after it (nb, 3) and the joint impulses (nj, 3), N s."""
         q = np.asarray(q, float)
-        gaps, nrm, tan, pts = RK.geometry(q, self.ja, self.jb, self.arm_a, self.arm_b, self.n0,
-                                          self.t0)
         scale = max(float(np.max(np.abs(v))), 1e-300)
         tol = 1e-14 * scale if tol is None else tol
-        vn, imp, _, _ = RK.project(q, np.asarray(v, float), 1.0 / self.mass, 1.0 / self.inertia,
-                                   self.ja, self.jb, gaps, nrm, tan, pts,
-                                   GAP_TOLERANCE * self.assembly.reference_length,
-                                   np.zeros((len(self.ja), 3)), tol, max_sweeps, 0.0)
+        cfg = RK.solving(GAP_TOLERANCE * self.assembly.reference_length, tol, max_sweeps)
+        vn, imp, _, _ = RK.project(self.chain, cfg, q, self.geometry(q), np.asarray(v, float),
+                                   np.zeros((len(self.ja), 3)))
         return vn, imp
 
 

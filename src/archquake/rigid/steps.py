@@ -124,7 +124,7 @@ def run_steps(model: RigidModel, motion, settings: BlockCriteria, *, duration: f
     diag = np.zeros(RK.N_DIAG)
     lref = asm.reference_length
     tol = float(solver_tolerance) * math.sqrt(g * lref)
-    chain = RK.pack_chain(model)
+    chain = model.chain
     cfg = RK.stepping(h, g, GAP_TOLERANCE * lref, tol, MAX_SWEEPS, mu, METHODS[solver], True,
                       HOLD_TOLERANCE * lref)
     free = (~np.asarray(asm.base, dtype=bool)).astype(np.int64)

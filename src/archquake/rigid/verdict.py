@@ -91,18 +91,9 @@ REST_MARGIN = 0.98
 _OUTCOMES = (Outcome.NO_HINGING, Outcome.SURVIVES, Outcome.COLLAPSE, Outcome.INDETERMINATE)
 
 
-#: The arch each memoised model was built from (by the model's identity, the model kept
-#: alive by `_model_of_chain`'s cache): its limit analysis seeds the onset's bisection.
-_CHAIN_OF: dict[int, tuple[RigidModel, VoussoirChain]] = {}
-
-
 @functools.lru_cache(maxsize=64)
 def _model_of_chain(arch: VoussoirChain) -> RigidModel:
-    model = RigidModel.build(arch)
-    if len(_CHAIN_OF) > 64:
-        _CHAIN_OF.clear()
-    _CHAIN_OF[id(model)] = (model, arch)
-    return model
+    return RigidModel.build(arch)
 
 
 def _onset_g(model: RigidModel) -> tuple[float, float]:
@@ -112,14 +103,12 @@ def _onset_g(model: RigidModel) -> tuple[float, float]:
     projections)."""
     from archquake.limit import hinges_of
     from archquake.limit.static import collapse_state
-    from archquake.rigid.events import EventModel
 
-    events = EventModel.of(model)
-    hit = _CHAIN_OF.get(id(model))
-    if hit is None or hit[0] is not model:
+    events = model.events
+    if model.arch is None:
         return events.onset_g
     try:
-        hint = collapse_state(hinges_of(hit[1]))[0]
+        hint = collapse_state(hinges_of(model.arch))[0]
     except (ArchquakeError, np.linalg.LinAlgError):
         return events.onset_g
     return events.onset_near(hint)
@@ -169,20 +158,11 @@ class _Packed:
     safe_neg: float
 
 
-_PACKED: dict[tuple[int, BlockCriteria], tuple[RigidModel, _Packed]] = {}
-
-
+@functools.lru_cache(maxsize=64)
 def _packed(model: RigidModel, settings: BlockCriteria) -> _Packed:
-    """`_pack`, memoised on the model (by identity) and the settings."""
-    key = (id(model), settings)
-    hit = _PACKED.get(key)
-    if hit is not None and hit[0] is model:
-        return hit[1]
-    packed = _pack(model, settings)
-    if len(_PACKED) > 64:
-        _PACKED.clear()
-    _PACKED[key] = (model, packed)
-    return packed
+    """A model's arrays for `verdict_run` under ``settings``, built once for each (a model
+    hashes by identity)."""
+    return _pack(model, settings)
 
 
 def _pack(model: RigidModel, settings: BlockCriteria) -> _Packed:
@@ -200,7 +180,7 @@ def _pack(model: RigidModel, settings: BlockCriteria) -> _Packed:
     ls = np.array([float(ln.sign) for ln in links])
     lam_p, lam_n = _onset_g(model)
     frame = VK.Frame(base_state, model.free_blocks.astype(np.int64), free_mask, cpar, lb, ll, ls)
-    return _Packed(RK.pack_chain(model), frame, lam_p, lam_n)
+    return _Packed(model.chain, frame, lam_p, lam_n)
 
 
 @dataclass(frozen=True)

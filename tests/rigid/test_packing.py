@@ -1,0 +1,44 @@
+"""How the rigid chain's kernels are fed: a model packed once, stepping loops without reference
+counting (the kernels' packed arguments: tests/test_kernel_arity.py).
+
+Oracles: object identity (a model's derived forms are built once), and numba's compile options
+(the stepping loops are compiled without reference counting, the step's cost measured in
+docs/notes/measurements.md, "The rigid chain's step without reference counting"). The loops'
+numbers are held bit for bit elsewhere: ``test_step_work_arrays_carry_nothing_between_steps``
+(tests/rigid/test_chain.py) and the digests (tests/test_digest.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+from archquake.geometry import Arch
+
+OPPENHEIM = Arch(10.0, 1.5, math.radians(157.5), 7)
+
+
+def test_model_derived_forms_are_built_once():
+    """A `RigidModel`'s packed arrays and its event-integrator layout are built once and kept on
+    it; the verdict path finds the same objects, and the model remembers its arch."""
+    from archquake.blocks.criteria import BlockCriteria
+    from archquake.rigid.events import EventModel
+    from archquake.rigid.verdict import _packed, rigid_model
+
+    model = rigid_model(OPPENHEIM)
+    assert model.arch == OPPENHEIM  # an equal arch (the models are memoised on the arch)
+    assert model.chain is model.chain
+    assert model.events is model.events
+    assert EventModel.of(model) is model.events
+    assert _packed(model, BlockCriteria()) is _packed(model, BlockCriteria())  # hashed by identity
+    assert _packed(model, BlockCriteria()).chain is model.chain
+
+
+def test_stepping_loops_are_compiled_without_reference_counting():
+    """The recorded stepper's and the verdict's loops allocate nothing and are compiled with
+    numba's reference counting off: with it, each step took and dropped a reference to every
+    array of the packed tuples it passes on."""
+    import archquake.rigid._step_kernels as RK
+    import archquake.rigid._verdict_kernels as VK
+
+    for loop in (RK._steps, VK._verdict_steps):
+        assert loop.targetoptions.get("_nrt") is False, loop.py_func.__name__
