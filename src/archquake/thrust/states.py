@@ -35,7 +35,7 @@ The time history itself is the one compiled integrator's: `states` asks
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -45,7 +45,7 @@ from archquake.errors import InvalidParameterError
 from archquake.geometry.arch import Arch
 from archquake.geometry.chain import VoussoirChain
 from archquake.geometry.planar import perp
-from archquake.ground.base import GroundMotion
+from archquake.ground.base import GroundMotion, has_vertical
 from archquake.limit.locked import locked_joint_forces
 from archquake.limit.thrust import JointForces, joint_forces, moments_about_origin
 from archquake.mechanism.configuration import DisplacedArch, displaced_arch
@@ -301,12 +301,6 @@ def _locked_state(prepared: PreparedMechanism, t: float, xg: float, g: float,
 
 
 # --------------------------------------------------------------------------- time histories
-def _ground_before(motion: GroundMotion, t: float, tau: float) -> float:
-    """x_g'' just before t (at t = 0: just after): the side of a jump a snapshot shows."""
-    eps = 1e-9 * tau
-    return float(motion.acceleration(t - eps if t > eps else t + eps))
-
-
 def states(
     arch: Arch | PreparedMechanism,
     motion: GroundMotion,
@@ -323,7 +317,10 @@ def states(
     requested time is reached by a step of the integrator landing on it. At a jump of the
     ground acceleration the snapshot shows the value just before the jump (the paper's Figure
     8(a) at t = t_p: "the first pulse is still acting"); at t = 0, and at the onset of hinging,
-    the value just after (t = 0+, onset+).
+    the value just after (t = 0+, onset+). A vertical ground acceleration a_v(t) (upward: a
+    pulse's vertical part, a record's vertical component) weighs on every voussoir as gravity
+    g + a_v at the same instant, as it does in the integration; the states' ``g`` stays the
+    nominal gravity (their accelerations in g are read against it).
 
     Parameters
     ----------
@@ -368,17 +365,22 @@ def states(
         raise InvalidParameterError(f"time {t:g} s is beyond the simulated history")
     tau = math.sqrt(prepared.mechanism.arch.radius / g)
     onset = result.onset_time
+    vertical = has_vertical(motion)
     out: list[MotionState | None] = [None] * len(times)
     for k, i in enumerate(order):
         t, side = float(ev.t[k]), int(ev.side[k])
-        if side != 0 and t == onset:  # onset+: the ground acceleration that opens the mechanism
-            xg = float(motion.acceleration(t + 1e-9 * tau))
-        else:
-            xg = _ground_before(motion, t, tau)
+        # the instant whose ground acceleration the snapshot shows: onset+ (the acceleration
+        # that opens the mechanism), else just before t (at t = 0: just after)
+        eps = 1e-9 * tau
+        shown = t + eps if (side != 0 and t == onset) or t <= eps else t - eps
+        xg = float(motion.acceleration(shown))
         phi = max(float(ev.phi[k]), 0.0) if side != 0 else 0.0
         # the mechanism open at t: a row of the impact law's table (row 0 under Eq. 4)
         row = int(ev.mechanism_row[k]) if ev.mechanism_row is not None and side != 0 else 0
-        out[i] = state_at(prepared.member(row), t, phi, float(ev.phi_dot[k]), side, xg, g=g)
+        # a vertical ground acceleration a_v (upward) weighs as gravity g + a_v at that instant
+        g_t = g + float(motion.vertical_acceleration(shown)) if vertical else g
+        state = state_at(prepared.member(row), t, phi, float(ev.phi_dot[k]), side, xg, g=g_t)
+        out[i] = state if g_t == g else replace(state, g=float(g))
     return out  # type: ignore[return-value]
 
 
