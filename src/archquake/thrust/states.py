@@ -365,7 +365,8 @@ def states(
         raise InvalidParameterError(f"time {t:g} s is beyond the simulated history")
     tau = math.sqrt(prepared.mechanism.arch.radius / g)
     onset = result.onset_time
-    vertical = has_vertical(motion)
+    # the motion's upward ground acceleration, m/s^2 (None: it has none)
+    vertical = getattr(motion, "vertical_acceleration", None) if has_vertical(motion) else None
     out: list[MotionState | None] = [None] * len(times)
     for k, i in enumerate(order):
         t, side = float(ev.t[k]), int(ev.side[k])
@@ -378,7 +379,7 @@ def states(
         # the mechanism open at t: a row of the impact law's table (row 0 under Eq. 4)
         row = int(ev.mechanism_row[k]) if ev.mechanism_row is not None and side != 0 else 0
         # a vertical ground acceleration a_v (upward) weighs as gravity g + a_v at that instant
-        g_t = g + float(motion.vertical_acceleration(shown)) if vertical else g
+        g_t = g if vertical is None else g + float(vertical(shown))
         state = state_at(prepared.member(row), t, phi, float(ev.phi_dot[k]), side, xg, g=g_t)
         out[i] = state if g_t == g else replace(state, g=float(g))
     return out  # type: ignore[return-value]
