@@ -151,7 +151,7 @@ def test_rigid_chain_and_dem_share_a_record_with_its_vertical_to_the_first_impac
     (measured 0.35 %, 0.01 %, 0.14 %)."""
     motion = _near_field_record(0.74)
     dem = simulate_dem(OPPENHEIM, motion, DemSettings(duration=2.5))
-    rigid = simulate_rigid(OPPENHEIM, motion, duration=2.5).result
+    rigid = simulate_rigid(OPPENHEIM, motion, duration=2.5)
     assert dem.first_impact_time is not None and rigid.first_impact_time is not None
     assert abs(dem.peak_rotation[0] / rigid.peak_rotation[0] - 1.0) < 0.02
     assert abs(dem.first_impact_time / rigid.first_impact_time - 1.0) < 0.01

@@ -266,9 +266,9 @@ def test_events_and_stepper_agree_under_a_pulse_vertical(ratio):
     ev = simulate_rigid(OPPENHEIM, motion, duration=2.5, solver="events")
     st = simulate_rigid(OPPENHEIM, motion, duration=2.5)
     assert ev.outcome == st.outcome
-    for a, b in zip(ev.result.peak_rotation[:2], st.result.peak_rotation[:2], strict=True):
+    for a, b in zip(ev.peak_rotation[:2], st.peak_rotation[:2], strict=True):
         assert a == pytest.approx(b, rel=5e-3)
-    assert ev.result.first_impact_time == pytest.approx(st.result.first_impact_time, rel=1e-3)
+    assert ev.first_impact_time == pytest.approx(st.first_impact_time, rel=1e-3)
     assert ev.energy.residual < 1e-7
 
 

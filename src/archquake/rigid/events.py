@@ -118,9 +118,12 @@ class EventModel:
 
     @classmethod
     def of(cls, rigid: RigidModel) -> EventModel:
-        """`build`, once per rigid model (``rigid.events``: its onset thresholds are computed
-        once)."""
-        return rigid.events
+        """`build`, once per rigid model: kept on the model itself (its onset thresholds are
+        computed once), so that the model needs nothing of the event integrator."""
+        cached = rigid.__dict__.get("_event_model")
+        if cached is None:
+            cached = rigid.__dict__["_event_model"] = cls.build(rigid)
+        return cached
 
     @property
     def closed(self) -> bool:

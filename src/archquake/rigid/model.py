@@ -47,7 +47,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -61,9 +60,6 @@ from archquake.ground.base import has_vertical
 from archquake.ground.pulses import RectangularPulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
-
-if TYPE_CHECKING:
-    from archquake.rigid.events import EventModel
 
 #: Default time step, s (convergence in docs/notes/mechanism.md: halving it changes the energy kept
 #: over Oppenheim's first half cycle by < 0.01).
@@ -170,14 +166,6 @@ class RigidModel:
         """The packed arrays of the compiled kernels (`archquake.rigid._step_kernels.Chain`),
         built once."""
         return RK.pack_chain(self)
-
-    @cached_property
-    def events(self) -> EventModel:
-        """The model laid out for the event integrator (`archquake.rigid.events.EventModel`),
-        built once: its onset accelerations are computed once per model."""
-        from archquake.rigid.events import EventModel
-
-        return EventModel.build(self)
 
     def geometry(self, q: np.ndarray) -> RK.Geometry:
         """The corner gaps, joint normals and tangents and corner positions

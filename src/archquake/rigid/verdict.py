@@ -103,8 +103,9 @@ def _onset_g(model: RigidModel) -> tuple[float, float]:
     projections)."""
     from archquake.limit import hinges_of
     from archquake.limit.static import collapse_state
+    from archquake.rigid.events import EventModel
 
-    events = model.events
+    events = EventModel.of(model)
     if model.arch is None:
         return events.onset_g
     try:
