@@ -177,3 +177,28 @@ def test_make_demo_and_make_test_warm_every_workload_once():
         assert recipe, f"make {target} has a recipe"
         body = recipe.group(1)
         assert "warm --only $(WARM_A) &" in body and "warm --only $(WARM_B)" in body, target
+
+
+ONE_SIGNATURE = """
+import json
+from archquake.warm import dispatchers, warm
+warm(["rigid", "verdicts", "events"])
+print(json.dumps({f"{d.py_func.__module__}.{d.py_func.__name__}": [str(s) for s in d.signatures]
+                  for d in dispatchers()}))
+"""
+
+
+def test_the_rigid_workloads_compile_each_rigid_and_ground_kernel_once():
+    """After the rigid chain's warm-up workloads (time stepper, verdicts, event integrator) each
+    kernel of ``archquake.rigid`` and ``archquake.ground`` holds one signature: no caller passes
+    a literal constant where the kernel is otherwise called with a run-time integer (numba
+    would compile a copy specialised to the constant). Run in a fresh interpreter on the usual
+    cache (loads if warm, compiles otherwise)."""
+    done = subprocess.run([sys.executable, "-c", ONE_SIGNATURE], capture_output=True, text=True,
+                          check=True, env=dict(os.environ, PYTHONPATH=os.pathsep.join(
+                              p for p in sys.path if p)))
+    held = json.loads(done.stdout.strip().splitlines()[-1])
+    assert held["archquake.rigid._event_kernels.run"]  # the workloads ran
+    modules = ("archquake.rigid.", "archquake.ground.")
+    assert {name: sigs for name, sigs in held.items()
+            if name.startswith(modules) and len(sigs) > 1} == {}

@@ -63,7 +63,7 @@ def _vertical_block(params):
 
 
 @nb.njit(cache=True, nogil=True)
-def ground_acceleration(kind: int, params: np.ndarray, t: float) -> float:
+def ground_acceleration(kind: int | np.integer, params: np.ndarray, t: float) -> float:
     """x_g''(t), m/s^2, for the motion described by ``(kind, params)``."""
     if kind == KIND_STEP or kind == KIND_SINE:
         return ground_in_piece(kind, params, t, t)  # the pulses' one definition
@@ -119,7 +119,7 @@ def ground_in_piece(kind, params, t, t_left):
             return 0.0
         return direction * a * math.sin(2.0 * math.pi * t / period)
     if kind == KIND_SAMPLED_VERTICAL:
-        return _sampled_in_piece(params, 1, int(params[0]), t, t_left)
+        return _sampled_in_piece(params, np.int64(1), int(params[0]), t, t_left)
     # a record, written out rather than through _sampled_in_piece: this is the integrators'
     # innermost call (the four-link model on a record measured up to 9 % slower through the
     # helpers)
@@ -168,7 +168,7 @@ def next_breakpoint(kind, params, t):
         return math.inf
     if kind == KIND_SAMPLED_VERTICAL:  # the union of both components' sample times
         start, m = _vertical_block(params)
-        return min(_sampled_next(params, 1, int(params[0]), t, eps),
+        return min(_sampled_next(params, np.int64(1), int(params[0]), t, eps),
                    _sampled_next(params, start, m, t, eps))
     t0, dt = params[0], params[1]  # a record, written out as in ground_in_piece
     n = params.shape[0] - 2

@@ -694,7 +694,7 @@ def project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed):
                 for b in range(3):
                     cc[a, b] += cols[i, a] * cols[i, b]
         rr = np.array([e0, e1, e2])
-        if not _solve(cc, rr, 3):
+        if not _solve(cc, rr, np.int64(3)):
             return -1.0
         for i in range(K):
             y[i] -= cols[i, 0] * rr[0] + cols[i, 1] * rr[1] + cols[i, 2] * rr[2]
@@ -712,7 +712,7 @@ def project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed):
             rv[a] += cols[i, a] * y[K + i]
             for b in range(3):
                 cc[a, b] += cols[i, a] * cols[i, b]
-    if K >= 3 and _solve(cc, rv, 3):
+    if K >= 3 and _solve(cc, rv, np.int64(3)):
         for i in range(K):
             y[K + i] -= cols[i, 0] * rv[0] + cols[i, 1] * rv[1] + cols[i, 2] * rv[2]
     return total
@@ -1099,7 +1099,7 @@ def run(chain, span, state, output, written):
     jh = st[1:1 + MX]
     ch = st[1 + MX:1 + 2 * MX]
     K = st[0]
-    ws = workspace(MX)
+    ws = workspace(np.int64(MX))
     ytmp = np.zeros(2 * MX + 1)
     # the Dormand-Prince stages and their argument (`dopri_step`)
     ks = (np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1), np.zeros(2 * MX + 1),
@@ -1162,7 +1162,7 @@ def run(chain, span, state, output, written):
         kin0 = 0.0
         for b in range(n):
             kin0 += 0.5 * (mb[b] * (fv[b, 0] ** 2 + fv[b, 1] ** 2) + ib[b] * fv[b, 2] ** 2)
-        K = 0
+        K = np.int64(0)
         for j in range(nj):
             tha = 0.0 if ja[j] < 0 else fq[ja[j], 2]
             thb = 0.0 if jb[j] < 0 else fq[jb[j], 2]
@@ -1188,7 +1188,7 @@ def run(chain, span, state, output, written):
         y[2 * K] = diag[E_INPUT]
         link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
         if K < kmin:
-            K = 0
+            K = np.int64(0)
             y[0] = diag[E_INPUT]
             link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
             diag[E_DISSIPATED] += kin0
@@ -1201,7 +1201,7 @@ def run(chain, span, state, output, written):
                        ws[4], ws[5], ws[6])
             kin1, _ = energies(K, ws, lm, lg0, li, g)
             diag[E_DISSIPATED] += kin0 - kin1
-        _log(log, counters, t, 6, -1, K)
+        _log(log, counters, t, np.int64(6), np.int64(-1), K)
     while t < t_end - 1e-13:
         # ---------------------------------------------------------------- locked, at rest
         if K == 0:
@@ -1237,7 +1237,7 @@ def run(chain, span, state, output, written):
             counters[N_ONSETS] += 1
             if not ok or K2 > MX:
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                  WHY_SEPARATION, t), written
+                                                  np.int64(WHY_SEPARATION), t), written
             if K2 < kmin:
                 t += 1e-9  # no motion after all (at the threshold): keep scanning
                 continue
@@ -1250,7 +1250,7 @@ def run(chain, span, state, output, written):
                 y[K + i] = 0.0
             y[2 * K] = win
             link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
-            _log(log, counters, t, 4, -1, K)
+            _log(log, counters, t, np.int64(4), np.int64(-1), K)
             h = min(h_max, 1e-4)
             # fall through to the consistency check below
         else:
@@ -1259,7 +1259,7 @@ def run(chain, span, state, output, written):
             if not rhs(K, jh, ch, y, p0, lm, lg0, li, ax0, g, ws, f0, closed,
                        vertical_in_piece(kind, gp, t, t)):
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                  WHY_SINGULAR, t), written
+                                                  np.int64(WHY_SINGULAR), t), written
             counters[N_EVALS] += 1
             while True:
                 bp = next_breakpoint(kind, gp, t)
@@ -1270,7 +1270,7 @@ def run(chain, span, state, output, written):
                     break
                 if not math.isfinite(err) or hh < 1e-12:
                     return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                      WHY_SINGULAR, t), written
+                                                      np.int64(WHY_SINGULAR), t), written
                 h = hh * max(0.2, 0.9 * err ** -0.2)
                 counters[N_REJECTED] += 1
             fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
@@ -1378,7 +1378,8 @@ def run(chain, span, state, output, written):
             ev_ring[ev_pos % CHATTER_EVENTS] = t
             ev_pos += 1
             if ev_pos >= CHATTER_EVENTS and t - ev_ring[ev_pos % CHATTER_EVENTS] < CHATTER_WINDOW:
-                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws, WHY_CHATTER, t), written
+                return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
+                                                  np.int64(WHY_CHATTER), t), written
             h = min(h_next, 1e-3)
             if ev_kind == 2:
                 # which margin: recompute at the event
@@ -1389,16 +1390,16 @@ def run(chain, span, state, output, written):
                 lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
                 if ho < lo:
                     return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                      WHY_TENSILE_HINGE, t), written
+                                                      np.int64(WHY_TENSILE_HINGE), t), written
                 if K + 1 > MX:
                     return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                      WHY_TOO_MANY_HINGES, t), written
+                                                      np.int64(WHY_TOO_MANY_HINGES), t), written
                 K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
                 counters[N_OPENINGS] += 1
-                _log(log, counters, t, 2, lj, K)
+                _log(log, counters, t, np.int64(2), lj, K)
                 link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
             elif ev_kind == 3:
-                _log(log, counters, t, 3, jh[ev_i], K - 1)
+                _log(log, counters, t, np.int64(3), jh[ev_i], K - 1)
                 K = _remove_hinge(K, jh, ch, y, ev_i)
                 counters[N_RELOCKS] += 1
                 link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
@@ -1476,7 +1477,7 @@ def run(chain, span, state, output, written):
                 if K >= kmin - 1 and K > 0:
                     if not metric_projection(chain, K, jh, ch, y, vn, links, ws):
                         return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                          WHY_SINGULAR, t), written
+                                                          np.int64(WHY_SINGULAR), t), written
                     pinned[:K] = False
                     project_closure(K, jh, ch, y, pinned, p0, lg0, ws, lref, closed)
                     kinematics(K, jh, ch, y[:K], y[K:2 * K], p0, lg0, ws[0], ws[1], ws[2],
@@ -1485,32 +1486,32 @@ def run(chain, span, state, output, written):
                 diag[E_DISSIPATED] += kin0 - kin1
                 if K == 0 or K < kmin - 1 or (not displaced and (kin1 == 0.0 or (
                         t >= t_exc_end and kin1 < 1e-12 * weight * lref))):
-                    _log(log, counters, t, 5, jclose, 0)
-                    K = 0
+                    _log(log, counters, t, np.int64(5), jclose, np.int64(0))
+                    K = np.int64(0)
                     y[0] = win
                     link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
                     continue
-                _log(log, counters, t, 1, jclose, K)
+                _log(log, counters, t, np.int64(1), jclose, K)
         # ---------------------------------------------------------------- consistency
         for _ in range(2 * nj):
             axc = ground_in_piece(kind, gp, t, t)
             gc = g + vertical_in_piece(kind, gp, t, t)
             if not dynamics(K, jh, ch, y[:K], y[K:2 * K], p0, lm, lg0, li, axc, gc, ws, closed):
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                  WHY_SINGULAR, t), written
+                                                  np.int64(WHY_SINGULAR), t), written
             joint_forces(chain, K, jh, ch, ws, axc, gc, forces)
             lo, lj, lc, ho, hk, fr = margins(K, jh, ch, forces, n, weight, skip)
             if ho < -ftol:
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                  WHY_TENSILE_HINGE, t), written
+                                                  np.int64(WHY_TENSILE_HINGE), t), written
             if lo >= -ftol:
                 break
             if K + 1 > MX:
                 return STATUS_FALLBACK, _fallback(chain, state, links, K, jh, ch, ws,
-                                                  WHY_TOO_MANY_HINGES, t), written
+                                                  np.int64(WHY_TOO_MANY_HINGES), t), written
             K, _ = _insert_hinge(K, jh, ch, y, lj, 1 - lc)
             counters[N_OPENINGS] += 1
-            _log(log, counters, t, 2, lj, K)
+            _log(log, counters, t, np.int64(2), lj, K)
             link_properties(K, jh, n, S0, S1, S2, lm, lg0, li, lstart)
     _save(t, K, y, tt, st, diag)
     if K == 0 and t >= t_exc_end:

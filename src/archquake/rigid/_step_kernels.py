@@ -346,7 +346,7 @@ def _rows_into(chain, q, geo, gap_tol, hold_tol, p_warm, ws):
     diag = ws.diag
     offset = ws.offset
     nj = ja.shape[0]
-    nrows = 0
+    nrows = np.int64(0)  # typed int64: the literal 0 would compile copies of the solvers
     for j in range(nj):
         act0 = gaps[j, 0] <= gap_tol or (p_warm[j, 0] > 0.0 and gaps[j, 0] <= hold_tol)
         act1 = gaps[j, 1] <= gap_tol or (p_warm[j, 1] > 0.0 and gaps[j, 1] <= hold_tol)
