@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import fields
 
 import numpy as np
 from timing import best_of  # benchmarks/timing.py
@@ -31,9 +32,10 @@ def main() -> dict:
     seen: dict = {}
     inner = RC._samples_to_run
 
-    def spy(model, motion, settings, **samples):
-        seen.update(samples, settings=settings)
-        return inner(model, motion, settings, **samples)
+    def spy(model, motion, settings, got, **kw):
+        seen.update({f.name: getattr(got, f.name) for f in fields(got)}, settings=settings,
+                    integrated=got, keywords=kw)
+        return inner(model, motion, settings, got, **kw)
 
     RC._samples_to_run = spy  # type: ignore[assignment]
     try:
@@ -42,6 +44,7 @@ def main() -> dict:
         RC._samples_to_run = inner  # type: ignore[assignment]
     samples = dict(seen)
     settings = samples.pop("settings")
+    got, keywords = samples.pop("integrated"), samples.pop("keywords")
     res = run
     asm, pos, t = res.assembly, res.positions, res.times
     q, v = samples["q"], samples["v"]
@@ -68,7 +71,7 @@ def main() -> dict:
         a, b = best_of(new), best_of(plain, 3)
         out[name] = (a, b)
         print(f"  {name:26s} {a * 1e3:8.2f}  {b * 1e3:16.2f}  {b / a:6.1f}")
-    post = best_of(lambda: inner(model, motion, settings, **samples))
+    post = best_of(lambda: inner(model, motion, settings, got, **keywords))
     fs = best_of(lambda: run.to_dict(joint_forces=False))
     out.update(samples_to_result_s=post, to_dict_s=fs)
     print(f"  _samples_to_run (states, energies, BlockResult.from_samples) {post * 1e3:7.2f} ms")

@@ -16,6 +16,7 @@ import dataclasses
 import math
 import subprocess
 import sys
+from dataclasses import fields
 
 import numpy as np
 import pytest
@@ -39,9 +40,10 @@ def _run(monkeypatch, motion, duration):
     seen = {}
     inner = RC._samples_to_run
 
-    def spy(model, motion, settings, **samples):
-        seen.update(samples, model=model, settings=settings)
-        return inner(model, motion, settings, **samples)
+    def spy(model, motion, settings, got, **kw):
+        seen.update({f.name: getattr(got, f.name) for f in fields(got)}, model=model,
+                    settings=settings)
+        return inner(model, motion, settings, got, **kw)
 
     monkeypatch.setattr(RC, "_samples_to_run", spy)
     return RC.simulate_rigid(OPPENHEIM, motion, duration=duration), seen

@@ -280,8 +280,7 @@ def simulate_rigid(arch_or_assembly: VoussoirChain | Assembly | RigidModel, moti
                           output_interval=output_interval, initial=initial, g=g, chunk=chunk,
                           solver_tolerance=solver_tolerance, friction=friction, solver=solver,
                           until_rest=until_rest, progress=progress)
-    return _samples_to_run(model, motion, settings, g=g, duration=duration, **got.samples(),
-                           **got.extras)
+    return _samples_to_run(model, motion, settings, got, g=g, duration=duration)
 
 
 #: A residual of the energy balance above this fraction of its scale is a warning on the run.
@@ -401,14 +400,6 @@ class Integrated:
     ground_velocity: np.ndarray
     extras: dict = field(default_factory=dict)
 
-    def samples(self) -> dict:
-        """The samples, as `_samples_to_run`'s keywords."""
-        return {"time_step": self.time_step, "output_interval": self.output_interval,
-                "n_steps": self.n_steps, "times": self.times, "q": self.q, "v": self.v,
-                "dissipated": self.dissipated, "input_work": self.input_work,
-                "ground_displacement": self.ground_displacement,
-                "ground_velocity": self.ground_velocity}
-
 
 def _time_steps(model: RigidModel, motion, settings: BlockCriteria, *, duration: float,
                 time_step: float, output_interval: float,
@@ -498,11 +489,8 @@ def _events(model: RigidModel, motion, settings: BlockCriteria, *, duration: flo
                 "ground_motion": motion, "events": raw})
 
 
-def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, *, g: float,
-                    time_step: float, duration: float, output_interval: float, n_steps: int,
-                    times: np.ndarray, q: np.ndarray, v: np.ndarray, dissipated: np.ndarray,
-                    input_work: np.ndarray, ground_displacement: np.ndarray,
-                    ground_velocity: np.ndarray, **extras) -> RigidRun:
+def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, got: Integrated, *,
+                    g: float, duration: float) -> RigidRun:
     """The recorded samples of a rigid-chain run as a `RigidRun` (the block models'
     post-processing, `BlockResult.from_samples`; module docstring): what any integrator of
     this model hands back.
@@ -515,40 +503,33 @@ def _samples_to_run(model: RigidModel, motion, settings: BlockCriteria, *, g: fl
     settings : BlockCriteria
         The thresholds of the verdict; recorded with ``duration``, ``time_step`` and
         ``output_interval`` (s), a `BlockRunSettings`.
+    got : Integrated
+        What the integrator recorded (its samples, and its own fields of `RigidRun` in
+        ``extras``).
     g : float
         m/s^2.
-    n_steps : int
-        Steps taken.
-    times : ndarray (nt,)
-        s, from the start of the ground motion.
-    q, v : ndarray (nt, nb, 3)
-        Configurations and velocities of the free bodies relative to the ground
-        (`absolute_states`).
-    dissipated, input_work : ndarray (nt,)
-        J: energy removed by the contact step (the ``damping`` column) and work of the
-        inertial load, since t = 0.
-    ground_displacement, ground_velocity : ndarray (nt,)
-        The ground's x_g (m) and x_g' (m/s).
-    **extras
-        The integrator's own fields of `RigidRun`.
+    duration : float
+        The run's asked length, s.
     """
+    q, v, times = got.q, got.v, got.times
+    ground_displacement, ground_velocity = got.ground_displacement, got.ground_velocity
     states = absolute_states(model, q, v, ground_displacement, ground_velocity)
     kin = 0.5 * ((v[:, :, 0] ** 2 + v[:, :, 1] ** 2) @ model.mass + v[:, :, 2] ** 2 @ model.inertia)
     pot = g * (q[:, :, 1] - model.centroids[None, :, 1]) @ model.mass
     energies = np.zeros((len(times), 8))
     energies[:, 0] = kin
     energies[:, 1] = pot
-    energies[:, 3] = dissipated
-    energies[:, 5] = input_work
+    energies[:, 3] = got.dissipated
+    energies[:, 5] = got.input_work
     energies[:, 6] = ground_displacement
     energies[:, 7] = ground_velocity
     motion_d = motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(getattr(
         motion, "name", motion))}
-    record = BlockRunSettings(settings, duration=duration, time_step=time_step,
-                              output_interval=output_interval)
-    return RigidRun.from_samples(model.assembly, record, motion_d, g, time_step, math.nan,
-                                 n_steps, 0, times, states, energies,
-                                 excitation_end=excitation_end(motion), **extras)
+    record = BlockRunSettings(settings, duration=duration, time_step=got.time_step,
+                              output_interval=got.output_interval)
+    return RigidRun.from_samples(model.assembly, record, motion_d, g, got.time_step, math.nan,
+                                 got.n_steps, 0, times, states, energies,
+                                 excitation_end=excitation_end(motion), **got.extras)
 
 
 __all__ = ["ENERGY_WARNING", "EnergyBalance", "RigidRun", "energy_balance", "simulate_rigid"]
