@@ -110,7 +110,7 @@ def test_ground_kernels_load_from_cache(tmp_path):
 
 
 @pytest.mark.slow
-def test_analytical_and_domain_kernels_load_from_cache(tmp_path):
+def test_fourlink_and_domain_kernels_load_from_cache(tmp_path):
     """Includes the parallel (prange) batch kernel of the domain search."""
     _second_process_compiles_nothing(ANALYTICAL_AND_DOMAIN, tmp_path / "numba",
                                      ("mechanism", "domains"))

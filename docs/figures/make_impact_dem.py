@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from archquake import Arch
-from archquake.compare.impacts import analytical_impacts, rocking_pulse
+from archquake.compare.impacts import fourlink_impacts, rocking_pulse
 from archquake.dem import simulate_dem
 from archquake.dem.settings import DemSettings
 
@@ -25,7 +25,7 @@ CASES = (
 )
 fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), sharey=True)
 for ax, (label, arch) in zip(axes, CASES):
-    _, laws, exact, _ = analytical_impacts(arch)
+    _, laws, exact, _ = fourlink_impacts(arch)
     pulse, tp, t_imp = rocking_pulse(arch)
     res = simulate_dem(arch, pulse, DemSettings(duration=1.5 * t_imp + 0.1, output_interval=5e-4))
     ti = res.first_impact_time

@@ -1,6 +1,6 @@
 """What became of the arch: the one outcome vocabulary of every model.
 
-Both the analytical rocking model (`archquake.mechanism.simulate`) and the
+Both the four-link model (`archquake.mechanism.simulate`) and the
 distinct-element model (`archquake.dem.simulate_dem`) classify a run as one of these
 outcomes, and the failure-domain search (`archquake.domains`) brackets their
 boundaries whichever model is plugged in.
@@ -24,17 +24,17 @@ class Outcome(str, Enum):
         exceeded the static collapse acceleration in either direction).
     ``survives``
         Hinges opened, and the arch did not collapse, and it is shown that it will not (the
-        analytical model, `conclude`: it came to rest after the excitation, or after the
+        four-link model, `conclude`: it came to rest after the excitation, or after the
         excitation its energy fell below every crest barrier; the block models, the DEM and
         the rigid chain: it came to rest after the excitation,
         `archquake.blocks.result.settled`).
     ``collapse``
-        The arch collapsed (each model states its criterion: the analytical model when the
+        The arch collapsed (each model states its criterion: the four-link model when the
         mechanism passes the crest of its potential energy after the excitation or reaches
         its toggle; the distinct-element model when the crown has fallen, a block has gone
         below the springings or turned too far).
     ``indeterminate``
-        The analytical model reached a verdict only through an impact its impact law cannot
+        The four-link model reached a verdict only through an impact its impact law cannot
         describe (`qualify` states the rule), or its run ended before the survival could be
         shown (`conclude`: ``t_end`` before the end of the excitation, or the arch still
         rocking with energy enough to reach a crest): neither collapse nor survival is claimed.
@@ -96,7 +96,7 @@ def qualify(outcome: Outcome, *, collapse_half_cycle: int | None, impacts: int,
 
 def conclude(outcome: Outcome, *, final_state: str, t_end_s: float, excitation_end_s: float,
              below_barrier: bool, energy_fraction: float | None = None) -> tuple[Outcome, str]:
-    """The analytical model's verdict as it may be stated, given how its run ended, with the
+    """The four-link model's verdict as it may be stated, given how its run ended, with the
     reason in one sentence.
 
     The rule (docs/notes/mechanism.md, "Time history: events, collapse, rest"): ``collapse`` stands

@@ -65,7 +65,7 @@ def cap_workers(requested: int | None, pending: int) -> tuple[int, str | None]:
 START_METHOD = ("forkserver" if "forkserver" in multiprocessing.get_all_start_methods()
                 else "spawn")
 #: Modules the fork server imports once, so that its workers start with them loaded (the
-#: analytical model and the sweep machinery; importing starts no thread). ``__main__`` is the
+#: four-link model and the sweep machinery; importing starts no thread). ``__main__`` is the
 #: multiprocessing default, kept.
 FORKSERVER_PRELOAD = ("__main__", "archquake.sweeps.runner", "archquake.sweeps.evaluate",
                       "archquake.mechanism")

@@ -41,7 +41,7 @@ TABLE_COLUMNS = ("time_s", "crown_dx_m", "crown_dy_m", "rotation_rad", "kinetic_
 
 @runtime_checkable
 class HingeEvent(Protocol):
-    """One change of the open hinges in a time history: the analytical model's
+    """One change of the open hinges in a time history: the four-link model's
     `MechanismEvent`, the block models'
     `HingeSet`."""
 

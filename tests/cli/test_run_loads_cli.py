@@ -126,7 +126,7 @@ def test_domain_with_fill_starts_at_the_loaded_lambda_and_says_what_the_chain_do
     out = json.loads(capsys.readouterr().out)
     point = out["dem_governing"]["points"][0]
     assert point["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
-    assert out["analytical"][0]["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
+    assert out["fourlink"][0]["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
     assert out["assembly"]["masses"]["carried_mass_kg"] > 0
     asm = build_arch_assembly(ARCH, loads=FILL)
     window = 3 * 0.3 + DOMAIN_TAIL * math.sqrt(ARCH.radius / G)

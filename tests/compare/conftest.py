@@ -1,4 +1,4 @@
-"""Shared fixtures for the analytical-vs-DEM comparison tests."""
+"""Shared fixtures for the four-link-vs-DEM comparison tests."""
 
 from __future__ import annotations
 

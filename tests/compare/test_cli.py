@@ -1,5 +1,5 @@
 """The DEM through the command line and the sweep machinery: ``run --model dem`` (JSON keys shared
-with the analytical run, GIF), ``domain --model dem``, and a DEM sweep over a process pool."""
+with the four-link run, GIF), ``domain --model dem``, and a DEM sweep over a process pool."""
 
 from __future__ import annotations
 
@@ -15,9 +15,9 @@ from archquake.validation import paper
 SHARED_KEYS = (*RESULT_KEYS, "arch", "excitation")
 
 
-def test_run_dem_json_keys_match_the_analytical_run(capsys):
-    """Figure 4(d) (t_p = 0.20 s) on the arch cut at the hinges: the same keys as the analytical
-    run where they apply, and the same first impact (the 3-voussoir arch is the analytical
+def test_run_dem_json_keys_match_the_fourlink_run(capsys):
+    """Figure 4(d) (t_p = 0.20 s) on the arch cut at the hinges: the same keys as the four-link
+    run where they apply, and the same first impact (the 3-voussoir arch is the four-link
     mechanism: within 1 ms)."""
     args = ["--pulse", "step", "--magnitude", "1.0", "--duration", "0.20", "--t-end", "1.0", "--json"]
     assert main(["run", "--model", "fourlink", *args]) == 0
@@ -57,10 +57,10 @@ def test_run_dem_options_and_errors(capsys, tmp_path):
 
 def test_domain_dem_quick(capsys):
     """A very coarse DEM domain at one duration (2 magnitudes + bisection to 0.3 g, ceiling 1.2 g):
-    the JSON has both DEM boundaries beside the analytical ones. The DEM boundary reported is the
+    the JSON has both DEM boundaries beside the four-link ones. The DEM boundary reported is the
     collapsing end of a bracket <= 0.3 g wide, and the two models agree to 0.5 % (1st half cycle)
     and 10 % (governing, DEM higher: 0.672 vs 0.610 g at 0.01 g resolution), so it lies between
-    the analytical boundary and that plus 0.3 g + 10 %."""
+    the four-link boundary and that plus 0.3 g + 10 %."""
     assert main(["domain", "--model", "dem", "--durations", "0.3", "--scan", "2", "--precision", "0.3",
                  "--max-magnitude", "1.2", "--workers", "2", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -70,7 +70,7 @@ def test_domain_dem_quick(capsys):
     assert rows["collapse"]["assembly"] == "voussoirs"
     for r in rows.values():
         if r["dem_g"] is not None:
-            a = r["analytical_g"]
+            a = r["fourlink_g"]
             assert 0.995 * a <= r["dem_g"] <= 1.1 * a + 0.3
     assert out["dem_governing"]["runs"] >= 2
 
@@ -81,9 +81,9 @@ SEMICIRCLE = ["--radius", "5", "--thickness", "0.6", "--embrace", "180", "--vous
 
 
 def test_run_dem_hinges_on_a_semicircle(capsys):
-    """a = 0.2 g, t_p = 0.3 s: the analytical mechanism collapses in its first half cycle; so does
+    """a = 0.2 g, t_p = 0.3 s: the four-link mechanism collapses in its first half cycle; so does
     the DEM arch cut at its hinges (voussoirs 0-2 held with the support), with no impact (its
-    collapse criterion, a crown drop of t, is met later than the analytical crest: 1.21 s)."""
+    collapse criterion, a crown drop of t, is met later than the four-link crest: 1.21 s)."""
     args = [*SEMICIRCLE, "--pulse", "step", "--magnitude", "0.2", "--duration", "0.3", "--json"]
     assert main(["run", "--model", "fourlink", *args]) == 0
     an = json.loads(capsys.readouterr().out)
@@ -99,7 +99,7 @@ def test_run_dem_hinges_on_a_semicircle(capsys):
 def test_domain_dem_on_a_semicircle(capsys):
     """One duration, 2 coarse magnitudes, brackets of 0.2 g under a 0.3 g ceiling, one process:
     both DEM boundaries are found. The 1st-half-cycle boundary (arch cut at the hinges) is the
-    collapsing end of a bracket <= 0.2 g wide on a model that follows the analytical first half
+    collapsing end of a bracket <= 0.2 g wide on a model that follows the four-link first half
     cycle within 2 % (tests/dem/test_any_arch.py), so it lies in [0.98 a, 1.02 a + 0.2 g]
     (measured 0.121 g against 0.113 g)."""
     assert main(["domain", "--model", "dem", *SEMICIRCLE, "--durations", "0.3", "--scan", "2",
@@ -109,7 +109,7 @@ def test_domain_dem_on_a_semicircle(capsys):
     assert set(rows) == {"first_half_cycle", "collapse"}
     first = rows["first_half_cycle"]
     assert first["assembly"] == "hinges"
-    assert 0.98 * first["analytical_g"] <= first["dem_g"] <= 1.02 * first["analytical_g"] + 0.2
+    assert 0.98 * first["fourlink_g"] <= first["dem_g"] <= 1.02 * first["fourlink_g"] + 0.2
     assert rows["collapse"]["assembly"] == "voussoirs" and rows["collapse"]["dem_g"] is not None
     assert out["dem_governing"]["runs"] >= 2
 

@@ -1,7 +1,7 @@
-"""DEM failure domains through the analytical domain search (paper Figure 6(a), p. 2133).
+"""DEM failure domains through the four-link domain search (paper Figure 6(a), p. 2133).
 
 Oracles: single DEM runs on either side of the boundary the search reports (the domain must say
-what the model does), and the analytical first-half-cycle boundary, which the paper finds in
+what the model does), and the four-link first-half-cycle boundary, which the paper finds in
 'excellent agreement' with the DEM arch cut at the hinges.
 """
 
@@ -25,7 +25,7 @@ COARSE = DomainSettings(max_magnitude_g=1.2, coarse_points=4, fine_points=0, pre
 
 def test_dem_first_half_cycle_boundary_point(oppenheim):
     """t_p = 0.6 s: just above the DEM boundary the three-voussoir arch collapses before any
-    impact, just below it does not; the analytical boundary (0.681 g) lies inside the DEM's
+    impact, just below it does not; the four-link boundary (0.681 g) lies inside the DEM's
     bracket widened by 1 % (contact compliance: measured 0.4 % apart at 0.01 g precision)."""
     tp = 0.6
     dd = dem_failure_domain(oppenheim, "step", [tp], assembly="hinges", settings=COARSE, workers=1)
@@ -38,8 +38,8 @@ def test_dem_first_half_cycle_boundary_point(oppenheim):
     lo = simulate_dem(asm, StepImpulse.from_g(below, tp), st)
     assert hi.outcome.value == "collapse" and hi.first_impact_time is None
     assert lo.outcome.value != "collapse" or lo.first_impact_time is not None
-    analytical = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
-    assert 0.99 * below <= analytical <= 1.01 * above
+    fourlink = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
+    assert 0.99 * below <= fourlink <= 1.01 * above
     assert dd.runs >= 4 and dom.evaluations >= dd.runs  # memoised: lookups >= runs
 
 
@@ -75,24 +75,24 @@ def test_governing_only_counts_every_collapse_but_no_half_cycle(oppenheim):
 @pytest.mark.slow
 def test_dem_domains_figure6_oppenheim(oppenheim):
     """Figure 6 for Oppenheim's arch at the DEM resolution (0.01 g): first-half-cycle boundaries
-    within 3 % of the analytical ones, governing boundary no lower than the analytical one minus
+    within 3 % of the four-link ones, governing boundary no lower than the four-link one minus
     the bracket (the paper: analytical 'generally conservative')."""
     from archquake.compare import compare_domains
 
     comp = compare_domains(oppenheim, "step", (0.2, 0.3, 0.5, 0.8))
     for r in comp.rows():
-        if r["analytical_g"] is None or r["dem_g"] is None:
+        if r["fourlink_g"] is None or r["dem_g"] is None:
             continue
         if r["boundary"] == "first_half_cycle":
             assert abs(r["relative"]) < 0.03
         else:
-            assert r["dem_g"] >= r["analytical_g"] - 0.02
+            assert r["dem_g"] >= r["fourlink_g"] - 0.02
 
 
 def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):
     """The same search with the rigid chain (``model='rigid'``, hinges moving) on the arch cut
-    at the analytical hinges, t_p = 0.6 s: the four rigid links are the fixed-hinge mechanism
-    before any impact, so the analytical first-half-cycle boundary (0.681 g) must lie inside
+    at the four-link hinges, t_p = 0.6 s: the four rigid links are the fixed-hinge mechanism
+    before any impact, so the four-link first-half-cycle boundary (0.681 g) must lie inside
     the rigid bracket widened by 1 % (measured 0.3-0.8 % apart at 0.01 g on t_p = 0.3-0.8 s:
     docs/notes/mechanism.md). All runs are rigid: the domain records its model."""
     tp = 0.6
@@ -102,7 +102,7 @@ def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):
     dom = dd.domain
     above, below = float(dom.first_half_cycle_g[0]), float(dom.first_half_cycle_below_g[0])
     assert math.isfinite(above) and above - below <= COARSE.precision_g + 1e-12
-    analytical = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
-    assert 0.99 * below <= analytical <= 1.01 * above
+    fourlink = float(failure_domain(oppenheim, "step", [tp], model="fourlink").first_half_cycle_g[0])
+    assert 0.99 * below <= fourlink <= 1.01 * above
     with pytest.raises(InvalidParameterError, match="model must be one of dem, rigid"):
         dem_failure_domain(oppenheim, "step", [tp], model="analytical", workers=1)

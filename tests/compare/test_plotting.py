@@ -18,7 +18,7 @@ def test_figure4_9_10_files(oppenheim, tmp_path):
     rows = hinges.rows()
     # p. 2132: at 0.20 s the second hinge differs (the DEM's is at joint 2, where Figure 8(a)'s
     # line of thrust leaves the section); at 1.10 s all hinge locations are identical
-    assert rows[0]["analytical_joints"] == [0, 3, 5, 7] and rows[0]["dem_joints"] == [0, 2, 5, 7]
+    assert rows[0]["fourlink_joints"] == [0, 3, 5, 7] and rows[0]["dem_joints"] == [0, 2, 5, 7]
     assert rows[1]["same"]
     snap = reduced_damping_snapshot(oppenheim, time=0.3)
     assert figure10(snap.reduced, snap.time, tmp_path / "f10.png",

@@ -1,9 +1,9 @@
-"""The DEM accepts every arch the analytical model accepts: any number of voussoirs, hinges
+"""The DEM accepts every arch the four-link model accepts: any number of voussoirs, hinges
 anywhere (issue 11). Its hinges come from archquake.limit.hinges_of.
 
-Oracles: the analytical mechanism (the blocks of the arch cut at the hinges are its links, with
+Oracles: the four-link mechanism (the blocks of the arch cut at the hinges are its links, with
 their exact mass properties), the equivalent static analysis (no hinge below lambda), and the
-analytical first half cycle (the paper, Figure 4(b): the DEM arch cut at the analytical hinges
+four-link first half cycle (the paper, Figure 4(b): the DEM arch cut at the four-link hinges
 "matches the analytical first half cycle almost exactly").
 """
 
@@ -32,7 +32,7 @@ def semicircle() -> Arch:
     return SEMICIRCLE
 
 
-def test_the_arch_cut_at_the_hinges_is_the_analytical_mechanism(semicircle):
+def test_the_arch_cut_at_the_hinges_is_the_fourlink_mechanism(semicircle):
     """Cut at (0, 3, 7, 12, 15): voussoirs 0-2 (below hinge A) are held with the support; the
     three moving blocks are links AB, BC, CD with their voussoirs' summed masses and centroids
     (to round-off, 1e-12)."""
@@ -93,24 +93,24 @@ def test_a_100_voussoir_arch_runs_in_the_dem():
     assert held.meta["held_voussoirs"] == [0] and int((~held.base).sum()) == 3
 
 
-def test_three_block_dem_on_the_semicircle_follows_the_analytical_first_half_cycle(semicircle):
-    """a = 0.2 g, t_p = 0.3 s: the analytical mechanism collapses in its first half cycle (the
+def test_three_block_dem_on_the_semicircle_follows_the_fourlink_first_half_cycle(semicircle):
+    """a = 0.2 g, t_p = 0.3 s: the four-link mechanism collapses in its first half cycle (the
     crest, 0.0102 rad, is passed by the end of the excitation, 0.9 s). The DEM arch cut at the
     hinges, with voussoirs 0-2 held, follows phi(t) up to then within the 2 % of the paper's
     three-voussoir comparison (tests/compare/test_histories.py; measured 0.1 %)."""
     c = compare_history(semicircle, StepImpulse.from_g(0.2, 0.3), assembly="hinges", duration=1.0)
-    assert c.analytical.outcome.value == "collapse" and c.analytical.collapse_half_cycle == 1
-    assert c.window == pytest.approx(c.analytical.collapse_time, abs=0.01)
+    assert c.fourlink.outcome.value == "collapse" and c.fourlink.collapse_half_cycle == 1
+    assert c.window == pytest.approx(c.fourlink.collapse_time, abs=0.01)
     assert c.relative_difference < 0.02
 
 
-def test_three_block_dem_on_the_semicircle_hits_when_the_analytical_model_does(semicircle):
+def test_three_block_dem_on_the_semicircle_hits_when_the_fourlink_model_does(semicircle):
     """a = 0.1 g, t_p = 0.2 s: the first impact (phi = 0 at 0.533 s) in both models within 1 ms
     (DEM output every 5 ms, crossing interpolated linearly; measured 0.7 ms) and the first half
     cycle within 2 % (measured 0.95 %: the 0.7 ms shift at the closing rate)."""
     c = compare_history(semicircle, StepImpulse.from_g(0.1, 0.2), assembly="hinges", duration=0.8)
-    assert c.analytical_first_impact == pytest.approx(0.533, abs=1e-3)
-    assert c.dem.first_impact_time == pytest.approx(c.analytical_first_impact, abs=1e-3)
+    assert c.fourlink_first_impact == pytest.approx(0.533, abs=1e-3)
+    assert c.dem.first_impact_time == pytest.approx(c.fourlink_first_impact, abs=1e-3)
     assert c.relative_difference < 0.02
 
 

@@ -47,9 +47,9 @@ def test_the_mechanism_of_any_shape_moves_only_above_lambda(name):
 
 
 @pytest.mark.parametrize("name", list(SHAPES))
-def test_three_block_dem_follows_the_analytical_first_half_cycle(name):
-    """The DEM arch cut at the analytical hinges (blocks outside A, D held with the support;
-    for the arch on piers the right pier turns with link CD) follows phi(t) of the analytical
+def test_three_block_dem_follows_the_fourlink_first_half_cycle(name):
+    """The DEM arch cut at the four-link hinges (blocks outside A, D held with the support;
+    for the arch on piers the right pier turns with link CD) follows phi(t) of the four-link
     mechanism over its first half cycle within the paper's 2 % (Figure 4(b); measured 0.4-0.5 %
     at a = 3 lambda, t_p = 0.15 s)."""
     from archquake.compare import compare_history

@@ -195,7 +195,7 @@ def test_a_read_only_store_is_called_read_only(tmp_path, monkeypatch):
                                   ["--thickness", "0.8", "--voussoirs", "5"]],
                          ids=lambda a: " ".join(a))
 def test_domain_takes_arches_cut_above_the_springing(scratch, arch):
-    """Arches whose three-voussoir cut (at the analytical hinges) puts a hinge above the
+    """Arches whose three-voussoir cut (at the four-link hinges) puts a hinge above the
     springing, so that its base takes in voussoirs: refused with API wording ("use
     solver='direct'"); now the domain is found, and the rigid chain's first-half-cycle boundary
     is the four-link mechanism's to the search's bracket (0.2 g)."""
@@ -203,7 +203,7 @@ def test_domain_takes_arches_cut_above_the_springing(scratch, arch):
                    "--max-magnitude", "1.5", *arch, "--json"], 60.0)
     assert problem(result) is None and result.code == 0, (problem(result), result.err)
     first = next(r for r in json.loads(result.out)["rows"] if r["boundary"] == "first_half_cycle")
-    assert abs(first["dem_g"] - first["analytical_g"]) <= 0.2
+    assert abs(first["dem_g"] - first["fourlink_g"]) <= 0.2
 
 
 @pytest.mark.skipif(not Path("/dev/shm").is_dir(), reason="no /dev/shm to look in")

@@ -205,7 +205,7 @@ def test_a_round_is_one_task_per_worker():
     assert round_chunk_size(1, None, 4) == 1
 
 
-def test_the_analytical_ida_runs_in_process_by_default(tmp_path, monkeypatch):
+def test_the_fourlink_ida_runs_in_process_by_default(tmp_path, monkeypatch):
     # the compiled batch spreads a round over the cores itself: no process pool unless asked
     # (executor or workers); each round is one task for the in-process executor
     import archquake.sweeps.runner as runner
@@ -289,7 +289,7 @@ def test_dem_model_goes_through_the_same_rounds(tmp_path):
     """A DEM IDA of the step pulse t_p = 0.3 s (one-record suite, 10 % precision): its first
     collapse bracket must overlap the DEM failure domain's governing boundary at that duration,
     0.672 g with a 0.01 g bracket (docs/models/dem.md, an independent bisection on the DEM), and lie
-    above the analytical 0.610 g (the DEM is the stronger model there). All runs are DEM cases."""
+    above the four-link 0.610 g (the DEM is the stronger model there). All runs are DEM cases."""
     pulse = [StepImpulse.from_g(1.0, 0.3)]
     with ResultStore(tmp_path / "dem.sqlite") as store:
         res = incremental_dynamic_analysis(OPPENHEIM, pulse, "pga", store, ceiling=1.0,

@@ -1,4 +1,4 @@
-"""Resource bounds and wrong answers of the analytical model at the edges of its input
+"""Resource bounds and wrong answers of the four-link model at the edges of its input
 (issue 15): time floors, history memory, the API's errors."""
 
 from __future__ import annotations

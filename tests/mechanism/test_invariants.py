@@ -1,4 +1,4 @@
-"""Physics invariants of the analytical model: energy, mirror symmetry, dynamic similarity,
+"""Physics invariants of the four-link model: energy, mirror symmetry, dynamic similarity,
 restitution, and the compiled path against the plain solve_ivp reference."""
 
 from __future__ import annotations

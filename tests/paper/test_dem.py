@@ -4,7 +4,7 @@ damping and the first impacts of Figure 4(c), (d). Values and tolerances:
 
 The seven-voussoir DEM's first impact is held to the paper's "reasonably good agreement"
 (:data:`~archquake.validation.paper.DEM_FIRST_IMPACT_AGREEMENT`, 10 %) with the paper's times:
-its hinges wander (p. 2132), so its impacts come later than the analytical model's.
+its hinges wander (p. 2132), so its impacts come later than the four-link model's.
 """
 
 from __future__ import annotations

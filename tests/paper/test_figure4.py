@@ -1,5 +1,5 @@
 """Figure 4 of the paper: Oppenheim's arch under the step impulse a = 1.0 g, t_p = 0.44, 0.27,
-0.20 s (p. 2126, Figure 4(b)-(d)), analytical model.
+0.20 s (p. 2126, Figure 4(b)-(d)), four-link model.
 
 Oracle: the paper's text and Figure 4; the first-impact times ("about 0.86 s", "about 0.6 s")
 and their tolerances come from :mod:`archquake.validation.paper`.

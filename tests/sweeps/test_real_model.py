@@ -1,4 +1,4 @@
-"""The default case function runs the real analytical model.
+"""The default case function runs the real four-link model.
 
 Oracles: (1) simulate called directly on the same arch and motion (the sweep's memoised
 mechanism and history-free solver options must not change a number); (2) dimensional

@@ -4,7 +4,7 @@ chain of rigid voussoirs (`archquake.rigid`).
 Template -> model -> analysis: `build_arch_assembly` / `block_on_base` build an `Assembly`
 (blocks, joints, the rotation link the verdict is read on); either model runs it and hands
 its samples to `BlockResult.from_samples`, which classifies them by the thresholds of a
-`BlockCriteria` (hinge opening, collapse rotation and drop) in the analytical model's
+`BlockCriteria` (hinge opening, collapse rotation and drop) in the four-link model's
 vocabulary (`Outcome`, impacts, half cycles, ``to_dict()`` keys). `default_window` is the
 default length of a block model's run.
 """

@@ -3,7 +3,7 @@ arch on its abutments, a block on a base.
 
 The arch's hinges come from the one place that answers "which hinges does this arch have",
 `archquake.limit.hinges_of` (the equivalent static analysis), so the DEM
-accepts every arch the analytical model accepts: any number of voussoirs, hinges anywhere.
+accepts every arch the four-link model accepts: any number of voussoirs, hinges anywhere.
 
 An `Assembly` is the frozen description the solver packs into arrays: convex contact
 polygons, exact mass properties, which blocks belong to the (prescribed) base, the joints
@@ -35,7 +35,7 @@ from archquake.geometry.polygon import polygon_mass_properties
 from archquake.limit import hinges_of
 
 #: What the DEM assembly of an arch is made of: every voussoir a block, or the arch cut only at
-#: the analytical hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
+#: the four-link model's hinges (the paper's "three-voussoir arch", Figures 4(b), 6(a), 11).
 VOUSSOIRS = "voussoirs"
 HINGES = "hinges"
 ASSEMBLIES = (VOUSSOIRS, HINGES)
@@ -289,20 +289,20 @@ def build_arch_assembly(
     arch : Arch
     cut_joints : tuple of int, optional
         Build a coarser arch cut only at these joints (must include 0 and n), e.g. the
-        paper's three-voussoir arch at the analytical hinges, ``(0, 3, 5, 7)`` for
+        paper's three-voussoir arch at the four-link hinges, ``(0, 3, 5, 7)`` for
         Oppenheim's arch (`three_voussoir_assembly`). Merged blocks get the exact merged
         mass properties of their voussoirs (Arch's annular-sector masses, centroids and
         inertias, combined with the parallel-axis theorem); their contact polygon is the convex
         hull of their joint end points (the intermediate intrados corners are dropped: contacts
         only occur at the cut joints, and the hull adds no mass).
     mechanism : HingeMechanism, optional
-        The analytical mechanism whose first link defines the rotation measure; default the
+        The four-link mechanism whose first link defines the rotation measure; default the
         arch's hinges, `archquake.limit.hinges_of` (the equivalent static
         analysis, any number of voussoirs). Its hinges A and B must be cut joints.
     hold_outside_hinges : bool
         If True, the voussoirs outside the mechanism's outer hinges (between a springing and a
         hinge A or D that is not at it) belong to the support: they are base blocks moving with
-        the ground, as the analytical model assumes (they stay on the ground). The mechanism's
+        the ground, as the four-link model assumes (they stay on the ground). The mechanism's
         hinges A and D must then be cut joints.
     loads : Loads, optional
         What the arch carries (`loaded_voussoirs`): each voussoir's mass, centroid and
@@ -322,7 +322,7 @@ def build_arch_assembly(
     The rotation measure (``BlockResult.rotation``) is the rotation, in the opening sense of the
     first mechanism, of the chord from hinge A (carried by the block just right of joint A) to
     hinge B (carried by the block just left of joint B): for an arch cut at the hinges this is
-    the rotation of link AB itself, the analytical phi; for the voussoir arch it is the
+    the rotation of link AB itself, the four-link phi; for the voussoir arch it is the
     rotation of voussoirs A..B as a whole, which equals phi while they move as one link.
     """
     n = arch.voussoirs
@@ -430,7 +430,7 @@ def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) 
 
     The three moving blocks are the mechanism's links AB, BC and CD. Where a hinge A or D is
     not at its springing, the voussoirs between the springing and the hinge are one more block
-    held as part of the support (moving with the ground), as in the analytical model.
+    held as part of the support (moving with the ground), as in the four-link model.
 
     Examples
     --------

@@ -1,8 +1,8 @@
 """The result of a block model's run (the distinct-element model, the rigid chain), in the
-analytical model's vocabulary.
+four-link model's vocabulary.
 
 `BlockResult` holds the sampled histories of a run (`archquake.dem.simulate_dem`,
-`archquake.rigid.simulate_rigid`) and computes from them what the analytical
+`archquake.rigid.simulate_rigid`) and computes from them what the four-link
 `SimulationResult` reports: the `Outcome`, the onset of hinging, the impacts, the peak
 rotation of each half cycle, the collapse half cycle and time, and ``to_dict()`` with the keys
 of `archquake.outcome.RESULT_KEYS`. The post-processing (joint openings and slips, the
@@ -13,8 +13,8 @@ record.
 The rotation measure
 --------------------
 ``rotation`` is the rotation of a chord of the assembly, ``RotationLink``: for an arch the chord
-from hinge A to hinge B of the analytical first mechanism (the one a ground acceleration towards
--x opens), signed > 0 in that mechanism's opening sense, like the analytical
+from hinge A to hinge B of the four-link model's first mechanism (the one a ground acceleration towards
+-x opens), signed > 0 in that mechanism's opening sense, like the four-link
 ``History.signed_rotation``. When the assembly is its own mirror image (x -> -x) and the
 mirror-image mechanism opens first (the ground accelerates towards +x when the hinges open:
 `mirror_opens_first`), the measure is the mirror-image chord's, so that a mirrored
@@ -370,7 +370,7 @@ def open_hinges(result: BlockResult, time: float, *, relative: float = HINGE_REL
 
 
 def hinge_label(hinges: list[tuple[int, str]]) -> str:
-    """``"0i 2e 3e 5i 7e"``: joint and face initial of each hinge, as the analytical model's
+    """``"0i 2e 3e 5i 7e"``: joint and face initial of each hinge, as the four-link model's
     `MechanismEvent` writes them."""
     return " ".join(f"{j}{f[0]}" for j, f in hinges)
 
@@ -440,7 +440,7 @@ def hinge_sets(result: BlockResult, *, every: float = HINGE_SAMPLING_S,
 @dataclass(frozen=True)
 class BlockResult:
     """Histories of a block model's run (the distinct-element model, the rigid chain), sampled
-    every ``output_interval``, and what became of the assembly in the analytical model's
+    every ``output_interval``, and what became of the assembly in the four-link model's
     vocabulary. (``archquake.dem.DemResult`` is this class, under its former name.)
 
     Attributes
@@ -460,7 +460,7 @@ class BlockResult:
     joint_slip : ndarray (nt, nj)
         Tangential offset of the two blocks at the more closed end of each joint, m.
     rotation : ndarray (nt,)
-        The rotation measure, rad (module docstring): comparable with the analytical
+        The rotation measure, rad (module docstring): comparable with the four-link
         ``History.signed_rotation``, > 0 while the first mechanism opens, < 0 in its mirror.
     rotation_link : RotationLink
         The chord ``rotation`` is measured on (the assembly's, or its mirror image).
@@ -481,7 +481,7 @@ class BlockResult:
     collapse_time : float or None
         s: first sample where a free block's centroid is below the springings, the crown has
         fallen by ``collapse_drop`` reference lengths, or a block has turned by
-        ``collapse_rotation`` (later than the analytical crest: compare outcomes and half
+        ``collapse_rotation`` (later than the four-link crest: compare outcomes and half
         cycles, not collapse times).
     time_step : float
         s. ``n_steps`` steps were taken after settling (fewer if the run stopped at the
@@ -672,7 +672,7 @@ class BlockResult:
 
     def to_dict(self) -> dict:
         """Summary for JSON (no histories): the keys of `archquake.outcome.RESULT_KEYS`,
-        shared with the analytical result (``final_state``: ``collapsed`` or None, the DEM runs
+        shared with the four-link result (``final_state``: ``collapsed`` or None, the DEM runs
         for a fixed time with no rest criterion), then the DEM's own."""
         return {
             **shared_keys(self, "dem", self.final_state),

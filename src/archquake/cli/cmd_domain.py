@@ -246,7 +246,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
             for r in rows:
                 w.writerow([r["boundary"], r["assembly"], f"{r['duration_s']:.6g}",
                             *("" if r[k] is None else f"{r[k]:.4f}"
-                              for k in ("analytical_g", "dem_g", "relative"))])
+                              for k in ("fourlink_g", "dem_g", "relative"))])
     if args.plot:
         from archquake.plotting.compare import domain_comparison_figure
 
@@ -260,7 +260,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
         extra = {} if assembly is None else {"loads": loads.to_dict(), "assembly": assembly}
         print_json({"model": model, **comp.to_dict(), **extra})
         return 0
-    an = comp.analytical
+    an = comp.fourlink
     sym = an.family.duration_symbol
     print(f"failure domain, {an.family.value} pulse, "
           + models.spec(model).kind + " beside the four-link "

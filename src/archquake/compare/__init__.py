@@ -1,4 +1,4 @@
-"""The analytical model beside the distinct-element model (paper pp. 2131-2135, Figures 4(b)-(d),
+"""The four-link model beside the distinct-element model (paper pp. 2131-2135, Figures 4(b)-(d),
 6, 9, 10, 11): time histories, failure domains, snapshots.
 
 Each name is imported from its module on first use (PEP 562), so that a command that needs one

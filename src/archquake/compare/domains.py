@@ -1,15 +1,15 @@
-"""Failure domains of the block models, found by the analytical domain search
+"""Failure domains of the block models, found by the four-link model's domain search
 (`archquake.domains.failure_domain`) with a block model's evaluation plugged in: the
 distinct-element model (``model='dem'``, paper Figures 6, 11) or the chain of rigid blocks
 (``model='rigid'``, hinges moving: the DEM's rigid limit), on the same assemblies
 with the same tail and the same search.
 
-As in the paper, the DEM's first-half-cycle boundary comes from the arch cut at the analytical
-hinges (``assembly='hinges'``, the three-voussoir arch: no impacts, the same mechanism), and its
+As in the paper, the DEM's first-half-cycle boundary comes from the arch cut at the four-link
+model's hinges (``assembly='hinges'``, the three-voussoir arch: no impacts, the same mechanism), and its
 governing boundary from the voussoir arch (``assembly='voussoirs'``, hinges free to move).
 
 Each evaluation is one DEM time history, so the search runs at a coarser resolution than the
-analytical one (`DEM_DOMAIN_SETTINGS`: 8 coarse magnitudes, 4 fine, 0.01 g brackets) and the
+four-link model's (`DEM_DOMAIN_SETTINGS`: 8 coarse magnitudes, 4 fine, 0.01 g brackets) and the
 runs of each search round are spread over a process pool (the round's (magnitude, duration)
 pairs, i.e. parallel over durations and brackets).
 """
@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from archquake import models
+from archquake._deprecated import renamed
 from archquake.compare.histories import HINGES, VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.domains import DomainSettings, FailureDomain, PulseFamily, failure_domain
@@ -111,7 +112,7 @@ def dem_failure_domain(
     loads=None,
 ) -> DemDomain:
     """The failure domain of the arch's blocks under the DEM (default) or the rigid chain,
-    through the analytical domain search.
+    through the four-link model's domain search.
 
     Parameters
     ----------
@@ -205,20 +206,23 @@ def dem_failure_domain(
 
 @dataclass(frozen=True)
 class DomainComparison:
-    """Analytical and DEM failure domains of one arch and pulse family (Figure 6, 11).
+    """Four-link and DEM failure domains of one arch and pulse family (Figure 6, 11).
 
     ``first`` (the three-voussoir arch) and ``governing`` (the voussoir arch) may be None when
-    not computed.
+    not computed. The former name of ``fourlink``, ``analytical``, is read for one more
+    release, with a DeprecationWarning.
     """
 
-    analytical: FailureDomain = field(repr=False)
+    fourlink: FailureDomain = field(repr=False)
     first: DemDomain | None = field(repr=False, default=None)
     governing: DemDomain | None = field(repr=False, default=None)
     label: str = ""
 
+    analytical = renamed("analytical", "fourlink", "DomainComparison")
+
     def rows(self) -> list[dict]:
         """One row per DEM duration: durations (s) and boundaries (g; None where none)."""
-        an = self.analytical
+        an = self.fourlink
         rows = []
         for which, dd in (("first_half_cycle", self.first), ("collapse", self.governing)):
             if dd is None:
@@ -229,17 +233,17 @@ class DomainComparison:
                 if abs(an.durations[i] - d) > 1e-9:
                     a = math.nan
                 rows.append({"boundary": which, "assembly": dd.assembly, "duration_s": float(d),
-                             "analytical_g": _num(a), "dem_g": _num(float(m)),
+                             "fourlink_g": _num(a), "dem_g": _num(float(m)),
                              "relative": _num((m - a) / a) if math.isfinite(a) and math.isfinite(m)
                              else None})
         return rows
 
     def to_dict(self) -> dict:
         block = next((d.model for d in (self.first, self.governing) if d is not None), None)
-        return {"label": self.label, "arch": self.analytical.arch.describe(),
+        return {"label": self.label, "arch": self.fourlink.arch.describe(),
                 "block_model": block,  # the rows' and dem_* entries' model: dem or rigid
-                "pulse": self.analytical.family.value, "rows": self.rows(),
-                "analytical": self.analytical.to_dict(),
+                "pulse": self.fourlink.family.value, "rows": self.rows(),
+                "fourlink": self.fourlink.to_dict(),
                 "dem_first_half_cycle": self.first.to_dict() if self.first else None,
                 "dem_governing": self.governing.to_dict() if self.governing else None}
 
@@ -264,7 +268,7 @@ def compare_domains(
     model: str = "dem",
     loads=None,
 ) -> DomainComparison:
-    """Analytical domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
+    """The four-link domain at ``durations`` (default search, 0.001 g) beside the DEM's: the
     first-half-cycle boundary of the three-voussoir arch (``first``) and the governing boundary
     of the voussoir arch (``governing``), both at ``settings`` (0.01 g). ``model``: the block
     model, 'dem' (default) or 'rigid' (`dem_failure_domain`). With ``loads`` every model

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from archquake._deprecated import renamed
 from archquake.blocks.assembly import (  # noqa: F401  (re-exported by archquake.compare)
     ASSEMBLIES,
     HINGES,
@@ -50,9 +51,8 @@ class HistoryComparison:
 
     Attributes
     ----------
-    analytical : SimulationResult
-        The four-link model's run.
-        With its history.
+    fourlink : SimulationResult
+        The four-link model's run, with its history.
     dem : BlockResult
     assembly : str
         ``'voussoirs'`` or ``'hinges'`` (the three-voussoir arch).
@@ -60,44 +60,53 @@ class HistoryComparison:
         End of the first half cycle compared, s: the earliest of the two models' first
         impacts and the four-link collapse (the four-link history ends there).
     max_difference : float
-        max |rotation_DEM - phi_analytical| over [0, window], rad.
+        max |rotation_DEM - phi_fourlink| over [0, window], rad.
     relative_difference : float
-        ``max_difference`` / max |phi_analytical| over the window (NaN if it never hinged).
-    analytical_seconds, dem_seconds : float
+        ``max_difference`` / max |phi_fourlink| over the window (NaN if it never hinged).
+    fourlink_seconds, dem_seconds : float
         Wall time of each run, s.
+
+    The former names ``analytical``, ``analytical_seconds`` and ``analytical_first_impact``
+    are read for one more release, with a DeprecationWarning.
     """
 
-    analytical: SimulationResult = field(repr=False)
+    fourlink: SimulationResult = field(repr=False)
     dem: BlockResult = field(repr=False)
     assembly: str
     window: float
     max_difference: float
     relative_difference: float
-    analytical_seconds: float
+    fourlink_seconds: float
     dem_seconds: float
 
+    analytical = renamed("analytical", "fourlink", "HistoryComparison")
+    analytical_seconds = renamed("analytical_seconds", "fourlink_seconds", "HistoryComparison")
+    analytical_first_impact = renamed("analytical_first_impact", "fourlink_first_impact",
+                                      "HistoryComparison")
+
     @property
-    def analytical_first_impact(self) -> float | None:
-        r = self.analytical
+    def fourlink_first_impact(self) -> float | None:
+        """The four-link model's first impact, s (None: it had none)."""
+        r = self.fourlink
         return float(r.impact_times[0]) if r.impact_times.size else None
 
     @property
     def same_outcome(self) -> bool:
         """Same outcome and, for a collapse, the same half cycle (an indeterminate four-link
         verdict is never the same as the DEM's: it claims neither collapse nor survival)."""
-        return (self.analytical.outcome is self.dem.outcome
-                and self.analytical.collapse_half_cycle == self.dem.collapse_half_cycle)
+        return (self.fourlink.outcome is self.dem.outcome
+                and self.fourlink.collapse_half_cycle == self.dem.collapse_half_cycle)
 
     def to_dict(self) -> dict:
-        a, d = self.analytical, self.dem
+        a, d = self.fourlink, self.dem
         return {
             "assembly": self.assembly,
             "blocks": int(np.sum(~d.assembly.base)),
             "motion": d.motion,
-            "analytical": {"outcome": a.outcome.value, "collapse_half_cycle": a.collapse_half_cycle,
-                           "impact_law": a.impact_law, "impact_validity": a.impact_validity,
-                           "first_impact_time_s": self.analytical_first_impact,
-                           "collapse_time_s": a.collapse_time, "seconds": self.analytical_seconds},
+            "fourlink": {"outcome": a.outcome.value, "collapse_half_cycle": a.collapse_half_cycle,
+                         "impact_law": a.impact_law, "impact_validity": a.impact_validity,
+                         "first_impact_time_s": self.fourlink_first_impact,
+                         "collapse_time_s": a.collapse_time, "seconds": self.fourlink_seconds},
             "dem": {"outcome": d.outcome.value, "collapse_half_cycle": d.collapse_half_cycle,
                     "first_impact_time_s": d.first_impact_time, "collapse_time_s": d.collapse_time,
                     "end_time_s": d.end_time, "seconds": self.dem_seconds},
@@ -170,7 +179,7 @@ def compare_history(
     return HistoryComparison(an, dm, assembly, window, diff, rel, t1 - t0, t2 - t1)
 
 
-def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
+def first_half_cycle_difference(fourlink, dem) -> tuple[float, float, float]:
     """(window end s, max |rotation_DEM - phi| rad, that / max |phi|) over the first half cycle.
 
     The window ends at the earliest of the four-link collapse, the four-link first impact,
@@ -178,14 +187,14 @@ def first_half_cycle_difference(analytical, dem) -> tuple[float, float, float]:
     linearly onto the four-link samples (DEM output every 5 ms; the curvature error of that
     interpolation is ~1e-6 rad for these motions).
     """
-    h = analytical.history
+    h = fourlink.history
     if h is None:
         raise InvalidParameterError("the four-link result needs its history (output_interval != 0)")
     ends = [float(h.t[-1]), float(dem.times[-1])]
-    if analytical.collapse_time is not None:
-        ends.append(analytical.collapse_time)
-    if analytical.impact_times.size:
-        ends.append(float(analytical.impact_times[0]))
+    if fourlink.collapse_time is not None:
+        ends.append(fourlink.collapse_time)
+    if fourlink.impact_times.size:
+        ends.append(float(fourlink.impact_times[0]))
     if dem.first_impact_time is not None:
         ends.append(dem.first_impact_time)
     window = min(ends)

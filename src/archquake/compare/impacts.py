@@ -1,8 +1,8 @@
 """The first impact of free rocking: the impact laws against the distinct-element model.
 
 The arch is set rocking by one rectangular ground pulse towards -x (which opens the first
-mechanism), sized so that the analytical first half cycle peaks at ``target`` times the crest
-rotation; after the pulse the ground moves at constant velocity, so the motion is free rocking in
+mechanism), sized so that the four-link model's first half cycle peaks at ``target`` times the
+crest rotation; after the pulse the ground moves at constant velocity, so the motion is free rocking in
 an inertial frame. In the DEM (every voussoir a block, the paper's stiffness and damping):
 
 * the impact is the first zero crossing of the rotation measure (``BlockResult.first_impact_time``);
@@ -18,6 +18,7 @@ an inertial frame. In the DEM (every voussoir a block, the paper's stiffness and
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,9 +44,9 @@ def _hinge_label(joints, faces) -> str:
 def rocking_pulse(arch: Arch, *, target: float = 0.35, magnitude_factor: float = 2.0,
                   g: float = STANDARD_GRAVITY):
     """A rectangular pulse towards -x of ``magnitude_factor`` times the static collapse
-    acceleration, whose duration makes the analytical first half cycle peak at ``target`` times
-    the crest rotation (bisection on the duration; the first half cycle does not depend on the
-    impact law). Returns (Record, duration_s, analytical first impact time_s)."""
+    acceleration, whose duration makes the four-link model's first half cycle peak at ``target``
+    times the crest rotation (bisection on the duration; the first half cycle does not depend on
+    the impact law). Returns (Record, duration_s, the four-link model's first impact time_s)."""
     from archquake.dem.studies import bisect, rectangular_pulse
     from archquake.mechanism import PreparedMechanism
     from archquake.mechanism.simulate import (
@@ -115,9 +116,9 @@ class ImpactComparison:
         }
 
 
-def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
-    """(pre-impact hinges, {law: summary}, exact c_T, exact response's hinges) for ``pre``
-    (default: the arch's own first mechanism)."""
+def fourlink_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
+    """(pre-impact hinges, {law: summary}, exact c_T, exact response's hinges) of the four-link
+    model's impact laws for ``pre`` (default: the arch's own first mechanism)."""
     from archquake.limit import hinges_of
     from archquake.mechanism.impact import IMPACT_LAWS, solve_impact
 
@@ -142,6 +143,13 @@ def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
     return _hinge_label(pre.joints, pre.faces), laws, exact, exact_h
 
 
+def analytical_impacts(arch: Arch, pre=None) -> tuple[str, dict, float, str]:
+    """Deprecated: `fourlink_impacts` under its former name (a DeprecationWarning)."""
+    warnings.warn("analytical_impacts is deprecated and will be removed in the next release: "
+                  "use fourlink_impacts", DeprecationWarning, stacklevel=2)
+    return fourlink_impacts(arch, pre)
+
+
 def _mechanism_from(arch: Arch, hinges):
     """The HingeMechanism of four DEM hinges [(joint, face)], or None if not admissible."""
     from archquake.errors import InvalidParameterError
@@ -163,7 +171,7 @@ def compare_first_impact(arch: Arch, label: str = "", *, target: float = 0.35,
     from archquake.dem import simulate_dem
     from archquake.dem.settings import DemSettings
 
-    pre, laws, exact, exact_h = analytical_impacts(arch)
+    pre, laws, exact, exact_h = fourlink_impacts(arch)
     pulse, tp, t_imp = rocking_pulse(arch, target=target, g=g)
     settings = DemSettings() if settings is None else settings
     settings = settings.with_(duration=t_imp * 1.5 + 0.1, output_interval=5e-4,
@@ -192,7 +200,7 @@ def compare_first_impact(arch: Arch, label: str = "", *, target: float = 0.35,
         if mech is not None:
             if mech.load_direction < 0:  # the DEM rotation sense defines "closing"; keep as is
                 pass
-            p2, laws2, exact2, exact_h2 = analytical_impacts(arch, mech)
+            p2, laws2, exact2, exact_h2 = fourlink_impacts(arch, mech)
             from_dem = {"pre": p2, "chain_ct": laws2["chain"]["ct"],
                         "chain_post": laws2["chain"]["post"],
                         "chain_validity": laws2["chain"]["validity"], "exact_ct": exact2,
@@ -297,7 +305,7 @@ def dem_half_cycle(arch: Arch, *, settings=None, window: float = 0.01, g: float 
                    ) -> DemHalfCycle:
     """Run the DEM (the paper's stiffness and damping, no sliding: ``DemSettings()``) through the
     first impact after the comparison's pulse (`rocking_pulse`),
-    measuring energy as `analytical_impacts` does."""
+    measuring energy as `compare_first_impact` does."""
     from archquake.dem import simulate_dem
     from archquake.dem.settings import DemSettings
 
@@ -339,7 +347,7 @@ def half_cycle_of(res, tp: float, t_imp: float, *, window: float = 0.01) -> DemH
 
 def fixed_hinge_kept(arch: Arch) -> dict:
     """c_T of Eq. 4 and of the chain law for the arch's limit-analysis mechanism."""
-    _, laws, _, _ = analytical_impacts(arch)
+    _, laws, _, _ = fourlink_impacts(arch)
     return {"paper": laws["paper"]["ct"], "chain": laws["chain"]["ct"]}
 
 
@@ -356,6 +364,7 @@ __all__ = [
     "ImpactComparison",
     "analytical_impacts",
     "compare_first_impact",
+    "fourlink_impacts",
     "hinge_table",
     "impact_table",
     "markdown_table",

@@ -2,7 +2,7 @@
 displacements under reduced damping (Figure 10).
 
 A DEM hinge is a joint whose wider end is open by more than a tenth of the widest joint opening
-at that instant (`dem_hinges`); its face is the other end. The analytical hinges are
+at that instant (`dem_hinges`); its face is the other end. The four-link model's hinges are
 those of the open mechanism (`archquake.thrust.MotionState.hinge_joints`).
 """
 
@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from archquake._deprecated import renamed
 from archquake.compare.histories import VOUSSOIRS, dem_assembly
 from archquake.constants import STANDARD_GRAVITY
 from archquake.geometry.arch import Arch
@@ -50,13 +51,15 @@ def joint_displacements(result, time: float) -> dict[str, np.ndarray]:
 
 @dataclass(frozen=True)
 class HingeComparison:
-    """Analytical (Figure 8) and DEM (Figure 9) hinges at the same instants.
+    """Four-link (Figure 8) and DEM (Figure 9) hinges at the same instants.
 
     Attributes
     ----------
     times : tuple of float, s
-    analytical : tuple
-        Per time, the open mechanism's hinge joints (4 ints) or None while locked.
+    fourlink : tuple
+        Per time, the four-link model's open mechanism's hinge joints (4 ints) or None while
+        locked (read for one more release under its former name ``analytical``, with a
+        DeprecationWarning).
     dem : tuple
         Per time, the DEM's hinges as (joint, face) pairs.
     states : tuple of MotionState
@@ -64,17 +67,19 @@ class HingeComparison:
     """
 
     times: tuple
-    analytical: tuple
+    fourlink: tuple
     dem: tuple
     states: tuple = field(repr=False)
     dem_result: BlockResult = field(repr=False)
     seconds: float = 0.0
 
+    analytical = renamed("analytical", "fourlink", "HingeComparison")
+
     def rows(self) -> list[dict]:
         out = []
-        for t, a, d in zip(self.times, self.analytical, self.dem):
+        for t, a, d in zip(self.times, self.fourlink, self.dem):
             dj = sorted({j for j, _ in d})
-            out.append({"time_s": t, "analytical_joints": list(a) if a else None,
+            out.append({"time_s": t, "fourlink_joints": list(a) if a else None,
                         "dem_joints": dj, "dem_hinges": [f"{j} {f}" for j, f in d],
                         "same": a is not None and set(a) == set(dj)})
         return out
@@ -86,7 +91,7 @@ class HingeComparison:
 def compare_hinges(arch: Arch, times=FIGURE9_TIMES, *, magnitude_g: float = 1.0,
                    duration: float = 0.20, settings=None, g: float = STANDARD_GRAVITY
                    ) -> HingeComparison:
-    """Figures 8 and 9: the analytical mechanism's hinges (`archquake.thrust.states`) and
+    """Figures 8 and 9: the four-link mechanism's hinges (`archquake.thrust.states`) and
     the DEM's (every voussoir a block) at ``times`` for the step impulse ``magnitude_g``,
     ``duration`` (s)."""
     from archquake.dem import DemSettings, simulate_dem

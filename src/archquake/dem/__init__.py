@@ -5,7 +5,7 @@ UDEC as used by De Lorenzis, DeJong & Ochsendorf 2007).
 Template -> model -> contacts -> analysis: `build_arch_assembly` /
 `block_on_base` build an `Assembly` (`archquake.blocks.assembly`, shared with the rigid
 chain); `simulate_dem` runs it under any ground motion and returns a frozen
-`archquake.blocks.BlockResult`, which speaks the analytical model's vocabulary (`Outcome`,
+`archquake.blocks.BlockResult`, which speaks the four-link model's vocabulary (`Outcome`,
 impacts, half cycles, ``to_dict()`` keys). ``DemResult`` is the same class under its former
 name, kept for one release.
 """

@@ -28,7 +28,7 @@ BLOCK_MODELS = ("dem", "rigid")
 
 #: Seconds simulated after the end of the pulse, in sqrt(R/g), in a domain run. The DEM declares
 #: collapse when the crown has fallen by t, which comes ~1 s (Oppenheim's arch) after the
-#: analytical crest; near a boundary the arch lingers at the crest, so the tail is generous.
+#: four-link model's crest; near a boundary the arch lingers at the crest, so the tail is generous.
 DOMAIN_TAIL = 6.0
 
 

@@ -1,4 +1,4 @@
-"""The ground-motion contract shared by the analytical model and the distinct-element model.
+"""The ground-motion contract shared by the three models.
 
 Sign convention: ``acceleration(t)`` is the horizontal ground acceleration x_g'' in m/s^2,
 positive towards +x (to the right). A ground acceleration towards -x loads the arch with an

@@ -35,7 +35,7 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     Parameters
     ----------
     cases : sequence of Case
-        Analytical-model cases (any excitation).
+        Four-link model cases (any excitation).
     early : bool
         Stop a surviving case once energy proves it cannot collapse any more (the peak rotation
         is still exact, see `archquake.ida._kernels`).

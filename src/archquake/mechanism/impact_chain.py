@@ -69,7 +69,7 @@ IMPULSE_LINE_RTOL = 1e-7
 #: The response is accepted as "near four-hinge" (``validity == 'near_four_hinge'``) when the
 #: exact impact response (the projection onto the cone of admissible motions) differs from the
 #: best four-hinge motion by at most this fraction of its own norm (in the kinetic metric: the
-#: kinetic energy of the difference is at most 1 % of the response's). Beyond it the analytical
+#: kinetic energy of the difference is at most 1 % of the response's). Beyond it the four-link
 #: model is outside its validity.
 NEAR_FOUR_HINGE_TOL = 0.1
 
@@ -334,7 +334,7 @@ class ChainImpact:
         'four_hinge' (the exact impact response is ``post``), 'at_rest' (the exact response is
         rest: a perfectly plastic impact), 'near_four_hinge' (the exact response is a motion of
         more degrees of freedom within `NEAR_FOUR_HINGE_TOL` of ``post``), or 'outside'
-        (the analytical four-hinge model does not describe the impact); 'not_four_hinge' when the
+        (the four-link model does not describe the impact); 'not_four_hinge' when the
         impulse line failed and the exact response was not computed (``exact=False``).
     distance : float
         ||v_exact - v_four_hinge||_M / ||v_exact||_M (0 when exact).

@@ -409,7 +409,7 @@ class SimulationResult:
     def to_dict(self, include_history: bool = False) -> dict:
         """Plain dict for JSON (the CLI's ``--json``, a sweep's stored row): the keys of
         `archquake.outcome.RESULT_KEYS`, shared with the distinct-element result, then
-        the analytical model's own."""
+        the four-link model's own."""
         out = {
             **shared_keys(self, "fourlink", self.final_state.value),
             "restitution_cv": self.restitution_cv,

@@ -1,4 +1,4 @@
-"""The analytical model beside the distinct-element model: Figure 4(b)-(d) overlays, failure
+"""The four-link model beside the distinct-element model: Figure 4(b)-(d) overlays, failure
 domains with DEM boundaries (Figures 6, 11), Figure 8 next to Figure 9, and Figure 10's
 inter-stone displacements."""
 
@@ -52,7 +52,7 @@ def plot_hinge_sets(result, ax, *, labels: int = 12):
 
 
 def plot_history_comparison(comparisons: Sequence, ax=None, *, t_end: float | None = None):
-    """One motion: the analytical phi (black, impacts dotted, collapse crossed) and the DEM
+    """One motion: the four-link model's phi (black, impacts dotted, collapse crossed) and the DEM
     rotation of each comparison (``HistoryComparison``) dashed.
 
     Returns
@@ -62,7 +62,7 @@ def plot_history_comparison(comparisons: Sequence, ax=None, *, t_end: float | No
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 3.2))
     first = comparisons[0]
-    plot_history(first.analytical, ax, label="analytical", color="k")
+    plot_history(first.fourlink, ax, label="four-link", color="k")
     for c in comparisons:
         style, colour, label = _DEM_STYLE.get(c.assembly, ("--", None, c.assembly))
         d = c.dem
@@ -102,11 +102,12 @@ def figure4_comparison(comparisons: dict, path: str | Path, *, t_end: float = 4.
         ax = axes[k + 1]
         cs = [c for (t, _), c in comparisons.items() if t == tp]
         plot_history_comparison(cs, ax, t_end=t_end)
-        parts = [f"analytical {_what(cs[0].analytical.outcome.value, cs[0].analytical.collapse_half_cycle)}"]
+        fl = cs[0].fourlink
+        parts = [f"four-link {_what(fl.outcome.value, fl.collapse_half_cycle)}"]
         for c in cs:
             parts.append(f"DEM {c.assembly} {_what(c.dem.outcome.value, c.dem.collapse_half_cycle)}")
         ax.set_title(f"({'bcdefgh'[k]}) t_p = {tp:.2f} s: " + "; ".join(parts), fontsize=8, loc="left")
-        rot = cs[0].analytical.history.signed_rotation
+        rot = fl.history.signed_rotation
         lim = max(0.08, 1.2 * float(np.max(np.abs(rot), initial=0.0)))
         ax.set_ylim(-min(lim, 0.25), min(lim, 0.25))
         if k < len(tps) - 1:
@@ -120,10 +121,10 @@ def _what(outcome: str, half: int | None) -> str:
 
 
 def plot_domain_comparison(comparison, ax=None, *, title: str | None = None):
-    """Analytical failure domain (regions and boundaries) with the DEM boundaries as markers:
+    """The four-link failure domain (regions and boundaries) with the DEM boundaries as markers:
     triangles the three-voussoir arch's first-half-cycle boundary, squares the voussoir arch's
     governing boundary (paper Figures 6, 11)."""
-    ax = plot_domain(comparison.analytical, ax, title=title, bands=False)
+    ax = plot_domain(comparison.fourlink, ax, title=title, bands=False)
     for dd, marker, colour, label in (
         (comparison.first, "v", "firebrick", "DEM 1st half cycle (arch cut at the hinges)"),
         (comparison.governing, "s", "darkorange", "DEM governing (every voussoir a block)"),
@@ -151,13 +152,13 @@ def domain_comparison_figure(comparisons: Sequence, path: str | Path) -> Path:
 
 
 def figure9_comparison(arch, states: Sequence, dem_result, path: str | Path) -> Path:
-    """Figure 8 (analytical line of thrust and hinges, left) next to Figure 9 (DEM blocks,
+    """Figure 8 (the four-link mechanism's line of thrust and hinges, left) next to Figure 9 (DEM blocks,
     velocity arrows relative to the ground and hinge dots, right), one row per instant."""
     n = len(states)
     fig, axes = plt.subplots(n, 2, figsize=(10.0, 3.0 * n), squeeze=False)
     for k, state in enumerate(states):
         plot_motion_state(arch, state, axes[k, 0])
-        axes[k, 0].set_title(f"({chr(97 + k)}) analytical, " + axes[k, 0].get_title(), fontsize=8)
+        axes[k, 0].set_title(f"({chr(97 + k)}) four-link, " + axes[k, 0].get_title(), fontsize=8)
         plot_dem_snapshot(dem_result, state.t, axes[k, 1])
         axes[k, 1].set_title(f"({chr(97 + k)}) DEM, t = {state.t:.2f} s: hinges (dots), velocities",
                              fontsize=8)

@@ -1,6 +1,6 @@
 """Distinct-element results drawn: snapshots of the displaced blocks with velocity arrows
 and hinge markers (the paper's Figures 9 and 10), the rotation history against the
-analytical phi, and an animation (GIF)."""
+four-link model's phi, and an animation (GIF)."""
 
 from __future__ import annotations
 
@@ -106,7 +106,7 @@ def plot_dem_snapshots(result, times, *, ncols: int = 3):
 
 
 def plot_dem_rotation(result, ax=None, *, label: str = "DEM", color: str | None = None):
-    """The rotation measure (rad) against time, comparable with the analytical phi
+    """The rotation measure (rad) against time, comparable with the four-link model's phi
     (``History.signed_rotation``); first impact and collapse marked."""
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 3.5))

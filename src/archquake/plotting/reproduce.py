@@ -18,7 +18,7 @@ DemSeries = tuple[str, np.ndarray, np.ndarray, str]
 
 
 def _overlay(ax, series: Sequence[DemSeries]) -> None:
-    """Markers in the colour of the analytical curve of the same arch (matched on the label's
+    """Markers in the colour of the four-link curve of the same arch (matched on the label's
     "R = ... m" part before " DEM"), so that each radius reads as one colour."""
     curves = {line.get_label(): line.get_color() for line in ax.get_lines()}
     for label, x, y, style in series:

@@ -1,4 +1,4 @@
-"""The distinct-element boundaries laid over an analytical failure domain, shared by the
+"""The distinct-element boundaries laid over a four-link failure domain, shared by the
 studies ``figure6`` and ``figure11`` (the paper compares both models on both figures, p. 2133)."""
 
 from __future__ import annotations
@@ -23,11 +23,11 @@ DEM_TAIL_FIRST, DEM_TAIL_GOVERNING = 2.5, 4.0
 
 def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, quick: bool, label: str):
     """The DEM's first-half-cycle (three-voussoir arch) and governing (voussoir arch) boundaries
-    at the analytical grid's durations nearest ``durations_first`` / ``durations_gov``, through
+    at the four-link grid's durations nearest ``durations_first`` / ``durations_gov``, through
     `archquake.compare.dem_failure_domain`, as a
     `DomainComparison` with ``dom``.
 
-    The search's ceiling is set from the analytical boundaries: 1.3 times the highest
+    The search's ceiling is set from the four-link boundaries: 1.3 times the highest
     first-half-cycle one (a DEM boundary above that would fail the 5 % row anyway) and twice the
     highest governing one (the DEM may be far above it on a steep part of the boundary; none up
     to the ceiling counts as above, i.e. conservative)."""
@@ -45,7 +45,7 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
         return factor * float(an.max()) if an.size else 2.0
 
     def _fitted(top, search):
-        # a scan fitted to the analytical boundary: its coarse points span lambda to the ceiling
+        # a scan fitted to the four-link boundary: its coarse points span lambda to the ceiling
         return DomainSettings(max_magnitude_g=top, scan_reference_g=top, **search)
 
     df, dg = grid(durations_first), grid(durations_gov)
@@ -70,9 +70,9 @@ def dem_domains(arch: Arch, family: str, dom, durations_first, durations_gov, qu
     return DomainComparison(dom, first, gov, label)
 
 
-def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list[Row]:
+def dem_domain_rows(comparison, src: str, fourlink_precision_g: float) -> list[Row]:
     """The rows of one DEM domain comparison: the first-half-cycle boundaries agree closely (5 %);
-    the analytical governing boundary is conservative (DEM at or above it) at most durations."""
+    the four-link governing boundary is conservative (DEM at or above it) at most durations."""
     label = comparison.label
     rows_f = [r for r in comparison.rows() if r["boundary"] == "first_half_cycle"]
     rows_g = [r for r in comparison.rows() if r["boundary"] == "collapse"]
@@ -82,11 +82,11 @@ def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list
     first = comparison.first.domain.settings
     rows = [
         Row(
-            f"{label}: 1st-half-cycle boundary, DEM (3 voussoirs) vs analytical",
+            f"{label}: 1st-half-cycle boundary, DEM (3 voussoirs) vs four-link",
             src,
             agreement.stated,
             ", ".join(
-                f"t = {r['duration_s']:.2f} s: {fmt(r['dem_g'])} vs {fmt(r['analytical_g'])} g"
+                f"t = {r['duration_s']:.2f} s: {fmt(r['dem_g'])} vs {fmt(r['fourlink_g'])} g"
                 + ("" if r["relative"] is None else f" ({100 * r['relative']:+.1f} %)")
                 for r in rows_f
             ),
@@ -95,10 +95,10 @@ def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list
             bool(ok_f.any()) and bool(np.all(np.abs(rel_f[ok_f]) <= agreement.bound)),
         )
     ]
-    # 'generally conservative' (p. 2133): the DEM boundary at or above the analytical one (within
+    # 'generally conservative' (p. 2133): the DEM boundary at or above the four-link one (within
     # both searches' brackets) at most durations; no DEM collapse up to the ceiling is above
-    slack = comparison.governing.domain.settings.precision_g + analytical_precision_g
-    an = np.array([np.nan if r["analytical_g"] is None else r["analytical_g"] for r in rows_g])
+    slack = comparison.governing.domain.settings.precision_g + fourlink_precision_g
+    an = np.array([np.nan if r["fourlink_g"] is None else r["fourlink_g"] for r in rows_g])
     dm = np.array([np.inf if r["dem_g"] is None else r["dem_g"] for r in rows_g])
     durs = np.array([r["duration_s"] for r in rows_g])
     cmp = np.isfinite(an)
@@ -110,7 +110,7 @@ def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list
         return f"none up to {ceiling:.2f} g" if not math.isfinite(m) else f"{100 * (m - a) / a:+.1f} %"
 
     note = (
-        "DEM - analytical: "
+        "DEM - four-link: "
         + ", ".join(f"t = {d:.2f} s {pct(d, m, a)}" for d, m, a in zip(durs[cmp], dm[cmp], an[cmp]))
         + "; DEM lower at "
         + (", ".join(f"{d:.2f} s" + ("" if b else " (within the brackets)")
@@ -121,11 +121,11 @@ def dem_domain_rows(comparison, src: str, analytical_precision_g: float) -> list
     )
     rows.append(
         Row(
-            f"{label}: governing boundary, DEM (7 voussoirs) vs analytical",
+            f"{label}: governing boundary, DEM (7 voussoirs) vs four-link",
             src,
             "quite good agreement; analytical generally conservative (DEM higher)",
             ", ".join(f"t = {d:.2f} s: {fmt(m)} vs {fmt(a)} g" for d, m, a in zip(durs, dm, an)),
-            f"DEM >= analytical - {slack:g} g (both brackets) at more than half of the durations",
+            f"DEM >= four-link - {slack:g} g (both brackets) at more than half of the durations",
             "the paper's words, 'generally conservative' (p. 2133): it states no number, so the "
             "percentage differences are reported in the note, not judged",
             bool(cmp.any()) and 2 * int(below.sum()) < int(cmp.sum()),

@@ -142,7 +142,7 @@ def paper_row(
 
 
 def domain_settings(quick: bool):
-    """The analytical domain search of the reproduction: coarse in quick mode."""
+    """The four-link domain search of the reproduction: coarse in quick mode."""
     from archquake.domains import DomainSettings
 
     return (

@@ -1,4 +1,4 @@
-"""Study ``figure11``: the one-cycle sine pulse (p. 2134, Figure 11), analytical and DEM."""
+"""Study ``figure11``: the one-cycle sine pulse (p. 2134, Figure 11), four-link and DEM."""
 
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ from archquake.validation.paper import ONSET_ACCELERATION
 
 
 def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
-    """Figure 11: the one-cycle sine pulse, analytical and DEM."""
+    """Figure 11: the one-cycle sine pulse, four-link and DEM."""
     from archquake.domains import failure_domain
     from archquake.plotting.compare import plot_domain_comparison
     from archquake.plotting.domains import save
@@ -90,7 +90,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     data = {"domain": dom.to_dict(), "summary": dom.summary(), "dem": comparison.to_dict()}
     fig = save(
         plot_domain_comparison(
-            comparison, title="Figure 11: one-cycle sine pulse (regions analytical, markers DEM)"
+            comparison, title="Figure 11: one-cycle sine pulse (regions four-link, markers DEM)"
         ),
         figures / "figure11_domain_sine.png",
     )
@@ -101,7 +101,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         (
             Figure(
                 fig.name,
-                "Figure 11: failure domain for a one-cycle sine pulse, analytical with DEM points",
+                "Figure 11: failure domain for a one-cycle sine pulse, four-link with DEM points",
             ),
         ),
         tuple(departures),

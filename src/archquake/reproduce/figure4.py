@@ -1,5 +1,5 @@
 """Study ``figure4``: the time histories of Figure 4 (a = 1.0 g, t_p = 0.44, 0.27, 0.20 s), the
-analytical mechanism with the distinct-element overlays (p. 2126, p. 2132), and the rocking
+four-link mechanism with the distinct-element overlays (p. 2126, p. 2132), and the rocking
 animation that ``archquake demo`` adds to the report (`animation`)."""
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         )
         for tp, asm in zip(FIGURE4_DURATIONS, assemblies)
     ]
-    res = [c.analytical for c in cmp]
+    res = [c.fourlink for c in cmp]
     r44, r27, r20 = res
     d44, d27, d20 = (c.dem for c in cmp)
     src = "p. 2126, Figure 4"
@@ -94,12 +94,12 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             and bool(np.all(np.diff(np.diff(r20.impact_times[:20])) < 0)),
         ),
     ]
-    # the three-voussoir arch against the analytical phi over the whole first half cycle (to the
-    # analytical collapse)
+    # the three-voussoir arch against the four-link phi over the whole first half cycle (to the
+    # four-link collapse)
     c44 = cmp[0]
     rows.append(
         Row(
-            "three-voussoir DEM vs analytical, t_p = 0.44 s, first half cycle",
+            "three-voussoir DEM vs four-link, t_p = 0.44 s, first half cycle",
             THREE_VOUSSOIR_AGREEMENT.where,
             f"{THREE_VOUSSOIR_AGREEMENT.stated}; collapse in the 1st half cycle",
             f"max |phi_DEM - phi| = {1000 * c44.max_difference:.2f} mrad up to {c44.window:.2f} s "
@@ -112,14 +112,14 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         )
     )
     for tp, c in zip(FIGURE4_DURATIONS[1:], cmp[1:]):
-        ti, td = c.analytical_first_impact, c.dem.first_impact_time
+        ti, td = c.fourlink_first_impact, c.dem.first_impact_time
         rel = math.nan if td is None or ti is None else (td - ti) / ti
         rows.append(
             Row(
                 f"seven-voussoir DEM, t_p = {tp:.2f} s: first impact",
                 "p. 2132, Figure 4(" + ("c" if tp == 0.27 else "d") + ")",
                 DEM_FIRST_IMPACT_AGREEMENT.stated,
-                f"DEM {fmt(td)} s vs analytical {fmt(ti)} s ({100 * rel:+.1f} %)",
+                f"DEM {fmt(td)} s vs four-link {fmt(ti)} s ({100 * rel:+.1f} %)",
                 DEM_FIRST_IMPACT_AGREEMENT.tolerance_text,
                 DEM_FIRST_IMPACT_AGREEMENT.why,
                 DEM_FIRST_IMPACT_AGREEMENT.within(td, ti),
@@ -130,12 +130,12 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     )
     rows.append(
         Row(
-            "DEM no less stable than the analytical model (t_p = 0.27, 0.20 s)",
+            "DEM no less stable than the four-link model (t_p = 0.27, 0.20 s)",
             "p. 2133",
             "analytical predictions generally conservative",
-            f"0.27 s: analytical {r27.outcome.value}, DEM {d27.outcome.value}; "
-            f"0.20 s: analytical {r20.outcome.value}, DEM {d20.outcome.value}",
-            "DEM never collapses where the analytical model survives",
+            f"0.27 s: four-link {r27.outcome.value}, DEM {d27.outcome.value}; "
+            f"0.20 s: four-link {r20.outcome.value}, DEM {d20.outcome.value}",
+            "DEM never collapses where the four-link model survives",
             "the paper's explanation: more impacts, more dissipation in the DEM",
             stable,
         )
@@ -144,12 +144,12 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     if d27.outcome.value != r27.outcome.value:
         departures.append(
             f"At a = 1.0 g, t_p = 0.27 s the seven-voussoir DEM {d27.outcome.value} while the "
-            "analytical model collapses in the 2nd half cycle: the paper shows the UDEC curve in "
+            "four-link model collapses in the 2nd half cycle: the paper shows the UDEC curve in "
             "Figure 4(c) without stating its outcome; archquake's DEM dissipates more at the "
-            "distributed impacts, the paper's explanation of the analytical model's conservatism."
+            "distributed impacts, the paper's explanation of its analytical model's conservatism."
         )
     data = {
-        "analytical": {str(tp): r.to_dict() for tp, r in zip(FIGURE4_DURATIONS, res)},
+        "fourlink": {str(tp): r.to_dict() for tp, r in zip(FIGURE4_DURATIONS, res)},
         "comparison": {str(tp): c.to_dict() for tp, c in zip(FIGURE4_DURATIONS, cmp)},
         "dem": {str(tp): c.dem.to_dict() for tp, c in zip(FIGURE4_DURATIONS, cmp)},
     }
@@ -164,7 +164,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         (
             Figure(
                 fig.name,
-                "Figure 4: step impulses of 1.0 g and the rotation phi of the analytical mechanism "
+                "Figure 4: step impulses of 1.0 g and the rotation phi of the four-link mechanism "
                 "(solid), with the DEM (dashed: arch cut at the hinges; dash-dotted: seven voussoirs)",
             ),
         ),

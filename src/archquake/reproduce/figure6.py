@@ -123,13 +123,13 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             series_first,
             figures / "figure6a_scale_first.png",
             boundary="first_half_cycle",
-            title="Figure 6a: scale effect, 1st half cycle (lines analytical, markers DEM)",
+            title="Figure 6a: scale effect, 1st half cycle (lines four-link, markers DEM)",
         ),
         domains_with_dem(
             cases,
             series_gov,
             figures / "figure6b_scale_governing.png",
-            title="Figure 6b: scale effect, governing boundary (lines analytical, markers DEM)",
+            title="Figure 6b: scale effect, governing boundary (lines four-link, markers DEM)",
         ),
         save(
             plot_scaling(ref, [doms[r] for r in (1.0, 5.0, 20.0)]), figures / "figure6_scaling_laws.png"

@@ -19,7 +19,7 @@ def _joints(hinges) -> tuple[int, ...]:
 
 def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     """Figure 9: the DEM's hinges (`archquake.compare.compare_hinges`) against the
-    analytical ones and the line of thrust."""
+    four-link model's and the line of thrust."""
     from archquake.compare import compare_hinges, dem_hinges
     from archquake.limit import hinges_of
     from archquake.plotting.compare import figure9_comparison
@@ -38,19 +38,19 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
             "0.20 s (first pulse): the DEM's second hinge",
             "p. 2131-2132, Figures 8(a), 9(a)",
             "differs from the analytical one, where the line of thrust exits (joint 2)",
-            f"DEM hinges {hinges[0.20]} vs analytical {first}",
+            f"DEM hinges {hinges[0.20]} vs four-link {first}",
             "hinge B at joint 2",
             "the paper's statement; the line of thrust exits at joint 2 (study figure8)",
             len(hinges[0.20]) >= 2 and hinges[0.20][1] == 2 and first[1] != 2,
         ),
         Row(
-            "return pulse: the analytical hinges",
+            "return pulse: the four-link hinges",
             "p. 2132, Figures 8(b), 9(b)",
             f"the same as the analytical ones {first} (at 0.50 s)",
             f"DEM at 0.50 s: {hinges[0.50]}; exactly {first} from {window[0]:.2f} to {window[-1]:.2f} s"
             if window
             else f"DEM at 0.50 s: {hinges[0.50]}; never exactly {first}",
-            "the DEM takes the analytical hinges during the return pulse (0.20 s to its first impact)",
+            "the DEM takes the four-link hinges during the return pulse (0.20 s to its first impact)",
             "the snapshot instant is UDEC's; hinges migrate continuously in a DEM (here B moves from "
             "joint 2 to 3, then A from 0 to 1 as the impact nears)",
             bool(window),
@@ -77,7 +77,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     departures = []
     if hinges[0.50] != first:
         departures.append(
-            f"Figure 9(b): at 0.50 s archquake's DEM shows hinges {hinges[0.50]}, not the analytical "
+            f"Figure 9(b): at 0.50 s archquake's DEM shows hinges {hinges[0.50]}, not the four-link "
             f"{first} the paper's UDEC shows; the DEM has exactly those hinges earlier in the return "
             "pulse"
             + (f" ({window[0]:.2f}-{window[-1]:.2f} s)" if window else "")
@@ -88,8 +88,8 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         "hinges": {f"{t:.2f}": list(h) for t, h in hinges.items()},
         "comparison": hc.to_dict(),
         "dem": res.to_dict(),
-        "analytical_first": list(first),
-        "analytical_mirrored": list(mirrored),
+        "fourlink_first": list(first),
+        "fourlink_mirrored": list(mirrored),
     }
     return StudyResult(
         "figure9",
@@ -98,7 +98,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
         (
             Figure(
                 path.name,
-                "Figure 8 (analytical hinges and line of thrust, left) beside Figure 9 (DEM blocks, "
+                "Figure 8 (four-link hinges and line of thrust, left) beside Figure 9 (DEM blocks, "
                 "hinges and velocities, right)",
             ),
         ),

@@ -66,7 +66,7 @@ def study(arch: Arch, quick: bool, figures: Path) -> StudyResult:
     departures = [
         f"Friction at 1.0 g: archquake finds {f10.max_friction_demand:.3f}, the paper "
         f"{FRICTION_1G.stated} with its analytical model and {DEM_FRICTION_1G.value:g} with UDEC; "
-        "archquake's analytical value equals the paper's UDEC threshold (the paper's analytical "
+        "archquake's four-link value equals the paper's UDEC threshold (the paper's analytical "
         "number is given only approximately)."
     ]
     data: dict[str, Any] = {f"{a:g} g, t_p {tp:.2f} s": r.to_dict() for (a, tp), r in res.items()}

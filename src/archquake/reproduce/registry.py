@@ -19,7 +19,7 @@ STUDIES: tuple[Study, ...] = (
     Study(
         "figure4",
         "Time histories (Figure 4)",
-        "p. 2126, p. 2132, Figure 4(a)-(d), analytical and DEM",
+        "p. 2126, p. 2132, Figure 4(a)-(d), four-link and DEM",
         f"{_M}.figure4:study",
     ),
     Study(
@@ -28,7 +28,7 @@ STUDIES: tuple[Study, ...] = (
     Study(
         "figure6",
         "Scale effect (Figure 6)",
-        "p. 2128, p. 2133, Figure 6(a), (b), analytical and DEM",
+        "p. 2128, p. 2133, Figure 6(a), (b), four-link and DEM",
         f"{_M}.figure6:study",
     ),
     Study(
@@ -64,7 +64,7 @@ STUDIES: tuple[Study, ...] = (
     Study(
         "figure11",
         "Sine pulse (Figure 11)",
-        "p. 2134, Figure 11, analytical and DEM",
+        "p. 2134, Figure 11, four-link and DEM",
         f"{_M}.figure11:study",
     ),
 )

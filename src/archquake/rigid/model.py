@@ -126,8 +126,8 @@ class RigidModel:
         body = np.full(len(base), -1, dtype=np.int64)
         body[free_blocks] = np.arange(free_blocks.size)
         cents = np.asarray(asm.centroids, dtype=float)
-        # a joint between two base blocks (a base that takes in voussoirs: the arch cut at its
-        # analytical hinges with a hinge above the springing) moves nothing: left out
+        # a joint between two base blocks (a base that takes in voussoirs: the arch cut at the
+        # four-link model's hinges with a hinge above the springing) moves nothing: left out
         joints = [jt for jt in asm.joints if not (base[jt.left] and base[jt.right])]
         nj = len(joints)
         ja = np.zeros(nj, np.int64)

@@ -145,7 +145,7 @@ OPPENHEIM_RADIUS_M = 10.0
 OPPENHEIM_THICKNESS_RATIO = 0.15
 OPPENHEIM_EMBRACE_DEG = 157.5
 OPPENHEIM_VOUSSOIRS = 7
-#: Masonry density of the DEM, kg/m^3 (p. 2131; it does not enter the analytical model).
+#: Masonry density of the DEM, kg/m^3 (p. 2131; it does not enter the four-link model).
 DENSITY_KG_M3 = 2000.0
 
 
