@@ -3,7 +3,7 @@ has run a threaded kernel, so no longer used), ``forkserver`` (the default on Li
 ``spawn`` (the fallback), against the serial executor measured in the same run.
 
 Each row is a fresh process (so no import, compiled kernel or fork server is warm) that builds a
-small sweep of the real analytical model (Oppenheim's arch, 8 step pulses), then times
+small sweep of the real four-link model (Oppenheim's arch, 8 step pulses), then times
 :func:`archquake.sweeps.run_sweep` on 2 workers to its first stored result (the start-up a user
 waits through) and to its end, then does the same with a second pool in the same process (what
 a second pool pays: ``archquake assess`` opens two, a forkserver is started once per process).
@@ -79,7 +79,7 @@ def main() -> None:
     repeats = int(os.environ.get("ARCHQUAKE_BENCH_REPEATS", "3"))
     res = measure(repeats)
     ref = res["serial"]["first_result_s"]
-    print(f"sweep of 8 analytical cases on 2 workers, fresh process, median of {repeats}")
+    print(f"sweep of 8 four-link cases on 2 workers, fresh process, median of {repeats}")
     print(f"{'executor':<12} {'1st result':>11} {'all 8':>8} {'2nd pool: 1st':>15} {'all 8':>8}"
           f"  1st result / serial's")
     for method, r in res.items():
