@@ -15,8 +15,8 @@ STAMP_TEST := $(VENV)/.installed-test
 TEST_WORKERS ?= 2
 # archquake warm's workloads in two halves of about equal compile time, one process each (make demo
 # and make test both warm this way)
-WARM_A := events verdicts measures
-WARM_B := rigid dem four-link domains ida
+WARM_A := events measures rigid
+WARM_B := verdicts dem four-link domains ida
 
 .PHONY: demo test bench lint clean
 

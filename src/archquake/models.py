@@ -202,6 +202,9 @@ class ModelSpec:
         the four-link model's batch and the rigid chain's verdict path.
     runner : callable
         ``runner(arch, motion, options, to_verdict, progress)``.
+    completes : callable
+        ``completes(result, arch, out) -> dict``: the keys that complete ``out``, the result's
+        ``to_dict()`` with the arch and the excitation, into `to_dict` (none by default).
     """
 
     model: Model
@@ -213,6 +216,7 @@ class ModelSpec:
     deformable: bool
     batched: bool
     runner: Callable[..., Any]
+    completes: Callable[..., dict] = lambda result, arch, out: {}
 
     def refuse(self, options: RunOptions) -> None:
         """Refuse, in one line naming it, the first option given that this model does not
@@ -253,16 +257,8 @@ def _run_fourlink(arch, motion, o: RunOptions, to_verdict: bool, progress) -> An
                     options=solver, g=o.g)
 
 
-def _block_body(arch, loads):
-    """What a block model runs: ``arch`` itself, or its assembly carrying ``loads``."""
-    if loads is None or loads.empty:
-        return arch
-    from archquake.blocks.assembly import build_arch_assembly
-
-    return build_arch_assembly(arch, loads=loads)
-
-
 def _run_rigid(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
+    from archquake.blocks.assembly import loaded_body
     from archquake.rigid.model import DEFAULT_TIME_STEP
     from archquake.rigid.run import rigid_to_verdict, simulate_rigid
 
@@ -277,7 +273,7 @@ def _run_rigid(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
                                     "step only (without t_end, friction, integrator events or "
                                     "time_step)")
     arch = _built(arch)
-    body = _block_body(arch, o.loads)
+    body = loaded_body(arch, o.loads)
     criteria = None if o.dem is None else o.dem.criteria  # what the rigid chain reads of them
     if o.t_end is not None:  # a given end is run as given
         return simulate_rigid(body, motion, duration=o.t_end, friction=o.friction, g=o.g,
@@ -298,6 +294,7 @@ def _run_rigid(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
 
 
 def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
+    from archquake.blocks.assembly import loaded_body
     from archquake.dem import DemSettings, simulate_dem
     from archquake.dem.run import dem_to_verdict
 
@@ -309,7 +306,7 @@ def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
         settings = settings.with_(contact=ContactLaw(normal_stiffness=law.normal_stiffness,
                                                      friction=o.friction))
     arch = _built(arch)
-    body = _block_body(arch, o.loads)
+    body = loaded_body(arch, o.loads)
     if o.t_end is None:  # run until a verdict (rest or collapse), or the cap
         radius = getattr(arch, "radius", None)
         if radius is None:
@@ -319,15 +316,39 @@ def _run_dem(arch, motion, o: RunOptions, to_verdict: bool, progress) -> Any:
     return simulate_dem(body, motion, settings.with_(duration=o.t_end), g=o.g)
 
 
+def _rigid_completes(result, arch, out: dict) -> dict:
+    """The rigid chain's joint forces numbered as the arch's joints (those inside a backing
+    are not recorded: `archquake.rigid.forces.on_arch_joints`)."""
+    if not out.get("joint_forces"):
+        return {}
+    from archquake.rigid.forces import joint_numbers, on_arch_joints
+
+    recorded = getattr(result, "run", result)  # a guarded run: the run it guards
+    return {"joint_forces": on_arch_joints(out["joint_forces"], joint_numbers(recorded),
+                                           arch.voussoirs + 1)}
+
+
+def _fourlink_completes(result, arch, out: dict) -> dict:
+    """The loads the four-link mechanism's links carry and their masses
+    (`archquake.mechanism.prepared.link_masses`; nothing for a bare arch)."""
+    from archquake.mechanism.prepared import link_masses
+
+    masses = link_masses(result.mechanism)
+    if masses is None:
+        return {}
+    return {"loads": result.mechanism.arch.loads.to_dict(), "masses": masses}
+
+
 #: Each model's runner and the options it takes, like `scipy.integrate.solve_ivp`'s METHODS.
 MODELS: dict[Model, ModelSpec] = {
     Model.RIGID: ModelSpec(Model.RIGID, "chain of rigid voussoirs", "rigid", "rigid chain",
                            frozenset({"friction", "integrator", "time_step", "guard", "dem"}),
-                           blocks=True, deformable=False, batched=True, runner=_run_rigid),
+                           blocks=True, deformable=False, batched=True, runner=_run_rigid,
+                           completes=_rigid_completes),
     Model.FOURLINK: ModelSpec(Model.FOURLINK, "four-link mechanism", "four-link",
                               "four-link mechanism", frozenset({"restitution", "impact"}),
                               blocks=False, deformable=False, batched=True,
-                              runner=_run_fourlink),
+                              runner=_run_fourlink, completes=_fourlink_completes),
     Model.DEM: ModelSpec(Model.DEM, "distinct-element model", "DEM", "distinct-element",
                          frozenset({"friction", "dem"}), blocks=True, deformable=True,
                          batched=False, runner=_run_dem),
@@ -417,9 +438,42 @@ def summary(result: Any) -> dict:
     return dict(result.to_dict())
 
 
+def to_dict(result: Any, arch, motion) -> dict:
+    """A history run's JSON, as ``archquake run --json`` prints it: the result's ``to_dict()``
+    (`archquake.outcome.RESULT_KEYS` first, then its model's own keys), the arch
+    (``arch.describe()``) and the excitation (``motion.to_dict()``), then what its model adds
+    (`ModelSpec.completes`): the rigid chain's joint forces numbered as the arch's joints, the
+    four-link model's loads and the masses its links carry.
+
+    Parameters
+    ----------
+    result : ModelResult
+        What `run` returned for ``arch`` and ``motion`` (not ``to_verdict``).
+    arch : Arch
+        The arch the run was given (before any block assembly or mechanism was built from it).
+    motion : GroundMotion
+
+    Examples
+    --------
+    >>> import math
+    >>> from archquake import Arch, StepImpulse
+    >>> arch = Arch(radius=10.0, thickness=1.5, embrace=math.radians(157.5), voussoirs=7)
+    >>> motion = StepImpulse.from_g(1.0, 0.27)
+    >>> out = to_dict(run(Model.FOURLINK, arch, motion), arch, motion)
+    >>> out["model"], out["outcome"], out["excitation"] == motion.to_dict()
+    ('fourlink', 'collapse', True)
+    """
+    out = result.to_dict()
+    out["arch"] = arch.describe()
+    out["excitation"] = motion.to_dict()
+    out.update(spec(out["model"]).completes(result, arch, out))
+    return out
+
+
 #: The ``evaluator`` key of a summary of the rigid chain's verdict path.
 RIGID_VERDICT_EVALUATOR = "rigid verdict (compiled, guarded)"
 
 
 __all__ = ["DEFAULT_MODEL", "DEPRECATED_WORDS", "MODELS", "RIGID_VERDICT_EVALUATOR", "Model",
-           "ModelSpec", "RunOptions", "model_of", "prepared_mechanism", "run", "spec", "summary", "takes"]
+           "ModelSpec", "RunOptions", "model_of", "prepared_mechanism", "run", "spec", "summary", "takes",
+           "to_dict"]

@@ -521,6 +521,15 @@ def block_on_base(
     )
 
 
+def loaded_body(arch, loads):
+    """What a block model (the rigid chain, the DEM) runs for ``arch`` carrying ``loads``:
+    the arch itself without loads (None or empty), else its assembly, every voussoir a block
+    carrying its share (`build_arch_assembly`)."""
+    if loads is None or loads.empty:
+        return arch
+    return build_arch_assembly(arch, loads=loads)
+
+
 __all__ = [
     "ASSEMBLIES",
     "HINGES",
@@ -533,6 +542,7 @@ __all__ = [
     "block_on_base",
     "build_arch_assembly",
     "dem_assembly",
+    "loaded_body",
     "loaded_voussoirs",
     "three_voussoir_assembly",
 ]

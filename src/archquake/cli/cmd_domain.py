@@ -125,9 +125,9 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         extra = {}
         if loads is not None:
-            from archquake.cli.loads_options import fourlink_masses
+            from archquake.mechanism.prepared import link_masses
 
-            extra = {"loads": loads.to_dict(), "masses": fourlink_masses(subject)}
+            extra = {"loads": loads.to_dict(), "masses": link_masses(subject.mechanism)}
         print_json({"model": model.value, **dom.summary(), "rows": dom.to_dict(), **extra})
         return 0
     sym = dom.family.duration_symbol
@@ -159,10 +159,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         print("non-monotonic bands: none found at this scan resolution")
     if loads is not None:
-        from archquake.cli.dem_run import print_loads
-        from archquake.cli.loads_options import fourlink_masses
+        from archquake.cli.loads_options import print_loads
+        from archquake.mechanism.prepared import link_masses
 
-        print_loads({"masses": fourlink_masses(subject)})
+        print_loads({"masses": link_masses(subject.mechanism)})
     for f in (args.csv, args.plot):
         if f:
             print(f"wrote {f}")
@@ -289,7 +289,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
         print(f"{who} non-monotonic bands: " + "; ".join(
             f"{sym} = {b.duration:.3g} s {b.criterion} {b.lower_g:.3f}-{b.upper_g:.3f} g" for b in bands))
     if assembly is not None:
-        from archquake.cli.dem_run import print_loads
+        from archquake.cli.loads_options import print_loads
 
         print_loads(assembly)
     for f in (args.csv, args.plot):
@@ -351,7 +351,7 @@ def _loaded_domain(args: argparse.Namespace, arch, model: str, loads, durations,
     for i, d in enumerate(dom.durations):
         print(f"{d:9.4g} {fmt(dom.first_half_cycle_g[i], 15)} {fmt(dom.collapse_g[i], 10)}")
     print(f"{who} voussoirs: {dd.runs} runs in {dd.seconds:.0f} s on {dd.workers} worker(s)")
-    from archquake.cli.dem_run import print_loads
+    from archquake.cli.loads_options import print_loads
 
     print_loads(assembly)
     if args.csv:

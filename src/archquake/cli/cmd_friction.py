@@ -121,8 +121,8 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     import numpy as np
 
     from archquake.cli.common import length_option, rigid_work
-    from archquake.cli.rigid_run import joint_numbers, on_arch_joints
     from archquake.limit import limit_analysis
+    from archquake.rigid.forces import joint_numbers, on_arch_joints
     from archquake.rigid.model import DEFAULT_TIME_STEP
     from archquake.rigid.run import rigid_to_verdict, rigid_window
 
@@ -165,7 +165,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     print(f"left out                           {summary['indeterminate_samples']} indeterminate "
           f"and {summary['impulsive_samples']} impact samples of {summary['samples']}, and "
           "joints carrying < 1 % of the weight")
-    from archquake.cli.dem_run import print_loads
+    from archquake.cli.loads_options import print_loads
 
     print_loads(run.assembly.to_dict())
     return 0

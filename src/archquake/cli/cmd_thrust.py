@@ -111,9 +111,10 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
     """``--model rigid``: the chain of rigid voussoirs (carrying ``loads``) run to the last time
     asked (or its collapse), its joints at the recorded sample nearest each time
     (`archquake.rigid.forces.JointForceHistory.state_at`)."""
+    from archquake.blocks.assembly import loaded_body
     from archquake.cli.common import rigid_work
-    from archquake.cli.rigid_run import joint_numbers, loaded_body, on_arch_joints
     from archquake.rigid import simulate_rigid
+    from archquake.rigid.forces import joint_numbers, on_arch_joints
     from archquake.rigid.model import DEFAULT_TIME_STEP
 
     duration = max(max(args.times), 1e-3) + 1e-3
@@ -145,7 +146,7 @@ def _run_rigid(args: argparse.Namespace, arch, motion, loads=None) -> int:
               + ("-" if fd is None else f"{fd:.3f} (joint {s['max_friction_demand_joint']})"))
     if run.collapse_time is not None:
         print(f"collapse at t = {run.collapse_time:.3f} s")
-    from archquake.cli.dem_run import print_loads
+    from archquake.cli.loads_options import print_loads
 
     print_loads(run.assembly.to_dict())
     return 0

@@ -223,25 +223,18 @@ def traffic_from_args(args: argparse.Namespace, position: float = 0.0) -> Traffi
     return Traffic(load * 1e3, position, length, args.dispersion)
 
 
-def fourlink_masses(prepared) -> dict:
-    """The masses of a four-link mechanism whose voussoirs carry loads (for JSON): the masonry's
-    and the carried, in all and per link AB, BC, CD, kg; passive pressure left out."""
-    import numpy as np
-
-    from archquake.blocks.assembly import PASSIVE_LEFT_OUT
-    from archquake.geometry.loads import held_joints
-
-    chain = prepared.mechanism.arch
-    carried = chain.voussoir_masses - chain.base.voussoir_masses
-    held = held_joints(chain.base, chain.loads.backing)
-    links = prepared.mechanism.link_voussoirs
-    return {"masonry_mass_kg": float(chain.base.mass), "carried_mass_kg": float(carried.sum()),
-            "link_masses_kg": [float(chain.voussoir_masses[list(r)].sum()) for r in links],
-            "link_carried_masses_kg": [float(carried[list(r)].sum()) for r in links],
-            "voussoir_masses_kg": [float(m) for m in chain.voussoir_masses],
-            "carried_masses_kg": [float(m) for m in carried],
-            "held_by_backing": [int(k) for k in np.flatnonzero(held[:-1] | held[1:])],
-            "passive_pressure": PASSIVE_LEFT_OUT}
+def print_loads(assembly: dict) -> None:
+    """The text lines of what a model's arch carries, read from its ``masses`` (an assembly's
+    ``to_dict()``, or a run's JSON; nothing for a bare arch)."""
+    masses = assembly.get("masses")
+    if masses is None:
+        return
+    held = masses["held_by_backing"]
+    print(f"carried mass        {masses['carried_mass_kg']:.6g} kg on "
+          f"{masses['masonry_mass_kg']:.6g} kg of masonry (fill columns and moving loads, at "
+          "their centroids)"
+          + (f"; voussoirs {', '.join(map(str, held))} held by the backing" if held else ""))
+    print(f"passive pressure    {masses['passive_pressure']}")
 
 
 def dynamic_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: bool = False):
@@ -272,5 +265,5 @@ def dynamic_loads_from_args(args: argparse.Namespace, arch, model, *, fourlink: 
     return loads
 
 
-__all__ = ["add_loads_arguments", "check_loads_on", "dynamic_loads_from_args", "fourlink_masses",
-           "loads_from_args", "passive_text", "traffic_from_args"]
+__all__ = ["add_loads_arguments", "check_loads_on", "dynamic_loads_from_args", "loads_from_args",
+           "passive_text", "print_loads", "traffic_from_args"]

@@ -471,5 +471,29 @@ class PreparedMechanism:
         return cls(mech, pack_mechanism(mech), solve_impact(mech, impact))
 
 
+def link_masses(mechanism: HingeMechanism) -> dict | None:
+    """The masses of a four-link mechanism whose voussoirs carry loads (its arch a
+    `archquake.geometry.carrying.CarryingChain`; None for a bare arch), for JSON: the
+    masonry's and the carried, in all and per link AB, BC, CD, kg; the passive pressure is
+    left out of the dynamics (`archquake.blocks.assembly.PASSIVE_LEFT_OUT`)."""
+    from archquake.blocks.assembly import PASSIVE_LEFT_OUT
+    from archquake.geometry.carrying import CarryingChain
+    from archquake.geometry.loads import held_joints
+
+    chain = mechanism.arch
+    if not isinstance(chain, CarryingChain):
+        return None
+    carried = chain.voussoir_masses - chain.base.voussoir_masses
+    held = held_joints(chain.base, chain.loads.backing)
+    links = mechanism.link_voussoirs
+    return {"masonry_mass_kg": float(chain.base.mass), "carried_mass_kg": float(carried.sum()),
+            "link_masses_kg": [float(chain.voussoir_masses[list(r)].sum()) for r in links],
+            "link_carried_masses_kg": [float(carried[list(r)].sum()) for r in links],
+            "voussoir_masses_kg": [float(m) for m in chain.voussoir_masses],
+            "carried_masses_kg": [float(m) for m in carried],
+            "held_by_backing": [int(k) for k in np.flatnonzero(held[:-1] | held[1:])],
+            "passive_pressure": PASSIVE_LEFT_OUT}
+
+
 __all__ = ["BEYOND_SET", "DEFAULT_IMPACT_LAW", "MAX_REACHABLE", "ImpactTable", "PreparedMechanism",
-           "impact_table", "pack_mechanism"]
+           "impact_table", "link_masses", "pack_mechanism"]

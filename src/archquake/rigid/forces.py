@@ -433,5 +433,35 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
     return _history(s, imp_all, unique, impulsive)
 
 
+def joint_numbers(run) -> list[int] | None:
+    """The arch's joint number of each joint a rigid run records, or None where they are all
+    of the arch's joints in order (the joints inside a backing are not recorded: the assembly's
+    ``cut_joints``)."""
+    asm = run.assembly
+    cuts = asm.meta.get("cut_joints")
+    numbers = [int(cuts[j.index]) for j in asm.joints] if cuts else None
+    return None if numbers is None or numbers == list(range(len(numbers))) else numbers
+
+
+def on_arch_joints(state: dict, numbers: list[int] | None, n_joints: int) -> dict:
+    """A joint-force state or summary (`JointForceHistory.state_at`, ``.summary()``) with its
+    joints numbered as the arch's: ``numbers`` from `joint_numbers` (None: already so),
+    ``n_joints`` the arch's joints (voussoirs + 1); the joints not recorded get None."""
+    if numbers is None:
+        return state
+    out = dict(state)
+    for key in ("relative_eccentricity", "friction_demand"):
+        if key in out:
+            full: list = [None] * n_joints
+            for j, v in zip(numbers, out[key], strict=True):
+                full[j] = v
+            out[key] = full
+    if "face_joints" in out:
+        out["face_joints"] = [numbers[j] for j in out["face_joints"]]
+    if out.get("max_friction_demand_joint") is not None:
+        out["max_friction_demand_joint"] = numbers[out["max_friction_demand_joint"]]
+    return out
+
+
 __all__ = ["IMPULSIVE", "N_MIN", "RANK_TOLERANCE", "JointForceHistory", "joint_forces",
-           "joint_forces_at_rest", "joint_forces_reference"]
+           "joint_forces_at_rest", "joint_forces_reference", "joint_numbers", "on_arch_joints"]

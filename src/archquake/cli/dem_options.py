@@ -1,9 +1,6 @@
-"""``archquake run --model dem``: one distinct-element time history (the paper's UDEC model).
-
-The output is ``BlockResult.to_dict()``: the four-link run's keys
-(`archquake.outcome.RESULT_KEYS`: outcome, collapse_half_cycle, collapse_time_s,
-onset_time_s, impact_times_s, peak_rotation_rad, ...) followed by the DEM's own.
-"""
+"""The distinct-element options of ``archquake run`` (``--model dem``): the joints' stiffness
+and friction, the Rayleigh damping, the assembly, and the run's length, in the CLI's units
+(Pa/m, Hz and percent, 1/s and s), turned into `archquake.dem.DemSettings` here, at the edge."""
 
 from __future__ import annotations
 
@@ -16,7 +13,6 @@ from archquake.cli.common import (
     refuse_unless,
 )
 from archquake.errors import InvalidParameterError
-from archquake.ground.base import motion_label
 from archquake.ranges import (
     DAMPING_FREQUENCY_RANGE_HZ,
     DAMPING_RATIO_RANGE_PERCENT,
@@ -128,104 +124,5 @@ def settings_from_args(args: argparse.Namespace, duration: float):
     return DemSettings(contact=law, damping=damping, duration=duration)
 
 
-def run(args: argparse.Namespace, arch, motion, options) -> int:
-    """Run the DEM for ``arch`` under ``motion`` with ``options``
-    (`archquake.models.RunOptions`, its loads carried by the assembly ``--dem-assembly``
-    builds) and print/plot/animate as the options say."""
-    from dataclasses import replace
-
-    from archquake import models
-    from archquake.compare import dem_assembly
-
-    duration = block_duration(args, arch, motion, "--model dem",
-                              "the explicit DEM needs millions of steps")
-    settings = settings_from_args(args, duration)  # its contact law holds --friction
-    assembly = dem_assembly(arch, args.dem_assembly, loads=options.loads)
-    result = models.run(models.Model.DEM, assembly, motion,
-                        options=replace(options, loads=None, friction=None, dem=settings))
-    return emit_block_run(args, arch, motion, result, result.to_dict(),
-                          lambda out: _print_text(out, result))
-
-
-def emit_block_run(args: argparse.Namespace, arch, motion, result, out: dict,
-                   print_text, label: str | None = None, history=None) -> int:
-    """The output of a block-model run (the DEM, or the rigid chain read by the DEM's own
-    post-processing, ``result`` a `BlockResult`): the ``--plot``,
-    ``--animate`` and ``--history`` files, then ``out`` (the run's ``to_dict()``, completed with
-    the arch and the excitation) as JSON with ``--json``, else ``print_text(out)`` and the files
-    written. ``history``: the run whose ``to_csv`` writes ``--history`` (default ``result``).
-    Returns the exit status."""
-    if args.plot:
-        from archquake.plotting.compare import save_dem_rotation
-
-        if label is None:
-            save_dem_rotation(result, args.plot)
-        else:
-            save_dem_rotation(result, args.plot, label=label)
-    if args.animate:
-        from archquake.plotting.dem import animate_dem
-
-        animate_dem(result, args.animate, fps=15)
-    if args.history:
-        (result if history is None else history).to_csv(args.history)
-    out["arch"] = arch.describe()
-    out["excitation"] = motion.to_dict()
-    if args.json:
-        from archquake.cli.common import print_json
-
-        print_json(out)
-        return 0
-    print_text(out)
-    print_loads(out["assembly"])
-    for what, path in (("plot", args.plot), ("animation", args.animate), ("history", args.history)):
-        if path:
-            print(f"{what}: {path}")
-    return 0
-
-
-def print_loads(assembly: dict) -> None:
-    """The text lines of what a block model's arch carries (nothing for a bare arch)."""
-    masses = assembly.get("masses")
-    if masses is None:
-        return
-    held = masses["held_by_backing"]
-    print(f"carried mass        {masses['carried_mass_kg']:.6g} kg on "
-          f"{masses['masonry_mass_kg']:.6g} kg of masonry (fill columns and moving loads, at "
-          "their centroids)"
-          + (f"; voussoirs {', '.join(map(str, held))} held by the backing" if held else ""))
-    print(f"passive pressure    {masses['passive_pressure']}")
-
-
-def _print_text(out: dict, result) -> None:
-    s = out["settings"]
-    print(f"excitation          {motion_label(out['excitation'])}")
-    print(f"model               distinct elements: {out['assembly']['name']}, "
-          f"k = {s['contact']['normal_stiffness_Pa_m']:.3g} Pa/m, Rayleigh alpha = "
-          f"{s['rayleigh_alpha_1_s']:.3g} 1/s, beta = {s['rayleigh_beta_s']:.3g} s")
-    print(f"time step           {result.time_step:.3g} s, {result.n_steps} steps, "
-          f"{out['end_time_s']:.2f} s simulated")
-    print_block_verdict(out, "DEM criterion: ")
-    peaks = out["peak_rotation_rad"]
-    if peaks:
-        print(f"peak rotation [rad] {', '.join(f'{p:.4f}' for p in peaks[:6])}"
-              + (" ..." if len(peaks) > 6 else ""))
-    print(f"energy balance      {out['energy_error']:.1e} of the input work; dissipated: damping "
-          f"{out['dissipated_damping_J']:.4g} J, friction {out['dissipated_friction_J']:.4g} J")
-
-
-def print_block_verdict(out: dict, criterion: str = "") -> None:
-    """The outcome, onset and impact lines of a block model's text output (the DEM's, or the
-    rigid chain's read by the DEM's post-processing); ``criterion`` prefixes the collapse rule."""
-    if out["collapse_half_cycle"]:
-        what = (f"collapse in half cycle {out['collapse_half_cycle']} at t = "
-                f"{out['collapse_time_s']:.3f} s ({criterion}crown fallen by t or a block "
-                "below the springings)")
-    else:
-        what = f"{out['outcome']}: {out['verdict']}"
-    print(f"outcome             {what}")
-    if out["onset_time_s"] is not None:
-        print(f"hinging from        {out['onset_time_s']:.3f} s")
-    imp = out["impact_times_s"]
-    if imp:
-        more = f" ... ({len(imp)} in all)" if len(imp) > 6 else ""
-        print(f"impacts [s]         {', '.join(f'{t:.3f}' for t in imp[:6])}{more}")
+__all__ = ["DEFAULT_RAYLEIGH", "DEFAULT_STIFFNESS", "add_dem_arguments", "block_duration",
+           "refuse_dem_options", "settings_from_args"]
