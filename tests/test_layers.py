@@ -57,7 +57,7 @@ ROOT = Path(archquake.__file__).parent
 #:   assess (a bridge's assessment, reusing the reproduction's report) -> cli (the shell).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("constants", "errors", "units", "ranges", "_validate", "_json", "_kernel_cache", "outcome",
-     "result", "_dopri", "parallel", "_lazy"),
+     "result", "_dopri", "parallel", "_lazy", "_deprecated"),
     ("geometry",),
     ("ground",),
     ("codes",),
