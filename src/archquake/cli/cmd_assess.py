@@ -71,7 +71,10 @@ def assess(file: Path, out: Path, *, quick: bool, json: bool, force: bool = Fals
         print(f"[{prefix}] warning: {config.source}: {note}", file=sys.stderr, flush=True)
 
     def say(line: str) -> None:
-        print(f"[{prefix}] {line}", file=sys.stderr, flush=True)
+        # one write, the newline with it: an interrupt between the two writes of a print would
+        # leave the line open, and "archquake: interrupted" would follow on the same line
+        sys.stderr.write(f"[{prefix}] {line}\n")
+        sys.stderr.flush()
 
     rep = run_assessment(config, out, quick=quick, force=force,
                          progress=say if progress else None)
