@@ -270,3 +270,45 @@ def test_sigterm_ends_every_worker_with_output_to_a_pipe(tmp_path):
         for p in _descendants(proc.pid) | below:
             if _alive(p):
                 os.kill(p, signal.SIGKILL)
+
+
+# ------------------------------------------------------- a result lost with its worker
+class _LosesFirstResults:
+    """An executor whose first attempt at each task fails with an error that is not the
+    task's (as Dask's executor raises a ValueError of its own when a worker dies while its
+    finished result is fetched), and whose later attempts compute the task."""
+
+    def __init__(self, always: bool = False) -> None:
+        self.attempts: dict[int, int] = {}
+        self.always = always
+
+    def submit(self, fn, item):
+        from concurrent.futures import Future
+
+        key = item[0]
+        self.attempts[key] = self.attempts.get(key, 0) + 1
+        f: Future = Future()
+        if self.attempts[key] == 1 or self.always:
+            f.set_exception(ValueError("not enough values to unpack (expected 3, got 2)"))
+        else:
+            f.set_result(fn(item))
+        return f
+
+
+def test_a_result_lost_with_its_worker_is_computed_again_on_a_cluster():
+    """On a cluster (a check given), a task whose result cannot be read is submitted once
+    more, and every item's result arrives once; a second failure propagates. Without a
+    cluster (a process pool) the first failure propagates: the task's own errors are bugs.
+    Oracle: the items themselves (the task doubles them)."""
+    from archquake.sweeps.runner import _map_window
+
+    items = [[k] for k in range(5)]
+    ex = _LosesFirstResults()
+    got = list(_map_window(ex, lambda it: 2 * it[0], iter(items), 2, check=lambda: None))
+    assert sorted(got) == [0, 2, 4, 6, 8]
+    assert ex.attempts == {k: 2 for k in range(5)}
+    with pytest.raises(ValueError, match="unpack"):
+        list(_map_window(_LosesFirstResults(always=True), lambda it: it[0], iter(items), 2,
+                         check=lambda: None))
+    with pytest.raises(ValueError, match="unpack"):
+        list(_map_window(_LosesFirstResults(), lambda it: it[0], iter(items), 2))

@@ -238,11 +238,19 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, 
 
     While nothing completes, ``check()`` runs every `HEARTBEAT` seconds and may raise
     (a lost cluster). A task cancelled by its executor (Dask cancels every task when the
-    scheduler goes away) raises `ClusterLostError`. On KeyboardInterrupt or
+    scheduler goes away) raises `ClusterLostError`. On a cluster (``check`` given), a task
+    whose result cannot be read is submitted once more: a worker killed while its finished
+    result was being fetched loses the result, and Dask's executor can then raise an error of
+    its own instead of the task's (a ValueError from its result's unpacking); the second
+    attempt either computes it or, with no worker left, waits for ``check`` to call the
+    cluster lost. An error raised again by the second attempt propagates (the task's own
+    errors are bugs, `evaluate_chunk`). On KeyboardInterrupt or
     ClusterLostError the tasks that had already completed are still yielded, so the consumer
     can store them, before the error propagates; tasks still in flight are cancelled.
     """
     in_flight: set[Future] = set()
+    # on a cluster: each task's item and attempt, for one more attempt
+    item_of: dict[Future, tuple[object, int]] = {}
     exhausted = False
     try:
         while True:
@@ -251,7 +259,10 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, 
                 if item is None:
                     exhausted = True
                     break
-                in_flight.add(executor.submit(fn, item))
+                future = executor.submit(fn, item)
+                in_flight.add(future)
+                if check is not None:
+                    item_of[future] = (item, 1)
             if not in_flight:
                 return
             finished, in_flight = wait(in_flight, timeout=HEARTBEAT,
@@ -263,6 +274,12 @@ def _map_window(executor: Executor, fn: Callable, items: Iterator, window: int, 
                     in_flight |= finished - {future}
                     raise ClusterLostError(
                         "a task was cancelled by the executor: the Dask scheduler went away")
+                item, attempt = item_of.pop(future, (None, 0))
+                if attempt == 1 and future.exception() is not None:
+                    again = executor.submit(fn, item)
+                    in_flight.add(again)
+                    item_of[again] = (item, 2)
+                    continue
                 yield future.result()
     except (KeyboardInterrupt, ClusterLostError):
         # keep what already finished: hand the completed results to the consumer, then stop
