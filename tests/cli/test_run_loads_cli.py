@@ -124,7 +124,7 @@ def test_domain_with_fill_starts_at_the_loaded_lambda_and_says_what_the_chain_do
     assert cli_main.main(["domain", *BRIDGE, "--fill-depth", "1", "--durations", "0.3",
                           "--workers", "1", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    point = out["dem_governing"]["points"][0]
+    point = out["block_governing"]["points"][0]
     assert point["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
     assert out["fourlink"][0]["no_hinging_g"] == pytest.approx(LAMBDA, rel=1e-12)
     assert out["assembly"]["masses"]["carried_mass_kg"] > 0

@@ -69,10 +69,10 @@ def test_domain_dem_quick(capsys):
     assert rows["first_half_cycle"]["assembly"] == "hinges"
     assert rows["collapse"]["assembly"] == "voussoirs"
     for r in rows.values():
-        if r["dem_g"] is not None:
+        if r["block_g"] is not None:
             a = r["fourlink_g"]
-            assert 0.995 * a <= r["dem_g"] <= 1.1 * a + 0.3
-    assert out["dem_governing"]["runs"] >= 2
+            assert 0.995 * a <= r["block_g"] <= 1.1 * a + 0.3
+    assert out["block_governing"]["runs"] >= 2
 
 
 #: R = 5 m, t = 0.6 m, a semicircle of 15 voussoirs: hinges at joints (3, 7, 12, 15), hinge A three
@@ -109,9 +109,9 @@ def test_domain_dem_on_a_semicircle(capsys):
     assert set(rows) == {"first_half_cycle", "collapse"}
     first = rows["first_half_cycle"]
     assert first["assembly"] == "hinges"
-    assert 0.98 * first["fourlink_g"] <= first["dem_g"] <= 1.02 * first["fourlink_g"] + 0.2
-    assert rows["collapse"]["assembly"] == "voussoirs" and rows["collapse"]["dem_g"] is not None
-    assert out["dem_governing"]["runs"] >= 2
+    assert 0.98 * first["fourlink_g"] <= first["block_g"] <= 1.02 * first["fourlink_g"] + 0.2
+    assert rows["collapse"]["assembly"] == "voussoirs" and rows["collapse"]["block_g"] is not None
+    assert out["block_governing"]["runs"] >= 2
 
 
 def test_dem_sweep_through_a_process_pool(tmp_path):

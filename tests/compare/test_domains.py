@@ -81,12 +81,12 @@ def test_dem_domains_figure6_oppenheim(oppenheim):
 
     comp = compare_domains(oppenheim, "step", (0.2, 0.3, 0.5, 0.8))
     for r in comp.rows():
-        if r["fourlink_g"] is None or r["dem_g"] is None:
+        if r["fourlink_g"] is None or r["block_g"] is None:
             continue
         if r["boundary"] == "first_half_cycle":
             assert abs(r["relative"]) < 0.03
         else:
-            assert r["dem_g"] >= r["fourlink_g"] - 0.02
+            assert r["block_g"] >= r["fourlink_g"] - 0.02
 
 
 def test_rigid_block_model_first_half_cycle_boundary_point(oppenheim):

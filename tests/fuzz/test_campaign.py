@@ -203,7 +203,7 @@ def test_domain_takes_arches_cut_above_the_springing(scratch, arch):
                    "--max-magnitude", "1.5", *arch, "--json"], 60.0)
     assert problem(result) is None and result.code == 0, (problem(result), result.err)
     first = next(r for r in json.loads(result.out)["rows"] if r["boundary"] == "first_half_cycle")
-    assert abs(first["dem_g"] - first["fourlink_g"]) <= 0.2
+    assert abs(first["block_g"] - first["fourlink_g"]) <= 0.2
 
 
 @pytest.mark.skipif(not Path("/dev/shm").is_dir(), reason="no /dev/shm to look in")

@@ -246,7 +246,7 @@ def _run_dem(args: argparse.Namespace, arch, model: str = "dem", loads=None) -> 
             for r in rows:
                 w.writerow([r["boundary"], r["assembly"], f"{r['duration_s']:.6g}",
                             *("" if r[k] is None else f"{r[k]:.4f}"
-                              for k in ("fourlink_g", "dem_g", "relative"))])
+                              for k in ("fourlink_g", "block_g", "relative"))])
     if args.plot:
         from archquake.plotting.compare import domain_comparison_figure
 

@@ -233,7 +233,7 @@ class DomainComparison:
                 if abs(an.durations[i] - d) > 1e-9:
                     a = math.nan
                 rows.append({"boundary": which, "assembly": dd.assembly, "duration_s": float(d),
-                             "fourlink_g": _num(a), "dem_g": _num(float(m)),
+                             "fourlink_g": _num(a), "block_g": _num(float(m)),
                              "relative": _num((m - a) / a) if math.isfinite(a) and math.isfinite(m)
                              else None})
         return rows
@@ -241,11 +241,11 @@ class DomainComparison:
     def to_dict(self) -> dict:
         block = next((d.model for d in (self.first, self.governing) if d is not None), None)
         return {"label": self.label, "arch": self.fourlink.arch.describe(),
-                "block_model": block,  # the rows' and dem_* entries' model: dem or rigid
+                "block_model": block,  # the rows' and block_* entries' model: dem or rigid
                 "pulse": self.fourlink.family.value, "rows": self.rows(),
                 "fourlink": self.fourlink.to_dict(),
-                "dem_first_half_cycle": self.first.to_dict() if self.first else None,
-                "dem_governing": self.governing.to_dict() if self.governing else None}
+                "block_first_half_cycle": self.first.to_dict() if self.first else None,
+                "block_governing": self.governing.to_dict() if self.governing else None}
 
 
 def _num(x: float) -> float | None:

@@ -86,7 +86,7 @@ def dem_domain_rows(comparison, src: str, fourlink_precision_g: float) -> list[R
             src,
             agreement.stated,
             ", ".join(
-                f"t = {r['duration_s']:.2f} s: {fmt(r['dem_g'])} vs {fmt(r['fourlink_g'])} g"
+                f"t = {r['duration_s']:.2f} s: {fmt(r['block_g'])} vs {fmt(r['fourlink_g'])} g"
                 + ("" if r["relative"] is None else f" ({100 * r['relative']:+.1f} %)")
                 for r in rows_f
             ),
@@ -99,7 +99,7 @@ def dem_domain_rows(comparison, src: str, fourlink_precision_g: float) -> list[R
     # both searches' brackets) at most durations; no DEM collapse up to the ceiling is above
     slack = comparison.governing.domain.settings.precision_g + fourlink_precision_g
     an = np.array([np.nan if r["fourlink_g"] is None else r["fourlink_g"] for r in rows_g])
-    dm = np.array([np.inf if r["dem_g"] is None else r["dem_g"] for r in rows_g])
+    dm = np.array([np.inf if r["block_g"] is None else r["block_g"] for r in rows_g])
     durs = np.array([r["duration_s"] for r in rows_g])
     cmp = np.isfinite(an)
     below = cmp & (dm < an - slack)
