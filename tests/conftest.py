@@ -22,18 +22,18 @@ def oppenheim() -> Arch:
 #: (``--no-loadscope-reorder``): these start first, so that no long file is left to run alone
 #: while the other worker waits. Re-measure with ``--durations=60`` when a file grows.
 LONGEST_FIRST: tuple[str, ...] = (
-    "tests/docs/test_manual.py",
-    "tests/reproduce/test_reproduce.py",
     "tests/assess/test_assess.py",
-    "tests/rigid/test_chain.py",
+    "tests/reproduce/test_reproduce.py",
+    "tests/docs/test_manual.py",
     "tests/ida/test_ida.py",
     "tests/rigid/test_vertical.py",
-    "tests/mechanism/test_impact_chain.py",
-    "tests/cli/test_check_cli.py",
-    "tests/mechanism/test_chain_history.py",
-    "tests/assess/test_site.py",
-    "tests/assess/test_blocks.py",
-    "tests/dem/test_block.py",
+    "tests/examples/test_examples.py",
+    "tests/mechanism/test_bounds.py",
+    "tests/dem/test_vertical.py",
+    "tests/sweeps/test_cluster.py",
+    "tests/compare/test_cli.py",
+    "tests/assess/test_vertical.py",
+    "tests/rigid/test_input_kernels.py",
 )
 
 
