@@ -301,13 +301,21 @@ def test_unknown_solver_is_refused():
         simulate_rigid(OPPENHEIM, REST, duration=0.01, solver="lu")
 
 
-def test_step_work_arrays_carry_nothing_between_steps():
-    """The compiled run reuses one set of work arrays for every step (``_step_kernels.workspace``).
-    Oracle: the same steps taken one at a time from Python, each through the allocating entry
-    points (``geometry``, ``project_direct``: fresh arrays every call), on Oppenheim's arch
-    under a step pulse that opens and closes joints (t_p = 0.27 s at 1.0 g, 0.6 s: onset, a
-    half cycle, an impact). Bit-for-bit equality: the work arrays must hold nothing a step reads
-    before it writes it (a stale impulse, bound or row fails this)."""
+def test_step_with_the_kept_factor_is_the_full_solve_to_the_tolerance():
+    """The compiled run keeps its work arrays from step to step (``_step_kernels.workspace``),
+    and with them the last active set's Cholesky factor, the refinement's preconditioner while
+    the set holds and is regular, and the set's impulses of the last steps, extrapolated as the
+    solve's start (``_step_kernels.project_direct``). Oracle: the full solve of the same step
+    (``geometry``, ``project_direct``: fresh arrays, the set assembled and factorised), taken
+    from Python on the run's own state at every step, on Oppenheim's arch under a step pulse
+    that opens and closes joints (t_p = 0.27 s at 1.0 g, 0.6 s: onset, a half cycle, an
+    impact). Tolerance: each of the two velocities meets the set's equalities to the solver's
+    ``tol`` (m/s), so they may differ by about twice that; 4 ``tol`` is asked, 1.8 ``tol``
+    measured at worst. The warm start and the joints' reference offsets (the state the
+    correction reads) are the full solve's own, step after step, and must stay the run's: at
+    the end the same corners push and the offsets agree to 1e-9 L. The run must have
+    used the kept factor: steps that differ from the full solve in their last bits (nearly all
+    of them; none before the factor was kept)."""
     import archquake.rigid._step_kernels as RK
     from archquake.rigid.model import GAP_TOLERANCE, HOLD_TOLERANCE, MAX_SWEEPS, SOLVER_TOLERANCE
 
@@ -318,34 +326,36 @@ def test_step_work_arrays_carry_nothing_between_steps():
     gap_tol, hold = GAP_TOLERANCE * lref, HOLD_TOLERANCE * lref
     acc = -G * np.where(np.arange(n) * h < 0.27, 1.0, 0.0)
     q0, v0 = m.rest()
-    q, v = q0.copy(), v0.copy()
-    p_warm = np.zeros((m.ja.size, 3))
-    slip = np.full(m.ja.size, np.nan)
+    run_p = np.zeros((m.ja.size, 3))
+    run_slip = np.full(m.ja.size, np.nan)
     oq, ov = np.zeros((n, m.n_bodies, 3)), np.zeros((n, m.n_bodies, 3))
-    run_p, run_slip = p_warm, slip
     cfg = RK.stepping(h, G, gap_tol, tol, MAX_SWEEPS, 0.0, RK.METHOD_DIRECT, True, hold)
-    RK.run(m.chain, cfg, RK.State(q, v, p_warm, slip), acc, np.empty(0),
+    RK.run(m.chain, cfg, RK.State(q0.copy(), v0.copy(), run_p, run_slip), acc, np.empty(0),
            RK.Record(1, oq, ov, np.zeros((n, RK.N_DIAG))), np.zeros(RK.N_DIAG))
-    q, v = q0.copy(), v0.copy()
+    q, v = q0, v0
     p_warm = np.zeros((m.ja.size, 3))
     slip = np.full(m.ja.size, np.nan)
     moved = 0
+    differ = 0
+    worst = 0.0
     for k in range(n):
         qm = q + 0.5 * h * v
         vf = v.copy()
         vf[:, 0] -= h * acc[k]
         vf[:, 1] -= h * G
         geo = m.geometry(qm)
-        gaps = geo.gaps
         vn, imp, _, _ = RK.project_direct(m.chain, cfg, qm, geo, vf, p_warm, slip, np.zeros(1))
         p_warm = imp.copy()
-        v = vn.copy()
-        q = qm + 0.5 * h * vn
-        moved += bool(np.any(gaps > 1e-3 * lref))
-        np.testing.assert_array_equal(oq[k], q, err_msg=f"step {k}")
-        np.testing.assert_array_equal(ov[k], v, err_msg=f"step {k}")
-    np.testing.assert_array_equal(run_p, p_warm)  # the warm start, joints open and shut
-    np.testing.assert_array_equal(run_slip, slip)
+        worst = max(worst, float(np.abs(vn - ov[k]).max()))
+        differ += not np.array_equal(vn, ov[k])
+        moved += bool(np.any(geo.gaps > 1e-3 * lref))
+        q, v = oq[k], ov[k]  # the run's state: the next step from it
+    assert worst <= 4.0 * tol, f"{worst / tol:.2f} tol"
+    np.testing.assert_array_equal(np.isnan(run_slip), np.isnan(slip))  # the same contacts
+    ok = ~np.isnan(slip)
+    assert np.abs(run_slip[ok] - slip[ok]).max() <= 1e-9 * lref
+    assert np.array_equal(run_p > 0.0, p_warm > 0.0)  # the same corners pushing at the end
+    assert differ > n // 2  # the kept factor served (the old, full solve at every step: 0)
     assert moved > 100  # the run did open joints: the test saw contacts change
 
 

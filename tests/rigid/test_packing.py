@@ -4,8 +4,9 @@ counting (the kernels' packed arguments: tests/test_kernel_arity.py).
 Oracles: object identity (a model's derived forms are built once), and numba's compile options
 (the stepping loops are compiled without reference counting, the step's cost measured in
 docs/notes/measurements.md, "The rigid chain's step without reference counting"). The loops'
-numbers are held bit for bit elsewhere: ``test_step_work_arrays_carry_nothing_between_steps``
-(tests/rigid/test_chain.py) and the digests (tests/test_digest.py).
+numbers are held elsewhere: step by step against the full solve,
+``test_step_with_the_kept_factor_is_the_full_solve_to_the_tolerance`` (tests/rigid/test_chain.py),
+and bit for bit by the digests (tests/test_digest.py).
 """
 
 from __future__ import annotations

@@ -20,8 +20,11 @@ ground; base bodies fixed in the ground's frame):
    uniqueness nor convergence is guaranteed; the sweep count and residual are reported.
    `run`'s default solver (``METHOD_DIRECT``, `project_direct`) solves the
    no-slip projection exactly on a guessed active set (the contacts that pushed at the
-   previous step): one banded Cholesky of the Delassus matrix per step, corrected sets when
-   the guess fails, and Gauss-Seidel only when no set is accepted after
+   previous step): one banded Cholesky of the Delassus matrix per set, corrected sets when
+   the guess fails. While the guessed set is the previous step's and its matrix is regular
+   (its impulses unique), the previous factor is kept as the refinement's preconditioner and
+   the set's impulses are extrapolated from the last steps (`project_direct`): about 9 steps
+   in 10 then assemble and factorise nothing. Gauss-Seidel runs only when no set is accepted after
    `ACTIVE_SET_ITERATIONS` or the refinement stalls (3 of the 3996 steps of Oppenheim's
    4 s history at the verdict's step, 0.04 % of the bridge's steps under near-field records); it
    returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed of the rigid chain").
@@ -134,6 +137,15 @@ METHOD_DIRECT = 1
 EPS_REG = 1.0e-10
 REFINEMENTS = 6
 ACTIVE_SET_ITERATIONS = 24
+#: `project_direct` between steps (its work arrays kept, as `run` and the verdict's loop keep
+#: them): while the first guessed set is the set factorised last and every pivot of that
+#: factorisation was above ``REUSE_PIVOT`` times its row's Delassus diagonal (a regular set,
+#: whose impulses are unique), the old factor preconditions the refinement, which reads the
+#: true residual with the current rows, for at most ``REUSE_REFINEMENTS`` solves; the set's
+#: matrix is assembled and factorised again when that does not reach ``tol``
+#: (docs/notes/measurements.md, "The rigid chain's step with its factor kept").
+REUSE_REFINEMENTS = 3
+REUSE_PIVOT = 1.0e-6
 
 
 #: numba's option to compile a kernel without reference counting (a private option of numba,
@@ -667,6 +679,22 @@ def _envelope_solve(w_mat, first, n, rhs, out):
             out[k] -= w_mat[i, k] * xi
 
 
+@nb.njit(cache=True, inline="always")
+def _envelope_solve_inv(w_mat, dinv, first, n, rhs, out):
+    """`_envelope_solve` with the reciprocals ``dinv`` (n,) of the factor's diagonal: a
+    multiplication where it divides (the solve's chain of dependent operations is shorter)."""
+    for i in range(n):
+        s = rhs[i]
+        for k in range(first[i], i):
+            s -= w_mat[i, k] * out[k]
+        out[i] = s * dinv[i]
+    for i in range(n - 1, -1, -1):
+        out[i] *= dinv[i]
+        xi = out[i]
+        for k in range(first[i], i):
+            out[k] -= w_mat[i, k] * xi
+
+
 @nb.njit(cache=True)
 def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
     """The same contact step as `project`, solved exactly on a guessed active set,
@@ -691,7 +719,22 @@ def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None)
     clamped into the cones (`_clamp_to_cone`) and finished by the clamped Gauss-Seidel.
     The parameters are `project`'s (with ``cfg.h_corr`` > 0 the equalities and the
     separating test read H_r v = target_r, H_r v >= target_r - tol). Returns as `project`;
-    the count is the number of factorised active sets plus any Gauss-Seidel sweeps."""
+    the count is the number of active sets tried plus any Gauss-Seidel sweeps.
+
+    Across steps (the work arrays kept, `_direct_into`, as `run` and the verdict's loop do):
+    when the first guessed set is the set factorised last and that factorisation was regular
+    (every pivot above `REUSE_PIVOT` times its row's diagonal: H_S of full row rank, so the
+    impulses are unique and the warm start does not choose among them), the set is not
+    assembled nor factorised: the old factor, of the Delassus matrix some steps earlier,
+    preconditions the same refinement, which reads the true residual with the current rows
+    and accepts on the same test (below ``tol``), so the result is the same projection to the
+    solver's tolerance. Its start is the set's impulses extrapolated from the steps over which
+    the set has held (linearly after two, quadratically after three). If
+    `REUSE_REFINEMENTS` solves do not reach ``tol`` (or the residual falls too slowly to),
+    the set is assembled and factorised as any other, from the previous impulses: that step
+    is then the full solve, bit for bit. A singular set (the closed chain at rest, or any
+    statically indeterminate set) is always factorised afresh. A `project_direct` call alone
+    (new work arrays) never reuses."""
     ws = workspace(chain.inv_m.shape[0], chain.ja.shape[0])
     count, change = _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws)
     return ws.vn, ws.imp, count, change
@@ -707,7 +750,11 @@ class Work(NamedTuple):
     entries, bounds); ``pn`` (nj,) the joints' normal impulses (Gauss-Seidel's scratch);
     ``slip_p`` (nj,) the tangential impulse of each joint that slipped in the step (N s, 0 for
     the others) and ``t_ja``, ``t_jb`` (nj, 3) its tangential Jacobian rows
-    (`_record_slip`); the others the contact rows' and the direct solve's scratch."""
+    (`_record_slip`); ``fac`` (3 nj + 1,) the set whose factor ``mat`` holds (its size, -1:
+    none reusable, then each row as 3 joint + kind), ``held`` (1,) the steps over which that
+    set has been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of the two steps before the
+    previous one, ``dinv`` (3 nj,) the reciprocals of the factor's diagonal (`project_direct`,
+    across steps); the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -747,6 +794,11 @@ class Work(NamedTuple):
     slip_p: np.ndarray
     t_ja: np.ndarray
     t_jb: np.ndarray
+    fac: np.ndarray
+    held: np.ndarray
+    pw2: np.ndarray
+    dinv: np.ndarray
+    pw3: np.ndarray
 
 
 @nb.njit(cache=True)
@@ -764,7 +816,8 @@ def workspace(nbody, nj):
                 np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1),
                 np.zeros((nbody, 2)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
                 np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr), np.zeros(nj), np.zeros(nj),
-                np.zeros((nj, 3)), np.zeros((nj, 3)))
+                np.zeros((nj, 3)), np.zeros((nj, 3)), np.full(nr + 1, -1, np.int64),
+                np.zeros(1, np.int64), np.zeros((nj, 3)), np.zeros(nr), np.zeros((nj, 3)))
 
 
 @nb.njit(cache=True, nogil=True, forceinline=True, **NO_REFCOUNT)
@@ -803,6 +856,11 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     ha = ws.ha
     hb = ws.hb
     tg = ws.tg
+    fac = ws.fac
+    held = ws.held
+    pw2 = ws.pw2
+    pw3 = ws.pw3
+    dinv = ws.dinv
     nrows = _rows_into(chain, q, geo, cfg.gap_tol, cfg.hold, p_warm, ws)
     for j in range(nj):
         imp[j, 0] = 0.0
@@ -812,6 +870,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     if nrows == 0:
         _record_slip(0, rows_j, rows_k, ws.p, 0.0, ja_rows, jb_rows, slip_ref, ws)
         _copy3(v, v_free)
+        ws.held[0] = 0
         if work is not None:
             work[0] = 0.0
         return 0, 0.0
@@ -821,19 +880,40 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     nbody = inv_m.shape[0]
     solves = 0
     accepted = False
+    first_stale = False
+    last_fac = False
     for _ in range(cfg.max_sets):
         solves += 1
-        # v_w and p: the previous impulses on S
-        _copy3(v, v_free)
-        for r in range(nrows):
-            p[r] = pw[r] if in_s[r] else 0.0
-            if p[r] != 0.0:
-                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
         n = 0
         for r in range(nrows):
             if in_s[r]:
                 idx[n] = r
                 n += 1
+        # the factor of the previous step's set, while the set holds and its matrix is
+        # regular: the refinement's preconditioner (it reads the true residual with the
+        # current rows); refactorised when it does not converge in REUSE_REFINEMENTS
+        stale = n > 0 and solves == 1 and fac[0] == n
+        if stale:
+            for i in range(n):
+                if fac[1 + i] != 3 * rows_j[idx[i]] + rows_k[idx[i]]:
+                    stale = False
+                    break
+        if solves == 1:
+            first_stale = stale
+        # the set held over the last steps: its impulses extrapolated from them (linearly
+        # after two steps, quadratically after three)
+        order = min(held[0] - 1, 2) if stale else 0
+        # v_w and p: the previous impulses on S
+        _copy3(v, v_free)
+        for r in range(nrows):
+            p[r] = pw[r] if in_s[r] else 0.0
+            if in_s[r] and order == 2:
+                p[r] = 3.0 * (pw[r] - pw2[rows_j[r], rows_k[r]]) + pw3[rows_j[r], rows_k[r]]
+            elif in_s[r] and order == 1:
+                p[r] = 2.0 * pw[r] - pw2[rows_j[r], rows_k[r]]
+            if p[r] != 0.0:
+                _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
+        last_fac = False
         if n > 0:
             # W_SS + eps I in the envelope, factorised in place (lower triangle)
             dmax = 0.0
@@ -850,101 +930,141 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                 for c3 in range(3):
                     ha[i, c3] = ja_rows[r, c3]
                     hb[i, c3] = jb_rows[r, c3]
-            # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
-            for c in range(nbody):
-                cnt[c] = 0
-            for i in range(n):
-                r = idx[i]
-                j = rows_j[r]
-                if ja[j] >= 0:
-                    c = ja[j]
-                    lst_i[c, cnt[c]] = i
-                    lst_side[c, cnt[c]] = 0
-                    cnt[c] += 1
-                if jb[j] >= 0:
-                    c = jb[j]
-                    lst_i[c, cnt[c]] = i
-                    lst_side[c, cnt[c]] = 1
-                    cnt[c] += 1
-            # the envelope: row i meets the rows from the first one touching either of its
-            # bodies (the lists are in set order); only the envelope is cleared and read
-            for i in range(n):
-                f = i
-                if sa[i] >= 0 and lst_i[sa[i], 0] < f:
-                    f = lst_i[sa[i], 0]
-                if sb[i] >= 0 and lst_i[sb[i], 0] < f:
-                    f = lst_i[sb[i], 0]
-                first[i] = f
-                for k in range(f, i + 1):
-                    w_mat[i, k] = 0.0
-            for c in range(nbody):
-                for u in range(cnt[c]):
-                    i = lst_i[c, u]
-                    if lst_side[c, u] == 0:
-                        h0, h1, h2 = ha[i, 0], ha[i, 1], ha[i, 2]
-                    else:
-                        h0, h1, h2 = hb[i, 0], hb[i, 1], hb[i, 2]
-                    for u2 in range(cnt[c]):
-                        k = lst_i[c, u2]
-                        if k > i:
-                            continue
-                        if lst_side[c, u2] == 0:
-                            g0, g1, g2 = ha[k, 0], ha[k, 1], ha[k, 2]
-                        else:
-                            g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
-                        w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
-            for i in range(n):
-                w_mat[i, i] += eps
             ok = True
-            for i in range(n):
-                for k in range(first[i], i + 1):
-                    s = w_mat[i, k]
-                    lo = first[i] if first[i] > first[k] else first[k]
-                    for m in range(lo, k):
-                        s -= w_mat[i, m] * w_mat[k, m]
-                    if k == i:
-                        if s <= 0.0:
-                            ok = False
+            converged = False
+            r_first = 0.0
+            while True:
+                if not stale:
+                    # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
+                    for c in range(nbody):
+                        cnt[c] = 0
+                    for i in range(n):
+                        r = idx[i]
+                        j = rows_j[r]
+                        if ja[j] >= 0:
+                            c = ja[j]
+                            lst_i[c, cnt[c]] = i
+                            lst_side[c, cnt[c]] = 0
+                            cnt[c] += 1
+                        if jb[j] >= 0:
+                            c = jb[j]
+                            lst_i[c, cnt[c]] = i
+                            lst_side[c, cnt[c]] = 1
+                            cnt[c] += 1
+                    # the envelope: row i meets the rows from the first one touching either of its
+                    # bodies (the lists are in set order); only the envelope is cleared and read
+                    for i in range(n):
+                        f = i
+                        if sa[i] >= 0 and lst_i[sa[i], 0] < f:
+                            f = lst_i[sa[i], 0]
+                        if sb[i] >= 0 and lst_i[sb[i], 0] < f:
+                            f = lst_i[sb[i], 0]
+                        first[i] = f
+                        for k in range(f, i + 1):
+                            w_mat[i, k] = 0.0
+                    for c in range(nbody):
+                        for u in range(cnt[c]):
+                            i = lst_i[c, u]
+                            if lst_side[c, u] == 0:
+                                h0, h1, h2 = ha[i, 0], ha[i, 1], ha[i, 2]
+                            else:
+                                h0, h1, h2 = hb[i, 0], hb[i, 1], hb[i, 2]
+                            for u2 in range(cnt[c]):
+                                k = lst_i[c, u2]
+                                if k > i:
+                                    continue
+                                if lst_side[c, u2] == 0:
+                                    g0, g1, g2 = ha[k, 0], ha[k, 1], ha[k, 2]
+                                else:
+                                    g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
+                                w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
+                    for i in range(n):
+                        w_mat[i, i] += eps
+                    ok = True
+                    regular = True
+                    for i in range(n):
+                        for k in range(first[i], i + 1):
+                            s = w_mat[i, k]
+                            lo = first[i] if first[i] > first[k] else first[k]
+                            for m in range(lo, k):
+                                s -= w_mat[i, m] * w_mat[k, m]
+                            if k == i:
+                                if s <= 0.0:
+                                    ok = False
+                                    break
+                                if s < REUSE_PIVOT * diag[idx[i]]:
+                                    regular = False
+                                w_mat[i, i] = math.sqrt(s)
+                                dinv[i] = 1.0 / w_mat[i, i]
+                            else:
+                                w_mat[i, k] = s / w_mat[k, k]
+                        if not ok:
                             break
-                        w_mat[i, i] = math.sqrt(s)
+                    if not ok:
+                        fac[0] = -1
+                        last_fac = False
+                        break
+                    last_fac = regular
+                    if regular:
+                        fac[0] = n
+                        for i in range(n):
+                            fac[1 + i] = 3 * rows_j[idx[i]] + rows_k[idx[i]]
                     else:
-                        w_mat[i, k] = s / w_mat[k, k]
-                if not ok:
+                        fac[0] = -1
+                # refine: the equality residual -H_S v, m/s, solved for the impulse increment
+                converged = False
+                for _ref in range(REUSE_REFINEMENTS if stale else REFINEMENTS):
+                    big = 0.0
+                    for i in range(n):
+                        a = sa[i]
+                        b = sb[i]
+                        w = 0.0
+                        if a >= 0:
+                            w += ha[i, 0] * v[a, 0] + ha[i, 1] * v[a, 1] + ha[i, 2] * v[a, 2]
+                        if b >= 0:
+                            w += hb[i, 0] * v[b, 0] + hb[i, 1] * v[b, 1] + hb[i, 2] * v[b, 2]
+                        rhs[i] = tg[i] - w
+                        if abs(rhs[i]) > big:
+                            big = abs(rhs[i])
+                    if big <= tol:
+                        converged = True
+                        break
+                    if stale:
+                        if _ref == 0:
+                            r_first = big
+                        elif big * big > tol * r_first:
+                            break  # contracting too slowly to reach tol: refactorise
+                    if stale:
+                        _envelope_solve_inv(w_mat, dinv, first, n, rhs, d)
+                    else:
+                        _envelope_solve(w_mat, first, n, rhs, d)
+                    for i in range(n):
+                        p[idx[i]] += d[i]
+                        dp = d[i]
+                        a = sa[i]
+                        b = sb[i]
+                        if a >= 0:
+                            v[a, 0] += ha[i, 0] * dp * inv_m[a]
+                            v[a, 1] += ha[i, 1] * dp * inv_m[a]
+                            v[a, 2] += ha[i, 2] * dp * inv_i[a]
+                        if b >= 0:
+                            v[b, 0] += hb[i, 0] * dp * inv_m[b]
+                            v[b, 1] += hb[i, 1] * dp * inv_m[b]
+                            v[b, 2] += hb[i, 2] * dp * inv_i[b]
+                if converged and stale:
+                    last_fac = True
+                if converged or not stale:
                     break
+                # refactorise, and solve again from the previous impulses
+                stale = False
+                _copy3(v, v_free)
+                for i in range(n):
+                    p[idx[i]] = pw[idx[i]]
+                    if pw[idx[i]] != 0.0:
+                        _apply_row(v, idx[i], rows_j, ja, jb, ja_rows, jb_rows, pw[idx[i]], inv_m,
+                                   inv_i)
             if not ok:
                 break
-            # refine: the equality residual -H_S v, m/s, solved for the impulse increment
-            converged = False
-            for _ref in range(REFINEMENTS):
-                big = 0.0
-                for i in range(n):
-                    a = sa[i]
-                    b = sb[i]
-                    w = 0.0
-                    if a >= 0:
-                        w += ha[i, 0] * v[a, 0] + ha[i, 1] * v[a, 1] + ha[i, 2] * v[a, 2]
-                    if b >= 0:
-                        w += hb[i, 0] * v[b, 0] + hb[i, 1] * v[b, 1] + hb[i, 2] * v[b, 2]
-                    rhs[i] = tg[i] - w
-                    if abs(rhs[i]) > big:
-                        big = abs(rhs[i])
-                if big <= tol:
-                    converged = True
-                    break
-                _envelope_solve(w_mat, first, n, rhs, d)
-                for i in range(n):
-                    p[idx[i]] += d[i]
-                    dp = d[i]
-                    a = sa[i]
-                    b = sb[i]
-                    if a >= 0:
-                        v[a, 0] += ha[i, 0] * dp * inv_m[a]
-                        v[a, 1] += ha[i, 1] * dp * inv_m[a]
-                        v[a, 2] += ha[i, 2] * dp * inv_i[a]
-                    if b >= 0:
-                        v[b, 0] += hb[i, 0] * dp * inv_m[b]
-                        v[b, 1] += hb[i, 1] * dp * inv_m[b]
-                        v[b, 2] += hb[i, 2] * dp * inv_i[b]
             if not converged:
                 break
         # the cone's conditions
@@ -962,6 +1082,18 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
         if not changed:
             accepted = True
             break
+    # the steps over which the factor's set has held, and the previous impulses
+    if accepted and last_fac:
+        held[0] = held[0] + 1 if (first_stale and solves == 1) else 1
+    else:
+        held[0] = 0
+    for j in range(nj):
+        pw3[j, 0] = pw2[j, 0]
+        pw3[j, 1] = pw2[j, 1]
+        pw3[j, 2] = pw2[j, 2]
+        pw2[j, 0] = p_warm[j, 0]
+        pw2[j, 1] = p_warm[j, 1]
+        pw2[j, 2] = p_warm[j, 2]
     sweeps = 0
     change = 0.0
     sweep = False
@@ -979,6 +1111,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                 p[r] = 0.0
         sweep = True
     if sweep:
+        held[0] = 0
         _copy3(v, v_free)
         for r in range(nrows):
             if p[r] != 0.0:

@@ -1,7 +1,10 @@
 """Compiled verdict-only run of the rigid chain (numba): the Moreau-Jean step of
-`archquake.rigid._step_kernels.run` (the same step, bit for bit, through
-``project_direct``), with the verdict of `archquake.blocks.result.BlockResult.from_samples`
-read on the fly instead of from recorded samples, and three shortcuts that do not change it:
+`archquake.rigid._step_kernels.run` (the same step, through ``project_direct``, with its work
+arrays kept over the whole run where the recorded stepper keeps them over a chunk of steps: the
+kept factor and extrapolated start of `project_direct` then serve on different steps, so the
+two agree to the solver's tolerance, not bit for bit), with the verdict of
+`archquake.blocks.result.BlockResult.from_samples` read on the fly instead of from recorded
+samples, and three shortcuts that do not change it:
 
 * **skip at rest**: while the chain is untouched at rest (q, v exactly the rest state) and the
   step's mean ground acceleration lies inside the safe domain (-lambda_- g, lambda_+ g) (the
