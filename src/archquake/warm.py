@@ -26,21 +26,7 @@ import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
-#: The modules that define numba kernels (``@numba.njit(cache=True)``).
-KERNEL_MODULES: tuple[str, ...] = (
-    "archquake.ground._kernel",
-    "archquake.ground.measures",
-    "archquake.blocks._kernels",
-    "archquake.mechanism._kernels",
-    "archquake.rigid._input_kernels",
-    "archquake.rigid._step_kernels",
-    "archquake.rigid._force_kernels",
-    "archquake.rigid._event_kernels",
-    "archquake.rigid._verdict_kernels",
-    "archquake.domains._kernels",
-    "archquake.ida._kernels",
-    "archquake.dem._kernels",
-)
+from archquake._kernel_cache import KERNEL_MODULES
 
 
 def _arch():

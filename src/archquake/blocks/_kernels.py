@@ -13,6 +13,10 @@ import math
 
 import numba as nb
 
+from archquake._kernel_cache import stamp_kernels
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
+
 # collapse-parameter indices
 C_BASE, C_ROT, C_CROWN_BLOCK, C_CROWN_LX, C_CROWN_LY, C_CROWN_Y0, C_CROWN_DROP = range(7)
 N_COLLAPSE = 7

@@ -30,8 +30,11 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake.blocks._kernels import collapsed
 from archquake.ground._kernel import ground_acceleration, vertical_in_piece
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 # parameter indices
 P_DT, P_G, P_ALPHA, P_BETA, P_MU, P_KN, P_KS, P_TOL, P_DMAX, P_BROAD = range(10)

@@ -48,6 +48,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake.mechanism._kernels import (
     ENERGY_MARGIN,
     HIST_COLUMNS,
@@ -66,6 +67,8 @@ from archquake.mechanism._kernels import (
     table_energies,
 )
 from archquake.outcome import Outcome
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: First cap on impacts when deciding early.
 FIRST_IMPACT_CAP = 4

@@ -7,7 +7,10 @@ import math
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake.ground.base import KIND_SAMPLED, KIND_SAMPLED_VERTICAL, KIND_SINE, KIND_STEP
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 
 @nb.njit(cache=True, nogil=True)

@@ -45,10 +45,13 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake._validate import require_finite, require_gravity, require_positive, require_range
 from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.ranges import SPECTRUM_MIN_PERIOD_S
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: Damping ratio of the response spectrum unless stated (5 % of critical).
 DEFAULT_DAMPING = 0.05

@@ -32,6 +32,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake.domains._kernels import ENERGY_MARGIN, Decisions, table_energies, undescribed_seen
 from archquake.mechanism._kernels import (
     FINAL_MOVING,
@@ -49,6 +50,8 @@ from archquake.mechanism._kernels import (
     simulate_kernel,
 )
 from archquake.mechanism.kinematics import PHI_CRIT, potential
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: Length of the first run after the end of the excitation, in sqrt(R/g) (several free
 #: half cycles of an arch rocking near its crest).

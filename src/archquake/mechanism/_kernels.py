@@ -70,6 +70,7 @@ from archquake._dopri import (  # the Dormand-Prince 5(4) tableau
     E6,
     E7,
 )
+from archquake._kernel_cache import stamp_kernels
 from archquake.ground._kernel import (
     ground_duration,
     ground_in_piece,
@@ -89,6 +90,8 @@ from archquake.mechanism.kinematics import (
     linkage_limits,
     potential,
 )
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: The crest/toggle search of `archquake.mechanism.kinematics.linkage_limits`, compiled.
 linkage_limits_compiled = nb.njit(cache=True)(linkage_limits)

@@ -62,8 +62,11 @@ import numpy as np
 
 import archquake._dopri as DP  # the Dormand-Prince 5(4) tableau
 import archquake.rigid._step_kernels as RK
+from archquake._kernel_cache import stamp_kernels
 from archquake.blocks._kernels import collapsed
 from archquake.ground._kernel import ground_in_piece, next_breakpoint, vertical_in_piece
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: Most hinges a mode may have.
 MAX_HINGES = 24

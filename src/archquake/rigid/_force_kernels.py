@@ -22,6 +22,9 @@ import numba as nb
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
+from archquake._kernel_cache import stamp_kernels
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: A sample's rows are certified independent when the bound on s_min / s_max exceeds this: far
 #: above the rank test's 1e-8, so that no rounding of the bound or of an SVD can disagree.

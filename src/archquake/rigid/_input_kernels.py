@@ -19,8 +19,11 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
 from archquake.ground._kernel import ground_acceleration
 from archquake.ground.base import KIND_SAMPLED
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: The block of NumPy's pairwise summation: a sum of up to this many terms is one block of
 #: eight partial sums (NumPy's ``PW_BLOCKSIZE``).

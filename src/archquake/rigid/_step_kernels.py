@@ -102,6 +102,10 @@ from typing import Any, NamedTuple
 import numba as nb
 import numpy as np
 
+from archquake._kernel_cache import stamp_kernels
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
+
 #: Columns of the per-sample diagnostics.
 D_DISSIPATED = 0  # J, cumulated energy removed by the contact projections
 D_INPUT = 1  # J, cumulated work of the inertial load -m x_g'' on the relative motion

@@ -40,7 +40,10 @@ import numba as nb
 import numpy as np
 
 import archquake.rigid._step_kernels as RK
+from archquake._kernel_cache import stamp_kernels
 from archquake.blocks import _kernels as DK
+
+stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
 #: Parameters, ``par`` (float64).
 P_H = 0  # s, time step
