@@ -60,13 +60,14 @@ test: $(STAMP_TEST)
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null) || \
 		echo "note: chromium could not be installed; the report's browser test will skip"
 	$(BIN)/ruff check src tests benchmarks examples
-	@# mypy runs beside everything else (it fills the cores the others leave idle); numba's
-	@# kernels are compiled once, by archquake warm in two processes (their workloads balanced),
-	@# before the test workers start: otherwise each worker compiles every kernel it calls. The
-	@# workers take whole files, the longest first (tests/conftest.py orders them)
-	$(BIN)/mypy src/archquake > .mypy.out 2>&1 & mypy=$$!; \
+	@# numba's kernels are compiled once, by archquake warm in two processes (their workloads
+	@# balanced), before the test workers start: otherwise each worker compiles every kernel it
+	@# calls. mypy runs beside the test workers, on the CPU time they leave idle (about a fifth:
+	@# waits on subprocesses, clusters, the last files). The workers take whole files, the
+	@# longest first (tests/conftest.py orders them)
 	$(BIN)/archquake warm --only $(WARM_A) & warm=$$!; \
 	$(BIN)/archquake warm --only $(WARM_B); warmed=$$?; wait $$warm || warmed=1; \
+	$(BIN)/mypy src/archquake > .mypy.out 2>&1 & mypy=$$!; \
 	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder; tests=$$?; \
 	wait $$mypy; typing=$$?; cat .mypy.out; rm -f .mypy.out; \
 	test $$warmed = 0 && test $$tests = 0 && test $$typing = 0

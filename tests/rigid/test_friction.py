@@ -49,7 +49,7 @@ def test_one_step_of_a_sliding_block_is_a_particle_on_a_rough_plane(method, rati
     for sign in (1.0, -1.0):
         vx = sign * ratio * scale
         vf = np.array([[vx, -G * h, 0.0]])
-        args = (m.chain, cfg, q, geo, vf, np.zeros((1, 3)))
+        args = (m.chain, cfg, q, geo, vf, np.zeros((1, 3)), np.empty(0), np.empty(0))
         if method == RK.METHOD_DIRECT:  # called as the event integrator calls it
             vn, imp, _, _ = RK.project_direct(*args)
         else:

@@ -1229,7 +1229,8 @@ def run(chain, span, state, output, written):
                 vf[b, 2] = 0.0
             geo = RK.geometry(qf, ja, jb, arm_a, arm_b, n0, t0)
             nrm = geo.nrm
-            acc, imp, _, _ = RK.project_direct(blocks, onset_cfg, qf, geo, vf, np.zeros((nj, 3)))
+            acc, imp, _, _ = RK.project_direct(blocks, onset_cfg, qf, geo, vf, np.zeros((nj, 3)),
+                                               np.empty(0), np.empty(0))
             beta_j[:] = 0.0
             K2, ok = modes_after_projection(blocks, sg, qf, acc, nrm, beta_j, 1e-7,
                                             1e-7 * (g + abs(ax)), 1e-9 * g / lref, jh2, ch2,
@@ -1431,7 +1432,8 @@ def run(chain, span, state, output, written):
                     vscale = max(vscale, abs(vf[b, 0]) + abs(vf[b, 1]) + abs(vf[b, 2]) * lref)
                 # the guessed active set: every touching corner pushes (the exact solve drops
                 # the tensile ones)
-                vn, imp, nsolve, _ = RK.project_direct(blocks, impact_cfg, qf, geo, vf, p_guess)
+                vn, imp, nsolve, _ = RK.project_direct(blocks, impact_cfg, qf, geo, vf, p_guess,
+                                                        np.empty(0), np.empty(0))
                 counters[N_SOLVES] += nsolve
                 K2, ok = modes_after_projection(blocks, sg, qf, vn, nrm, beta_j, 1e-8,
                                                 1e-7 * max(vscale, 1e-300),

@@ -196,7 +196,7 @@ def probe(chain, cfg, pos, vel, base_u, base_v, acc, lref, impulsive_factor, vac
                 active[k, j, c] = (gaps[j, c] <= gap_tol
                                    or (p_warm[j, c] > 0.0 and gaps[j, c] <= hold))
         certified[k] = rank_certificate(qm, active[k], ja, jb, nrm, tan, pts, isq_m, isq_i)
-        vn, imp, _, _ = RK.project(chain, cfg, qm, geo, vf, p_warm)
+        vn, imp, _, _ = RK.project(chain, cfg, qm, geo, vf, p_warm, np.empty(0), np.empty(0))
         jump = -math.inf
         for b in range(nb_):
             dx = vn[b, 0] - v[b, 0]

@@ -399,7 +399,7 @@ def _targets_into(nrows, rows_j, rows_k, gaps, offset, correction, slip_ref, tar
             gap = gaps[rows_j[r], rows_k[r]]
             if gap > 0.0:
                 target[r] = -gap / correction
-    if slip_ref is not None:
+    if slip_ref.shape[0] > 0:
         for j in range(slip_ref.shape[0]):
             seen[j] = False
         for r in range(nrows):
@@ -479,7 +479,7 @@ def _pgs(chain, cfg, v, p, nrows, ws):
 
 
 @nb.njit(cache=True)
-def project(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
+def project(chain, cfg, q, geo, v_free, p_warm, slip_ref, work):
     """The contact step: v = argmin ||v - v_free||_M over the admissible cone of the active
     contacts (module docstring, step 4), by projected Gauss-Seidel alone (the plain stepper,
     ``method = 0`` of `run`).
@@ -498,8 +498,12 @@ def project(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
         The unconstrained velocity.
     p_warm : ndarray (nj, 3)
         The previous impulses, N s (the warm start).
-    slip_ref, work : ndarray or None
-        The joints' reference offsets and the correction's work (`run`).
+    slip_ref : ndarray (nj,)
+        The joints' reference offsets, m (`run`), updated in place; empty (``np.empty(0)``)
+        for none: the tangential rows are then not corrected.
+    work : ndarray (1,)
+        Receives the correction's work, J (`run`); empty for none. (Empty arrays, not None:
+        one compiled version of the solve serves every caller.)
 
     Returns (v (nb, 3), impulses (nj, 3): normal at corner 0, normal at corner 1, tangential,
     N s; sweeps taken; final residual m/s)."""
@@ -553,7 +557,7 @@ def _project_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     for r in range(nrows):
         imp[rows_j[r], rows_k[r]] = p[r]
     _record_slip(nrows, rows_j, rows_k, p, mu, ja_rows, jb_rows, slip_ref, ws)
-    if work is not None:
+    if work.shape[0] > 0:
         work[0] = _correction_work(nrows, p, target)
     return sweeps, change
 
@@ -580,7 +584,7 @@ def _record_slip(nrows, rows_j, rows_k, p, mu, ja_rows, jb_rows, slip_ref, ws):
                 for c in range(3):
                     ws.t_ja[j, c] = ja_rows[r, c]
                     ws.t_jb[j, c] = jb_rows[r, c]
-                if slip_ref is not None:
+                if slip_ref.shape[0] > 0:
                     slip_ref[j] = math.nan
 
 
@@ -668,7 +672,7 @@ def _envelope_solve(w_mat, first, n, rhs, out):
 
 
 @nb.njit(cache=True)
-def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref=None, work=None):
+def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref, work):
     """The same contact step as `project`, solved exactly on a guessed active set,
     Gauss-Seidel only when the guess fails, or (``mu > 0``) when a joint's tangential impulse
     leaves its Coulomb cone (module docstring, step 4).
@@ -812,7 +816,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
     if nrows == 0:
         _record_slip(0, rows_j, rows_k, ws.p, 0.0, ja_rows, jb_rows, slip_ref, ws)
         _copy3(v, v_free)
-        if work is not None:
+        if work.shape[0] > 0:
             work[0] = 0.0
         return 0, 0.0
     for r in range(nrows):
@@ -989,7 +993,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
         _record_slip(nrows, rows_j, rows_k, p, 0.0, ja_rows, jb_rows, slip_ref, ws)
     for r in range(nrows):
         imp[rows_j[r], rows_k[r]] = p[r]
-    if work is not None:
+    if work.shape[0] > 0:
         work[0] = _correction_work(nrows, p, target)
     return solves + sweeps, change
 

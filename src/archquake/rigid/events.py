@@ -146,7 +146,8 @@ class EventModel:
         geo = r.geometry(q)
         nrm = geo.nrm
         cfg = RK.solving(1e-9 * self.lref, 1e-13 * math.sqrt(self.lref), EK.SOLVE_SWEEPS)
-        acc, _, _, _ = RK.project_direct(r.chain, cfg, q, geo, a, np.zeros((len(r.ja), 3)))
+        acc, _, _, _ = RK.project_direct(r.chain, cfg, q, geo, a, np.zeros((len(r.ja), 3)),
+                                         np.empty(0), np.empty(0))
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
         k, _ = EK.modes_after_projection(r.chain, self.sg, q, acc, nrm, np.zeros(nj), 1e-7,

@@ -422,7 +422,7 @@ def joint_forces_reference(run, motion, *, g: float | None = None, every: int = 
         cfg = RK.solving(s["gap_tol"], s["tol"], MAX_SWEEPS, s["mu"], correction=s["correction"],
                          hold_tol=hold)
         vn, imp, _, _ = RK.project(model.chain, cfg, qm, RK.Geometry(gaps, nrm, tan, pts), vf,
-                                   p_warm)
+                                   p_warm, np.empty(0), np.empty(0))
         unique[k] = _independent(_rows(qm, model.ja, model.jb, gaps, nrm, tan, pts,
                                        s["gap_tol"], isq_m, isq_i, p_warm, hold))
         p_warm = imp

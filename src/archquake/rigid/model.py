@@ -194,7 +194,7 @@ class RigidModel:
         tol = 1e-14 * scale if tol is None else tol
         cfg = RK.solving(GAP_TOLERANCE * self.assembly.reference_length, tol, max_sweeps)
         vn, imp, _, _ = RK.project(self.chain, cfg, q, self.geometry(q), np.asarray(v, float),
-                                   np.zeros((len(self.ja), 3)))
+                                   np.zeros((len(self.ja), 3)), np.empty(0), np.empty(0))
         return vn, imp
 
 

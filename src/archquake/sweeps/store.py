@@ -43,6 +43,9 @@ from archquake.sweeps.cases import INPUT_COLUMNS, Case
 STORE_SCHEMA = "1"
 STATUS_OK = "ok"
 STATUS_ERROR = "error"
+#: How long opening a store waits for another process's write lock before it says the store is
+#: locked, s (SQLite's busy timeout).
+LOCK_WAIT_S = 5.0
 #: Columns written for every case besides its inputs, in order.
 RESULT_COLUMNS: dict[str, str] = {
     "status": "TEXT NOT NULL", "outcome": "TEXT", "error": "TEXT", "elapsed_s": "REAL",
@@ -127,7 +130,7 @@ class ResultStore:
             existed = self.path.exists() and self.path.stat().st_size > 0
             if self.path.exists() and not self.path.is_file():
                 raise CorruptStoreError(f"sweep store {where} is not a regular file")
-            self._db = sqlite3.connect(self.path)
+            self._db = sqlite3.connect(self.path, timeout=LOCK_WAIT_S)
         except (OSError, sqlite3.DatabaseError) as exc:
             raise ArchquakeError(f"cannot open sweep store {where}: {exc}") from None
         try:
