@@ -1,6 +1,7 @@
-"""The assessment's sections side by side: each starts only once the sections it reads are done
-(oracle: the data each section function reads of ``ctx.prior``, listed by reading the code
-into ``NEEDS``), a failure reaches the caller, and the DEM check's warnings land in the validity
+"""The assessment's sections side by side: each starts only once the sections it reads first
+are done (oracle: the data each section function reads of ``ctx.prior``, listed by reading the
+code into ``NEEDS``; of those, `LATER`'s are read only after a section has started, and the read
+waits for them), a failure reaches the caller, and the DEM check's warnings land in the validity
 section where the report lists them, whichever of the two finished first."""
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import time
 
 import pytest
 
-from archquake.assess.runner import NEEDS, _run_sections
+from archquake.assess.runner import LATER, NEEDS, _run_sections
 from archquake.assess.sections import SECTIONS, with_dem_warnings
 from archquake.reproduce.core import StudyResult
 
@@ -43,6 +44,10 @@ def _fake(results: dict, log: list, delay: dict, fail: str | None = None):
         with lock:
             log.append(("start", name, sorted(prior)))
         time.sleep(delay.get(name, 0.0))
+        for dep in sorted(prior):  # each section reads the data it needs
+            assert prior[dep] == {"name": dep}
+            with lock:
+                log.append(("read", name, dep))
         if name == fail:
             raise RuntimeError(f"{name} failed")
         results[name] = StudyResult(name, name, (), (), (), {"name": name})
@@ -68,11 +73,17 @@ def test_each_section_starts_after_what_it_needs(side_by_side):
         assert prior == sorted(NEEDS[name])  # exactly the data it reads
         started = log.index(event)
         done_before = {e[1] for e in log[:started] if e[0] == "end"}
-        assert set(NEEDS[name]) <= done_before
+        assert set(NEEDS[name]) - set(LATER.get(name, ())) <= done_before
+    for event in log:  # every read returns the section's data once that section is done
+        if event[0] == "read":
+            assert log.index(("end", event[2])) < log.index(event)
     if side_by_side:  # the pulses finished while the records ran; DEM and validity overlapped
         assert ends.index("pulses") < ends.index("records")
         assert log.index(("start", "validity", ["pulses", "records", "static"])) < log.index(
             ("end", "dem"))
+        # the DEM check and the validity section started while the records ran
+        for name in ("dem", "validity"):
+            assert log.index(("start", name, sorted(NEEDS[name]))) < log.index(("end", "records"))
     else:
         assert ends == NAMES
 
@@ -82,6 +93,18 @@ def test_a_failing_section_stops_the_assessment():
     with pytest.raises(RuntimeError, match="records failed"):
         _run_sections(NAMES, _fake(results, [], {}, fail="records"), results, True)
     assert "dem" not in results and "validity" not in results  # they needed the records
+
+
+def test_a_section_reading_a_failed_one_stops_with_the_first_failure():
+    """The DEM check starts before the records end (it reads them later); the records fail:
+    its read fails too, and the caller gets the records' own error."""
+    results: dict = {}
+    log: list = []
+    with pytest.raises(RuntimeError, match="records failed"):
+        _run_sections(NAMES, _fake(results, log, {"records": 0.2}, fail="records"), results,
+                      True)
+    assert ("start", "dem", ["pulses", "records", "static"]) in log
+    assert not any(e[0] == "read" and e[2] == "records" for e in log)
 
 
 def test_dem_warnings_fold_into_validity_in_report_order():

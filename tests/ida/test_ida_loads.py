@@ -52,3 +52,37 @@ def test_the_four_link_ida_finds_the_loaded_domains_collapse(tmp_path):
                                            executor=SerialExecutor(), loads=FILL)
     first = res.records[0].collapse_intervals[0]
     assert first.below - 0.001 <= dom.collapse_g[0] <= first.low + 0.001
+
+
+def test_the_rounds_share_one_loaded_body_and_give_the_fresh_bodys_verdicts():
+    """Every round of the rigid IDA, and its guard's reruns, run the loaded arch's blocks built
+    once (`rigid_body`: the same object for equal inputs, so its model and its onset
+    accelerations, found by bisection, are too). Oracle: the verdicts of a body built afresh
+    for the call (`build_arch_assembly`, the plain path), equal field by field."""
+    from archquake.blocks.assembly import build_arch_assembly
+    from archquake.ida.batch import evaluate_rigid_cases, rigid_body, rigid_half_step_verdicts
+    from archquake.models import Model
+    from archquake.rigid import rigid_verdicts
+    from archquake.rigid.verdict import verdict_time_step
+    from archquake.sweeps import CaseOptions
+    from archquake.sweeps.cases import Case, ExcitationKind, ExcitationSpec
+    from archquake.sweeps.evaluate import rigid_summary
+
+    motions = [StepImpulse.from_g(a, 0.4) for a in (0.9 * LAMBDA, 1.6 * LAMBDA, 3.0 * LAMBDA)]
+    assert rigid_body(SPEC.build(), FILL) is rigid_body(SPEC.build(), FILL)
+    assert rigid_body(ARCH, None) == ARCH  # without loads, the arch (or an equal one)
+    cases = [Case(SPEC, ExcitationSpec(ExcitationKind.RECORD, motion=m, scale=1.0),
+                  Model.RIGID, CaseOptions(), FILL) for m in motions]
+    first = evaluate_rigid_cases(cases)
+    again = evaluate_rigid_cases(cases)  # the next round: the same body, no new bisection
+    halves = rigid_half_step_verdicts(cases)
+    fresh = build_arch_assembly(SPEC.build(), loads=FILL)
+    assert fresh is not rigid_body(SPEC.build(), FILL)
+    built = [c.excitation.build() for c in cases]
+    plain = rigid_verdicts(fresh, built, guard=CaseOptions().guard)
+    assert first == again
+    assert [rigid_summary(v) for v in plain] == first
+    plain_half = rigid_verdicts(fresh, built, time_step=0.5 * verdict_time_step(fresh),
+                                guard=False)
+    assert [v.to_dict() for v in plain_half] == [v.to_dict() for v in halves]
+    assert {v.outcome.value for v in plain} >= {"collapse", "survives"}  # both kinds compared

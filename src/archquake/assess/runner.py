@@ -16,7 +16,7 @@ from __future__ import annotations
 import json
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -180,13 +180,47 @@ def _tagged(progress: Callable[[str], None] | None, name: str
     return lambda line: progress(f"  [{name}] {line.strip()}")
 
 
-#: The sections whose data each section reads (``Context.prior``): a section starts once these
-#: are done. The validity section does not wait for the DEM check; the DEM check's warnings are
-#: added to it afterwards (`with_dem_warnings`).
+#: The sections whose data each section reads (``Context.prior``). The validity section does not
+#: wait for the DEM check; the DEM check's warnings are added to it afterwards
+#: (`with_dem_warnings`).
 NEEDS: dict[str, tuple[str, ...]] = {
     "arch": (), "static": (), "traffic": (), "codecheck": (), "pulses": (), "records": (),
     "dem": ("static", "pulses", "records"), "validity": ("static", "pulses", "records"),
     "vertical": ("records",)}
+#: Of `NEEDS`, the sections a section reads only once it has started the work that does not
+#: depend on them: side by side, it starts once the others are done, and its reading of one of
+#: these waits until that one is done (the DEM check's and the validity section's pulse runs
+#: need only the pulses; only their governing record's runs wait for the records' IDA).
+LATER: dict[str, tuple[str, ...]] = {"dem": ("records",), "validity": ("records",)}
+
+
+class _Prior(Mapping):
+    """The data of the sections ``names`` (`NEEDS`) in ``results``, each read waiting until its
+    section is done (`LATER`); a section that failed or was not run reads as absent (the
+    failure itself reaches the caller from its own section)."""
+
+    def __init__(self, names, results: dict, done: dict, failed: dict):
+        self._names = tuple(n for n in names if n in done or n in results)
+        self._results, self._done, self._failed = results, done, failed
+
+    def __getitem__(self, name: str) -> dict:
+        if name not in self._names:
+            raise KeyError(name)
+        if name in self._done:
+            self._done[name].wait()
+        if name in self._failed or name not in self._results:
+            raise _Lost(name)
+        return self._results[name].data
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+
+class _Lost(Exception):
+    """A section read the data of one that failed (that failure is the one raised)."""
 
 
 def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> None:
@@ -211,12 +245,13 @@ def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> N
 
     def task(k: int, name: str) -> None:
         try:
-            for dep in NEEDS[name]:
+            first = [dep for dep in NEEDS[name] if dep not in LATER.get(name, ())]
+            for dep in first:
                 if dep in done:
                     done[dep].wait()
-            lost = [dep for dep in NEEDS[name] if dep in failed]
+            lost = [dep for dep in first if dep in failed]
             if not lost:
-                run(k, name, prior_of(name))
+                run(k, name, _Prior(NEEDS[name], results, done, failed))
         except BaseException as exc:  # handed to the waiting thread, which raises it
             failed[name] = exc
         finally:
@@ -231,4 +266,4 @@ def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> N
             raise failed[name]
 
 
-__all__ = ["NEEDS", "Assessment", "run_assessment", "section_names"]
+__all__ = ["LATER", "NEEDS", "Assessment", "run_assessment", "section_names"]

@@ -156,12 +156,11 @@ class Context:
 
     def rigid_body(self):
         """What the rigid chain and the DEM run: the arch, or with loads its assembly whose
-        blocks carry them (`archquake.blocks.assembly.build_arch_assembly`)."""
-        if self.loads is None:
-            return self.arch
-        from archquake.blocks.assembly import build_arch_assembly
+        blocks carry them (`archquake.ida.batch.rigid_body`: one object for the whole
+        assessment, its IDA's rounds included)."""
+        from archquake.ida.batch import rigid_body
 
-        return build_arch_assembly(self.arch, loads=self.loads)
+        return rigid_body(self.arch, self.loads)
 
     def collapse_acceleration_g(self) -> float:
         """lambda, g: the equivalent static analysis's, with the loads when the arch carries
@@ -863,70 +862,114 @@ def _bump(count: list) -> int:
     return count[0]
 
 
-def section_dem(ctx: Context) -> StudyResult:
+def _runs(ctx: Context, name: str) -> bool:
+    """Whether section ``name``'s data is among ``ctx.prior``'s keys (run, or running side by
+    side): the keys are listed without waiting for the data."""
+    return any(key == name for key in ctx.prior)
+
+
+def _dem_pulse_jobs(ctx: Context) -> list[tuple[str, float, Any, float, float]]:
+    """The DEM check's step-pulse runs: (case, factor, motion, duration s, level g) at each
+    of the mode's factors of the governing step boundary (read from the pulses section)."""
+    jobs: list[tuple[str, float, Any, float, float]] = []
+    step = ctx.prior.get("pulses", {}).get("step")
+    if step is None:
+        return jobs
+    coll = np.asarray(step["collapse_g"], dtype=float)
+    durs = np.asarray(step["durations_s"], dtype=float)
+    lam = ctx.prior["static"]["collapse_acceleration_g"]
+    finite = np.flatnonzero(np.isfinite(coll))
+    # the longest duration whose boundary stays well above lambda (1.2x) at every factor run
+    clear = [j for j in finite if min(ctx.mode.dem_factors) * coll[j] > 1.2 * lam]
+    if finite.size:
+        i = int(clear[-1] if clear else finite[finite.size // 2])
+        from archquake.ground.pulses import StepImpulse
+
+        for f in ctx.mode.dem_factors:
+            mag = f * coll[i]
+            jobs.append((f"step pulse t_p = {durs[i]:.3g} s", f,
+                         StepImpulse.from_g(mag, float(durs[i]), -1), float(durs[i]) + 3.0,
+                         mag))
+    return jobs
+
+
+def _dem_record_jobs(ctx: Context, data: dict) -> list[tuple[str, float, Any, float, float]]:
+    """The DEM check's runs of the governing record (read from the records section: side by
+    side, this waits for it), as `_dem_pulse_jobs`; ``data`` gets ``record_case`` and,
+    with a record, its cut and window."""
     from archquake.ground.suites import load_suite
 
-    jobs: list[tuple[str, float, Any, float, float]] = []  # (case, factor, motion, duration, level)
-    data: dict[str, Any] = {"model": ctx.config.model, "factors": list(ctx.mode.dem_factors),
-                            "cases": []}
-    pul = ctx.prior.get("pulses", {})
-    step = pul.get("step")
-    if step is not None:
-        coll = np.asarray(step["collapse_g"], dtype=float)
-        durs = np.asarray(step["durations_s"], dtype=float)
-        lam = ctx.prior["static"]["collapse_acceleration_g"]
-        finite = np.flatnonzero(np.isfinite(coll))
-        # the longest duration whose boundary stays well above lambda (1.2x) at every factor run
-        clear = [j for j in finite if min(ctx.mode.dem_factors) * coll[j] > 1.2 * lam]
-        if finite.size:
-            i = int(clear[-1] if clear else finite[finite.size // 2])
-            from archquake.ground.pulses import StepImpulse
-
-            for f in ctx.mode.dem_factors:
-                mag = f * coll[i]
-                jobs.append((f"step pulse t_p = {durs[i]:.3g} s", f,
-                             StepImpulse.from_g(mag, float(durs[i]), -1), float(durs[i]) + 3.0,
-                             mag))
+    jobs: list[tuple[str, float, Any, float, float]] = []
     gov = ctx.prior.get("records", {}).get("governing")
     data["record_case"] = gov is not None
-    if gov is not None:
-        cfg = ctx.config
-        suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
-                           units=cfg.units)
-        rec = suite.records[gov["index"]]
-        # the record cut where 95 % of its Arias intensity has arrived, and run 3 s past the
-        # cut: a window that ends after the motion does, so the DEM can find the arch at rest
-        # (survives), not only collapsed; the model runs the same cut record
-        cut = min(float(rec.duration), strong_motion_end(rec))
-        rec = rec.truncated(cut)
-        end = float(rec.duration) + 3.0
-        for f in ctx.mode.dem_factors:
-            level = f * gov["first_collapse_g"]
-            jobs.append((f"record {gov['record']}", f, rec.scaled(level / gov["pga_unscaled_g"]),
-                         end, level))
-        data["record_cut_s"] = float(rec.duration)
-        data["record_window_s"] = end
-    ctx.say(f"  {len(jobs)} DEM runs")
+    if gov is None:
+        return jobs
+    cfg = ctx.config
+    suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                       units=cfg.units)
+    rec = suite.records[gov["index"]]
+    # the record cut where 95 % of its Arias intensity has arrived, and run 3 s past the
+    # cut: a window that ends after the motion does, so the DEM can find the arch at rest
+    # (survives), not only collapsed; the model runs the same cut record
+    cut = min(float(rec.duration), strong_motion_end(rec))
+    rec = rec.truncated(cut)
+    end = float(rec.duration) + 3.0
+    for f in ctx.mode.dem_factors:
+        level = f * gov["first_collapse_g"]
+        jobs.append((f"record {gov['record']}", f, rec.scaled(level / gov["pga_unscaled_g"]),
+                     end, level))
+    data["record_cut_s"] = float(rec.duration)
+    data["record_window_s"] = end
+    return jobs
+
+
+def section_dem(ctx: Context) -> StudyResult:
+    """The DEM check: the DEM and the configuration's model at fractions of the model's
+    collapse level, for the governing step pulse and the governing record.
+
+    The pulse's runs start first; side by side with the other sections they run while the
+    records' IDA goes on, and only the record's runs wait for it (`_dem_record_jobs`)."""
+    data: dict[str, Any] = {"model": ctx.config.model, "factors": list(ctx.mode.dem_factors),
+                            "cases": []}
     # the model's own verdict at each level run, beside the DEM's: a level below the model's
     # reported one is not assumed to survive (a search can miss a band of collapses below it)
     # (a pulse's as its domain search ran it, a record's to a verdict as the IDA ran it)
     from archquake.domains.blocks import DOMAIN_TAIL
 
     tail = DOMAIN_TAIL * math.sqrt(float(ctx.arch.radius) / STANDARD_GRAVITY)
-    windows = [None if case.startswith("record") or not models.spec(ctx.config.model).blocks
-               else float(m.duration) + tail for case, _, m, _, _ in jobs]
+
+    def windows(jobs: list) -> list:
+        return [None if case.startswith("record") or not models.spec(ctx.config.model).blocks
+                else float(m.duration) + tail for case, _, m, _, _ in jobs]
+
     body = ctx.rigid_body()  # the DEM's blocks carry the loads as the rigid chain's do
-    if len(jobs) <= 1:
-        model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
+    jobs = _dem_pulse_jobs(ctx)
+    # the record's runs, if the records section runs (known before it ends)
+    planned = len(jobs) + (len(ctx.mode.dem_factors) if _runs(ctx, "records") else 0)
+    ctx.say(f"  {planned} DEM runs")
+    if planned <= 1:
+        jobs += _dem_record_jobs(ctx, data)
+        model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows(jobs))
         outcomes = [_dem_outcome(body, m, dur) for _, _, m, dur, _ in jobs]
     else:
-        with interruptible_pool(min(workers(), len(jobs))) as pool:
-            futures = [pool.submit(_dem_outcome, body, m, dur) for _, _, m, dur, _ in jobs]
-            tick, ran = ctx.counter("DEM runs", len(jobs)), [0]
+        with interruptible_pool(min(workers(), planned)) as pool:
+            tick, ran = ctx.counter("DEM runs", planned), [0]
             with tick:
-                for fu in futures:
-                    fu.add_done_callback(lambda _: tick(_bump(ran)))
-                model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows)
+                futures = []
+
+                def submit(batch: list) -> None:
+                    for _, _, m, dur, _ in batch:
+                        fu = pool.submit(_dem_outcome, body, m, dur)
+                        fu.add_done_callback(lambda _: tick(_bump(ran)))
+                        futures.append(fu)
+
+                submit(jobs)
+                model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows(jobs))
+                later = _dem_record_jobs(ctx, data)
+                submit(later)
+                tick(ran[0], len(jobs) + len(later))
+                model += _model_outcomes(ctx, [m for _, _, m, _, _ in later], windows(later))
+                jobs += later
                 outcomes = [fu.result() for fu in futures]
     by_case: dict[str, dict] = {}
     for (case, f, _, dur, level), outcome, mine in zip(jobs, outcomes, model, strict=True):
@@ -1007,14 +1050,19 @@ def section_validity(ctx: Context) -> StudyResult:
                  "domain", "a stronger pulse is not always worse: some pulses above a collapsing "
                  "one leave the arch standing (do not read safety from a larger survived pulse)",
                  serious=False)
+    # the sensitivity runs start before the records are read (side by side, its pulses' runs
+    # go while the records' IDA does); its warnings come after the records' in the list
+    later: list[tuple[tuple, dict]] = []
+    step_sens = (_rigid_sensitivity(ctx, lambda *a, **k: later.append((a, k)))
+                 if models.takes(cfg.model, "guard") and ctx.site is not None
+                 and "pulses" in ctx.prior else [])
     rec = ctx.prior.get("records", {})
     if rec.get("records_with_resurrections"):
         warn("resurrections", f"{rec['records_with_resurrections']} record(s) collapse the arch "
              "at some scale and not at a larger one", "the IDA curves are not monotonic; the "
              "first-collapse fit is the one that counts", serious=False)
-    step_sens = (_rigid_sensitivity(ctx, warn) if models.takes(cfg.model, "guard")
-                 and ctx.site is not None
-                 and "pulses" in ctx.prior else [])
+    for args, kwargs in later:
+        warn(*args, **kwargs)
     # restitution sensitivity (four-link model): the pulse verdict at c_v +- 0.1
     sens = []
     if models.takes(cfg.model, "restitution") and ctx.site is not None and "pulses" in ctx.prior:
@@ -1143,36 +1191,53 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
         durs = np.asarray(pulses[fam]["durations_s"], dtype=float)
         for d in durs[_nearest_boundaries(pulses[fam], site, 2 if ctx.mode.quick else None)]:
             cases.append((f"{fam} {sym} = {d:.3g} s", make(site, float(d), -1)))
-    gov = ctx.prior.get("records", {}).get("governing")
-    if gov is not None:
-        from archquake.ground.suites import load_suite
-
-        cfg = ctx.config
-        suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
-                           units=cfg.units)
-        rec = suite.records[gov["index"]]
-        cases.append((f"record {gov['record']}", rec.scaled(site / gov["pga_unscaled_g"])))
-    ctx.say(f"  {len(cases)} cases at the site PGA x 3 (step, half step, friction)")
-    motions = [m for _, m in cases]
+    # the governing record's case, if the records section runs (known before it ends)
+    planned = len(cases) + (1 if _runs(ctx, "records") else 0)
+    ctx.say(f"  {planned} cases at the site PGA x 3 (step, half step, friction)")
     body = ctx.rigid_body()
     h = verdict_time_step(body)
-    windows = _windows(ctx, motions, [None] * len(motions))
     mu = ctx.config.friction
     fine = min(h, DEFAULT_TIME_STEP)
-    tick = ctx.counter("sensitivity runs", 3 * len(motions))
+    tick = ctx.counter("sensitivity runs", 3 * planned)
     done = [0]
-    with tick, interruptible_pool(min(workers(), len(motions))) as pool:
-        # Coulomb joints at the verdict's step, in worker processes while the verdicts run
-        futures = [pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h, ctx.loads)
-                   for m in motions]
-        for fu in futures:
+    default: list = []
+    half: list = []
+    futures: list = []
+
+    def start(batch: list) -> None:
+        """The runs of ``batch``'s cases: Coulomb joints at the verdict's step in worker
+        processes, while the verdicts at the step and at half of it run here."""
+        motions = [m for _, m in batch]
+        windows = _windows(ctx, motions, [None] * len(motions))
+        for m in motions:
+            fu = pool.submit(_rigid_friction_outcome, ctx.arch, m, mu, h, ctx.loads)
             fu.add_done_callback(lambda _: tick(_bump(done)))
-        default = rigid_verdicts(body, motions, time_step=h, duration=windows)
+            futures.append(fu)
+        if not motions:
+            return
+        default.extend(rigid_verdicts(body, motions, time_step=h, duration=windows))
         done[0] += len(motions) - 1
         tick(_bump(done))
-        half = rigid_verdicts(body, motions, time_step=0.5 * h, duration=windows)
+        half.extend(rigid_verdicts(body, motions, time_step=0.5 * h, duration=windows))
         done[0] += len(motions) - 1
         tick(_bump(done))
+
+    with tick, interruptible_pool(min(workers(), max(planned, 1))) as pool:
+        # the pulses' cases first; side by side, they run while the records' IDA goes on
+        start(cases)
+        gov = ctx.prior.get("records", {}).get("governing")  # side by side: waits for it
+        if gov is not None:
+            from archquake.ground.suites import load_suite
+
+            cfg = ctx.config
+            suite = load_suite(list(cfg.suite) if isinstance(cfg.suite, tuple) else cfg.suite,
+                               units=cfg.units)
+            rec = suite.records[gov["index"]]
+            record = [(f"record {gov['record']}", rec.scaled(site / gov["pga_unscaled_g"]))]
+            cases += record
+            start(record)
+        motions = [m for _, m in cases]
+        tick(done[0], 3 * len(motions))
         slid = [fu.result() for fu in futures]
         slid_steps = [h] * len(motions)
         # a friction verdict that differs from the no-slip chain's (one the report warns about

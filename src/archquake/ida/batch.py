@@ -12,6 +12,7 @@ rotation of the run. It is a smaller summary than `archquake.sweeps.evaluate_cas
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -156,13 +157,25 @@ def _groups(cases: Sequence[Case], model: Model, runs: str, out: list,
 
 
 def _body(arch, loads):
-    """What the rigid chain runs for a case: the arch, or its blocks carrying ``loads``."""
-    built = arch.build()
+    """What the rigid chain runs for a case (``arch`` its `ArchSpec`): `rigid_body`."""
+    return rigid_body(arch.build(), loads)
+
+
+@functools.lru_cache(maxsize=16)
+def rigid_body(arch, loads):
+    """What the rigid chain runs for ``arch`` (an `Arch`): the arch, or with ``loads`` its
+    blocks carrying them (`archquake.blocks.assembly.build_arch_assembly`), built once per
+    (arch, loads), both frozen and compared by value.
+
+    One object for equal inputs, so that the chain's model and its verdict arrays, memoised
+    on the object (`archquake.rigid.verdict.rigid_model`), are built once too: for a
+    loaded arch the onset accelerations are found by bisection (about a second), which every
+    round of an incremental dynamic analysis repeated on a fresh assembly."""
     if loads is None:
-        return built
+        return arch
     from archquake.blocks.assembly import build_arch_assembly
 
-    return build_arch_assembly(built, loads=loads)
+    return build_arch_assembly(arch, loads=loads)
 
 
 def _fourlink_options(case: Case) -> ArchquakeError | None:
@@ -265,4 +278,4 @@ BATCHES: dict[Model, Callable[..., list[Any]]] = {Model.FOURLINK: evaluate_cases
 
 
 __all__ = ["BATCHES", "BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases",
-           "rigid_half_step_verdicts", "thread_order"]
+           "rigid_body", "rigid_half_step_verdicts", "thread_order"]
