@@ -121,7 +121,7 @@ def test_validity_starts_the_pulses_before_the_records_and_reports_alike(tmp_pat
     rows = plain.data["step_sensitivity"]
     assert len(rows) == 5 and rows[-1]["case"].startswith("record")  # 2 + 2 pulses, 1 record
     keys = [w["key"] for w in plain.data["warnings"]]
-    assert "resurrections" in keys and "friction_survival" in keys or "friction_collapse" in keys
+    assert "resurrections" in keys and ("friction_survival" in keys or "friction_collapse" in keys)
     # the records' warning keeps its place before the sensitivity runs'
     assert keys.index("resurrections") < min(keys.index(k) for k in keys
                                              if k.startswith("friction") or k == "time_step")
