@@ -11,6 +11,7 @@ from pathlib import Path
 from archquake import __version__, models
 from archquake.assess.sections import assumptions
 from archquake.assess.site import report_code_check
+from archquake.blocks.result import REST_KINETIC
 from archquake.reproduce.report import REPORT_CSS, image_data_uri, md_cell
 
 #: The verdict's colour follows its outcome (archquake.assess.sections.OUTCOMES), never its
@@ -316,10 +317,16 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                         f"step pulse on the {who}'s domain boundary and the record whose first "
                         "collapse is nearest the fragility median, run at fractions of the "
                         f"{who}'s collapse level (where it survives)."
+                   + (f" The DEM runs the pulse up to {d['dem_pulse_tail_s']:.1f} s after it "
+                      f"(twice the {who}'s window: its elastic contacts take longer to come "
+                      "to rest)." if "dem_pulse_tail_s" in d else "")
                    + (f" The record is cut where 95 % of its Arias intensity has arrived "
                       f"({d['record_cut_s']:.1f} s), and both models run it to 3 s after the "
                       f"cut ({d['record_window_s']:.1f} s), so that the DEM can come to rest."
-                      if "record_cut_s" in d else "")))
+                      if "record_cut_s" in d else "")
+                   + " Every DEM run ends once collapsed or at rest after the ground motion "
+                     f"(the kinetic energy below {REST_KINETIC:g} W L over a still window): its "
+                     "verdict is then the one the rest of the window would give."))
         if rep.quick:
             el.append(("p", f"Quick mode: one DEM run per case, at 0.85 x the {who}'s level; "
                             "the full mode runs 1.0, 0.85 and 0.7 x."))

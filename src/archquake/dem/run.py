@@ -29,7 +29,14 @@ import archquake.dem._kernels as K
 from archquake._validate import require_gravity
 from archquake.blocks.assembly import Assembly, build_arch_assembly
 from archquake.blocks.criteria import DEFAULT_TAIL, default_window
-from archquake.blocks.result import BlockResult, collapse_parameters, crown_height, excitation_end
+from archquake.blocks.result import (
+    BlockResult,
+    collapse_parameters,
+    crown_height,
+    excitation_end,
+    rest_threshold,
+    settled,
+)
 from archquake.constants import STANDARD_GRAVITY
 from archquake.dem._kernels import Packed
 from archquake.dem.settings import DemSettings
@@ -371,8 +378,9 @@ def simulate_dem(
     criteria = settings.criteria
     cpar = collapse_parameters(assembly, criteria, math.nan)
 
-    def advance(packed, span, out):
-        ref = packed.state[:, :3].copy()
+    def advance(packed, ref, span, out):
+        """Run ``span``, rebuilding the neighbour lists (built at the positions ``ref``) as the
+        blocks move; returns (packed, ref, next step, status)."""
         while True:
             n, status = K.run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out)
             if not np.all(np.isfinite(packed.state)):
@@ -385,12 +393,13 @@ def simulate_dem(
                 ref = packed.state[:, :3].copy()
                 span = span._replace(step0=n)
                 continue
-            return packed, n
+            return packed, ref, n, status
 
     if settle_steps:
         none = K.Output(np.zeros(0), np.zeros((0, assembly.n_blocks, 6)), np.zeros((0, 8)),
                         np.zeros(1, dtype=np.int64))
-        packed, _ = advance(packed, K.Span(0, settle_steps, 0, False, True, False), none)
+        packed, _, _, _ = advance(packed, packed.state[:, :3].copy(),
+                                  K.Span(0, settle_steps, 0, False, True, False), none)
     # start from rest, with the settled contact forces
     packed.state[:, 3:] = 0.0
     packed = packed._replace(y_ref=packed.state[:, 1].copy())
@@ -400,13 +409,34 @@ def simulate_dem(
     out = K.Output(np.zeros(n_out), np.zeros((n_out, assembly.n_blocks, 6)), np.zeros((n_out, 8)),
                    np.zeros(1, dtype=np.int64))
     span = K.Span(0, n_steps, out_every, True, False, settings.stop_at_collapse)
-    packed, taken = advance(packed, span, out)
+    ref = packed.state[:, :3].copy()
+    exc_end = excitation_end(motion)
+    if not settings.stop_at_rest or exc_end is None:
+        packed, ref, taken, _ = advance(packed, ref, span, out)
+    else:
+        # in stretches of a quarter of the rest window, checking between them whether the run
+        # is at rest after the excitation (the samples and the state are those of one run:
+        # the same numbers as without the stops)
+        window = rest_threshold(assembly, g)[1]
+        stretch = max(out_every, int(0.25 * window / dt) // out_every * out_every)
+        first = max(0, int(math.ceil((exc_end + window) / dt)))
+        taken = 0
+        while taken < n_steps:
+            upto = min(n_steps, max(first, taken + stretch))
+            packed, ref, taken, status = advance(packed, ref, span._replace(step0=taken,
+                                                                           n_steps=upto), out)
+            if status == K.STATUS_COLLAPSE:
+                break
+            k = int(out.written[0])
+            if taken >= first and settled(assembly, g, out.times[:k], out.energies[:k, 0],
+                                          exc_end):
+                break
     k = int(out.written[0])
     return BlockResult.from_samples(
         assembly, settings,
         motion.to_dict() if hasattr(motion, "to_dict") else {"name": str(motion)}, g,
         dt, omega, taken, settle_steps, out.times[:k], out.states[:k], out.energies[:k],
-        excitation_end=excitation_end(motion),
+        excitation_end=exc_end,
     )
 
 

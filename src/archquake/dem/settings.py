@@ -117,6 +117,12 @@ class DemSettings:
         The thresholds both block models read, held as a
         `archquake.blocks.criteria.BlockCriteria` (``criteria``; see it for their
         meaning and units).
+    stop_at_rest : bool
+        End the run once it is at rest after the excitation (`archquake.blocks.result.settled`
+        on the samples so far: the rule by which a run's verdict is ``survives``), instead of
+        at ``duration``. After the excitation the energy can only decrease, so the verdict is
+        the one the whole run would give; ``duration`` is then the longest the run may take.
+        Default False: the run covers ``duration`` (its histories to the end).
     """
 
     contact: ContactLaw = ContactLaw()
@@ -130,6 +136,7 @@ class DemSettings:
     collapse_rotation: float = 0.5 * math.pi
     hinge_opening: float = 1.0e-4
     stop_at_collapse: bool = True
+    stop_at_rest: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.contact, ContactLaw):
@@ -182,6 +189,7 @@ class DemSettings:
         object.__setattr__(self, "collapse_rotation", criteria.collapse_rotation)
         object.__setattr__(self, "hinge_opening", criteria.hinge_opening)
         object.__setattr__(self, "stop_at_collapse", criteria.stop_at_collapse)
+        object.__setattr__(self, "stop_at_rest", bool(self.stop_at_rest))
 
     @property
     def criteria(self) -> BlockCriteria:
