@@ -458,19 +458,27 @@ def default_dem_duration(arch, motion: GroundMotion, *, tail: float = DEFAULT_TA
     return default_window(motion, arch.radius, tail=tail, g=g)
 
 
-#: Tails (sqrt(R/g)) tried in turn by `dem_to_verdict` while the DEM ends still moving.
+#: Tails (sqrt(R/g)) after the excitation within which `dem_to_verdict` looks for a verdict.
 VERDICT_TAILS = (DEFAULT_TAIL, 10.0, 20.0)
 
 
 def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
                    radius: float | None = None, tails=VERDICT_TAILS,
                    g: float = STANDARD_GRAVITY) -> BlockResult:
-    """The DEM run long enough for a verdict: for the end of the excitation plus each of
-    ``tails`` sqrt(R/g) in turn, until the outcome is not ``indeterminate`` (the arch collapsed,
-    never hinged, or is at rest: `archquake.blocks.result.settled`); the last run is returned
-    (``indeterminate`` if the arch still moves after the longest tail). The DEM cannot be
-    resumed, so each try reruns from the start: a run that needs the second tail costs about
-    three times the first. A longer try beyond ``ranges.DEM_T_END_MAX_S`` is not made.
+    """The DEM run long enough for a verdict: one run to the end of the excitation plus the
+    longest of ``tails`` sqrt(R/g) that stays within ``ranges.DEM_T_END_MAX_S`` (the first
+    one at least), ending at the collapse or once at rest after the excitation
+    (``DemSettings.stop_at_rest``: `archquake.blocks.result.settled`, the rule of the
+    ``survives`` verdict). Its outcome is ``indeterminate`` only if the arch still moves at
+    the end of the longest tail.
+
+    This is the verdict that running each tail in turn from the start, until one is not
+    ``indeterminate``, gives: after the excitation the energy can only decrease, so an arch at
+    rest stays at rest, and an arch still moving at the end of one tail was not at rest
+    before it. It costs one run up to the verdict, where the tries cost a run per tail (a
+    verdict in the second tail about three times the first's). A motion that does not say when
+    it ends (no ``duration``) is run tail by tail as before, since its rest is not read
+    against an end.
 
     ``radius``: R, m (default: the arch's; required for an Assembly)."""
     from archquake.outcome import Outcome
@@ -480,11 +488,14 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
         raise InvalidParameterError("tails must give at least one tail, in sqrt(R/g)")
     r = float(radius if radius is not None else arch_or_assembly.radius)
     base = DemSettings() if settings is None else settings
+    windows = [default_window(motion, r, tail=tail, g=g) for tail in tails]
+    within = [w for w in windows[1:] if w <= DEM_T_END_MAX_S]
+    if excitation_end(motion) is not None:
+        longest = max([windows[0], *within])
+        return simulate_dem(arch_or_assembly, motion,
+                            base.with_(duration=longest, stop_at_rest=True), g=g)
     result = None
-    for tail in tails:
-        duration = default_window(motion, r, tail=tail, g=g)
-        if result is not None and duration > DEM_T_END_MAX_S:
-            break
+    for duration in [windows[0], *within]:
         result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)
         if result.outcome is not Outcome.INDETERMINATE:
             break

@@ -556,8 +556,7 @@ def rigid_to_verdict(arch, motion, *, friction: float | None = None,
     `archquake.blocks.default_window` (the end of the excitation + 5 sqrt(R/g)) and, if
     the arch still moves then, on until it is at rest or collapses, up to the end of the
     excitation + 60 sqrt(R/g) (`rigid_window`), however long the record. The rigid chain
-    resumes where it stopped (unlike the DEM, `archquake.dem.run.dem_to_verdict`), so a long
-    tail costs only its own steps.
+    resumes where it stopped, so a long tail costs only its own steps.
 
     The default window of ``archquake run`` (``--model rigid``), sweeps and the rigid IDA.
 

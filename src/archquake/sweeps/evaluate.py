@@ -7,8 +7,8 @@ processes and Dask workers (a plain module-level function). It runs the case's m
 
 - ``fourlink``: the four-link rocking mechanism with impacts, without its samples;
 - ``dem``: the arch with every voussoir a block, the paper's contact stiffness and damping
-  (``DemSettings()``), for ``t_end_s`` (default: until a verdict, the end of the excitation + 5,
-  then 10, then 20 sqrt(R/g) while the arch still moves, `archquake.dem.run.dem_to_verdict`);
+  (``DemSettings()``), for ``t_end_s`` (default: until a verdict, at rest or collapsed, within
+  the end of the excitation + 20 sqrt(R/g), `archquake.dem.run.dem_to_verdict`);
   ``restitution`` and ``impact`` do not apply to it (a case giving one is refused);
 - ``rigid``: the chain of rigid blocks (hinges moving, the DEM's rigid limit). Without
   ``t_end_s``: its verdict (`archquake.rigid.rigid_verdict`: the step scaled with the
