@@ -132,3 +132,37 @@ def test_dem_warnings_fold_into_validity_in_report_order():
     keys = [w["key"] for w in with_dem_warnings(validity, dem, "rigid")["warnings"]]
     assert keys == ["sliding", "dem", "model_below_level", "time_step"]
 
+
+
+def test_a_shared_value_reaches_its_readers_before_its_section_ends():
+    """The records section shares its governing record before its figures and bootstrap
+    intervals (`Context.share`); the DEM check's and the validity section's reads of it
+    (`Context.early`) return then, not when the records section ends. Oracle: the records
+    section ends only once both readers have the value (it would wait forever, here 5 s, if
+    they waited for its end), and a section that never shares reads as its data once done."""
+    from archquake.assess.runner import _Shared
+
+    shared = _Shared()
+    results: dict = {}
+    got: dict = {}
+    both = threading.Barrier(3, timeout=5.0)
+
+    def run(k, name, prior):
+        if name == "records":
+            shared.put("records", "governing", {"record": "R"})
+            both.wait()  # the two readers have it while this section still runs
+            data = {"governing": {"record": "R"}, "other": 1}
+        elif name in ("dem", "validity"):
+            governing = prior.early("records", "governing")
+            both.wait()
+            # a key the section does not share: its data, once it is done
+            got[name] = (governing, prior.early("records", "other"),
+                         prior.early("codecheck", "anything", "absent"))
+            data = {}
+        else:
+            data = {}
+        results[name] = StudyResult(name, name, (), (), (), data)
+
+    _run_sections(NAMES, run, results, True, shared)
+    for name in ("dem", "validity"):
+        assert got[name] == ({"record": "R"}, 1, "absent")

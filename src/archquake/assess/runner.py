@@ -121,6 +121,8 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
     if progress is not None and side_by_side:
         progress = _one_at_a_time(progress)
 
+    shared = _Shared()
+
     def run(k: int, name: str, prior: dict) -> None:
         key = f"assess-{name}-{config.digest}"
         hit = None if force else load_cached(out, key, quick)
@@ -133,7 +135,8 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
         if progress:
             progress(f"{head} ...")
         ctx = Context(config, arch, Mode(quick), figures, out, prior,
-                      _tagged(progress, name) if side_by_side else progress)
+                      _tagged(progress, name) if side_by_side else progress,
+                      lambda key, value: shared.put(name, key, value))
         s0 = time.perf_counter()
         res = funcs[name](ctx)
         res = replace(res, name=key, seconds=time.perf_counter() - s0)
@@ -144,7 +147,7 @@ def run_assessment(config: AssessConfig, out: str | Path, *, quick: bool = False
         if progress:
             progress(f"{head}: {res.seconds:.1f} s")
 
-    _run_sections(names, run, results, side_by_side)
+    _run_sections(names, run, results, side_by_side, shared)
     results = {n: results[n] for n in names}  # the report's order
     if "validity" in results:
         va = results["validity"]
@@ -194,14 +197,53 @@ NEEDS: dict[str, tuple[str, ...]] = {
 LATER: dict[str, tuple[str, ...]] = {"dem": ("records",), "validity": ("records",)}
 
 
+class _Shared:
+    """Values of sections' data handed out before their sections are done
+    (`archquake.assess.sections.Context.share`), and the waits for them."""
+
+    def __init__(self) -> None:
+        self._values: dict[str, dict] = {}
+        self._changed = threading.Condition()
+
+    def put(self, name: str, key: str, value) -> None:
+        with self._changed:
+            self._values.setdefault(name, {})[key] = value
+            self._changed.notify_all()
+
+    def wait(self, name: str, key: str, done: threading.Event) -> tuple[bool, object]:
+        """(True, the value) once section ``name`` has shared ``key``, or (False, None) once
+        it is done without sharing it."""
+        with self._changed:
+            while True:
+                if key in self._values.get(name, {}):
+                    return True, self._values[name][key]
+                if done.is_set():
+                    return False, None
+                self._changed.wait(0.2)
+
+
 class _Prior(Mapping):
     """The data of the sections ``names`` (`NEEDS`) in ``results``, each read waiting until its
-    section is done (`LATER`); a section that failed or was not run reads as absent (the
-    failure itself reaches the caller from its own section)."""
+    section is done (`LATER`), or, with `early`, until it shares the value read; a section
+    that failed or was not run reads as absent (the failure itself reaches the caller from its
+    own section)."""
 
-    def __init__(self, names, results: dict, done: dict, failed: dict):
+    def __init__(self, names, results: dict, done: dict, failed: dict,
+                 shared: _Shared | None = None):
         self._names = tuple(n for n in names if n in done or n in results)
         self._results, self._done, self._failed = results, done, failed
+        self._shared = _Shared() if shared is None else shared
+
+    def early(self, name: str, key: str, default=None):
+        """``key`` of section ``name``'s data as soon as it is shared, else once the section is
+        done; ``default`` if the section does not run."""
+        if name not in self._names:
+            return default
+        if name in self._done:
+            found, value = self._shared.wait(name, key, self._done[name])
+            if found:
+                return value
+        return self[name].get(key, default)
 
     def __getitem__(self, name: str) -> dict:
         if name not in self._names:
@@ -223,7 +265,8 @@ class _Lost(Exception):
     """A section read the data of one that failed (that failure is the one raised)."""
 
 
-def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> None:
+def _run_sections(names: list[str], run, results: dict, side_by_side: bool,
+                  shared: _Shared | None = None) -> None:
     """Call ``run(k, name, prior)`` for every section, ``prior`` the data of the sections it
     needs (`NEEDS`): one after another, or with ``side_by_side`` each in its own thread
     as soon as those are done (the chain of rigid voussoirs' sections spend their time in
@@ -251,7 +294,7 @@ def _run_sections(names: list[str], run, results: dict, side_by_side: bool) -> N
                     done[dep].wait()
             lost = [dep for dep in first if dep in failed]
             if not lost:
-                run(k, name, _Prior(NEEDS[name], results, done, failed))
+                run(k, name, _Prior(NEEDS[name], results, done, failed, shared))
         except BaseException as exc:  # handed to the waiting thread, which raises it
             failed[name] = exc
         finally:

@@ -135,6 +135,23 @@ class Context:
     out: Path
     prior: dict = field(default_factory=dict)
     progress: Callable[[str], None] | None = None
+    #: Hands a value of this section's data to the sections side by side that read it with
+    #: `early` before this section is done (the runner's; None: nobody reads early).
+    share_to: Callable[[str, Any], None] | None = None
+
+    def share(self, key: str, value: Any) -> None:
+        """Hand ``key`` of this section's data (the value its result will hold) to the
+        sections that wait for it (`early`), before this section is done."""
+        if self.share_to is not None:
+            self.share_to(key, value)
+
+    def early(self, name: str, key: str, default: Any = None) -> Any:
+        """``key`` of section ``name``'s data: side by side, as soon as that section shares it
+        (`share`) or is done; ``default`` if it does not run or holds no such key."""
+        reader = getattr(self.prior, "early", None)
+        if reader is not None:
+            return reader(name, key, default)
+        return self.prior.get(name, {}).get(key, default)
 
     def say(self, line: str) -> None:
         if self.progress is not None:
@@ -587,11 +604,16 @@ def _ida_progress(ctx: Context, records: int) -> Callable[[int, int, int], None]
     return lambda done, total, rounds: tick(done, total)
 
 
-def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None):
+def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = None,
+            analysed: Callable[[Any, Any, Any, Any], None] | None = None):
     """The IDA in PGA of the mode's records (all, or four in quick mode) with the
     configuration's model (the four-link model at ``restitution``, None: the impact law's
     own), its runs kept in a SQLite store under ``out/cache`` named by
     the input's digest, the restitution and the mode (so an interrupted run resumes them).
+
+    ``analysed(suite, records, result, first_fit)``, if given, is called once the runs are
+    done, before the fits' bootstrap intervals (seconds of fitting): ``first_fit`` the
+    first-collapse fit without its interval (None if it cannot be made).
 
     Returns
     -------
@@ -634,6 +656,16 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
                                                **loaded,
                                                progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
+    if analysed is not None:
+        from archquake.errors import InvalidParameterError
+        from archquake.ida.fragility import fit_first_collapse
+
+        try:  # the fit below makes it again from its memo
+            first_fit = fit_first_collapse(res.first_collapse_levels.tolist(),
+                                           ceiling=res.ceiling)
+        except InvalidParameterError:
+            first_fit = None
+        analysed(suite, records, res, first_fit)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
@@ -696,7 +728,14 @@ def section_records(ctx: Context) -> StudyResult:
     cfg = ctx.config
     cv = used_restitution(cfg, ctx.arch)[0] if models.takes(cfg.model, "restitution") else None
     # the prescribed c_v, or None: the law's own, whose validity then qualifies each verdict
-    suite, records, res, fits = run_ida(ctx, cfg.restitution)
+    governing: list = []
+
+    def analysed(suite, records, res, first_fit) -> None:
+        # the DEM check and the validity section wait for it, not for the figures and intervals
+        governing.append(_governing(suite, records, res, first_fit))
+        ctx.share("governing", governing[0])
+
+    suite, records, res, fits = run_ida(ctx, cfg.restitution, analysed=analysed)
     with DRAWING:  # the figures of sections run side by side, one at a time
         fig = MplFigure(figsize=(12, 6.0))
         a1, a2 = fig.subplots(1, 2)
@@ -727,23 +766,28 @@ def section_records(ctx: Context) -> StudyResult:
                 data["p_collapse_confidence"] = 0.9
         data["axis_top_g"] = _fit_records_axes(a1, a2, res, ctx.site)
         save(fig, ctx.figures / "records.png", dpi=110)
-    governing = None
-    if fit is not None and np.any(np.isfinite(first)):
-        i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
-                                      np.nan)))
-        rec = res.records[i]
-        assert rec.first_collapse is not None  # its first-collapse level is finite
-        governing = {"record": rec.name, "index": int(suite.records.index(records[i])),
-                     "first_collapse_g": float(first[i]),
-                     "survives_below_g": _num(rec.first_collapse.below),
-                     "pga_unscaled_g": float(rec.im_unscaled)}
-    data["governing"] = governing
+    data["governing"] = governing[0]
     return StudyResult("records", "4. Records", (),
                        (Figure("records.png", "IDA curves (left: PGA against peak rotation over "
                                "the crest rotation; the records that collapse first named) and "
                                "the fragility curves (right), site PGA dashed; PGA axes cut at "
                                f"{data['axis_top_g']:.3g} g (the IDA ran up to "
                                f"{res.ceiling:.3g} g)."),), (), data)
+
+
+def _governing(suite, records, res, fit) -> dict | None:
+    """The governing record of an IDA: the one whose first collapse is nearest the median of
+    the first-collapse fit ``fit`` (None without a fit or a collapse)."""
+    first = res.first_collapse_levels
+    if fit is None or not np.any(np.isfinite(first)):
+        return None
+    i = int(np.nanargmin(np.where(np.isfinite(first), np.abs(np.log(first / fit.median)),
+                                  np.nan)))
+    rec = res.records[i]
+    assert rec.first_collapse is not None  # its first-collapse level is finite
+    return {"record": rec.name, "index": int(suite.records.index(records[i])),
+            "first_collapse_g": float(first[i]), "survives_below_g": _num(rec.first_collapse.below),
+            "pga_unscaled_g": float(rec.im_unscaled)}
 
 
 # ----------------------------------------------------------------------------- the vertical
@@ -916,7 +960,7 @@ def _dem_record_jobs(ctx: Context, data: dict) -> list[tuple[str, float, Any, fl
     from archquake.ground.suites import load_suite
 
     jobs: list[tuple[str, float, Any, float, float]] = []
-    gov = ctx.prior.get("records", {}).get("governing")
+    gov = ctx.early("records", "governing")
     data["record_case"] = gov is not None
     if gov is None:
         return jobs
@@ -1243,7 +1287,7 @@ def _rigid_sensitivity(ctx: Context, warn) -> list[dict]:
     with tick, interruptible_pool(min(workers(), max(planned, 1))) as pool:
         # the pulses' cases first; side by side, they run while the records' IDA goes on
         start(cases)
-        gov = ctx.prior.get("records", {}).get("governing")  # side by side: waits for it
+        gov = ctx.early("records", "governing")  # side by side: waits for it
         if gov is not None:
             from archquake.ground.suites import load_suite
 
