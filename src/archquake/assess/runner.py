@@ -265,6 +265,42 @@ class _Lost(Exception):
     """A section read the data of one that failed (that failure is the one raised)."""
 
 
+#: What the sections import as they run, imported here before they start side by side. Two
+#: threads importing one package at once can each take the other's module lock; Python then
+#: hands one of them the package half initialised, and an import inside it fails
+#: ("cannot import name 'rigid' from 'archquake'": the pulses' verdicts importing
+#: `archquake.rigid.verdict` while the records' IDA imported `archquake.rigid`). Every
+#: package module the sections can reach, as a test reads them from the code.
+SECTION_MODULES = (
+    "archquake.assess.report", "archquake.blocks", "archquake.blocks.result", "archquake.codecheck",
+    "archquake.codecheck.timehistory", "archquake.codes", "archquake.compare", "archquake.compare.domains",
+    "archquake.compare.histories", "archquake.compare.snapshots", "archquake.dem", "archquake.dem.run",
+    "archquake.domains", "archquake.domains.batch", "archquake.domains.blocks", "archquake.domains.studies",
+    "archquake.geometry", "archquake.geometry.carrying", "archquake.geometry.survey", "archquake.ground",
+    "archquake.ground.response_spectra", "archquake.ground.selection", "archquake.ground.suites",
+    "archquake.ground.vertical", "archquake.ida", "archquake.ida._kernels", "archquake.ida.batch",
+    "archquake.ida.fragility", "archquake.limit", "archquake.limit.capacity", "archquake.limit.loaded",
+    "archquake.mechanism", "archquake.mechanism.impact_chain", "archquake.models", "archquake.plotting",
+    "archquake.plotting.arch", "archquake.plotting.codecheck", "archquake.plotting.compare",
+    "archquake.plotting.dem", "archquake.plotting.domains", "archquake.plotting.figures",
+    "archquake.plotting.history", "archquake.plotting.ida", "archquake.plotting.loads",
+    "archquake.plotting.spectra", "archquake.plotting.thrust", "archquake.reproduce",
+    "archquake.reproduce.registry", "archquake.reproduce.report", "archquake.rigid",
+    "archquake.rigid._force_kernels", "archquake.rigid.events", "archquake.rigid.forces",
+    "archquake.rigid.run", "archquake.rigid.verdict", "archquake.sweeps", "archquake.sweeps.evaluate",
+    "archquake.sweeps.runner", "archquake.sweeps.study", "archquake.thrust", "archquake.validation",
+    "archquake.validation.paper",
+)
+
+
+def import_section_modules() -> None:
+    """Import `SECTION_MODULES` (before the sections start in threads)."""
+    import importlib
+
+    for name in SECTION_MODULES:
+        importlib.import_module(name)
+
+
 def _run_sections(names: list[str], run, results: dict, side_by_side: bool,
                   shared: _Shared | None = None) -> None:
     """Call ``run(k, name, prior)`` for every section, ``prior`` the data of the sections it
@@ -283,6 +319,7 @@ def _run_sections(names: list[str], run, results: dict, side_by_side: bool,
         for k, name in enumerate(names, 1):
             run(k, name, prior_of(name))
         return
+    import_section_modules()
     done = {name: threading.Event() for name in names}
     failed: dict[str, BaseException] = {}
 
@@ -309,4 +346,5 @@ def _run_sections(names: list[str], run, results: dict, side_by_side: bool,
             raise failed[name]
 
 
-__all__ = ["LATER", "NEEDS", "Assessment", "run_assessment", "section_names"]
+__all__ = ["LATER", "NEEDS", "SECTION_MODULES", "Assessment", "import_section_modules",
+           "run_assessment", "section_names"]
