@@ -1014,7 +1014,10 @@ def section_dem(ctx: Context) -> StudyResult:
         model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows(jobs))
         outcomes = [_dem_outcome(body, m, dur) for _, _, m, dur, _ in jobs]
     else:
-        with interruptible_pool(min(workers(), planned)) as pool:
+        # a worker for each run: the record's runs start once the records' IDA is done and are
+        # then what the assessment waits for; side by side on the cores they end together,
+        # where two workers left the last run alone on one core
+        with interruptible_pool(planned) as pool:
             tick, ran = ctx.counter("DEM runs", planned), [0]
             with tick:
                 futures = []
