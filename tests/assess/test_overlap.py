@@ -70,26 +70,37 @@ def _pulse_started(started: threading.Event, seen: list):
     return note
 
 
-def test_dem_check_starts_the_pulse_before_the_records_and_reports_alike(tmp_path, monkeypatch):
+def _plain_and_late(tmp_path, monkeypatch, section: str, quick: bool, replace):
+    """Section ``section``'s result with the records' data there from the start and with it
+    arriving only once a pulse run was started, its runs replaced by ``replace(note)``'s
+    (name, fake); returns (plain, late, the motions the late one ran: (kind, records there))."""
     cfg = bare_bridge()
     arch = cfg.build_arch()
-    prior = _prior(quick=False)
+    prior = _prior(quick=quick)
     started = threading.Event()
     seen: list = []
-    note = _pulse_started(started, seen)
-
-    def dem(body, motion, duration):  # a DEM verdict that depends on the motion and window
-        note(motion)
-        peak = getattr(motion, "peak", None) or motion.magnitude
-        return "collapse" if peak * duration > 4.0 else "survives"
-
-    monkeypatch.setattr(sections, "_dem_outcome", dem)
+    name, fake = replace(_pulse_started(started, seen))
+    monkeypatch.setattr(sections, name, fake)
     monkeypatch.setattr(sections, "interruptible_pool", _threads)
-    plain = sections.section_dem(Context(cfg, arch, Mode(False), tmp_path, tmp_path, prior))
+    run = getattr(sections, f"section_{section}")
+    plain = run(Context(cfg, arch, Mode(quick), tmp_path, tmp_path, prior))
     started.clear()
     seen.clear()
-    late = sections.section_dem(Context(cfg, arch, Mode(False), tmp_path, tmp_path,
-                                        _late("dem", prior, started)))
+    late = run(Context(cfg, arch, Mode(quick), tmp_path, tmp_path,
+                       _late(section, prior, started)))
+    return plain, late, seen
+
+
+def test_dem_check_starts_the_pulse_before_the_records_and_reports_alike(tmp_path, monkeypatch):
+    def replace(note):
+        def dem(body, motion, duration):  # a DEM verdict that depends on the motion and window
+            note(motion)
+            peak = getattr(motion, "peak", None) or motion.magnitude
+            return "collapse" if peak * duration > 4.0 else "survives"
+
+        return "_dem_outcome", dem
+
+    plain, late, seen = _plain_and_late(tmp_path, monkeypatch, "dem", False, replace)
     assert late.data == plain.data
     assert len(plain.data["cases"]) == 2  # the pulse's and the record's, 3 factors each
     # the pulse's runs were started before the records' data came; the record's after
@@ -99,24 +110,14 @@ def test_dem_check_starts_the_pulse_before_the_records_and_reports_alike(tmp_pat
 
 def test_validity_starts_the_pulses_before_the_records_and_reports_alike(tmp_path,
                                                                           monkeypatch):
-    cfg = bare_bridge()
-    arch = cfg.build_arch()
-    prior = _prior(quick=True)
-    started = threading.Event()
-    seen: list = []
-    note = _pulse_started(started, seen)
+    def replace(note):
+        def slid(arch_, motion, friction, time_step, loads=None):  # sliding: the record only
+            note(motion)
+            return "collapse" if type(motion).__name__ == "Record" else "no_hinging"
 
-    def slid(arch_, motion, friction, time_step, loads=None):  # sliding: the record only
-        note(motion)
-        return "collapse" if type(motion).__name__ == "Record" else "no_hinging"
+        return "_rigid_friction_outcome", slid
 
-    monkeypatch.setattr(sections, "_rigid_friction_outcome", slid)
-    monkeypatch.setattr(sections, "interruptible_pool", _threads)
-    plain = sections.section_validity(Context(cfg, arch, Mode(True), tmp_path, tmp_path, prior))
-    started.clear()
-    seen.clear()
-    late = sections.section_validity(Context(cfg, arch, Mode(True), tmp_path, tmp_path,
-                                             _late("validity", prior, started)))
+    plain, late, seen = _plain_and_late(tmp_path, monkeypatch, "validity", True, replace)
     assert late.data == plain.data
     rows = plain.data["step_sensitivity"]
     assert len(rows) == 5 and rows[-1]["case"].startswith("record")  # 2 + 2 pulses, 1 record

@@ -7,51 +7,29 @@ followed from module to module), found imported in a fresh process after
 
 from __future__ import annotations
 
-import ast
 import json
 import subprocess
 import sys
 from pathlib import Path
 
-import archquake
-
-SRC = Path(archquake.__file__).resolve().parent.parent
-
-
-def _path(module: str) -> Path | None:
-    p = SRC.joinpath(*module.split("."))
-    if (p / "__init__.py").exists():
-        return p / "__init__.py"
-    return p.with_suffix(".py") if p.with_suffix(".py").exists() else None
-
-
-def _imports(module: str) -> set[str]:
-    """The package's modules ``module`` imports anywhere in its code, with their parents."""
-    path = _path(module)
-    if path is None:
-        return set()
-    found: set[str] = set()
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.Import):
-            found |= {a.name for a in node.names if a.name.startswith("archquake")}
-        elif (isinstance(node, ast.ImportFrom) and node.level == 0 and node.module
-              and node.module.startswith("archquake")):
-            found.add(node.module)
-            found |= {f"{node.module}.{a.name}" for a in node.names
-                      if _path(f"{node.module}.{a.name}") is not None}
-    parents = {".".join(m.split(".")[:i]) for m in found for i in range(1, m.count(".") + 2)}
-    return {m for m in parents if _path(m) is not None}
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from test_layers import module_edges  # noqa: E402  (the package's imports, read from the code)
 
 
 def _reachable(start: list[str]) -> set[str]:
+    """The package's modules ``start`` import, at module level or inside functions, followed
+    from module to module, with the packages they sit in (imported on the way)."""
+    edges: dict[str, set[str]] = {}
+    for a, b in module_edges():
+        edges.setdefault(a, set()).add(b)
     seen: set[str] = set()
     todo = list(start)
     while todo:
         module = todo.pop()
         if module not in seen:
             seen.add(module)
-            todo += sorted(_imports(module) - seen)
-    return seen
+            todo += sorted(edges.get(module, set()) - seen)
+    return {".".join(m.split(".")[:i]) for m in seen for i in range(2, m.count(".") + 2)}
 
 
 def test_every_module_the_sections_reach_is_imported_before_they_start():

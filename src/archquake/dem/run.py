@@ -476,12 +476,9 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     ``indeterminate``, gives: after the excitation the energy can only decrease, so an arch at
     rest stays at rest, and an arch still moving at the end of one tail was not at rest
     before it. It costs one run up to the verdict, where the tries cost a run per tail (a
-    verdict in the second tail about three times the first's). A motion that does not say when
-    it ends (no ``duration``) is run tail by tail as before, since its rest is not read
-    against an end.
+    verdict in the second tail about three times the first's).
 
     ``radius``: R, m (default: the arch's; required for an Assembly)."""
-    from archquake.outcome import Outcome
     from archquake.ranges import DEM_T_END_MAX_S
 
     if not tails:
@@ -489,18 +486,9 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     r = float(radius if radius is not None else arch_or_assembly.radius)
     base = DemSettings() if settings is None else settings
     windows = [default_window(motion, r, tail=tail, g=g) for tail in tails]
-    within = [w for w in windows[1:] if w <= DEM_T_END_MAX_S]
-    if excitation_end(motion) is not None:
-        longest = max([windows[0], *within])
-        return simulate_dem(arch_or_assembly, motion,
-                            base.with_(duration=longest, stop_at_rest=True), g=g)
-    result = None
-    for duration in [windows[0], *within]:
-        result = simulate_dem(arch_or_assembly, motion, base.with_(duration=duration), g=g)
-        if result.outcome is not Outcome.INDETERMINATE:
-            break
-    assert result is not None  # the first tail always runs
-    return result
+    longest = max([windows[0], *(w for w in windows[1:] if w <= DEM_T_END_MAX_S)])
+    return simulate_dem(arch_or_assembly, motion, base.with_(duration=longest, stop_at_rest=True),
+                        g=g)
 
 
 __all__ += ["DEFAULT_TAIL", "VERDICT_TAILS", "default_dem_duration", "dem_to_verdict"]
