@@ -11,7 +11,9 @@ measured in the same run.
 2. The bridge (semicircle R 5 m, t 0.6 m, 15 voussoirs: 48 contact rows against Oppenheim's
    24) under five FEMA near-field records scaled to a PGA of 0.11 g, one verdict at a time on
    one thread, guard off (``rigid_verdicts(arch, [m], threads=1, guard=False)``): CPU time per
-   history (median of 5) and per computed step, against Oppenheim's step measured above.
+   history (median of 5) and per computed step, against Oppenheim's step measured above;
+   then the same records' step means alone (a verdict's preparation, in the thread that runs
+   it), compiled against the NumPy expression they equal bit for bit.
 3. The Figure 5 domain under the rigid chain (step pulses, 12 durations 0.1-1.5 s, the block
    models' search: 0.01 g brackets, pulse + 6 sqrt(R/g)) through ``dem_failure_domain(...,
    model="rigid")`` (batches of verdicts, threaded over the usable cores), against the same
@@ -116,7 +118,41 @@ def bridge(oppenheim_step_s: float) -> dict:
     print(f"  all five                          {cpu * 1e3:8.1f} ms  {steps:6d} steps  "
           f"{per_step * 1e6:6.2f} us a step, {per_step / oppenheim_step_s:.1f} x Oppenheim's "
           f"step (twice the rows)")
-    return {"bridge_cpu_s": cpu, "bridge_step_cpu_s": per_step}
+    means, plain = step_means(motions, verdict_time_step(arch))
+    print(f"  the five records' step means (a verdict's preparation), compiled {means * 1e3:6.1f} ms, "
+          f"NumPy's expression {plain * 1e3:6.1f} ms: {plain / means:4.1f} x faster")
+    return {"bridge_cpu_s": cpu, "bridge_step_cpu_s": per_step, "step_means_cpu_s": means,
+            "step_means_numpy_cpu_s": plain}
+
+
+def step_means(motions, h: float) -> tuple[float, float]:
+    """CPU time, s (median of 5), of the steps' mean ground accelerations of ``motions`` over
+    their whole duration plus the verdict's tail, compiled (`rigid.model.mean_acceleration`),
+    and of the NumPy expression it equals bit for bit (every sub-sample through
+    ``Record.acceleration``, then ``mean``)."""
+    from archquake.rigid.model import ACC_SAMPLES, mean_acceleration
+
+    sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
+    ns = [int(math.ceil((m.duration + 6.0) / h)) for m in motions]
+
+    def compiled() -> list:
+        return [mean_acceleration(m, 0.0, h, n) for m, n in zip(motions, ns, strict=True)]
+
+    def numpy() -> list:
+        return [m.acceleration((h * (np.arange(n)[:, None] + sub[None, :])).ravel())
+                .reshape(n, ACC_SAMPLES).mean(1) for m, n in zip(motions, ns, strict=True)]
+
+    for a, b in zip(compiled(), numpy(), strict=True):
+        assert np.array_equal(a, b), "the compiled step means left NumPy's bits"
+    times = []
+    for fn in (compiled, numpy):
+        cpus = []
+        for _ in range(5):
+            c0 = time.process_time()
+            fn()
+            cpus.append(time.process_time() - c0)
+        times.append(float(np.median(cpus)))
+    return times[0], times[1]
 
 
 def domain() -> dict:

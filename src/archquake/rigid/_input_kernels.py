@@ -7,8 +7,8 @@ verdicts rest on; tests/rigid/test_input_kernels.py holds them to those expressi
 record of a suite and random records. They release the GIL, so a thread pool prepares a
 history in the thread that runs it.
 
-* `step_means` evaluates each sub-sample with the compiled evaluator of every kernel
-  (`archquake.ground._kernel.ground_acceleration`, the same arithmetic as
+* `step_means` evaluates each sub-sample with the compiled evaluator of a sampled motion
+  (`archquake.ground._kernel._sampled_value`, the same arithmetic as
   `archquake.ground.Record.acceleration`) and sums a step's sub-samples in NumPy's own
   order (`numpy_sum`), then divides by their number, as ``ndarray.mean`` does.
 * `suffix_maxima` is ``np.maximum`` folded from the last step back.
@@ -20,8 +20,7 @@ import numba as nb
 import numpy as np
 
 from archquake._kernel_cache import stamp_kernels
-from archquake.ground._kernel import ground_acceleration
-from archquake.ground.base import KIND_SAMPLED
+from archquake.ground._kernel import _sampled_value
 
 stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
@@ -75,6 +74,12 @@ def step_means(params, t0, h, sub_samples, out):
     m/s^2, into ``out``: ``sub_samples`` mid-point sub-samples a step (at
     t0 + h (k + (j + 1/2) / sub_samples)), averaged.
 
+    Each sub-sample is the sampled evaluator's (`archquake.ground._kernel._sampled_value`,
+    the arithmetic of `archquake.ground.Record.acceleration`); the fractions (j + 1/2) /
+    sub_samples are computed once, and a step that starts after the record's last sample
+    is 0 (the mean of zeros) without evaluating it: the same numbers, bit for bit, in about
+    half the time.
+
     Parameters
     ----------
     params : ndarray
@@ -86,13 +91,17 @@ def step_means(params, t0, h, sub_samples, out):
     out : ndarray (n,)
     """
     values = np.empty(sub_samples)
-    # a run-time integer: the literal constant would compile a copy of the ground's kernels
-    # specialised to it, beside the one every run compiles
-    kind = np.int64(KIND_SAMPLED)
+    frac = np.empty(sub_samples)
+    for j in range(sub_samples):
+        frac[j] = (j + 0.5) / sub_samples
+    n = params.shape[0] - 2
+    end = params[0] + params[1] * (n - 1)  # the last sample's time
     for k in range(out.size):
+        if t0 + h * (k + frac[0]) > end:
+            out[k] = 0.0
+            continue
         for j in range(sub_samples):
-            t = t0 + h * (k + (j + 0.5) / sub_samples)
-            values[j] = ground_acceleration(kind, params, t)
+            values[j] = _sampled_value(params, 0, n, t0 + h * (k + frac[j]))
         out[k] = numpy_sum(values, sub_samples) / sub_samples
 
 
