@@ -4,10 +4,11 @@ NumPy expressions it replaces, to the bit, and the verdicts' threads against sin
 Oracles:
 
 * a step's mean ground acceleration: the ``ACC_SAMPLES`` mid-point sub-samples of every step
-  through :meth:`Record.acceleration` (NumPy), then ``ndarray.mean`` (:func:`plain_means`,
-  the expression :func:`~archquake.rigid.model.mean_acceleration` evaluated before it was
-  compiled). Compared bit for bit (as integers): the verdicts' digests (tests/test_digest.py)
-  rest on these numbers, so no tolerance;
+  through :meth:`Record.acceleration` (NumPy; a sine pulse's through its own), then
+  ``ndarray.mean`` (:func:`plain_means`, the expression
+  :func:`~archquake.rigid.model.mean_acceleration` evaluated before it was compiled).
+  Compared bit for bit (as integers): the verdicts' digests (tests/test_digest.py) rest on
+  these numbers, so no tolerance;
 * NumPy's own sum (``np.add.reduce`` along a row) for :func:`numpy_sum`, bit for bit, every
   count it takes;
 * ``np.maximum.accumulate`` over the reversed steps for :func:`suffix_maxima`, by value (the
@@ -30,6 +31,7 @@ from hypothesis import strategies as st
 
 from archquake.constants import STANDARD_GRAVITY as G
 from archquake.geometry import Arch
+from archquake.ground.pulses import SinePulse
 from archquake.ground.records import Record
 from archquake.ground.suites import load_suite
 from archquake.rigid._input_kernels import PAIRWISE_BLOCK, numpy_sum, suffix_maxima
@@ -93,6 +95,17 @@ def test_step_means_of_random_records_are_numpys(x, dt, h, t0, n):
     and coarser than dt, starts before, inside and after the record."""
     rec = Record(x, dt)
     assert same_bits(mean_acceleration(rec, t0, h, n), plain_means(rec, t0, h, n))
+
+
+@given(st.floats(0.01, 3.0), st.floats(0.01, 2.0), st.sampled_from([-1, 1]),
+       st.floats(1e-4, 0.07), st.floats(-0.5, 3.0), st.integers(1, 3000))
+@settings(max_examples=200, deadline=None)
+def test_step_means_of_sine_pulses_are_numpys(period, a_g, direction, h, t0, n):
+    """A sine pulse sub-samples only the steps before its period end; the rest are the mean
+    of its zeros: the same bits as every sub-sample through NumPy, steps straddling the
+    period's end, starts before the pulse and after it included."""
+    motion = SinePulse.from_g(a_g, period, direction)
+    assert same_bits(mean_acceleration(motion, t0, h, n), plain_means(motion, t0, h, n))
 
 
 @pytest.mark.parametrize("count", [1, 2, 7, 8, 9, 15, ACC_SAMPLES, 17, 24, 63, 64, 100,

@@ -57,7 +57,7 @@ from archquake.constants import STANDARD_GRAVITY
 from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import has_vertical
-from archquake.ground.pulses import RectangularPulse, StepImpulse
+from archquake.ground.pulses import RectangularPulse, SinePulse, StepImpulse
 from archquake.ground.records import Record
 from archquake.ranges import RIGID_MAX_WORK, RIGID_SECONDS_PER_WORK
 
@@ -228,6 +228,8 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
     * a pulse constant between its breakpoints (the step impulse, the rectangular pulse): only
       the steps that straddle a breakpoint are sub-sampled: every other step's sub-samples are
       equal, and so is their mean (a sum of 16 equal values is exact);
+    * the sine pulse: the steps after its period are 0 without being sub-sampled (the mean of
+      zeros);
     * any other motion: all sub-samples, then ``mean``.
     """
     motion = getattr(motion, "horizontal", motion)  # a record with its vertical
@@ -237,6 +239,15 @@ def mean_acceleration(motion, t0: float, h: float, n: int) -> np.ndarray:
         return out
     sub = (np.arange(ACC_SAMPLES) + 0.5) / ACC_SAMPLES
     k = np.arange(n)
+    if isinstance(motion, SinePulse):
+        # zero from its period on: a step whose first sub-sample is past it is 0 (the mean
+        # of zeros), and only the steps before are sub-sampled
+        out = np.zeros(n)
+        live = int(np.searchsorted(t0 + h * (k + sub[0]), motion.period, side="left"))
+        t = t0 + h * (k[:live, None] + sub[None, :])
+        out[:live] = np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(
+            live, ACC_SAMPLES).mean(1)
+        return out
     if not isinstance(motion, (StepImpulse, RectangularPulse)):
         t = t0 + h * (k[:, None] + sub[None, :])
         return np.asarray(motion.acceleration(t.ravel()), dtype=float).reshape(
