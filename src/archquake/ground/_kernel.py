@@ -14,7 +14,7 @@ stamp_kernels()  # the cache checks each kernel against every source compiled in
 
 
 @nb.njit(cache=True, nogil=True)
-def _sampled_value(params, start, n, t):
+def sampled_value(params, start, n, t):
     """A sampled block's value at ``t``: ``params[start:start + 2]`` = [t0, dt], then its ``n``
     samples; linear between samples, 0 outside [t0, t0 + (n-1) dt]."""
     t0, dt = params[start], params[start + 1]
@@ -71,7 +71,7 @@ def ground_acceleration(kind: int | np.integer, params: np.ndarray, t: float) ->
     if kind == KIND_STEP or kind == KIND_SINE:
         return ground_in_piece(kind, params, t, t)  # the pulses' one definition
     if kind == KIND_SAMPLED_VERTICAL:
-        return _sampled_value(params, 1, int(params[0]), t)
+        return sampled_value(params, 1, int(params[0]), t)
     if kind != KIND_SAMPLED:
         raise ValueError("unknown ground-motion kind")
     # sampled, linear between samples (written out as in ground_in_piece)

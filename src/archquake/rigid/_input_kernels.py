@@ -8,7 +8,7 @@ record of a suite and random records. They release the GIL, so a thread pool pre
 history in the thread that runs it.
 
 * `step_means` evaluates each sub-sample with the compiled evaluator of a sampled motion
-  (`archquake.ground._kernel._sampled_value`, the same arithmetic as
+  (`archquake.ground._kernel.sampled_value`, the same arithmetic as
   `archquake.ground.Record.acceleration`) and sums a step's sub-samples in NumPy's own
   order (`numpy_sum`), then divides by their number, as ``ndarray.mean`` does.
 * `suffix_maxima` is ``np.maximum`` folded from the last step back.
@@ -20,7 +20,7 @@ import numba as nb
 import numpy as np
 
 from archquake._kernel_cache import stamp_kernels
-from archquake.ground._kernel import _sampled_value
+from archquake.ground._kernel import sampled_value
 
 stamp_kernels()  # the cache checks each kernel against every source compiled into it
 
@@ -74,7 +74,7 @@ def step_means(params, t0, h, sub_samples, out):
     m/s^2, into ``out``: ``sub_samples`` mid-point sub-samples a step (at
     t0 + h (k + (j + 1/2) / sub_samples)), averaged.
 
-    Each sub-sample is the sampled evaluator's (`archquake.ground._kernel._sampled_value`,
+    Each sub-sample is the sampled evaluator's (`archquake.ground._kernel.sampled_value`,
     the arithmetic of `archquake.ground.Record.acceleration`); the fractions (j + 1/2) /
     sub_samples are computed once, and a step that starts after the record's last sample
     is 0 (the mean of zeros) without evaluating it: the same numbers, bit for bit, in about
@@ -101,7 +101,7 @@ def step_means(params, t0, h, sub_samples, out):
             out[k] = 0.0
             continue
         for j in range(sub_samples):
-            values[j] = _sampled_value(params, 0, n, t0 + h * (k + frac[j]))
+            values[j] = sampled_value(params, 0, n, t0 + h * (k + frac[j]))
         out[k] = numpy_sum(values, sub_samples) / sub_samples
 
 
