@@ -156,7 +156,8 @@ def test_broad_phase_changes_no_bit(case):
     arch = Arch(10.0, 1.5, math.radians(157.5), 7)  # Oppenheim's arch
     motion = StepImpulse.from_g(1.0, 0.27)
     if case == "collapse":
-        body, settings = arch, DemSettings(duration=3.3, output_interval=0.002)
+        # collapses in its second half cycle, at 3.2-3.5 s as its numbers round
+        body, settings = arch, DemSettings(duration=4.0, output_interval=0.002)
     else:
         body = build_arch_assembly(arch, cut_joints=(0, 3, 5, 7))
         settings = DemSettings(contact=ContactLaw(friction=0.4), duration=1.5,

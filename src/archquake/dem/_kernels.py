@@ -62,6 +62,7 @@ class Packed(NamedTuple):
     vloc: np.ndarray
     vstart: np.ndarray
     radius: np.ndarray
+    eloc: np.ndarray
     sl_i: np.ndarray
     sl_edge: np.ndarray
     sl_f: np.ndarray
@@ -137,24 +138,19 @@ def _prev_vertex(v, b, vstart):
 
 
 @nb.njit(cache=True, inline="always")
-def world_vertices(state, vloc, vstart, vw, edir):
+def world_vertices(state, vloc, eloc, vstart, vw, edir):
     """World coordinates of every vertex (vw, (nv, 2)) and every edge's unit tangent and
-    length (edir, (nv, 3)); edge e runs from vertex e to the next vertex of its block."""
+    length (edir, (nv, 3)); edge e runs from vertex e to the next vertex of its block. The
+    tangents are the blocks' own (``eloc``, `edge_frames`) turned with them."""
     for b in range(vstart.shape[0] - 1):
         c = math.cos(state[b, 2])
         s = math.sin(state[b, 2])
         for v in range(vstart[b], vstart[b + 1]):
             vw[v, 0] = state[b, 0] + c * vloc[v, 0] - s * vloc[v, 1]
             vw[v, 1] = state[b, 1] + s * vloc[v, 0] + c * vloc[v, 1]
-    for b in range(vstart.shape[0] - 1):
-        for e in range(vstart[b], vstart[b + 1]):
-            e1 = _next_vertex(e, b, vstart)
-            dx = vw[e1, 0] - vw[e, 0]
-            dy = vw[e1, 1] - vw[e, 1]
-            length = math.sqrt(dx * dx + dy * dy)
-            edir[e, 0] = dx / length
-            edir[e, 1] = dy / length
-            edir[e, 2] = length
+            edir[v, 0] = c * eloc[v, 0] - s * eloc[v, 1]
+            edir[v, 1] = s * eloc[v, 0] + c * eloc[v, 1]
+            edir[v, 2] = eloc[v, 2]
 
 
 @nb.njit(cache=True)
@@ -434,7 +430,7 @@ def step(packed, par, acc, kind, gparams, t, ground_on, settle, work):
     g = par[P_G]
     alpha = par[P_ALPHA]
     nbk = state.shape[0]
-    world_vertices(state, packed.vloc, vstart, vw, edir)
+    world_vertices(state, packed.vloc, packed.eloc, vstart, vw, edir)
     update_contacts(state, packed.radius, vw, edir, vstart, sl_i, sl_edge, sl_f, slots, work.cand,
                     work.blocker, par, acc)
     force[:, :] = 0.0
@@ -543,7 +539,7 @@ def run(packed, par, acc, kind, gparams, cpar, ref, margin, span, out):
     nv = packed.vloc.shape[0]
     vw = np.zeros((nv, 2))
     edir = np.zeros((nv, 3))
-    world_vertices(state, packed.vloc, packed.vstart, vw, edir)
+    world_vertices(state, packed.vloc, packed.eloc, packed.vstart, vw, edir)
     slots = slots_in_reach(state, radius, free, vw, packed.sl_i, par, margin)
     work = Scratch(np.zeros((nbk, 3)), np.zeros((nbk, 3)), np.zeros((nbk, 6)), vw, edir, slots,
                    np.zeros(slots.shape[0], dtype=np.int64),

@@ -76,10 +76,24 @@ def pack(assembly: Assembly) -> Packed:
         vloc=vloc,
         vstart=vstart,
         radius=radius,
+        eloc=edge_frames(vloc, vstart),
         sl_i=np.zeros((0, 5), np.int64),
         sl_edge=np.zeros(0, np.int64),
         sl_f=np.zeros((0, 5)),
     )
+
+
+def edge_frames(vloc: np.ndarray, vstart: np.ndarray) -> np.ndarray:
+    """Each edge's unit tangent and length in its block's own frame, (nv, 3): edge e runs from
+    vertex e to the next vertex of its block (``vloc``, m, relative to the centroid)."""
+    out = np.empty((vloc.shape[0], 3))
+    for b in range(vstart.size - 1):
+        lo, hi = int(vstart[b]), int(vstart[b + 1])
+        d = np.roll(vloc[lo:hi], -1, axis=0) - vloc[lo:hi]
+        length = np.hypot(d[:, 0], d[:, 1])
+        out[lo:hi, :2] = d / length[:, None]
+        out[lo:hi, 2] = length
+    return out
 
 
 def neighbour_pairs(packed: Packed, margin: float) -> list[tuple[int, int]]:
@@ -231,14 +245,11 @@ def stable_time_step(
 
 def _at_rest_frames(packed: Packed) -> tuple[np.ndarray, np.ndarray]:
     """World vertices (nv, 2) of the undisplaced blocks and every edge's unit tangent and
-    length (nv, 3), as `archquake.dem._kernels.world_vertices` lays them out."""
+    length (nv, 3), as `archquake.dem._kernels.world_vertices` lays them out (at theta = 0 the
+    blocks' own edge frames, `edge_frames`)."""
     blk = np.repeat(np.arange(len(packed.vstart) - 1), np.diff(packed.vstart))
     vw = packed.state[blk, :2] + packed.vloc  # theta = 0
-    v = np.arange(vw.shape[0])
-    nxt = np.where(v + 1 >= packed.vstart[blk + 1], packed.vstart[blk], v + 1)
-    d = vw[nxt] - vw
-    length = np.hypot(d[:, 0], d[:, 1])
-    return vw, np.column_stack([d[:, 0] / length, d[:, 1] / length, length])
+    return vw, packed.eloc.copy()
 
 
 def _contacts_at_rest(vw: np.ndarray, edir: np.ndarray, packed: Packed, par: np.ndarray) -> None:
