@@ -11,7 +11,8 @@ rotation at step n and the velocities at n - 1/2 (absolute frame); ``mass``, ``i
 (about the centroid); ``free[i]`` 1 for a moving block, 0 for a block of the base (prescribed
 motion). Vertices: block i owns ``vloc[vstart[i]:vstart[i+1]]`` (counter-clockwise, local
 coordinates relative to the centroid at theta = 0); edge ``e`` runs from vertex ``e`` to the
-next vertex of the same block.
+next vertex of the same block, ``eloc[e]`` its unit tangent and length in the block's frame
+(`archquake.dem.run.edge_frames`: a step turns them with the block).
 
 Contact slots (``ns``): one per (vertex of block a, neighbouring block b):
 ``sl_i[s] = (vertex, a, b, rev_start, rev_end)`` where ``rev_start:rev_end`` are the slots of
