@@ -187,3 +187,33 @@ def test_sections_are_numbered_as_they_come(tmp_path):
     heads = [e[2] for e in elements(rep) if e[0] == "h2"]
     assert [h.split(". ")[0] for h in heads] == [str(n) for n in range(1, len(heads) + 1)]
     assert heads[-1].endswith("Verdict")
+
+
+def _dem_section(factors):
+    """The DEM check's data as `section_dem` writes it: one record case, run at ``factors``
+    of the model's level, surviving in both models at every one."""
+    runs = [{"factor": f, "level_g": 0.5 * f, "duration_s": 17.0, "dem_outcome": "survives",
+             "model_outcome": "survives"} for f in factors]
+    case = {"case": "record R", "model_level_g": 0.5, "lowest_dem_collapse_factor": None,
+            "dem_more_vulnerable": False, "unconservative_by_at_least": 0.0,
+            "model_collapses_below_its_level_factor": None, "runs": runs}
+    return SimpleNamespace(data={"model": "rigid", "factors": list(factors), "cases": [case],
+                                 "record_case": True, "record_cut_s": 14.0,
+                                 "record_window_s": 17.0},
+                           figures=[])
+
+
+@pytest.mark.parametrize("quick, factors", [(False, (1.0, 0.85, 0.7)), (True, (0.85,))])
+def test_the_dem_checks_threshold_row_is_read_as_a_threshold(tmp_path, quick, factors):
+    """Oracle: the DEM check's 1.0 x run is at the model's own collapse level, where a DEM
+    verdict can turn on a 1e-12 change of a record's scale (docs/assess.md): the report says
+    so under the table when that row is there (full mode), and does not draw a conclusion
+    from it alone; quick mode runs no such row."""
+    rep = _report(tmp_path, quick=quick)
+    rep.sections["dem"] = _dem_section(factors)
+    text = " ".join(str(e[1]) if e[0] == "p" else " ".join(map(str, e[1])) if e[0] == "ul"
+                    else "" for e in elements(rep))
+    assert ("The 1.0 x rows are at the" in text) is (not quick)
+    if not quick:
+        assert "weak evidence that the" in text and "is conservative there" in text
+        assert "its result is conservative there." not in text

@@ -337,6 +337,12 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                              run["model_outcome"], run["dem_outcome"]])
         el.append(("table", ["case", f"x {who}'s collapse level", "magnitude / PGA (g)",
                              who, "DEM"], rows))
+        if any(run["factor"] == 1.0 for c in d["cases"] for run in c["runs"]):
+            el.append(("p", f"The 1.0 x rows are at the {who}'s own collapse level, a "
+                            "threshold: there the DEM's verdict can turn on the last bits of "
+                            "its arithmetic (a change of 1e-12 in a record's scale has turned "
+                            "it), so read them as the threshold and the lower rows as the "
+                            "check."))
         items = []
         for c in d["cases"]:
             below = c.get("model_collapses_below_its_level_factor")
@@ -359,8 +365,9 @@ def _records_dem_validity(el: list, rep, cfg, s: dict, pu: dict | None) -> None:
                              "agree there.")
             else:
                 at_one = [r for r in c["runs"] if r["factor"] >= 1.0]
-                more = (f" The DEM survives even at the {who}'s collapse level: its result is "
-                        "conservative there." if at_one and
+                more = (f" The DEM survives even at the {who}'s collapse level, a threshold "
+                        "where one run's verdict can turn on rounding: weak evidence that the "
+                        f"{who}'s result is conservative there." if at_one and
                         at_one[0]["dem_outcome"] != "collapse" else "")
                 items.append(f"{c['case']}: the DEM does not collapse below the {who}'s "
                              f"level ({c['model_level_g']:.4f} g) at the fractions run: "
