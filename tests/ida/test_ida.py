@@ -453,3 +453,28 @@ def test_rigid_model_ida_brackets_its_own_threshold(tmp_path):
     assert {r["model"] for r in rows} == {"rigid"}
     first = res.records[0].first_collapse
     assert first.below < hi and first.low > lo
+
+
+def test_a_resumed_rigid_ida_reads_its_guards_reruns_from_the_store(tmp_path):
+    """The half-step guard's reruns are cases of their own in the store: the same analysis run
+    again on its store computes nothing, the guard included, and gives the same trace.
+    Oracle: the first call (its levels, outcomes and reasons), and the store's rows (the
+    reruns at half the levels' step)."""
+    args = (OPPENHEIM, [StepImpulse.from_g(1.0, 0.3)], "pga")
+    kwargs = dict(ceiling=1.0, precision=0.1, fill=1.0, model="rigid",
+                  executor=SerialExecutor())
+    with ResultStore(tmp_path / "rigid.sqlite") as store:
+        first = incremental_dynamic_analysis(*args, store, **kwargs)
+        again = incremental_dynamic_analysis(*args, store, **kwargs)
+        rows = store.rows()
+    assert first.guarded > 0 and again.guarded == first.guarded
+    assert first.computed == first.total and again.computed == 0
+    assert first.total == len(rows)  # the levels and the guard's reruns, each stored once
+    halves = [r for r in rows if json.loads(r["inputs_json"])["options"].get("step_fraction")
+              == 0.5]
+    assert len(halves) == first.guarded
+    steps = sorted({r["out.time_step_s"] for r in rows})
+    assert len(steps) == 2 and steps[1] == 2 * steps[0]
+    assert {r["out.time_step_s"] for r in halves} == {steps[0]}
+    (a,), (b,) = first.records, again.records
+    assert list(a.levels) == list(b.levels) and a.outcomes == b.outcomes

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import pytest
 
+from archquake.errors import InvalidParameterError
 from archquake.ground.measures import im_value
 from archquake.ida import incremental_dynamic_analysis
 from archquake.ida.analysis import deciding_levels
@@ -59,15 +60,12 @@ def test_deciding_levels_are_the_ends_of_every_transition(pairs, expected):
 def test_guarded_record_follows_the_two_steps(at_h, at_half, expected):
     """The rule, case by case: confirmed where both steps survive (``no_hinging`` is a
     survival) or both collapse, ``indeterminate`` otherwise, the rerun recorded."""
-    from types import SimpleNamespace
-
     from archquake.ida.analysis import guarded_record
-    from archquake.outcome import Outcome
     from archquake.sweeps.store import CaseRecord
 
     raw = {"outcome": at_h, "time_step_s": 6.3e-4, "verdict_reason": "why",
            "collapse_half_cycle": 3 if at_h == "collapse" else None, "guard_ran": False}
-    half = SimpleNamespace(outcome=Outcome(at_half), time_step_s=3.15e-4)
+    half = CaseRecord("half", "ok", {"outcome": at_half, "time_step_s": 3.15e-4}, at_half)
     rec = guarded_record(CaseRecord("id", "ok", raw, at_h), half)
     assert rec.outcome == rec.outputs["outcome"] == expected
     assert rec.outputs["guard_ran"] is True and rec.outputs["guard_outcome"] == at_half
@@ -76,13 +74,41 @@ def test_guarded_record_follows_the_two_steps(at_h, at_half, expected):
 
 def test_unguarded_levels_have_their_own_case_ids():
     """The default options keep the canonical form (and so the case ids) they had before the
-    guard became an option; unguarded verdicts are stored under other ids."""
+    guard and the step fraction became options; unguarded verdicts, and the guard's reruns at
+    half the step, are stored under other ids."""
+    from archquake.ida.analysis import half_step_case
+
     assert "guard" not in CaseOptions().canonical()
+    assert "step_fraction" not in CaseOptions().canonical()
     assert CaseOptions(guard=False).canonical()["guard"] is False
     arch = ArchSpec(10, 0.15, 157.5, 7)
     exc = ExcitationSpec("step", magnitude_g=0.5, duration_s=0.25)
-    assert (Case(arch, exc, "rigid").case_id
-            != Case(arch, exc, "rigid", CaseOptions(guard=False)).case_id)
+    level = Case(arch, exc, "rigid", CaseOptions(guard=False))
+    assert Case(arch, exc, "rigid").case_id != level.case_id
+    half = half_step_case(level)
+    assert half.options.canonical()["step_fraction"] == 0.5
+    assert len({Case(arch, exc, "rigid").case_id, level.case_id, half.case_id}) == 3
+
+
+@pytest.mark.parametrize("fraction", [0.0, -0.5, 1.5, float("nan")])
+def test_a_step_fraction_outside_0_1_is_refused(fraction):
+    with pytest.raises(InvalidParameterError, match="step_fraction"):
+        CaseOptions(step_fraction=fraction)
+
+
+def test_only_the_rigid_batches_take_a_step_fraction():
+    """The four-link batches and the case-by-case evaluator refuse a step fraction, in one
+    line, instead of running the case at their own step."""
+    from archquake.ida.batch import evaluate_cases
+    from archquake.sweeps.evaluate import evaluate_case
+
+    arch = ArchSpec(10, 0.15, 157.5, 7)
+    exc = ExcitationSpec("step", magnitude_g=0.5, duration_s=0.25)
+    options = CaseOptions(step_fraction=0.5)
+    (out,) = evaluate_cases([Case(arch, exc, "fourlink", options)])
+    assert isinstance(out, InvalidParameterError) and "step_fraction" in str(out)
+    with pytest.raises(InvalidParameterError, match="step_fraction"):
+        evaluate_case(Case(arch, exc, "dem", options))
 
 
 suites = pytest.importorskip("archquake.ground.suites")
@@ -98,8 +124,8 @@ def test_a_level_where_the_steps_disagree_is_indeterminate():
     survives at half of it (the study's grid). Oracle: the two steps' own verdicts, guard
     off; the guarded record of the level is indeterminate and names both, and a level where they
     agree (0.20 g, collapse at both) is confirmed as it was."""
-    from archquake.ida.analysis import guarded_record
-    from archquake.ida.batch import evaluate_rigid_cases, rigid_half_step_verdicts
+    from archquake.ida.analysis import guarded_record, half_step_case
+    from archquake.ida.batch import evaluate_rigid_cases
     from archquake.sweeps.store import CaseRecord
 
     record = next(r for r in suites.load_suite("near-field-pulse").records
@@ -115,10 +141,11 @@ def test_a_level_where_the_steps_disagree_is_indeterminate():
         assert (at_h != at_half) == (expected == "indeterminate"), (level, at_h, at_half)
         case = Case(BRIDGE, ExcitationSpec("record", motion=record, scale=level / pga),
                     "rigid", options)
-        (raw,) = evaluate_rigid_cases([case])
-        (half,) = rigid_half_step_verdicts([case])
-        assert raw["outcome"] == at_h and half.outcome.value == at_half
-        rec = guarded_record(CaseRecord(case.case_id, "ok", raw, raw["outcome"]), half)
+        raw, half = evaluate_rigid_cases([case, half_step_case(case)])
+        assert raw["outcome"] == at_h and half["outcome"] == at_half
+        assert half["time_step_s"] == 0.5 * h
+        rec = guarded_record(CaseRecord(case.case_id, "ok", raw, raw["outcome"]),
+                             CaseRecord("half", "ok", half, half["outcome"]))
         assert rec.outcome == rec.outputs["outcome"] == expected
         assert rec.outputs["guard_ran"] and rec.outputs["guard_outcome"] == at_half
         if expected == "indeterminate":

@@ -19,8 +19,8 @@ The rigid chain's half-step guard (`archquake.rigid.verdict`) guards what the an
 answers, the levels where each record's trace changes between survival and collapse: the levels
 run at the verdict's step alone (stored with ``guard`` false in their options), and once a
 record's trace has converged its deciding levels (`deciding_levels`) are rerun at half the
-step (`rigid_half_step_verdicts`, one threaded batch in this
-process, not stored: a resumed analysis computes them again). A level whose two verdicts differ
+step (`half_step_case`: cases of their own, stored like the levels, so a resumed analysis
+reads them back). A level whose two verdicts differ
 is ``indeterminate``, counted as a collapse, and the trace goes on from there until every
 deciding level is confirmed or indeterminate. On the bridge example under the 28 near-field
 records, levels that decide nothing were rerun by the per-verdict rule without changing any
@@ -197,12 +197,13 @@ class IdaResult:
     rounds : int
         Rounds of levels, and of the guard's reruns.
     computed : int
-        Cases evaluated by this call (the rest came from the store).
+        Cases evaluated by this call, the guard's reruns among them (the rest came from the
+        store).
     total : int
-        Cases of the analysis.
+        Cases of the analysis: its levels, and the guard's reruns.
     guarded : int
-        Levels rerun at half the step by the rigid chain's guard (`deciding_levels`;
-        computed again on every call, not stored).
+        Levels rerun at half the step by the rigid chain's guard (`deciding_levels`; stored
+        like the levels, `half_step_case`).
     """
 
     arch: ArchSpec
@@ -375,7 +376,7 @@ def incremental_dynamic_analysis(
     IdaResult
     """
     from archquake.ground.base import lift_off_factor
-    from archquake.ida.batch import BATCHES, rigid_half_step_verdicts
+    from archquake.ida.batch import BATCHES
     from archquake.parallel import SerialExecutor
     from archquake.sweeps.evaluate import mechanism_limits
     from archquake.sweeps.runner import run_sweep
@@ -457,8 +458,23 @@ def incremental_dynamic_analysis(
             if not pending:
                 rounds -= 1
                 break
-            halves = rigid_half_step_verdicts([runs[i][x] for i, x in pending])
-            for (i, x), half in zip(pending, halves, strict=True):
+            # the reruns are cases of their own (half the step), stored as they complete: a
+            # resumed analysis reads them back
+            halves = [half_step_case(runs[i][x]) for i, x in pending]
+            report = run_sweep(halves, store, evaluate=None, evaluate_batch=batch,
+                               executor=executor, workers=workers,
+                               chunk_size=(round_chunk_size(len(halves), executor, workers)
+                                           if chunk_size is None else chunk_size),
+                               progress=None if progress is None else _round_progress(
+                                   progress, rounds, sum(len(r) for r in runs), len(halves)))
+            computed += report.computed
+            stored = store.lookup(c.case_id for c in halves)
+            for (i, x), case in zip(pending, halves, strict=True):
+                half = stored.get(case.case_id)
+                if half is None or half.status == STATUS_ERROR:
+                    raise ArchquakeError(f"record {names[i]!r} at {measure.label} = {x:.4g} "
+                                         f"{measure.unit}, at half the step: "
+                                         f"{'missing from the store' if half is None else half.error}")
                 checked[i].add(x)
                 outcomes[i][x] = guarded_record(outcomes[i][x], half)
             guarded += len(pending)
@@ -503,7 +519,7 @@ def incremental_dynamic_analysis(
             start=hf[i].start, ceiling=ceilings[i]))
     return IdaResult(arch=arch, model=model, im=measure, records=tuple(records), loads=loads,
                      settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
-                     rounds=rounds, computed=computed, total=sum(len(r) for r in runs), g=g,
+                     rounds=rounds, computed=computed, total=sum(len(r) for r in runs) + guarded, g=g,
                      store=str(store.path), motions=tuple(motions), guarded=guarded)
 
 
@@ -526,29 +542,36 @@ def deciding_levels(done: dict[float, Any]) -> list[float]:
     return sorted(out)
 
 
+def half_step_case(case: Case) -> Case:
+    """The half-step guard's rerun of a level's ``case`` (the rigid chain's verdict at its
+    step, guard off): the same case at half the step, a case of its own in the store."""
+    return replace(case, options=replace(case.options, step_fraction=0.5, guard=False))
+
+
 def guarded_record(rec: Any, half: Any) -> Any:
     """A level's stored record (the rigid chain's verdict at its step, guard off) with the
-    half-step guard's rerun ``half`` (a `RigidVerdict`): confirmed when
+    half-step guard's rerun ``half`` (its stored record, `half_step_case`): confirmed when
     both steps agree on survival or collapse (``no_hinging`` counts as survival), otherwise
     ``indeterminate`` (counted as collapse), with the reason naming both; a level already
     ``indeterminate`` at its step stays so."""
     outputs = dict(rec.outputs)
     first = outputs.get("outcome", rec.outcome)
-    second = half.outcome.value
+    second = half.outputs.get("outcome", half.outcome)
+    half_step = half.outputs["time_step_s"]
     survived = (Outcome.SURVIVES.value, Outcome.NO_HINGING.value)
     agree = (first == second or (first in survived and second in survived))
-    step = outputs.get("time_step_s", 2.0 * half.time_step_s)
+    step = outputs.get("time_step_s", 2.0 * half_step)
     outputs["guard_ran"] = True
     outputs["guard_outcome"] = second
     if first == Outcome.INDETERMINATE.value:  # undecided at the step already: stays so
         return replace(rec, outputs=outputs)
     if agree:
         outputs["verdict_reason"] = (f"{outputs.get('verdict_reason', '')} (confirmed at half "
-                                     f"the step, {half.time_step_s:.3g} s)").lstrip()
+                                     f"the step, {half_step:.3g} s)").lstrip()
         return replace(rec, outputs=outputs)
     outputs["outcome"] = Outcome.INDETERMINATE.value
     outputs["verdict_reason"] = (f"near the threshold: {first} at the step {step:.3g} s, "
-                                 f"{second} at {half.time_step_s:.3g} s; a finer step or "
+                                 f"{second} at {half_step:.3g} s; a finer step or "
                                  "solver='events' decides")
     outputs["collapse_half_cycle"] = None
     return replace(rec, outcome=Outcome.INDETERMINATE.value, outputs=outputs)
@@ -586,4 +609,5 @@ def _peak(outputs: dict) -> float:
 
 
 __all__ = ["DEFAULT_CEILING_PGA_G", "IdaResult", "RecordIda", "deciding_levels",
-           "guarded_record", "incremental_dynamic_analysis", "round_chunk_size"]
+           "guarded_record", "half_step_case", "incremental_dynamic_analysis",
+           "round_chunk_size"]

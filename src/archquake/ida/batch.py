@@ -52,7 +52,8 @@ def evaluate_cases(cases: Sequence[Case], *, early: bool = True) -> list[Any]:
     from archquake.sweeps.evaluate import prepared_mechanism
 
     out: list[Any] = [None] * len(cases)
-    groups = _groups(cases, Model.FOURLINK, "the batch evaluator runs the four-link model", out)
+    groups = _groups(cases, Model.FOURLINK, "the batch evaluator runs the four-link model", out,
+                     refuse=_rigid_options)
     for (arch, options, loads), idx in groups.items():
         try:
             prepared = prepared_mechanism(arch, options.impact, loads)
@@ -75,7 +76,8 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
     ----------
     cases : sequence of Case
         Rigid-chain cases (any excitation); ``t_end_s`` is the run's window, s (default: the
-        end of the excitation + 60 sqrt(R/g)).
+        end of the excitation + 60 sqrt(R/g)); ``step_fraction`` the step as a fraction of
+        the verdict's own (`archquake.rigid.verdict.verdict_time_step`).
     threads : int, optional
         Threads of each batch (default: the cores this process may use).
 
@@ -86,6 +88,7 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
         the `ArchquakeError` refusing the case.
     """
     from archquake.rigid import rigid_verdicts
+    from archquake.rigid.verdict import verdict_time_step
     from archquake.sweeps.evaluate import rigid_summary
 
     out: list[Any] = [None] * len(cases)
@@ -95,46 +98,16 @@ def evaluate_rigid_cases(cases: Sequence[Case], *, threads: int | None = None) -
         try:
             built = _body(arch, loads)
             motions = [cases[i].excitation.build(g=options.g) for i in idx]
+            step = (None if options.step_fraction == 1.0 else
+                    options.step_fraction * verdict_time_step(built, g=options.g))
             verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
-                                      guard=options.guard, threads=threads)
+                                      time_step=step, guard=options.guard, threads=threads)
         except ArchquakeError as exc:
             for i in idx:
                 out[i] = exc
             continue
         for i, v in zip(idx, verdicts, strict=True):
             out[i] = rigid_summary(v)
-    return out
-
-
-def rigid_half_step_verdicts(cases: Sequence[Case], *, threads: int | None = None) -> list[Any]:
-    """The rigid chain's verdicts of rigid cases at half the verdict's step, guard off: the
-    half-step guard's rerun (`archquake.rigid.rigid_verdicts`), for the levels that decide
-    an incremental dynamic analysis.
-
-    Parameters
-    ----------
-    cases : sequence of Case
-        Rigid-chain cases, as `evaluate_rigid_cases` takes them.
-    threads : int, optional
-        Threads of each batch (default: the cores this process may use).
-
-    Returns
-    -------
-    list of RigidVerdict, in the order of ``cases``.
-    """
-    from archquake.rigid import rigid_verdicts
-    from archquake.rigid.verdict import verdict_time_step
-
-    out: list[Any] = [None] * len(cases)
-    groups = _groups(cases, Model.RIGID, "the half-step rerun runs the rigid chain", out)
-    for (arch, options, loads), idx in groups.items():
-        built = _body(arch, loads)
-        motions = [cases[i].excitation.build(g=options.g) for i in idx]
-        half = 0.5 * verdict_time_step(built, g=options.g)
-        verdicts = rigid_verdicts(built, motions, duration=options.t_end_s, g=options.g,
-                                  time_step=half, guard=False, threads=threads)
-        for i, v in zip(idx, verdicts, strict=True):
-            out[i] = v
     return out
 
 
@@ -176,6 +149,14 @@ def rigid_body(arch, loads):
     from archquake.blocks.assembly import build_arch_assembly
 
     return build_arch_assembly(arch, loads=loads)
+
+
+def _rigid_options(case: Case) -> ArchquakeError | None:
+    """The error of a case of another model given the rigid chain's step fraction, or None."""
+    if case.options.step_fraction != 1.0:
+        return InvalidParameterError("step_fraction applies to model rigid only (its verdicts' "
+                                     "time step)")
+    return None
 
 
 def _fourlink_options(case: Case) -> ArchquakeError | None:
@@ -278,4 +259,4 @@ BATCHES: dict[Model, Callable[..., list[Any]]] = {Model.FOURLINK: evaluate_cases
 
 
 __all__ = ["BATCHES", "BATCH_EVALUATOR", "evaluate_cases", "evaluate_rigid_cases",
-           "rigid_body", "rigid_half_step_verdicts", "thread_order"]
+           "rigid_body", "thread_order"]

@@ -74,6 +74,11 @@ class CaseOptions:
         False: the verdict at the step alone, as incremental dynamic analysis runs its levels
         before it checks the levels that decide its result). Left out of the canonical form when
         True, so existing case ids are unchanged.
+    step_fraction : float
+        The rigid chain's time step as a fraction of its verdict's own, in (0, 1] (0.5: the
+        half-step guard's rerun of a level an incremental dynamic analysis stores like any
+        other case); the rigid chain's verdicts in batches only. Left out of the canonical
+        form when 1.
     """
 
     restitution: float | None = None
@@ -81,6 +86,7 @@ class CaseOptions:
     g: float = STANDARD_GRAVITY
     impact: str | None = None
     guard: bool = True
+    step_fraction: float = 1.0
 
     def __post_init__(self) -> None:
         from archquake.mechanism.impact import check_impact_law, check_restitution
@@ -94,6 +100,8 @@ class CaseOptions:
         _set(self, "g", require_gravity(self.g))
         if not isinstance(self.guard, bool):
             raise InvalidParameterError(f"guard must be true or false, got {self.guard!r}")
+        _set(self, "step_fraction", require_range("step_fraction", self.step_fraction, 0.0, 1.0,
+                                                  high_open=False))
 
     def canonical(self) -> dict[str, Any]:
         out: dict[str, Any] = {"restitution": self.restitution, "t_end_s": self.t_end_s,
@@ -102,6 +110,8 @@ class CaseOptions:
             out["impact"] = self.impact
         if not self.guard:  # the guarded verdict keeps the ids it always had
             out["guard"] = False
+        if self.step_fraction != 1.0:
+            out["step_fraction"] = self.step_fraction
         return out
 
     @cached_property

@@ -59,6 +59,9 @@ def evaluate_case(case: Case) -> dict[str, Any]:
         When the model refuses the case (the sweep stores it as an ``error`` row).
     """
     o = case.options
+    if o.step_fraction != 1.0:
+        raise InvalidParameterError("step_fraction applies to the rigid chain's verdicts in "
+                                    "batches (archquake.ida.batch.evaluate_rigid_cases)")
     motion = case.excitation.build(g=o.g)
     try:
         options = models.RunOptions(t_end=o.t_end_s, g=o.g, loads=case.loads,
