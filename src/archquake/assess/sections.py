@@ -865,8 +865,9 @@ def section_vertical(ctx: Context) -> StudyResult:
 #: contacts keep vibrating after a rigid chain would be still (Oppenheim's arch after a 1 g,
 #: 0.20 s step: kinetic energy 2.4e-6 W L at 6 s, 5e-8 at 7-8 s), and it reads "survives"
 #: only once still (`archquake.blocks.result.settled`). Measured on the bridge example's
-#: governing pulse at 0.85 of the chain's collapse level: at rest at 5.26 s, past the chain's
-#: window (4.54 s: "indeterminate" there, as at 3 s after the pulse at every level). Its runs
+#: governing pulse at 0.85 of the chain's collapse level: at rest at about 5.1-5.3 s (as the
+#: DEM's last bits round), past the chain's window (4.54 s: "indeterminate" there, as at 3 s
+#: after the pulse at every level). Its runs
 #: stop at rest, so a long window costs only the runs that need it.
 DEM_PULSE_TAILS = 2.0
 

@@ -441,8 +441,37 @@ def incremental_dynamic_analysis(
     guarded = 0
     computed = 0
     rounds = 0
+
+    def run_round(cases: list[tuple[int, float, Case]], what: str) -> list[Any]:
+        """Run (record, level, case) ``cases`` through the store as one round: their stored
+        records, in order (an error row, or a case missing after its round, is raised)."""
+        nonlocal computed
+        total_so_far = sum(len(r) for r in runs) + guarded  # this round's cases included
+        report = run_sweep(
+            [c for _, _, c in cases], store,
+            evaluate=None,
+            evaluate_batch=batch,
+            executor=executor, workers=workers,
+            chunk_size=(round_chunk_size(len(cases), executor, workers)
+                        if chunk_size is None and batched else chunk_size),
+            progress=None if progress is None else _round_progress(
+                progress, rounds, total_so_far, len(cases)))
+        computed += report.computed
+        stored = store.lookup(c.case_id for _, _, c in cases)
+        out = []
+        for i, x, case in cases:
+            rec = stored.get(case.case_id)
+            if rec is None:
+                raise ArchquakeError(f"case {case.case_id} of record {names[i]!r}{what} is "
+                                     "missing from the store after its round")
+            if rec.status == STATUS_ERROR:
+                raise ArchquakeError(f"record {names[i]!r} at {measure.label} = {x:.4g} "
+                                     f"{measure.unit}{what}: {rec.error}")
+            out.append(rec)
+        return out
+
     for rounds in range(1, MAX_ROUNDS + 1):  # noqa: B007
-        new_cases: list[Case] = []
+        new_levels: list[tuple[int, float, Case]] = []
         for i in range(len(motions)):
             done = outcomes[i]
             levels = list(done)
@@ -450,8 +479,8 @@ def incremental_dynamic_analysis(
             for x in propose_levels(levels, collapsed, hf[i]):
                 case = case_of(i, x)
                 runs[i][x] = case
-                new_cases.append(case)
-        if not new_cases:
+                new_levels.append((i, x, case))
+        if not new_levels:
             pending = [(i, x) for i in range(len(motions))
                        for x in deciding_levels(outcomes[i]) if x not in checked[i]] \
                 if guard else []
@@ -460,49 +489,15 @@ def incremental_dynamic_analysis(
                 break
             # the reruns are cases of their own (half the step), stored as they complete: a
             # resumed analysis reads them back
-            halves = [half_step_case(runs[i][x]) for i, x in pending]
-            report = run_sweep(halves, store, evaluate=None, evaluate_batch=batch,
-                               executor=executor, workers=workers,
-                               chunk_size=(round_chunk_size(len(halves), executor, workers)
-                                           if chunk_size is None else chunk_size),
-                               progress=None if progress is None else _round_progress(
-                                   progress, rounds, sum(len(r) for r in runs), len(halves)))
-            computed += report.computed
-            stored = store.lookup(c.case_id for c in halves)
-            for (i, x), case in zip(pending, halves, strict=True):
-                half = stored.get(case.case_id)
-                if half is None or half.status == STATUS_ERROR:
-                    raise ArchquakeError(f"record {names[i]!r} at {measure.label} = {x:.4g} "
-                                         f"{measure.unit}, at half the step: "
-                                         f"{'missing from the store' if half is None else half.error}")
+            halves = [(i, x, half_step_case(runs[i][x])) for i, x in pending]
+            guarded += len(halves)
+            for (i, x, _), half in zip(halves, run_round(halves, ", at half the step"),
+                                       strict=True):
                 checked[i].add(x)
                 outcomes[i][x] = guarded_record(outcomes[i][x], half)
-            guarded += len(pending)
             continue
-        total_so_far = sum(len(r) for r in runs)
-        report = run_sweep(
-            new_cases, store,
-            evaluate=None,
-            evaluate_batch=batch,
-            executor=executor, workers=workers,
-            chunk_size=(round_chunk_size(len(new_cases), executor, workers)
-                        if chunk_size is None and batched else chunk_size),
-            progress=None if progress is None else _round_progress(
-                progress, rounds, total_so_far, len(new_cases)))
-        computed += report.computed
-        stored = store.lookup(c.case_id for c in new_cases)
-        for i in range(len(motions)):
-            for x, case in runs[i].items():
-                if x in outcomes[i]:
-                    continue
-                rec = stored.get(case.case_id)
-                if rec is None:
-                    raise ArchquakeError(f"case {case.case_id} of record {names[i]!r} is missing "
-                                         f"from the store after its round")
-                if rec.status == STATUS_ERROR:
-                    raise ArchquakeError(f"record {names[i]!r} at {measure.label} = {x:.4g} "
-                                         f"{measure.unit}: {rec.error}")
-                outcomes[i][x] = rec
+        for (i, x, _), rec in zip(new_levels, run_round(new_levels, ""), strict=True):
+            outcomes[i][x] = rec
     else:
         raise ArchquakeError(f"incremental dynamic analysis did not converge in {MAX_ROUNDS} "
                              "rounds")
