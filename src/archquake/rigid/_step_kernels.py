@@ -24,10 +24,13 @@ ground; base bodies fixed in the ground's frame):
    the guess fails. While the guessed set is the previous step's and its matrix is regular
    (its impulses unique), the previous factor is kept as the refinement's preconditioner and
    the set's impulses are extrapolated from the last steps (`project_direct`): about 9 steps
-   in 10 then assemble and factorise nothing. Gauss-Seidel runs only when no set is accepted after
-   `ACTIVE_SET_ITERATIONS` or the refinement stalls (3 of the 3996 steps of Oppenheim's
-   4 s history at the verdict's step, 0.04 % of the bridge's steps under near-field records); it
-   returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed of the rigid chain").
+   in 10 then assemble and factorise nothing. A set whose refinement does not converge (its
+   equalities have no solution) is corrected like any other. Gauss-Seidel runs only when no set
+   is accepted: after `ACTIVE_SET_ITERATIONS` sets, or at a set that cannot be factorised, or
+   that cannot be solved and breaks no condition (none of the 3996 steps of Oppenheim's 4 s
+   history at the verdict's step; 0.07 % of the bridge's steps under the 28 near-field records
+   at 0.11 g); it returns the converged Gauss-Seidel's velocities (docs/notes/mechanism.md, "Speed
+   of the rigid chain"; docs/notes/measurements.md, "Where the rigid chain's step goes").
    With friction the no-slip solution is kept when every joint's tangential impulse lies in
    its cone, |p_T| <= mu p_N (`_in_cone`): every joint then sticks, which is Coulomb's
    law, so it is a solution of the frictional step (and its velocity, the no-slip
@@ -276,14 +279,14 @@ def geometry(q, ja, jb, arm_a, arm_b, n0, t0):
     nrm = np.zeros((nj, 2))
     tan = np.zeros((nj, 2))
     pts = np.zeros((nj, 2, 2, 2))
-    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, np.zeros((q.shape[0], 2)))
+    geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, np.zeros((q.shape[0], 4)))
     return Geometry(gaps, nrm, tan, pts)
 
 
 @nb.njit(cache=True, inline="always")
 def _corner(q, trig, body, arms, j, k):
     """`_point` of corner ``k`` of joint ``j`` (``arms[j, k]``, read by scalar indexing) with
-    the body's cos and sin read from ``trig`` (the same numbers)."""
+    the body's cos and sin read from ``trig`` (`geometry_into`'s)."""
     if body < 0:
         return arms[j, k, 0], arms[j, k, 1]
     c = trig[body, 0]
@@ -295,18 +298,25 @@ def _corner(q, trig, body, arms, j, k):
 @nb.njit(cache=True, inline="always")
 def geometry_into(q, ja, jb, arm_a, arm_b, n0, t0, gaps, nrm, tan, pts, trig):
     """`geometry` written into preallocated ``gaps``, ``nrm``, ``tan``, ``pts`` (every
-    entry is overwritten); ``trig`` (nb, 2) scratch: each body's cos and sin, computed once
-    (not once per corner: the same numbers, a fifth of the calls)."""
+    entry is overwritten); ``trig`` (nb, 4) scratch: each body's cos and sin, and those of half
+    its rotation, computed once a step. A body's own cos and sin, and its joints' mean
+    rotations (theta_a + theta_b) / 2, follow from the half angles by the addition formulas: a
+    cos-sin pair a body instead of one a body and one a joint (7 pairs instead of 15 on a
+    7-voussoir arch; they were half of the geometry's time)."""
     nj = ja.shape[0]
     for i in range(q.shape[0]):
-        trig[i, 0] = math.cos(q[i, 2])
-        trig[i, 1] = math.sin(q[i, 2])
+        hc = math.cos(0.5 * q[i, 2])
+        hs = math.sin(0.5 * q[i, 2])
+        trig[i, 0] = (hc - hs) * (hc + hs)
+        trig[i, 1] = 2.0 * hs * hc
+        trig[i, 2] = hc
+        trig[i, 3] = hs
     for j in range(nj):
-        tha = 0.0 if ja[j] < 0 else q[ja[j], 2]
-        thb = 0.0 if jb[j] < 0 else q[jb[j], 2]
-        th = 0.5 * (tha + thb)
-        c = math.cos(th)
-        s = math.sin(th)
+        # the joint's mean rotation (theta_a + theta_b) / 2 by the addition formulas
+        ca, sa = (1.0, 0.0) if ja[j] < 0 else (trig[ja[j], 2], trig[ja[j], 3])
+        cb, sb = (1.0, 0.0) if jb[j] < 0 else (trig[jb[j], 2], trig[jb[j], 3])
+        c = ca * cb - sa * sb
+        s = sa * cb + ca * sb
         nrm[j, 0] = c * n0[j, 0] - s * n0[j, 1]
         nrm[j, 1] = s * n0[j, 0] + c * n0[j, 1]
         tan[j, 0] = c * t0[j, 0] - s * t0[j, 1]
@@ -721,7 +731,11 @@ def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref, work):
     conditions to ``tol``: normal impulses in S >= -tol / W_rr, normal rows outside S separating
     (H_r v >= -tol). Otherwise S is corrected (violated rows added, tensile rows removed) up
     to ``cfg.max_sets`` (``ACTIVE_SET_ITERATIONS``) times, and then projected Gauss-Seidel
-    (`_pgs`) finishes from the previous step's impulses. With ``mu > 0`` an accepted
+    (`_pgs`) finishes from the previous step's impulses. A set whose refinement does not reach
+    ``tol`` is corrected in the same way: its equalities have no solution (its rows
+    over-determine the velocities, as when every corner of a closed arch is active), and the
+    rows whose impulses the refinement drives negative along the matrix's near-null
+    directions leave it. With ``mu > 0`` an accepted
     set's impulses are tested against the Coulomb cones, |p_T| <= mu (p_N0 + p_N1) + tol /
     W_TT at every joint (`_in_cone`): kept if they pass (every joint sticks), otherwise
     clamped into the cones (`_clamp_to_cone`) and finished by the clamped Gauss-Seidel.
@@ -749,20 +763,20 @@ def project_direct(chain, cfg, q, geo, v_free, p_warm, slip_ref, work):
 
 
 class Work(NamedTuple):
-    """The work arrays of one step (`workspace`): allocated once per run, overwritten by
-    every step (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the
-    mid-step configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses;
-    ``gaps``, ``nrm``, ``tan``, ``pts``: `geometry`'s; ``corr`` (1,): the correction's
-    work of the step, J; ``trig`` (nb, 2): the bodies' cos and sin; ``sa``, ``sb``, ``ha``,
-    ``hb``, ``tg``: the direct solve's equality rows packed in set order (bodies, Jacobian
-    entries, bounds); ``pn`` (nj,) the joints' normal impulses (Gauss-Seidel's scratch);
-    ``slip_p`` (nj,) the tangential impulse of each joint that slipped in the step (N s, 0 for
-    the others) and ``t_ja``, ``t_jb`` (nj, 3) its tangential Jacobian rows
-    (`_record_slip`); ``fac`` (3 nj + 1,) the set whose factor ``mat`` holds (its size, -1:
-    none reusable, then each row as 3 joint + kind), ``held`` (1,) the steps over which that
-    set has been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of the two steps before the
-    previous one, ``dinv`` (3 nj,) the reciprocals of the factor's diagonal (`project_direct`,
-    across steps); the others the contact rows' and the direct solve's scratch."""
+    """The work arrays of one step (`workspace`): allocated once per run, overwritten by every step
+    (the step itself allocates nothing). ``qm``, ``vf``, ``vn`` (nb, 3): the mid-step
+    configuration, the free and the projected velocity; ``imp`` (nj, 3) the impulses; ``gaps``,
+    ``nrm``, ``tan``, ``pts``: `geometry`'s; ``corr`` (1,): the correction's work of the step,
+    J; ``trig`` (nb, 4): the bodies' cos and sin, and those of their half rotations; ``sa``,
+    ``sb``, ``ha``, ``hb``, ``tg``: the direct solve's equality rows packed in set order
+    (bodies, Jacobian entries, bounds); ``pn`` (nj,) the joints' normal impulses (Gauss-Seidel's
+    scratch); ``slip_p`` (nj,) the tangential impulse of each joint that slipped in the step
+    (N s, 0 for the others) and ``t_ja``, ``t_jb`` (nj, 3) its tangential Jacobian rows
+    (`_record_slip`); ``fac`` (3 nj + 1,) the set whose factor ``mat`` holds (its size, -1: none
+    reusable, then each row as 3 joint + kind), ``held`` (1,) the steps over which that set has
+    been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of the two steps before the previous
+    one, ``dinv`` (3 nj,) the reciprocals of the factor's diagonal (`project_direct`, across
+    steps); the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -822,7 +836,7 @@ def workspace(nbody, nj):
                 np.zeros(nr, np.int64), np.zeros(nr, np.int64), np.zeros((nr, nr)),
                 np.zeros(nr), np.zeros(nr), np.zeros(nr), np.zeros(nbody, np.int64),
                 np.zeros((nbody, nr), np.int64), np.zeros((nbody, nr), np.int64), np.zeros(1),
-                np.zeros((nbody, 2)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
+                np.zeros((nbody, 4)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
                 np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr), np.zeros(nj), np.zeros(nj),
                 np.zeros((nj, 3)), np.zeros((nj, 3)), np.full(nr + 1, -1, np.int64),
                 np.zeros(1, np.int64), np.zeros((nj, 3)), np.zeros(nr), np.zeros((nj, 3)))
@@ -922,6 +936,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
             if p[r] != 0.0:
                 _apply_row(v, r, rows_j, ja, jb, ja_rows, jb_rows, p[r], inv_m, inv_i)
         last_fac = False
+        converged = True  # an empty set: nothing to solve
         if n > 0:
             # W_SS + eps I in the envelope, factorised in place (lower triangle)
             dmax = 0.0
@@ -1073,9 +1088,10 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                                    inv_i)
             if not ok:
                 break
-            if not converged:
-                break
-        # the cone's conditions
+        # the cone's conditions. A set whose refinement did not converge has no solution on it
+        # (its rows over-determine the velocities: a closed arch with every corner active), and
+        # its impulses grow along the matrix's near-null directions; the rows they turn negative
+        # leave the set here, as any other's, rather than the step falling to Gauss-Seidel
         changed = False
         for r in range(nrows):
             if rows_k[r] == 2:
@@ -1088,7 +1104,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                 in_s[r] = True
                 changed = True
         if not changed:
-            accepted = True
+            accepted = converged
             break
     # the steps over which the factor's set has held, and the previous impulses
     if accepted and last_fac:
