@@ -1,8 +1,9 @@
 """Compiled kernels of the block models' post-processing (numba), shared by the
 distinct-element model (`archquake.dem`) and the rigid chain (`archquake.rigid`): the collapse
-criteria on a configuration (`collapsed`, `first_collapsed`, their packed parameters
-``cpar``, the C_* indices, built by `archquake.blocks.result.collapse_parameters`) and the
-joints' openings and slips (`joint_openings`).
+criteria on a configuration (`collapsed`, `crown_height`, `collapsed_at`, `first_collapsed`,
+their packed parameters ``cpar``, the C_* indices, built by
+`archquake.blocks.result.collapse_parameters`) and the joints' openings and slips
+(`joint_openings`).
 
 Everything here is private.
 """
@@ -25,6 +26,25 @@ N_COLLAPSE = 7
 @nb.njit(cache=True)
 def collapsed(state, free, cpar):
     """Collapse criteria on a recorded configuration (x, y, theta per block)."""
+    return collapsed_at(state, free, cpar, crown_height(state, cpar))
+
+
+@nb.njit(cache=True)
+def crown_height(state, cpar):
+    """The height of the crown's point (m) in the configuration ``state``, NaN when ``cpar``
+    names no crown block."""
+    cb = int(cpar[C_CROWN_BLOCK])
+    if cb < 0:
+        return math.nan
+    c = math.cos(state[cb, 2])
+    s = math.sin(state[cb, 2])
+    return state[cb, 1] + s * cpar[C_CROWN_LX] + c * cpar[C_CROWN_LY]
+
+
+@nb.njit(cache=True)
+def collapsed_at(state, free, cpar, yc):
+    """`collapsed` with the crown's height ``yc`` (m, `crown_height`) already computed (the
+    verdict's loop reads it for the crown's drop as well)."""
     for i in range(state.shape[0]):
         if free[i] == 0:
             continue
@@ -32,14 +52,7 @@ def collapsed(state, free, cpar):
             return True
         if abs(state[i, 2]) > cpar[C_ROT]:
             return True
-    cb = int(cpar[C_CROWN_BLOCK])
-    if cb >= 0:
-        c = math.cos(state[cb, 2])
-        s = math.sin(state[cb, 2])
-        yc = state[cb, 1] + s * cpar[C_CROWN_LX] + c * cpar[C_CROWN_LY]
-        if cpar[C_CROWN_Y0] - yc > cpar[C_CROWN_DROP]:
-            return True
-    return False
+    return int(cpar[C_CROWN_BLOCK]) >= 0 and cpar[C_CROWN_Y0] - yc > cpar[C_CROWN_DROP]
 
 
 @nb.njit(cache=True)

@@ -297,7 +297,8 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
             t_still = t
         k += 1
         # collapse (the crown's drop from its undisplaced height, as cpar says)
-        if par[P_STOP_COLLAPSE] > 0.0 and DK.collapsed(st, free_mask, cpar):
+        yc = DK.crown_height(st, cpar)
+        if par[P_STOP_COLLAPSE] > 0.0 and DK.collapsed_at(st, free_mask, cpar, yc):
             outcome = OUTCOME_COLLAPSE
             final = 2
             t_collapse = t
@@ -306,11 +307,7 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
                 if not math.isnan(last_impact[ell]) and t - last_impact[ell] > longest[ell]:
                     longest[ell] = t - last_impact[ell]
             break
-        cb = int(cpar[DK.C_CROWN_BLOCK])
-        if cb >= 0:
-            cc = math.cos(st[cb, 2])
-            sc = math.sin(st[cb, 2])
-            yc = st[cb, 1] + sc * cpar[DK.C_CROWN_LX] + cc * cpar[DK.C_CROWN_LY]
+        if int(cpar[DK.C_CROWN_BLOCK]) >= 0:
             drop = (cpar[DK.C_CROWN_Y0] - yc) / cpar[DK.C_CROWN_DROP]
             if drop > peak_drop:
                 peak_drop = drop
