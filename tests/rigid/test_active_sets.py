@@ -1,5 +1,5 @@
-"""The rigid step's active-set solve on 15 voussoirs: the steps where the contacts change end
-in an accepted active set (the exact projection), not in Gauss-Seidel run to its limit."""
+"""The rigid step's active-set solve on 7 and 15 voussoirs: the steps where the contacts change
+end in an accepted active set (the exact projection), not in Gauss-Seidel run to its limit."""
 
 from __future__ import annotations
 
