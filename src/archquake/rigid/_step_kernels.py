@@ -777,7 +777,10 @@ class Work(NamedTuple):
     reusable, then each row as 3 joint + kind), ``held`` (1,) the steps over which that set has
     been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of the two steps before the previous
     one, ``dinv`` (3 nj,) the reciprocals of the factor's diagonal (`project_direct`, across
-    steps); the others the contact rows' and the direct solve's scratch."""
+    steps); ``fset`` (3 nj + 1,), ``fpiv`` (3 nj,), ``feps`` (1,) the set last factorised in
+    the step (its size, -1: none, then each row as 3 joint + kind), whether each of its pivots
+    was regular, and its regularisation (a later set of the step refactorises only from its
+    first changed row); the others the contact rows' and the direct solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -822,6 +825,9 @@ class Work(NamedTuple):
     pw2: np.ndarray
     dinv: np.ndarray
     pw3: np.ndarray
+    fset: np.ndarray
+    fpiv: np.ndarray
+    feps: np.ndarray
 
 
 @nb.njit(cache=True)
@@ -840,7 +846,8 @@ def workspace(nbody, nj):
                 np.zeros((nbody, 4)), np.zeros(nr, np.int64), np.zeros(nr, np.int64),
                 np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr), np.zeros(nj), np.zeros(nj),
                 np.zeros((nj, 3)), np.zeros((nj, 3)), np.full(nr + 1, -1, np.int64),
-                np.zeros(1, np.int64), np.zeros((nj, 3)), np.zeros(nr), np.zeros((nj, 3)))
+                np.zeros(1, np.int64), np.zeros((nj, 3)), np.zeros(nr), np.zeros((nj, 3)),
+                np.full(nr + 1, -1, np.int64), np.zeros(nr, np.bool_), np.zeros(1))
 
 
 @nb.njit(cache=True, nogil=True, forceinline=True, **NO_REFCOUNT)
@@ -902,6 +909,9 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
         in_s[r] = rows_k[r] == 2 or pw[r] > 0.0
     nbody = inv_m.shape[0]
     solves = 0
+    fset = ws.fset
+    fpiv = ws.fpiv
+    fset[0] = -1  # no set factorised yet in this step
     accepted = False
     first_stale = False
     last_fac = False
@@ -959,6 +969,15 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
             r_first = 0.0
             while True:
                 if not stale:
+                    # a set of this step after the one factorised last: the factor's rows before
+                    # the first changed row are that set's, the same numbers (a row of a Cholesky
+                    # factor depends only on the rows before it), if the regularisation is too
+                    start = 0
+                    if fset[0] >= 0 and eps == ws.feps[0]:
+                        last = min(n, fset[0])
+                        while start < last and \
+                                fset[1 + start] == 3 * rows_j[idx[start]] + rows_k[idx[start]]:
+                            start += 1
                     # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
                     for c in range(nbody):
                         cnt[c] = 0
@@ -977,7 +996,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                             cnt[c] += 1
                     # the envelope: row i meets the rows from the first one touching either of its
                     # bodies (the lists are in set order); only the envelope is cleared and read
-                    for i in range(n):
+                    for i in range(start, n):
                         f = i
                         if sa[i] >= 0 and lst_i[sa[i], 0] < f:
                             f = lst_i[sa[i], 0]
@@ -989,6 +1008,8 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                     for c in range(nbody):
                         for u in range(cnt[c]):
                             i = lst_i[c, u]
+                            if i < start:
+                                continue
                             if lst_side[c, u] == 0:
                                 h0, h1, h2 = ha[i, 0], ha[i, 1], ha[i, 2]
                             else:
@@ -1002,11 +1023,14 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                                 else:
                                     g0, g1, g2 = hb[k, 0], hb[k, 1], hb[k, 2]
                                 w_mat[i, k] += (h0 * g0 + h1 * g1) * inv_m[c] + h2 * g2 * inv_i[c]
-                    for i in range(n):
+                    for i in range(start, n):
                         w_mat[i, i] += eps
                     ok = True
                     regular = True
-                    for i in range(n):
+                    for i in range(start):
+                        if not fpiv[i]:
+                            regular = False
+                    for i in range(start, n):
                         for k in range(first[i], i + 1):
                             s = w_mat[i, k]
                             lo = first[i] if first[i] > first[k] else first[k]
@@ -1016,7 +1040,8 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                                 if s <= 0.0:
                                     ok = False
                                     break
-                                if s < REUSE_PIVOT * diag[idx[i]]:
+                                fpiv[i] = s >= REUSE_PIVOT * diag[idx[i]]
+                                if not fpiv[i]:
                                     regular = False
                                 w_mat[i, i] = math.sqrt(s)
                                 dinv[i] = 1.0 / w_mat[i, i]
@@ -1026,8 +1051,13 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                             break
                     if not ok:
                         fac[0] = -1
+                        fset[0] = -1
                         last_fac = False
                         break
+                    fset[0] = n
+                    for i in range(n):
+                        fset[1 + i] = 3 * rows_j[idx[i]] + rows_k[idx[i]]
+                    ws.feps[0] = eps
                     last_fac = regular
                     if regular:
                         fac[0] = n
