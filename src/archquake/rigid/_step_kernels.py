@@ -773,14 +773,14 @@ class Work(NamedTuple):
     (bodies, Jacobian entries, bounds); ``pn`` (nj,) the joints' normal impulses (Gauss-Seidel's
     scratch); ``slip_p`` (nj,) the tangential impulse of each joint that slipped in the step
     (N s, 0 for the others) and ``t_ja``, ``t_jb`` (nj, 3) its tangential Jacobian rows
-    (`_record_slip`); ``fac`` (3 nj + 1,) the set whose factor ``mat`` holds (its size, -1: none
-    reusable, then each row as 3 joint + kind), ``held`` (1,) the steps over which that set has
-    been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of the two steps before the previous
-    one, ``dinv`` (3 nj,) the reciprocals of the factor's diagonal (`project_direct`, across
-    steps); ``fset`` (3 nj + 1,), ``fpiv`` (3 nj,), ``feps`` (1,) the set last factorised in
-    the step (its size, -1: none, then each row as 3 joint + kind), whether each of its pivots
-    was regular, and its regularisation (a later set of the step refactorises only from its
-    first changed row); the others the contact rows' and the direct solve's scratch."""
+    (`_record_slip`); ``fac`` (3 nj + 1,) the set whose factor ``mat`` holds (its size, -1: none,
+    then each row as 3 joint + kind), ``fpiv`` (3 nj,) whether each of its pivots was regular
+    (the factor is kept for the next step only if all were), ``feps`` (1,) its regularisation
+    (a later set of the same step refactorises only from its first changed row), ``held`` (1,)
+    the steps over which that set has been accepted, ``pw2``, ``pw3`` (nj, 3) the impulses of
+    the two steps before the previous one, ``dinv`` (3 nj,) the reciprocals of the factor's
+    diagonal (`project_direct`, across steps); the others the contact rows' and the direct
+    solve's scratch."""
 
     qm: np.ndarray
     vf: np.ndarray
@@ -825,7 +825,6 @@ class Work(NamedTuple):
     pw2: np.ndarray
     dinv: np.ndarray
     pw3: np.ndarray
-    fset: np.ndarray
     fpiv: np.ndarray
     feps: np.ndarray
 
@@ -847,7 +846,7 @@ def workspace(nbody, nj):
                 np.zeros((nr, 3)), np.zeros((nr, 3)), np.zeros(nr), np.zeros(nj), np.zeros(nj),
                 np.zeros((nj, 3)), np.zeros((nj, 3)), np.full(nr + 1, -1, np.int64),
                 np.zeros(1, np.int64), np.zeros((nj, 3)), np.zeros(nr), np.zeros((nj, 3)),
-                np.full(nr + 1, -1, np.int64), np.zeros(nr, np.bool_), np.zeros(1))
+                np.zeros(nr, np.bool_), np.zeros(1))
 
 
 @nb.njit(cache=True, nogil=True, forceinline=True, **NO_REFCOUNT)
@@ -909,9 +908,8 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
         in_s[r] = rows_k[r] == 2 or pw[r] > 0.0
     nbody = inv_m.shape[0]
     solves = 0
-    fset = ws.fset
     fpiv = ws.fpiv
-    fset[0] = -1  # no set factorised yet in this step
+    factorised = False  # a set factorised in this step (its rows are this step's)
     accepted = False
     first_stale = False
     last_fac = False
@@ -928,7 +926,7 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
         stale = n > 0 and solves == 1 and fac[0] == n
         if stale:
             for i in range(n):
-                if fac[1 + i] != 3 * rows_j[idx[i]] + rows_k[idx[i]]:
+                if fac[1 + i] != 3 * rows_j[idx[i]] + rows_k[idx[i]] or not fpiv[i]:
                     stale = False
                     break
         if solves == 1:
@@ -973,10 +971,10 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                     # the first changed row are that set's, the same numbers (a row of a Cholesky
                     # factor depends only on the rows before it), if the regularisation is too
                     start = 0
-                    if fset[0] >= 0 and eps == ws.feps[0]:
-                        last = min(n, fset[0])
+                    if factorised and eps == ws.feps[0]:
+                        last = min(n, fac[0])
                         while start < last and \
-                                fset[1 + start] == 3 * rows_j[idx[start]] + rows_k[idx[start]]:
+                                fac[1 + start] == 3 * rows_j[idx[start]] + rows_k[idx[start]]:
                             start += 1
                     # W = sum over bodies c of H_c M_c^-1 H_c^T: the rows touching each body
                     for c in range(nbody):
@@ -1051,20 +1049,15 @@ def _direct_into(chain, cfg, q, geo, v_free, p_warm, slip_ref, work, ws):
                             break
                     if not ok:
                         fac[0] = -1
-                        fset[0] = -1
+                        factorised = False
                         last_fac = False
                         break
-                    fset[0] = n
+                    factorised = True
+                    fac[0] = n
                     for i in range(n):
-                        fset[1 + i] = 3 * rows_j[idx[i]] + rows_k[idx[i]]
+                        fac[1 + i] = 3 * rows_j[idx[i]] + rows_k[idx[i]]
                     ws.feps[0] = eps
                     last_fac = regular
-                    if regular:
-                        fac[0] = n
-                        for i in range(n):
-                            fac[1 + i] = 3 * rows_j[idx[i]] + rows_k[idx[i]]
-                    else:
-                        fac[0] = -1
                 # refine: the equality residual -H_S v, m/s, solved for the impulse increment
                 converged = False
                 for _ref in range(REUSE_REFINEMENTS if stale else REFINEMENTS):
