@@ -42,3 +42,54 @@ def test_stepping_loops_are_compiled_without_reference_counting():
 
     for loop in (RK._steps, VK._verdict_steps):
         assert loop.targetoptions.get("_nrt") is False, loop.py_func.__name__
+
+
+def test_one_loaded_assembly_and_one_onset_for_threads_asking_at_once():
+    """The studies of one loaded arch run side by side (the assessment's sections in threads)
+    share one assembly, one model and one packing, so the onset bisection (a second of
+    projections) runs once; it starts from the equivalent static analysis the assembly
+    records, and gives the plain bisection's numbers. Oracles: object identity, a count of
+    the bisections, and `onset_g` on a fresh model."""
+    import threading
+
+    from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
+    from archquake.blocks.criteria import BlockCriteria
+    from archquake.geometry.loads import Fill, Loads
+    from archquake.ida.batch import rigid_body
+    from archquake.limit.loaded import loaded_collapse, seismic_case
+    from archquake.rigid.events import EventModel
+    from archquake.rigid.model import RigidModel
+    from archquake.rigid.verdict import _packed, rigid_model
+
+    arch = Arch(5.0, 0.6, math.pi, 15, density=1800.0)
+    loads = Loads(fill=Fill(depth=1.0, density=1800.0))
+    calls = []
+    bisect = EventModel._bisect
+
+    def counted(self, sgn, *args):
+        calls.append(sgn)
+        return bisect(self, sgn, *args)
+
+    packed: list = []
+
+    def study() -> None:
+        packed.append(_packed(rigid_model(rigid_body(Arch(5.0, 0.6, math.pi, 15, density=1800.0),
+                                                     loads)), BlockCriteria()))
+
+    EventModel._bisect = counted
+    try:
+        threads = [threading.Thread(target=study) for _ in range(3)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        EventModel._bisect = bisect
+    assert packed[0] is packed[1] is packed[2]
+    assert calls == [1.0, -1.0]  # one onset: lambda_+ and lambda_-, once
+    body = rigid_body(arch, loads)
+    assert body is dem_assembly(arch, VOUSSOIRS, loads=loads)
+    lam = loaded_collapse(seismic_case(arch, loads)).multiplier
+    assert body.meta["collapse_multiplier"] == lam
+    plain = EventModel.build(RigidModel.build(dem_assembly(arch, VOUSSOIRS, loads=loads)))
+    assert (packed[0].safe_pos, packed[0].safe_neg) == plain.onset_g

@@ -21,6 +21,8 @@ joint would give t^3/12).
 
 from __future__ import annotations
 
+import functools
+import threading
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -208,6 +210,9 @@ class LoadedVoussoirs:
     mechanism : HingeMechanism
         The loaded arch's hinges (the equivalent static analysis with the loads, a load
         towards +x), which define the rotation measure.
+    multiplier : float
+        That analysis's collapse multiplier: the horizontal acceleration, in g, at which the
+        loaded arch becomes a mechanism.
     """
 
     masses: np.ndarray
@@ -216,6 +221,7 @@ class LoadedVoussoirs:
     held: np.ndarray
     carried: np.ndarray
     mechanism: HingeMechanism
+    multiplier: float = float("nan")
 
     def to_dict(self) -> dict:
         return {
@@ -270,8 +276,9 @@ def loaded_voussoirs(arch: VoussoirChain, loads: Loads) -> LoadedVoussoirs:
                + ex.inertia + ex.mass * np.sum((ex.centroid - c) ** 2, axis=1))
     # a held joint cannot hinge, so the voussoir on its far side is bonded to the support too
     held = ex.held[:-1] | ex.held[1:]
-    mech = loaded_collapse(seismic_case(arch, loads, direction=1)).mechanism
-    return LoadedVoussoirs(m, c, inertia, held, ex.mass.copy(), mech)
+    collapse = loaded_collapse(seismic_case(arch, loads, direction=1))
+    return LoadedVoussoirs(m, c, inertia, held, ex.mass.copy(), collapse.mechanism,
+                           float(collapse.multiplier))
 
 
 def build_arch_assembly(
@@ -324,6 +331,10 @@ def build_arch_assembly(
     hinge B (carried by the block just left of joint B): for an arch cut at the hinges this is
     the rotation of link AB itself, the four-link phi; for the voussoir arch it is the
     rotation of voussoirs A..B as a whole, which equals phi while they move as one link.
+
+    ``meta["collapse_multiplier"]`` is the equivalent static analysis's collapse multiplier
+    of the arch with what it carries (g, a load towards +x; None where it finds none): the
+    rigid chain starts its onset bisection from it (`archquake.rigid.verdict`).
     """
     n = arch.voussoirs
     cuts = tuple(range(n + 1)) if cut_joints is None else tuple(int(j) for j in cut_joints)
@@ -397,6 +408,7 @@ def build_arch_assembly(
     n_free = int(len(base) - np.count_nonzero(base))
     extra_meta = ({} if loaded is None or loads is None
                   else {"loads": loads.to_dict(), "masses": loaded.to_dict()})
+    multiplier = _bare_multiplier(arch) if loaded is None else loaded.multiplier
     return Assembly(
         polygons=tuple(polys),
         masses=np.array(masses),
@@ -419,9 +431,22 @@ def build_arch_assembly(
                                if k < held_below or k >= held_above or held[k]],
             "mechanism_joints": list(mechanism.joints),
             "mechanism_faces": [f.value for f in mechanism.faces],
+            "collapse_multiplier": multiplier,
             **extra_meta,
         },
     )
+
+
+def _bare_multiplier(arch: VoussoirChain) -> float | None:
+    """The bare arch's collapse multiplier (the equivalent static analysis of its hinges,
+    `archquake.limit.hinges_of`), g; None where that analysis finds none."""
+    from archquake.errors import ArchquakeError
+    from archquake.limit.static import collapse_state
+
+    try:
+        return float(collapse_state(hinges_of(arch))[0])
+    except (ArchquakeError, np.linalg.LinAlgError):
+        return None
 
 
 def three_voussoir_assembly(arch: VoussoirChain, *, loads: Loads | None = None) -> Assembly:
@@ -456,7 +481,22 @@ def dem_assembly(arch: VoussoirChain, assembly: str = VOUSSOIRS, *,
                  loads: Loads | None = None) -> Assembly:
     """The DEM assembly of ``arch`` carrying ``loads``: ``'voussoirs'`` (every voussoir a
     block, `build_arch_assembly`) or ``'hinges'`` (cut at the hinges,
-    `three_voussoir_assembly`)."""
+    `three_voussoir_assembly`).
+
+    Built once for equal inputs (the arch and the loads are frozen and compared by value),
+    and one object for threads that ask at once: what is memoised on the assembly (the rigid
+    chain's model, its onset accelerations found by bisection) is then computed once for
+    every study of the same arch."""
+    with _BUILDING:
+        return _dem_assembly(arch, assembly, loads)
+
+
+#: Held while an assembly is built, so that threads asking for the same one share it.
+_BUILDING = threading.Lock()
+
+
+@functools.lru_cache(maxsize=16)
+def _dem_assembly(arch: VoussoirChain, assembly: str, loads: Loads | None) -> Assembly:
     if assembly == VOUSSOIRS:
         return build_arch_assembly(arch, loads=loads)
     if assembly == HINGES:

@@ -12,7 +12,6 @@ rotation of the run. It is a smaller summary than `archquake.sweeps.evaluate_cas
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -134,21 +133,21 @@ def _body(arch, loads):
     return rigid_body(arch.build(), loads)
 
 
-@functools.lru_cache(maxsize=16)
 def rigid_body(arch, loads):
     """What the rigid chain runs for ``arch`` (an `Arch`): the arch, or with ``loads`` its
-    blocks carrying them (`archquake.blocks.assembly.build_arch_assembly`), built once per
-    (arch, loads), both frozen and compared by value.
+    blocks carrying them (`archquake.blocks.assembly.dem_assembly`, built once per
+    (arch, loads), both frozen and compared by value).
 
     One object for equal inputs, so that the chain's model and its verdict arrays, memoised
     on the object (`archquake.rigid.verdict.rigid_model`), are built once too: for a
-    loaded arch the onset accelerations are found by bisection (about a second), which every
-    round of an incremental dynamic analysis repeated on a fresh assembly."""
+    loaded arch the onset accelerations are found by bisection, which every round of an
+    incremental dynamic analysis, and every study of the same loaded arch, would repeat on a
+    fresh assembly."""
     if loads is None:
         return arch
-    from archquake.blocks.assembly import build_arch_assembly
+    from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
 
-    return build_arch_assembly(arch, loads=loads)
+    return dem_assembly(arch, VOUSSOIRS, loads=loads)
 
 
 def _rigid_options(case: Case) -> ArchquakeError | None:

@@ -17,6 +17,7 @@ contacts) it hands to the time stepper at that instant, which finishes the run; 
 from __future__ import annotations
 
 import math
+import threading
 import time as _time
 from dataclasses import dataclass
 from functools import cached_property
@@ -69,6 +70,10 @@ ONSET_CEILING_G = 1.0e6
 #: through the projection's tolerances) is found so by one projection first.
 ONSET_FLOOR_G = 1.0e-9
 
+#: Held while an event model is built, so that threads asking at once share one.
+_BUILDING = threading.Lock()
+
+
 @dataclass(frozen=True)
 class EventModel:
     """A `RigidModel` laid out for the event integrator:
@@ -120,9 +125,10 @@ class EventModel:
     def of(cls, rigid: RigidModel) -> EventModel:
         """`build`, once per rigid model: kept on the model itself (its onset thresholds are
         computed once), so that the model needs nothing of the event integrator."""
-        cached = rigid.__dict__.get("_event_model")
-        if cached is None:
-            cached = rigid.__dict__["_event_model"] = cls.build(rigid)
+        with _BUILDING:  # one for threads that ask at once
+            cached = rigid.__dict__.get("_event_model")
+            if cached is None:
+                cached = rigid.__dict__["_event_model"] = cls.build(rigid)
         return cached
 
     @property

@@ -31,6 +31,7 @@ import functools
 import heapq
 import itertools
 import math
+import threading
 from collections.abc import Callable, Hashable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
@@ -53,7 +54,7 @@ from archquake.blocks.result import (
     rest_threshold,
 )
 from archquake.constants import STANDARD_GRAVITY
-from archquake.errors import ArchquakeError, InvalidParameterError
+from archquake.errors import InvalidParameterError
 from archquake.geometry.chain import VoussoirChain
 from archquake.ground.base import check_motion_lift_off
 from archquake.ground.records import Record
@@ -97,43 +98,43 @@ def _model_of_chain(arch: VoussoirChain) -> RigidModel:
 
 
 def _onset_g(model: RigidModel) -> tuple[float, float]:
-    """The chain's onset multipliers, g (`onset_g`);
-    for a model built from an arch, by the bisection seeded with the arch's limit analysis
-    (`onset_near`: the same numbers, fewer
-    projections)."""
-    from archquake.limit import hinges_of
-    from archquake.limit.static import collapse_state
+    """The chain's onset multipliers, g (`onset_g`), by the bisection seeded with the
+    equivalent static analysis of the arch with what it carries, where the assembly records it
+    (``collapse_multiplier``, `archquake.blocks.assembly.build_arch_assembly`:
+    `onset_near`, the same numbers with fewer projections)."""
     from archquake.rigid.events import EventModel
 
     events = EventModel.of(model)
-    if model.arch is None:
+    hint = model.assembly.meta.get("collapse_multiplier")
+    if hint is None:
         return events.onset_g
-    try:
-        hint = collapse_state(hinges_of(model.arch))[0]
-    except (ArchquakeError, np.linalg.LinAlgError):
-        return events.onset_g
-    return events.onset_near(hint)
+    return events.onset_near(float(hint))
 
 
 #: Models built from assemblies (not hashable: keyed by identity, the assembly kept alive).
 _ASSEMBLY_MODELS: dict[int, tuple[Assembly, RigidModel]] = {}
 
 
+#: Held while a model, or its verdict arrays, are built: threads asking at once share one.
+_BUILDING = threading.Lock()
+
+
 def rigid_model(arch_or_model: VoussoirChain | Assembly | RigidModel) -> RigidModel:
     """The `RigidModel` of an arch or an assembly, built once (memoised: both are
-    frozen), or a model itself."""
+    frozen; one model for threads that ask at once), or a model itself."""
     if isinstance(arch_or_model, RigidModel):
         return arch_or_model
-    if isinstance(arch_or_model, VoussoirChain):
-        return _model_of_chain(arch_or_model)
-    hit = _ASSEMBLY_MODELS.get(id(arch_or_model))
-    if hit is not None and hit[0] is arch_or_model:
-        return hit[1]
-    model = RigidModel.build(arch_or_model)
-    if len(_ASSEMBLY_MODELS) > 64:
-        _ASSEMBLY_MODELS.clear()
-    _ASSEMBLY_MODELS[id(arch_or_model)] = (arch_or_model, model)
-    return model
+    with _BUILDING:
+        if isinstance(arch_or_model, VoussoirChain):
+            return _model_of_chain(arch_or_model)
+        hit = _ASSEMBLY_MODELS.get(id(arch_or_model))
+        if hit is not None and hit[0] is arch_or_model:
+            return hit[1]
+        model = RigidModel.build(arch_or_model)
+        if len(_ASSEMBLY_MODELS) > 64:
+            _ASSEMBLY_MODELS.clear()
+        _ASSEMBLY_MODELS[id(arch_or_model)] = (arch_or_model, model)
+        return model
 
 
 def verdict_time_step(arch_or_model, *, g: float = STANDARD_GRAVITY) -> float:
@@ -159,10 +160,15 @@ class _Packed:
     safe_neg: float
 
 
-@functools.lru_cache(maxsize=64)
 def _packed(model: RigidModel, settings: BlockCriteria) -> _Packed:
     """A model's arrays for `verdict_run` under ``settings``, built once for each (a model
-    hashes by identity)."""
+    hashes by identity; threads asking at once wait for the one being built)."""
+    with _BUILDING:
+        return _packed_once(model, settings)
+
+
+@functools.lru_cache(maxsize=64)
+def _packed_once(model: RigidModel, settings: BlockCriteria) -> _Packed:
     return _pack(model, settings)
 
 
