@@ -144,20 +144,24 @@ def test_censored_fit_is_bit_for_bit_the_scipy_likelihoods():
         assert _mle_first(logs, log_c) == _mle_first_scipy(logs, log_c)
 
 
-def test_probability_interval_refits_nothing_the_fragility_fitted():
+def test_probability_interval_refits_nothing_the_fragility_fitted(monkeypatch):
     """The assessment's interval of P(collapse | site PGA) resamples the records from the seed
-    the fragility's bootstrap used: its fits are found again (memoised on their input), none
+    the fragility's bootstrap used: its fits are found again (kept by their input), none
     is made twice, and the interval is the one the plain refits give (oracle: each resample
     fitted anew with scipy.stats' likelihood)."""
     from archquake.assess.sections import _p_at_site_ci
-    from archquake.ida.fragility import _mle_first_of
+    from archquake.ida import fragility
 
     first = _capacities(7, n=28)
     first[first > 1.1] = np.nan
+    fragility._FIRST_FITS.clear()
     fit_first_collapse(first, ceiling=1.1, rng=np.random.default_rng(0), bootstrap=200)
-    fitted = _mle_first_of.cache_info().misses
+    made = []
+    searched = fragility._nelder_mead_many
+    monkeypatch.setattr(fragility, "_nelder_mead_many",
+                        lambda nll, x0: made.append(len(x0)) or searched(nll, x0))
     ci = _p_at_site_ci(first, 1.1, 0.6, 200)
-    assert _mle_first_of.cache_info().misses == fitted  # every fit found again
+    assert made == []  # every fit found again
     rng = np.random.default_rng(0)
     ps = []
     for _ in range(200):
@@ -169,3 +173,69 @@ def test_probability_interval_refits_nothing_the_fragility_fitted():
         ps.append(float(stats.norm.cdf(np.log(0.6 / math.exp(mu)) / beta)))
     q = [50 * (1 - 0.9), 50 * (1 + 0.9)]  # the 90 % interval, as the assessment writes it
     assert ci == tuple(float(v) for v in np.percentile(ps, q))
+
+
+def _mle_fraction_scipy(levels, z, n):
+    """The binomial likelihood of the collapse fraction with scipy.stats.norm's logcdf and
+    logsf, maximised by ``scipy.optimize.minimize`` with the fits' Nelder-Mead settings, from
+    the fits' start (`_fraction_start`)."""
+    from scipy import optimize
+
+    from archquake.ida.fragility import NELDER_MEAD, _fraction_start
+
+    lx = np.log(levels)
+
+    def nll(p):
+        mu, lb = p
+        s = (lx - mu) / math.exp(lb)
+        return -float(np.sum(z * stats.norm.logcdf(s) + (n - z) * stats.norm.logsf(s)))
+
+    res = optimize.minimize(nll, list(_fraction_start(lx, z, n)), method="Nelder-Mead",
+                            options=NELDER_MEAD)
+    return float(res.x[0]), float(math.exp(res.x[1]))
+
+
+def test_bootstrap_fits_are_scipys_nelder_mead_resample_by_resample():
+    """The bootstrap fits its resamples together (one Nelder-Mead run over all of them,
+    `_nelder_mead_many`). Oracle: each resample maximised alone by
+    ``scipy.optimize.minimize`` with scipy.stats' likelihoods. The intervals are equal to the
+    last bit, for both fits, on samples with ties, censored records and non-monotone
+    collapses."""
+    from archquake.ida.fragility import _with_ci
+
+    rng = np.random.default_rng(21)
+    q = [50 * (1 - 0.9), 50 * (1 + 0.9)]
+    for trial in range(4):
+        caps = np.round(_capacities(30 + trial, n=28), 2 if trial % 2 else 6)
+        levels = np.geomspace(0.3, 2.0, 12)
+        collapses = (levels[None, :] >= caps[:, None]) ^ (rng.random((28, 12)) < 0.04)
+        fit = fit_collapse_fraction(levels, collapses, rng=np.random.default_rng(trial),
+                                    bootstrap=150)
+        draw = np.random.default_rng(trial)
+        n = np.full(levels.size, 28.0)
+        fits = []
+        for _ in range(150):
+            z = collapses[draw.integers(0, 28, 28)].sum(axis=0).astype(float)
+            if np.all(z == 0) or np.all(z == 28):
+                continue
+            fits.append(_mle_fraction_scipy(levels, z, n))
+        meds = np.array([math.exp(m) for m, _ in fits])
+        betas = np.array([b for _, b in fits])
+        assert fit == _with_ci(fit, meds, betas, 0.9, len(fits))
+        assert fit.median_ci == tuple(float(v) for v in np.percentile(meds, q))
+
+        cens = np.where(caps > 1.2, np.nan, caps)
+        fit = fit_first_collapse(cens, ceiling=1.2, rng=np.random.default_rng(trial),
+                                 bootstrap=150)
+        draw = np.random.default_rng(trial)
+        fits = []
+        for _ in range(150):
+            x = cens[draw.integers(0, 28, 28)]
+            cx = ~np.isfinite(x)
+            if (~cx).sum() < 2:
+                continue
+            fits.append(_mle_first_scipy(np.log(x[~cx]), np.full(int(cx.sum()), math.log(1.2))))
+        meds = np.array([math.exp(m) for m, _ in fits])
+        betas = np.array([b for _, b in fits])
+        assert fit.beta_ci == tuple(float(v) for v in np.percentile(betas, q))
+        assert fit.median_ci == tuple(float(v) for v in np.percentile(meds, q))

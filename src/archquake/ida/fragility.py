@@ -24,13 +24,12 @@ samples; in (b) a record's outcomes at all levels travel together), with a
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special, stats
+from scipy import special, stats
 
 from archquake._validate import require_int, require_range
 from archquake.errors import InvalidParameterError
@@ -97,49 +96,172 @@ class LognormalFit:
                 "records": self.samples, "censored": self.censored}
 
 
-# ----------------------------------------------------------------------------- (a)
+# ----------------------------------------------------------------------------- the fits
 #: log sqrt(2 pi), as scipy.stats.norm's log density subtracts it.
 _NORM_LOG_C = float(np.log(np.sqrt(2 * np.pi)))
+#: Nelder-Mead's options for both fits (`scipy.optimize.minimize`'s).
+NELDER_MEAD = {"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000}
+
+
+def _nelder_mead_many(nll: Callable[[np.ndarray, np.ndarray], np.ndarray],
+                      x0: np.ndarray) -> np.ndarray:
+    """``scipy.optimize.minimize(f_i, x0[i], method="Nelder-Mead", options=NELDER_MEAD).x``
+    for many problems of two parameters at once, to the bit.
+
+    SciPy's algorithm step for step (its initial simplex, reflection, expansion, the two
+    contractions and the shrink, its sort and its stopping test, with the same expressions),
+    run on every problem in step: each iteration evaluates the objective of all the problems
+    still iterating in one call, so NumPy's cost per call is paid once per iteration rather
+    than once per problem (a bootstrap refits the same likelihood a thousand times).
+    tests/ida/test_fragility.py holds it to ``scipy.optimize.minimize``.
+
+    Parameters
+    ----------
+    nll : callable
+        ``nll(points, rows)``: the objective of problem ``rows[k]`` at ``points[k]``, (m,)
+        from (m, 2) and (m,).
+    x0 : ndarray (P, 2)
+        The starting points.
+
+    Returns
+    -------
+    ndarray (P, 2)
+        The best vertex of each problem's final simplex.
+    """
+    xatol, fatol, maxiter = NELDER_MEAD["xatol"], NELDER_MEAD["fatol"], NELDER_MEAD["maxiter"]
+    rho, chi, psi, sigma = 1, 2, 0.5, 0.5  # scipy's, not adaptive
+    nonzdelt, zdelt = 0.05, 0.00025
+    x0 = np.asarray(x0, dtype=float)
+    count = x0.shape[0]
+    sim = np.empty((count, 3, 2))
+    sim[:, 0] = x0
+    for k in range(2):
+        y = x0.copy()
+        nonzero = y[:, k] != 0
+        y[nonzero, k] = (1 + nonzdelt) * y[nonzero, k]
+        y[~nonzero, k] = zdelt
+        sim[:, k + 1] = y
+    rows = np.arange(count)
+    fsim = np.empty((count, 3))
+    for k in range(3):
+        fsim[:, k] = nll(sim[:, k], rows)
+    _sort_simplices(sim, fsim, rows)
+    iterations = 1
+    while rows.size and iterations < maxiter:
+        s, f = sim[rows], fsim[rows]
+        done = ((np.max(np.abs(s[:, 1:] - s[:, :1]).reshape(rows.size, -1), axis=1) <= xatol)
+                & (np.max(np.abs(f[:, :1] - f[:, 1:]), axis=1) <= fatol))
+        rows, s, f = rows[~done], s[~done], f[~done]
+        if not rows.size:
+            break
+        xbar = np.add.reduce(s[:, :-1], 1) / 2
+        worst = s[:, -1]
+        xr = (1 + rho) * xbar - rho * worst
+        fxr = nll(xr, rows)
+        new, fnew = xr.copy(), fxr.copy()
+        expand = fxr < f[:, 0]
+        if expand.any():
+            xe = (1 + rho * chi) * xbar[expand] - rho * chi * worst[expand]
+            fxe = nll(xe, rows[expand])
+            take = fxe < fxr[expand]
+            idx = np.flatnonzero(expand)[take]
+            new[idx], fnew[idx] = xe[take], fxe[take]
+        rest = ~expand & ~(fxr < f[:, -2])  # neither expanded nor reflected: contract
+        shrink = np.zeros(rows.size, dtype=bool)
+        outside = rest & (fxr < f[:, -1])
+        if outside.any():
+            xc = (1 + psi * rho) * xbar[outside] - psi * rho * worst[outside]
+            fxc = nll(xc, rows[outside])
+            take = fxc <= fxr[outside]
+            idx = np.flatnonzero(outside)
+            new[idx[take]], fnew[idx[take]] = xc[take], fxc[take]
+            shrink[idx[~take]] = True
+        inside = rest & ~(fxr < f[:, -1])
+        if inside.any():
+            xcc = (1 - psi) * xbar[inside] + psi * worst[inside]
+            fxcc = nll(xcc, rows[inside])
+            take = fxcc < f[inside, -1]
+            idx = np.flatnonzero(inside)
+            new[idx[take]], fnew[idx[take]] = xcc[take], fxcc[take]
+            shrink[idx[~take]] = True
+        keep = ~shrink
+        s[keep, -1], f[keep, -1] = new[keep], fnew[keep]
+        if shrink.any():
+            for j in (1, 2):
+                s[shrink, j] = s[shrink, 0] + sigma * (s[shrink, j] - s[shrink, 0])
+                f[shrink, j] = nll(s[shrink, j], rows[shrink])
+        sim[rows], fsim[rows] = s, f
+        iterations += 1
+        _sort_simplices(sim, fsim, rows)
+    return sim[:, 0].copy()
+
+
+def _sort_simplices(sim: np.ndarray, fsim: np.ndarray, rows: np.ndarray) -> None:
+    """Each of the simplices ``rows`` in the order of its values, best first, as
+    ``np.argsort`` orders one simplex (in place)."""
+    ind = np.argsort(fsim[rows], axis=1)
+    sim[rows] = np.take_along_axis(sim[rows], ind[:, :, None], 1)
+    fsim[rows] = np.take_along_axis(fsim[rows], ind, 1)
+
+
+# ----------------------------------------------------------------------------- (a)
+#: The first-collapse fits made, by their input (the float64 bytes of the logs of the
+#: collapsing levels and of the censoring levels): the same resample of the same records,
+#: drawn again by another caller from the same seed (the probability of collapse at the site
+#: PGA beside the fragility's own interval), is not fitted twice.
+_FIRST_FITS: dict[tuple[bytes, bytes], tuple[float, float]] = {}
+_FIRST_FITS_KEPT = 4096
 
 
 def _mle_first(logs: np.ndarray, log_ceilings: np.ndarray) -> tuple[float, float]:
     """(ln theta, beta) maximising the lognormal likelihood of ``logs`` with records censored
     at ``log_ceilings`` (no collapse up to there); each fit made once per input
-    (`_mle_first_of`)."""
-    return _mle_first_of(np.asarray(logs, dtype=float).tobytes(),
-                         np.asarray(log_ceilings, dtype=float).tobytes())
+    (`_mle_first_many`)."""
+    return _mle_first_many([(np.asarray(logs, dtype=float), np.asarray(log_ceilings, dtype=float))])[0]
 
 
-@functools.lru_cache(maxsize=4096)
-def _mle_first_of(logs_bytes: bytes, ceilings_bytes: bytes) -> tuple[float, float]:
-    """`_mle_first` of the float64 arrays in ``logs_bytes`` and ``ceilings_bytes``, memoised
-    on them: the same resample of the same records, drawn again by another caller from the
-    same seed (the probability of collapse at the site PGA beside the fragility's own
-    interval), is not fitted twice. A pure function of its bytes."""
-    logs = np.frombuffer(logs_bytes, dtype=float)
-    log_ceilings = np.frombuffer(ceilings_bytes, dtype=float)
-    n = logs.size
-    if n < 2:
-        raise InvalidParameterError(f"a lognormal fit needs at least 2 collapses, got {n}")
-    mu0 = float(np.mean(logs))
-    beta0 = float(np.std(logs))
-    if log_ceilings.size == 0:
-        return mu0, beta0
-    beta0 = max(beta0, 1e-3)
+def _mle_first_many(samples: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[tuple[float, float]]:
+    """`_mle_first` of each (logs, log ceilings) in ``samples``: a censored sample's maximum
+    by Nelder-Mead from the uncensored estimate, the samples of equal sizes in one run of
+    `_nelder_mead_many`; each fit kept by its input (`_FIRST_FITS`)."""
+    keys = [(lg.tobytes(), lc.tobytes()) for lg, lc in samples]
+    groups: dict[tuple[int, int], list[int]] = {}
+    for i, ((lg, lc), key) in enumerate(zip(samples, keys, strict=True)):
+        if key in _FIRST_FITS:
+            continue
+        if lg.size < 2:
+            raise InvalidParameterError(f"a lognormal fit needs at least 2 collapses, got {lg.size}")
+        if lc.size == 0:
+            _keep(key, (float(np.mean(lg)), float(np.std(lg))))
+        else:
+            groups.setdefault((lg.size, lc.size), []).append(i)
+    for (n, _), members in groups.items():
+        logs = np.array([samples[i][0] for i in members])
+        log_ceilings = np.array([samples[i][1] for i in members])
+        x0 = np.array([[float(np.mean(lg)), math.log(max(float(np.std(lg)), 1e-3))]
+                       for lg in logs])
 
-    def nll(p):
-        mu, lb = p
-        b = math.exp(lb)
-        z = (logs - mu) / b
-        # log phi(z) and log(1 - Phi(s)) as scipy.stats.norm's logpdf and logsf compute them
-        # (the same expressions, the same bits), without their generic wrapper, which cost
-        # several times more (the bootstrap refits this likelihood a thousand times)
-        return -(np.sum(-z**2 / 2.0 - _NORM_LOG_C) - n * lb
-                 + np.sum(special.log_ndtr(-((log_ceilings - mu) / b))))
+        def nll(points: np.ndarray, rows: np.ndarray, logs=logs, log_ceilings=log_ceilings,
+                n=n) -> np.ndarray:
+            mu = points[:, :1]
+            lb = points[:, 1]
+            b = np.array([math.exp(v) for v in lb])[:, None]
+            z = (logs[rows] - mu) / b
+            # log phi(z) and log(1 - Phi(s)) as scipy.stats.norm's logpdf and logsf compute them
+            # (the same expressions, the same bits), without their generic wrapper
+            return -(np.sum(-z**2 / 2.0 - _NORM_LOG_C, axis=1) - n * lb
+                     + np.sum(special.log_ndtr(-((log_ceilings[rows] - mu) / b)), axis=1))
 
-    res = optimize.minimize(nll, [mu0, math.log(beta0)], method="Nelder-Mead",
-                            options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
-    return float(res.x[0]), float(math.exp(res.x[1]))
+        best = _nelder_mead_many(nll, x0)
+        for i, (mu, lb) in zip(members, best, strict=True):
+            _keep(keys[i], (float(mu), float(math.exp(lb))))
+    return [_FIRST_FITS[key] for key in keys]
+
+
+def _keep(key: tuple[bytes, bytes], fit: tuple[float, float]) -> None:
+    if len(_FIRST_FITS) >= _FIRST_FITS_KEPT:
+        del _FIRST_FITS[next(iter(_FIRST_FITS))]  # the oldest
+    _FIRST_FITS[key] = fit
 
 
 def fit_first_collapse(values: Sequence[float], *, ceiling=None,
@@ -185,44 +307,54 @@ def fit_first_collapse(values: Sequence[float], *, ceiling=None,
         return fit
     require_int("bootstrap", bootstrap, 1, 10**7)
     require_range("confidence", confidence, 0, 1)
-    meds, betas = [], []
+    samples = []
     for _ in range(int(bootstrap)):
         pick = rng.integers(0, x.size, x.size)
         cx = censored[pick]
         lx = np.log(x[pick][~cx])
         if lx.size < 2:
             continue
-        m, b = _mle_first(lx, log_c[pick][cx])
-        meds.append(math.exp(m))
-        betas.append(b)
-    return _with_ci(fit, np.array(meds), np.array(betas), confidence, len(meds))
+        samples.append((lx, log_c[pick][cx]))
+    fits = _mle_first_many(samples)
+    meds = np.array([math.exp(m) for m, _ in fits])
+    betas = np.array([b for _, b in fits])
+    return _with_ci(fit, meds, betas, confidence, len(fits))
 
 
 # ----------------------------------------------------------------------------- (b)
 def _mle_fraction(levels: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[float, float]:
     """(ln theta, beta) maximising the binomial likelihood of Baker (2015)."""
-    lx = np.log(levels)
+    return _mle_fraction_many(levels, np.asarray(z, dtype=float)[None, :], n)[0]
+
+
+def _fraction_start(lx: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[float, float]:
+    """Nelder-Mead's start for the collapse fraction's fit: the level where the fraction
+    crosses 1/2, and the spread of the transition (ln theta, ln beta)."""
     frac = z / n
     if np.all(frac == 0) or np.all(frac == 1):
         raise InvalidParameterError("the collapse fraction is 0 (or 1) at every level: no "
                                     "fragility can be fitted; widen the levels")
-    # start: the level where the fraction crosses 1/2, and the spread of the transition
     mu0 = float(np.interp(0.5, np.maximum.accumulate(frac), lx))
     inside = (frac > 0) & (frac < 1)
     beta0 = float(np.std(lx[inside])) if inside.sum() >= 2 else 0.1 * max(1e-3, np.ptp(lx))
-    beta0 = max(beta0, 1e-3)
+    return mu0, math.log(max(beta0, 1e-3))
 
-    def nll(p):
-        mu, lb = p
-        s = (lx - mu) / math.exp(lb)
+
+def _mle_fraction_many(levels: np.ndarray, zs: np.ndarray, n: np.ndarray
+                       ) -> list[tuple[float, float]]:
+    """`_mle_fraction` of each row of ``zs`` (collapses at each level), in one run of
+    `_nelder_mead_many`."""
+    lx = np.log(levels)
+    x0 = np.array([_fraction_start(lx, z, n) for z in zs])
+
+    def nll(points: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        s = (lx - points[:, :1]) / np.array([math.exp(v) for v in points[:, 1]])[:, None]
+        z = zs[rows]
         # log Phi(s) and log(1 - Phi(s)): scipy.stats.norm's logcdf and logsf are these
-        # ufuncs behind a generic wrapper that cost 10x more (the bootstrap refits this
-        # likelihood some 80 000 times)
-        return -float(np.sum(z * special.log_ndtr(s) + (n - z) * special.log_ndtr(-s)))
+        # ufuncs behind a generic wrapper that cost 10x more
+        return -np.sum(z * special.log_ndtr(s) + (n - z) * special.log_ndtr(-s), axis=1)
 
-    res = optimize.minimize(nll, [mu0, math.log(beta0)], method="Nelder-Mead",
-                            options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
-    return float(res.x[0]), float(math.exp(res.x[1]))
+    return [(float(mu), float(math.exp(lb))) for mu, lb in _nelder_mead_many(nll, x0)]
 
 
 def fit_collapse_fraction(levels: Sequence[float], collapses, *,
@@ -252,16 +384,19 @@ def fit_collapse_fraction(levels: Sequence[float], collapses, *,
     fit = LognormalFit(math.exp(mu), beta, "collapse_fraction", n_rec, confidence=confidence)
     if rng is None or bootstrap <= 0:
         return fit
-    meds, betas = [], []
+    zs = []
     for _ in range(int(bootstrap)):
         pick = rng.integers(0, n_rec, n_rec)
         z = c[pick].sum(axis=0).astype(float)
         if np.all(z == 0) or np.all(z == n_rec):
             continue
-        m, b = _mle_fraction(x, z, n)
-        meds.append(math.exp(m))
-        betas.append(b)
-    return _with_ci(fit, np.array(meds), np.array(betas), confidence, len(meds))
+        zs.append(z)
+    if not zs:
+        return fit
+    fits = _mle_fraction_many(x, np.array(zs), n)
+    meds = np.array([math.exp(m) for m, _ in fits])
+    betas = np.array([b for _, b in fits])
+    return _with_ci(fit, meds, betas, confidence, len(fits))
 
 
 def _with_ci(fit: LognormalFit, meds: np.ndarray, betas: np.ndarray, confidence: float,
