@@ -104,3 +104,34 @@ def test_a_stout_chain_has_a_finite_onset_above_20g(monkeypatch):
     em = EventModel.build(rigid_model(Arch(10.0, 1.5, math.radians(157.5), 5)))
     monkeypatch.setattr(EventModel, "_moves", lambda self, ax: abs(ax) >= 50.0)
     assert em._bisect(1.0) == pytest.approx(50.0, rel=1e-11)
+
+
+def test_the_onset_projections_are_exact_next_to_the_onset():
+    """Each projection of the onset bisection starts from the impulses under the arch's own
+    weight: next to the onset, where from no impulses the active sets cycled and Gauss-Seidel
+    finished in tens of thousands of sweeps, a few sets give the exact projection (the count
+    stays within the active-set limit: no Gauss-Seidel sweep). Oracle: the solver's own count,
+    and the onset, which the limit analysis of the loaded bridge gives to its tolerances."""
+    import archquake.rigid._event_kernels as EK
+    import archquake.rigid._step_kernels as RK
+    from archquake.blocks.assembly import VOUSSOIRS, dem_assembly
+    from archquake.geometry.loads import Fill, Loads
+    from archquake.limit.loaded import loaded_collapse, seismic_case
+
+    bridge = Arch(5.0, 0.6, math.pi, 15, density=1800.0)
+    loads = Loads(fill=Fill(depth=1.0, density=1800.0))
+    events = EventModel.of(rigid_model(dem_assembly(bridge, VOUSSOIRS, loads=loads)))
+    r = events.rigid
+    q, _ = r.rest()
+    cfg = RK.solving(1e-9 * events.lref, 1e-13 * math.sqrt(events.lref), EK.SOLVE_SWEEPS)
+    plus, minus = events.onset_g
+    lam = loaded_collapse(seismic_case(bridge, loads)).multiplier
+    assert plus == pytest.approx(lam, rel=1e-6) and minus == pytest.approx(lam, rel=1e-6)
+    for ax in (plus, -minus):
+        for factor in (1 - 1e-9, 1 - 1e-12, 1 + 1e-12, 1 + 1e-9):
+            a = np.zeros((r.n_bodies, 3))
+            a[:, 0] = -ax * factor
+            a[:, 1] = -1.0
+            count = RK.project_direct(r.chain, cfg, q, r.geometry(q), a, events._resting_impulses,
+                                      np.empty(0), np.empty(0))[2]
+            assert count <= RK.ACTIVE_SET_ITERATIONS, (ax, factor, count)
