@@ -11,9 +11,12 @@ Oracles:
   these numbers, so no tolerance;
 * NumPy's own sum (``np.add.reduce`` along a row) for :func:`numpy_sum`, bit for bit, every
   count it takes;
-* ``np.maximum.accumulate`` over the reversed steps for :func:`suffix_maxima`, by value (the
-  sign NumPy gives the larger of two zeros depends on the CPU's vector instructions; the verdict
-  only compares these numbers);
+* ``np.maximum.accumulate`` over the reversed steps (the largest ground acceleration from a
+  step to the end, which the verdict's rest test compared with the safe domain's bounds) for
+  :func:`last_at_least`: the same test at every step; and :func:`last_at_least` over all the
+  means for :func:`record_last_at_least`, which computes a few of them;
+* the verdicts with every step's mean computed before the run, for the verdicts whose kernel
+  computes a record's means as the run reaches them, field for field;
 * each history alone, for the threaded verdicts: a history's numbers do not depend on which
   thread runs it, nor when.
 """
@@ -34,7 +37,13 @@ from archquake.geometry import Arch
 from archquake.ground.pulses import SinePulse
 from archquake.ground.records import Record
 from archquake.ground.suites import load_suite
-from archquake.rigid._input_kernels import PAIRWISE_BLOCK, numpy_sum, suffix_maxima
+from archquake.rigid._input_kernels import (
+    PAIRWISE_BLOCK,
+    last_at_least,
+    numpy_sum,
+    record_last_at_least,
+    sub_fractions,
+)
 from archquake.rigid.model import ACC_SAMPLES, mean_acceleration
 from archquake.rigid.verdict import rigid_verdict, rigid_verdicts, verdict_time_step
 
@@ -133,15 +142,62 @@ def test_the_numpy_sum_differs_from_a_plain_loop():
     assert not same_bits(loop, np.add.reduce(rows, axis=1))
 
 
-@given(st.lists(st.one_of(st.floats(-10.0, 10.0), st.just(0.0), st.just(-0.0)), min_size=1,
-                max_size=200))
-@settings(max_examples=200, deadline=None)
-def test_suffix_maxima_are_numpys(values):
+@given(st.lists(st.one_of(st.floats(-10.0, 10.0), st.just(0.0), st.just(-0.0), st.just(2.5)),
+                min_size=1, max_size=200),
+       st.sampled_from([2.5, 1.0, 1e-9, 0.0, -1.0]))
+@settings(max_examples=300, deadline=None)
+def test_the_last_step_at_least_is_the_suffix_maxima_test(values, lim):
+    """A chain at rest at step k stays when the largest acceleration from k to the end, each
+    at least 0 (``np.maximum.accumulate``), is below the bound, both ways: exactly when k is
+    past `last_at_least`'s step. Bounds equal to some steps, at 0 and below."""
     acc = np.array(values, dtype=float)
-    pos, neg = np.empty_like(acc), np.empty_like(acc)
-    suffix_maxima(acc, pos, neg)
-    assert np.array_equal(pos, np.maximum.accumulate(np.maximum(acc, 0.0)[::-1])[::-1])
-    assert np.array_equal(neg, np.maximum.accumulate(np.maximum(-acc, 0.0)[::-1])[::-1])
+    pos = np.maximum.accumulate(np.maximum(acc, 0.0)[::-1])[::-1]
+    neg = np.maximum.accumulate(np.maximum(-acc, 0.0)[::-1])[::-1]
+    k = np.arange(acc.size)
+    assert np.array_equal(k > last_at_least(acc, lim, 1.0), pos < lim)
+    assert np.array_equal(k > last_at_least(acc, lim, -1.0), neg < lim)
+
+
+@given(samples, st.floats(1e-3, 0.05), st.floats(1e-4, 0.07), st.floats(-0.2, 1.0),
+       st.integers(1, 400), st.integers(0, 59), st.sampled_from([1.0, -1.0]),
+       st.sampled_from([1.0, 1.0 + 1e-15, 1.0 - 1e-15, 0.9, 0.5, 1.1]))
+@settings(max_examples=400, deadline=None)
+def test_the_last_step_at_least_is_found_from_the_samples(x, dt, h, t0, n, pick, sign, factor):
+    """`record_last_at_least` computes only the means next to the samples that could reach
+    the bound; oracle: `last_at_least` over every mean (`mean_acceleration`). Random records,
+    bounds at a sample's value (and a bit off it, where the interpolation's rounding
+    decides), at a step's own mean, and where no step reaches."""
+    rec = Record(x, dt)
+    spec = rec.kernel_spec()[1]
+    means = mean_acceleration(rec, t0, h, n)
+    frac, values = sub_fractions(ACC_SAMPLES), np.empty(ACC_SAMPLES)
+    bounds = [sign * x[pick % len(x)] * factor, sign * means[pick % n] * factor, 1e300]
+    for lim in bounds:
+        assert (record_last_at_least(spec, t0, h, frac, values, n, lim, sign)
+                == last_at_least(means, lim, sign)), lim
+
+
+def test_record_verdicts_computing_their_means_as_they_go_are_the_whole_means(suite_records,
+                                                                                monkeypatch):
+    """A record's run computes its steps' means as it reaches them, and finds the last steps
+    reaching the safe domain from the samples. Oracle: the same verdicts with every mean
+    computed before the run (the path of any other motion), field for field: the loaded
+    bridge under a third of the near-field records at levels that collapse it, leave it
+    standing, and prove its rest early."""
+    import archquake.rigid.verdict as V
+    from archquake.geometry.loads import Fill, Loads
+    from archquake.ida.batch import rigid_body
+
+    body = rigid_body(Arch(5.0, 0.6, math.pi, 15, density=1800.0),
+                      Loads(fill=Fill(depth=1.0, density=1800.0)))
+    motions = [r.scaled(level * G / r.peak) for r in suite_records[::3]
+               for level in (0.15, 0.3, 0.6)]
+    durations = [min(m.duration, 12.0) + 3.0 for m in motions]
+    lazy = V.rigid_verdicts(body, motions, duration=durations, threads=2)
+    monkeypatch.setattr(V, "Record", type("NotARecord", (), {}))  # every mean first
+    whole = V.rigid_verdicts(body, motions, duration=durations, threads=2)
+    assert [v.to_dict() for v in lazy] == [v.to_dict() for v in whole]
+    assert {v.outcome.value for v in lazy} >= {"collapse", "survives"}
 
 
 def test_threaded_record_verdicts_are_the_single_runs(suite_records):

@@ -16,11 +16,19 @@ samples, and three shortcuts that do not change it:
   near-field records);
 * **stop at collapse**: at the first step meeting a collapse criterion
   (`archquake.blocks._kernels.collapsed`);
-* **stop at proven rest**: at rest with the rest of the ground motion inside the safe domain (a
-  suffix maximum of the ground acceleration): untouched, or, after a motion, settled (kinetic
+* **stop at proven rest**: at rest with the rest of the ground motion inside the safe domain
+  (past the last step whose ground acceleration reaches the domain's bound, `REST_LAST`):
+  untouched, or, after a motion, settled (kinetic
   energy below ``REST_KINETIC`` W L for a rest window, every joint closed, the safe domain
   narrowed by ``REST_MARGIN``, the configuration being only near the undisplaced one); or
   settled after the end of the excitation (`settled`'s rule).
+
+A sampled record's step means are computed as the run reaches them (`record`, in blocks of
+`MEAN_BLOCK` steps), not for the whole window before it starts: a run that collapses or
+proves its rest early does not pay for the steps it never takes. The last steps reaching the
+safe domain's bounds are found from the record's samples
+(`archquake.rigid._input_kernels.record_last_at_least`), the same steps as from all the
+means.
 
 Every step is checked (the recorded runs check at their output samples); the hinge onset is
 read on the step's mid-step corner gaps (``_rigid_kernels.geometry``), the DEM's on the recorded
@@ -39,6 +47,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
+import archquake.rigid._input_kernels as IK
 import archquake.rigid._step_kernels as RK
 from archquake._kernel_cache import stamp_kernels
 from archquake.blocks import _kernels as DK
@@ -62,7 +71,8 @@ P_ROT_THR = 12  # rad, the rotation measure's arming threshold (hinge_opening)
 P_SKIP = 13  # 1: skip at rest and stop at proven rest; 0: step every step
 P_STOP_COLLAPSE = 14  # 1: stop at collapse
 P_REST_MARGIN = 15  # -, the safe domain after a motion, a fraction of the onset's
-N_PAR = 16
+P_SUB_SAMPLES = 16  # sub-samples of a step's mean ground acceleration (a record's, in the run)
+N_PAR = 17
 
 #: Outputs, ``out`` (float64).
 O_OUTCOME = 0  # 0 no_hinging, 1 survives, 2 collapse, 3 indeterminate
@@ -84,7 +94,8 @@ O_LONGEST_0 = 14  # s, the longest time between two consecutive sign changes, or
 O_LONGEST_1 = 15  # the same, link 1
 O_PEAK_ROT_0 = 16  # rad, the largest |rotation measure| before the verdict, link 0
 O_PEAK_ROT_1 = 17  # the same, link 1
-N_OUT = 18
+O_MEANS = 18  # the steps whose means ``acc`` holds (a record's: those the run reached)
+N_OUT = 19
 
 OUTCOME_NO_HINGING = 0
 OUTCOME_SURVIVES = 1
@@ -110,16 +121,23 @@ class Frame(NamedTuple):
     links_sign: np.ndarray
 
 
+#: ``rest_last`` (4,): the last step whose at-rest ground acceleration (``skip_acc``) reaches,
+#: towards +x and -x, the safe domain's bounds at rest untouched (``P_SAFE_POS``,
+#: ``P_SAFE_NEG``) and settled after a motion (times ``P_REST_MARGIN``); -1: none; the steps'
+#: count where a bound is not above 0 (nothing is inside). A chain at rest from step k on
+#: stays there when k is past both of its bounds' steps.
+REST_LAST = 4
+#: Steps whose means a record's run computes at once.
+MEAN_BLOCK = 1024
+
+
 class Histories(NamedTuple):
     """Histories for `verdict_batch`, end to end: history i's steps are
-    ``acc[starts[i]:starts[i + 1]]`` (the steps' mean ground accelerations, m/s^2), with the
-    suffix maxima ``suffix_pos``, ``suffix_neg`` (the largest ground acceleration towards +x /
-    -x, a magnitude, from a step to the history's end, m/s^2) and the parameters ``pars[i]``
-    (`N_PAR`, P_*)."""
+    ``acc[starts[i]:starts[i + 1]]`` (the steps' mean ground accelerations, m/s^2), with
+    ``rest_last[i]`` (`REST_LAST`) and the parameters ``pars[i]`` (`N_PAR`, P_*)."""
 
     acc: np.ndarray
-    suffix_pos: np.ndarray
-    suffix_neg: np.ndarray
+    rest_last: np.ndarray
     starts: np.ndarray
     pars: np.ndarray
     #: the steps' mean upward ground accelerations, m/s^2 (empty: none), and the horizontal
@@ -127,6 +145,12 @@ class Histories(NamedTuple):
     #: decides whether a chain at rest moves; ``acc`` itself when there is no vertical)
     vacc: np.ndarray
     skip_acc: np.ndarray
+    #: history i's sampled record, ``record[record_starts[i]:record_starts[i + 1]]`` (its
+    #: ``kernel_spec`` parameters), when its ``acc`` is to be computed as the run reaches it
+    #: (`MEAN_BLOCK` steps at a time; ``skip_acc`` is then ``acc``); an empty slice: ``acc``
+    #: is given whole
+    record: np.ndarray
+    record_starts: np.ndarray
 
 
 @nb.njit(cache=True, inline="always")
@@ -146,14 +170,14 @@ def _chord_angle(st, links_block, links_local, ell):
 
 
 @nb.njit(cache=True, nogil=True)
-def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc):
+def verdict_run(chain, frame, acc, rest_last, par, out, vacc, skip_acc, record):
     """Run the chain (`Chain` ``chain``, `Frame` ``frame``)
     from rest under ``acc`` (n,) (the steps' mean ground accelerations, m/s^2) up to a verdict
     (module docstring) and write it into ``out`` (`N_OUT`).
 
-    ``suffix_pos[k]``/``suffix_neg[k]``: the largest ground acceleration towards +x / -x
-    (magnitude) from step k to the end, m/s^2; ``par``: `N_PAR` parameters (P_*);
-    ``vacc``, ``skip_acc``: as `Histories` (the suffix maxima are then skip_acc's)."""
+    ``rest_last`` (`REST_LAST`); ``par``: `N_PAR` parameters (P_*); ``vacc``, ``skip_acc``,
+    ``record``: as `Histories` (with a record, ``acc`` is filled as the run reaches its
+    steps)."""
     nb_ = chain.mass.shape[0]
     nj = chain.ja.shape[0]
     q = np.zeros((nb_, 3))
@@ -166,8 +190,20 @@ def verdict_run(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_
     measure = Rotation(np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
                        np.full(2, np.nan), np.full(2, np.nan), np.zeros(2), np.zeros(2),
                        np.zeros(2))
-    _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc, state,
+    frac = IK.sub_fractions(int(par[P_SUB_SAMPLES]))
+    _verdict_steps(chain, frame, acc, rest_last, par, out, vacc, skip_acc,
+                   RecordMeans(record, frac, np.empty(frac.shape[0])), state,
                    RK.workspace(nb_, nj), frame.base_state.copy(), measure)
+
+
+class RecordMeans(NamedTuple):
+    """A record's step means computed as the run reaches them: its ``kernel_spec``
+    parameters ``record`` (empty: the means are given whole), the sub-samples' places in a
+    step ``frac`` and their scratch ``values`` (``P_SUB_SAMPLES`` each)."""
+
+    record: np.ndarray
+    frac: np.ndarray
+    values: np.ndarray
 
 
 class Rotation(NamedTuple):
@@ -189,11 +225,12 @@ class Rotation(NamedTuple):
 
 
 @nb.njit(cache=True, nogil=True, **RK.NO_REFCOUNT)
-def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, skip_acc, state,
-                   ws, st, measure):
+def _verdict_steps(chain, frame, acc, rest_last, par, out, vacc, skip_acc, means, state, ws, st,
+                   measure):
     """`verdict_run`'s loop from the rest state ``state`` (`RK.State`), in the work arrays
     ``ws`` (`RK.workspace`), ``st`` (n_blocks, 3) the blocks' states, ``measure`` (`Rotation`,
-    zeroed): compiled without reference counting (`RK.advance`), it allocates nothing."""
+    zeroed), ``means`` (`RecordMeans`) a record's means as the run reaches them: compiled
+    without reference counting (`RK.advance`), it allocates nothing."""
     mass = chain.mass
     inertia = chain.inertia
     free_blocks = frame.free_blocks
@@ -207,6 +244,7 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
     nb_ = mass.shape[0]
     nj = chain.ja.shape[0]
     n_steps = acc.shape[0]
+    filled = 0 if means.record.shape[0] > 0 else n_steps  # the steps of acc computed so far
     skip = par[P_SKIP] > 0.0
     safe_pos = par[P_SAFE_POS]
     safe_neg = par[P_SAFE_NEG]
@@ -249,11 +287,17 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
     t = 0.0
     while k < n_steps:
         t = k * h  # the state's time
+        if k >= filled:
+            fill_to = min(filled + MEAN_BLOCK, n_steps)
+            IK.step_means_into(means.record, 0.0, h, means.frac, means.values, acc, filled,
+                               fill_to)
+            filled = fill_to
         resting = pristine or (closed and t - t_still > par[P_REST_WINDOW])
         if skip and resting:
             lim_p = safe_pos if pristine else margin * safe_pos
             lim_n = safe_neg if pristine else margin * safe_neg
-            if suffix_pos[k] < lim_p and suffix_neg[k] < lim_n:
+            last = 0 if pristine else 2
+            if k > rest_last[last] and k > rest_last[last + 1]:
                 # at rest, and nothing left can move it: the verdict is reached
                 rest_proven = 1
                 final = 1
@@ -373,6 +417,7 @@ def _verdict_steps(chain, frame, acc, suffix_pos, suffix_neg, par, out, vacc, sk
     out[O_LONGEST_1] = longest[1]
     out[O_PEAK_ROT_0] = peak_rot[0]
     out[O_PEAK_ROT_1] = peak_rot[1]
+    out[O_MEANS] = filled
 
 
 @nb.njit(cache=True, nogil=True)
@@ -384,6 +429,8 @@ def verdict_batch(chain, frame, hist, outs, first, last):
         a = hist.starts[i]
         b = hist.starts[i + 1]
         vertical = hist.vacc.shape[0] > 0
-        verdict_run(chain, frame, hist.acc[a:b], hist.suffix_pos[a:b], hist.suffix_neg[a:b],
-                    hist.pars[i], outs[i], hist.vacc[a:b] if vertical else hist.vacc,
-                    hist.skip_acc[a:b])
+        acc = hist.acc[a:b]
+        record = hist.record[hist.record_starts[i]:hist.record_starts[i + 1]]
+        verdict_run(chain, frame, acc, hist.rest_last[i], hist.pars[i], outs[i],
+                    hist.vacc[a:b] if vertical else hist.vacc,
+                    acc if record.shape[0] > 0 else hist.skip_acc[a:b], record)

@@ -62,6 +62,7 @@ from archquake.outcome import Outcome
 from archquake.parallel import usable_cores
 from archquake.ranges import RUN_TAIL
 from archquake.rigid.model import (
+    ACC_SAMPLES,
     GAP_TOLERANCE,
     HOLD_TOLERANCE,
     MAX_SWEEPS,
@@ -293,6 +294,7 @@ def _params(model: RigidModel, packed: _Packed, settings: BlockCriteria, h: floa
     par[VK.P_SKIP] = 1.0 if skip else 0.0
     par[VK.P_STOP_COLLAPSE] = 1.0 if settings.stop_at_collapse else 0.0
     par[VK.P_REST_MARGIN] = REST_MARGIN
+    par[VK.P_SUB_SAMPLES] = ACC_SAMPLES
     return par
 
 
@@ -345,9 +347,10 @@ def _reason(d: dict) -> str:
 
 
 class _Job:
-    """One history for the kernel: its parameters, and its steps' mean ground accelerations
-    and their suffix maxima, prepared by `run` in the thread that runs it (compiled for
-    a record: without the GIL, beside the other threads' kernels)."""
+    """One history for the kernel: its parameters, its steps' mean ground accelerations and
+    the last steps reaching the safe domain's bounds, prepared by `run` in the thread that
+    runs it (compiled for a record, and its means computed by the kernel as the run reaches
+    them: without the GIL, beside the other threads' kernels)."""
 
     def __init__(self, model, packed, motion, h, duration, until_rest, settings, g, skip, tol):
         self.motion = motion
@@ -373,32 +376,53 @@ class _Job:
         return min(float(self.n), (out[-1] - out[0] + 1) * self.motion.dt / self.h)
 
     def run(self, packed: _Packed) -> np.ndarray:
-        """Prepare the steps and run the kernel: its ``out`` (`VK.N_OUT`)."""
-        acc = mean_acceleration(self.motion, 0.0, self.h, self.n)
+        """Prepare the steps and run the kernel: its ``out`` (`VK.N_OUT`). A sampled record
+        without a vertical component has its steps' means computed by the kernel as the run
+        reaches them (`VK.Histories`); any other motion's are computed here first."""
         g = self.par[VK.P_G]
+        h = self.h
         check_motion_lift_off(self.motion, g)
-        vacc = mean_vertical(self.motion, 0.0, self.h, self.n)
-        skip_acc = acc * (g / (g + vacc)) if vacc.size else acc
-        pos = np.empty_like(acc)
-        neg = np.empty_like(acc)
-        IK.suffix_maxima(skip_acc, pos, neg)
-        hist = VK.Histories(acc, pos, neg, np.array([0, acc.size], np.int64),
-                            self.par.reshape(1, -1), vacc, skip_acc)
+        vacc = mean_vertical(self.motion, 0.0, h, self.n)
+        safe_pos, safe_neg, margin = (self.par[VK.P_SAFE_POS], self.par[VK.P_SAFE_NEG],
+                                      self.par[VK.P_REST_MARGIN])
+        bounds = (safe_pos, safe_neg, margin * safe_pos, margin * safe_neg)
+        rest_last = np.empty((1, VK.REST_LAST), np.int64)
+        if isinstance(self.motion, Record) and vacc.size == 0:
+            acc = np.empty(self.n)  # the kernel fills it
+            record = self.motion.kernel_spec()[1]
+            frac = IK.sub_fractions(ACC_SAMPLES)
+            values = np.empty(ACC_SAMPLES)
+            for j, lim in enumerate(bounds):
+                rest_last[0, j] = IK.record_last_at_least(record, 0.0, h, frac, values, self.n,
+                                                          lim, 1.0 if j % 2 == 0 else -1.0)
+            skip_acc = acc
+        else:
+            acc = mean_acceleration(self.motion, 0.0, h, self.n)
+            record = np.empty(0)
+            skip_acc = acc * (g / (g + vacc)) if vacc.size else acc
+            for j, lim in enumerate(bounds):
+                rest_last[0, j] = IK.last_at_least(skip_acc, lim, 1.0 if j % 2 == 0 else -1.0)
+        hist = VK.Histories(acc, rest_last, np.array([0, acc.size], np.int64),
+                            self.par.reshape(1, -1), vacc, skip_acc, record,
+                            np.array([0, record.size], np.int64))
         out = np.zeros((1, VK.N_OUT))
         batch: Any = VK.verdict_batch  # a numba dispatcher
         batch(packed.chain, packed.frame, hist, out, 0, 1)
-        self.acc = acc
+        self.acc = acc[:int(out[0, VK.O_MEANS])]
         return out[0]
 
     def vg(self, step: int) -> float:
         """The ground velocity after a step, m/s (after `run`): the running sum of the
         steps' accelerations, up to the latest step asked for (a prefix of ``np.cumsum``,
-        which sums one step after another: the same bits)."""
+        which sums one step after another: the same bits). A record's means past those its
+        run reached are computed here (each step's mean is a function of its index alone)."""
         if step < 0:
             return 0.0
         if self._vg is None or self._vg.size <= step:
             assert self.acc is not None
-            self._vg = np.cumsum(self.acc[:step + 1]) * self.h
+            acc = (self.acc[:step + 1] if step < self.acc.size
+                   else mean_acceleration(self.motion, 0.0, self.h, step + 1))
+            self._vg = np.cumsum(acc) * self.h
         return float(self._vg[step])
 
 
