@@ -453,10 +453,16 @@ def check_suite(source: str, suite: str | tuple[str, ...], units: str | None,
     """Read every record of the suite as the records section will, so that a malformed file or
     a missing ``units`` stops the run before anything is computed, in one line naming the key
     and the file as the assessment file names it (relative to it). True if some record carries
-    its vertical component."""
-    from archquake.ground.base import has_vertical
-    from archquake.ground.suites import load_suite
+    its vertical component.
 
+    A FEMA P695 set is the records package's own data, which carries the horizontal
+    components only: it is not read here (a second of the run's single-threaded start), but
+    where it is used, in the records section's thread, beside the other sections' kernels."""
+    from archquake.ground.base import has_vertical
+    from archquake.ground.suites import FEMA_SUITES, load_suite
+
+    if isinstance(suite, str) and suite in FEMA_SUITES and not Path(suite).exists():
+        return False
     try:
         loaded = load_suite(list(suite) if isinstance(suite, tuple) else suite, units=units)
         return any(has_vertical(r) for r in loaded)
