@@ -205,16 +205,16 @@ def test_bootstrap_fits_are_scipys_nelder_mead_resample_by_resample():
 
     rng = np.random.default_rng(21)
     q = [50 * (1 - 0.9), 50 * (1 + 0.9)]
-    for trial in range(4):
+    for trial in range(2):
         caps = np.round(_capacities(30 + trial, n=28), 2 if trial % 2 else 6)
         levels = np.geomspace(0.3, 2.0, 12)
         collapses = (levels[None, :] >= caps[:, None]) ^ (rng.random((28, 12)) < 0.04)
         fit = fit_collapse_fraction(levels, collapses, rng=np.random.default_rng(trial),
-                                    bootstrap=150)
+                                    bootstrap=80)
         draw = np.random.default_rng(trial)
         n = np.full(levels.size, 28.0)
         fits = []
-        for _ in range(150):
+        for _ in range(80):
             z = collapses[draw.integers(0, 28, 28)].sum(axis=0).astype(float)
             if np.all(z == 0) or np.all(z == 28):
                 continue
@@ -226,10 +226,10 @@ def test_bootstrap_fits_are_scipys_nelder_mead_resample_by_resample():
 
         cens = np.where(caps > 1.2, np.nan, caps)
         fit = fit_first_collapse(cens, ceiling=1.2, rng=np.random.default_rng(trial),
-                                 bootstrap=150)
+                                 bootstrap=80)
         draw = np.random.default_rng(trial)
         fits = []
-        for _ in range(150):
+        for _ in range(80):
             x = cens[draw.integers(0, 28, 28)]
             cx = ~np.isfinite(x)
             if (~cx).sum() < 2:
