@@ -239,3 +239,20 @@ def test_bootstrap_fits_are_scipys_nelder_mead_resample_by_resample():
         betas = np.array([b for _, b in fits])
         assert fit.beta_ci == tuple(float(v) for v in np.percentile(betas, q))
         assert fit.median_ci == tuple(float(v) for v in np.percentile(meds, q))
+
+
+def test_a_bootstrap_larger_than_the_kept_fits_is_the_same(monkeypatch):
+    """The fits are kept by their input up to a bound (`_FIRST_FITS_KEPT`); a bootstrap with
+    more resamples than that gives the interval it gives with room for all of them (oracle:
+    the same call with the bound far above the resamples), and the bound holds."""
+    from archquake.ida import fragility
+
+    first = _capacities(9, n=28)
+    first[first > 1.1] = np.nan
+    fragility._FIRST_FITS.clear()
+    whole = fit_first_collapse(first, ceiling=1.1, rng=np.random.default_rng(3), bootstrap=60)
+    fragility._FIRST_FITS.clear()
+    monkeypatch.setattr(fragility, "_FIRST_FITS_KEPT", 10)
+    bounded = fit_first_collapse(first, ceiling=1.1, rng=np.random.default_rng(3), bootstrap=60)
+    assert bounded == whole
+    assert len(fragility._FIRST_FITS) <= 10

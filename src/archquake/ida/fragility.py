@@ -25,6 +25,7 @@ samples; in (b) a record's outcomes at all levels travel together), with a
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -211,6 +212,7 @@ def _sort_simplices(sim: np.ndarray, fsim: np.ndarray, rows: np.ndarray) -> None
 #: PGA beside the fragility's own interval), is not fitted twice.
 _FIRST_FITS: dict[tuple[bytes, bytes], tuple[float, float]] = {}
 _FIRST_FITS_KEPT = 4096
+_FIRST_FITS_LOCK = threading.Lock()
 
 
 def _mle_first(logs: np.ndarray, log_ceilings: np.ndarray) -> tuple[float, float]:
@@ -225,15 +227,20 @@ def _mle_first_many(samples: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[tu
     by Nelder-Mead from the uncensored estimate, the samples of equal sizes in one run of
     `_nelder_mead_many`; each fit kept by its input (`_FIRST_FITS`)."""
     keys = [(lg.tobytes(), lc.tobytes()) for lg, lc in samples]
+    fits: dict[tuple[bytes, bytes], tuple[float, float]] = {}
     groups: dict[tuple[int, int], list[int]] = {}
     for i, ((lg, lc), key) in enumerate(zip(samples, keys, strict=True)):
-        if key in _FIRST_FITS:
+        if key in fits:
             continue
-        if lg.size < 2:
+        kept = _FIRST_FITS.get(key)
+        if kept is not None:
+            fits[key] = kept
+        elif lg.size < 2:
             raise InvalidParameterError(f"a lognormal fit needs at least 2 collapses, got {lg.size}")
-        if lc.size == 0:
-            _keep(key, (float(np.mean(lg)), float(np.std(lg))))
+        elif lc.size == 0:
+            fits[key] = (float(np.mean(lg)), float(np.std(lg)))
         else:
+            fits[key] = (math.nan, math.nan)  # fitted below, once for equal samples
             groups.setdefault((lg.size, lc.size), []).append(i)
     for (n, _), members in groups.items():
         logs = np.array([samples[i][0] for i in members])
@@ -254,14 +261,14 @@ def _mle_first_many(samples: Sequence[tuple[np.ndarray, np.ndarray]]) -> list[tu
 
         best = _nelder_mead_many(nll, x0)
         for i, (mu, lb) in zip(members, best, strict=True):
-            _keep(keys[i], (float(mu), float(math.exp(lb))))
-    return [_FIRST_FITS[key] for key in keys]
-
-
-def _keep(key: tuple[bytes, bytes], fit: tuple[float, float]) -> None:
-    if len(_FIRST_FITS) >= _FIRST_FITS_KEPT:
-        del _FIRST_FITS[next(iter(_FIRST_FITS))]  # the oldest
-    _FIRST_FITS[key] = fit
+            fits[keys[i]] = (float(mu), float(math.exp(lb)))
+    with _FIRST_FITS_LOCK:
+        for key, fit in fits.items():
+            if key not in _FIRST_FITS:
+                if len(_FIRST_FITS) >= _FIRST_FITS_KEPT:
+                    del _FIRST_FITS[next(iter(_FIRST_FITS))]  # the oldest
+                _FIRST_FITS[key] = fit
+    return [fits[key] for key in keys]
 
 
 def fit_first_collapse(values: Sequence[float], *, ceiling=None,
