@@ -98,6 +98,7 @@ def _rigid_steps() -> None:
 
     simulate_rigid(_arch(), _step(), duration=0.05).to_dict()  # with the joint forces
     simulate_rigid(_arch(), _step(), duration=0.02, friction=0.6)
+    simulate_rigid(_arch(), _record(), duration=0.02)  # a record's step means
 
 
 def _rigid_events() -> None:

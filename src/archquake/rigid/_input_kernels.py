@@ -96,7 +96,9 @@ def step_means(params, t0, h, sub_samples, out):
     out : ndarray (n,)
     """
     frac = sub_fractions(sub_samples)
-    step_means_into(params, t0, h, frac, np.empty(sub_samples), out, 0, out.size)
+    values = np.empty(sub_samples)
+    for k in range(out.size):
+        out[k] = step_mean(params, t0, h, frac, values, k)
 
 
 @nb.njit(cache=True, nogil=True)
