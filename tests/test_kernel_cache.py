@@ -52,7 +52,7 @@ from archquake import Arch, StepImpulse, failure_domain, simulate
 from archquake.domains import DomainSettings
 arch = Arch(radius=10.0, thickness=1.5, embrace=math.radians(157.5), voussoirs=7)
 simulate(arch, StepImpulse.from_g(1.0, 0.27))
-failure_domain(arch, "step", [0.2, 0.4],
+failure_domain(arch, "step", [0.2, 0.4], model="fourlink",
                settings=DomainSettings(coarse_points=6, fine_points=4, precision_g=0.05))
 """
 
@@ -111,7 +111,8 @@ def test_ground_kernels_load_from_cache(tmp_path):
 
 @pytest.mark.slow
 def test_fourlink_and_domain_kernels_load_from_cache(tmp_path):
-    """Includes the parallel (prange) batch kernel of the domain search."""
+    """Includes the parallel (prange) batch kernel of the domain search, the four-link
+    model's (the default model's domain search runs the rigid chain's verdicts instead)."""
     _second_process_compiles_nothing(ANALYTICAL_AND_DOMAIN, tmp_path / "numba",
                                      ("mechanism", "domains"))
 
