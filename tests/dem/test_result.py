@@ -155,3 +155,28 @@ def test_dem_default_run_goes_on_to_a_verdict(capsys):
     assert first < out["end_time_s"] < second
     full = simulate_dem(arch, motion, DemSettings(duration=second))
     assert full.outcome.value == "survives"
+
+
+def test_a_verdict_run_takes_the_longest_tail_its_work_bound_allows(monkeypatch):
+    """A long record's run to a verdict may not afford the longest tail within the DEM's work
+    bound (``ranges.DEM_MAX_BLOCK_STEPS``): it then runs to the longest tail that fits, where
+    it refused to run at all. Oracle: `block_steps` of each tail's window, against a bound set
+    between the first tail's work and the longest's, on Figure 4(d)'s pulse."""
+    import archquake.dem.run as R
+    from archquake.blocks.criteria import default_window
+    from archquake.errors import InvalidParameterError
+
+    arch = Arch(10.0, 1.5, math.radians(157.5), 7)
+    motion = StepImpulse.from_g(1.0, 0.20)
+    asm = build_arch_assembly(arch)
+    base = DemSettings()
+    dt = R.stable_time_step(asm, base)[0]
+    windows = [default_window(motion, arch.radius, tail=t) for t in R.VERDICT_TAILS]
+    work = [R.block_steps(asm, w, dt, base.settle_time) for w in windows]
+    assert work[0] < work[1] < work[-1]
+    monkeypatch.setattr(R, "DEM_MAX_BLOCK_STEPS", (work[1] + work[-1]) // 2)
+    with pytest.raises(InvalidParameterError, match="block-steps"):
+        simulate_dem(arch, motion, base.with_(duration=windows[-1]))
+    run = R.dem_to_verdict(arch, motion)
+    assert run.outcome.value == "survives"  # at rest before the second tail's end
+    assert run.end_time <= windows[1]

@@ -164,6 +164,13 @@ def contact_tolerance(assembly: Assembly) -> float:
 
 
 # --------------------------------------------------------------------------- time step
+def block_steps(assembly: Assembly, duration: float, dt: float, settle_time: float) -> int:
+    """The work of a run, in block-steps (blocks times steps, the settling's included): what
+    ``ranges.DEM_MAX_BLOCK_STEPS`` bounds. ``duration``, ``dt``, ``settle_time`` in s."""
+    steps = int(math.ceil(duration / dt - 1e-9)) + int(math.ceil(settle_time / dt - 1e-9))
+    return steps * assembly.n_blocks
+
+
 def stable_time_step(
     assembly: Assembly, settings: DemSettings, *, g: float = STANDARD_GRAVITY
 ) -> tuple[float, float]:
@@ -371,7 +378,7 @@ def simulate_dem(
             f"output_interval (now {settings.output_interval:g} s) or shorten the duration "
             f"(now {settings.duration:g} s)"
         )
-    work = (n_steps + settle_steps) * assembly.n_blocks
+    work = block_steps(assembly, settings.duration, dt, settings.settle_time)
     if work > DEM_MAX_BLOCK_STEPS:
         raise InvalidParameterError(
             f"{assembly.n_blocks} blocks over {n_steps + settle_steps:,} time steps of "
@@ -454,6 +461,7 @@ def simulate_dem(
 __all__ = [
     "MAX_STEPS",
     "Packed",
+    "block_steps",
     "contact_tolerance",
     "pack",
     "simulate_dem",
@@ -477,8 +485,9 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
                    radius: float | None = None, tails=VERDICT_TAILS,
                    g: float = STANDARD_GRAVITY) -> BlockResult:
     """The DEM run long enough for a verdict: one run to the end of the excitation plus the
-    longest of ``tails`` sqrt(R/g) that stays within ``ranges.DEM_T_END_MAX_S`` (the first
-    one at least), ending at the collapse or once at rest after the excitation
+    longest of ``tails`` sqrt(R/g) that stays within ``ranges.DEM_T_END_MAX_S`` and
+    ``ranges.DEM_MAX_BLOCK_STEPS`` (the first one at least: a longer record's run may not
+    afford the longest tail), ending at the collapse or once at rest after the excitation
     (``DemSettings.stop_at_rest``: `archquake.blocks.result.settled`, the rule of the
     ``survives`` verdict). Its outcome is ``indeterminate`` only if the arch still moves at
     the end of the longest tail.
@@ -497,9 +506,14 @@ def dem_to_verdict(arch_or_assembly, motion: GroundMotion, settings=None, *,
     r = float(radius if radius is not None else arch_or_assembly.radius)
     base = DemSettings() if settings is None else settings
     windows = [default_window(motion, r, tail=tail, g=g) for tail in tails]
-    longest = max([windows[0], *(w for w in windows[1:] if w <= DEM_T_END_MAX_S)])
-    return simulate_dem(arch_or_assembly, motion, base.with_(duration=longest, stop_at_rest=True),
-                        g=g)
+    assembly = (build_arch_assembly(arch_or_assembly)
+                if isinstance(arch_or_assembly, VoussoirChain) else arch_or_assembly)
+    dt = (base.time_step if base.time_step is not None
+          else stable_time_step(assembly, base, g=g)[0])
+    longest = max([windows[0], *(
+        w for w in windows[1:] if w <= DEM_T_END_MAX_S
+        and block_steps(assembly, w, dt, base.settle_time) <= DEM_MAX_BLOCK_STEPS)])
+    return simulate_dem(assembly, motion, base.with_(duration=longest, stop_at_rest=True), g=g)
 
 
 __all__ += ["DEFAULT_TAIL", "VERDICT_TAILS", "default_dem_duration", "dem_to_verdict"]
