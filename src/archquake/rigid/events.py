@@ -140,9 +140,11 @@ class EventModel:
     def lref(self) -> float:
         return float(self.rigid.assembly.reference_length)
 
-    def _projected(self, ax_g: float, warm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _projected(self, ax_g: float, warm: np.ndarray, geo=None
+                   ) -> tuple[np.ndarray, np.ndarray]:
         """The Gauss projection of the locked arch's free acceleration under x_g'' = ax_g (in
-        g, g = 1), from the impulses ``warm``: (accelerations, impulses)."""
+        g, g = 1), from the impulses ``warm``: (accelerations, impulses). ``geo``: the rest
+        configuration's geometry, if the caller has it."""
         r = self.rigid
         n = r.n_bodies
         q, _ = r.rest()
@@ -150,8 +152,8 @@ class EventModel:
         a[:, 0] = -ax_g
         a[:, 1] = -1.0
         cfg = RK.solving(1e-9 * self.lref, 1e-13 * math.sqrt(self.lref), EK.SOLVE_SWEEPS)
-        acc, imp, _, _ = RK.project_direct(r.chain, cfg, q, r.geometry(q), a, warm,
-                                           np.empty(0), np.empty(0))
+        acc, imp, _, _ = RK.project_direct(r.chain, cfg, q, r.geometry(q) if geo is None else geo,
+                                           a, warm, np.empty(0), np.empty(0))
         return acc, imp
 
     @cached_property
@@ -169,8 +171,9 @@ class EventModel:
         opens four or more hinges."""
         r = self.rigid
         q, _ = r.rest()
-        nrm = r.geometry(q).nrm
-        acc, _ = self._projected(ax_g, self._resting_impulses)
+        geo = r.geometry(q)
+        nrm = geo.nrm
+        acc, _ = self._projected(ax_g, self._resting_impulses, geo)
         nj = len(r.ja)
         jh = np.zeros(nj, np.int64)
         k, _ = EK.modes_after_projection(r.chain, self.sg, q, acc, nrm, np.zeros(nj), 1e-7,
