@@ -76,7 +76,7 @@ def collapse_time(assembly, settings, t, pos):
     cpar = collapse_parameters(assembly, settings, float(crown_height(assembly, pos[:1])[0]))
     free = (~np.asarray(assembly.base)).astype(np.int64)
     for k in range(len(t)):
-        if K.collapsed(pos[k], free, cpar):
+        if K.collapsed(np.ascontiguousarray(pos[k]), free, cpar):  # the kernels' one layout
             return float(t[k])
     return None
 

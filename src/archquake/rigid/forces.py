@@ -337,8 +337,9 @@ def joint_forces(run, motion, *, g: float | None = None, every: int = 1) -> Join
     s = _setup(run, motion, g, every)
     res, model, picks = s["res"], s["model"], s["picks"]
     fb = model.free_blocks
-    pos = res.positions[picks][:, fb, :]
-    vel = res.velocities[picks][:, fb, :]
+    # contiguous, as every caller of the probe passes them (one compiled signature)
+    pos = np.ascontiguousarray(res.positions[picks][:, fb, :])
+    vel = np.ascontiguousarray(res.velocities[picks][:, fb, :])
     imp, impulsive, active, qm, nrm, tan, pts, certified = FK.probe(
         model.chain, _probe_stepping(s), pos, vel, res.base_displacement[picks],
         res.base_velocity[picks], s["acc"], s["lref"], IMPULSIVE, s["vacc"])
