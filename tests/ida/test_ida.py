@@ -455,6 +455,39 @@ def test_rigid_model_ida_brackets_its_own_threshold(tmp_path):
     assert first.below < hi and first.low > lo
 
 
+def test_first_collapses_first_give_the_same_analysis(tmp_path):
+    """With a ``first_collapses`` callback the analysis runs the levels below each record's
+    lowest collapse first (and the guard's reruns that bracket it), hands over the analysis so
+    far, then fills the levels above. Oracle: the same analysis without the callback, which
+    fills every gap at once. Four near-field records on Oppenheim's arch up to 2 g, chosen for
+    what could tell the two schedules apart: each has levels above its first collapse, three a
+    resurrection (survival above a collapse) and all some verdicts the half-step guard turned
+    indeterminate. The same levels, outcomes and guard reruns; the callback's first collapses
+    are the result's, from fewer levels."""
+    from archquake.ground.suites import load_suite
+
+    records = load_suite("near-field-pulse").records
+    motions = [records[i] for i in (11, 17, 23, 27)]
+    kwargs = dict(ceiling=2.0, precision=0.05, fill=0.2, model="rigid")
+    with ResultStore(tmp_path / "whole.sqlite") as store:
+        whole = incremental_dynamic_analysis(OPPENHEIM, motions, "pga", store, **kwargs)
+    partial = []
+    with ResultStore(tmp_path / "first.sqlite") as store:
+        first = incremental_dynamic_analysis(OPPENHEIM, motions, "pga", store,
+                                             first_collapses=partial.append, **kwargs)
+    assert sum(len(r.resurrections) > 0 for r in whole.records) == 3
+    assert all(np.any(r.indeterminate) for r in whole.records)
+    for a, b in zip(whole.records, first.records, strict=True):
+        assert list(a.levels) == list(b.levels) and a.outcomes == b.outcomes
+    assert (first.total, first.guarded) == (whole.total, whole.guarded)
+    (early,) = partial
+    np.testing.assert_array_equal(early.first_collapse_levels, whole.first_collapse_levels)
+    for a, p in zip(whole.records, early.records, strict=True):
+        assert (p.first_collapse.low, p.first_collapse.below) == (a.first_collapse.low,
+                                                                  a.first_collapse.below)
+        assert set(p.levels) < set(a.levels)  # the levels above were still to run
+
+
 def test_a_resumed_rigid_ida_reads_its_guards_reruns_from_the_store(tmp_path):
     """The half-step guard's reruns are cases of their own in the store: the same analysis run
     again on its store computes nothing, the guard included, and gives the same trace.

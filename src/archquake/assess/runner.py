@@ -193,7 +193,8 @@ NEEDS: dict[str, tuple[str, ...]] = {
 #: Of `NEEDS`, the sections a section reads only once it has started the work that does not
 #: depend on them: side by side, it starts once the others are done, and its reading of one of
 #: these waits until that one is done (the DEM check's and the validity section's pulse runs
-#: need only the pulses; only their governing record's runs wait for the records' IDA).
+#: need only the pulses; only their governing record's runs wait for the records' IDA, until it
+#: has settled every record's first collapse).
 LATER: dict[str, tuple[str, ...]] = {"dem": ("records",), "validity": ("records",)}
 
 

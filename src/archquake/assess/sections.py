@@ -611,9 +611,10 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     own), its runs kept in a SQLite store under ``out/cache`` named by
     the input's digest, the restitution and the mode (so an interrupted run resumes them).
 
-    ``analysed(suite, records, result, first_fit)``, if given, is called once the runs are
-    done, before the fits' bootstrap intervals (seconds of fitting): ``first_fit`` the
-    first-collapse fit without its interval (None if it cannot be made).
+    ``analysed(suite, records, partial, first_fit)``, if given, is called once every record's
+    first collapse is settled, while the IDA goes on above them (its ``first_collapses``):
+    ``partial`` the analysis so far, whose first collapses are the result's, and
+    ``first_fit`` the first-collapse fit without its interval (None if it cannot be made).
 
     Returns
     -------
@@ -638,7 +639,20 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
     store_path.parent.mkdir(parents=True, exist_ok=True)
     ctx.say(f"  IDA of {len(records)} of the {len(suite.records)} records of {suite.name}"
             + (f" at c_v = {restitution:.3g}" if tag else "") + f" (store {store_path.name})")
-    loaded = {} if ctx.loads is None else {"loads": ctx.loads}
+    loaded: dict[str, Any] = {} if ctx.loads is None else {"loads": ctx.loads}
+    if analysed is not None:
+        def first_collapses(partial) -> None:
+            from archquake.errors import InvalidParameterError
+            from archquake.ida.fragility import fit_first_collapse
+
+            try:  # the fragility below makes it again from its memo
+                first_fit = fit_first_collapse(partial.first_collapse_levels.tolist(),
+                                               ceiling=partial.ceiling)
+            except InvalidParameterError:
+                first_fit = None
+            analysed(suite, records, partial, first_fit)
+
+        loaded["first_collapses"] = first_collapses
     if models.takes(cfg.model, "guard"):  # one threaded batch of verdicts per round, here
         lam = ctx.collapse_acceleration_g()
         with ResultStore(store_path) as store:
@@ -656,16 +670,6 @@ def run_ida(ctx: Context, restitution: float | None, *, bootstrap: int | None = 
                                                **loaded,
                                                progress=_ida_progress(ctx, len(records)),
                                                **ctx.mode.ida)
-    if analysed is not None:
-        from archquake.errors import InvalidParameterError
-        from archquake.ida.fragility import fit_first_collapse
-
-        try:  # the fit below makes it again from its memo
-            first_fit = fit_first_collapse(res.first_collapse_levels.tolist(),
-                                           ceiling=res.ceiling)
-        except InvalidParameterError:
-            first_fit = None
-        analysed(suite, records, res, first_fit)
     fits = fragility_of(res, rng=np.random.default_rng(0),
                         bootstrap=ctx.mode.bootstrap if bootstrap is None else bootstrap)
     return suite, records, res, fits
@@ -731,7 +735,8 @@ def section_records(ctx: Context) -> StudyResult:
     governing: list = []
 
     def analysed(suite, records, res, first_fit) -> None:
-        # the DEM check and the validity section wait for it, not for the figures and intervals
+        # the DEM check and the validity section wait for it: known once every record's first
+        # collapse is, while the IDA fills the levels above them
         governing.append(_governing(suite, records, res, first_fit))
         ctx.share("governing", governing[0])
 
@@ -1015,8 +1020,9 @@ def section_dem(ctx: Context) -> StudyResult:
         model = _model_outcomes(ctx, [m for _, _, m, _, _ in jobs], windows(jobs))
         outcomes = [_dem_outcome(body, m, dur) for _, _, m, dur, _ in jobs]
     else:
-        # a worker for each run: the record's runs start once the records' IDA is done and are
-        # then what the assessment waits for; side by side on the cores they end together,
+        # a worker for each run: the record's runs start once the records' IDA has settled
+        # every first collapse (it fills the levels above meanwhile) and are then what the
+        # assessment waits for; side by side on the cores they end together,
         # where two workers left the last run alone on one core
         with interruptible_pool(planned) as pool:
             tick, ran = ctx.counter("DEM runs", planned), [0]

@@ -331,6 +331,7 @@ def incremental_dynamic_analysis(
     chunk_size: int | None = None,
     progress: Callable[[int, int, int], None] | None = None,
     loads=None,
+    first_collapses: Callable[[IdaResult], None] | None = None,
 ) -> IdaResult:
     """Hunt-and-fill IDA of ``arch`` under every motion of ``motions``.
 
@@ -370,6 +371,18 @@ def incremental_dynamic_analysis(
     loads : Loads, optional
         What the arch carries, masses that move with it (`Case`'s
         ``loads``): every model carries them, and the levels start at the loaded lambda.
+    first_collapses : callable, optional
+        ``first_collapses(partial)``, called once, as soon as every record's first collapse is
+        settled: the analysis first runs only the levels below each record's lowest collapse
+        (and, with the guard, reruns the levels that bracket it), and calls this with the
+        analysis so far, an `IdaResult` whose records' first collapses are the final result's
+        (``first_collapse_levels``, and each record's ``first_collapse.low`` and ``.below``);
+        then it fills the levels above.
+        Levels proposed in one gap never depend on another gap's outcomes, and a collapse
+        above the first changes nothing below it, so the final result holds the same levels
+        and outcomes as without it; only the rounds differ (``rounds``). For a caller with
+        work that needs only the first collapses (a fit, a governing record to run with
+        another model), started while the levels above run.
 
     Returns
     -------
@@ -441,6 +454,31 @@ def incremental_dynamic_analysis(
     guarded = 0
     computed = 0
     rounds = 0
+    # the first phase, with a first_collapses callback: only the levels below each record's
+    # lowest collapse, and (guard) the deciding levels up to it
+    below_first = first_collapses is not None
+
+    def lowest_collapse(i: int) -> float:
+        return min((x for x, r in outcomes[i].items() if r.outcome in COUNTED_AS_COLLAPSE),
+                   default=math.inf)
+
+    def result() -> IdaResult:
+        records = []
+        for i, name in enumerate(names):
+            levels = sorted(outcomes[i])
+            recs = [outcomes[i][x] for x in levels]
+            records.append(RecordIda(
+                name=name, im_unscaled=float(im0[i]), levels=np.array(levels),
+                factors=np.array([(x / im0[i]) ** (1.0 / k) for x in levels]),
+                outcomes=tuple(r.outcome for r in recs),
+                collapse_half_cycles=tuple(r.outputs.get("collapse_half_cycle") for r in recs),
+                peak_rotation=np.array([_peak(r.outputs) for r in recs]),
+                start=hf[i].start, ceiling=ceilings[i]))
+        return IdaResult(arch=arch, model=model, im=measure, records=tuple(records), loads=loads,
+                         settings=settings, collapse_acceleration_g=lam,
+                         critical_rotation_rad=phi_crit, rounds=rounds, computed=computed,
+                         total=sum(len(r) for r in runs) + guarded, g=g,
+                         store=str(store.path), motions=tuple(motions), guarded=guarded)
 
     def run_round(cases: list[tuple[int, float, Case]], what: str) -> list[Any]:
         """Run (record, level, case) ``cases`` through the store as one round: their stored
@@ -470,23 +508,32 @@ def incremental_dynamic_analysis(
             out.append(rec)
         return out
 
-    for rounds in range(1, MAX_ROUNDS + 1):  # noqa: B007
+    while True:
+        if rounds == MAX_ROUNDS:
+            raise ArchquakeError(f"incremental dynamic analysis did not converge in "
+                                 f"{MAX_ROUNDS} rounds")
         new_levels: list[tuple[int, float, Case]] = []
         for i in range(len(motions)):
             done = outcomes[i]
             levels = list(done)
             collapsed = [done[x].outcome in COUNTED_AS_COLLAPSE for x in levels]
+            top = lowest_collapse(i) if below_first else math.inf
             for x in propose_levels(levels, collapsed, hf[i]):
-                case = case_of(i, x)
-                runs[i][x] = case
-                new_levels.append((i, x, case))
+                if x < top:
+                    case = case_of(i, x)
+                    runs[i][x] = case
+                    new_levels.append((i, x, case))
         if not new_levels:
             pending = [(i, x) for i in range(len(motions))
-                       for x in deciding_levels(outcomes[i]) if x not in checked[i]] \
-                if guard else []
+                       for x in deciding_levels(outcomes[i]) if x not in checked[i]
+                       and (not below_first or x <= lowest_collapse(i))] if guard else []
             if not pending:
-                rounds -= 1
+                if below_first and first_collapses is not None:
+                    below_first = False
+                    first_collapses(result())
+                    continue
                 break
+            rounds += 1
             # the reruns are cases of their own (half the step), stored as they complete: a
             # resumed analysis reads them back
             halves = [(i, x, half_step_case(runs[i][x])) for i, x in pending]
@@ -496,26 +543,10 @@ def incremental_dynamic_analysis(
                 checked[i].add(x)
                 outcomes[i][x] = guarded_record(outcomes[i][x], half)
             continue
+        rounds += 1
         for (i, x, _), rec in zip(new_levels, run_round(new_levels, ""), strict=True):
             outcomes[i][x] = rec
-    else:
-        raise ArchquakeError(f"incremental dynamic analysis did not converge in {MAX_ROUNDS} "
-                             "rounds")
-    records = []
-    for i, name in enumerate(names):
-        levels = sorted(outcomes[i])
-        recs = [outcomes[i][x] for x in levels]
-        records.append(RecordIda(
-            name=name, im_unscaled=float(im0[i]), levels=np.array(levels),
-            factors=np.array([(x / im0[i]) ** (1.0 / k) for x in levels]),
-            outcomes=tuple(r.outcome for r in recs),
-            collapse_half_cycles=tuple(r.outputs.get("collapse_half_cycle") for r in recs),
-            peak_rotation=np.array([_peak(r.outputs) for r in recs]),
-            start=hf[i].start, ceiling=ceilings[i]))
-    return IdaResult(arch=arch, model=model, im=measure, records=tuple(records), loads=loads,
-                     settings=settings, collapse_acceleration_g=lam, critical_rotation_rad=phi_crit,
-                     rounds=rounds, computed=computed, total=sum(len(r) for r in runs) + guarded, g=g,
-                     store=str(store.path), motions=tuple(motions), guarded=guarded)
+    return result()
 
 
 def deciding_levels(done: dict[float, Any]) -> list[float]:
