@@ -14,26 +14,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-#: A tiny valid study: one 5-voussoir arch under one step impulse (one case).
-STUDY = """\
-[study]
-name = "fuzz"
-model = "fourlink"
-
-[arches]
-radius = 10
-thickness_ratio = 0.15
-embrace_deg = 157.5
-voussoirs = 5
-
-[excitation]
-type = "step"
-magnitude_g = 0.5
-duration_s = 0.1
-
-[options]
-t_end_s = 1.0
-"""
+from fuzz_harness import STUDY  # noqa: E402  (the harness is on the path from here)
 
 
 @pytest.fixture(scope="module")

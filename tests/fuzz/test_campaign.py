@@ -233,7 +233,7 @@ def test_sigterm_with_two_workers_leaks_no_semaphore(tmp_path):
     import subprocess
     import time
 
-    from conftest import STUDY
+    from fuzz_harness import STUDY
 
     study = tmp_path / "study.toml"
     study.write_text(STUDY.replace("magnitude_g = 0.5",
