@@ -17,8 +17,11 @@ measured in the same run.
 3. The Figure 5 domain under the rigid chain (step pulses, 12 durations 0.1-1.5 s, the block
    models' search: 0.01 g brackets, pulse + 6 sqrt(R/g)) through ``dem_failure_domain(...,
    model="rigid")`` (batches of verdicts, threaded over the usable cores), against the same
-   search on one thread, and against the recorded run at the old default step (1e-4 s) timed
-   on a sample of the search's runs and extrapolated to their number.
+   search on one thread, against the recorded run at the old default step (1e-4 s) timed
+   on a sample of the search's runs and extrapolated to their number, and against the
+   four-link model's batch in the same search (``failure_domain(..., settings=
+   DEM_DOMAIN_SETTINGS)``: the same brackets and magnitudes, its runs to rest): the pace of a
+   sweep users run, where item 1 compares one history over a fixed window.
 
 Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_rigid_verdict.py  (a minute or two)
 """
@@ -190,7 +193,17 @@ def domain() -> dict:
           f"threads {single / threaded:4.2f} x faster")
     print(f"  recorded runs at h = 1e-4 s (sampled)    {plain:8.2f} s  "
           f"({per_run:.2f} s a run)  verdicts {plain / threaded:5.1f} x faster")
-    return {"domain_s": threaded, "domain_one_thread_s": single, "domain_recorded_s": plain}
+    from archquake.compare.domains import DEM_DOMAIN_SETTINGS
+    from archquake.domains import failure_domain
+
+    failure_domain(arch, "step", durations, settings=DEM_DOMAIN_SETTINGS)  # compile / load
+    t0, c0 = time.perf_counter(), time.process_time()
+    four = failure_domain(arch, "step", durations, settings=DEM_DOMAIN_SETTINGS)
+    four_s, four_cpu = time.perf_counter() - t0, time.process_time() - c0
+    print(f"  four-link model, the same search         {four_s:8.2f} s  (CPU {four_cpu:.2f} s, "
+          f"{four.evaluations} runs): the rigid chain takes {threaded / four_s:4.2f} x its time")
+    return {"domain_s": threaded, "domain_one_thread_s": single, "domain_recorded_s": plain,
+            "domain_four_link_s": four_s}
 
 
 def main() -> dict:
