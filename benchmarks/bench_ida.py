@@ -8,7 +8,9 @@ stopped 10 sqrt(R/g) after the record when energy proves survival); serial execu
 parallelism is numba's threads. The plain loop calls ``simulate`` (prepared mechanism reused,
 no history) on exactly the scaled records the IDA ran. Also printed: the batch alone on the same
 cases (no store, no rounds), on all of numba's threads and on one (what the threads bring), and
-simulate's time per outcome. Needs the FEMA suites (``pip install 'archquake[records]'``). Run:
+simulate's time per outcome; then the default model (the chain of rigid voussoirs, its
+half-step guard on) against the four-link model on the same IDA up to 1 g (the pace of the sweep
+users run with each). Needs the FEMA suites (``pip install 'archquake[records]'``). Run:
 
     .venv/bin/python benchmarks/bench_ida.py
 
@@ -105,6 +107,27 @@ def main() -> None:
               f"store and rounds {t_batch / t_ida:.2f}x")
     print(f"ratio simulate loop / IDA: {t_loop / t_ida:.2f}x "
           f"(batch alone: {t_loop / t_batch:.2f}x; target >= 5x)")
+    models_side_by_side(arch, records)
+
+
+def models_side_by_side(arch: ArchSpec, records) -> None:
+    """The same IDA (up to 1 g, 2 % brackets, fill 10 %) with the four-link model and with the
+    default model, the chain of rigid voussoirs (guard on): wall and CPU time, runs."""
+    times = {}
+    for model in ("fourlink", "rigid"):
+        with tempfile.TemporaryDirectory() as tmp:
+            with ResultStore(Path(tmp) / "warm.sqlite") as store:  # compile / load the kernels
+                incremental_dynamic_analysis(arch, records[:1], "pga", store, ceiling=1.0,
+                                             precision=0.5, fill=2.0, model=model)
+            t0, c0 = time.perf_counter(), time.process_time()
+            with ResultStore(Path(tmp) / "ida.sqlite") as store:
+                res = incremental_dynamic_analysis(arch, records, "pga", store, ceiling=1.0,
+                                                   model=model)
+            times[model] = (time.perf_counter() - t0, time.process_time() - c0, res.total)
+    for model, (wall, cpu, runs) in times.items():
+        print(f"IDA up to 1 g, {model:8s}: {wall:6.2f} s ({cpu:.2f} s of CPU), {runs} runs")
+    print(f"the default model's IDA takes {times['rigid'][0] / times['fourlink'][0]:.1f}x the "
+          "four-link model's")
 
 
 if __name__ == "__main__":
