@@ -86,6 +86,7 @@ def test_fema_pga_and_pgv_agree_with_the_metadata(fema, name):
         assert abs(pgv - meta["record_pgv_max_m_s"]) <= tol, fid
 
 
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # the package's own readers' APIs
 def test_fema_sa_agrees_with_the_package_spectra(fema):
     """Sa(T, 5 %) of every component against the package's pseudo_accel (g) at T = 1, 2, 5 s,
     where T >= 50 dt for every record. Our oscillator is exact for the linear pieces; the
