@@ -206,10 +206,19 @@ def probe(chain, cfg, pos, vel, base_u, base_v, acc, lref, impulsive_factor, vac
             dy = vn[b, 1] - v[b, 1]
             jump = max(jump, math.hypot(dx, dy) + abs(vn[b, 2] - v[b, 2]) * lref)
         impulsive[k] = jump > impulsive_factor * h * (gk + abs(acc[k]))
-        imp_all[k] = imp
-        qm_all[k] = qm
-        nrm_all[k] = nrm
-        tan_all[k] = tan
-        pts_all[k] = pts
+        # element by element: an array assigned to a slice compiles numba's shape-mismatch
+        # error (about 4 s of the first compilation) for a mismatch these shapes cannot have
+        for b in range(nb_):
+            for c in range(3):
+                qm_all[k, b, c] = qm[b, c]
+        for j in range(nj):
+            for c in range(3):
+                imp_all[k, j, c] = imp[j, c]
+            for c in range(2):
+                nrm_all[k, j, c] = nrm[j, c]
+                tan_all[k, j, c] = tan[j, c]
+                for s in range(2):
+                    for e in range(2):
+                        pts_all[k, j, c, s, e] = pts[j, c, s, e]
         p_warm = imp
     return imp_all, impulsive, active, qm_all, nrm_all, tan_all, pts_all, certified
