@@ -61,12 +61,14 @@ test: $(STAMP_TEST)
 	$(BIN)/ruff check src tests benchmarks examples
 	@# numba's kernels are compiled once, by archquake warm in two processes (their workloads
 	@# balanced), before the test workers start: otherwise each worker compiles every kernel it
-	@# calls. mypy runs beside the test workers (they keep about four fifths of the two cores
-	@# busy: waits on subprocesses and clusters, the last files; a third worker was no faster).
-	@# The workers take whole files, the longest first (tests/conftest.py orders them)
+	@# calls. mypy starts on the core the shorter half leaves and goes on beside the test
+	@# workers (they keep about four fifths of the two cores busy: waits on subprocesses and
+	@# clusters, the last files; a third worker was no faster). The workers take whole files,
+	@# the longest first (tests/conftest.py orders them)
 	$(BIN)/archquake warm --only $(WARM_A) & warm=$$!; \
-	$(BIN)/archquake warm --only $(WARM_B); warmed=$$?; wait $$warm || warmed=1; \
+	$(BIN)/archquake warm --only $(WARM_B); warmed=$$?; \
 	$(BIN)/mypy src/archquake > .mypy.out 2>&1 & mypy=$$!; \
+	wait $$warm || warmed=1; \
 	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder; tests=$$?; \
 	wait $$mypy; typing=$$?; cat .mypy.out; rm -f .mypy.out; \
 	test $$warmed = 0 && test $$tests = 0 && test $$typing = 0
